@@ -2,6 +2,8 @@
 // message naming what failed and a non-zero exit code.
 #include <CLI/CLI.hpp>
 
+#include "cli/commands.h"
+
 #include <exception>
 #include <iostream>
 
@@ -10,7 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   auto* analyze = app.add_subcommand("analyze", "Linear analysis of a servo system or an integrator");
   analyze->require_subcommand(0, 1);
-  (void)analyze;
+  rpsd::cli::add_analyze_servo(*analyze);
 
   try {
     app.parse(argc, argv);

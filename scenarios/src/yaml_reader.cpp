@@ -1,0 +1,162 @@
+#include "rpsd/scenarios/yaml_reader.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace rpsd::scenarios {
+namespace {
+
+std::string location(const std::string& file, const YAML::Mark& mark) {
+  std::ostringstream out;
+  out << file;
+  if (!mark.is_null()) out << ':' << mark.line + 1 << ':' << mark.column + 1;
+  return out.str();
+}
+
+std::string describe(const YAML::Node& value) {
+  if (value.IsScalar()) return '"' + value.Scalar() + '"';
+  if (value.IsSequence()) return "a list";
+  if (value.IsMap()) return "a mapping";
+  return "nothing";
+}
+
+}  // namespace
+
+YAML::Node load_yaml_file(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError(file.string() + ": cannot open file");
+  try {
+    YAML::Node root = YAML::Load(in);
+    if (!root.IsMap()) throw ConfigError(file.string() + ": expected a mapping of keys at the top level");
+    return root;
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(location(file.string(), e.mark) + ": YAML syntax error: " + e.msg);
+  }
+}
+
+MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_path)
+    : node_(std::move(node)), file_(std::move(file)), key_path_(std::move(key_path)) {
+  if (!node_.IsMap()) fail_at(node_, key_path_, "expected a mapping of keys, got " + describe(node_));
+}
+
+std::string MappingReader::path_of(const std::string& key) const {
+  return key_path_.empty() ? key : key_path_ + '.' + key;
+}
+
+void MappingReader::fail_at(const YAML::Node& node, const std::string& path, const std::string& message) const {
+  throw ConfigError(location(file_, node.Mark()) + ": " + (path.empty() ? std::string("(document)") : path) + ": " +
+                    message);
+}
+
+void MappingReader::fail(const std::string& key, const std::string& message) const {
+  const YAML::Node value = node_[key];
+  fail_at(value ? value : node_, path_of(key), message);
+}
+
+bool MappingReader::has(const std::string& key) const { return static_cast<bool>(node_[key]); }
+
+YAML::Node MappingReader::required(const std::string& key) {
+  read_keys_.insert(key);
+  YAML::Node value = node_[key];
+  if (!value) fail_at(node_, path_of(key), "required key is missing");
+  return value;
+}
+
+double MappingReader::parse_number(const YAML::Node& value, const std::string& key) const {
+  double result = 0.0;
+  if (!value.IsScalar() || !YAML::convert<double>::decode(value, result) || !std::isfinite(result)) {
+    fail_at(value, path_of(key), "expected a number, got " + describe(value));
+  }
+  return result;
+}
+
+double MappingReader::number(const std::string& key) { return parse_number(required(key), key); }
+
+double MappingReader::positive_number(const std::string& key) {
+  const YAML::Node value = required(key);
+  const double v = parse_number(value, key);
+  if (!(v > 0.0)) fail_at(value, path_of(key), "expected a positive number, got " + describe(value));
+  return v;
+}
+
+double MappingReader::non_negative_number(const std::string& key) {
+  const YAML::Node value = required(key);
+  const double v = parse_number(value, key);
+  if (v < 0.0) fail_at(value, path_of(key), "expected zero or a positive number, got " + describe(value));
+  return v;
+}
+
+double MappingReader::number_or(const std::string& key, double fallback) {
+  return has(key) ? number(key) : (read_keys_.insert(key), fallback);
+}
+double MappingReader::positive_number_or(const std::string& key, double fallback) {
+  return has(key) ? positive_number(key) : (read_keys_.insert(key), fallback);
+}
+double MappingReader::non_negative_number_or(const std::string& key, double fallback) {
+  return has(key) ? non_negative_number(key) : (read_keys_.insert(key), fallback);
+}
+
+bool MappingReader::boolean_or(const std::string& key, bool fallback) {
+  read_keys_.insert(key);
+  const YAML::Node value = node_[key];
+  if (!value) return fallback;
+  bool result = false;
+  if (!value.IsScalar() || !YAML::convert<bool>::decode(value, result)) {
+    fail_at(value, path_of(key), "expected true or false, got " + describe(value));
+  }
+  return result;
+}
+
+std::string MappingReader::string(const std::string& key) {
+  const YAML::Node value = required(key);
+  if (!value.IsScalar()) fail_at(value, path_of(key), "expected a string, got " + describe(value));
+  return value.Scalar();
+}
+
+std::optional<std::string> MappingReader::optional_string(const std::string& key) {
+  if (!has(key)) {
+    read_keys_.insert(key);
+    return std::nullopt;
+  }
+  return string(key);
+}
+
+std::vector<double> MappingReader::positive_numbers(const std::string& key) {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence() || value.size() == 0) {
+    fail_at(value, path_of(key), "expected a non-empty list of numbers, got " + describe(value));
+  }
+  std::vector<double> numbers;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const std::string item_path = path_of(key) + '[' + std::to_string(i) + ']';
+    double v = 0.0;
+    if (!value[i].IsScalar() || !YAML::convert<double>::decode(value[i], v) || !std::isfinite(v) || !(v > 0.0)) {
+      fail_at(value[i], item_path, "expected a positive number, got " + describe(value[i]));
+    }
+    numbers.push_back(v);
+  }
+  return numbers;
+}
+
+MappingReader MappingReader::mapping(const std::string& key) {
+  const YAML::Node value = required(key);
+  return MappingReader(value, file_, path_of(key));
+}
+
+std::optional<MappingReader> MappingReader::optional_mapping(const std::string& key) {
+  if (!has(key)) {
+    read_keys_.insert(key);
+    return std::nullopt;
+  }
+  return mapping(key);
+}
+
+void MappingReader::finish() const {
+  for (const auto& entry : node_) {
+    const std::string key = entry.first.Scalar();
+    if (!read_keys_.contains(key)) fail_at(entry.first, path_of(key), "unknown key");
+  }
+}
+
+}  // namespace rpsd::scenarios

@@ -1,0 +1,57 @@
+// The seed paper's servo-hydraulic test system (Figure 3, Eqs. 1-4) as a continuous-time
+// plant integrated with classical fixed-step RK4 at ServoSystemParameters::plant_rate_hz.
+//
+// State (5 numbers, contiguous): spool opening x_v (-1..1), pilot-stage flow q, load
+// pressure P_L, piston/specimen displacement x and velocity xdot.
+//   controller   v    = G_p C_F (u - x) + G_d C_F (udot - xdot)             (Eq. 1)
+//   pilot stage  tau qdot = K_vp (v - K_3 x_vmax x_v) - q
+//   main spool   x_vmax A_v xdot_v = q, stopped at |x_v| = 1                 (together Eq. 2)
+//   valve flow   Q_L  = K_v(x_v) x_v sqrt(1 - sgn(x_v) P_L / P_s)            (Eq. 3)
+//   chambers     K_a Pdot_L = Q_L - A xdot - C_l P_L                         (Eq. 4)
+//   specimen     m xddot = A P_L - c xdot - k(x) - F_c tanh(xdot / v_reg)
+#pragma once
+
+#include <Eigen/Core>
+
+#include "rpsd/servo/plant.h"
+#include "rpsd/servo/servo_parameters.h"
+
+namespace rpsd::servo {
+
+class ServoHydraulicPlant final : public Plant {
+ public:
+  using State = Eigen::Matrix<double, 5, 1>;
+  enum StateIndex { kSpoolOpening = 0, kPilotFlow, kLoadPressure, kDisplacement, kVelocity };
+
+  /// Validates the parameters (throws std::invalid_argument). Not real-time safe.
+  explicit ServoHydraulicPlant(const ServoSystemParameters& parameters);
+
+  void reset(double displacement_m) override;
+  void advance(double command_start_m, double command_end_m, double duration_s) override;
+  PlantMeasurement measure() const override;
+
+  /// Time derivative of the state for command u and command rate udot; the model's whole
+  /// physics in one pure function (used by the integrator and the linearisation). Real-time safe.
+  State derivative(const State& state, double command_m, double command_rate_m_per_s) const;
+
+  const State& state() const { return state_; }
+  void set_state(const State& state) { state_ = state; }
+  double time_s() const { return time_s_; }
+  double spool_opening() const { return state_[kSpoolOpening]; }
+  double velocity_m_per_s() const { return state_[kVelocity]; }
+  double load_pressure_pa() const { return state_[kLoadPressure]; }
+  const ServoSystemParameters& parameters() const { return parameters_; }
+
+ private:
+  void rk4_step(double h, double u0, double command_rate);
+  void apply_spool_stops(State& state) const;
+
+  ServoSystemParameters parameters_;
+  double damping_n_s_per_m_;
+  double compressibility_m5_per_n_;
+  double max_step_s_;
+  State state_ = State::Zero();
+  double time_s_ = 0.0;
+};
+
+}  // namespace rpsd::servo
