@@ -31,6 +31,7 @@ function(rpsd_add_test name)
   cmake_parse_arguments(T "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${T_SOURCES})
   target_link_libraries(${name} PRIVATE ${T_DEPS} GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE RPSD_TEST_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   rpsd_warnings(${name})
   gtest_discover_tests(${name} WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}
                        PROPERTIES ENVIRONMENT "RPSD_SOURCE_DIR=${PROJECT_SOURCE_DIR}"

@@ -1,6 +1,5 @@
 #include "rpsd/servo/linear_analysis.h"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <numbers>
 
@@ -134,7 +133,7 @@ double max_stable_p_gain_from_eigenvalues(const ServoSystemParameters& p) {
   return largest_stable_gain(
       [&](double gain) {
         const Eigen::MatrixXd a = linearised_state_matrix(with_p_gain(p, gain));
-        return Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues().real().maxCoeff() < 0.0;
+        return balanced_eigenvalues(a).real().maxCoeff() < 0.0;
       },
       gain_search_bound(p), 1e-7);
 }

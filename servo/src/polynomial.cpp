@@ -57,7 +57,35 @@ Eigen::VectorXcd Polynomial::roots() const {
   Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
   companion.bottomLeftCorner(n - 1, n - 1).setIdentity();
   companion.col(n - 1) = -coefficients_.head(n) / coefficients_[n];
-  return Eigen::EigenSolver<Eigen::MatrixXd>(companion, false).eigenvalues();
+  return balanced_eigenvalues(companion);
+}
+
+Eigen::VectorXcd balanced_eigenvalues(Eigen::MatrixXd a) {
+  constexpr double kRadix = 2.0;
+  const Eigen::Index n = a.rows();
+  bool converged = false;
+  while (!converged) {
+    converged = true;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double column = 0.0, row = 0.0;
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (j == i) continue;
+        column += std::abs(a(j, i));
+        row += std::abs(a(i, j));
+      }
+      if (column == 0.0 || row == 0.0) continue;
+      const double sum = column + row;
+      double factor = 1.0;
+      for (double g = row / kRadix; column < g; column *= kRadix * kRadix) factor *= kRadix;
+      for (double g = row * kRadix; column > g; column /= kRadix * kRadix) factor /= kRadix;
+      if ((column + row) / factor < 0.95 * sum) {
+        converged = false;
+        a.row(i) /= factor;
+        a.col(i) *= factor;
+      }
+    }
+  }
+  return Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
 }
 
 std::complex<double> TransferFunction::at_frequency_hz(double frequency_hz) const {

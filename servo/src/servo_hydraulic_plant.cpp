@@ -25,7 +25,11 @@ void ServoHydraulicPlant::reset(double displacement_m) {
   state_ = State::Zero();
   state_[kLoadPressure] = load_pressure;
   state_[kDisplacement] = displacement_m;
-  state_[kSpoolOpening] = std::clamp(leakage_flow / p.flow.no_load_flow_gain_m3_per_s, -1.0, 1.0);
+  const double drop = p.flow.load_pressure_effect && load_pressure != 0.0
+                          ? 1.0 - std::abs(load_pressure) / p.flow.supply_pressure_pa
+                          : 1.0;
+  const double flow_per_opening = p.flow.no_load_flow_gain_m3_per_s * std::sqrt(std::max(drop, 1e-6));
+  state_[kSpoolOpening] = std::clamp(leakage_flow / flow_per_opening, -1.0, 1.0);
   time_s_ = 0.0;
 }
 

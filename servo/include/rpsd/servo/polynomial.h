@@ -32,6 +32,11 @@ class Polynomial {
   Eigen::VectorXd coefficients_;
 };
 
+/// Eigenvalues of a general real matrix after diagonal balancing (Parlett-Reinsch, powers
+/// of two). Hydraulic models mix entries from 1e-16 to 1e10; without balancing the QR
+/// iteration loses several digits.
+Eigen::VectorXcd balanced_eigenvalues(Eigen::MatrixXd matrix);
+
 /// G(s) = numerator(s) / denominator(s).
 struct TransferFunction {
   Polynomial numerator;
