@@ -8,4 +8,7 @@ namespace rpsd::cli {
 /// `rpsd analyze SERVO.yaml [--json]`: linear analysis of a servo-system parameter file.
 void add_analyze_servo(CLI::App& analyze);
 
+/// `rpsd run SCENARIO --out DIR`: run a scenario, write results.
+void add_run(CLI::App& app);
+
 }  // namespace rpsd::cli

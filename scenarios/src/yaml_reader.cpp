@@ -54,7 +54,10 @@ void MappingReader::fail(const std::string& key, const std::string& message) con
   fail_at(value ? value : node_, path_of(key), message);
 }
 
-bool MappingReader::has(const std::string& key) const { return static_cast<bool>(node_[key]); }
+bool MappingReader::has(const std::string& key) {
+  read_keys_.insert(key);
+  return static_cast<bool>(node_[key]);
+}
 
 YAML::Node MappingReader::required(const std::string& key) {
   read_keys_.insert(key);
@@ -88,13 +91,13 @@ double MappingReader::non_negative_number(const std::string& key) {
 }
 
 double MappingReader::number_or(const std::string& key, double fallback) {
-  return has(key) ? number(key) : (read_keys_.insert(key), fallback);
+  return has(key) ? number(key) : fallback;
 }
 double MappingReader::positive_number_or(const std::string& key, double fallback) {
-  return has(key) ? positive_number(key) : (read_keys_.insert(key), fallback);
+  return has(key) ? positive_number(key) : fallback;
 }
 double MappingReader::non_negative_number_or(const std::string& key, double fallback) {
-  return has(key) ? non_negative_number(key) : (read_keys_.insert(key), fallback);
+  return has(key) ? non_negative_number(key) : fallback;
 }
 
 bool MappingReader::boolean_or(const std::string& key, bool fallback) {
@@ -115,10 +118,7 @@ std::string MappingReader::string(const std::string& key) {
 }
 
 std::optional<std::string> MappingReader::optional_string(const std::string& key) {
-  if (!has(key)) {
-    read_keys_.insert(key);
-    return std::nullopt;
-  }
+  if (!has(key)) return std::nullopt;
   return string(key);
 }
 
@@ -145,10 +145,7 @@ MappingReader MappingReader::mapping(const std::string& key) {
 }
 
 std::optional<MappingReader> MappingReader::optional_mapping(const std::string& key) {
-  if (!has(key)) {
-    read_keys_.insert(key);
-    return std::nullopt;
-  }
+  if (!has(key)) return std::nullopt;
   return mapping(key);
 }
 

@@ -35,7 +35,8 @@ class MappingReader {
   std::vector<double> positive_numbers(const std::string& key);
   MappingReader mapping(const std::string& key);
   std::optional<MappingReader> optional_mapping(const std::string& key);
-  bool has(const std::string& key) const;
+  /// Whether the key is present; the key counts as known to finish() either way.
+  bool has(const std::string& key);
 
   /// Rejects every key that was not read. Call after reading all known keys.
   void finish() const;

@@ -1,0 +1,25 @@
+// Writes a servo study's results into an output folder: time histories and tables as CSV,
+// DIR/summary.json, and PNG plots like the seed paper's figures. Not real-time safe.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "rpsd/coordinator/servo_studies.h"
+
+namespace rpsd::coordinator {
+
+void write_sine_sweep(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+                      const scenarios::SineSweepStudy& study, const SineSweepResult& result);
+
+void write_frequency_response(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+                              const scenarios::FrequencyResponseStudy& study,
+                              const std::vector<FrequencyResponseRow>& rows);
+
+void write_max_gain(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+                    const scenarios::MaxGainStudy& study, const std::vector<MaxGainRow>& rows);
+
+/// Runs whichever study the file holds and writes it into dir (created if missing).
+void run_and_write(const scenarios::ServoStudyFile& file, const std::filesystem::path& dir);
+
+}  // namespace rpsd::coordinator

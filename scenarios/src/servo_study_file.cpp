@@ -1,0 +1,102 @@
+#include "rpsd/scenarios/servo_study.h"
+
+#include <cmath>
+
+#include "rpsd/scenarios/servo_parameters_file.h"
+#include "rpsd/scenarios/yaml_reader.h"
+#include "rpsd/servo/linear_analysis.h"
+
+namespace rpsd::scenarios {
+namespace {
+
+std::vector<double> read_log_range(MappingReader range) {
+  const double start = range.positive_number("start");
+  const double stop = range.positive_number("stop");
+  const double points = range.positive_number("points");
+  if (stop <= start) range.fail("stop", "must be greater than start");
+  if (points < 2 || points != std::floor(points) || points > 100000) {
+    range.fail("points", "expected a whole number from 2 to 100000");
+  }
+  range.finish();
+  return log_spaced(start, stop, static_cast<int>(points));
+}
+
+SineSweepStudy read_sine_sweep(MappingReader& root, servo::ServoSystemParameters servo) {
+  SineSweepStudy s;
+  s.servo = std::move(servo);
+  s.command_rate_hz = root.positive_number_or("command_rate_hz", s.command_rate_hz);
+  MappingReader sweep = root.mapping("sine_sweep");
+  s.amplitude_m = sweep.positive_number("amplitude_m");
+  s.start_frequency_hz = sweep.non_negative_number("start_frequency_hz");
+  s.end_frequency_hz = sweep.positive_number("end_frequency_hz");
+  s.duration_s = sweep.positive_number("duration_s");
+  if (s.end_frequency_hz <= s.start_frequency_hz) sweep.fail("end_frequency_hz", "must exceed start_frequency_hz");
+  if (s.end_frequency_hz * 8.0 > s.command_rate_hz) {
+    sweep.fail("end_frequency_hz", "needs at least 8 command samples per cycle (raise command_rate_hz)");
+  }
+  sweep.finish();
+  if (root.has("report_frequencies_hz")) {
+    s.report_frequencies_hz = root.positive_numbers("report_frequencies_hz");
+    for (double f : s.report_frequencies_hz) {
+      if (f <= s.start_frequency_hz || f >= s.end_frequency_hz) {
+        root.fail("report_frequencies_hz", "every report frequency must lie inside the sweep");
+      }
+    }
+  }
+  return s;
+}
+
+FrequencyResponseStudy read_frequency_response(MappingReader& root, servo::ServoSystemParameters servo) {
+  FrequencyResponseStudy s;
+  s.frequencies_hz = read_log_range(root.mapping("frequencies_hz"));
+  MappingReader lead = root.mapping("phase_lead");
+  const double a = lead.positive_number("ratio_a");
+  if (a < 1.0) lead.fail("ratio_a", "must be at least 1 (a lead network)");
+  // Without an explicit T the network's zero cancels the first-order lag of Eq. 9.
+  s.phase_lead = lead.has("time_constant_s")
+                     ? compensation::PhaseLeadParameters{a, lead.positive_number("time_constant_s")}
+                     : compensation::cancel_first_order_lag(servo::response_delay_s(servo), a);
+  lead.finish();
+  s.servo = std::move(servo);
+  return s;
+}
+
+MaxGainStudy read_max_gain(MappingReader& root, servo::ServoSystemParameters servo) {
+  MaxGainStudy s;
+  s.servo = std::move(servo);
+  s.masses_kg = read_log_range(root.mapping("attached_mass_kg"));
+  return s;
+}
+
+}  // namespace
+
+std::vector<double> log_spaced(double start, double stop, int points) {
+  std::vector<double> values(points);
+  const double a = std::log10(start), b = std::log10(stop);
+  for (int i = 0; i < points; ++i) values[i] = std::pow(10.0, a + (b - a) * i / (points - 1));
+  return values;
+}
+
+ServoStudyFile load_servo_study(const std::filesystem::path& file) {
+  MappingReader root(load_yaml_file(file), file.string(), "");
+  ServoStudyFile result;
+  result.name = file.stem().string();
+  result.description = root.optional_string("description").value_or("");
+  const std::string kind = root.string("study");
+  const std::filesystem::path servo_file = file.parent_path() / root.string("servo");
+  if (!std::filesystem::exists(servo_file)) root.fail("servo", "no such parameter file: " + servo_file.string());
+  servo::ServoSystemParameters servo = load_servo_parameters(servo_file);
+  if (kind == "servo_sine_sweep") {
+    result.study = read_sine_sweep(root, std::move(servo));
+  } else if (kind == "servo_frequency_response") {
+    result.study = read_frequency_response(root, std::move(servo));
+  } else if (kind == "servo_max_gain") {
+    result.study = read_max_gain(root, std::move(servo));
+  } else {
+    root.fail("study", "unknown study \"" + kind + "\" (expected servo_sine_sweep, servo_frequency_response or servo_max_gain)");
+  }
+  root.finish();
+  return result;
+}
+
+}  // namespace rpsd::scenarios
