@@ -48,7 +48,9 @@ TEST(Figure6, PhaseLeadRemovesTheRollOffBelowTheOilColumn) {
     if (row.frequency_hz > 5.0) break;
     // Within 5 % of 1 to 3 Hz (the uncompensated system has lost 45 % there), then the
     // network's own pole at a / T_d = 9.8 Hz starts to roll off.
-    if (row.frequency_hz <= 3.0) EXPECT_NEAR(row.compensated.amplitude_ratio, 1.0, 0.05) << row.frequency_hz;
+    if (row.frequency_hz <= 3.0) {
+      EXPECT_NEAR(row.compensated.amplitude_ratio, 1.0, 0.05) << row.frequency_hz;
+    }
     EXPECT_GT(row.compensated.amplitude_ratio, row.eq8.amplitude_ratio) << row.frequency_hz;
     // Eq. 9 is 1 / sqrt(1 + (w / wc)^2) exactly.
     const double ratio = row.frequency_hz / (servo::cutoff_frequency_rad_s(p) / (2.0 * std::numbers::pi));
