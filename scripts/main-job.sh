@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The README's first command: installs what is missing, builds rpsd, then runs the main job:
+# the linear analysis of the seed paper's rig and its Figure 5, 6 and 7 studies, into ./results.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+out=${1:-results}
+rig=servo/params/paper-mts-244.yaml
+echo
+./build/rpsd analyze "$rig"
+mkdir -p "$out"
+./build/rpsd analyze "$rig" --json > "$out/servo-analysis.json"
+for scenario in paper-fig5-sinesweep paper-fig6-frequency-response paper-fig7-max-gain; do
+  ./build/rpsd run "scenarios/$scenario.yaml" --out "$out/$scenario"
+done
+echo
+echo "Plots: $out/paper-fig5-sinesweep/sine_sweep.png, $out/paper-fig6-frequency-response/frequency_response.png,"
+echo "       $out/paper-fig7-max-gain/max_gain.png (data beside them as CSV and summary.json)"

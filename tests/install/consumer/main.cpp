@@ -1,0 +1,19 @@
+// Builds against the installed rpsd::servo and prints the paper rig's cut-off frequency for
+// a parameter set written in code.
+#include <cstdio>
+
+#include "rpsd/servo/linear_analysis.h"
+
+int main() {
+  rpsd::servo::ServoSystemParameters p;
+  p.controller.proportional_gain = 0.798;
+  p.servovalve = {1.421e-3, 6.8235e-6, 1.267e-4, 6666.67, 1.5e-3};
+  p.flow.no_load_flow_gain_m3_per_s = 1.4766e-2;
+  p.flow.supply_pressure_pa = 20.7e6;
+  p.actuator = {7.536e-3, 1.95e-3, 1.3e9, 9.15e-12, 0.127};
+  p.sensors.lvdt_gain_v_per_m = 78.74;
+  p.specimen.mass_kg = 7080.0;
+  p.specimen.stiffness.initial_n_per_m = 700.8e3;
+  std::printf("cutoff_frequency_hz %.3f\n", rpsd::servo::analyze(p).cutoff_frequency_hz);
+  return 0;
+}

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs the built tree into a temporary prefix, then configures, builds and runs a
+# separate project that does find_package(rpsd) and links rpsd::servo.
+set -euo pipefail
+build_dir=$1; source_dir=$2
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cmake --install "$build_dir" --prefix "$work/prefix" >/dev/null
+test -x "$work/prefix/bin/rpsd"
+test -f "$work/prefix/include/rpsd/servo/servo_hydraulic_plant.h"
+cmake -S "$source_dir/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/consumer" >/dev/null
+"$work/consumer/consumer"
