@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -173,10 +172,12 @@ SparseMatrix load_matrix_market(const std::filesystem::path& file) {
                                 "x" + std::to_string(h.cols));
   }
   if (h.symmetric) {
-    // The file holds the lower triangle: add its strictly lower part transposed.
-    SparseMatrix strict = A.triangularView<Eigen::StrictlyLower>();
-    SparseMatrix upper = strict.transpose();
-    A = A + upper;
+    // The file holds the lower triangle (checked above). Rebuild the full matrix from the
+    // lower triangle, so the result is right whether or not loadMarket mirrored it (Eigen
+    // 3.4.0 does not; later versions may).
+    const SparseMatrix lower = A.triangularView<Eigen::Lower>();
+    const SparseMatrix strict = A.triangularView<Eigen::StrictlyLower>();
+    A = lower + SparseMatrix(strict.transpose());
   }
   A.makeCompressed();
   return A;

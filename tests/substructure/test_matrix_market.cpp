@@ -126,6 +126,15 @@ TEST_F(MatrixMarket, MissingFileIsNamed) {
   EXPECT_CONTAINS(error_of([&] { (void)load_matrix_market(dir_); }), "is a directory");
 }
 
+TEST_F(MatrixMarket, UnreadableFileIsNamed) {
+  const fs::path p = write("locked.mtx", kBenchmarkM);
+  fs::permissions(p, fs::perms::none);
+  if (std::ifstream(p).is_open()) GTEST_SKIP() << "running with privileges that ignore file permissions";
+  const std::string msg = error_of([&] { (void)load_matrix_market(p); });
+  EXPECT_CONTAINS(msg, p.string());
+  EXPECT_CONTAINS(msg, "cannot be opened for reading");
+}
+
 TEST_F(MatrixMarket, MalformedFilesAreNamedWithTheLine) {
   struct Case {
     const char* text;

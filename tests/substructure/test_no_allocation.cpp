@@ -1,6 +1,6 @@
 // Zero heap allocations on the real-time path: restoring_force / commit / tangent_stiffness
-// of a 500-DOF sparse linear model and of 50-story Bouc–Wen and bilinear buildings, with the
-// partition and the ground-motion load, over many steps.
+// of a 500-DOF sparse and a 200-DOF dense linear model and of 50-story Bouc–Wen and
+// bilinear buildings, with the partition and the ground-motion load, over many steps.
 //
 // This binary replaces the global operator new/delete and the C allocation functions
 // (malloc, calloc, realloc, aligned variants; glibc allows replacing them and exports the
@@ -197,6 +197,32 @@ TEST(NoAllocation, SparseLinearModel500Dofs) {
       Kt.multiply_add(d, -1.0, scratch);
       load.force(0.1 * s, f);
       check += r[n - 1] + f[0] + scratch[0];
+    }
+  });
+  EXPECT_EQ(c.news, 0);
+  EXPECT_EQ(c.mallocs, 0);
+  EXPECT_TRUE(std::isfinite(check));
+}
+
+TEST(NoAllocation, DenseLinearModel) {
+  // Dense storage: the GEMV products must not allocate either.
+  LinearMdofConfig cfg = banded_model(200, 15);
+  cfg.mass_kg = cfg.mass_kg.converted(MatrixStorage::dense);
+  cfg.stiffness_n_per_m = cfg.stiffness_n_per_m.converted(MatrixStorage::dense);
+  LinearMdofModel model;
+  model.configure(cfg);
+  ASSERT_FALSE(model.initial_stiffness().is_sparse());
+  ASSERT_FALSE(model.damping().is_sparse());
+  const Eigen::Index n = model.dofs();
+  Eigen::VectorXd d = Eigen::VectorXd::LinSpaced(n, 0.0, 0.01), r(n), scratch(n);
+  double check = 0.0;
+  const Counts c = count_allocations([&] {
+    for (int k = 0; k < 2000; ++k) {
+      model.restoring_force(d, r);
+      model.commit();
+      model.damping().multiply(d, scratch);
+      model.tangent_stiffness().multiply_add(d, 1.0, scratch);
+      check += r[0] + scratch[n - 1];
     }
   });
   EXPECT_EQ(c.news, 0);

@@ -12,10 +12,13 @@
 // z with classical 4th-order Runge–Kutta in N equal sub-steps,
 //   N = clamp(ceil(|u − u_c| / h_max), 1, max_substeps),   h_max = substep_ratio / L,
 // where L = n z_maxⁿ⁻¹ (β + |γ|) bounds |∂g/∂z| for |z| ≤ z_max. With the default ratio 0.05
-// each sub-step is far inside RK4's stability region and its error is O((hL)⁵) ≈ 3e-9 z_max;
-// test increments (a fraction of z_max per step) usually need one sub-step. The cap
-// max_substeps bounds the work per trial for real-time use; beyond the cap the sub-steps
-// grow, and stay stable while |Δu| L / max_substeps < 2.7.
+// each sub-step is far inside RK4's stability region (|hλ| ≤ 0.05 against 2.78) and,
+// because the degree-4 Taylor polynomial of eˣ has no real root, the linearised distance to
+// z_max never changes sign: z approaches the bound without overshooting it. Measured
+// against 1e-4 sub-steps, one increment of up to 3 z_max is within 2e-8 z_max (n = 1, 2, 5).
+// Test increments (a fraction of z_max per step) usually need one sub-step. The cap
+// max_substeps bounds the work per trial for real-time use; beyond it the sub-steps grow,
+// and stay stable while |Δu| L / max_substeps < 2.78.
 
 namespace rpsd::substructure {
 
