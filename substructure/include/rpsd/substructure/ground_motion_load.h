@@ -1,0 +1,26 @@
+#pragma once
+// Effective earthquake load F(t) = −M ι a_g(t).
+
+#include "rpsd/substructure/structural_matrix.h"
+
+#include <Eigen/Core>
+
+namespace rpsd::substructure {
+
+class GroundMotionLoad {
+ public:
+  // Precomputes M ι. Throws std::invalid_argument if sizes differ or ι is not finite.
+  // Not real-time safe.
+  void configure(const StructuralMatrix& mass, const Eigen::VectorXd& influence);
+
+  // force = −M ι · ground_acceleration. Real-time safe.
+  void force(double ground_acceleration_m_s2, Eigen::Ref<Eigen::VectorXd> out) const noexcept {
+    out.noalias() = -ground_acceleration_m_s2 * m_iota_;
+  }
+  [[nodiscard]] const Eigen::VectorXd& mass_times_influence() const noexcept { return m_iota_; }
+
+ private:
+  Eigen::VectorXd m_iota_;
+};
+
+}  // namespace rpsd::substructure

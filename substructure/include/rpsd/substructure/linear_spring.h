@@ -1,0 +1,33 @@
+#pragma once
+// Linear elastic spring F = k u.
+
+namespace rpsd::substructure {
+
+struct LinearSpringConfig {
+  double stiffness_n_per_m = 0.0;  // > 0
+};
+
+class LinearSpring {
+ public:
+  // Throws std::invalid_argument for a non-positive or non-finite stiffness. Not real-time safe.
+  explicit LinearSpring(const LinearSpringConfig& config);
+
+  // Force at trial deformation u (from the committed state). Real-time safe.
+  double trial(double deformation_m) noexcept {
+    trial_u_ = deformation_m;
+    return k_ * deformation_m;
+  }
+  void commit() noexcept { committed_u_ = trial_u_; }
+
+  [[nodiscard]] double initial_stiffness() const noexcept { return k_; }
+  [[nodiscard]] double tangent_stiffness() const noexcept { return k_; }
+  [[nodiscard]] double committed_deformation() const noexcept { return committed_u_; }
+  [[nodiscard]] double committed_force() const noexcept { return k_ * committed_u_; }
+
+ private:
+  double k_;
+  double trial_u_ = 0.0;
+  double committed_u_ = 0.0;
+};
+
+}  // namespace rpsd::substructure

@@ -1,0 +1,31 @@
+#pragma once
+// Natural frequencies and mode shapes from the generalized eigenproblem K φ = ω² M φ.
+
+#include "rpsd/substructure/structural_matrix.h"
+
+#include <Eigen/Core>
+
+namespace rpsd::substructure {
+
+// The eigenproblem is solved densely (Eigen::GeneralizedSelfAdjointEigenSolver, O(n³)).
+// Sparse matrices are converted to dense up to this many DOFs (2000 DOFs: 32 MB per matrix
+// and a few seconds of solve); larger models must give their frequencies directly
+// (RayleighFromFrequencies) as exported by the finite-element program.
+inline constexpr Eigen::Index kMaxDenseEigenDofs = 2000;
+
+struct ModalSolution {
+  Eigen::VectorXd omega_rad_s;  // ascending natural circular frequencies
+  Eigen::MatrixXd modes;        // column k is mode k, mass-normalised: φᵀ M φ = 1
+};
+
+// Throws std::invalid_argument when M and K differ in size, are not square, symmetric or
+// finite, when M is not positive definite, when K has a negative eigenvalue (beyond
+// round-off), or when the model exceeds kMaxDenseEigenDofs. Not real-time safe.
+[[nodiscard]] ModalSolution modal_analysis(const StructuralMatrix& mass,
+                                           const StructuralMatrix& stiffness);
+
+// Only the frequencies (cheaper: no eigenvectors). Same checks. Not real-time safe.
+[[nodiscard]] Eigen::VectorXd natural_frequencies_rad_s(const StructuralMatrix& mass,
+                                                        const StructuralMatrix& stiffness);
+
+}  // namespace rpsd::substructure

@@ -1,0 +1,82 @@
+#include "rpsd/substructure/damping.h"
+
+#include "matrix_checks.h"
+#include "rpsd/substructure/modal.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <type_traits>
+
+namespace rpsd::substructure {
+namespace {
+
+StructuralMatrix zero_like(const StructuralMatrix& K) {
+  if (K.is_sparse()) return StructuralMatrix(SparseMatrix(K.rows(), K.cols()));
+  return StructuralMatrix(Eigen::MatrixXd::Zero(K.rows(), K.cols()));
+}
+
+BuiltDamping rayleigh(const RayleighCoefficients& c, const StructuralMatrix& M,
+                      const StructuralMatrix& K) {
+  StructuralMatrix C = StructuralMatrix::linear_combination(c.a0_per_s, M, c.a1_s, K);
+  return {C.converted(K.storage()), c};
+}
+
+}  // namespace
+
+BuiltDamping build_damping(const DampingConfig& config, const StructuralMatrix& M,
+                           const StructuralMatrix& K, const std::string& context) {
+  const Eigen::Index n = K.rows();
+  return std::visit(
+      [&](const auto& cfg) -> BuiltDamping {
+        using T = std::decay_t<decltype(cfg)>;
+        if constexpr (std::is_same_v<T, Undamped>) {
+          return {zero_like(K), std::nullopt};
+        } else if constexpr (std::is_same_v<T, DampingMatrix>) {
+          detail::require_square(cfg.c, context + "damping matrix C");
+          detail::require_size(cfg.c, n, context + "damping matrix C");
+          detail::require_finite(cfg.c, context + "damping matrix C");
+          return {cfg.c, std::nullopt};
+        } else if constexpr (std::is_same_v<T, RayleighFromModes>) {
+          for (int mode : {cfg.mode_a, cfg.mode_b}) {
+            if (mode < 1 || mode > n) {
+              throw std::invalid_argument(context + "Rayleigh damping: mode number " +
+                                          std::to_string(mode) + " is out of range 1.." +
+                                          std::to_string(n) + " (1 = fundamental mode)");
+            }
+          }
+          if (cfg.mode_a == cfg.mode_b) {
+            throw std::invalid_argument(context + "Rayleigh damping: the two mode numbers are both " +
+                                        std::to_string(cfg.mode_a) + "; they must differ");
+          }
+          const Eigen::VectorXd w = natural_frequencies_rad_s(M, K);
+          try {
+            return rayleigh(rayleigh_from_frequencies(w[cfg.mode_a - 1], w[cfg.mode_b - 1],
+                                                      cfg.damping_ratio_a, cfg.damping_ratio_b),
+                            M, K);
+          } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(context + "modes " + std::to_string(cfg.mode_a) + " and " +
+                                        std::to_string(cfg.mode_b) + ": " + e.what());
+          }
+        } else if constexpr (std::is_same_v<T, RayleighFromFrequencies>) {
+          try {
+            return rayleigh(rayleigh_from_frequencies(cfg.omega_a_rad_s, cfg.omega_b_rad_s,
+                                                      cfg.damping_ratio_a, cfg.damping_ratio_b),
+                            M, K);
+          } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(context + e.what());
+          }
+        } else {
+          static_assert(std::is_same_v<T, RayleighCoefficients>);
+          if (!(std::isfinite(cfg.a0_per_s) && cfg.a0_per_s >= 0.0) ||
+              !(std::isfinite(cfg.a1_s) && cfg.a1_s >= 0.0)) {
+            throw std::invalid_argument(context + "Rayleigh coefficients must be non-negative and "
+                                        "finite, got a0 = " + detail::fmt(cfg.a0_per_s) +
+                                        " 1/s, a1 = " + detail::fmt(cfg.a1_s) + " s");
+          }
+          return rayleigh(cfg, M, K);
+        }
+      },
+      config);
+}
+
+}  // namespace rpsd::substructure
