@@ -4,11 +4,10 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config   # compiler and build system
+  build-essential cmake              # compiler and build system
   libeigen3-dev                      # linear algebra (integrators, servo linear analysis)
   libyaml-cpp-dev                    # scenario and parameter files
-  cyclonedds-dev cyclonedds-tools    # DDS transport (C API, idlc)
-  libgtest-dev libgmock-dev          # tests
+  libgtest-dev                       # tests
   libbenchmark-dev                   # bench/
   libcli11-dev                       # the rpsd command line
   nlohmann-json3-dev                 # summary.json and --json output

@@ -38,6 +38,21 @@ TEST(Figure5, SweepAmplitudeRatiosFollowTheLinearModelWithServovalve) {
   EXPECT_LT(r.max_spool_opening, 0.2);
 }
 
+TEST(Figure5, HalvingThePlantStepChangesTheResponseByLessThanHalfAPercent) {
+  auto study = std::get<scenarios::SineSweepStudy>(shipped("paper-fig5-sinesweep.yaml").study);
+  const SineSweepResult coarse = run_sine_sweep(study);
+  study.servo.plant_rate_hz *= 2.0;
+  const SineSweepResult fine = run_sine_sweep(study);
+  ASSERT_EQ(coarse.displacement_m.size(), fine.displacement_m.size());
+  double max_difference = 0.0, max_response = 0.0;
+  for (std::size_t i = 0; i < fine.displacement_m.size(); ++i) {
+    max_difference = std::max(max_difference, std::abs(coarse.displacement_m[i] - fine.displacement_m[i]));
+    max_response = std::max(max_response, std::abs(fine.displacement_m[i]));
+  }
+  RecordProperty("relative_change", std::to_string(max_difference / max_response));
+  EXPECT_LT(max_difference / max_response, 0.005);
+}
+
 TEST(Figure6, PhaseLeadRemovesTheRollOffBelowTheOilColumn) {
   auto file = shipped("paper-fig6-frequency-response.yaml");
   const auto& study = std::get<scenarios::FrequencyResponseStudy>(file.study);

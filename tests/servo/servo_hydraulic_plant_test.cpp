@@ -167,25 +167,6 @@ TEST(ServoHydraulicPlant, SpoolOpeningStaysWithinItsStops) {
   EXPECT_GT(max_opening, 0.999);
 }
 
-TEST(ServoHydraulicPlant, HalvingTheStepChangesASweepByLessThanHalfAPercent) {
-  auto coarse = testing::paper_rig();
-  auto fine = coarse;
-  fine.plant_rate_hz = 2.0 * coarse.plant_rate_hz;
-  ServoHydraulicPlant a(coarse), b(fine);
-  const double dt = 1.0 / 1024.0, duration = 10.0;
-  double command = 0.0, max_difference = 0.0, max_response = 0.0;
-  for (int i = 1; i <= static_cast<int>(duration / dt); ++i) {
-    const double t = i * dt;
-    const double next = 0.0127 * std::sin(kPi * 10.0 / duration * t * t);  // 0-10 Hz chirp
-    a.advance(command, next, dt);
-    b.advance(command, next, dt);
-    command = next;
-    max_difference = std::max(max_difference, std::abs(a.measure().displacement_m - b.measure().displacement_m));
-    max_response = std::max(max_response, std::abs(b.measure().displacement_m));
-  }
-  EXPECT_LT(max_difference / max_response, 0.005);
-}
-
 TEST(ServoHydraulicPlant, ResetHoldsTheSpecimenAtRest) {
   const auto p = testing::paper_rig();
   ServoHydraulicPlant plant(p);
