@@ -1,0 +1,44 @@
+// A plant given as a continuous transfer function from displacement command to measured
+// displacement, e.g. the RTHS benchmark's identified actuator-specimen model. Realised in
+// controllable canonical form, balanced by a diagonal similarity, and integrated with RK4 at
+// a fixed internal rate with the command ramping linearly between samples.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "rpsd/servo/plant.h"
+#include "rpsd/servo/polynomial.h"
+
+namespace rpsd::servo {
+
+struct TransferFunctionPlantParameters {
+  TransferFunction transfer_function;       ///< strictly proper or proper
+  double specimen_stiffness_n_per_m = 0.0;  ///< the load cell reads k x_m
+  double plant_rate_hz = 8192.0;
+
+  /// Throws std::invalid_argument when improper, unstable, or too fast for the rate.
+  void validate() const;
+};
+
+class TransferFunctionPlant final : public Plant {
+ public:
+  /// Builds the state-space realisation. Not real-time safe.
+  explicit TransferFunctionPlant(const TransferFunctionPlantParameters& parameters);
+
+  /// At rest, holding displacement_m: the equilibrium for the constant command
+  /// displacement_m / G(0). Real-time safe.
+  void reset(double displacement_m) override;
+  void advance(double command_start_m, double command_end_m, double duration_s) override;
+  PlantMeasurement measure() const override;
+
+ private:
+  TransferFunctionPlantParameters parameters_;
+  Eigen::MatrixXd a_;
+  Eigen::VectorXd b_, c_;
+  double d_ = 0.0;
+  Eigen::VectorXd x_, k1_, k2_, k3_, k4_, scratch_;
+  double last_command_m_ = 0.0;
+  double max_step_s_;
+};
+
+}  // namespace rpsd::servo

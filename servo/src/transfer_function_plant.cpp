@@ -1,0 +1,89 @@
+#include "rpsd/servo/transfer_function_plant.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rpsd::servo {
+
+void TransferFunctionPlantParameters::validate() const {
+  const auto& tf = transfer_function;
+  if (tf.denominator.degree() < 1) throw std::invalid_argument("transfer function: denominator must have degree >= 1");
+  if (tf.numerator.degree() > tf.denominator.degree()) throw std::invalid_argument("transfer function: improper (numerator degree > denominator degree)");
+  const Eigen::VectorXcd poles = tf.denominator.roots();
+  if (poles.real().maxCoeff() >= 0.0) throw std::invalid_argument("transfer function: unstable or marginal pole");
+  if (!(plant_rate_hz > 0.0)) throw std::invalid_argument("plant_rate_hz: must be positive");
+  // RK4's stability region reaches |lambda h| ~ 2.8 on the real axis; keep a margin.
+  if (poles.cwiseAbs().maxCoeff() / plant_rate_hz > 1.0) {
+    throw std::invalid_argument("plant_rate_hz: too low for the fastest pole of the transfer function");
+  }
+  if (!(specimen_stiffness_n_per_m >= 0.0)) throw std::invalid_argument("specimen_stiffness_n_per_m: must be zero or positive");
+}
+
+TransferFunctionPlant::TransferFunctionPlant(const TransferFunctionPlantParameters& parameters)
+    : parameters_(parameters), max_step_s_(1.0 / parameters.plant_rate_hz) {
+  parameters_.validate();
+  const Polynomial& den = parameters_.transfer_function.denominator;
+  const Polynomial& num = parameters_.transfer_function.numerator;
+  const int n = den.degree();
+  const double lead = den.coefficient(n);
+  // Controllable canonical form of N(s)/D(s) with D monic.
+  a_ = Eigen::MatrixXd::Zero(n, n);
+  a_.topRightCorner(n - 1, n - 1).setIdentity();
+  for (int i = 0; i < n; ++i) a_(n - 1, i) = -den.coefficient(i) / lead;
+  b_ = Eigen::VectorXd::Zero(n);
+  b_[n - 1] = 1.0;
+  d_ = num.coefficient(n) / lead;
+  c_.resize(n);
+  for (int i = 0; i < n; ++i) c_[i] = num.coefficient(i) / lead - d_ * den.coefficient(i) / lead;
+  // Diagonal similarity so that the states have comparable magnitudes: state i scales with
+  // omega^i, omega the geometric mean of the pole magnitudes.
+  const double omega = std::pow(std::abs(den.coefficient(0) / lead), 1.0 / n);
+  for (int i = 0; i < n; ++i) {
+    const double s = std::pow(omega, i);  // x = S z with S = diag(omega^i)
+    a_.row(i) /= s;
+    a_.col(i) *= s;
+    b_[i] /= s;
+    c_[i] *= s;
+  }
+  for (auto* v : {&x_, &k1_, &k2_, &k3_, &k4_, &scratch_}) *v = Eigen::VectorXd::Zero(n);
+  reset(0.0);
+}
+
+void TransferFunctionPlant::reset(double displacement_m) {
+  const double static_gain = parameters_.transfer_function.static_gain();
+  const double command = displacement_m / static_gain;
+  x_ = -a_.partialPivLu().solve(b_ * command);
+  last_command_m_ = command;
+}
+
+void TransferFunctionPlant::advance(double command_start_m, double command_end_m, double duration_s) {
+  if (!(duration_s > 0.0)) return;
+  const int substeps = std::max(1, static_cast<int>(std::ceil(duration_s / max_step_s_ - 1e-9)));
+  const double h = duration_s / substeps;
+  const double slope = (command_end_m - command_start_m) / duration_s;
+  for (int i = 0; i < substeps; ++i) {
+    const double u0 = command_start_m + slope * i * h;
+    k1_.noalias() = a_ * x_;
+    k1_ += b_ * u0;
+    scratch_ = x_ + 0.5 * h * k1_;
+    k2_.noalias() = a_ * scratch_;
+    k2_ += b_ * (u0 + 0.5 * h * slope);
+    scratch_ = x_ + 0.5 * h * k2_;
+    k3_.noalias() = a_ * scratch_;
+    k3_ += b_ * (u0 + 0.5 * h * slope);
+    scratch_ = x_ + h * k3_;
+    k4_.noalias() = a_ * scratch_;
+    k4_ += b_ * (u0 + h * slope);
+    x_ += (h / 6.0) * (k1_ + 2.0 * k2_ + 2.0 * k3_ + k4_);
+  }
+  last_command_m_ = command_end_m;
+}
+
+PlantMeasurement TransferFunctionPlant::measure() const {
+  const double x = c_.dot(x_) + d_ * last_command_m_;
+  return {x, parameters_.specimen_stiffness_n_per_m * x};
+}
+
+}  // namespace rpsd::servo
