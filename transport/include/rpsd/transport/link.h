@@ -1,0 +1,34 @@
+// The coordinator's side of the connection to a servo node. One interface, several
+// transports: in-process (lock-step, deterministic; tests and rehearsals) and, later,
+// Cyclone DDS between hosts. The coordinator loop cannot tell them apart.
+#pragma once
+
+#include "rpsd/transport/messages.h"
+
+namespace rpsd::transport {
+
+enum class LinkStatus : std::uint8_t {
+  kOk,
+  kTimeout,      ///< no feedback for this step before the deadline
+  kStaleStep,    ///< feedback arrived for a different step
+  kPeerLost,
+};
+
+class Link {
+ public:
+  virtual ~Link() = default;
+  /// Sends the command of one control step. Real-time safe.
+  virtual LinkStatus send(const CommandSample& command) = 0;
+  /// Waits (within the link's deadline) for the feedback of the last command. Real-time safe.
+  virtual LinkStatus receive(FeedbackSample& feedback) = 0;
+};
+
+/// The node side as the in-process link sees it: turns one command into one feedback.
+class CommandProcessor {
+ public:
+  virtual ~CommandProcessor() = default;
+  /// Real-time safe.
+  virtual void process(const CommandSample& command, FeedbackSample& feedback) = 0;
+};
+
+}  // namespace rpsd::transport

@@ -1,0 +1,41 @@
+// The messages between the coordinator and a servo node: fixed size, so that neither side
+// allocates per message and the same layout maps onto @final DDS types.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace rpsd::transport {
+
+inline constexpr int kMaxChannels = 8;
+
+/// Displacement commands for one control step.
+struct CommandSample {
+  std::uint32_t test_id = 0;
+  std::uint32_t site_id = 0;
+  std::int64_t step = 0;
+  double time_s = 0.0;
+  std::uint8_t channels = 0;
+  std::array<double, kMaxChannels> displacement_m{};
+};
+
+/// Node status bits reported with every feedback sample.
+enum NodeStatus : std::uint32_t {
+  kNodeOk = 0,
+  kNodeLimitActive = 1u << 0,
+  kNodeFault = 1u << 1,
+};
+
+/// What the node measured at the end of the control step the command belongs to.
+struct FeedbackSample {
+  std::uint32_t test_id = 0;
+  std::uint32_t site_id = 0;
+  std::int64_t step = 0;
+  double time_s = 0.0;
+  std::uint8_t channels = 0;
+  std::array<double, kMaxChannels> displacement_m{};
+  std::array<double, kMaxChannels> force_n{};
+  std::uint32_t status = kNodeOk;
+};
+
+}  // namespace rpsd::transport
