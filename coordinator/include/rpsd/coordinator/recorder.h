@@ -1,0 +1,48 @@
+// Hands step records from the real-time loop to a writer thread, which appends them to a
+// CSV file (flushed every few hundred rows, so a crash loses at most the unflushed tail)
+// and keeps them in memory for the metrics after the run.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "rpsd/coordinator/spsc_queue.h"
+#include "rpsd/coordinator/step_record.h"
+
+namespace rpsd::coordinator {
+
+class Recorder {
+ public:
+  /// Opens the CSV (empty path: memory only) and starts the writer. Not real-time safe.
+  Recorder(const std::filesystem::path& csv, int channels, int dofs, std::size_t queue_capacity = 1 << 14);
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
+  /// Real-time safe: never blocks; a full queue drops the record and counts it.
+  void record(const StepRecord& r);
+  /// Stops the writer after it has drained the queue; returns all records. Not real-time safe.
+  std::vector<StepRecord> finish();
+  std::uint64_t dropped() const { return dropped_.load(); }
+
+ private:
+  void write_header();
+  void write_row(const StepRecord& r);
+  void run();
+
+  SpscQueue<StepRecord> queue_;
+  std::ofstream csv_;
+  int channels_, dofs_;
+  std::vector<StepRecord> records_;
+  std::atomic<bool> stopping_{false};
+  std::atomic<std::uint64_t> dropped_{0};
+  std::thread writer_;
+  bool finished_ = false;
+};
+
+}  // namespace rpsd::coordinator

@@ -1,0 +1,39 @@
+// What the coordinator records at every step, fixed size so that it can cross the
+// real-time boundary without allocation.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "rpsd/transport/messages.h"
+
+namespace rpsd::coordinator {
+
+inline constexpr int kMaxRecordedDofs = 8;
+
+struct StepRecord {
+  std::int64_t step = 0;
+  double time_s = 0.0;
+  double ground_acceleration_m_per_s2 = 0.0;
+  std::uint8_t channels = 0;
+  std::uint8_t dofs = 0;
+  // Per actuator channel, specimen scale.
+  std::array<double, transport::kMaxChannels> target_m{};
+  std::array<double, transport::kMaxChannels> command_m{};
+  std::array<double, transport::kMaxChannels> measured_m{};
+  std::array<double, transport::kMaxChannels> measured_force_n{};
+  std::array<double, transport::kMaxChannels> tracking_indicator_m2{};
+  // Per recorded model DOF, model scale.
+  std::array<double, kMaxRecordedDofs> displacement_m{};
+  std::array<double, kMaxRecordedDofs> velocity_m_per_s{};
+  std::array<double, kMaxRecordedDofs> acceleration_m_per_s2{};
+  std::array<double, kMaxRecordedDofs> restoring_force_n{};
+  // Energy balance, J (see energy_balance.h).
+  double input_energy_j = 0.0;
+  double kinetic_energy_j = 0.0;
+  double damping_energy_j = 0.0;
+  double restoring_energy_j = 0.0;
+  std::uint32_t node_status = 0;
+};
+
+}  // namespace rpsd::coordinator

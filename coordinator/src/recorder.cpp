@@ -1,0 +1,114 @@
+#include "rpsd/coordinator/recorder.h"
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+namespace rpsd::coordinator {
+
+Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, std::size_t queue_capacity)
+    : queue_(queue_capacity), channels_(channels), dofs_(dofs) {
+  if (channels > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
+    throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
+  }
+  if (!csv.empty()) {
+    csv_.open(csv);
+    if (!csv_) throw std::runtime_error(csv.string() + ": cannot write");
+    write_header();
+  }
+  writer_ = std::thread([this] { run(); });
+}
+
+Recorder::~Recorder() {
+  if (!finished_) finish();
+}
+
+void Recorder::record(const StepRecord& r) {
+  if (!queue_.try_push(r)) dropped_.fetch_add(1, std::memory_order_relaxed);
+}
+
+void Recorder::run() {
+  StepRecord r;
+  std::size_t since_flush = 0;
+  for (;;) {
+    bool any = false;
+    while (queue_.try_pop(r)) {
+      any = true;
+      records_.push_back(r);
+      if (csv_.is_open()) {
+        write_row(r);
+        if (++since_flush >= 256) {
+          csv_.flush();
+          since_flush = 0;
+        }
+      }
+    }
+    if (!any) {
+      if (stopping_.load(std::memory_order_acquire)) {
+        // One last drain: the producer stopped before setting the flag.
+        while (queue_.try_pop(r)) {
+          records_.push_back(r);
+          if (csv_.is_open()) write_row(r);
+        }
+        break;
+      }
+      if (csv_.is_open() && since_flush > 0) {
+        csv_.flush();
+        since_flush = 0;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  }
+  if (csv_.is_open()) csv_.flush();
+}
+
+std::vector<StepRecord> Recorder::finish() {
+  stopping_.store(true, std::memory_order_release);
+  if (writer_.joinable()) writer_.join();
+  finished_ = true;
+  return std::move(records_);
+}
+
+void Recorder::write_header() {
+  csv_ << "step,time_s,ground_acceleration_m_per_s2";
+  for (int c = 0; c < channels_; ++c) {
+    csv_ << ",target_m_ch" << c << ",command_m_ch" << c << ",measured_m_ch" << c << ",measured_force_n_ch" << c
+         << ",tracking_indicator_m2_ch" << c;
+  }
+  for (int d = 0; d < dofs_; ++d) {
+    csv_ << ",displacement_m_dof" << d << ",velocity_m_per_s_dof" << d << ",acceleration_m_per_s2_dof" << d
+         << ",restoring_force_n_dof" << d;
+  }
+  csv_ << ",input_energy_j,kinetic_energy_j,damping_energy_j,restoring_energy_j,node_status\n";
+}
+
+void Recorder::write_row(const StepRecord& r) {
+  char buffer[64];
+  const auto put = [&](double v) {
+    std::snprintf(buffer, sizeof buffer, ",%.10g", v);
+    csv_ << buffer;
+  };
+  csv_ << r.step;
+  put(r.time_s);
+  put(r.ground_acceleration_m_per_s2);
+  for (int c = 0; c < channels_; ++c) {
+    put(r.target_m[c]);
+    put(r.command_m[c]);
+    put(r.measured_m[c]);
+    put(r.measured_force_n[c]);
+    put(r.tracking_indicator_m2[c]);
+  }
+  for (int d = 0; d < dofs_; ++d) {
+    put(r.displacement_m[d]);
+    put(r.velocity_m_per_s[d]);
+    put(r.acceleration_m_per_s2[d]);
+    put(r.restoring_force_n[d]);
+  }
+  put(r.input_energy_j);
+  put(r.kinetic_energy_j);
+  put(r.damping_energy_j);
+  put(r.restoring_energy_j);
+  csv_ << ',' << r.node_status << '\n';
+}
+
+}  // namespace rpsd::coordinator
