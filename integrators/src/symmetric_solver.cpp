@@ -63,6 +63,7 @@ void SymmetricSolver::factorize(const SystemMatrix& A, std::string_view what) {
         sparse_natural_.reset();
         check_pivots(sparse_amd_->vectorD(), what);
         work_.setZero(A.rows());
+        inverse_diagonal_ = sparse_amd_->vectorD().cwiseInverse();  // vectorD() returns a copy
       } else {
         sparse_amd_.reset();
         check_pivots(sparse_natural_->vectorD(), what);
@@ -81,7 +82,7 @@ void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const 
         // P^T L D L^T P x = b
         work_.noalias() = sparse_amd_->permutationP() * b;
         sparse_amd_->matrixL().solveInPlace(work_);
-        work_.array() /= sparse_amd_->vectorD().array();
+        work_.array() *= inverse_diagonal_.array();
         sparse_amd_->matrixU().solveInPlace(work_);
         x.noalias() = sparse_amd_->permutationPinv() * work_;
       } else {

@@ -65,4 +65,22 @@ inline FrameModel make_frame_model(int n, double omega_max_rad_s, bool consisten
   return f;
 }
 
+/// The same model with its DOFs renumbered by a fixed pseudo-random permutation, so that
+/// the natural order is no longer banded and the solvers must reorder (AMD).
+inline FrameModel permuted(const FrameModel& f) {
+  const int n = static_cast<int>(f.mass.rows());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p(n);
+  p.setIdentity();
+  unsigned state = 12345u;
+  for (int i = n - 1; i > 0; --i) {  // Fisher-Yates with a fixed LCG
+    state = state * 1664525u + 1013904223u;
+    std::swap(p.indices()(i), p.indices()(static_cast<int>(state % static_cast<unsigned>(i + 1))));
+  }
+  FrameModel g;
+  g.mass = f.mass.twistedBy(p);
+  g.damping = f.damping.twistedBy(p);
+  g.stiffness = f.stiffness.twistedBy(p);
+  return g;
+}
+
 }  // namespace rpsd::integrators::test

@@ -32,7 +32,7 @@ class SymmetricSolver {
   using SparseLdltNatural = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
                                                   Eigen::NaturalOrdering<int>>;
   Storage storage_ = Storage::diagonal;
-  Eigen::VectorXd inverse_diagonal_;
+  Eigen::VectorXd inverse_diagonal_;  // diagonal matrix, or D^-1 of the sparse AMD LDL^T
   std::unique_ptr<Eigen::LDLT<Eigen::MatrixXd>> dense_;
   std::unique_ptr<SparseLdlt> sparse_amd_;
   std::unique_ptr<SparseLdltNatural> sparse_natural_;
