@@ -1,5 +1,7 @@
 // rpsd: one binary, one subcommand per job. Errors from any subcommand end here with a
 // message naming what failed and a non-zero exit code.
+#include "cli/analyze_integrator_command.h"
+
 #include <CLI/CLI.hpp>
 
 #include <exception>
@@ -10,7 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   auto* analyze = app.add_subcommand("analyze", "Linear analysis of a servo system or an integrator");
   analyze->require_subcommand(0, 1);
-  (void)analyze;
+  rpsd::cli::add_analyze_integrator_command(*analyze);
 
   try {
     app.parse(argc, argv);
