@@ -3,7 +3,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -120,6 +122,28 @@ bool is_positive_definite(const SystemMatrix& A) {
   return false;
 }
 
+double frequency_upper_bound_rad_s(const SystemMatrix& mass, const SystemMatrix& stiffness) {
+  if (mass.storage() != Storage::diagonal) return std::numeric_limits<double>::infinity();
+  // Gershgorin's theorem on M^-1/2 K M^-1/2.
+  const Eigen::VectorXd s = mass.diagonal_values().cwiseSqrt().cwiseInverse();
+  switch (stiffness.storage()) {
+    case Storage::diagonal:
+      return std::sqrt((stiffness.diagonal_values().cwiseAbs().array() * s.array().square()).maxCoeff());
+    case Storage::dense:
+      return std::sqrt(
+          (s.asDiagonal() * stiffness.dense().cwiseAbs() * s).maxCoeff());
+    case Storage::sparse: {
+      Eigen::VectorXd row = Eigen::VectorXd::Zero(mass.rows());
+      const auto& k = stiffness.sparse();
+      for (int c = 0; c < k.outerSize(); ++c)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(k, c); it; ++it)
+          row(it.row()) += std::abs(it.value()) * s(it.row()) * s(it.col());
+      return std::sqrt(row.maxCoeff());
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 double max_natural_frequency_rad_s(const SystemMatrix& mass, const SystemMatrix& stiffness,
                                    const SymmetricSolver& mass_solver) {
   const Eigen::Index n = mass.rows();
@@ -129,24 +153,44 @@ double max_natural_frequency_rad_s(const SystemMatrix& mass, const SystemMatrix&
         stiffness.to_dense(), mass.to_dense(), Eigen::EigenvaluesOnly);
     if (es.info() == Eigen::Success) return std::sqrt(std::max(0.0, es.eigenvalues().maxCoeff()));
   }
-  // Power iteration on M^-1 K; an alternating start vector weights the stiff modes.
-  Eigen::VectorXd x(n), kx(n), mx(n);
+  // Lanczos on M^-1 K in the M inner product with full reorthogonalisation. The extreme
+  // Ritz value converges fast; adding the residual estimate |beta_m s_m| keeps it from
+  // underestimating.
+  const Eigen::Index m = std::min<Eigen::Index>(n, 80);
+  Eigen::MatrixXd V(n, m + 1), MV(n, m + 1);
+  Eigen::VectorXd alpha = Eigen::VectorXd::Zero(m), beta = Eigen::VectorXd::Zero(m + 1);
+  Eigen::VectorXd q(n), mq(n), kq(n), w(n);
   for (Eigen::Index i = 0; i < n; ++i)
-    x(i) = ((i % 2) ? -1.0 : 1.0) * (1.0 + 0.37 * std::sin(1.7 * static_cast<double>(i)));
-  double lambda = 0.0;
-  for (int it = 0; it < 20000; ++it) {
-    stiffness.multiply(x, kx);
-    mass.multiply(x, mx);
-    const double rq = x.dot(kx) / x.dot(mx);
-    mass_solver.solve(kx, x);
-    x /= x.norm();
-    if (it > 10 && std::abs(rq - lambda) <= 1e-12 * std::abs(rq)) {
-      lambda = rq;
-      break;
-    }
-    lambda = rq;
+    q(i) = ((i % 2) ? -1.0 : 1.0) * (1.0 + 0.37 * std::sin(1.7 * static_cast<double>(i)));
+  mass.multiply(q, mq);
+  const double norm0 = std::sqrt(q.dot(mq));
+  V.col(0) = q / norm0;
+  MV.col(0) = mq / norm0;
+  Eigen::Index steps = 0;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    q = V.col(j);
+    stiffness.multiply(q, kq);
+    alpha(j) = q.dot(kq);
+    mass_solver.solve(kq, w);  // w = M^-1 K q_j
+    for (int pass = 0; pass < 2; ++pass)
+      for (Eigen::Index i = 0; i <= j; ++i) w -= MV.col(i).dot(w) * V.col(i);
+    mass.multiply(w, mq);
+    beta(j + 1) = std::sqrt(std::max(0.0, w.dot(mq)));
+    steps = j + 1;
+    if (beta(j + 1) <= 1e-10 * std::abs(alpha(j))) break;
+    V.col(j + 1) = w / beta(j + 1);
+    MV.col(j + 1) = mq / beta(j + 1);
   }
-  return std::sqrt(std::max(0.0, lambda));
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(steps, steps);
+  for (Eigen::Index j = 0; j < steps; ++j) {
+    T(j, j) = alpha(j);
+    if (j + 1 < steps) T(j, j + 1) = T(j + 1, j) = beta(j + 1);
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> tes(T);
+  const Eigen::Index top = steps - 1;
+  const double theta = tes.eigenvalues()(top);
+  const double residual = std::abs(beta(steps) * tes.eigenvectors()(steps - 1, top));
+  return std::sqrt(std::max(0.0, theta + residual));
 }
 
 }  // namespace rpsd::integrators

@@ -8,6 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+
 namespace rpsd::integrators::test {
 namespace {
 
@@ -48,6 +52,43 @@ TEST(SymmetricSolver, RejectsSingularMatrix) {
   Eigen::MatrixXd a = Eigen::MatrixXd::Ones(3, 3);
   SymmetricSolver s;
   EXPECT_THROW(s.factorize(SystemMatrix::from_dense(a), "all-ones"), std::invalid_argument);
+}
+
+// omega_max for the central-difference check: the Lanczos estimate on a sparse model
+// (consistent mass) against the dense generalized eigensolver, and the Gershgorin bound.
+TEST(MaxNaturalFrequency, LanczosMatchesDenseEigenvalues) {
+  const auto frame = make_frame_model(500, 3000.0, true);
+  const auto M = SystemMatrix::from_sparse(frame.mass);
+  const auto K = SystemMatrix::from_sparse(frame.stiffness);
+  SymmetricSolver ms;
+  ms.factorize(M, "mass");
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
+      Eigen::MatrixXd(frame.stiffness), Eigen::MatrixXd(frame.mass), Eigen::EigenvaluesOnly);
+  const double exact = std::sqrt(es.eigenvalues().maxCoeff());
+  const double lanczos = max_natural_frequency_rad_s(M, K, ms);
+  EXPECT_GE(lanczos, exact * (1.0 - 1e-6));
+  EXPECT_LE(lanczos, exact * 1.01);
+  const auto lumped = make_frame_model(500, 3000.0, false);
+  const double bound = frequency_upper_bound_rad_s(SystemMatrix::from_sparse(lumped.mass),
+                                                   SystemMatrix::from_sparse(lumped.stiffness));
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> el(
+      Eigen::MatrixXd(lumped.stiffness), Eigen::MatrixXd(lumped.mass), Eigen::EigenvaluesOnly);
+  EXPECT_GE(bound, std::sqrt(el.eigenvalues().maxCoeff()));
+  EXPECT_LE(bound, 3000.0 * (1.0 + 1e-12));
+}
+
+// Central difference on a 2,000-DOF sparse model with consistent mass: the configure-time
+// check rejects dt just above 2/omega_max and accepts dt just below.
+TEST(MaxNaturalFrequency, CentralDifferenceCheckOnLargeSparseModel) {
+  const auto frame = make_frame_model(2000, 3000.0, true);
+  const SparseStructuralMatrices m{frame.mass, frame.damping, frame.stiffness};
+  const auto M = SystemMatrix::from_sparse(frame.mass);
+  SymmetricSolver ms;
+  ms.factorize(M, "mass");
+  const double w = max_natural_frequency_rad_s(M, SystemMatrix::from_sparse(frame.stiffness), ms);
+  auto cd = make_integrator(CentralDifferenceParams{});
+  EXPECT_THROW(cd->configure(m, 1.02 * 2.0 / w), std::invalid_argument);
+  EXPECT_NO_THROW(cd->configure(m, 0.98 * 2.0 / w));
 }
 
 TEST(DenseAndSparse, GiveTheSameTrajectory) {

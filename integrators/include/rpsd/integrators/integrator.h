@@ -101,7 +101,9 @@ class Integrator {
   std::int64_t step() const { return step_; }
   double dt_s() const { return dt_s_; }
   Eigen::Index size() const { return n_; }
-  /// omega_max of (K0, M) when it was needed for the stability check, else NaN.
+  /// omega_max of (K0, M) used by the stability check (conditionally stable schemes only,
+  /// else NaN): a Gershgorin upper bound for a lumped mass when that already proves the
+  /// step stable, otherwise the exact value or a Lanczos estimate.
   double max_natural_frequency_rad_s() const { return omega_max_; }
 
   virtual SchemeInfo info() const = 0;

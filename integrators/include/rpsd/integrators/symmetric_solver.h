@@ -45,9 +45,13 @@ class SymmetricSolver {
 bool is_positive_definite(const SystemMatrix& A);
 
 /// Largest natural circular frequency sqrt(max eig(K, M)) in rad/s. Exact for dense
-/// models up to 400 DOF, otherwise the converged Rayleigh quotient of a power iteration
-/// (a lower bound that approaches the true value). Not real-time safe.
+/// models up to 400 DOF; otherwise an 80-step Lanczos estimate (top Ritz value plus its
+/// residual estimate). Not real-time safe.
 double max_natural_frequency_rad_s(const SystemMatrix& mass, const SystemMatrix& stiffness,
                                    const SymmetricSolver& mass_solver);
+
+/// Gershgorin upper bound of omega_max for a lumped (diagonal) mass; +infinity otherwise.
+/// Not real-time safe.
+double frequency_upper_bound_rad_s(const SystemMatrix& mass, const SystemMatrix& stiffness);
 
 }  // namespace rpsd::integrators
