@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
 
   for (const auto& c : main_cases) {
     auto* s = benchmark::RegisterBenchmark(("sparse/" + c.name).c_str(), [c](benchmark::State& st) {
-      run_steps<Eigen::SparseMatrix<double>>(st, c.config, false, false);
+      run_steps<Eigen::SparseMatrix<double, Eigen::RowMajor>>(st, c.config, false, false);
     });
     for (int n : sparse_sizes) s->Arg(n);
     s->Unit(benchmark::kMicrosecond);
@@ -89,12 +89,12 @@ int main(int argc, char** argv) {
   }
   // Consistent (non-diagonal) mass: KR-alpha then also solves with M every step.
   auto* kc = benchmark::RegisterBenchmark("sparse_consistent_mass/kr_alpha", [](benchmark::State& st) {
-    run_steps<Eigen::SparseMatrix<double>>(st, KolayRiclesAlphaParams{0.8}, false, true);
+    run_steps<Eigen::SparseMatrix<double, Eigen::RowMajor>>(st, KolayRiclesAlphaParams{0.8}, false, true);
   });
   kc->Arg(2000)->Arg(10000)->Unit(benchmark::kMicrosecond);
   for (const auto& c : other_cases) {
     auto* s = benchmark::RegisterBenchmark(("sparse/" + c.name).c_str(), [c](benchmark::State& st) {
-      run_steps<Eigen::SparseMatrix<double>>(st, c.config, false, false);
+      run_steps<Eigen::SparseMatrix<double, Eigen::RowMajor>>(st, c.config, false, false);
     });
     s->Arg(2000)->Arg(10000)->Unit(benchmark::kMicrosecond);
   }

@@ -36,7 +36,8 @@ void SymmetricSolver::factorize(const SystemMatrix& A, std::string_view what) {
   storage_ = A.storage();
   dense_.reset();
   sparse_amd_.reset();
-  sparse_natural_.reset();
+  band_ = -1;
+  band_l_.resize(0, 0);
   switch (storage_) {
     case Storage::diagonal: {
       const auto& d = A.diagonal_values();
@@ -52,26 +53,77 @@ void SymmetricSolver::factorize(const SystemMatrix& A, std::string_view what) {
       return;
     }
     case Storage::sparse: {
-      // Banded models factorise with less fill in their natural order; keep whichever
-      // ordering gives the smaller factor, since every solve costs its non-zeros.
-      sparse_amd_ = std::make_unique<SparseLdlt>(A.sparse());
-      sparse_natural_ = std::make_unique<SparseLdltNatural>(A.sparse());
+      const auto& a = A.sparse();
+      Eigen::Index b = 0;
+      for (int k = 0; k < a.outerSize(); ++k)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(a, k); it; ++it)
+          b = std::max<Eigen::Index>(b, std::abs(it.row() - it.col()));
+      // Reordering cannot beat the band by much for frame-like models; when AMD's factor
+      // is not clearly smaller than the band, the contiguous band solver is faster.
+      sparse_amd_ = std::make_unique<SparseLdlt>(a);
       const bool amd_ok = sparse_amd_->info() == Eigen::Success;
-      const bool nat_ok = sparse_natural_->info() == Eigen::Success;
-      if (!amd_ok && !nat_ok) singular(what, "sparse LDL^T factorisation failed");
-      const auto nnz_amd = amd_ok ? sparse_amd_->matrixL().nestedExpression().nonZeros() : -1;
-      const auto nnz_nat = nat_ok ? sparse_natural_->matrixL().nestedExpression().nonZeros() : -1;
-      if (amd_ok && (!nat_ok || nnz_amd < nnz_nat)) {
-        sparse_natural_.reset();
-        check_pivots(sparse_amd_->vectorD(), what);
-        work_.setZero(A.rows());
-        inverse_diagonal_ = sparse_amd_->vectorD().cwiseInverse();  // vectorD() returns a copy
-      } else {
+      const auto nnz_amd = amd_ok ? sparse_amd_->matrixL().nestedExpression().nonZeros() : 0;
+      if (b <= 256 && (!amd_ok || A.rows() * b <= 2 * nnz_amd)) {
         sparse_amd_.reset();
-        check_pivots(sparse_natural_->vectorD(), what);
+        factorize_band(a, b, what);
+        return;
       }
+      if (!amd_ok) singular(what, "sparse LDL^T factorisation failed");
+      check_pivots(sparse_amd_->vectorD(), what);
+      work_.setZero(A.rows());
+      inverse_diagonal_ = sparse_amd_->vectorD().cwiseInverse();  // vectorD() returns a copy
       return;
     }
+  }
+}
+
+void SymmetricSolver::factorize_band(const Eigen::SparseMatrix<double>& a, Eigen::Index b,
+                                     std::string_view what) {
+  const Eigen::Index n = a.rows();
+  band_ = b;
+  band_l_.setZero(n, std::max<Eigen::Index>(b, 1));
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
+  // Lower triangle of A into the band (column j of row i at position j - i + b).
+  for (int k = 0; k < a.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, k); it; ++it) {
+      if (it.row() == it.col())
+        d(it.row()) += it.value();
+      else if (it.row() > it.col())
+        band_l_(it.row(), it.col() - it.row() + b) += it.value();
+    }
+  // Row-oriented LDL^T: L(i,j) = (A(i,j) - sum_k L(i,k) D(k) L(j,k)) / D(j).
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Index j0 = std::max<Eigen::Index>(0, i - b);
+    for (Eigen::Index j = j0; j < i; ++j) {
+      double sum = band_l_(i, j - i + b);
+      const Eigen::Index k0 = std::max(j0, j - b);
+      for (Eigen::Index k = k0; k < j; ++k)
+        sum -= band_l_(i, k - i + b) * d(k) * band_l_(j, k - j + b);
+      band_l_(i, j - i + b) = sum / d(j);
+    }
+    double di = d(i);
+    for (Eigen::Index k = j0; k < i; ++k) {
+      const double l = band_l_(i, k - i + b);
+      di -= l * l * d(k);
+    }
+    d(i) = di;
+  }
+  check_pivots(d, what);
+  inverse_diagonal_ = d.cwiseInverse();
+}
+
+void SymmetricSolver::solve_band(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
+  const Eigen::Index n = x.size();
+  const Eigen::Index b = band_;
+  x = rhs;
+  for (Eigen::Index i = 1; i < n; ++i) {  // L y = rhs: contiguous dot products
+    const Eigen::Index len = std::min(i, b);
+    x(i) -= band_l_.row(i).tail(len).dot(x.segment(i - len, len).transpose());
+  }
+  x.array() *= inverse_diagonal_.array();
+  for (Eigen::Index i = n - 1; i > 0; --i) {  // L^T x = z: contiguous axpys
+    const Eigen::Index len = std::min(i, b);
+    x.segment(i - len, len) -= x(i) * band_l_.row(i).tail(len).transpose();
   }
 }
 
@@ -80,15 +132,15 @@ void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const 
     case Storage::diagonal: x.array() = inverse_diagonal_.array() * b.array(); break;
     case Storage::dense: x = dense_->solve(b); break;
     case Storage::sparse:
-      if (sparse_amd_) {
+      if (band_ >= 0) {
+        solve_band(b, x);
+      } else if (sparse_amd_) {
         // P^T L D L^T P x = b
         work_.noalias() = sparse_amd_->permutationP() * b;
         sparse_amd_->matrixL().solveInPlace(work_);
         work_.array() *= inverse_diagonal_.array();
         sparse_amd_->matrixU().solveInPlace(work_);
         x.noalias() = sparse_amd_->permutationPinv() * work_;
-      } else {
-        x = sparse_natural_->solve(b);
       }
       break;
   }
@@ -99,9 +151,8 @@ Eigen::Index SymmetricSolver::factor_nonzeros() const {
     case Storage::diagonal: return inverse_diagonal_.size();
     case Storage::dense: return dense_->matrixLDLT().rows() * (dense_->matrixLDLT().rows() + 1) / 2;
     case Storage::sparse:
-      return sparse_amd_ ? sparse_amd_->matrixL().nestedExpression().nonZeros() + sparse_amd_->rows()
-                         : sparse_natural_->matrixL().nestedExpression().nonZeros() +
-                               sparse_natural_->rows();
+      if (band_ >= 0) return band_l_.rows() * (band_ + 1);
+      return sparse_amd_->matrixL().nestedExpression().nonZeros() + sparse_amd_->rows();
   }
   return 0;
 }

@@ -50,6 +50,8 @@ SystemMatrix SystemMatrix::from_sparse(const Eigen::SparseMatrix<double>& a) {
     m.sparse_ = a;
     m.sparse_.prune(0.0);
     m.sparse_.makeCompressed();
+    m.sparse_rows_ = m.sparse_;
+    m.sparse_rows_.makeCompressed();
   }
   return m;
 }
@@ -76,7 +78,7 @@ void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
   switch (storage_) {
     case Storage::diagonal: y.array() = diag_.array() * x.array(); break;
     case Storage::dense: y.noalias() = dense_ * x; break;
-    case Storage::sparse: y.noalias() = sparse_ * x; break;
+    case Storage::sparse: y.noalias() = sparse_rows_ * x; break;
   }
 }
 
@@ -84,7 +86,7 @@ void SystemMatrix::multiply_add(double s, const Eigen::VectorXd& x, Eigen::Vecto
   switch (storage_) {
     case Storage::diagonal: y.array() += s * diag_.array() * x.array(); break;
     case Storage::dense: y.noalias() += s * (dense_ * x); break;
-    case Storage::sparse: y.noalias() += s * (sparse_ * x); break;
+    case Storage::sparse: y.noalias() += s * (sparse_rows_ * x); break;
   }
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Factorises a symmetric SystemMatrix once (configure time) and solves with it on the
-// real-time path: diagonal inverse, dense LDLT, or sparse simplicial LDLT.
+// real-time path: diagonal inverse, dense LDLT, a band LDL^T for sparse matrices that are
+// banded in their own numbering (frame models: contiguous, vectorised substitutions), or
+// Eigen's sparse simplicial LDL^T with AMD ordering otherwise.
 #include "rpsd/integrators/system_matrix.h"
 
 #include <Eigen/SparseCholesky>
@@ -29,16 +31,18 @@ class SymmetricSolver {
  private:
   using SparseLdlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
                                            Eigen::AMDOrdering<int>>;
-  using SparseLdltNatural = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
-                                                  Eigen::NaturalOrdering<int>>;
   Storage storage_ = Storage::diagonal;
   Eigen::VectorXd inverse_diagonal_;  // diagonal matrix, or D^-1 of the sparse AMD LDL^T
   std::unique_ptr<Eigen::LDLT<Eigen::MatrixXd>> dense_;
   std::unique_ptr<SparseLdlt> sparse_amd_;
-  std::unique_ptr<SparseLdltNatural> sparse_natural_;
   // Eigen's SimplicialLDLT::solve applies the fill-reducing permutation in place, which
   // allocates a mask; the AMD path permutes out of place through this vector instead.
   mutable Eigen::VectorXd work_;
+  // Band LDL^T: row i of band_l_ holds L(i, i-b .. i-1); inverse_diagonal_ holds D^-1.
+  Eigen::Index band_ = -1;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> band_l_;
+  void factorize_band(const Eigen::SparseMatrix<double>& a, Eigen::Index b, std::string_view what);
+  void solve_band(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
 };
 
 /// True if A is positive definite (Cholesky succeeds). Not real-time safe.
