@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace rpsd::integrators::test {
 namespace {
@@ -289,6 +290,56 @@ TEST(StepSequence, MisuseIsReportedNotThrown) {
   EXPECT_EQ(integrator->end_step(), StepStatus::ok);
   EXPECT_EQ(integrator->step(), 1);
   EXPECT_DOUBLE_EQ(integrator->time_s(), 0.01);
+}
+
+}  // namespace
+}  // namespace rpsd::integrators::test
+
+namespace rpsd::integrators::test {
+namespace {
+
+// Fixed-iteration implicit schemes on a linear SDOF with K0 = K: the Newton target is the
+// implicit solution U*, and with polyOrder 1 the N commands are U_t + (i/N)(U* - U_t),
+// evenly spaced, the last one U* itself. With order 2 they follow the parabola through
+// U_{t-1}, U_t and U* at x = i/N.
+TEST(FixedIterations, CommandsAreInterpolatedTowardsTheImplicitSolution) {
+  for (int order : {1, 2}) {
+    const int N = 4;
+    auto integrator = make_integrator(HhtAlphaParams{-0.1, {N, order}});
+    const double k = 400.0;
+    integrator->configure(DenseStructuralMatrices{Eigen::MatrixXd::Constant(1, 1, 1.0),
+                                                  Eigen::MatrixXd::Constant(1, 1, 0.5),
+                                                  Eigen::MatrixXd::Constant(1, 1, k)},
+                          0.01);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(1);
+    integrator->initialize(Eigen::VectorXd::Constant(1, 0.01), zero,
+                           Eigen::VectorXd::Constant(1, k * 0.01), zero);
+    Eigen::VectorXd r(1);
+    const Eigen::MatrixXd K = Eigen::MatrixXd::Constant(1, 1, k);
+    double u_prev = 0.01;
+    for (int step = 0; step < 5; ++step) {
+      const double u_t = integrator->displacement()(0);
+      std::vector<double> commands;
+      ASSERT_EQ(integrator->begin_step(zero), StepStatus::ok);
+      for (int i = 0; i < N; ++i) {
+        commands.push_back(integrator->target_displacement()(0));
+        r = K * integrator->target_displacement();
+        integrator->set_measured_restoring_force(r);
+      }
+      integrator->end_step();
+      const double u_star = integrator->displacement()(0);
+      EXPECT_DOUBLE_EQ(commands.back(), u_star);
+      for (int i = 1; i <= N; ++i) {
+        const double x = static_cast<double>(i) / N;
+        const double expected =
+            order == 1 ? u_t + x * (u_star - u_t)
+                       : u_star * x * (x + 1) / 2 + u_t * (1 - x * x) + u_prev * x * (x - 1) / 2;
+        EXPECT_NEAR(commands[static_cast<std::size_t>(i - 1)], expected, 1e-12)
+            << "order " << order << " step " << step << " iteration " << i;
+      }
+      u_prev = u_t;
+    }
+  }
 }
 
 }  // namespace
