@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   auto* analyze = app.add_subcommand("analyze", "Linear analysis of a servo system or an integrator");
   analyze->require_subcommand(0, 1);
   rpsd::cli::add_analyze_servo(*analyze);
+  rpsd::cli::add_analyze_integrator_command(*analyze);
   rpsd::cli::add_run(app);
 
   try {

@@ -1,0 +1,22 @@
+#pragma once
+// alpha-OS, the alpha operator-splitting method (Combescure & Pegon), with the initial
+// stiffness K_I = K0 as the implicit part. The predictor x~ = x + dt v + dt^2 (1/2 - beta) a
+// is the command; the measured R~ is corrected by K_I (x+ - x~). alpha in [-1/3, 0],
+// beta = (1-alpha)^2/4, gamma = (1-2 alpha)/2. With K_I = K its eigenvalues are HHT's.
+#include "rpsd/integrators/operator_splitting_engine.h"
+
+namespace rpsd::integrators {
+
+struct AlphaOsParams {
+  double alpha = -1.0 / 6.0;
+};
+
+void validate(const AlphaOsParams& p);
+
+class AlphaOs final : public OperatorSplittingEngine {
+ public:
+  explicit AlphaOs(const AlphaOsParams& p = {});
+  SchemeInfo info() const override;
+};
+
+}  // namespace rpsd::integrators

@@ -1,0 +1,30 @@
+#pragma once
+// Generalized-alpha (Chung & Hulbert 1993) with a fixed number of iterations per step:
+//   (1-am) M a+ + am M a + (1-af)(C v+ + R+) + af (C v + R) = (1-af) F+ + af F
+//   am = (2 rho_inf - 1)/(rho_inf + 1), af = rho_inf/(rho_inf + 1),
+//   gamma = 1/2 - am + af, beta = (1 - am + af)^2 / 4 = 1/(1 + rho_inf)^2.
+#include "rpsd/integrators/fixed_iteration_implicit_engine.h"
+
+namespace rpsd::integrators {
+
+struct GeneralizedAlphaParams {
+  double rho_inf = 0.8;
+  FixedIterationOptions fixed_iteration{};
+};
+
+/// The Chung-Hulbert parameter set for a spectral radius at infinity rho_inf.
+struct AlphaParameters {
+  double alpha_m, alpha_f, gamma, beta;
+};
+/// Throws std::invalid_argument unless rho_inf in [0, 1].
+AlphaParameters chung_hulbert_parameters(double rho_inf);
+
+void validate(const GeneralizedAlphaParams& p);
+
+class GeneralizedAlpha final : public FixedIterationImplicitEngine {
+ public:
+  explicit GeneralizedAlpha(const GeneralizedAlphaParams& p = {});
+  SchemeInfo info() const override;
+};
+
+}  // namespace rpsd::integrators

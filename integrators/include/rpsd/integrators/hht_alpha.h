@@ -1,0 +1,24 @@
+#pragma once
+// HHT-alpha (Hilber, Hughes & Taylor) with a fixed number of iterations per step:
+//   M a+ + (1+alpha)(C v+ + R+) - alpha (C v + R) = (1+alpha) F+ - alpha F,
+//   alpha in [-1/3, 0], beta = (1-alpha)^2/4, gamma = (1-2 alpha)/2,
+//   rho_inf = (1+alpha)/(1-alpha). Unconditionally stable on linear systems.
+#include "rpsd/integrators/fixed_iteration_implicit_engine.h"
+
+namespace rpsd::integrators {
+
+struct HhtAlphaParams {
+  double alpha = -0.1;
+  FixedIterationOptions fixed_iteration{};
+};
+
+/// Throws std::invalid_argument unless alpha in [-1/3, 0] and the options are valid.
+void validate(const HhtAlphaParams& p);
+
+class HhtAlpha final : public FixedIterationImplicitEngine {
+ public:
+  explicit HhtAlpha(const HhtAlphaParams& p = {});
+  SchemeInfo info() const override;
+};
+
+}  // namespace rpsd::integrators

@@ -1,0 +1,32 @@
+#pragma once
+// Implicit Newmark beta-gamma with a fixed number of iterations per step.
+// Unconditionally stable for 2 beta >= gamma >= 1/2; otherwise (gamma >= 1/2) stable
+// for omega dt <= (gamma/2 - beta)^(-1/2), e.g. 2 sqrt(3) for linear acceleration.
+#include "rpsd/integrators/fixed_iteration_implicit_engine.h"
+
+namespace rpsd::integrators {
+
+struct NewmarkParams {
+  double beta = 0.25;
+  double gamma = 0.5;
+  FixedIterationOptions fixed_iteration{};
+
+  static NewmarkParams average_acceleration() { return {0.25, 0.5, {}}; }
+  static NewmarkParams linear_acceleration() { return {1.0 / 6.0, 0.5, {}}; }
+};
+
+/// Throws std::invalid_argument unless beta > 0, gamma >= 1/2 and the options are valid.
+void validate(const NewmarkParams& p);
+/// (gamma/2 - beta)^(-1/2) when 2 beta < gamma, +infinity otherwise.
+double newmark_stability_limit(double beta, double gamma);
+
+class Newmark final : public FixedIterationImplicitEngine {
+ public:
+  explicit Newmark(const NewmarkParams& p = {});
+  SchemeInfo info() const override;
+
+ private:
+  NewmarkParams p_;
+};
+
+}  // namespace rpsd::integrators

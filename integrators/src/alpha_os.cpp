@@ -1,0 +1,29 @@
+#include "rpsd/integrators/alpha_os.h"
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace rpsd::integrators {
+
+void validate(const AlphaOsParams& p) {
+  if (!(p.alpha >= -1.0 / 3.0 - 1e-12 && p.alpha <= 0.0))
+    throw std::invalid_argument("alpha_os.alpha must be in [-1/3, 0], got " +
+                                std::to_string(p.alpha));
+}
+
+namespace {
+OperatorSplittingCoefficients os_coefficients(const AlphaOsParams& p) {
+  validate(p);
+  const double a = p.alpha;
+  return {a, (1.0 - a) * (1.0 - a) / 4.0, (1.0 - 2.0 * a) / 2.0};
+}
+}  // namespace
+
+AlphaOs::AlphaOs(const AlphaOsParams& p) : OperatorSplittingEngine(os_coefficients(p)) {}
+
+SchemeInfo AlphaOs::info() const {
+  return {Scheme::alpha_os, "alpha_os", true, std::numeric_limits<double>::infinity()};
+}
+
+}  // namespace rpsd::integrators

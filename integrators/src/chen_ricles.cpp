@@ -1,0 +1,11 @@
+#include "rpsd/integrators/chen_ricles.h"
+
+#include <limits>
+
+namespace rpsd::integrators {
+
+SchemeInfo ChenRicles::info() const {
+  return {Scheme::chen_ricles, "chen_ricles", true, std::numeric_limits<double>::infinity()};
+}
+
+}  // namespace rpsd::integrators

@@ -1,0 +1,39 @@
+#include "rpsd/integrators/generalized_alpha.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace rpsd::integrators {
+
+AlphaParameters chung_hulbert_parameters(double rho_inf) {
+  if (!(rho_inf >= 0.0 && rho_inf <= 1.0))
+    throw std::invalid_argument("rho_inf must be in [0, 1], got " + std::to_string(rho_inf));
+  const double am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
+  const double af = rho_inf / (rho_inf + 1.0);
+  return {am, af, 0.5 - am + af, 1.0 / ((1.0 + rho_inf) * (1.0 + rho_inf))};
+}
+
+void validate(const GeneralizedAlphaParams& p) {
+  (void)chung_hulbert_parameters(p.rho_inf);
+  validate(p.fixed_iteration);
+}
+
+namespace {
+ImplicitCoefficients ga_coefficients(const GeneralizedAlphaParams& p) {
+  validate(p);
+  const auto c = chung_hulbert_parameters(p.rho_inf);
+  return {c.alpha_m, c.alpha_f, c.beta, c.gamma};
+}
+}  // namespace
+
+GeneralizedAlpha::GeneralizedAlpha(const GeneralizedAlphaParams& p)
+    : FixedIterationImplicitEngine(ga_coefficients(p), p.fixed_iteration) {}
+
+SchemeInfo GeneralizedAlpha::info() const {
+  return {Scheme::generalized_alpha, "generalized_alpha", false,
+          std::numeric_limits<double>::infinity()};
+}
+
+}  // namespace rpsd::integrators
