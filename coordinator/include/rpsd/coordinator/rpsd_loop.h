@@ -1,0 +1,92 @@
+// One step of a real-time pseudodynamic test, the heart of rpsd:
+//
+//   integrator: begin_step(F(t+dt))           F = -M iota a_g, or zero in free vibration
+//   per iteration (1 for explicit schemes):
+//     d      = integrator.target_displacement()
+//     target = partition.extract_commands(d)          model -> specimen scale
+//     u      = compensator[ch].command(target)         per actuator channel
+//     link.send(u); link.receive(feedback)             in-process or DDS: the loop can't tell
+//     compensator[ch].observe(target, x_measured)
+//     R      = R_num(d) + scatter(R_exp)               R_exp = measured force, or k x_measured
+//     integrator.set_measured_restoring_force(R)
+//   integrator.end_step(); numerical.commit(); energy balance; record
+//
+// The parts are configured by the caller and only borrowed. Everything in step() is
+// real-time safe: no allocation, no locks, no exceptions; problems come back as StepOutcome.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rpsd/compensation/command_compensator.h"
+#include "rpsd/compensation/tracking_indicator.h"
+#include "rpsd/coordinator/recorder.h"
+#include "rpsd/integrators/integrator.h"
+#include "rpsd/substructure/ground_motion_load.h"
+#include "rpsd/substructure/numerical_model.h"
+#include "rpsd/substructure/partition.h"
+#include "rpsd/transport/link.h"
+
+namespace rpsd::coordinator {
+
+/// How the experimental restoring force of a channel is obtained.
+struct RestoringForcePath {
+  enum class Kind { kMeasuredForce, kStiffnessTimesMeasuredDisplacement };
+  Kind kind = Kind::kMeasuredForce;
+  /// For kStiffnessTimesMeasuredDisplacement: the specimen's stiffness (the paper's Figure 8
+  /// experiment: the load cell also sees the inertia of the mass that is physically there).
+  double stiffness_n_per_m = 0.0;
+};
+
+struct LoopParts {
+  integrators::Integrator* integrator = nullptr;          ///< configured with M, C, K0 and dt
+  substructure::NumericalModel* numerical = nullptr;       ///< M, C and R_num(d)
+  const substructure::Partition* partition = nullptr;
+  transport::Link* link = nullptr;
+  std::vector<compensation::CommandCompensator*> compensators;  ///< one per channel, configured
+  std::vector<RestoringForcePath> force_paths;                  ///< one per channel
+  std::vector<Eigen::Index> recorded_dofs;                      ///< at most kMaxRecordedDofs
+  std::vector<double> ground_acceleration_m_per_s2;  ///< at t = n dt; empty: free vibration
+  const substructure::GroundMotionLoad* ground_load = nullptr;  ///< F = -M iota a_g; needed with a record
+  std::uint32_t test_id = 1;
+};
+
+enum class StepOutcome : std::uint8_t { kOk, kRecordEnded, kLinkFailure, kIntegratorError, kNodeFault, kNonFinite };
+
+class RpsdLoop {
+ public:
+  /// Checks the parts fit together and sizes every buffer. Throws std::invalid_argument
+  /// naming the mismatch. Not real-time safe.
+  explicit RpsdLoop(LoopParts parts);
+
+  /// Starts at rest at displacement d0 (model scale) with the specimens' forces at d0
+  /// (specimen scale, one per channel). Resets compensators and indicators. Not real-time safe.
+  void start(const Eigen::VectorXd& d0, std::span<const double> specimen_force0_n);
+
+  /// Advances the test by one integration step and records it. Real-time safe.
+  StepOutcome step(Recorder& recorder);
+
+  std::int64_t step_index() const { return step_; }
+  std::int64_t steps_available() const;  ///< ground-motion steps, or unlimited (-1)
+  double dt_s() const { return parts_.integrator->dt_s(); }
+
+ private:
+  void experimental_forces(const transport::FeedbackSample& feedback);
+  void fill_record(StepRecord& r) const;
+
+  LoopParts parts_;
+  int channels_ = 0;
+  Eigen::Index dofs_ = 0;
+  Eigen::VectorXd force_, targets_, specimen_forces_, restoring_;
+  Eigen::VectorXd previous_d_, previous_v_, previous_r_, previous_f_, work_a_, work_b_;
+  std::vector<compensation::TrackingIndicator> tracking_;
+  transport::CommandSample command_;
+  transport::FeedbackSample feedback_;
+  std::int64_t step_ = 0;
+  std::int64_t exchange_ = 0;
+  double input_energy_j_ = 0.0, damping_energy_j_ = 0.0, restoring_energy_j_ = 0.0, kinetic_energy_j_ = 0.0;
+};
+
+}  // namespace rpsd::coordinator

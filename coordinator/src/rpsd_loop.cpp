@@ -1,0 +1,180 @@
+#include "rpsd/coordinator/rpsd_loop.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rpsd::coordinator {
+
+RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)) {
+  if (!parts_.integrator || !parts_.numerical || !parts_.partition || !parts_.link) {
+    throw std::invalid_argument("RpsdLoop: integrator, numerical model, partition and link are all required");
+  }
+  dofs_ = parts_.numerical->dofs();
+  channels_ = static_cast<int>(parts_.partition->channels());
+  if (parts_.integrator->size() != dofs_ || parts_.partition->dofs() != dofs_) {
+    throw std::invalid_argument("RpsdLoop: the integrator, numerical model and partition have different DOF counts");
+  }
+  if (channels_ < 1 || channels_ > transport::kMaxChannels) {
+    throw std::invalid_argument("RpsdLoop: between 1 and " + std::to_string(transport::kMaxChannels) + " actuator channels");
+  }
+  if (static_cast<int>(parts_.compensators.size()) != channels_ || static_cast<int>(parts_.force_paths.size()) != channels_) {
+    throw std::invalid_argument("RpsdLoop: one compensator and one restoring-force path per actuator channel");
+  }
+  for (auto* c : parts_.compensators) {
+    if (!c) throw std::invalid_argument("RpsdLoop: null compensator (use the pass-through one)");
+  }
+  if (static_cast<int>(parts_.recorded_dofs.size()) > kMaxRecordedDofs) {
+    throw std::invalid_argument("RpsdLoop: at most " + std::to_string(kMaxRecordedDofs) + " recorded DOFs");
+  }
+  for (Eigen::Index dof : parts_.recorded_dofs) {
+    if (dof < 0 || dof >= dofs_) throw std::invalid_argument("RpsdLoop: recorded DOF " + std::to_string(dof) + " out of range");
+  }
+  if (!parts_.ground_acceleration_m_per_s2.empty() && parts_.ground_load == nullptr) {
+    throw std::invalid_argument("RpsdLoop: a ground-motion record needs the ground-motion load (M iota)");
+  }
+  for (auto* v : {&force_, &restoring_, &previous_d_, &previous_v_, &previous_r_, &previous_f_, &work_a_,
+                  &work_b_}) {
+    *v = Eigen::VectorXd::Zero(dofs_);
+  }
+  targets_ = Eigen::VectorXd::Zero(channels_);
+  specimen_forces_ = Eigen::VectorXd::Zero(channels_);
+  tracking_.resize(channels_);
+  command_.test_id = feedback_.test_id = parts_.test_id;
+  command_.channels = static_cast<std::uint8_t>(channels_);
+}
+
+std::int64_t RpsdLoop::steps_available() const {
+  const auto n = static_cast<std::int64_t>(parts_.ground_acceleration_m_per_s2.size());
+  return n == 0 ? -1 : n - 1;
+}
+
+void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen_force0_n) {
+  if (d0.size() != dofs_ || static_cast<int>(specimen_force0_n.size()) != channels_) {
+    throw std::invalid_argument("RpsdLoop::start: d0 needs one value per DOF and one force per channel");
+  }
+  parts_.partition->extract_commands(d0, targets_);
+  for (int c = 0; c < channels_; ++c) {
+    parts_.compensators[c]->reset(targets_[c]);
+    tracking_[c].reset(targets_[c], targets_[c]);
+    specimen_forces_[c] = specimen_force0_n[c];
+  }
+  parts_.numerical->restoring_force(d0, restoring_);
+  parts_.partition->add_forces(specimen_forces_, restoring_);
+  parts_.numerical->commit();
+  force_.setZero();
+  if (parts_.ground_load && !parts_.ground_acceleration_m_per_s2.empty()) {
+    parts_.ground_load->force(parts_.ground_acceleration_m_per_s2[0], force_);
+  }
+  parts_.integrator->initialize(d0, Eigen::VectorXd::Zero(dofs_), restoring_, force_);
+  step_ = 0;
+  exchange_ = 0;
+  previous_d_ = d0;
+  previous_v_.setZero();
+  previous_r_ = restoring_;
+  previous_f_ = force_;
+  input_energy_j_ = damping_energy_j_ = restoring_energy_j_ = kinetic_energy_j_ = 0.0;
+}
+
+void RpsdLoop::experimental_forces(const transport::FeedbackSample& feedback) {
+  for (int c = 0; c < channels_; ++c) {
+    const RestoringForcePath& path = parts_.force_paths[c];
+    specimen_forces_[c] = path.kind == RestoringForcePath::Kind::kMeasuredForce
+                              ? feedback.force_n[c]
+                              : path.stiffness_n_per_m * feedback.displacement_m[c];
+  }
+}
+
+StepOutcome RpsdLoop::step(Recorder& recorder) {
+  const std::int64_t available = steps_available();
+  if (available >= 0 && step_ >= available) return StepOutcome::kRecordEnded;
+  auto& integrator = *parts_.integrator;
+  auto& numerical = *parts_.numerical;
+  const auto& partition = *parts_.partition;
+
+  const double ground = available >= 0 ? parts_.ground_acceleration_m_per_s2[step_ + 1] : 0.0;
+  if (available >= 0) parts_.ground_load->force(ground, force_);
+  if (integrator.begin_step(force_) != integrators::StepStatus::ok) return StepOutcome::kIntegratorError;
+
+  const int iterations = integrator.iterations_per_step();
+  for (int it = 0; it < iterations; ++it) {
+    const Eigen::VectorXd& d = integrator.target_displacement();
+    partition.extract_commands(d, targets_);
+    command_.step = exchange_;
+    command_.time_s = (exchange_ + 1) * integrator.dt_s() / iterations;
+    for (int c = 0; c < channels_; ++c) command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
+    if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
+    if (parts_.link->receive(feedback_) != transport::LinkStatus::kOk || feedback_.step != exchange_) {
+      return StepOutcome::kLinkFailure;
+    }
+    ++exchange_;
+    if (feedback_.status & transport::kNodeFault) return StepOutcome::kNodeFault;
+    for (int c = 0; c < channels_; ++c) {
+      if (!std::isfinite(feedback_.displacement_m[c]) || !std::isfinite(feedback_.force_n[c])) return StepOutcome::kNonFinite;
+      parts_.compensators[c]->observe(targets_[c], feedback_.displacement_m[c]);
+      tracking_[c].update(targets_[c], feedback_.displacement_m[c]);
+    }
+    experimental_forces(feedback_);
+    numerical.restoring_force(d, restoring_);
+    partition.add_forces(specimen_forces_, restoring_);
+    if (integrator.set_measured_restoring_force(restoring_) != integrators::StepStatus::ok) {
+      return StepOutcome::kIntegratorError;
+    }
+  }
+  if (integrator.end_step() != integrators::StepStatus::ok) return StepOutcome::kIntegratorError;
+  numerical.commit();
+  ++step_;
+
+  // Energy balance by the trapezoidal rule over the step (model scale):
+  // input = sum F.dd, damping = sum (Cv).dd, restoring = sum R.dd, kinetic = 1/2 v'Mv.
+  const Eigen::VectorXd& d = integrator.displacement();
+  const Eigen::VectorXd& v = integrator.velocity();
+  const Eigen::VectorXd& r = integrator.restoring_force();
+  work_a_ = d - previous_d_;
+  input_energy_j_ += 0.5 * (previous_f_ + force_).dot(work_a_);
+  restoring_energy_j_ += 0.5 * (previous_r_ + r).dot(work_a_);
+  work_b_ = v + previous_v_;
+  numerical.damping().multiply(work_b_, restoring_);  // restoring_ reused as scratch: C (v + v_prev)
+  damping_energy_j_ += 0.5 * restoring_.dot(work_a_);
+  numerical.mass().multiply(v, work_b_);
+  kinetic_energy_j_ = 0.5 * v.dot(work_b_);
+  previous_d_ = d;
+  previous_v_ = v;
+  previous_r_ = r;
+  previous_f_ = force_;
+
+  StepRecord record;
+  record.step = step_;
+  record.time_s = integrator.time_s();
+  record.ground_acceleration_m_per_s2 = ground;
+  fill_record(record);
+  record.node_status = feedback_.status;
+  recorder.record(record);
+  return StepOutcome::kOk;
+}
+
+void RpsdLoop::fill_record(StepRecord& r) const {
+  const auto& integrator = *parts_.integrator;
+  r.channels = static_cast<std::uint8_t>(channels_);
+  r.dofs = static_cast<std::uint8_t>(parts_.recorded_dofs.size());
+  for (int c = 0; c < channels_; ++c) {
+    r.target_m[c] = targets_[c];
+    r.command_m[c] = command_.displacement_m[c];
+    r.measured_m[c] = feedback_.displacement_m[c];
+    r.measured_force_n[c] = feedback_.force_n[c];
+    r.tracking_indicator_m2[c] = tracking_[c].value_m2();
+  }
+  for (std::size_t i = 0; i < parts_.recorded_dofs.size(); ++i) {
+    const Eigen::Index dof = parts_.recorded_dofs[i];
+    r.displacement_m[i] = integrator.displacement()[dof];
+    r.velocity_m_per_s[i] = integrator.velocity()[dof];
+    r.acceleration_m_per_s2[i] = integrator.acceleration()[dof];
+    r.restoring_force_n[i] = integrator.restoring_force()[dof];
+  }
+  r.input_energy_j = input_energy_j_;
+  r.damping_energy_j = damping_energy_j_;
+  r.restoring_energy_j = restoring_energy_j_;
+  r.kinetic_energy_j = kinetic_energy_j_;
+}
+
+}  // namespace rpsd::coordinator
