@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <string>
 
@@ -89,6 +90,7 @@ double AdaptiveTimeSeriesCompensator::command(double target_m) noexcept {
 }
 
 void AdaptiveTimeSeriesCompensator::observe(double, double measured_m) noexcept {
+  assert(!measured_m_.empty() && "configure() first");
   const auto slot = static_cast<std::size_t>(observed_ % capacity_);
   measured_m_[slot] = measured_m;
   command_m_[slot] = last_command_m_;

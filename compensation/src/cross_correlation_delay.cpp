@@ -1,5 +1,6 @@
 #include "rpsd/compensation/cross_correlation_delay.h"
 
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -126,6 +127,7 @@ void CrossCorrelationDelayEstimator::reset() noexcept {
 }
 
 void CrossCorrelationDelayEstimator::update(double target_m, double measured_m) noexcept {
+  assert(!target_.empty() && "configure() first");
   const long n = count_;
   const long oldest = n - window_;  // the sample leaving the window, if any
   const double leaving_measured = oldest >= 0 ? measured_at(oldest) : 0.0;

@@ -1,6 +1,7 @@
 #include "rpsd/compensation/frequency_evaluation_index.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -106,6 +107,7 @@ void FrequencyEvaluationIndexEstimator::reset() noexcept {
 }
 
 void FrequencyEvaluationIndexEstimator::update(double input, double output) noexcept {
+  assert(!input_ring_.empty() && "configure() first");
   const long n = parameters_.window_samples;
   const auto slot = static_cast<std::size_t>(count_ % n);
   input_ring_[slot] = input;

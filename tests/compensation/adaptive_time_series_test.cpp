@@ -67,6 +67,10 @@ TEST(AdaptiveTimeSeries, ConvergesToTheDelayOfAnIdealDelayPlant) {
   ASSERT_EQ(c.window_samples(), 1024);
   const Trace t = run(c, m, 12.0, kTarget);
   const auto& a = t.coefficients.back();
+  testing::record("a0", a[0]);
+  testing::record("a1_s", a[1]);
+  testing::record("a2_s2", a[2]);
+  testing::record("worst_error_last_2s_m", t.worst_late_error_m);
   EXPECT_NEAR(a[0], 1.0, 0.005);
   EXPECT_NEAR(a[1], tau, 0.015 * tau);
   EXPECT_NEAR(a[2], tau * (tau + kDt) / 2.0, 0.05 * tau * (tau + kDt) / 2.0);

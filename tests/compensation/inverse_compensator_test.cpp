@@ -120,6 +120,8 @@ TEST(AdaptiveInverseCompensator, ConvergesToTheActuatorsAlpha) {
   p.max_delay_rate = 0.05;
   p.proportional_gain_s_per_m2 = 500.0;  // about 1/s convergence at X = 10 mm, 1 Hz
   const AdaptiveRun r = run_adaptive(p, true_alpha, 20.0);
+  testing::record("final_delay_s", r.final_delay_s);
+  testing::record("true_delay_s", true_delay);
   EXPECT_NEAR(r.final_delay_s, true_delay, 0.005 * true_delay);
   // TI growth per cycle ~ pi X^2 sin(w residual): near zero at the end.
   EXPECT_LT(std::abs(r.ti_growth_last_cycle_m2), 3.14e-4 * std::sin(2.0 * kPi * 0.005 * true_delay));

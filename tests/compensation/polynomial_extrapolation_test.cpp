@@ -95,6 +95,7 @@ TEST(PolynomialExtrapolation, IdealDelayPlantTracksWithinTheLagrangeRemainder) {
     }
     double bound = X * std::pow(w * dt, p + 1) / std::tgamma(p + 2.0);
     for (int k = 0; k <= p; ++k) bound *= (m + k);
+    testing::record("error_over_bound_order_" + std::to_string(p), worst / bound);
     EXPECT_LE(worst, bound) << "order " << p;
     EXPECT_GE(worst, 0.85 * bound) << "order " << p;
   }

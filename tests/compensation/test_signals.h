@@ -2,9 +2,13 @@
 // compensator by simulation, and window-periodic multi-sine signals.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "rpsd/compensation/command_compensator.h"
@@ -20,6 +24,14 @@ inline std::complex<double> simulated_response(CommandCompensator& c, double the
   c.reset(0.0);
   for (int n = 0; n < steps; ++n) ys = c.command(std::sin(theta * n));
   return std::complex<double>(yc, ys) / std::polar(1.0, theta * (steps - 1));
+}
+
+/// Records a measured figure in the test's XML output (--gtest_output=xml:FILE).
+inline void record(const std::string& key, double value) {
+  std::ostringstream s;
+  s.precision(10);
+  s << value;
+  ::testing::Test::RecordProperty(key, s.str());
 }
 
 /// sum_i amplitude_i sin(2 pi f_i t + phase_i).

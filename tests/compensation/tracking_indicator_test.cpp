@@ -13,36 +13,36 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// TI after `cycles` cycles of d_c = X sin(w t), d_m = X sin(w (t - tau)) at step dt.
-double ti_after_cycles(double X, double f_hz, double tau_s, double dt_s, int cycles) {
+// TI per cycle over about `cycles` cycles of d_c = X sin(w t), d_m = X sin(w (t - tau)) at
+// step dt: TI after a whole number of steps divided by the cycles those steps cover.
+double ti_per_cycle(double X, double f_hz, double tau_s, double dt_s, int cycles) {
   const double w = 2.0 * kPi * f_hz;
-  const int steps = static_cast<int>(std::lround(cycles / (f_hz * dt_s)));
+  const long steps = std::lround(cycles / (f_hz * dt_s));
   TrackingIndicator ti;
-  for (int n = 0; n <= steps; ++n) {
-    const double t = n * dt_s;
+  for (long n = 0; n <= steps; ++n) {
+    const double t = static_cast<double>(n) * dt_s;
     ti.update(X * std::sin(w * t), X * std::sin(w * (t - tau_s)));
   }
-  return ti.value_m2();
+  return ti.value_m2() / (static_cast<double>(steps) * f_hz * dt_s);
 }
 
 TEST(TrackingIndicator, GrowsByPiXSquaredSinWTauPerCycle) {
   const double X = 0.0125, f = 1.58, dt = 1e-5;
   for (double tau : {0.002, 0.01, 0.081}) {
-    const double per_cycle = ti_after_cycles(X, f, tau, dt, 5) / 5.0;
+    const double per_cycle = ti_per_cycle(X, f, tau, dt, 5);
     const double expected = kPi * X * X * std::sin(2.0 * kPi * f * tau);
-    // Sampling shrinks it by sin(w dt)/(w dt) = 1 - 1e-8 here; the step count rounds 5 cycles
-    // to whole steps (relative 1e-6 at most).
-    EXPECT_NEAR(per_cycle, expected, 2e-6 * expected) << "tau " << tau;
+    // Sampling shrinks it by sin(w dt) / (w dt) = 1 - 1.6e-9 here.
+    EXPECT_NEAR(per_cycle, expected, 1e-8 * expected) << "tau " << tau;
     EXPECT_GT(per_cycle, 0.0);
   }
 }
 
 TEST(TrackingIndicator, IsNegativeForALead) {
   const double X = 0.01, f = 2.0, dt = 1e-5, tau = -0.015;
-  const double per_cycle = ti_after_cycles(X, f, tau, dt, 3) / 3.0;
+  const double per_cycle = ti_per_cycle(X, f, tau, dt, 3);
   const double expected = kPi * X * X * std::sin(2.0 * kPi * f * tau);
   EXPECT_LT(per_cycle, 0.0);
-  EXPECT_NEAR(per_cycle, expected, 2e-6 * std::abs(expected));
+  EXPECT_NEAR(per_cycle, expected, 1e-8 * std::abs(expected));
 }
 
 TEST(TrackingIndicator, SampledIncrementIsExactlyHalfXSquaredSinWTauSinWDt) {

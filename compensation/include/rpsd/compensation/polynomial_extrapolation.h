@@ -37,7 +37,8 @@ class PolynomialExtrapolationCompensator final : public CommandCompensator {
   void reset(double initial_displacement_m) noexcept override;
   double command(double target_m) noexcept override;
   void observe(double, double) noexcept override {}
-  double compensated_delay_s() const noexcept override { return parameters_.delay_s; }
+  /// delay_s, or 0 for order 0 (which holds the target and so advances nothing).
+  double compensated_delay_s() const noexcept override { return parameters_.order == 0 ? 0.0 : parameters_.delay_s; }
   std::string_view name() const noexcept override { return "polynomial_extrapolation"; }
 
   double alpha() const { return alpha_; }
