@@ -36,8 +36,33 @@ TEST(PhaseLead, CancellingAFirstOrderLagLeavesOnlyTheFastPole) {
   EXPECT_NEAR(lead.low_frequency_lead_s(), lag * 4.0 / 5.0, 1e-15);
 }
 
+TEST(PhaseLead, DesignFromADelaySuppliesThatLowFrequencyLead) {
+  // (a - 1) T = tau: the phase atan(a T w) - atan(T w) tends to tau w.
+  const double tau = 0.081;
+  for (const PhaseLeadParameters& lead :
+       {phase_lead_for_delay(tau, 5.0), phase_lead_for_delay_with_time_constant(tau, 0.01)}) {
+    EXPECT_NEAR(lead.low_frequency_lead_s(), tau, 1e-15);
+    const double w = 1e-3;
+    EXPECT_NEAR(std::arg(phase_lead_response(lead, w)) / w, tau, 1e-6);
+  }
+  EXPECT_NEAR(phase_lead_for_delay(tau, 5.0).time_constant_s, tau / 4.0, 1e-15);
+  EXPECT_NEAR(phase_lead_for_delay_with_time_constant(tau, 0.01).ratio_a, 9.1, 1e-12);
+  EXPECT_EQ(phase_lead_for_delay(0.0, 5.0).time_constant_s, 0.0);
+}
+
+TEST(PhaseLead, PeakingDesignSuppliesOmegaTauAtTheDominantFrequency) {
+  const double tau = 0.081, f = 1.58;
+  const PhaseLeadParameters lead = phase_lead_peaking_at(tau, f);
+  const double w = 2.0 * std::numbers::pi * f;
+  EXPECT_NEAR(lead.max_lead_frequency_rad_s(), w, 1e-9);
+  EXPECT_NEAR(std::arg(phase_lead_response(lead, w)), w * tau, 1e-12);
+  EXPECT_THROW(phase_lead_peaking_at(0.2, 2.0), std::invalid_argument);  // w tau > pi/2
+}
+
 TEST(PhaseLead, RejectsRatioBelowOne) {
   EXPECT_THROW(cancel_first_order_lag(0.08, 0.5), std::invalid_argument);
+  EXPECT_THROW(phase_lead_for_delay(0.08, 1.0), std::invalid_argument);
+  EXPECT_THROW(phase_lead_for_delay(-0.01, 5.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,0 +1,98 @@
+// Adaptive time-series compensation (ATS; Chae, Kazemibidokhti & Ricles, EESD 42(11):1697,
+// 2013; settings from OpenFresco's ATS_setup.m).
+//
+// Command law:  u_c[n] = a0 x_t[n] + a1 D x_t[n] + a2 D^2 x_t[n]
+// Identification: every skip_samples steps, once a full window of W = round(window_s / dt)
+// samples is available, least squares over the window of the inverse model
+//   u_c[k] ~ a0 x_m[k] + a1 D x_m[k] + a2 D^2 x_m[k],
+// i.e. the command that produced each measured motion. For a plant x_m[k] = u_c[k - m] this
+// gives a1 ~ m dt (the delay), a0 ~ 1, a2 ~ m (m + 1) dt^2 / 2.
+// Derivatives: first-order backward differences, D x[k] = (x[k] - x[k-1]) / dt and
+// D^2 x[k] = (x[k] - 2 x[k-1] + x[k-2]) / dt^2, the same operator on the target and on the
+// measurement, so that the identified coefficients already account for the operator's own
+// half-step lag and the law stays consistent with what was identified.
+// Safeguards (Chae et al.): each coefficient is clamped to [lower, upper] bounds and may change
+// by at most max_rate_per_s * skip_samples * dt per update. rpsd applies each update as a
+// straight-line ramp over the following skip_samples steps (so by at most max_rate_per_s * dt
+// per step): a coefficient that jumps puts a kink into the command, and the second difference
+// of the measured response to that kink is a spike that swamps the D^2 x_m column of the next
+// windows (with an ideal delay plant, it drove a2 to about 0 and biased a0 by 3 %). An
+// update happens only while the
+// measured displacement spans at least trigger_threshold_m (max - min over the window), so a
+// resting actuator is not identified from noise (this is rpsd's reading of the "threshold for
+// triggering" in ATS_setup.m).
+// Numerics: the normal equations are column-scaled to unit diagonal and solved with a ridge of
+// 1e-9 towards the current coefficients. A window whose motion is one (possibly decaying)
+// sinusoid has rank 2, and the ridge keeps the unidentifiable direction at its current value
+// instead of returning the singular solution; on a well-excited window its effect is below
+// 1e-9 times the condition number. The displacement filters of ATS_setup.m (6th-order
+// Butterworth at 20 Hz) are not part of this class.
+// Cost: O(1) per step, plus O(W) on every skip_samples-th step (the window's normal equations
+// are rebuilt from the ring buffers, so no rounding drift accumulates).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "rpsd/compensation/command_compensator.h"
+
+namespace rpsd::compensation {
+
+struct AdaptiveTimeSeriesParameters {
+  std::array<double, 3> initial_coefficients{1.0, 0.025, 0.5 * 0.025 * 0.025};  ///< a0, a1 s, a2 s^2
+  std::array<double, 3> lower_bounds{0.7, 0.0, 0.0};
+  std::array<double, 3> upper_bounds{1.3, 0.08, 0.0032};
+  std::array<double, 3> max_rate_per_s{2.0, 0.05, 0.001};  ///< per second of test time
+  double window_s = 1.0;                                    ///< least-squares window
+  int skip_samples = 16;                                    ///< update every this many steps
+  double trigger_threshold_m = 0.01 * 0.0254;               ///< 0.01 in
+
+  /// Throws std::invalid_argument with the offending value unless lower <= initial <= upper,
+  /// the rates are positive, window_s > 0, skip_samples >= 1 and the threshold >= 0.
+  /// Not real-time safe.
+  void validate() const;
+};
+
+class AdaptiveTimeSeriesCompensator final : public CommandCompensator {
+ public:
+  explicit AdaptiveTimeSeriesCompensator(const AdaptiveTimeSeriesParameters& parameters);
+
+  /// Also requires round(window_s / dt_s) >= 8 samples. Allocates the ring buffers.
+  void configure(double dt_s) override;
+  void reset(double initial_displacement_m) noexcept override;
+  double command(double target_m) noexcept override;
+  void observe(double target_m, double measured_m) noexcept override;
+  /// The law's low-frequency lead a1 / a0.
+  double compensated_delay_s() const noexcept override { return coefficients_[1] / coefficients_[0]; }
+  std::string_view name() const noexcept override { return "adaptive_time_series"; }
+
+  const std::array<double, 3>& coefficients() const { return coefficients_; }
+  int window_samples() const { return window_samples_; }
+  /// Updates that changed the coefficients, and updates skipped by the trigger threshold.
+  long accepted_updates() const { return accepted_updates_; }
+  long untriggered_updates() const { return untriggered_updates_; }
+
+ private:
+  void update_coefficients() noexcept;
+  double measured_at(long k) const { return measured_m_[static_cast<std::size_t>(k % capacity_)]; }
+  double command_at(long k) const { return command_m_[static_cast<std::size_t>(k % capacity_)]; }
+
+  AdaptiveTimeSeriesParameters parameters_;
+  double dt_s_ = 1.0;
+  int window_samples_ = 0;
+  long capacity_ = 1;
+  std::vector<double> measured_m_;  ///< ring buffers, sized in configure()
+  std::vector<double> command_m_;
+  long observed_ = 0;               ///< samples pushed since reset
+  long accepted_updates_ = 0;
+  long untriggered_updates_ = 0;
+  std::array<double, 3> coefficients_{};  ///< applied now
+  std::array<double, 3> ramp_from_{};     ///< applied at the last update
+  std::array<double, 3> goal_{};          ///< reached skip_samples steps after it
+  int ramp_step_ = 0;
+  double previous_target_m_ = 0.0;  ///< x_t[n-1]
+  double before_previous_target_m_ = 0.0;  ///< x_t[n-2]
+  double last_command_m_ = 0.0;
+};
+
+}  // namespace rpsd::compensation

@@ -1,0 +1,77 @@
+// The phase-lead network G_c(s) = (1 + a T s) / (1 + T s) run at the control rate.
+//
+// Discretisation: bilinear (Tustin), s = K (z - 1) / (z + 1), with K = 2 / dt by default or
+// K = w_p / tan(w_p dt / 2) when pre-warped at w_p = 2 pi prewarp_frequency_hz. Why Tustin:
+// it maps the whole j-axis onto the unit circle, so the discrete response is exactly
+// H(e^{j w dt}) = G_c(j K tan(w dt / 2)): the DC gain stays 1, the gain never exceeds a, the
+// filter is stable for every T >= 0, and without pre-warping the low-frequency lead
+// (a - 1) T (the design rule against a delay) is kept exactly, since K tan(w dt/2) = w + O(w^3).
+// Pre-warping trades that for an exact match of G_c at w_p (for instance the structure's
+// dominant frequency) and scales the low-frequency lead by (w_p dt / 2) / tan(w_p dt / 2).
+// ZOH or matched pole-zero equivalents were not chosen: the ZOH equivalent of the lag part
+// adds about half a step of delay, and matched pole-zero keeps neither the DC slope nor any
+// frequency exactly.
+#pragma once
+
+#include <complex>
+
+#include "rpsd/compensation/command_compensator.h"
+#include "rpsd/compensation/phase_lead.h"
+
+namespace rpsd::compensation {
+
+struct DiscretePhaseLeadParameters {
+  PhaseLeadParameters network;        ///< (a, T); see phase_lead_for_delay() for the design
+  double prewarp_frequency_hz = 0.0;  ///< 0: plain Tustin; > 0: exact at this frequency
+
+  /// Designed from the delay to compensate with the chosen ratio a: (a - 1) T = delay_s.
+  static DiscretePhaseLeadParameters for_delay(double delay_s, double ratio_a,
+                                               double prewarp_frequency_hz = 0.0);
+
+  /// Throws std::invalid_argument unless the network is valid and 0 <= prewarp < Nyquist
+  /// of dt_s. Not real-time safe.
+  void validate(double dt_s) const;
+};
+
+/// One first-order section y[n] = b0 x[n] + b1 x[n-1] - a1 y[n-1].
+struct FirstOrderSection {
+  double b0 = 1.0;
+  double b1 = 0.0;
+  double a1 = 0.0;
+};
+
+/// The Tustin coefficients of the network at step dt_s (validates). Not real-time safe.
+FirstOrderSection tustin_phase_lead(const DiscretePhaseLeadParameters& parameters, double dt_s);
+
+/// The bilinear frequency-warping constant K (2 / dt_s, or pre-warped). Real-time safe.
+double tustin_warping_constant(const DiscretePhaseLeadParameters& parameters, double dt_s);
+
+/// The discrete network's exact frequency response at w = omega_rad_s:
+/// G_c(j K tan(w dt / 2)) (the bilinear map), for 0 <= w dt < pi. Real-time safe.
+std::complex<double> discrete_phase_lead_response(const DiscretePhaseLeadParameters& parameters,
+                                                  double dt_s, double omega_rad_s);
+
+class DiscretePhaseLeadCompensator final : public CommandCompensator {
+ public:
+  explicit DiscretePhaseLeadCompensator(const DiscretePhaseLeadParameters& parameters);
+
+  void configure(double dt_s) override;
+  void reset(double initial_displacement_m) noexcept override;
+  double command(double target_m) noexcept override;
+  void observe(double, double) noexcept override {}
+  /// The discrete filter's low-frequency lead: (a - 1) T K dt / 2 ((a - 1) T unless pre-warped).
+  double compensated_delay_s() const noexcept override { return low_frequency_lead_s_; }
+  std::string_view name() const noexcept override { return "phase_lead"; }
+
+  const FirstOrderSection& section() const { return section_; }
+  const DiscretePhaseLeadParameters& parameters() const { return parameters_; }
+
+ private:
+  DiscretePhaseLeadParameters parameters_;
+  FirstOrderSection section_;
+  double low_frequency_lead_s_ = 0.0;
+  double previous_input_m_ = 0.0;
+  double previous_output_m_ = 0.0;
+};
+
+}  // namespace rpsd::compensation
