@@ -7,7 +7,7 @@ packages=(
   build-essential cmake              # compiler and build system
   libeigen3-dev                      # linear algebra (integrators, servo linear analysis)
   libyaml-cpp-dev                    # scenario and parameter files
-  libgtest-dev                       # tests
+  libgtest-dev libgmock-dev          # tests (GoogleTest and its matchers)
   libbenchmark-dev                   # bench/
   libcli11-dev                       # the rpsd command line
   nlohmann-json3-dev                 # summary.json and --json output

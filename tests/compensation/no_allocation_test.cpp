@@ -19,85 +19,7 @@
 #include "rpsd/compensation/frequency_evaluation_index.h"
 #include "rpsd/compensation/tracking_indicator.h"
 
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-}
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-
-void note() noexcept {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-}
-void* new_impl(std::size_t n) {
-  note();
-  if (void* p = __libc_malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* new_aligned_impl(std::size_t n, std::align_val_t a) {
-  note();
-  const auto al = static_cast<std::size_t>(a);
-  if (void* p = __libc_memalign(al, (n + al - 1) / al * al)) return p;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-extern "C" {
-void* malloc(std::size_t n) noexcept {
-  note();
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t c, std::size_t n) noexcept {
-  note();
-  return __libc_calloc(c, n);
-}
-void* realloc(void* p, std::size_t n) noexcept {
-  note();
-  return __libc_realloc(p, n);
-}
-void free(void* p) noexcept { __libc_free(p); }
-void* aligned_alloc(std::size_t a, std::size_t n) noexcept {
-  note();
-  return __libc_memalign(a, n);
-}
-void* memalign(std::size_t a, std::size_t n) noexcept {
-  note();
-  return __libc_memalign(a, n);
-}
-int posix_memalign(void** out, std::size_t a, std::size_t n) noexcept {
-  note();
-  void* p = __libc_memalign(a, n);
-  if (!p) return ENOMEM;
-  *out = p;
-  return 0;
-}
-}
-
-void* operator new(std::size_t n) { return new_impl(n); }
-void* operator new[](std::size_t n) { return new_impl(n); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  note();
-  return __libc_malloc(n == 0 ? 1 : n);
-}
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  note();
-  return __libc_malloc(n == 0 ? 1 : n);
-}
-void* operator new(std::size_t n, std::align_val_t a) { return new_aligned_impl(n, a); }
-void* operator new[](std::size_t n, std::align_val_t a) { return new_aligned_impl(n, a); }
-void operator delete(void* p) noexcept { __libc_free(p); }
-void operator delete[](void* p) noexcept { __libc_free(p); }
-void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { __libc_free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { __libc_free(p); }
+#include "allocation_counter.h"
 
 namespace rpsd::compensation {
 namespace {
@@ -107,11 +29,9 @@ constexpr double kDt = 1.0 / 2048.0;
 
 template <typename F>
 long count_allocations(F&& f) {
-  g_allocations = 0;
-  g_counting = true;
+  rpsd::testing::begin_counting_allocations();
   f();
-  g_counting = false;
-  return g_allocations.load();
+  return rpsd::testing::end_counting_allocations().total();
 }
 
 // A broadband target so that the adaptive schemes really update (and take their O(W) paths).
@@ -125,8 +45,10 @@ TEST(NoAllocation, TheCounterSeesAllocations) {
   // Guards against a hook that counts nothing.
   const long c = count_allocations([] {
     auto* p = new int(3);
+    rpsd::testing::keep(p);
     delete p;
     void* q = std::malloc(16);
+    rpsd::testing::keep(q);
     std::free(q);
     std::deque<double> d(10);
   });

@@ -7,68 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cstdlib>
-#include <new>
 
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* __libc_memalign(std::size_t, std::size_t);
-void __libc_free(void*);
-}
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-inline void count() {
-  if (g_counting.load(std::memory_order_relaxed)) {
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
-    if (std::getenv("RPSD_ABORT_ON_ALLOCATION")) std::abort();
-  }
-}
-}  // namespace
-
-extern "C" {
-void* malloc(std::size_t n) {
-  count();
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t a, std::size_t b) {
-  count();
-  return __libc_calloc(a, b);
-}
-void* realloc(void* p, std::size_t n) {
-  count();
-  return __libc_realloc(p, n);
-}
-void* memalign(std::size_t a, std::size_t n) {
-  count();
-  return __libc_memalign(a, n);
-}
-void* aligned_alloc(std::size_t a, std::size_t n) {
-  count();
-  return __libc_memalign(a, n);
-}
-int posix_memalign(void** p, std::size_t a, std::size_t n) {
-  count();
-  *p = __libc_memalign(a, n);
-  return *p ? 0 : 12;  // ENOMEM
-}
-void free(void* p) { __libc_free(p); }
-}
-
-void* operator new(std::size_t n) {
-  count();
-  if (void* p = __libc_malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { __libc_free(p); }
-void operator delete[](void* p) noexcept { __libc_free(p); }
-void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
-void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
+#include "allocation_counter.h"
 
 namespace rpsd::integrators::test {
 namespace {
@@ -97,8 +38,7 @@ long allocations_over_steps(Integrator& integrator, const StructuralMatrices& mo
   Eigen::VectorXd r = k * d0;
   integrator.initialize(d0, zero, r, zero);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
-  g_allocations = 0;
-  g_counting = true;
+  rpsd::testing::begin_counting_allocations();
   bool ok = true;
   for (int s = 0; s < steps; ++s) {
     f(0) = std::sin(1e-3 * s);
@@ -109,20 +49,21 @@ long allocations_over_steps(Integrator& integrator, const StructuralMatrices& mo
     }
     ok &= integrator.end_step() == StepStatus::ok;
   }
-  g_counting = false;
+  const long allocations = rpsd::testing::end_counting_allocations().total();
   EXPECT_TRUE(ok);
   EXPECT_TRUE(integrator.displacement().allFinite());
-  return g_allocations.load();
+  return allocations;
 }
 
 TEST(AllocationCounter, SeesEigenAndNewAllocations) {
-  g_allocations = 0;
-  g_counting = true;
+  rpsd::testing::begin_counting_allocations();
   Eigen::VectorXd v(1000);
   auto* p = new int(3);
-  g_counting = false;
+  rpsd::testing::keep(p);
+  const auto counts = rpsd::testing::end_counting_allocations();
   delete p;
-  EXPECT_GE(g_allocations.load(), 2);
+  EXPECT_GE(counts.operator_new, 1);
+  EXPECT_GE(counts.c_allocations, 1);
   v.setZero();
 }
 

@@ -1,0 +1,42 @@
+#include "rpsd/coordinator/damping_identification.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+namespace rpsd::coordinator {
+
+IdentifiedDamping identify_damping(std::span<const double> x, double dt_s, double skip_s, double floor_fraction) {
+  std::vector<double> times, logs;
+  const auto first = static_cast<std::size_t>(std::ceil(skip_s / dt_s)) + 1;
+  double first_peak = 0.0;
+  for (std::size_t i = std::max<std::size_t>(first, 1); i + 1 < x.size(); ++i) {
+    if (!(x[i] > 0.0 && x[i] >= x[i - 1] && x[i] > x[i + 1])) continue;
+    // Parabola through the three samples around the peak.
+    const double a = x[i - 1], b = x[i], c = x[i + 1];
+    const double denominator = a - 2.0 * b + c;
+    const double offset = denominator != 0.0 ? 0.5 * (a - c) / denominator : 0.0;
+    const double peak = b - 0.25 * (a - c) * offset;
+    if (times.empty()) first_peak = peak;
+    if (peak < floor_fraction * first_peak) break;
+    times.push_back((static_cast<double>(i) + offset) * dt_s);
+    logs.push_back(std::log(peak));
+  }
+  if (times.size() < 3) throw std::invalid_argument("identify_damping: fewer than three peaks to fit");
+  const double n = static_cast<double>(times.size());
+  double st = 0, sl = 0, stt = 0, stl = 0;
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    st += times[i];
+    sl += logs[i];
+    stt += times[i] * times[i];
+    stl += times[i] * logs[i];
+  }
+  const double slope = (n * stl - st * sl) / (n * stt - st * st);  // = -sigma
+  const double period = (times.back() - times.front()) / (n - 1.0);
+  const double omega_d = 2.0 * std::numbers::pi / period;
+  const double sigma = -slope;
+  return {sigma / std::hypot(sigma, omega_d), 1.0 / period, static_cast<int>(times.size())};
+}
+
+}  // namespace rpsd::coordinator
