@@ -1,0 +1,110 @@
+// The RPsD loop against delay theory: an ideal pure-delay actuator must give the damping of
+// the exact DDE root, and perfect compensation must track the target to the extrapolation error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "rpsd/compensation/delay_theory.h"
+#include "rpsd/compensation/polynomial_extrapolation.h"
+#include "rpsd/coordinator/damping_identification.h"
+#include "rpsd/coordinator/sdof_rpsd.h"
+#include "rpsd/servo/pure_delay_plant.h"
+
+namespace rpsd::coordinator {
+namespace {
+
+std::vector<double> displacements(const SdofRpsdResult& r) {
+  std::vector<double> x;
+  for (const auto& s : r.records) x.push_back(s.displacement_m[0]);
+  return x;
+}
+
+compensation::DelayedOscillator paper_sdof(const SdofRpsdSetup& s) {
+  return {s.mass_kg, 2.0 * s.damping_ratio * std::sqrt(s.stiffness_n_per_m * s.mass_kg), 0.0, s.stiffness_n_per_m};
+}
+
+TEST(RpsdLoop, UndercompensatedDelayGivesTheDampingOfTheExactDdeRoot) {
+  SdofRpsdSetup setup;  // the paper's elastic SDOF: 7080 kg, 700.8 kN/m, 1.1 %
+  setup.duration_s = 12.0;
+  setup.abort_amplitude_factor = 0.0;
+  for (double delay_s : {0.0, 0.002, 0.005, 0.010}) {
+    servo::PureDelayPlant plant({delay_s, setup.stiffness_n_per_m, 8192.0});
+    const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+    ASSERT_EQ(r.outcome, StepOutcome::kOk);
+    const IdentifiedDamping identified = identify_damping(displacements(r), setup.dt_s, 0.0, 1e-6);
+    const double exact = compensation::damping_ratio_of(compensation::dominant_root(paper_sdof(setup), delay_s));
+    EXPECT_NEAR(identified.damping_ratio, exact, 0.001) << delay_s * 1e3 << " ms";
+  }
+}
+
+TEST(RpsdLoop, PerfectCompensationTracksTheTargetToTheExtrapolationError) {
+  SdofRpsdSetup setup;
+  setup.duration_s = 4.0;
+  const double delay_s = 0.020;
+  for (int order : {2, 3}) {
+    setup.compensator = compensation::PolynomialExtrapolationParameters{order, delay_s};
+    servo::PureDelayPlant plant({delay_s, setup.stiffness_n_per_m, 8192.0});
+    const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+    ASSERT_EQ(r.outcome, StepOutcome::kOk);
+    // For a sinusoid of the structure's frequency, measured / target = H(e^{j w dt}) e^{-j w tau}.
+    const double omega = std::sqrt(setup.stiffness_n_per_m / setup.mass_kg);
+    const double bound =
+        std::abs(compensation::extrapolation_response(order, delay_s / setup.dt_s, omega * setup.dt_s) *
+                     std::exp(std::complex<double>(0.0, -omega * delay_s)) -
+                 1.0);
+    double worst = 0.0, peak = 0.0;
+    // After the delay line has filled with the test's own commands.
+    for (const auto& s : r.records) {
+      if (s.time_s < 0.5) continue;
+      worst = std::max(worst, std::abs(s.measured_m[0] - s.target_m[0]));
+      peak = std::max(peak, std::abs(s.target_m[0]));
+    }
+    EXPECT_LT(worst / peak, 1.5 * bound) << "order " << order;
+    // ...and the damping is the structure's own, not the delay's.
+    const IdentifiedDamping identified = identify_damping(displacements(r), setup.dt_s, 0.5, 1e-6);
+    EXPECT_NEAR(identified.damping_ratio, setup.damping_ratio, 0.002) << "order " << order;
+  }
+}
+
+TEST(RpsdLoop, AsFastAsPossibleRunsAreBitForBitRepeatable) {
+  SdofRpsdSetup setup;
+  setup.duration_s = 1.0;
+  servo::PureDelayPlant a({0.01, setup.stiffness_n_per_m, 8192.0}), b({0.01, setup.stiffness_n_per_m, 8192.0});
+  const auto ra = run_sdof_rpsd(setup, a), rb = run_sdof_rpsd(setup, b);
+  ASSERT_EQ(ra.records.size(), rb.records.size());
+  for (std::size_t i = 0; i < ra.records.size(); ++i) {
+    ASSERT_EQ(ra.records[i].measured_m[0], rb.records[i].measured_m[0]);
+    ASSERT_EQ(ra.records[i].displacement_m[0], rb.records[i].displacement_m[0]);
+  }
+}
+
+TEST(RpsdLoop, EnergyBalanceCloses) {
+  // Input energy = kinetic energy + damping energy + restoring work, to discretisation error.
+  SdofRpsdSetup setup;
+  setup.duration_s = 3.0;
+  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
+  const auto r = run_sdof_rpsd(setup, plant);
+  const double strain0 = 0.5 * setup.stiffness_n_per_m * setup.initial_displacement_m * setup.initial_displacement_m;
+  for (const auto& s : r.records) {
+    const double error = s.input_energy_j - (s.kinetic_energy_j + s.damping_energy_j + s.restoring_energy_j);
+    ASSERT_NEAR(error, 0.0, 1e-3 * strain0) << s.time_s;
+  }
+}
+
+TEST(DampingIdentification, RecoversTheDampingOfAClosedFormDecay) {
+  const double zeta = 0.03, omega = 2.0 * std::numbers::pi * 1.5, dt = 1.0 / 1024.0;
+  const double omega_d = omega * std::sqrt(1.0 - zeta * zeta);
+  std::vector<double> x;
+  for (int i = 0; i < 8 * 1024; ++i) x.push_back(std::exp(-zeta * omega * i * dt) * std::cos(omega_d * i * dt));
+  const IdentifiedDamping d = identify_damping(x, dt);
+  EXPECT_NEAR(d.damping_ratio, zeta, 1e-5);
+  EXPECT_NEAR(d.damped_frequency_hz, omega_d / (2.0 * std::numbers::pi), 1e-4);
+  // A growing response gives a negative ratio.
+  for (int i = 0; i < static_cast<int>(x.size()); ++i) x[i] = std::exp(0.02 * omega * i * dt) * std::cos(omega_d * i * dt);
+  EXPECT_NEAR(identify_damping(x, dt).damping_ratio, -0.02, 1e-5);
+}
+
+}  // namespace
+}  // namespace rpsd::coordinator
