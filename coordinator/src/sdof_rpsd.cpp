@@ -8,66 +8,92 @@
 
 namespace rpsd::coordinator {
 
-SdofRpsdResult run_sdof_rpsd(const SdofRpsdSetup& setup, servo::Plant& plant, const std::filesystem::path& csv) {
+struct SdofRpsdTest::Parts {
+  substructure::LinearMdofModel numerical;
+  substructure::Partition partition;
+  std::unique_ptr<integrators::Integrator> integrator;
+  std::unique_ptr<compensation::CommandCompensator> compensator;
+  std::unique_ptr<servo::PlantNode> node;
+  std::unique_ptr<transport::InProcessLink> link;
+  std::unique_ptr<RpsdLoop> loop;
+  std::unique_ptr<Recorder> recorder;
+};
+
+SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, const std::filesystem::path& csv)
+    : parts_(std::make_unique<Parts>()) {
+  Parts& p = *parts_;
   const double m = setup.mass_kg, k = setup.stiffness_n_per_m;
   const double c = 2.0 * setup.damping_ratio * std::sqrt(k * m);
 
   // Numerical part: mass and damping, no stiffness (the spring is the specimen).
-  substructure::LinearMdofModel numerical;
   substructure::LinearMdofConfig model;
   model.mass_kg = substructure::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, m));
   model.stiffness_n_per_m = substructure::StructuralMatrix(Eigen::MatrixXd::Zero(1, 1));
   model.damping = substructure::DampingMatrix{substructure::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, c))};
-  numerical.configure(model);
+  p.numerical.configure(model);
 
-  substructure::Partition partition;
   substructure::PartitionConfig split;
   split.dofs = 1;
   split.experimental = {{0, 0, 1.0, 1.0, k}};
   split.influence = Eigen::VectorXd::Ones(1);
-  partition.configure(split);
+  p.partition.configure(split);
 
-  auto integrator = integrators::make_integrator(setup.integrator);
-  integrators::DenseStructuralMatrices matrices{Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, c),
-                                                partition.with_specimen_stiffness(numerical.initial_stiffness()).to_dense()};
-  integrator->configure(matrices, setup.dt_s);
-  const double control_period_s = setup.dt_s / integrator->iterations_per_step();
+  p.integrator = integrators::make_integrator(setup.integrator);
+  integrators::DenseStructuralMatrices matrices{
+      Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, c),
+      p.partition.with_specimen_stiffness(p.numerical.initial_stiffness()).to_dense()};
+  p.integrator->configure(matrices, setup.dt_s);
+  const double control_period_s = setup.dt_s / p.integrator->iterations_per_step();
 
-  auto compensator = compensation::make_compensator(setup.compensator, control_period_s);
+  p.compensator = compensation::make_compensator(setup.compensator, control_period_s);
   servo::Plant* plants[] = {&plant};
-  servo::PlantNode node(plants, control_period_s);
-  transport::InProcessLink link(node);
+  p.node = std::make_unique<servo::PlantNode>(plants, control_period_s);
+  p.link = std::make_unique<transport::InProcessLink>(*p.node);
 
   LoopParts parts;
-  parts.integrator = integrator.get();
-  parts.numerical = &numerical;
-  parts.partition = &partition;
-  parts.link = &link;
-  parts.compensators = {compensator.get()};
+  parts.integrator = p.integrator.get();
+  parts.numerical = &p.numerical;
+  parts.partition = &p.partition;
+  parts.link = p.link.get();
+  parts.compensators = {p.compensator.get()};
   parts.force_paths = {{setup.force_path, k}};
   parts.recorded_dofs = {0};
-  RpsdLoop loop(parts);
+  p.loop = std::make_unique<RpsdLoop>(parts);
 
   const double d0 = setup.initial_displacement_m;
   const double hold[] = {d0};
-  node.reset(hold);
-  const double force0[] = {setup.force_path == RestoringForcePath::Kind::kMeasuredForce ? plant.measure().force_n : k * d0};
-  loop.start(Eigen::VectorXd::Constant(1, d0), force0);
+  p.node->reset(hold);
+  const double force0[] = {setup.force_path == RestoringForcePath::Kind::kMeasuredForce ? plant.measure().force_n
+                                                                                          : k * d0};
+  p.loop->start(Eigen::VectorXd::Constant(1, d0), force0);
+  p.recorder = std::make_unique<Recorder>(csv, 1, 1);
+}
 
+SdofRpsdTest::~SdofRpsdTest() = default;
+
+StepOutcome SdofRpsdTest::step() { return parts_->loop->step(*parts_->recorder); }
+
+double SdofRpsdTest::displacement_m() const { return parts_->integrator->displacement()[0]; }
+
+std::vector<StepRecord> SdofRpsdTest::finish() { return parts_->recorder->finish(); }
+
+std::uint64_t SdofRpsdTest::dropped_records() const { return parts_->recorder->dropped(); }
+
+SdofRpsdResult run_sdof_rpsd(const SdofRpsdSetup& setup, servo::Plant& plant, const std::filesystem::path& csv) {
+  SdofRpsdTest test(setup, plant, csv);
   SdofRpsdResult result;
-  Recorder recorder(csv, 1, 1);
   const auto steps = static_cast<std::int64_t>(std::llround(setup.duration_s / setup.dt_s));
-  const double abort_level = setup.abort_amplitude_factor * std::abs(d0);
+  const double abort_level = setup.abort_amplitude_factor * std::abs(setup.initial_displacement_m);
   for (std::int64_t n = 0; n < steps; ++n) {
-    result.outcome = loop.step(recorder);
+    result.outcome = test.step();
     if (result.outcome != StepOutcome::kOk) break;
-    if (abort_level > 0.0 && std::abs(integrator->displacement()[0]) > abort_level) {
+    if (abort_level > 0.0 && std::abs(test.displacement_m()) > abort_level) {
       result.aborted_on_amplitude = true;
       break;
     }
   }
-  result.dropped_records = recorder.dropped();
-  result.records = recorder.finish();
+  result.dropped_records = test.dropped_records();
+  result.records = test.finish();
   return result;
 }
 

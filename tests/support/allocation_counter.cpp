@@ -14,12 +14,14 @@ void __libc_free(void*);
 }
 
 namespace {
-std::atomic<bool> g_counting{false};
+// Only the thread that opened the window is counted: the rule is that the real-time thread
+// allocates nothing, while helper threads (the recorder's writer) may.
+thread_local bool t_counting = false;
 std::atomic<long> g_news{0};
 std::atomic<long> g_c_allocations{0};
 
 inline void count(std::atomic<long>& counter) {
-  if (g_counting.load(std::memory_order_relaxed)) {
+  if (t_counting) {
     counter.fetch_add(1, std::memory_order_relaxed);
     // Set this to find the allocation in a debugger (the abort shows its stack).
     if (std::getenv("RPSD_ABORT_ON_ALLOCATION")) std::abort();
@@ -44,12 +46,12 @@ namespace rpsd::testing {
 void begin_counting_allocations() {
   g_news = 0;
   g_c_allocations = 0;
-  g_counting = true;
+  t_counting = true;
 }
 void* volatile g_kept = nullptr;
 void keep(void* pointer) { g_kept = pointer; }
 AllocationCounts end_counting_allocations() {
-  g_counting = false;
+  t_counting = false;
   return {g_news.load(), g_c_allocations.load()};
 }
 }  // namespace rpsd::testing

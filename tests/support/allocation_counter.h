@@ -12,7 +12,8 @@ struct AllocationCounts {
   long total() const { return operator_new + c_allocations; }
 };
 
-/// Opens the counting window (counts restart at zero).
+/// Opens the counting window on the calling thread (counts restart at zero); allocations
+/// by other threads are not counted.
 void begin_counting_allocations();
 /// Closes the window and returns what was counted while it was open.
 AllocationCounts end_counting_allocations();

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include "rpsd/compensation/compensator_factory.h"
@@ -37,7 +38,27 @@ struct SdofRpsdResult {
   std::uint64_t dropped_records = 0;
 };
 
-/// Runs the test with `plant` as the actuator; `csv` (optional) receives every step.
+/// The assembled test: build (not real-time safe), then step() as often as wanted.
+class SdofRpsdTest {
+ public:
+  /// Builds every part and starts at rest at the initial displacement. Throws
+  /// std::invalid_argument on inconsistent settings.
+  SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, const std::filesystem::path& csv = {});
+  ~SdofRpsdTest();
+  /// One integration step. Real-time safe.
+  StepOutcome step();
+  /// Displacement of the numerical DOF now.
+  double displacement_m() const;
+  /// Stops the recorder and returns what was recorded. Not real-time safe.
+  std::vector<StepRecord> finish();
+  std::uint64_t dropped_records() const;
+
+ private:
+  struct Parts;
+  std::unique_ptr<Parts> parts_;
+};
+
+/// Runs the test for its duration; `csv` (optional) receives every step.
 SdofRpsdResult run_sdof_rpsd(const SdofRpsdSetup& setup, servo::Plant& plant, const std::filesystem::path& csv = {});
 
 }  // namespace rpsd::coordinator
