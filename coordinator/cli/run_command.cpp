@@ -3,7 +3,7 @@
 
 #include "cli/commands.h"
 #include "rpsd/coordinator/servo_study_output.h"
-#include "rpsd/scenarios/servo_study.h"
+#include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::cli {
 
@@ -17,7 +17,7 @@ void add_run(CLI::App& app) {
   run->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
   run->add_option("--out", options->out, "Output folder (created if missing)")->required();
   run->callback([options] {
-    const auto file = scenarios::load_servo_study(options->scenario);
+    const auto file = scenarios::load_study(options->scenario);
     coordinator::run_and_write(file, options->out);
     std::cout << "rpsd run: " << file.name << " -> " << options->out << "/summary.json\n";
   });

@@ -12,9 +12,10 @@ IdentifiedDamping identify_damping(std::span<const double> x, double dt_s, doubl
   const auto first = static_cast<std::size_t>(std::ceil(skip_s / dt_s)) + 1;
   double first_peak = 0.0;
   for (std::size_t i = std::max<std::size_t>(first, 1); i + 1 < x.size(); ++i) {
-    if (!(x[i] > 0.0 && x[i] >= x[i - 1] && x[i] > x[i + 1])) continue;
+    // Peaks of |x|: one every half cycle, so that a fast-growing response still gives several.
+    const double a = std::abs(x[i - 1]), b = std::abs(x[i]), c = std::abs(x[i + 1]);
+    if (!(b > 0.0 && b >= a && b > c)) continue;
     // Parabola through the three samples around the peak.
-    const double a = x[i - 1], b = x[i], c = x[i + 1];
     const double denominator = a - 2.0 * b + c;
     const double offset = denominator != 0.0 ? 0.5 * (a - c) / denominator : 0.0;
     const double peak = b - 0.25 * (a - c) * offset;
@@ -33,7 +34,7 @@ IdentifiedDamping identify_damping(std::span<const double> x, double dt_s, doubl
     stl += times[i] * logs[i];
   }
   const double slope = (n * stl - st * sl) / (n * stt - st * st);  // = -sigma
-  const double period = (times.back() - times.front()) / (n - 1.0);
+  const double period = 2.0 * (times.back() - times.front()) / (n - 1.0);
   const double omega_d = 2.0 * std::numbers::pi / period;
   const double sigma = -slope;
   return {sigma / std::hypot(sigma, omega_d), 1.0 / period, static_cast<int>(times.size())};

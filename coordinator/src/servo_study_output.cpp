@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "rpsd/coordinator/csv_table.h"
+#include "rpsd/coordinator/delay_compensation_study.h"
 #include "rpsd/coordinator/gnuplot.h"
 #include "rpsd/servo/linear_analysis.h"
 
@@ -51,7 +52,7 @@ std::vector<double> scaled(const std::vector<double>& values, double factor) {
 
 }  // namespace
 
-void write_sine_sweep(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+void write_sine_sweep(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                       const scenarios::SineSweepStudy& study, const SineSweepResult& r) {
   CsvTable()
       .column("time_s", r.time_s)
@@ -107,7 +108,7 @@ void write_sine_sweep(const std::filesystem::path& dir, const scenarios::ServoSt
                  "unset multiplot\n");
 }
 
-void write_frequency_response(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+void write_frequency_response(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                               const scenarios::FrequencyResponseStudy& study,
                               const std::vector<FrequencyResponseRow>& rows) {
   CsvTable table;
@@ -164,7 +165,7 @@ void write_frequency_response(const std::filesystem::path& dir, const scenarios:
                  "unset multiplot\n");
 }
 
-void write_max_gain(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+void write_max_gain(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                     const scenarios::MaxGainStudy& study, const std::vector<MaxGainRow>& rows) {
   CsvTable()
       .column("attached_mass_kg", pick(rows, [](auto& r) { return r.mass_kg; }))
@@ -197,7 +198,7 @@ void write_max_gain(const std::filesystem::path& dir, const scenarios::ServoStud
              900, 600);
 }
 
-void run_and_write(const scenarios::ServoStudyFile& file, const std::filesystem::path& dir) {
+void run_and_write(const scenarios::StudyFile& file, const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   std::visit(
       [&](const auto& study) {
@@ -206,8 +207,10 @@ void run_and_write(const scenarios::ServoStudyFile& file, const std::filesystem:
           write_sine_sweep(dir, file, study, run_sine_sweep(study));
         } else if constexpr (std::is_same_v<Study, scenarios::FrequencyResponseStudy>) {
           write_frequency_response(dir, file, study, run_frequency_response(study));
-        } else {
+        } else if constexpr (std::is_same_v<Study, scenarios::MaxGainStudy>) {
           write_max_gain(dir, file, study, run_max_gain(study));
+        } else {
+          write_delay_compensation(dir, file, study, run_delay_compensation(study, dir));
         }
       },
       file.study);

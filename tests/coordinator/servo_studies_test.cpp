@@ -10,14 +10,14 @@
 #include "../servo/paper_rig.h"
 #include "rpsd/coordinator/servo_studies.h"
 #include "rpsd/coordinator/servo_study_output.h"
-#include "rpsd/scenarios/servo_study.h"
+#include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/linear_analysis.h"
 
 namespace rpsd::coordinator {
 namespace {
 
-scenarios::ServoStudyFile shipped(const std::string& name) {
-  return scenarios::load_servo_study(testing::source_dir() / "scenarios" / name);
+scenarios::StudyFile shipped(const std::string& name) {
+  return scenarios::load_study(testing::source_dir() / "scenarios" / name);
 }
 
 TEST(Figure5, SweepAmplitudeRatiosFollowTheLinearModelWithServovalve) {

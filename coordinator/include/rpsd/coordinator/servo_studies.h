@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "rpsd/scenarios/servo_study.h"
+#include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::coordinator {
 

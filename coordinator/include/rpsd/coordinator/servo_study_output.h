@@ -9,17 +9,17 @@
 
 namespace rpsd::coordinator {
 
-void write_sine_sweep(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+void write_sine_sweep(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                       const scenarios::SineSweepStudy& study, const SineSweepResult& result);
 
-void write_frequency_response(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+void write_frequency_response(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                               const scenarios::FrequencyResponseStudy& study,
                               const std::vector<FrequencyResponseRow>& rows);
 
-void write_max_gain(const std::filesystem::path& dir, const scenarios::ServoStudyFile& file,
+void write_max_gain(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                     const scenarios::MaxGainStudy& study, const std::vector<MaxGainRow>& rows);
 
 /// Runs whichever study the file holds and writes it into dir (created if missing).
-void run_and_write(const scenarios::ServoStudyFile& file, const std::filesystem::path& dir);
+void run_and_write(const scenarios::StudyFile& file, const std::filesystem::path& dir);
 
 }  // namespace rpsd::coordinator

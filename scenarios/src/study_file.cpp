@@ -1,4 +1,4 @@
-#include "rpsd/scenarios/servo_study.h"
+#include "rpsd/scenarios/study_file.h"
 
 #include <cmath>
 
@@ -68,7 +68,63 @@ MaxGainStudy read_max_gain(MappingReader& root, servo::ServoSystemParameters ser
   return s;
 }
 
+DelayCompensationStudy read_delay_compensation(MappingReader& root, const std::filesystem::path& file) {
+  DelayCompensationStudy s;
+  MappingReader structure = root.mapping("structure");
+  s.mass_kg = structure.positive_number("mass_kg");
+  s.stiffness_n_per_m = structure.positive_number("stiffness_n_per_m");
+  s.damping_ratio = structure.non_negative_number("damping_ratio");
+  structure.finish();
+  s.initial_displacement_m = root.positive_number("initial_displacement_m");
+  s.control_rate_hz = root.positive_number_or("control_rate_hz", s.control_rate_hz);
+  s.duration_s = root.positive_number("duration_s");
+  s.abort_amplitude_factor = root.positive_number_or("abort_amplitude_factor", s.abort_amplitude_factor);
+  if (root.has("integrator")) {
+    const std::string name = root.string("integrator");
+    const auto config = default_integrator(name);
+    if (!config) root.fail("integrator", "unknown integrator \"" + name + "\"");
+    s.integrator = *config;
+  }
+  MappingReader plant = root.mapping("plant");
+  const std::string kind = plant.string("kind");
+  if (kind == "servo_model") {
+    const std::filesystem::path parameters = file.parent_path() / plant.string("parameters");
+    if (!std::filesystem::exists(parameters)) plant.fail("parameters", "no such parameter file: " + parameters.string());
+    s.plant = load_servo_parameters(parameters);
+  } else if (kind == "ideal_delay") {
+    servo::PureDelayParameters delay;
+    delay.delay_s = plant.non_negative_number("delay_s");
+    delay.specimen_stiffness_n_per_m = s.stiffness_n_per_m;
+    s.plant = delay;
+  } else {
+    plant.fail("kind", "unknown plant \"" + kind + "\" (expected servo_model or ideal_delay)");
+  }
+  plant.finish();
+  MappingReader compensation = root.mapping("compensation");
+  s.phase_lead_ratio_a = compensation.positive_number("phase_lead_ratio_a");
+  if (s.phase_lead_ratio_a <= 1.0) compensation.fail("phase_lead_ratio_a", "must exceed 1 (a lead network)");
+  for (double ms : compensation.positive_numbers("compensated_delays_ms")) s.compensated_delays_s.push_back(ms * 1e-3);
+  compensation.finish();
+  return s;
+}
+
 }  // namespace
+
+std::optional<integrators::IntegratorConfig> default_integrator(std::string_view name) {
+  const auto scheme = integrators::parse_scheme(name);
+  if (!scheme) return std::nullopt;
+  switch (*scheme) {
+    case integrators::Scheme::central_difference: return integrators::CentralDifferenceParams{};
+    case integrators::Scheme::newmark: return integrators::NewmarkParams{};
+    case integrators::Scheme::hht_alpha: return integrators::HhtAlphaParams{};
+    case integrators::Scheme::generalized_alpha: return integrators::GeneralizedAlphaParams{};
+    case integrators::Scheme::alpha_os: return integrators::AlphaOsParams{};
+    case integrators::Scheme::chang: return integrators::ChangParams{};
+    case integrators::Scheme::chen_ricles: return integrators::ChenRiclesParams{};
+    case integrators::Scheme::kolay_ricles_alpha: return integrators::KolayRiclesAlphaParams{};
+  }
+  return std::nullopt;
+}
 
 std::vector<double> log_spaced(double start, double stop, int points) {
   std::vector<double> values(points);
@@ -77,12 +133,17 @@ std::vector<double> log_spaced(double start, double stop, int points) {
   return values;
 }
 
-ServoStudyFile load_servo_study(const std::filesystem::path& file) {
+StudyFile load_study(const std::filesystem::path& file) {
   MappingReader root(load_yaml_file(file), file.string(), "");
-  ServoStudyFile result;
+  StudyFile result;
   result.name = file.stem().string();
   result.description = root.optional_string("description").value_or("");
   const std::string kind = root.string("study");
+  if (kind == "rpsd_delay_compensation") {
+    result.study = read_delay_compensation(root, file);
+    root.finish();
+    return result;
+  }
   const std::filesystem::path servo_file = file.parent_path() / root.string("servo");
   if (!std::filesystem::exists(servo_file)) root.fail("servo", "no such parameter file: " + servo_file.string());
   servo::ServoSystemParameters servo = load_servo_parameters(servo_file);
@@ -93,7 +154,7 @@ ServoStudyFile load_servo_study(const std::filesystem::path& file) {
   } else if (kind == "servo_max_gain") {
     result.study = read_max_gain(root, std::move(servo));
   } else {
-    root.fail("study", "unknown study \"" + kind + "\" (expected servo_sine_sweep, servo_frequency_response or servo_max_gain)");
+    root.fail("study", "unknown study \"" + kind + "\" (expected servo_sine_sweep, servo_frequency_response, servo_max_gain or rpsd_delay_compensation)");
   }
   root.finish();
   return result;
