@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/compensation/discrete_phase_lead.h"
 #include "rpsd/coordinator/damping_identification.h"
@@ -53,7 +54,7 @@ std::unique_ptr<servo::Plant> make_plant(const scenarios::DelayCompensationStudy
   return std::make_unique<servo::ServoHydraulicPlant>(std::get<servo::ServoSystemParameters>(study.plant));
 }
 
-void tracking_errors(DelayCompensationCase& c) {
+void tracking_errors(DelayCompensationCase& c, double dt_s) {
   double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0;
   for (const auto& r : c.records) {
     const double e = r.measured_m[0] - r.target_m[0];
@@ -64,6 +65,22 @@ void tracking_errors(DelayCompensationCase& c) {
   }
   c.tracking_rms_error_percent = target2 > 0.0 ? 100.0 * std::sqrt(error2 / target2) : 0.0;
   c.tracking_peak_error_percent = peak_target > 0.0 ? 100.0 * peak_error / peak_target : 0.0;
+  std::vector<double> target, measured;
+  for (const auto& r : c.records) {
+    target.push_back(r.target_m[0]);
+    measured.push_back(r.measured_m[0]);
+  }
+  // Lags up to 200 ms, beyond any delay of this study.
+  compensation::CrossCorrelationOptions options;
+  options.max_lag_samples = static_cast<int>(0.2 / dt_s);
+  const auto j1 = compensation::cross_correlation_delay(target, measured, options);
+  c.tracking_delay_s = j1.valid ? j1.delay_samples * dt_s : std::nan("");
+  if (!c.records.empty()) {
+    const auto& last = c.records.back();
+    c.energy_balance_error_j =
+        last.input_energy_j - (last.kinetic_energy_j + last.damping_energy_j + last.restoring_energy_j);
+    c.final_tracking_indicator_m2 = last.tracking_indicator_m2[0];
+  }
 }
 
 }  // namespace
@@ -118,7 +135,7 @@ std::vector<DelayCompensationCase> run_delay_compensation(const scenarios::Delay
     k.identified_damping_ratio = identified.damping_ratio;
     k.identified_frequency_hz = identified.damped_frequency_hz;
     k.stable = k.identified_damping_ratio > 0.0 && !k.aborted_on_amplitude;
-    tracking_errors(k);
+    tracking_errors(k, dt);
     cases.push_back(std::move(k));
   }
   return cases;
@@ -144,6 +161,9 @@ void write_delay_compensation(const std::filesystem::path& dir, const scenarios:
                        {"aborted_on_amplitude", k.aborted_on_amplitude},
                        {"tracking_rms_error_percent", k.tracking_rms_error_percent},
                        {"tracking_peak_error_percent", k.tracking_peak_error_percent},
+                       {"tracking_delay_ms", 1e3 * k.tracking_delay_s},
+                       {"final_tracking_indicator_m2", k.final_tracking_indicator_m2},
+                       {"energy_balance_error_j", k.energy_balance_error_j},
                        {"time_history", delay_case_csv_name(i, k.compensated_delay_s)}});
   }
   const bool ideal = std::holds_alternative<servo::PureDelayParameters>(study.plant);

@@ -25,6 +25,9 @@ struct DelayCompensationCase {
   bool aborted_on_amplitude = false;
   double tracking_rms_error_percent = 0.0;    ///< J2 between target and measured
   double tracking_peak_error_percent = 0.0;   ///< J3
+  double tracking_delay_s = 0.0;              ///< J1: cross-correlation of measured against target
+  double energy_balance_error_j = 0.0;        ///< input - (kinetic + damping + restoring) at the end
+  double final_tracking_indicator_m2 = 0.0;
   std::vector<StepRecord> records;
 };
 
