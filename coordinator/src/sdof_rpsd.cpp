@@ -15,6 +15,7 @@ struct SdofRpsdTest::Parts {
   std::unique_ptr<compensation::CommandCompensator> compensator;
   std::unique_ptr<servo::PlantNode> node;
   std::unique_ptr<transport::InProcessLink> link;
+  substructure::GroundMotionLoad ground_load;
   std::unique_ptr<RpsdLoop> loop;
   std::unique_ptr<Recorder> recorder;
 };
@@ -58,6 +59,11 @@ SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, cons
   parts.compensators = {p.compensator.get()};
   parts.force_paths = {{setup.force_path, k}};
   parts.recorded_dofs = {0};
+  if (!setup.ground_acceleration_m_per_s2.empty()) {
+    p.ground_load.configure(p.numerical.mass(), p.partition.influence());
+    parts.ground_acceleration_m_per_s2 = setup.ground_acceleration_m_per_s2;
+    parts.ground_load = &p.ground_load;
+  }
   p.loop = std::make_unique<RpsdLoop>(parts);
 
   const double d0 = setup.initial_displacement_m;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <vector>
 
@@ -91,6 +92,36 @@ TEST(RpsdLoop, EnergyBalanceCloses) {
     const double error = s.input_energy_j - (s.kinetic_energy_j + s.damping_energy_j + s.restoring_energy_j);
     ASSERT_NEAR(error, 0.0, 1e-3 * strain0) << s.time_s;
   }
+}
+
+TEST(RpsdLoop, GroundMotionResponseMatchesTheClosedForm) {
+  // A perfect actuator (no delay) turns RPsD into plain integration: a harmonic ground
+  // acceleration from rest must give the closed-form transient plus steady state.
+  SdofRpsdSetup setup;
+  setup.initial_displacement_m = 0.0;
+  setup.abort_amplitude_factor = 0.0;
+  const double amplitude = 1.0, omega_g = 2.0 * std::numbers::pi * 1.2, dt = setup.dt_s;
+  for (int n = 0; n <= 4 * 1024; ++n) setup.ground_acceleration_m_per_s2.push_back(amplitude * std::sin(omega_g * n * dt));
+  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
+  const auto r = run_sdof_rpsd(setup, plant);
+  ASSERT_EQ(r.records.size(), 4u * 1024u);  // the test ends with the record
+
+  const double m = setup.mass_kg, k = setup.stiffness_n_per_m, omega = std::sqrt(k / m), zeta = setup.damping_ratio;
+  const double c = 2.0 * zeta * omega * m, omega_d = omega * std::sqrt(1.0 - zeta * zeta);
+  const std::complex<double> h = -m * amplitude / std::complex<double>(k - m * omega_g * omega_g, c * omega_g);
+  const auto particular = [&](double t) { return (h * std::exp(std::complex<double>(0.0, omega_g * t))).imag(); };
+  const auto particular_rate = [&](double t) {
+    return (h * std::complex<double>(0.0, omega_g) * std::exp(std::complex<double>(0.0, omega_g * t))).imag();
+  };
+  const double c1 = -particular(0.0), c2 = (-particular_rate(0.0) + zeta * omega * c1) / omega_d;
+  double worst = 0.0, peak = 0.0;
+  for (const auto& s : r.records) {
+    const double t = s.time_s;
+    const double exact = particular(t) + std::exp(-zeta * omega * t) * (c1 * std::cos(omega_d * t) + c2 * std::sin(omega_d * t));
+    worst = std::max(worst, std::abs(s.displacement_m[0] - exact));
+    peak = std::max(peak, std::abs(exact));
+  }
+  EXPECT_LT(worst / peak, 2e-3);
 }
 
 TEST(DampingIdentification, RecoversTheDampingOfAClosedFormDecay) {

@@ -29,6 +29,9 @@ struct SdofRpsdSetup {
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
   compensation::CompensatorConfig compensator = compensation::PassThroughParameters{};
   RestoringForcePath::Kind force_path = RestoringForcePath::Kind::kStiffnessTimesMeasuredDisplacement;
+  /// Ground acceleration at t = n dt (F = -m a_g); empty for free vibration. The test then
+  /// ends with the record.
+  std::vector<double> ground_acceleration_m_per_s2;
 };
 
 struct SdofRpsdResult {
