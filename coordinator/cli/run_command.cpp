@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "rpsd/coordinator/servo_study_output.h"
+#include "rpsd/coordinator/study_output.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::cli {

@@ -9,7 +9,7 @@
 
 #include "../servo/paper_rig.h"
 #include "rpsd/coordinator/servo_studies.h"
-#include "rpsd/coordinator/servo_study_output.h"
+#include "rpsd/coordinator/study_output.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/linear_analysis.h"
 

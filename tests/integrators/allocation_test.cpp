@@ -16,16 +16,6 @@ namespace {
 
 template <class T>
 class ZeroAllocation : public ::testing::Test {};
-using Schemes = ::testing::Types<CentralDifferenceScheme, NewmarkAverageScheme, NewmarkLinearScheme,
-                                 HhtScheme, GeneralizedAlphaScheme, AlphaOsScheme, ChangScheme,
-                                 ChenRiclesScheme, KolayRiclesAlphaScheme>;
-class SchemeNames {
- public:
-  template <class T>
-  static std::string GetName(int) {
-    return T::name;
-  }
-};
 TYPED_TEST_SUITE(ZeroAllocation, Schemes, SchemeNames);
 
 // Counts allocations over `steps` hybrid steps with R = K d; sanity-checks the counter.

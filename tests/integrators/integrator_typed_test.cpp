@@ -24,17 +24,7 @@ using std::numbers::pi;
 template <class T>
 class EveryScheme : public ::testing::Test {};
 
-using Schemes = ::testing::Types<CentralDifferenceScheme, NewmarkAverageScheme, NewmarkLinearScheme,
-                                 HhtScheme, GeneralizedAlphaScheme, AlphaOsScheme, ChangScheme,
-                                 ChenRiclesScheme, KolayRiclesAlphaScheme>;
 
-class SchemeNames {
- public:
-  template <class T>
-  static std::string GetName(int) {
-    return T::name;
-  }
-};
 TYPED_TEST_SUITE(EveryScheme, Schemes, SchemeNames);
 
 /// Max |x_n - x(t_n)| over [0, duration] for an SDOF with omega = 2 pi (T = 1 s).

@@ -1,4 +1,6 @@
 #pragma once
+#include <gtest/gtest.h>
+#include <string>
 // One type per scheme configuration, for the typed test suite that every scheme runs.
 #include "rpsd/integrators/factory.h"
 
@@ -60,6 +62,19 @@ struct KolayRiclesAlphaScheme {
   static constexpr const char* name = "kolay_ricles_alpha";
   static IntegratorConfig config() { return KolayRiclesAlphaParams{0.5}; }
   static constexpr double stability_limit = std::numeric_limits<double>::infinity();
+};
+
+/// Every scheme configuration the typed suites run, and readable test names for them.
+using Schemes = ::testing::Types<CentralDifferenceScheme, NewmarkAverageScheme, NewmarkLinearScheme,
+                                 HhtScheme, GeneralizedAlphaScheme, AlphaOsScheme, ChangScheme,
+                                 ChenRiclesScheme, KolayRiclesAlphaScheme>;
+
+class SchemeNames {
+ public:
+  template <class T>
+  static std::string GetName(int) {
+    return T::name;
+  }
 };
 
 }  // namespace rpsd::integrators::test

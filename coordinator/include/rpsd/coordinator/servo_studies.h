@@ -1,5 +1,5 @@
 // Runs the servo-system studies of the seed paper (Figures 5, 6, 7) from their typed
-// scenarios. Results are plain tables; servo_study_output.h writes them. Not real-time safe.
+// scenarios. Results are plain tables; study_output.h writes them. Not real-time safe.
 #pragma once
 
 #include <vector>

@@ -1,4 +1,4 @@
-#include "rpsd/coordinator/servo_study_output.h"
+#include "rpsd/coordinator/study_output.h"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-// Writes a servo study's results into an output folder: time histories and tables as CSV,
+// Writes a study's results into an output folder: time histories and tables as CSV,
 // DIR/summary.json, and PNG plots like the seed paper's figures. Not real-time safe.
 #pragma once
 
