@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "rpsd/compensation/delay_theory.h"
@@ -37,6 +38,8 @@ TEST(RpsdLoop, UndercompensatedDelayGivesTheDampingOfTheExactDdeRoot) {
     const IdentifiedDamping identified = identify_damping(displacements(r), setup.dt_s, 0.0, 1e-6);
     const double exact = compensation::damping_ratio_of(compensation::dominant_root(paper_sdof(setup), delay_s));
     EXPECT_NEAR(identified.damping_ratio, exact, 0.001) << delay_s * 1e3 << " ms";
+    RecordProperty("delay_" + std::to_string(static_cast<int>(delay_s * 1e3)) + "ms",
+                   std::to_string(identified.damping_ratio) + " identified, " + std::to_string(exact) + " exact");
   }
 }
 
