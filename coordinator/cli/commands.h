@@ -2,6 +2,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace rpsd::cli {
 
@@ -11,7 +13,18 @@ void add_analyze_servo(CLI::App& analyze);
 /// `rpsd analyze integrator NAME ...`: amplification-matrix properties of a scheme.
 void add_analyze_integrator_command(CLI::App& analyze);
 
-/// `rpsd run SCENARIO --out DIR`: run a scenario, write results.
+/// `rpsd run SCENARIO --out DIR [--set key=value ...]`: run a scenario, write results.
 void add_run(CLI::App& app);
+
+/// `rpsd validate SCENARIO [--set key=value ...]`: check a scenario without running it.
+void add_validate(CLI::App& app);
+
+/// `rpsd plot DIR`: redraw the plots of a test output folder.
+void add_plot(CLI::App& app);
+
+/// A test that stopped before its end; its files are complete for every step it took.
+struct TestAborted : std::runtime_error {
+  explicit TestAborted(const std::string& summary) : std::runtime_error("test aborted; the reason is in " + summary) {}
+};
 
 }  // namespace rpsd::cli

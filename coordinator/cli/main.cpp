@@ -1,8 +1,10 @@
 // rpsd: one binary, one subcommand per job. Errors from any subcommand end here with a
-// message naming what failed and a non-zero exit code.
+// message naming what failed and an exit code: 0 success, 1 failure, 2 bad input (scenario,
+// parameter or record files), 3 test aborted (the reason is in its summary.json).
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "rpsd/scenarios/config_error.h"
 
 #include <exception>
 #include <iostream>
@@ -15,11 +17,19 @@ int main(int argc, char** argv) {
   rpsd::cli::add_analyze_servo(*analyze);
   rpsd::cli::add_analyze_integrator_command(*analyze);
   rpsd::cli::add_run(app);
+  rpsd::cli::add_validate(app);
+  rpsd::cli::add_plot(app);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const rpsd::scenarios::ConfigError& e) {
+    std::cerr << "rpsd: error: " << e.what() << '\n';
+    return 2;
+  } catch (const rpsd::cli::TestAborted& e) {
+    std::cerr << "rpsd: " << e.what() << '\n';
+    return 3;
   } catch (const std::exception& e) {
     std::cerr << "rpsd: error: " << e.what() << '\n';
     return 1;

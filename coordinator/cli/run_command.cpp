@@ -1,25 +1,98 @@
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
 #include "cli/commands.h"
 #include "rpsd/coordinator/study_output.h"
+#include "rpsd/coordinator/test_output.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::cli {
+namespace {
+
+struct RunOptions {
+  std::string scenario;
+  std::string out;
+  std::vector<std::string> overrides;
+};
+
+std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<scenarios::Override> overrides;
+  for (const auto& t : texts) overrides.push_back(scenarios::parse_override(t));
+  return overrides;
+}
+
+// Steps, simulated time, speed as a multiple of real time, ETA; on a terminal only, and
+// only once the run has lasted a second.
+class ProgressBar {
+ public:
+  explicit ProgressBar(double control_rate_hz) : rate_hz_(control_rate_hz), start_(std::chrono::steady_clock::now()) {}
+  void operator()(std::int64_t done, std::int64_t planned) {
+    if (!isatty(STDERR_FILENO)) return;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (wall < 1.0) return;
+    const double simulated = done / rate_hz_;
+    const double speed = simulated / wall;
+    const double eta = speed > 0.0 ? (planned - done) / rate_hz_ / speed : 0.0;
+    const int width = 30, filled = planned > 0 ? static_cast<int>(width * done / planned) : 0;
+    std::fprintf(stderr, "\r[%.*s%*s] %lld/%lld steps  %.1f s simulated  %.1fx real time  ETA %.0f s ", filled,
+                 "##############################", width - filled, "", static_cast<long long>(done),
+                 static_cast<long long>(planned), simulated, speed, eta);
+    drawn_ = true;
+  }
+  ~ProgressBar() {
+    if (drawn_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  double rate_hz_;
+  std::chrono::steady_clock::time_point start_;
+  bool drawn_ = false;
+};
+
+}  // namespace
 
 void add_run(CLI::App& app) {
-  struct Options {
-    std::string scenario;
-    std::string out;
-  };
-  auto options = std::make_shared<Options>();
+  auto options = std::make_shared<RunOptions>();
   auto* run = app.add_subcommand("run", "Run a scenario and write its results (CSV, summary.json, PNG plots)");
   run->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
   run->add_option("--out", options->out, "Output folder (created if missing)")->required();
+  run->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
   run->callback([options] {
-    const auto file = scenarios::load_study(options->scenario);
-    coordinator::run_and_write(file, options->out);
+    const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
+    double rate_hz = 1024.0;
+    if (const auto* test = std::get_if<scenarios::TestScenario>(&file.study)) rate_hz = test->control_rate_hz;
+    bool completed = true;
+    {
+      ProgressBar bar(rate_hz);
+      completed = coordinator::run_and_write(file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); });
+    }
     std::cout << "rpsd run: " << file.name << " -> " << options->out << "/summary.json\n";
+    if (!completed) throw TestAborted(options->out + "/summary.json");
+  });
+}
+
+void add_validate(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  auto* validate = app.add_subcommand("validate", "Check a scenario without running it");
+  validate->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
+  validate->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
+  validate->callback([options] {
+    const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
+    std::cout << options->scenario << ": ok\n";
+  });
+}
+
+void add_plot(CLI::App& app) {
+  auto dir = std::make_shared<std::string>();
+  auto* plot = app.add_subcommand("plot", "Redraw the plots of an rpsd_test output folder from its CSV files");
+  plot->add_option("dir", *dir, "Output folder of `rpsd run`")->required()->check(CLI::ExistingDirectory);
+  plot->callback([dir] {
+    coordinator::plot_test(*dir);
+    std::cout << "rpsd plot: " << *dir << "/test.png, " << *dir << "/response.png\n";
   });
 }
 

@@ -8,6 +8,7 @@
 
 #include "rpsd/coordinator/csv_table.h"
 #include "rpsd/coordinator/delay_compensation_study.h"
+#include "rpsd/coordinator/test_output.h"
 #include "rpsd/coordinator/gnuplot.h"
 #include "rpsd/servo/linear_analysis.h"
 
@@ -198,8 +199,10 @@ void write_max_gain(const std::filesystem::path& dir, const scenarios::StudyFile
              900, 600);
 }
 
-void run_and_write(const scenarios::StudyFile& file, const std::filesystem::path& dir) {
+bool run_and_write(const scenarios::StudyFile& file, const std::filesystem::path& dir,
+                   const std::function<void(std::int64_t, std::int64_t)>& progress) {
   std::filesystem::create_directories(dir);
+  bool completed = true;
   std::visit(
       [&](const auto& study) {
         using Study = std::decay_t<decltype(study)>;
@@ -209,11 +212,14 @@ void run_and_write(const scenarios::StudyFile& file, const std::filesystem::path
           write_frequency_response(dir, file, study, run_frequency_response(study));
         } else if constexpr (std::is_same_v<Study, scenarios::MaxGainStudy>) {
           write_max_gain(dir, file, study, run_max_gain(study));
-        } else {
+        } else if constexpr (std::is_same_v<Study, scenarios::DelayCompensationStudy>) {
           write_delay_compensation(dir, file, study, run_delay_compensation(study, dir));
+        } else {
+          completed = run_test_into(dir, file, study, progress) == RunResult::kCompleted;
         }
       },
       file.study);
+  return completed;
 }
 
 }  // namespace rpsd::coordinator

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rpsd/scenarios/servo_parameters_file.h"
+#include "rpsd/scenarios/test_scenario_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
 #include "rpsd/servo/linear_analysis.h"
 
@@ -133,12 +134,84 @@ std::vector<double> log_spaced(double start, double stop, int points) {
   return values;
 }
 
-StudyFile load_study(const std::filesystem::path& file) {
-  MappingReader root(load_yaml_file(file), file.string(), "");
+Override parse_override(const std::string& text) {
+  const auto equals = text.find('=');
+  if (equals == std::string::npos || equals == 0) {
+    throw ConfigError("--set " + text + ": expected key.path=value");
+  }
+  return {text.substr(0, equals), text.substr(equals + 1)};
+}
+
+namespace {
+
+// Walks key.path (mapping keys, or list indices as numbers) and replaces the value there.
+void apply_override(YAML::Node root, const Override& o) {
+  std::vector<std::string> keys;
+  std::size_t start = 0;
+  for (std::size_t dot; (dot = o.key_path.find('.', start)) != std::string::npos; start = dot + 1) {
+    keys.push_back(o.key_path.substr(start, dot - start));
+  }
+  keys.push_back(o.key_path.substr(start));
+  YAML::Node value;
+  try {
+    value = YAML::Load(o.value);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("--set " + o.key_path + "=" + o.value + ": not a YAML value: " + e.msg);
+  }
+  std::vector<YAML::Node> path{root};
+  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    YAML::Node parent = path.back();
+    YAML::Node child;
+    if (parent.IsSequence()) {
+      std::size_t index = 0;
+      try {
+        index = std::stoul(keys[i]);
+      } catch (const std::exception&) {
+        throw ConfigError("--set " + o.key_path + ": '" + keys[i] + "' must be a list index");
+      }
+      if (index >= parent.size()) throw ConfigError("--set " + o.key_path + ": index " + keys[i] + " out of range");
+      child = parent[index];
+    } else if (parent.IsMap() && parent[keys[i]]) {
+      child = parent[keys[i]];
+    } else {
+      throw ConfigError("--set " + o.key_path + ": no key '" + keys[i] + "' in the scenario");
+    }
+    path.push_back(child);
+  }
+  YAML::Node parent = path.back();
+  if (parent.IsSequence()) {
+    const std::size_t index = std::stoul(keys.back());
+    if (index >= parent.size()) throw ConfigError("--set " + o.key_path + ": index out of range");
+    parent[index] = value;
+  } else if (parent.IsMap()) {
+    parent[keys.back()] = value;  // a new key is checked like any other by the reader
+  } else {
+    throw ConfigError("--set " + o.key_path + ": the parent is not a mapping");
+  }
+}
+
+}  // namespace
+
+StudyFile load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  YAML::Node document = load_yaml_file(file);
+  for (const Override& o : overrides) apply_override(document, o);
+  MappingReader root(document, file.string(), "");
   StudyFile result;
   result.name = file.stem().string();
   result.description = root.optional_string("description").value_or("");
+  {
+    YAML::Emitter out;
+    out << document;
+    result.effective_yaml = std::string(out.c_str()) + "\n";
+  }
   const std::string kind = root.string("study");
+  if (kind == "rpsd_test") {
+    TestScenario scenario = read_test_scenario(root, file);
+    scenario.description = result.description;
+    result.study = std::move(scenario);
+    root.finish();
+    return result;
+  }
   if (kind == "rpsd_delay_compensation") {
     result.study = read_delay_compensation(root, file);
     root.finish();
@@ -154,7 +227,7 @@ StudyFile load_study(const std::filesystem::path& file) {
   } else if (kind == "servo_max_gain") {
     result.study = read_max_gain(root, std::move(servo));
   } else {
-    root.fail("study", "unknown study \"" + kind + "\" (expected servo_sine_sweep, servo_frequency_response, servo_max_gain or rpsd_delay_compensation)");
+    root.fail("study", "unknown study \"" + kind + "\" (expected rpsd_test, rpsd_delay_compensation, servo_sine_sweep, servo_frequency_response or servo_max_gain)");
   }
   root.finish();
   return result;

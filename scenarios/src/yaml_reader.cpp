@@ -139,6 +139,70 @@ std::vector<double> MappingReader::positive_numbers(const std::string& key) {
   return numbers;
 }
 
+std::vector<double> MappingReader::numbers(const std::string& key) {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence() || value.size() == 0) {
+    fail_at(value, path_of(key), "expected a non-empty list of numbers, got " + describe(value));
+  }
+  std::vector<double> result;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    double v = 0.0;
+    if (!value[i].IsScalar() || !YAML::convert<double>::decode(value[i], v) || !std::isfinite(v)) {
+      fail_at(value[i], path_of(key) + '[' + std::to_string(i) + ']', "expected a number, got " + describe(value[i]));
+    }
+    result.push_back(v);
+  }
+  return result;
+}
+
+std::vector<std::vector<double>> MappingReader::number_rows(const std::string& key) {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence() || value.size() == 0) {
+    fail_at(value, path_of(key), "expected a list of rows (lists of numbers), got " + describe(value));
+  }
+  std::vector<std::vector<double>> rows;
+  for (std::size_t r = 0; r < value.size(); ++r) {
+    const YAML::Node row = value[r];
+    const std::string row_path = path_of(key) + '[' + std::to_string(r) + ']';
+    if (!row.IsSequence() || row.size() == 0) fail_at(row, row_path, "expected a list of numbers, got " + describe(row));
+    if (!rows.empty() && row.size() != rows.front().size()) {
+      fail_at(row, row_path, "has " + std::to_string(row.size()) + " entries, row 0 has " + std::to_string(rows.front().size()));
+    }
+    std::vector<double> numbers;
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      double v = 0.0;
+      if (!row[c].IsScalar() || !YAML::convert<double>::decode(row[c], v) || !std::isfinite(v)) {
+        fail_at(row[c], row_path + '[' + std::to_string(c) + ']', "expected a number, got " + describe(row[c]));
+      }
+      numbers.push_back(v);
+    }
+    rows.push_back(std::move(numbers));
+  }
+  return rows;
+}
+
+long MappingReader::whole_number(const std::string& key, long minimum, long maximum) {
+  const YAML::Node value = required(key);
+  const double v = parse_number(value, key);
+  if (v != std::floor(v) || v < static_cast<double>(minimum) || v > static_cast<double>(maximum)) {
+    fail_at(value, path_of(key),
+            "expected a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum) + ", got " + describe(value));
+  }
+  return static_cast<long>(v);
+}
+
+long MappingReader::whole_number_or(const std::string& key, long minimum, long maximum, long fallback) {
+  return has(key) ? whole_number(key, minimum, maximum) : fallback;
+}
+
+std::vector<MappingReader> MappingReader::mappings(const std::string& key) {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence() || value.size() == 0) fail_at(value, path_of(key), "expected a non-empty list, got " + describe(value));
+  std::vector<MappingReader> result;
+  for (std::size_t i = 0; i < value.size(); ++i) result.emplace_back(value[i], file_, path_of(key) + '[' + std::to_string(i) + ']');
+  return result;
+}
+
 MappingReader MappingReader::mapping(const std::string& key) {
   const YAML::Node value = required(key);
   return MappingReader(value, file_, path_of(key));

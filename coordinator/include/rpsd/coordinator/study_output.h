@@ -2,7 +2,9 @@
 // DIR/summary.json, and PNG plots like the seed paper's figures. Not real-time safe.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <vector>
 
 #include "rpsd/coordinator/servo_studies.h"
@@ -19,7 +21,9 @@ void write_frequency_response(const std::filesystem::path& dir, const scenarios:
 void write_max_gain(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                     const scenarios::MaxGainStudy& study, const std::vector<MaxGainRow>& rows);
 
-/// Runs whichever study the file holds and writes it into dir (created if missing).
-void run_and_write(const scenarios::StudyFile& file, const std::filesystem::path& dir);
+/// Runs whichever study the file holds and writes it into dir (created if missing). False
+/// when an `rpsd_test` run aborted (its files are still complete for every step it took).
+bool run_and_write(const scenarios::StudyFile& file, const std::filesystem::path& dir,
+                   const std::function<void(std::int64_t, std::int64_t)>& progress = {});
 
 }  // namespace rpsd::coordinator

@@ -13,6 +13,7 @@
 #include "rpsd/compensation/phase_lead.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/pure_delay_plant.h"
+#include "rpsd/scenarios/test_scenario.h"
 #include "rpsd/servo/servo_parameters.h"
 
 namespace rpsd::scenarios {
@@ -59,20 +60,30 @@ struct DelayCompensationStudy {
   std::vector<double> compensated_delays_s;
 };
 
-using Study = std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy>;
+using Study = std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, TestScenario>;
 
 struct StudyFile {
-  std::string name;         ///< the file's stem, for titles
-  std::string description;  ///< optional `description:` text
+  std::string name;            ///< the file's stem, for titles
+  std::string description;     ///< optional `description:` text
   Study study;
+  std::string effective_yaml;  ///< the document as read, with --set overrides applied
 };
+
+/// A `--set key.path=value` override; the value is read as YAML (a number, a word, a list).
+struct Override {
+  std::string key_path;
+  std::string value;
+};
+
+/// Parses "key.path=value"; throws ConfigError naming the text when there is no '='.
+Override parse_override(const std::string& text);
 
 /// The default-parameter integrator for a scheme name (central_difference, newmark, hht_alpha,
 /// generalized_alpha, alpha_os, chang, chen_ricles, kolay_ricles_alpha); nullopt if unknown.
 std::optional<integrators::IntegratorConfig> default_integrator(std::string_view name);
 
 /// Reads a study file; every error names file, line, column and key path. Not real-time safe.
-StudyFile load_study(const std::filesystem::path& file);
+StudyFile load_study(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
 
 /// `points` values from start to stop, equally spaced in log10. Both must be positive.
 std::vector<double> log_spaced(double start, double stop, int points);

@@ -33,6 +33,15 @@ class MappingReader {
   std::string string(const std::string& key);
   std::optional<std::string> optional_string(const std::string& key);
   std::vector<double> positive_numbers(const std::string& key);
+  /// A non-empty list of finite numbers.
+  std::vector<double> numbers(const std::string& key);
+  /// A non-empty list of equally long, non-empty lists of finite numbers (matrix rows).
+  std::vector<std::vector<double>> number_rows(const std::string& key);
+  /// A whole number in [minimum, maximum].
+  long whole_number(const std::string& key, long minimum, long maximum);
+  long whole_number_or(const std::string& key, long minimum, long maximum, long fallback);
+  /// A non-empty list of mappings, each read with its own path `key[i]`.
+  std::vector<MappingReader> mappings(const std::string& key);
   MappingReader mapping(const std::string& key);
   std::optional<MappingReader> optional_mapping(const std::string& key);
   /// Whether the key is present; the key counts as known to finish() either way.

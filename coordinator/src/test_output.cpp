@@ -1,0 +1,146 @@
+#include "rpsd/coordinator/test_output.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "rpsd/coordinator/gnuplot.h"
+#include "rpsd/coordinator/test_runner.h"
+
+namespace rpsd::coordinator {
+namespace {
+
+const char* outcome_text(StepOutcome o) {
+  switch (o) {
+    case StepOutcome::kOk: return "completed";
+    case StepOutcome::kRecordEnded: return "completed";
+    case StepOutcome::kLinkFailure: return "aborted: no feedback from the servo node for a step";
+    case StepOutcome::kIntegratorError: return "aborted: the integrator rejected a step";
+    case StepOutcome::kNodeFault: return "aborted: the servo node reported a fault";
+    case StepOutcome::kNonFinite: return "aborted: a non-finite measurement arrived";
+  }
+  return "aborted";
+}
+
+// The plots read only the CSV files and plot.json, so `rpsd plot DIR` can redraw them.
+void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
+  const int channels = info.at("channels");
+  const int dofs = info.at("recorded_dofs");
+  const std::string title = info.at("title");
+  const bool has_record = info.at("ground_motion");
+  // time_history.csv columns: 1 step, 2 time, 3 a_g, then 5 per channel, then 4 per DOF.
+  std::string script = "set datafile separator ','\nset grid\nset key outside right\n";
+  script += "set multiplot layout " + std::to_string(has_record ? 4 : 3) + ",1 title '" + title + "'\n";
+  script += "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\nset title 'experimental channel 0'\n";
+  script += "plot 'time_history.csv' using 2:($4*1e3) with lines lw 1.5 title 'target', "
+            "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) with lines lw 1 title 'measured'\n";
+  script += "set ylabel 'tracking error (mm)'\nset title 'measured - target'\n";
+  script += "plot 'time_history.csv' using 2:(($6-$4)*1e3) with lines lw 1 notitle\n";
+  const int first_dof_column = 4 + 5 * channels;
+  script += "set xlabel 'measured displacement (mm)'\nset ylabel 'restoring force (kN)'\nset title 'hysteresis, channel 0'\n";
+  script += "plot 'time_history.csv' using ($6*1e3):($7*1e-3) with lines lw 1 notitle\n";
+  if (has_record) {
+    script += "set xlabel 'time (s)'\nset ylabel 'ground acceleration (m/s^2)'\nset title 'record'\n";
+    script += "plot 'time_history.csv' using 2:3 with lines lw 1 notitle\n";
+  }
+  script += "unset multiplot\n";
+  render_png(dir / "test.png", script, 1100, has_record ? 1300 : 1000);
+
+  std::string floors = "set datafile separator ','\nset grid\nset key outside right\nset xlabel 'time (s)'\n"
+                       "set ylabel 'displacement (mm)'\nset title '" + title + ": recorded DOFs, test and perfect-actuator reference'\nplot ";
+  for (int d = 0; d < dofs; ++d) {
+    const int column = first_dof_column + 4 * d;
+    if (d > 0) floors += ", ";
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "'time_history.csv' using 2:($%d*1e3) with lines lw 1.5 title 'DOF %d', "
+                  "'reference_history.csv' using 2:($%d*1e3) with lines lw 1 dt 2 title 'DOF %d reference'",
+                  column, d, column, d);
+    floors += line;
+  }
+  render_png(dir / "response.png", floors + "\n", 1100, 600);
+}
+
+}  // namespace
+
+RunResult run_test_into(const std::filesystem::path& dir, const scenarios::StudyFile& file,
+                        const scenarios::TestScenario& scenario,
+                        const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
+  const TestRun test = run_test(scenario, dir / "time_history.csv", false, progress);
+  const TestRun reference = run_test(scenario, dir / "reference_history.csv", true);
+  const Criteria criteria = evaluate(scenario, test, reference);
+  const bool completed = test.outcome == StepOutcome::kOk || test.outcome == StepOutcome::kRecordEnded;
+
+  using nlohmann::json;
+  json channels = json::array();
+  for (std::size_t c = 0; c < criteria.channels.size(); ++c) {
+    const auto& cc = criteria.channels[c];
+    channels.push_back({{"channel", c},
+                        {"J1_tracking_delay_ms", std::isfinite(cc.j1_tracking_delay_ms) ? json(cc.j1_tracking_delay_ms) : json(nullptr)},
+                        {"J2_rms_tracking_error_percent", cc.j2_rms_tracking_error_percent},
+                        {"J3_peak_tracking_error_percent", cc.j3_peak_tracking_error_percent},
+                        {"final_tracking_indicator_m2", cc.final_tracking_indicator_m2}});
+  }
+  json dofs = json::array();
+  for (std::size_t d = 0; d < criteria.dofs.size(); ++d) {
+    const auto& dc = criteria.dofs[d];
+    dofs.push_back({{"dof", scenario.record_dofs[d]},
+                    {"peak_displacement_m", dc.peak_displacement_m},
+                    {"reference_peak_displacement_m", dc.reference_peak_displacement_m},
+                    {"rms_error_vs_reference_percent", dc.rms_error_percent},
+                    {"peak_error_vs_reference_percent", dc.peak_error_percent}});
+  }
+  // Benchmark numbering: J4-J6 RMS and J7-J9 peak errors of the first three recorded DOFs.
+  json benchmark = json::object();
+  static constexpr const char* kRmsNames[] = {"J4", "J5", "J6"};
+  static constexpr const char* kPeakNames[] = {"J7", "J8", "J9"};
+  for (std::size_t d = 0; d < std::min<std::size_t>(3, criteria.dofs.size()); ++d) {
+    benchmark[kRmsNames[d]] = criteria.dofs[d].rms_error_percent;
+    benchmark[kPeakNames[d]] = criteria.dofs[d].peak_error_percent;
+  }
+  if (!criteria.channels.empty()) {
+    benchmark["J1"] = channels[0]["J1_tracking_delay_ms"];
+    benchmark["J2"] = criteria.channels[0].j2_rms_tracking_error_percent;
+    benchmark["J3"] = criteria.channels[0].j3_peak_tracking_error_percent;
+  }
+  const json summary = {
+      {"study", "rpsd_test"},
+      {"scenario", file.name},
+      {"description", file.description},
+      {"outcome", outcome_text(test.outcome)},
+      {"completed", completed},
+      {"steps", test.records.size()},
+      {"steps_planned", test.steps_planned},
+      {"control_rate_hz", scenario.control_rate_hz},
+      {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(scenario.integrator))) + " " + integrators::describe(scenario.integrator)},
+      {"compensation", std::string(compensation::compensator_name(scenario.compensation))},
+      {"ground_motion", scenario.ground_motion ? json(scenario.ground_motion->name) : json(nullptr)},
+      {"channels", channels},
+      {"dofs", dofs},
+      {"benchmark_criteria", benchmark},
+      {"energy_error_j", criteria.energy_error_j},
+      {"dropped_records", test.dropped_records},
+      {"overruns", 0},
+      {"clock", "as_fast_as_possible"},
+  };
+  std::ofstream(dir / "summary.json") << summary.dump(2) << '\n';
+  const json plot_info = {{"title", file.name},
+                          {"channels", scenario.experimental.size()},
+                          {"recorded_dofs", scenario.record_dofs.size()},
+                          {"ground_motion", scenario.ground_motion.has_value()}};
+  std::ofstream(dir / "plot.json") << plot_info.dump(2) << '\n';
+  draw(dir, plot_info);
+  return completed ? RunResult::kCompleted : RunResult::kAborted;
+}
+
+void plot_test(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "plot.json");
+  if (!in) throw std::runtime_error((dir / "plot.json").string() + ": not found; is this an rpsd_test output folder?");
+  draw(dir, nlohmann::json::parse(in));
+}
+
+}  // namespace rpsd::coordinator

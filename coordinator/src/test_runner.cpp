@@ -1,0 +1,203 @@
+#include "rpsd/coordinator/test_runner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "rpsd/compensation/cross_correlation_delay.h"
+#include "rpsd/servo/plant_node.h"
+#include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/substructure/ground_motion_load.h"
+#include "rpsd/transport/in_process_link.h"
+
+namespace rpsd::coordinator {
+namespace {
+
+std::unique_ptr<substructure::NumericalModel> make_numerical(const scenarios::TestScenario& s) {
+  return std::visit(
+      [](const auto& config) -> std::unique_ptr<substructure::NumericalModel> {
+        using C = std::decay_t<decltype(config)>;
+        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
+          auto model = std::make_unique<substructure::LinearMdofModel>();
+          model->configure(config);
+          return model;
+        } else {
+          auto model = std::make_unique<substructure::ShearBuilding>();
+          model->configure(config);
+          return model;
+        }
+      },
+      s.structure);
+}
+
+std::unique_ptr<servo::Plant> make_plant(const scenarios::PlantConfig& config) {
+  return std::visit(
+      [](const auto& c) -> std::unique_ptr<servo::Plant> {
+        using C = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<C, servo::ServoSystemParameters>) return std::make_unique<servo::ServoHydraulicPlant>(c);
+        else if constexpr (std::is_same_v<C, servo::PureDelayParameters>) return std::make_unique<servo::PureDelayPlant>(c);
+        else return std::make_unique<servo::TransferFunctionPlant>(c);
+      },
+      config);
+}
+
+integrators::StructuralMatrices integrator_matrices(const substructure::NumericalModel& model,
+                                                    const substructure::StructuralMatrix& k0) {
+  if (model.mass().is_sparse() || k0.is_sparse()) {
+    return integrators::SparseStructuralMatrices{model.mass().to_sparse(), model.damping().to_sparse(), k0.to_sparse()};
+  }
+  return integrators::DenseStructuralMatrices{model.mass().to_dense(), model.damping().to_dense(), k0.to_dense()};
+}
+
+}  // namespace
+
+TestRun run_test(const scenarios::TestScenario& s, const std::filesystem::path& csv, bool perfect_actuator,
+                 const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  auto numerical = make_numerical(s);
+  const Eigen::Index dofs = numerical->dofs();
+  const int channels = static_cast<int>(s.experimental.size());
+
+  substructure::Partition partition;
+  substructure::PartitionConfig split;
+  split.dofs = dofs;
+  for (const auto& e : s.experimental) split.experimental.push_back(e.dof);
+  split.influence = s.influence;
+  partition.configure(split);
+
+  auto integrator = integrators::make_integrator(s.integrator);
+  const double dt_s = 1.0 / s.control_rate_hz;
+  integrator->configure(integrator_matrices(*numerical, partition.with_specimen_stiffness(numerical->initial_stiffness())),
+                        dt_s);
+  const double control_period_s = dt_s / integrator->iterations_per_step();
+
+  std::vector<std::unique_ptr<compensation::CommandCompensator>> compensators;
+  std::vector<std::unique_ptr<servo::Plant>> plants;
+  std::vector<servo::Plant*> plant_pointers;
+  LoopParts parts;
+  for (int c = 0; c < channels; ++c) {
+    const auto& channel = s.experimental[static_cast<std::size_t>(c)];
+    compensators.push_back(compensation::make_compensator(
+        perfect_actuator ? compensation::CompensatorConfig{compensation::PassThroughParameters{}} : s.compensation,
+        control_period_s));
+    parts.compensators.push_back(compensators.back().get());
+    const double k = channel.dof.specimen_stiffness_estimate_n_per_m;
+    plants.push_back(perfect_actuator ? std::make_unique<servo::PureDelayPlant>(servo::PureDelayParameters{0.0, k, 8192.0})
+                                      : make_plant(s.plant));
+    plant_pointers.push_back(plants.back().get());
+    parts.force_paths.push_back({channel.restoring_force == scenarios::RestoringForceSource::kMeasuredForce
+                                     ? RestoringForcePath::Kind::kMeasuredForce
+                                     : RestoringForcePath::Kind::kStiffnessTimesMeasuredDisplacement,
+                                 k});
+  }
+  // Channels are numbered 0..n-1 by the partition; the node's plants follow that order.
+  std::vector<servo::Plant*> by_channel(static_cast<std::size_t>(channels));
+  for (int c = 0; c < channels; ++c) {
+    by_channel[static_cast<std::size_t>(s.experimental[static_cast<std::size_t>(c)].dof.actuator_channel)] =
+        plant_pointers[static_cast<std::size_t>(c)];
+  }
+  servo::PlantNode node(by_channel, control_period_s);
+  transport::InProcessLink link(node);
+
+  substructure::GroundMotionLoad ground_load;
+  parts.integrator = integrator.get();
+  parts.numerical = numerical.get();
+  parts.partition = &partition;
+  parts.link = &link;
+  parts.recorded_dofs = s.record_dofs;
+  if (s.ground_motion) {
+    ground_load.configure(numerical->mass(), s.influence);
+    parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
+    parts.ground_load = &ground_load;
+  }
+  // Compensators and force paths were pushed in scenario order; the loop wants channel order.
+  {
+    LoopParts ordered = parts;
+    for (int c = 0; c < channels; ++c) {
+      const auto ch = static_cast<std::size_t>(s.experimental[static_cast<std::size_t>(c)].dof.actuator_channel);
+      ordered.compensators[ch] = parts.compensators[static_cast<std::size_t>(c)];
+      ordered.force_paths[ch] = parts.force_paths[static_cast<std::size_t>(c)];
+    }
+    parts = ordered;
+  }
+  RpsdLoop loop(parts);
+
+  // Start at rest at the initial displacement, the specimens holding it.
+  Eigen::VectorXd hold(channels);
+  partition.extract_commands(s.initial_displacement_m, hold);
+  node.reset(std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
+  std::vector<double> force0(static_cast<std::size_t>(channels));
+  for (int c = 0; c < channels; ++c) {
+    force0[static_cast<std::size_t>(c)] = parts.force_paths[static_cast<std::size_t>(c)].kind == RestoringForcePath::Kind::kMeasuredForce
+                                              ? by_channel[static_cast<std::size_t>(c)]->measure().force_n
+                                              : parts.force_paths[static_cast<std::size_t>(c)].stiffness_n_per_m * hold[c];
+  }
+  loop.start(s.initial_displacement_m, force0);
+
+  TestRun run;
+  run.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
+  if (loop.steps_available() >= 0) run.steps_planned = std::min(run.steps_planned, loop.steps_available());
+  Recorder recorder(csv, channels, static_cast<int>(s.record_dofs.size()));
+  const auto report_every = std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * s.control_rate_hz));
+  for (std::int64_t n = 0; n < run.steps_planned; ++n) {
+    run.outcome = loop.step(recorder);
+    if (run.outcome != StepOutcome::kOk) break;
+    if (progress && (n + 1) % report_every == 0) progress(n + 1, run.steps_planned);
+  }
+  run.dropped_records = recorder.dropped();
+  run.records = recorder.finish();
+  return run;
+}
+
+Criteria evaluate(const scenarios::TestScenario& s, const TestRun& test, const TestRun& reference) {
+  Criteria criteria;
+  const int channels = static_cast<int>(s.experimental.size());
+  for (int c = 0; c < channels; ++c) {
+    std::vector<double> target, measured;
+    double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0;
+    for (const auto& r : test.records) {
+      target.push_back(r.target_m[c]);
+      measured.push_back(r.measured_m[c]);
+      const double e = r.measured_m[c] - r.target_m[c];
+      error2 += e * e;
+      target2 += r.target_m[c] * r.target_m[c];
+      peak_error = std::max(peak_error, std::abs(e));
+      peak_target = std::max(peak_target, std::abs(r.target_m[c]));
+    }
+    ChannelCriteria cc;
+    compensation::CrossCorrelationOptions options;
+    options.max_lag_samples = static_cast<int>(0.2 * s.control_rate_hz);  // up to 200 ms
+    if (target.size() > static_cast<std::size_t>(2 * options.max_lag_samples)) {
+      const auto j1 = compensation::cross_correlation_delay(target, measured, options);
+      cc.j1_tracking_delay_ms = j1.valid ? 1e3 * j1.delay_samples / s.control_rate_hz : std::nan("");
+    } else {
+      cc.j1_tracking_delay_ms = std::nan("");
+    }
+    cc.j2_rms_tracking_error_percent = target2 > 0.0 ? 100.0 * std::sqrt(error2 / target2) : 0.0;
+    cc.j3_peak_tracking_error_percent = peak_target > 0.0 ? 100.0 * peak_error / peak_target : 0.0;
+    cc.final_tracking_indicator_m2 = test.records.empty() ? 0.0 : test.records.back().tracking_indicator_m2[c];
+    criteria.channels.push_back(cc);
+  }
+  const std::size_t n = std::min(test.records.size(), reference.records.size());
+  for (std::size_t d = 0; d < s.record_dofs.size(); ++d) {
+    DofCriteria dc;
+    double error2 = 0.0, reference2 = 0.0, peak_error = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = test.records[i].displacement_m[d], xr = reference.records[i].displacement_m[d];
+      error2 += (x - xr) * (x - xr);
+      reference2 += xr * xr;
+      peak_error = std::max(peak_error, std::abs(x - xr));
+      dc.peak_displacement_m = std::max(dc.peak_displacement_m, std::abs(x));
+      dc.reference_peak_displacement_m = std::max(dc.reference_peak_displacement_m, std::abs(xr));
+    }
+    dc.rms_error_percent = reference2 > 0.0 ? 100.0 * std::sqrt(error2 / reference2) : 0.0;
+    dc.peak_error_percent = dc.reference_peak_displacement_m > 0.0 ? 100.0 * peak_error / dc.reference_peak_displacement_m : 0.0;
+    criteria.dofs.push_back(dc);
+  }
+  if (!test.records.empty()) {
+    const auto& last = test.records.back();
+    criteria.energy_error_j = last.input_energy_j - (last.kinetic_energy_j + last.damping_energy_j + last.restoring_energy_j);
+  }
+  return criteria;
+}
+
+}  // namespace rpsd::coordinator

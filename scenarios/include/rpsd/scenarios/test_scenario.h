@@ -1,0 +1,64 @@
+// A whole RPsD test as a typed scenario (`study: rpsd_test`): the numerical substructure,
+// the experimental DOFs, the servo plant, the integrator, the compensator, the excitation,
+// the clock and the output. The structs are the lower modules' own configuration types;
+// this file only names which is which. See scenarios/*.yaml for examples.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "rpsd/compensation/compensator_factory.h"
+#include "rpsd/integrators/factory.h"
+#include "rpsd/servo/pure_delay_plant.h"
+#include "rpsd/servo/servo_parameters.h"
+#include "rpsd/servo/transfer_function_plant.h"
+#include "rpsd/substructure/linear_mdof_model.h"
+#include "rpsd/substructure/partition.h"
+#include "rpsd/substructure/shear_building.h"
+
+namespace rpsd::scenarios {
+
+/// Where an experimental channel's restoring force comes from.
+enum class RestoringForceSource { kMeasuredForce, kStiffnessTimesMeasuredDisplacement };
+
+struct ExperimentalChannel {
+  substructure::ExperimentalDof dof;  ///< DOF, channel, scales, specimen stiffness estimate
+  RestoringForceSource restoring_force = RestoringForceSource::kMeasuredForce;
+};
+
+/// The actuator of every channel (each channel gets its own instance).
+using PlantConfig =
+    std::variant<servo::ServoSystemParameters, servo::PureDelayParameters, servo::TransferFunctionPlantParameters>;
+
+/// A ground-acceleration record already read and processed to the integration step.
+struct GroundMotion {
+  std::string name;                        ///< file or generator, for titles
+  double dt_s = 0.0;
+  std::vector<double> acceleration_m_per_s2;
+};
+
+struct TestScenario {
+  std::string name;
+  std::string description;
+  std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> structure;
+  std::vector<ExperimentalChannel> experimental;
+  Eigen::VectorXd influence;        ///< ground-motion influence vector (default: all ones)
+  PlantConfig plant;
+  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
+  compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
+  double control_rate_hz = 1024.0;  ///< integration step = control period x iterations
+  /// Either a ground motion or an initial displacement (free vibration) drives the test.
+  std::optional<GroundMotion> ground_motion;
+  Eigen::VectorXd initial_displacement_m;
+  double duration_s = 0.0;          ///< free vibration length, or the record's length
+  std::vector<Eigen::Index> record_dofs;
+};
+
+/// DOFs of the scenario's structure.
+Eigen::Index structure_dofs(const TestScenario& scenario);
+
+}  // namespace rpsd::scenarios

@@ -1,0 +1,15 @@
+// Reads an `rpsd_test` scenario. Every error names the file, line, column and key path.
+#pragma once
+
+#include <filesystem>
+
+#include "rpsd/scenarios/test_scenario.h"
+#include "rpsd/scenarios/yaml_reader.h"
+
+namespace rpsd::scenarios {
+
+/// Reads the scenario from the document `root` of `file` (paths inside are relative to it).
+/// Not real-time safe.
+TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path& file);
+
+}  // namespace rpsd::scenarios

@@ -1,0 +1,74 @@
+// rpsd_test scenarios: typed values, located errors, --set overrides.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "../servo/paper_rig.h"
+#include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/study_file.h"
+
+namespace rpsd::scenarios {
+namespace {
+
+std::filesystem::path example() { return testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml"; }
+
+std::string error_of(const std::vector<Override>& overrides) {
+  try {
+    load_study(example(), overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error";
+  return {};
+}
+
+TEST(TestScenarioFile, ReadsTheTypedScenario) {
+  const auto file = load_study(example());
+  const auto& t = std::get<TestScenario>(file.study);
+  EXPECT_EQ(structure_dofs(t), 1);
+  ASSERT_EQ(t.experimental.size(), 1u);
+  EXPECT_DOUBLE_EQ(t.experimental[0].dof.specimen_stiffness_estimate_n_per_m, 700.8e3);
+  EXPECT_EQ(t.experimental[0].restoring_force, RestoringForceSource::kStiffnessTimesMeasuredDisplacement);
+  EXPECT_DOUBLE_EQ(std::get<servo::PureDelayParameters>(t.plant).delay_s, 0.005);
+  const auto& comp = std::get<compensation::PolynomialExtrapolationParameters>(t.compensation);
+  EXPECT_EQ(comp.order, 3);
+  EXPECT_DOUBLE_EQ(t.control_rate_hz, 1024.0);
+  EXPECT_DOUBLE_EQ(t.initial_displacement_m[0], 0.01);
+  EXPECT_DOUBLE_EQ(t.duration_s, 5.0);
+  // c = 2 zeta sqrt(k m)
+  const auto& linear = std::get<substructure::LinearMdofConfig>(t.structure);
+  const auto& c = std::get<substructure::DampingMatrix>(linear.damping).c;
+  EXPECT_NEAR(c.coeff(0, 0), 2.0 * 0.011 * std::sqrt(700.8e3 * 7080.0), 1e-9);
+}
+
+TEST(TestScenarioFile, OverridesReplaceValuesAndAreSavedInTheEffectiveScenario) {
+  const auto file = load_study(example(), {parse_override("servo.delay_s=0.02"), parse_override("clock.control_rate_hz=2048")});
+  const auto& t = std::get<TestScenario>(file.study);
+  EXPECT_DOUBLE_EQ(std::get<servo::PureDelayParameters>(t.plant).delay_s, 0.02);
+  EXPECT_DOUBLE_EQ(t.control_rate_hz, 2048.0);
+  EXPECT_NE(file.effective_yaml.find("delay_s: 0.02"), std::string::npos) << file.effective_yaml;
+}
+
+TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
+  EXPECT_NE(error_of({parse_override("experimental.0.dof=3")}).find("experimental[0].dof: expected a whole number from 0 to 0"),
+            std::string::npos);
+  EXPECT_NE(error_of({parse_override("servo.kind=hydraulic")}).find("servo.kind: unknown servo \"hydraulic\""), std::string::npos);
+  EXPECT_NE(error_of({parse_override("clock.mode=real_time")}).find("clock.mode: only as_fast_as_possible"), std::string::npos);
+  EXPECT_NE(error_of({parse_override("integrator.scheme=euler")}).find("integrator.scheme: unknown integrator \"euler\""),
+            std::string::npos);
+  EXPECT_NE(error_of({parse_override("experimental.0.restoring_force=guess")}).find("experimental[0].restoring_force"),
+            std::string::npos);
+  EXPECT_NE(error_of({parse_override("structure.colour=red")}).find("structure.colour: unknown key"), std::string::npos);
+  EXPECT_NE(error_of({parse_override("nothing.here=1")}).find("--set nothing.here: no key 'nothing'"), std::string::npos);
+  // A located error keeps file:line:column.
+  EXPECT_TRUE(std::regex_search(error_of({parse_override("compensation.order=7")}),
+                                std::regex(R"(sdof-free-vibration\.yaml:\d+:\d+: compensation\.order: expected a whole number from 0 to 3)")));
+}
+
+TEST(TestScenarioFile, OverrideNeedsAnEqualsSign) { EXPECT_THROW(parse_override("servo.delay_s"), ConfigError); }
+
+}  // namespace
+}  // namespace rpsd::scenarios
