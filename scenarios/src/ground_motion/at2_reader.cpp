@@ -276,7 +276,8 @@ GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source
           "an acceleration value (value " +
               std::to_string(record.acceleration_m_per_s2.size() + 1) + " of NPTS=" +
               std::to_string(line4.npts) + ")");
-      record.acceleration_m_per_s2.push_back(value * factor);
+      record.acceleration_m_per_s2.push_back(
+          detail::converted_or_throw(value, factor, token, source, lines.line_number()));
       last_line_with_values = lines.line_number();
     }
   }

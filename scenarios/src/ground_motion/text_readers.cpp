@@ -79,7 +79,8 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
         const double value = detail::number_or_throw(
             token, source, lines.line_number(),
             "an acceleration value (set skip_lines to skip header lines)");
-        record.acceleration_m_per_s2.push_back(value * factor);
+        record.acceleration_m_per_s2.push_back(
+            detail::converted_or_throw(value, factor, token, source, lines.line_number()));
       }
       continue;
     }
@@ -103,9 +104,10 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
       detail::number_or_throw(t, source, lines.line_number(),
                               "a number (set skip_lines to skip header lines)");
     }
-    record.acceleration_m_per_s2.push_back(
-        detail::number_or_throw(row[*options.column], source, lines.line_number(), "a number") *
-        factor);
+    const auto& cell = row[*options.column];
+    record.acceleration_m_per_s2.push_back(detail::converted_or_throw(
+        detail::number_or_throw(cell, source, lines.line_number(), "a number"), factor, cell,
+        source, lines.line_number()));
   }
   const std::size_t last_line = std::max<std::size_t>(lines.line_number(), 1);
   if (record.acceleration_m_per_s2.empty()) {
@@ -170,7 +172,8 @@ GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_vi
     }
     times.push_back(t);
     line_numbers.push_back(lines.line_number());
-    record.acceleration_m_per_s2.push_back(a * factor);
+    record.acceleration_m_per_s2.push_back(detail::converted_or_throw(
+        a, factor, row[options.acceleration_column], source, lines.line_number()));
   }
   if (times.size() < 2) {
     throw ConfigError(where(source, std::max<std::size_t>(lines.line_number(), 1)) +

@@ -135,6 +135,17 @@ double number_or_throw(const Token& token, std::string_view source, std::size_t 
   return value;
 }
 
+double converted_or_throw(double value, double factor, const Token& token, std::string_view source,
+                          std::size_t line) {
+  const double converted = value * factor;
+  if (!std::isfinite(converted)) {
+    throw ConfigError(where(source, line, token.column) +
+                      "expected an acceleration value of finite size in m/s^2, got " +
+                      quoted(token.text));
+  }
+  return converted;
+}
+
 bool is_blank(std::string_view line) {
   TokenCursor tokens(line, "");
   Token token;

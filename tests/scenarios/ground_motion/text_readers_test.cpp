@@ -120,6 +120,10 @@ TEST(GroundMotionPlainText, OptionErrors) {
   EXPECT_EQ(message_of([] { parse_plain_text("# nothing\n\n", "x.txt", plain(0.01, AccelerationUnit::g)); })
                 .rfind("x.txt:2: expected acceleration values, got none", 0),
             0u);
+  // 1e308 is a double, 1e308 g is not.
+  EXPECT_EQ(message_of([] { parse_plain_text("0\n 1e308\n", "x.txt", plain(0.01, AccelerationUnit::g)); })
+                .rfind("x.txt:2:2: expected an acceleration value of finite size in m/s^2, got \"1e308\"", 0),
+            0u);
   EXPECT_EQ(message_of([] { parse_plain_text("", "x.txt", plain(0.01, AccelerationUnit::g)); })
                 .rfind("x.txt:1: expected acceleration values, got none", 0),
             0u);
