@@ -3,11 +3,8 @@
 #include <cmath>
 #include <limits>
 
-// The point of this file is a fixed sequence of roundings: forbid fused multiply-adds.
-// (GCC does not contract with -std=c++20; clang needs to be told.)
-#if defined(__clang__)
-#pragma STDC FP_CONTRACT OFF
-#endif
+#include "no_fp_contract.h"
+
 
 namespace rpsd::scenarios::ground_motion::deterministic {
 namespace {

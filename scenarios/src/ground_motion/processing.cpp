@@ -1,11 +1,11 @@
 #include "rpsd/scenarios/ground_motion/processing.h"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
+#include "no_fp_contract.h"
 #include "rpsd/scenarios/config_error.h"
 
 namespace rpsd::scenarios::ground_motion {
@@ -193,19 +193,43 @@ GroundMotionRecord baseline_correct(const GroundMotionRecord& record,
   const double duration = record.duration_s();
   const GroundMotionIntegrals integrals = velocity_and_displacement(record);
 
-  // Least squares in scaled time tau = t / duration in [0, 1] (well-conditioned columns).
-  Eigen::MatrixXd basis(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(terms));
-  Eigen::VectorXd d(static_cast<Eigen::Index>(n));
+  // Least squares in scaled time tau = t / duration in [0, 1] (well-conditioned columns),
+  // by modified Gram-Schmidt with one re-orthogonalisation, in plain loops so that the
+  // result does not depend on SIMD width or FMA (synthetic records use it too).
+  std::vector<std::vector<double>> q(terms, std::vector<double>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const double tau = static_cast<double>(i) * record.dt_s / duration;
     double power = tau * tau;
     for (std::size_t k = 0; k < terms; ++k) {
-      basis(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = power;
+      q[k][i] = power;
       power *= tau;
     }
-    d(static_cast<Eigen::Index>(i)) = integrals.displacement_m[i];
   }
-  const Eigen::VectorXd c = basis.colPivHouseholderQr().solve(d);
+  const auto dot = [n](const std::vector<double>& x, const std::vector<double>& y) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) sum += x[i] * y[i];
+    return sum;
+  };
+  std::vector<std::vector<double>> r(terms, std::vector<double>(terms, 0.0));
+  for (std::size_t k = 0; k < terms; ++k) {
+    for (int pass = 0; pass < 2; ++pass) {
+      for (std::size_t j = 0; j < k; ++j) {
+        const double projection = dot(q[j], q[k]);
+        r[j][k] += projection;
+        for (std::size_t i = 0; i < n; ++i) q[k][i] -= projection * q[j][i];
+      }
+    }
+    r[k][k] = std::sqrt(dot(q[k], q[k]));
+    if (!(r[k][k] > 0.0)) fail(record, "baseline_correction: degenerate polynomial fit");
+    for (std::size_t i = 0; i < n; ++i) q[k][i] /= r[k][k];
+  }
+  // c = R^-1 Q^T d
+  std::vector<double> c(terms);
+  for (std::size_t k = 0; k < terms; ++k) c[k] = dot(q[k], integrals.displacement_m);
+  for (std::size_t k = terms; k-- > 0;) {
+    for (std::size_t j = k + 1; j < terms; ++j) c[k] -= r[k][j] * c[j];
+    c[k] /= r[k][k];
+  }
 
   // d_fit = sum_k c_k tau^(k+2)  =>  a_fit = sum_k (k+2)(k+1) c_k tau^k / duration^2.
   for (std::size_t i = 0; i < n; ++i) {
@@ -213,7 +237,7 @@ GroundMotionRecord baseline_correct(const GroundMotionRecord& record,
     double power = 1.0;
     double fit = 0.0;
     for (std::size_t k = 0; k < terms; ++k) {
-      fit += static_cast<double>((k + 2) * (k + 1)) * c(static_cast<Eigen::Index>(k)) * power;
+      fit += static_cast<double>((k + 2) * (k + 1)) * c[k] * power;
       power *= tau;
     }
     a[i] -= fit / (duration * duration);

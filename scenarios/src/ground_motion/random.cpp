@@ -2,11 +2,9 @@
 
 #include <cmath>
 
+#include "no_fp_contract.h"
 #include "rpsd/scenarios/ground_motion/deterministic_math.h"
 
-#if defined(__clang__)
-#pragma STDC FP_CONTRACT OFF
-#endif
 
 namespace rpsd::scenarios::ground_motion {
 namespace {

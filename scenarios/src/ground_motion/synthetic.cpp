@@ -9,11 +9,9 @@
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/ground_motion/deterministic_math.h"
 #include "rpsd/scenarios/ground_motion/random.h"
+#include "no_fp_contract.h"  // before small_matrix.h, whose loops it must cover
 #include "small_matrix.h"
 
-#if defined(__clang__)
-#pragma STDC FP_CONTRACT OFF
-#endif
 
 namespace rpsd::scenarios::ground_motion {
 namespace {

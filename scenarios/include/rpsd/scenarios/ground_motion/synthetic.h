@@ -1,7 +1,8 @@
 // Synthetic ground-acceleration records: Gaussian white noise through a Kanai-Tajimi or
 // Clough-Penzien filter, times a deterministic envelope, optionally baseline-corrected,
 // scaled to a target PGA. Seeded and bit-reproducible on every IEEE-754 machine (own
-// PRNG, own exp/log/sin/cos, fixed-order arithmetic).
+// PRNG, own exp/log/sin/cos, fixed-order loops, no fused multiply-add): checked identical
+// from g++ 12 and clang++ 14 at -O0 to -O3, with and without -march=native.
 //
 // Filters (w = bedrock white noise, two-sided PSD S0: E[w(t) w(t+s)] = 2 pi S0 delta(s)):
 //   kanai_tajimi   x'' + 2 zg wg x' + wg^2 x = w,  a = 2 zg wg x' + wg^2 x
