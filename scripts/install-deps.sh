@@ -12,6 +12,7 @@ packages=(
   libcli11-dev                       # the rpsd command line
   nlohmann-json3-dev                 # summary.json and --json output
   gnuplot-nox                        # PNG plots (pngcairo terminal)
+  clang libclang-rt-14-dev           # scripts/fuzz.sh: clang, libFuzzer and the sanitizer runtimes
 )
 
 missing=()

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Fuzzes the ground-motion readers with libFuzzer (clang, -fsanitize=fuzzer,address,undefined).
+#   scripts/fuzz.sh [seconds-per-target]      (default 20)
+# Configures a separate clang build in build-fuzz/ from fuzz/CMakeLists.txt (the default gcc
+# build never needs clang), builds only the fuzz targets, seeds the corpora from the shared
+# records (copied into build-fuzz/, never into the repository; whole records are cut to
+# -max_len for fuzz_at2, so short valid copies are seeded too) and runs each target for the
+# given time with a per-input timeout. Exits non-zero on any crash, hang, leak or sanitizer
+# report; reproducers are left in build-fuzz/artifacts/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-20}
+per_input_timeout=10
+build=build-fuzz
+records=../shared/ground-motions
+
+command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (bash scripts/install-deps.sh)" >&2; exit 2; }
+cmake -S fuzz -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$build" -j 2 >/dev/null
+
+# Seed corpora, rebuilt on every run.
+seeds="$build/seeds"
+rm -rf "$seeds"
+mkdir -p "$seeds/at2" "$seeds/text" "$build/corpus/at2" "$build/corpus/text" "$build/artifacts"
+for record in "$records"/*.AT2; do
+  [ -f "$record" ] || continue
+  name=$(basename "$record" .AT2)
+  cp "$record" "$seeds/at2/"
+  # A short valid copy (NPTS = 20, four data lines) that fits under -max_len.
+  { head -n 3 "$record"
+    sed -n 4p "$record" | sed -E 's/^([[:space:]]*)[0-9]+([[:space:]])/\120\2/; s/NPTS=[[:space:]]*[0-9]+/NPTS=   20/'
+    sed -n 5,8p "$record"; } >"$seeds/at2/$name-short.AT2"
+done
+printf 'PEER NGA STRONG MOTION DATABASE RECORD\nEVENT\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=    3, DT=   .0050 SEC,\n  1.0E-03 -2.0E-03  3.0D-03\n' \
+  >"$seeds/at2/west2.AT2"
+printf 'Peknold\n8F10.5\nThe units are (g)\nNPTS=     9, DT= .02000 SEC\n   0.00630   0.00364   0.00099   0.00428   0.00758   0.01087   0.00682   0.00277\n  -0.00128\n' \
+  >"$seeds/at2/peknold.AT2"
+# Text seeds: the first byte picks the reader (see fuzz/fuzz_text_readers.cpp).
+if [ -f "$records/STM090.AT2" ]; then
+  { printf '\x00'; tail -n +5 "$records/STM090.AT2" | head -40; } >"$seeds/text/plain-5-per-line"
+  { printf '\x03'; tail -n +5 "$records/STM090.AT2" | head -40 | tr -s ' ' '\n' | grep -v '^$' |
+      awk '{ printf "%.3f,%s\n", (NR - 1) * 0.02, $1 }'; } >"$seeds/text/time-acceleration.csv"
+fi
+{ printf '\x12'; printf '# t ns ew\n0.00 0.1 0.2\n0.01 0.3 0.4\n0.02 0.5 0.6\n'; } >"$seeds/text/table"
+{ printf '\x43'; printf 't,a\n0,1\n0.5,2\n1.0,3\n'; } >"$seeds/text/csv-with-header"
+
+status=0
+run() {
+  local target=$1 corpus=$2 extra=("${@:3}")
+  echo "fuzz: $target for ${seconds} s"
+  if ! "$build/$target" -max_total_time="$seconds" -timeout="$per_input_timeout" \
+      -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/artifacts/$target-" \
+      "${extra[@]}" "$build/corpus/$corpus" "$seeds/$corpus" >"$build/$target.log" 2>&1; then
+    echo "fuzz: $target FAILED (log: $build/$target.log, reproducers: $build/artifacts/)" >&2
+    grep -E "ERROR|SUMMARY|runtime error|deadly signal|timeout" "$build/$target.log" | head -20 >&2 || true
+    status=1
+  else
+    grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb|cov:" "$build/$target.log" | tail -3
+  fi
+}
+run fuzz_at2 at2 -dict=fuzz/at2.dict -max_len=16384
+run fuzz_text_readers text
+exit $status
