@@ -27,6 +27,10 @@ void Recorder::record(const StepRecord& r) {
   if (!queue_.try_push(r)) dropped_.fetch_add(1, std::memory_order_relaxed);
 }
 
+void Recorder::record_or_wait(const StepRecord& r) {
+  while (!queue_.try_push(r)) std::this_thread::yield();
+}
+
 void Recorder::run() {
   StepRecord r;
   std::size_t since_flush = 0;

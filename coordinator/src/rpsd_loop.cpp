@@ -149,7 +149,11 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   record.ground_acceleration_m_per_s2 = ground;
   fill_record(record);
   record.node_status = feedback_.status;
-  recorder.record(record);
+  if (parts_.wait_for_recorder) {
+    recorder.record_or_wait(record);
+  } else {
+    recorder.record(record);
+  }
   return StepOutcome::kOk;
 }
 

@@ -8,6 +8,7 @@
 
 #include "rpsd/coordinator/gnuplot.h"
 #include "rpsd/coordinator/test_runner.h"
+#include "rpsd/scenarios/ground_motion/response_spectrum.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -61,6 +62,44 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
     floors += line;
   }
   render_png(dir / "response.png", floors + "\n", 1100, 600);
+
+  if (has_record) {
+    render_png(dir / "record.png",
+               "set datafile separator ','\nset grid\nset multiplot layout 2,1 title '" + title +
+                   ": ground motion as applied'\n"
+                   "set xlabel 'time (s)'\nset ylabel 'acceleration (m/s^2)'\n"
+                   "plot 'time_history.csv' using 2:3 with lines lw 1 notitle\n"
+                   "set logscale x\nset xlabel 'period (s)'\nset ylabel 'pseudo-acceleration (m/s^2)'\n"
+                   "set title '5 % damped response spectrum'\n"
+                   "plot 'spectrum.csv' using 1:2 with lines lw 2 notitle\nunset multiplot\n",
+               1000, 800);
+  }
+}
+
+// Pseudo-acceleration and displacement spectra (5 %) of the record as applied.
+void write_spectrum(const std::filesystem::path& dir, const scenarios::GroundMotion& motion) {
+  scenarios::ground_motion::GroundMotionRecord record;
+  record.source = motion.name;
+  record.dt_s = motion.dt_s;
+  record.acceleration_m_per_s2 = motion.acceleration_m_per_s2;
+  scenarios::ground_motion::ResponseSpectrumOptions options;
+  options.periods_s = scenarios::ground_motion::log_spaced_periods(0.02, 5.0, 80);
+  const auto spectrum = scenarios::ground_motion::response_spectrum(record, options);
+  std::ofstream out(dir / "spectrum.csv");
+  out << "period_s,pseudo_acceleration_m_per_s2,displacement_m\n";
+  for (std::size_t i = 0; i < spectrum.periods_s.size(); ++i) {
+    out << spectrum.periods_s[i] << ',' << spectrum.pseudo_acceleration_m_per_s2[i] << ',' << spectrum.displacement_m[i] << '\n';
+  }
+}
+
+nlohmann::json ground_motion_json(const scenarios::GroundMotion& motion) {
+  double pga = 0.0;
+  for (double a : motion.acceleration_m_per_s2) pga = std::max(pga, std::abs(a));
+  return {{"source", motion.name},
+          {"dt_s", motion.dt_s},
+          {"points", motion.acceleration_m_per_s2.size()},
+          {"pga_m_per_s2", pga},
+          {"pga_g", pga / 9.80665}};
 }
 
 }  // namespace
@@ -70,6 +109,7 @@ RunResult run_test_into(const std::filesystem::path& dir, const scenarios::Study
                         const std::function<void(std::int64_t, std::int64_t)>& progress) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
+  if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
   const TestRun test = run_test(scenario, dir / "time_history.csv", false, progress);
   const TestRun reference = run_test(scenario, dir / "reference_history.csv", true);
   const Criteria criteria = evaluate(scenario, test, reference);
@@ -118,7 +158,7 @@ RunResult run_test_into(const std::filesystem::path& dir, const scenarios::Study
       {"control_rate_hz", scenario.control_rate_hz},
       {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(scenario.integrator))) + " " + integrators::describe(scenario.integrator)},
       {"compensation", std::string(compensation::compensator_name(scenario.compensation))},
-      {"ground_motion", scenario.ground_motion ? json(scenario.ground_motion->name) : json(nullptr)},
+      {"ground_motion", scenario.ground_motion ? ground_motion_json(*scenario.ground_motion) : json(nullptr)},
       {"channels", channels},
       {"dofs", dofs},
       {"benchmark_criteria", benchmark},

@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "rpsd/scenarios/ground_motion_section.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/substructure/matrix_market.h"
@@ -298,7 +299,7 @@ TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path
   if (has_record == has_free) root.fail(has_record ? "free_vibration" : "ground_motion", "give exactly one of ground_motion or free_vibration");
   t.initial_displacement_m = Eigen::VectorXd::Zero(dofs);
   if (has_record) {
-    root.fail("ground_motion", "not supported yet: record files arrive with the ground-motion readers; use free_vibration");
+    t.ground_motion = read_ground_motion_section(root.mapping("ground_motion"), file, dt_s);
     t.duration_s = dt_s * static_cast<double>(t.ground_motion->acceleration_m_per_s2.size() - 1);
   } else {
     MappingReader free = root.mapping("free_vibration");

@@ -26,6 +26,9 @@ class Recorder {
 
   /// Real-time safe: never blocks; a full queue drops the record and counts it.
   void record(const StepRecord& r);
+  /// Waits (yielding) while the queue is full, so nothing is lost: for runs paced as fast as
+  /// possible, where a slower writer must slow the test down instead. Not real-time safe.
+  void record_or_wait(const StepRecord& r);
   /// Stops the writer after it has drained the queue; returns all records. Not real-time safe.
   std::vector<StepRecord> finish();
   std::uint64_t dropped() const { return dropped_.load(); }

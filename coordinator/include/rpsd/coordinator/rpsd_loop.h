@@ -51,6 +51,9 @@ struct LoopParts {
   std::vector<double> ground_acceleration_m_per_s2;  ///< at t = n dt; empty: free vibration
   const substructure::GroundMotionLoad* ground_load = nullptr;  ///< F = -M iota a_g; needed with a record
   std::uint32_t test_id = 1;
+  /// As fast as possible, a full recorder queue makes the loop wait (nothing is lost); in
+  /// real time it drops and counts the record instead, so the loop never blocks.
+  bool wait_for_recorder = true;
 };
 
 enum class StepOutcome : std::uint8_t { kOk, kRecordEnded, kLinkFailure, kIntegratorError, kNodeFault, kNonFinite };

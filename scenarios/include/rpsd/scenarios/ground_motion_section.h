@@ -1,0 +1,19 @@
+// The `ground_motion:` section of a test scenario: a record file (PEER AT2, plain text or
+// time/acceleration columns) or a synthetic record, scaled, trimmed, padded, baseline
+// corrected on request, and resampled to the integration step.
+#pragma once
+
+#include <filesystem>
+
+#include "rpsd/scenarios/ground_motion/record.h"
+#include "rpsd/scenarios/test_scenario.h"
+#include "rpsd/scenarios/yaml_reader.h"
+
+namespace rpsd::scenarios {
+
+/// Reads and processes the record; file paths are relative to the scenario file. Every
+/// error names the scenario's key or the record's file and line. Not real-time safe.
+GroundMotion read_ground_motion_section(MappingReader section, const std::filesystem::path& scenario_file,
+                                        double integration_step_s);
+
+}  // namespace rpsd::scenarios

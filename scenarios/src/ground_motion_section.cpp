@@ -1,0 +1,118 @@
+#include "rpsd/scenarios/ground_motion_section.h"
+
+#include "rpsd/scenarios/ground_motion/at2_reader.h"
+#include "rpsd/scenarios/ground_motion/processing.h"
+#include "rpsd/scenarios/ground_motion/synthetic.h"
+#include "rpsd/scenarios/ground_motion/text_readers.h"
+
+namespace rpsd::scenarios {
+namespace {
+
+namespace gm = ground_motion;
+
+gm::AccelerationUnit read_unit(MappingReader& r, const std::string& key) {
+  const std::string unit = r.string(key);
+  if (unit == "g") return gm::AccelerationUnit::g;
+  if (unit == "m/s2") return gm::AccelerationUnit::m_per_s2;
+  if (unit == "cm/s2") return gm::AccelerationUnit::cm_per_s2;
+  r.fail(key, "expected g, m/s2 or cm/s2, got \"" + unit + "\"");
+}
+
+gm::GroundMotionRecord read_file(MappingReader& r, const std::filesystem::path& scenario_file) {
+  const std::filesystem::path path = scenario_file.parent_path() / r.string("file");
+  if (!std::filesystem::exists(path)) r.fail("file", "no such record file: " + path.string());
+  const std::string format = r.string("format");
+  if (format == "peer_at2") {
+    gm::At2ReadOptions options;
+    if (r.has("units")) options.unit_if_unstated = read_unit(r, "units");
+    return gm::read_peer_at2(path, options);
+  }
+  if (format == "plain_text") {
+    gm::PlainTextOptions options;
+    options.dt_s = r.positive_number("dt_s");
+    options.unit = read_unit(r, "units");
+    options.skip_lines = static_cast<std::size_t>(r.whole_number_or("skip_lines", 0, 1000000, 0));
+    if (r.has("column")) options.column = static_cast<std::size_t>(r.whole_number("column", 0, 1000));
+    return gm::read_plain_text(path, options);
+  }
+  if (format == "time_acceleration") {
+    gm::TimeAccelerationOptions options;
+    options.unit = read_unit(r, "units");
+    options.skip_lines = static_cast<std::size_t>(r.whole_number_or("skip_lines", 0, 1000000, 0));
+    return gm::read_time_acceleration(path, options);
+  }
+  r.fail("format", "expected peer_at2, plain_text or time_acceleration, got \"" + format + "\"");
+}
+
+gm::GroundMotionRecord read_synthetic(MappingReader s) {
+  gm::SyntheticGroundMotionOptions options;
+  options.seed = static_cast<std::uint64_t>(s.whole_number("seed", 0, 4294967295L));
+  options.duration_s = s.positive_number_or("duration_s", options.duration_s);
+  options.dt_s = s.positive_number_or("dt_s", options.dt_s);
+  const std::string model = s.has("model") ? s.string("model") : "kanai_tajimi";
+  if (model == "kanai_tajimi") {
+    options.model = gm::SpectralModel::kanai_tajimi;
+  } else if (model == "clough_penzien") {
+    options.model = gm::SpectralModel::clough_penzien;
+  } else {
+    s.fail("model", "expected kanai_tajimi or clough_penzien, got \"" + model + "\"");
+  }
+  if (s.has("target_pga_g")) options.target_pga_m_per_s2 = s.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::g);
+  s.finish();
+  return gm::generate_synthetic_ground_motion(options);
+}
+
+}  // namespace
+
+GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
+  gm::GroundMotionRecord record;
+  try {
+    record = r.has("synthetic") ? read_synthetic(r.mapping("synthetic")) : read_file(r, scenario_file);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const std::exception& e) {
+    r.fail(r.has("synthetic") ? "synthetic" : "file", e.what());
+  }
+  // Processing in a fixed order: trim, baseline, scale, pad, resample.
+  if (auto trim = r.optional_mapping("trim")) {
+    gm::TrimOptions options;
+    options.start_s = trim->non_negative_number_or("start_s", 0.0);
+    if (trim->has("end_s")) options.end_s = trim->positive_number("end_s");
+    trim->finish();
+    record = gm::trim(record, options);
+  }
+  if (r.has("baseline_correction")) {
+    const std::string method = r.string("baseline_correction");
+    gm::BaselineCorrectionOptions options;
+    if (method == "polynomial") {
+      options.method = gm::BaselineMethod::polynomial_displacement;
+    } else if (method == "remove_mean") {
+      options.method = gm::BaselineMethod::remove_mean;
+    } else if (method != "none") {
+      r.fail("baseline_correction", "expected none, remove_mean or polynomial, got \"" + method + "\"");
+    }
+    if (method != "none") record = gm::baseline_correct(record, options);
+  }
+  const bool factor = r.has("scale_factor"), target = r.has("target_pga_g");
+  if (factor && target) r.fail("target_pga_g", "give scale_factor or target_pga_g, not both");
+  if (factor) record = gm::scale(record, {r.number("scale_factor"), std::nullopt});
+  if (target) {
+    record = gm::scale(record, {std::nullopt, r.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::g)});
+  }
+  const double pad_after = r.non_negative_number_or("pad_after_s", 0.0);
+  if (pad_after > 0.0) record = gm::pad(record, {0.0, pad_after});
+  // Linear interpolation to the integration step (exact at the record's own samples when the
+  // step divides the record's); coarser steps than the record's are refused.
+  if (std::abs(record.dt_s - step_s) > 1e-12 * step_s) {
+    if (step_s > record.dt_s) {
+      r.fail(r.has("synthetic") ? "synthetic" : "file",
+             "the record's step " + std::to_string(record.dt_s) + " s is finer than the integration step " +
+                 std::to_string(step_s) + " s; raise clock.control_rate_hz");
+    }
+    record = gm::resample(record, {step_s, false});
+  }
+  r.finish();
+  return {record.source, record.dt_s, std::move(record.acceleration_m_per_s2)};
+}
+
+}  // namespace rpsd::scenarios
