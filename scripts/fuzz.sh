@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzes the ground-motion readers with libFuzzer (clang, -fsanitize=fuzzer,address,undefined).
+# Fuzzes the ground-motion readers and the scenario parser with libFuzzer (clang, -fsanitize=fuzzer,address,undefined).
 #   scripts/fuzz.sh [seconds-per-target]      (default 20)
 # Configures a separate clang build in build-fuzz/ from fuzz/CMakeLists.txt (the default gcc
 # build never needs clang), builds only the fuzz targets, seeds the corpora from the shared
@@ -44,6 +44,10 @@ fi
 { printf '\x12'; printf '# t ns ew\n0.00 0.1 0.2\n0.01 0.3 0.4\n0.02 0.5 0.6\n'; } >"$seeds/text/table"
 { printf '\x43'; printf 't,a\n0,1\n0.5,2\n1.0,3\n'; } >"$seeds/text/csv-with-header"
 
+# Scenario seeds: the shipped scenarios and the test scenarios.
+mkdir -p "$seeds/scenario" "$build/corpus/scenario"
+cp scenarios/*.yaml tests/coordinator/data/*.yaml "$seeds/scenario/"
+
 status=0
 run() {
   local target=$1 corpus=$2 extra=("${@:3}")
@@ -60,4 +64,6 @@ run() {
 }
 run fuzz_at2 at2 -dict=fuzz/at2.dict -max_len=16384
 run fuzz_text_readers text
+# Short inputs keep every case fast: a long matrix would only measure dense algebra.
+run fuzz_scenario scenario -max_len=2048
 exit $status

@@ -48,7 +48,9 @@ gm::GroundMotionRecord read_synthetic(MappingReader s) {
   gm::SyntheticGroundMotionOptions options;
   options.seed = static_cast<std::uint64_t>(s.whole_number("seed", 0, 4294967295L));
   options.duration_s = s.positive_number_or("duration_s", options.duration_s);
+  if (options.duration_s > 3600.0) s.fail("duration_s", "at most 3600 s");
   options.dt_s = s.positive_number_or("dt_s", options.dt_s);
+  if (options.dt_s < 1e-4 || options.dt_s > 0.1) s.fail("dt_s", "expected a step from 1e-4 to 0.1 s");
   const std::string model = s.has("model") ? s.string("model") : "kanai_tajimi";
   if (model == "kanai_tajimi") {
     options.model = gm::SpectralModel::kanai_tajimi;
@@ -100,6 +102,7 @@ GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::
     record = gm::scale(record, {std::nullopt, r.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::g)});
   }
   const double pad_after = r.non_negative_number_or("pad_after_s", 0.0);
+  if (pad_after > 3600.0) r.fail("pad_after_s", "at most 3600 s");
   if (pad_after > 0.0) record = gm::pad(record, {0.0, pad_after});
   // Linear interpolation to the integration step (exact at the record's own samples when the
   // step divides the record's); coarser steps than the record's are refused.
@@ -109,6 +112,8 @@ GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::
              "the record's step " + std::to_string(record.dt_s) + " s is finer than the integration step " +
                  std::to_string(step_s) + " s; raise clock.control_rate_hz");
     }
+    // Bound the memory a scenario can ask for (2e7 samples = 160 MB).
+    if (record.duration_s() / step_s > 2e7) r.fail("file", "the record at the integration step would exceed 2e7 samples");
     record = gm::resample(record, {step_s, false});
   }
   r.finish();

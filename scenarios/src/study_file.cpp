@@ -1,6 +1,8 @@
 #include "rpsd/scenarios/study_file.h"
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/scenarios/test_scenario_file.h"
@@ -193,7 +195,16 @@ void apply_override(YAML::Node root, const Override& o) {
 }  // namespace
 
 StudyFile load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
-  YAML::Node document = load_yaml_file(file);
+  std::ifstream in(file);
+  if (!in) throw ConfigError(file.string() + ": cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_study(text.str(), file, overrides);
+}
+
+StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path& file,
+                      const std::vector<Override>& overrides) {
+  YAML::Node document = parse_yaml_text(yaml_text, file.string());
   for (const Override& o : overrides) apply_override(document, o);
   MappingReader root(document, file.string(), "");
   StudyFile result;

@@ -288,6 +288,7 @@ TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path
       clock.fail("mode", "only as_fast_as_possible is available (real-time pacing comes with the transport issue)");
     }
     t.control_rate_hz = clock.positive_number("control_rate_hz");
+    if (t.control_rate_hz > 65536.0) clock.fail("control_rate_hz", "at most 65536 Hz");
     clock.finish();
   }
   const double dt_s = 1.0 / t.control_rate_hz;
@@ -307,6 +308,7 @@ TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path
     if (static_cast<Eigen::Index>(d0.size()) != dofs) free.fail("initial_displacement_m", "needs one value per DOF");
     t.initial_displacement_m = Eigen::Map<const Eigen::VectorXd>(d0.data(), dofs);
     t.duration_s = free.positive_number("duration_s");
+    if (t.duration_s * t.control_rate_hz > 1e9) free.fail("duration_s", "more than 1e9 steps");
     free.finish();
   }
   if (auto output = root.optional_mapping("output")) {

@@ -26,12 +26,18 @@ std::string describe(const YAML::Node& value) {
 YAML::Node load_yaml_file(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw ConfigError(file.string() + ": cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_yaml_text(text.str(), file.string());
+}
+
+YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
   try {
-    YAML::Node root = YAML::Load(in);
-    if (!root.IsMap()) throw ConfigError(file.string() + ": expected a mapping of keys at the top level");
+    YAML::Node root = YAML::Load(text);
+    if (!root.IsMap()) throw ConfigError(name + ": expected a mapping of keys at the top level");
     return root;
   } catch (const YAML::Exception& e) {
-    throw ConfigError(location(file.string(), e.mark) + ": YAML syntax error: " + e.msg);
+    throw ConfigError(location(name, e.mark) + ": YAML syntax error: " + e.msg);
   }
 }
 

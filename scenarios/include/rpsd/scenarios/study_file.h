@@ -85,6 +85,10 @@ std::optional<integrators::IntegratorConfig> default_integrator(std::string_view
 /// Reads a study file; every error names file, line, column and key path. Not real-time safe.
 StudyFile load_study(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
 
+/// The same from YAML text; `as_file` names it in messages and anchors relative paths.
+StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path& as_file,
+                      const std::vector<Override>& overrides = {});
+
 /// `points` values from start to stop, equally spaced in log10. Both must be positive.
 std::vector<double> log_spaced(double start, double stop, int points);
 

@@ -18,6 +18,9 @@ namespace rpsd::scenarios {
 /// Parses a YAML file; syntax errors become ConfigError with the file's line and column.
 YAML::Node load_yaml_file(const std::filesystem::path& file);
 
+/// Parses YAML text; `name` stands for the file in messages.
+YAML::Node parse_yaml_text(const std::string& text, const std::string& name);
+
 class MappingReader {
  public:
   /// `node` must be a mapping; `key_path` is its dotted path ("" for the document root).
