@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -17,6 +18,7 @@ struct RunOptions {
   std::string scenario;
   std::string out;
   std::vector<std::string> overrides;
+  std::string record;
 };
 
 std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
@@ -61,8 +63,16 @@ void add_run(CLI::App& app) {
   run->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
   run->add_option("--out", options->out, "Output folder (created if missing)")->required();
   run->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
+  run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's")
+      ->check(CLI::ExistingFile);
   run->callback([options] {
-    const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
+    // --record replaces the whole ground_motion section first; --set may then refine it.
+    std::vector<scenarios::Override> overrides;
+    if (!options->record.empty()) {
+      overrides.push_back({"ground_motion", "{file: \"" + std::filesystem::absolute(options->record).string() + "\", format: peer_at2}"});
+    }
+    for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
+    const auto file = scenarios::load_study(options->scenario, overrides);
     double rate_hz = 1024.0;
     if (const auto* test = std::get_if<scenarios::TestScenario>(&file.study)) rate_hz = test->control_rate_hz;
     bool completed = true;
