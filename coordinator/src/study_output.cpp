@@ -214,8 +214,10 @@ bool run_and_write(const scenarios::StudyFile& file, const std::filesystem::path
           write_max_gain(dir, file, study, run_max_gain(study));
         } else if constexpr (std::is_same_v<Study, scenarios::DelayCompensationStudy>) {
           write_delay_compensation(dir, file, study, run_delay_compensation(study, dir));
+        } else if (!file.sweep.empty()) {
+          completed = run_sweep_into(dir, file, progress) == RunResult::kCompleted;
         } else {
-          completed = run_test_into(dir, file, study, progress) == RunResult::kCompleted;
+          completed = run_test_into(dir, file, study, progress).result == RunResult::kCompleted;
         }
       },
       file.study);

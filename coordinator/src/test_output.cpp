@@ -104,7 +104,7 @@ nlohmann::json ground_motion_json(const scenarios::GroundMotion& motion) {
 
 }  // namespace
 
-RunResult run_test_into(const std::filesystem::path& dir, const scenarios::StudyFile& file,
+TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                         const scenarios::TestScenario& scenario,
                         const std::function<void(std::int64_t, std::int64_t)>& progress) {
   std::filesystem::create_directories(dir);
@@ -174,7 +174,84 @@ RunResult run_test_into(const std::filesystem::path& dir, const scenarios::Study
                           {"ground_motion", scenario.ground_motion.has_value()}};
   std::ofstream(dir / "plot.json") << plot_info.dump(2) << '\n';
   draw(dir, plot_info);
-  return completed ? RunResult::kCompleted : RunResult::kAborted;
+  TestHeadline headline;
+  headline.result = completed ? RunResult::kCompleted : RunResult::kAborted;
+  if (!criteria.channels.empty()) headline.j2_percent = criteria.channels[0].j2_rms_tracking_error_percent;
+  if (!criteria.dofs.empty()) {
+    headline.j4_percent = criteria.dofs[0].rms_error_percent;
+    headline.peak_displacement_m = criteria.dofs[0].peak_displacement_m;
+    headline.reference_peak_displacement_m = criteria.dofs[0].reference_peak_displacement_m;
+  }
+  return headline;
+}
+
+namespace {
+std::string legend_entry(const std::string& key, double value) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%s = %g", key.c_str(), value);
+  return text;
+}
+}  // namespace
+
+RunResult run_sweep_into(const std::filesystem::path& dir, const scenarios::StudyFile& file,
+                         const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
+  using nlohmann::json;
+  json cases = json::array();
+  std::ofstream table(dir / "sweep.csv");
+  for (const auto& axis : file.sweep) table << axis.key_path << ',';
+  table << "completed,J2_percent,J4_percent,peak_displacement_m,reference_peak_displacement_m,folder\n";
+  bool all_completed = true;
+  for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
+    char folder[32];
+    std::snprintf(folder, sizeof folder, "case_%03zu", i);
+    const TestHeadline h = run_test_into(dir / folder, file, file.sweep_cases[i], progress);
+    const bool completed = h.result == RunResult::kCompleted;
+    all_completed = all_completed && completed;
+    json values = json::object();
+    for (std::size_t a = 0; a < file.sweep.size(); ++a) {
+      values[file.sweep[a].key_path] = file.sweep_values[i][a];
+      table << file.sweep_values[i][a] << ',';
+    }
+    table << (completed ? 1 : 0) << ',' << h.j2_percent << ',' << h.j4_percent << ',' << h.peak_displacement_m << ','
+          << h.reference_peak_displacement_m << ',' << folder << '\n';
+    cases.push_back({{"values", values},
+                     {"completed", completed},
+                     {"J2_percent", h.j2_percent},
+                     {"J4_percent", h.j4_percent},
+                     {"peak_displacement_m", h.peak_displacement_m},
+                     {"reference_peak_displacement_m", h.reference_peak_displacement_m},
+                     {"folder", folder}});
+  }
+  table.close();
+  json axes = json::array();
+  for (const auto& axis : file.sweep) axes.push_back({{"key", axis.key_path}, {"values", axis.values}});
+  std::ofstream(dir / "summary.json") << json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"axes", axes}, {"cases", cases}}.dump(2)
+                                      << '\n';
+  // One line per value of the second axis (or one line), J2 and J4 against the first axis.
+  const std::size_t lines = file.sweep.size() > 1 ? file.sweep[1].values.size() : 1;
+  const std::size_t per_line = file.sweep[0].values.size();
+  const int metric_column = static_cast<int>(file.sweep.size()) + 2;  // J2 after the axes and `completed`
+  std::string plots;
+  for (const char* metric : {"J2 (tracking error, %)", "J4 (error against perfect actuator, %)"}) {
+    const int column = metric_column + (plots.empty() ? 0 : 1);
+    plots += std::string("set ylabel '") + metric + "'\nplot ";
+    for (std::size_t l = 0; l < lines; ++l) {
+      char piece[256];
+      std::snprintf(piece, sizeof piece, "%s'sweep.csv' skip 1 every ::%zu::%zu using 1:%d with linespoints lw 2 title '%s'",
+                    l ? ", " : "", l * per_line, (l + 1) * per_line - 1, column,
+                    lines > 1 ? legend_entry(file.sweep[1].key_path, file.sweep[1].values[l]).c_str() : "");
+      plots += piece;
+    }
+    plots += "\n";
+  }
+  render_png(dir / "sweep.png",
+             "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot layout 2,1 title '" + file.name +
+                 ": sweep of " + file.sweep[0].key_path + "'\nset xlabel '" + file.sweep[0].key_path + "'\n" + plots +
+                 "unset multiplot\n",
+             1000, 800);
+  return all_completed ? RunResult::kCompleted : RunResult::kAborted;
 }
 
 void plot_test(const std::filesystem::path& dir) {

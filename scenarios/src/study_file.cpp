@@ -1,5 +1,6 @@
 #include "rpsd/scenarios/study_file.h"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -194,6 +195,77 @@ void apply_override(YAML::Node root, const Override& o) {
 
 }  // namespace
 
+namespace {
+
+StudyFile read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
+                        const std::vector<Override>& command_line);
+
+// Shortest text that reads back as the same double.
+std::string number_text(double v) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+  return std::string(buffer, end);
+}
+
+// `sweep:` is a list of one or two axes, each `key` with `values: [...]` or
+// `range: {start, stop, count}`. Each case is the document with the axis values set as
+// overrides, read in full, so that every case is checked before the batch runs.
+StudyFile read_sweep(const std::string& text, const std::vector<Override>& command_line, MappingReader& root,
+                     const std::filesystem::path& file, StudyFile result) {
+  auto axes = root.mappings("sweep");
+  if (axes.size() > 2) root.fail("sweep", "at most two swept keys");
+  for (auto& axis : axes) {
+    SweepAxis a;
+    a.key_path = axis.string("key");
+    if (a.key_path.rfind("sweep", 0) == 0 || a.key_path == "study") axis.fail("key", "cannot sweep this key");
+    if (axis.has("values")) {
+      a.values = axis.numbers("values");
+    } else {
+      MappingReader range = axis.mapping("range");
+      const double start = range.number("start"), stop = range.number("stop");
+      const long count = range.whole_number("count", 2, 1000);
+      range.finish();
+      for (long i = 0; i < count; ++i) a.values.push_back(start + (stop - start) * i / (count - 1));
+    }
+    axis.finish();
+    result.sweep.push_back(std::move(a));
+  }
+  const std::size_t n0 = result.sweep[0].values.size();
+  const std::size_t n1 = result.sweep.size() > 1 ? result.sweep[1].values.size() : 1;
+  if (n0 * n1 > 1000) root.fail("sweep", "more than 1000 cases");
+  // The first axis varies fastest: each value of the second axis is one block of cases.
+  for (std::size_t j = 0; j < n1; ++j) {
+    for (std::size_t i = 0; i < n0; ++i) {
+      std::vector<Override> overrides{{result.sweep[0].key_path, number_text(result.sweep[0].values[i])}};
+      std::vector<double> values{result.sweep[0].values[i]};
+      if (result.sweep.size() > 1) {
+        overrides.push_back({result.sweep[1].key_path, number_text(result.sweep[1].values[j])});
+        values.push_back(result.sweep[1].values[j]);
+      }
+      StudyFile one;
+      try {
+        // Parsed afresh from the text, so that every untouched value keeps its line and column.
+        YAML::Node case_document = parse_yaml_text(text, file.string());
+        for (const Override& o : command_line) apply_override(case_document, o);
+        case_document.remove("sweep");
+        for (const Override& o : overrides) apply_override(case_document, o);
+        one = read_document(case_document, file, text, {});
+      } catch (const ConfigError& e) {
+        std::string where = result.sweep[0].key_path + " = " + number_text(values[0]);
+        if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
+        throw ConfigError(std::string(e.what()) + " (sweep case " + where + ")");
+      }
+      result.sweep_cases.push_back(std::get<TestScenario>(one.study));
+      result.sweep_values.push_back(values);
+    }
+  }
+  result.study = result.sweep_cases.front();
+  // The other keys were checked by every case's own reader.
+  return result;
+}
+
+}  // namespace
+
 StudyFile load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   std::ifstream in(file);
   if (!in) throw ConfigError(file.string() + ": cannot open file");
@@ -206,6 +278,14 @@ StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path&
                       const std::vector<Override>& overrides) {
   YAML::Node document = parse_yaml_text(yaml_text, file.string());
   for (const Override& o : overrides) apply_override(document, o);
+  // Sweep cases re-parse the text and re-apply these overrides, keeping every line number.
+  return read_document(document, file, yaml_text, overrides);
+}
+
+namespace {
+
+StudyFile read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
+                        const std::vector<Override>& command_line) {
   MappingReader root(document, file.string(), "");
   StudyFile result;
   result.name = file.stem().string();
@@ -217,6 +297,7 @@ StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path&
   }
   const std::string kind = root.string("study");
   if (kind == "rpsd_test") {
+    if (root.has("sweep")) return read_sweep(text, command_line, root, file, std::move(result));
     TestScenario scenario = read_test_scenario(root, file);
     scenario.description = result.description;
     result.study = std::move(scenario);
@@ -243,5 +324,7 @@ StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path&
   root.finish();
   return result;
 }
+
+}  // namespace
 
 }  // namespace rpsd::scenarios

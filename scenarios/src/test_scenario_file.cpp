@@ -196,6 +196,7 @@ integrators::IntegratorConfig read_integrator(MappingReader r) {
 compensation::CompensatorConfig read_compensation(MappingReader r, double control_period_s) {
   const std::string kind = r.string("kind");
   compensation::CompensatorConfig config;
+  try {
   if (kind == "none") {
     config = compensation::PassThroughParameters{};
   } else if (kind == "phase_lead") {
@@ -222,9 +223,9 @@ compensation::CompensatorConfig read_compensation(MappingReader r, double contro
                "\" (expected none, phase_lead, polynomial_extrapolation, inverse, adaptive_inverse or adaptive_time_series)");
   }
   r.finish();
-  try {
     compensation::make_compensator(config, control_period_s);
   } catch (const std::invalid_argument& e) {
+    // The compensator's own checks (a design that cannot work at this control rate).
     r.fail("kind", e.what());
   }
   return config;

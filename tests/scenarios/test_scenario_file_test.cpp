@@ -72,3 +72,37 @@ TEST(TestScenarioFile, OverrideNeedsAnEqualsSign) { EXPECT_THROW(parse_override(
 
 }  // namespace
 }  // namespace rpsd::scenarios
+
+namespace rpsd::scenarios {
+namespace {
+
+TEST(SweepFile, EveryCaseIsReadWithItsValuesFirstAxisFastest) {
+  const auto file = load_study(testing::source_dir() / "scenarios/elcentro-sdof-compensation-sweep.yaml");
+  ASSERT_EQ(file.sweep.size(), 2u);
+  EXPECT_EQ(file.sweep[0].key_path, "compensation.delay_s");
+  ASSERT_EQ(file.sweep[0].values.size(), 4u);
+  EXPECT_DOUBLE_EQ(file.sweep[0].values[0], 0.08);
+  EXPECT_DOUBLE_EQ(file.sweep[0].values[3], 0.11);
+  ASSERT_EQ(file.sweep_cases.size(), 8u);
+  for (std::size_t c = 0; c < 8; ++c) {
+    const auto& lead = std::get<compensation::DiscretePhaseLeadParameters>(file.sweep_cases[c].compensation).network;
+    // The design rule (a - 1) T = delay holds with the case's own values.
+    EXPECT_NEAR((lead.ratio_a - 1.0) * lead.time_constant_s, file.sweep_values[c][0], 1e-12);
+    EXPECT_DOUBLE_EQ(lead.ratio_a, file.sweep_values[c][1]);
+    EXPECT_DOUBLE_EQ(file.sweep_values[c][0], file.sweep[0].values[c % 4]);
+  }
+}
+
+TEST(SweepFile, ABadCaseIsNamedBeforeAnythingRuns) {
+  try {
+    load_study(testing::source_dir() / "scenarios/elcentro-sdof-compensation-sweep.yaml",
+               {parse_override("sweep.1.values=[10, 0.5]")});
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("(sweep case compensation.delay_s = 0.08, compensation.ratio_a = 0.5)"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rpsd::scenarios

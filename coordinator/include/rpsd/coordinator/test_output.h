@@ -14,10 +14,24 @@ namespace rpsd::coordinator {
 /// Outcome of a whole run, for the exit code.
 enum class RunResult { kCompleted, kAborted };
 
+/// The headline numbers of one run, for sweep tables.
+struct TestHeadline {
+  RunResult result = RunResult::kCompleted;
+  double j2_percent = 0.0;               ///< channel 0
+  double j4_percent = 0.0;               ///< first recorded DOF against the reference
+  double peak_displacement_m = 0.0;      ///< first recorded DOF
+  double reference_peak_displacement_m = 0.0;
+};
+
 /// `progress` (optional) receives (steps done, steps planned) while the test runs.
-RunResult run_test_into(const std::filesystem::path& dir, const scenarios::StudyFile& file,
+TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::StudyFile& file,
                         const scenarios::TestScenario& scenario,
                         const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+
+/// Runs every case of a sweep into dir/case_NN/ and writes the table across the cases
+/// (sweep.csv, summary.json, sweep.png). kAborted if any case aborted.
+RunResult run_sweep_into(const std::filesystem::path& dir, const scenarios::StudyFile& file,
+                         const std::function<void(std::int64_t, std::int64_t)>& progress = {});
 
 /// Redraws the plots of a finished test folder from its CSV files.
 void plot_test(const std::filesystem::path& dir);

@@ -62,11 +62,22 @@ struct DelayCompensationStudy {
 
 using Study = std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, TestScenario>;
 
+/// One swept key of an `rpsd_test` scenario and the values it takes (as YAML scalars).
+struct SweepAxis {
+  std::string key_path;
+  std::vector<double> values;
+};
+
 struct StudyFile {
   std::string name;            ///< the file's stem, for titles
   std::string description;     ///< optional `description:` text
-  Study study;
+  Study study;                 ///< for a sweep: the first case
   std::string effective_yaml;  ///< the document as read, with --set overrides applied
+  /// `sweep:` of an rpsd_test scenario (one or two axes; empty when there is none). Every
+  /// case has been read and checked before anything runs.
+  std::vector<SweepAxis> sweep;
+  std::vector<TestScenario> sweep_cases;           ///< the first axis varies fastest
+  std::vector<std::vector<double>> sweep_values;   ///< the axis values of each case
 };
 
 /// A `--set key.path=value` override; the value is read as YAML (a number, a word, a list).
