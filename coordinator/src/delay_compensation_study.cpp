@@ -9,12 +9,12 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/compensation/discrete_phase_lead.h"
 #include "rpsd/coordinator/damping_identification.h"
 #include "rpsd/coordinator/gnuplot.h"
 #include "rpsd/coordinator/sdof_rpsd.h"
+#include "rpsd/coordinator/test_runner.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 
@@ -55,31 +55,15 @@ std::unique_ptr<servo::Plant> make_plant(const scenarios::DelayCompensationStudy
 }
 
 void tracking_errors(DelayCompensationCase& c, double dt_s) {
-  double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0;
-  for (const auto& r : c.records) {
-    const double e = r.measured_m[0] - r.target_m[0];
-    error2 += e * e;
-    target2 += r.target_m[0] * r.target_m[0];
-    peak_error = std::max(peak_error, std::abs(e));
-    peak_target = std::max(peak_target, std::abs(r.target_m[0]));
-  }
-  c.tracking_rms_error_percent = target2 > 0.0 ? 100.0 * std::sqrt(error2 / target2) : 0.0;
-  c.tracking_peak_error_percent = peak_target > 0.0 ? 100.0 * peak_error / peak_target : 0.0;
-  std::vector<double> target, measured;
-  for (const auto& r : c.records) {
-    target.push_back(r.target_m[0]);
-    measured.push_back(r.measured_m[0]);
-  }
-  // Lags up to 200 ms, beyond any delay of this study.
-  compensation::CrossCorrelationOptions options;
-  options.max_lag_samples = static_cast<int>(0.2 / dt_s);
-  const auto j1 = compensation::cross_correlation_delay(target, measured, options);
-  c.tracking_delay_s = j1.valid ? j1.delay_samples * dt_s : std::nan("");
+  const ChannelCriteria criteria = channel_criteria(c.records, 0, 1.0 / dt_s);
+  c.tracking_rms_error_percent = criteria.j2_rms_tracking_error_percent;
+  c.tracking_peak_error_percent = criteria.j3_peak_tracking_error_percent;
+  c.tracking_delay_s = 1e-3 * criteria.j1_tracking_delay_ms;
+  c.final_tracking_indicator_m2 = criteria.final_tracking_indicator_m2;
   if (!c.records.empty()) {
     const auto& last = c.records.back();
     c.energy_balance_error_j =
         last.input_energy_j - (last.kinetic_energy_j + last.damping_energy_j + last.restoring_energy_j);
-    c.final_tracking_indicator_m2 = last.tracking_indicator_m2[0];
   }
 }
 

@@ -148,34 +148,36 @@ TestRun run_test(const scenarios::TestScenario& s, const std::filesystem::path& 
   return run;
 }
 
+ChannelCriteria channel_criteria(const std::vector<StepRecord>& records, int c, double control_rate_hz) {
+  std::vector<double> target, measured;
+  double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0;
+  for (const auto& r : records) {
+    target.push_back(r.target_m[c]);
+    measured.push_back(r.measured_m[c]);
+    const double e = r.measured_m[c] - r.target_m[c];
+    error2 += e * e;
+    target2 += r.target_m[c] * r.target_m[c];
+    peak_error = std::max(peak_error, std::abs(e));
+    peak_target = std::max(peak_target, std::abs(r.target_m[c]));
+  }
+  ChannelCriteria cc;
+  compensation::CrossCorrelationOptions options;
+  options.max_lag_samples = static_cast<int>(0.2 * control_rate_hz);  // up to 200 ms
+  cc.j1_tracking_delay_ms = std::nan("");
+  if (target.size() > static_cast<std::size_t>(2 * options.max_lag_samples)) {
+    const auto j1 = compensation::cross_correlation_delay(target, measured, options);
+    if (j1.valid) cc.j1_tracking_delay_ms = 1e3 * j1.delay_samples / control_rate_hz;
+  }
+  cc.j2_rms_tracking_error_percent = target2 > 0.0 ? 100.0 * std::sqrt(error2 / target2) : 0.0;
+  cc.j3_peak_tracking_error_percent = peak_target > 0.0 ? 100.0 * peak_error / peak_target : 0.0;
+  cc.final_tracking_indicator_m2 = records.empty() ? 0.0 : records.back().tracking_indicator_m2[c];
+  return cc;
+}
+
 Criteria evaluate(const scenarios::TestScenario& s, const TestRun& test, const TestRun& reference) {
   Criteria criteria;
-  const int channels = static_cast<int>(s.experimental.size());
-  for (int c = 0; c < channels; ++c) {
-    std::vector<double> target, measured;
-    double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0;
-    for (const auto& r : test.records) {
-      target.push_back(r.target_m[c]);
-      measured.push_back(r.measured_m[c]);
-      const double e = r.measured_m[c] - r.target_m[c];
-      error2 += e * e;
-      target2 += r.target_m[c] * r.target_m[c];
-      peak_error = std::max(peak_error, std::abs(e));
-      peak_target = std::max(peak_target, std::abs(r.target_m[c]));
-    }
-    ChannelCriteria cc;
-    compensation::CrossCorrelationOptions options;
-    options.max_lag_samples = static_cast<int>(0.2 * s.control_rate_hz);  // up to 200 ms
-    if (target.size() > static_cast<std::size_t>(2 * options.max_lag_samples)) {
-      const auto j1 = compensation::cross_correlation_delay(target, measured, options);
-      cc.j1_tracking_delay_ms = j1.valid ? 1e3 * j1.delay_samples / s.control_rate_hz : std::nan("");
-    } else {
-      cc.j1_tracking_delay_ms = std::nan("");
-    }
-    cc.j2_rms_tracking_error_percent = target2 > 0.0 ? 100.0 * std::sqrt(error2 / target2) : 0.0;
-    cc.j3_peak_tracking_error_percent = peak_target > 0.0 ? 100.0 * peak_error / peak_target : 0.0;
-    cc.final_tracking_indicator_m2 = test.records.empty() ? 0.0 : test.records.back().tracking_indicator_m2[c];
-    criteria.channels.push_back(cc);
+  for (int c = 0; c < static_cast<int>(s.experimental.size()); ++c) {
+    criteria.channels.push_back(channel_criteria(test.records, c, s.control_rate_hz));
   }
   const std::size_t n = std::min(test.records.size(), reference.records.size());
   for (std::size_t d = 0; d < s.record_dofs.size(); ++d) {

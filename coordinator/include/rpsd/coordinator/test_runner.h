@@ -35,6 +35,10 @@ struct ChannelCriteria {
   double j3_peak_tracking_error_percent = 0.0;
   double final_tracking_indicator_m2 = 0.0;
 };
+/// J1-J3 and the final tracking indicator of one channel from its records (target vs
+/// measured); J1 searches lags up to 200 ms and is NaN when the record is too short.
+ChannelCriteria channel_criteria(const std::vector<StepRecord>& records, int channel, double control_rate_hz);
+
 struct DofCriteria {
   double peak_displacement_m = 0.0;
   double reference_peak_displacement_m = 0.0;
