@@ -198,7 +198,7 @@ void apply_override(YAML::Node root, const Override& o) {
 namespace {
 
 StudyFile read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
-                        const std::vector<Override>& command_line);
+                        const std::vector<Override>& command_line, bool sweep_allowed = true);
 
 // Shortest text that reads back as the same double.
 std::string number_text(double v) {
@@ -249,7 +249,7 @@ StudyFile read_sweep(const std::string& text, const std::vector<Override>& comma
         for (const Override& o : command_line) apply_override(case_document, o);
         case_document.remove("sweep");
         for (const Override& o : overrides) apply_override(case_document, o);
-        one = read_document(case_document, file, text, {});
+        one = read_document(case_document, file, text, {}, false);
       } catch (const ConfigError& e) {
         std::string where = result.sweep[0].key_path + " = " + number_text(values[0]);
         if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
@@ -285,7 +285,7 @@ StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path&
 namespace {
 
 StudyFile read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
-                        const std::vector<Override>& command_line) {
+                        const std::vector<Override>& command_line, bool sweep_allowed) {
   MappingReader root(document, file.string(), "");
   StudyFile result;
   result.name = file.stem().string();
@@ -297,7 +297,11 @@ StudyFile read_document(YAML::Node document, const std::filesystem::path& file, 
   }
   const std::string kind = root.string("study");
   if (kind == "rpsd_test") {
-    if (root.has("sweep")) return read_sweep(text, command_line, root, file, std::move(result));
+    if (root.has("sweep")) {
+      // A case still holding a sweep means the key was given twice (YAML keeps both).
+      if (!sweep_allowed) root.fail("sweep", "given more than once");
+      return read_sweep(text, command_line, root, file, std::move(result));
+    }
     TestScenario scenario = read_test_scenario(root, file);
     scenario.description = result.description;
     result.study = std::move(scenario);

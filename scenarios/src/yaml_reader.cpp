@@ -44,6 +44,12 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
 MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_path)
     : node_(std::move(node)), file_(std::move(file)), key_path_(std::move(key_path)) {
   if (!node_.IsMap()) fail_at(node_, key_path_, "expected a mapping of keys, got " + describe(node_));
+  // YAML keeps both copies of a repeated key and lookups see only one: reject it instead.
+  std::set<std::string> seen;
+  for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) fail_at(entry.first, key_path_, "keys must be plain words");
+    if (!seen.insert(entry.first.Scalar()).second) fail_at(entry.first, path_of(entry.first.Scalar()), "given more than once");
+  }
 }
 
 std::string MappingReader::path_of(const std::string& key) const {

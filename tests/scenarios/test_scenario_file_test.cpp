@@ -106,3 +106,25 @@ TEST(SweepFile, ABadCaseIsNamedBeforeAnythingRuns) {
 
 }  // namespace
 }  // namespace rpsd::scenarios
+
+namespace rpsd::scenarios {
+namespace {
+
+// Found by the scenario fuzz target: a second `sweep:` key made every case sweep again.
+TEST(ScenarioText, RepeatedKeysAreRejectedWithTheirLine) {
+  const std::string text = "study: rpsd_test\nsweep:\n  - {key: servo.delay_s, values: [0.01]}\nsweep:\n  - {key: servo.delay_s, values: [0.02]}\n";
+  try {
+    parse_study(text, testing::source_dir() / "scenarios/inline.yaml");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("inline.yaml:4:1: sweep: given more than once"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ScenarioText, DeepNestingIsASyntaxErrorNotACrash) {
+  const std::string text = "study: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
+  EXPECT_THROW(parse_study(text, "deep.yaml"), ConfigError);
+}
+
+}  // namespace
+}  // namespace rpsd::scenarios
