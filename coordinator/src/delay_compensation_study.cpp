@@ -180,7 +180,7 @@ void write_delay_compensation(const std::filesystem::path& dir, const scenarios:
     for (std::size_t i = 0; i < cases.size(); ++i) {
       if ((cases[i].residual_delay_s > 0.0) != under) continue;
       char line[256];
-      std::snprintf(line, sizeof line, "%s'%s' using 2:($9/%g) with lines lw 1.5 title '%.0f ms (residual %+.0f ms)'",
+      std::snprintf(line, sizeof line, "%s'%s' using 2:($10/%g) with lines lw 1.5 title '%.0f ms (residual %+.0f ms)'",
                     plots.empty() ? "plot " : ", \\\n     ", delay_case_csv_name(i, cases[i].compensated_delay_s).c_str(),
                     study.initial_displacement_m, 1e3 * cases[i].compensated_delay_s, 1e3 * cases[i].residual_delay_s);
       plots += line;

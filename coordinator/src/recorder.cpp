@@ -77,7 +77,7 @@ void Recorder::write_header() {
   csv_ << "step,time_s,ground_acceleration_m_per_s2";
   for (int c = 0; c < channels_; ++c) {
     csv_ << ",target_m_ch" << c << ",command_m_ch" << c << ",measured_m_ch" << c << ",measured_force_n_ch" << c
-         << ",tracking_indicator_m2_ch" << c;
+         << ",specimen_restoring_force_n_ch" << c << ",tracking_indicator_m2_ch" << c;
   }
   for (int d = 0; d < dofs_; ++d) {
     csv_ << ",displacement_m_dof" << d << ",velocity_m_per_s_dof" << d << ",acceleration_m_per_s2_dof" << d
@@ -100,6 +100,7 @@ void Recorder::write_row(const StepRecord& r) {
     put(r.command_m[c]);
     put(r.measured_m[c]);
     put(r.measured_force_n[c]);
+    put(r.specimen_restoring_force_n[c]);
     put(r.tracking_indicator_m2[c]);
   }
   for (int d = 0; d < dofs_; ++d) {

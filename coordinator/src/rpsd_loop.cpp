@@ -166,6 +166,7 @@ void RpsdLoop::fill_record(StepRecord& r) const {
     r.command_m[c] = command_.displacement_m[c];
     r.measured_m[c] = feedback_.displacement_m[c];
     r.measured_force_n[c] = feedback_.force_n[c];
+    r.specimen_restoring_force_n[c] = specimen_forces_[c];
     r.tracking_indicator_m2[c] = tracking_[c].value_m2();
   }
   for (std::size_t i = 0; i < parts_.recorded_dofs.size(); ++i) {

@@ -31,7 +31,7 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   const int dofs = info.at("recorded_dofs");
   const std::string title = info.at("title");
   const bool has_record = info.at("ground_motion");
-  // time_history.csv columns: 1 step, 2 time, 3 a_g, then 5 per channel, then 4 per DOF.
+  // time_history.csv columns: 1 step, 2 time, 3 a_g, then 6 per channel, then 4 per DOF.
   std::string script = "set datafile separator ','\nset grid\nset key outside right\n";
   script += "set multiplot layout " + std::to_string(has_record ? 4 : 3) + ",1 title '" + title + "'\n";
   script += "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\nset title 'experimental channel 0'\n";
@@ -39,9 +39,9 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
             "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) with lines lw 1 title 'measured'\n";
   script += "set ylabel 'tracking error (mm)'\nset title 'measured - target'\n";
   script += "plot 'time_history.csv' using 2:(($6-$4)*1e3) with lines lw 1 notitle\n";
-  const int first_dof_column = 4 + 5 * channels;
-  script += "set xlabel 'measured displacement (mm)'\nset ylabel 'restoring force (kN)'\nset title 'hysteresis, channel 0'\n";
-  script += "plot 'time_history.csv' using ($6*1e3):($7*1e-3) with lines lw 1 notitle\n";
+  const int first_dof_column = 4 + 6 * channels;
+  script += "set xlabel 'measured displacement (mm)'\nset ylabel 'specimen restoring force (kN)'\nset title 'hysteresis, channel 0'\n";
+  script += "plot 'time_history.csv' using ($6*1e3):($8*1e-3) with lines lw 1 notitle\n";
   if (has_record) {
     script += "set xlabel 'time (s)'\nset ylabel 'ground acceleration (m/s^2)'\nset title 'record'\n";
     script += "plot 'time_history.csv' using 2:3 with lines lw 1 notitle\n";

@@ -22,6 +22,8 @@ struct StepRecord {
   std::array<double, transport::kMaxChannels> command_m{};
   std::array<double, transport::kMaxChannels> measured_m{};
   std::array<double, transport::kMaxChannels> measured_force_n{};
+  /// The specimen's restoring force the test used (the measured force, or k x measured).
+  std::array<double, transport::kMaxChannels> specimen_restoring_force_n{};
   std::array<double, transport::kMaxChannels> tracking_indicator_m2{};
   // Per recorded model DOF, model scale.
   std::array<double, kMaxRecordedDofs> displacement_m{};
