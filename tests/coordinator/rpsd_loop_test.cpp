@@ -127,6 +127,22 @@ TEST(RpsdLoop, GroundMotionResponseMatchesTheClosedForm) {
   EXPECT_LT(worst / peak, 2e-3);
 }
 
+TEST(RpsdLoop, MeasuredForcePathEqualsStiffnessPathWhenTheLoadCellReadsKx) {
+  // An ideal plant whose load cell reads k x_m: both restoring-force paths see the same
+  // numbers, so the two tests must agree to the last bit.
+  SdofRpsdSetup setup;
+  setup.duration_s = 2.0;
+  servo::PureDelayPlant a({0.004, setup.stiffness_n_per_m, 8192.0}), b({0.004, setup.stiffness_n_per_m, 8192.0});
+  const auto by_stiffness = run_sdof_rpsd(setup, a);
+  setup.force_path = RestoringForcePath::Kind::kMeasuredForce;
+  const auto by_force = run_sdof_rpsd(setup, b);
+  ASSERT_EQ(by_stiffness.records.size(), by_force.records.size());
+  for (std::size_t i = 0; i < by_force.records.size(); ++i) {
+    ASSERT_EQ(by_stiffness.records[i].displacement_m[0], by_force.records[i].displacement_m[0]) << i;
+    ASSERT_EQ(by_force.records[i].specimen_restoring_force_n[0], by_force.records[i].measured_force_n[0]);
+  }
+}
+
 TEST(DampingIdentification, RecoversTheDampingOfAClosedFormDecay) {
   const double zeta = 0.03, omega = 2.0 * std::numbers::pi * 1.5, dt = 1.0 / 1024.0;
   const double omega_d = omega * std::sqrt(1.0 - zeta * zeta);
