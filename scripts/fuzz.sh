@@ -37,8 +37,9 @@ printf 'Peknold\n8F10.5\nThe units are (g)\nNPTS=     9, DT= .02000 SEC\n   0.00
   >"$seeds/at2/peknold.AT2"
 # Text seeds: the first byte picks the reader (see fuzz/fuzz_text_readers.cpp).
 if [ -f "$records/STM090.AT2" ]; then
-  { printf '\x00'; tail -n +5 "$records/STM090.AT2" | head -40; } >"$seeds/text/plain-5-per-line"
-  { printf '\x03'; tail -n +5 "$records/STM090.AT2" | head -40 | tr -s ' ' '\n' | grep -v '^$' |
+  # sed reads whole files: a `head` closing a pipe early would kill the script under pipefail.
+  { printf '\x00'; sed -n '5,44p' "$records/STM090.AT2"; } >"$seeds/text/plain-5-per-line"
+  { printf '\x03'; sed -n '5,44p' "$records/STM090.AT2" | tr -s ' ' '\n' | sed '/^$/d' |
       awk '{ printf "%.3f,%s\n", (NR - 1) * 0.02, $1 }'; } >"$seeds/text/time-acceleration.csv"
 fi
 { printf '\x12'; printf '# t ns ew\n0.00 0.1 0.2\n0.01 0.3 0.4\n0.02 0.5 0.6\n'; } >"$seeds/text/table"
