@@ -37,7 +37,7 @@ Eigen::MatrixXd read_matrix(MappingReader& r, const std::string& key) {
   return Eigen::MatrixXd::Constant(1, 1, r.number(key));
 }
 
-substructure::DampingConfig read_damping(MappingReader d, const Eigen::MatrixXd* mass, const Eigen::MatrixXd* stiffness) {
+substructure::DampingConfig read_damping(MappingReader d, const Eigen::MatrixXd* mass) {
   substructure::DampingConfig damping = substructure::Undamped{};
   int forms = 0;
   if (d.has("rayleigh")) {
@@ -62,7 +62,6 @@ substructure::DampingConfig read_damping(MappingReader d, const Eigen::MatrixXd*
         substructure::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, 2.0 * zeta * std::sqrt(k * (*mass)(0, 0))))};
   }
   if (forms > 1) d.fail("rayleigh", "give either rayleigh or damping_ratio, not both");
-  (void)stiffness;
   d.finish();
   return damping;
 }
@@ -102,7 +101,7 @@ void read_structure(MappingReader st, const std::filesystem::path& file, TestSce
       const Eigen::MatrixXd m = read_matrix(st, "mass_kg");
       const Eigen::MatrixXd k = read_matrix(st, "stiffness_n_per_m");
       if (m.rows() != k.rows() || m.cols() != k.cols()) st.fail("stiffness_n_per_m", "must have the size of mass_kg");
-      c.damping = st.has("damping") ? read_damping(st.mapping("damping"), &m, &k) : substructure::Undamped{};
+      c.damping = st.has("damping") ? read_damping(st.mapping("damping"), &m) : substructure::Undamped{};
       c.mass_kg = substructure::StructuralMatrix(m);
       c.stiffness_n_per_m = substructure::StructuralMatrix(k);
       substructure::LinearMdofModel probe;
@@ -114,7 +113,7 @@ void read_structure(MappingReader st, const std::filesystem::path& file, TestSce
       files.stiffness_file = file.parent_path() / st.string("stiffness_file");
       if (st.has("damping_file")) files.damping_file = file.parent_path() / st.string("damping_file");
       const substructure::DampingConfig damping =
-          st.has("damping") ? read_damping(st.mapping("damping"), nullptr, nullptr) : substructure::Undamped{};
+          st.has("damping") ? read_damping(st.mapping("damping"), nullptr) : substructure::Undamped{};
       auto c = substructure::linear_config_from_matrix_market(files, damping);
       substructure::LinearMdofModel probe;
       probe.configure(c);
@@ -124,7 +123,7 @@ void read_structure(MappingReader st, const std::filesystem::path& file, TestSce
       c.floor_masses_kg = st.positive_numbers("floor_masses_kg");
       for (auto& story : st.mappings("stories")) c.story_springs.push_back(read_story(story));
       if (c.story_springs.size() != c.floor_masses_kg.size()) st.fail("stories", "needs one story per floor mass");
-      c.damping = st.has("damping") ? read_damping(st.mapping("damping"), nullptr, nullptr) : substructure::Undamped{};
+      c.damping = st.has("damping") ? read_damping(st.mapping("damping"), nullptr) : substructure::Undamped{};
       substructure::ShearBuilding probe;
       probe.configure(c);
       t.structure = std::move(c);
