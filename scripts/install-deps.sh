@@ -13,6 +13,8 @@ packages=(
   nlohmann-json3-dev                 # summary.json and --json output
   gnuplot-nox                        # PNG plots (pngcairo terminal)
   clang libclang-rt-14-dev           # scripts/fuzz.sh: clang, libFuzzer and the sanitizer runtimes
+  cyclonedds-dev cyclonedds-tools    # DDS transport (libddsc, idlc) and ddsperf for bench/
+  iproute2 nftables                  # system tests: network namespaces, veth links, packet filters
 )
 
 missing=()

@@ -22,8 +22,19 @@ struct CommandSample {
 /// Node status bits reported with every feedback sample.
 enum NodeStatus : std::uint32_t {
   kNodeOk = 0,
-  kNodeLimitActive = 1u << 0,
-  kNodeFault = 1u << 1,
+  kNodeLimitActive = 1u << 0,  ///< a limit changed the command or the state this period
+  kNodeFault = 1u << 1,        ///< the node cannot follow commands (bad command, aborted, hardware)
+  kNodeHolding = 1u << 2,      ///< commands stopped arriving: the node holds (or ramps to safe)
+};
+
+/// Which limit acted (FeedbackSample::limit_flags); the node's limits are its own, whatever
+/// the coordinator sends.
+enum LimitFlag : std::uint32_t {
+  kLimitNone = 0,
+  kLimitStroke = 1u << 0,
+  kLimitVelocity = 1u << 1,
+  kLimitForce = 1u << 2,
+  kLimitIncrement = 1u << 3,
 };
 
 /// What the node measured at the end of the control step the command belongs to.
@@ -36,6 +47,7 @@ struct FeedbackSample {
   std::array<double, kMaxChannels> displacement_m{};
   std::array<double, kMaxChannels> force_n{};
   std::uint32_t status = kNodeOk;
+  std::uint32_t limit_flags = kLimitNone;
 };
 
 }  // namespace rpsd::transport
