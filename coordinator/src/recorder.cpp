@@ -1,7 +1,7 @@
 #include "rpsd/coordinator/recorder.h"
 
+#include <charconv>
 #include <chrono>
-#include <cstdio>
 #include <stdexcept>
 
 namespace rpsd::coordinator {
@@ -87,12 +87,16 @@ void Recorder::write_header() {
 }
 
 void Recorder::write_row(const StepRecord& r) {
-  char buffer[64];
+  // std::to_chars with precision 10 writes what printf's %.10g writes, several times faster;
+  // the row is built in one buffer and handed to the stream once.
+  char row[64 + 24 * (7 + 6 * transport::kMaxChannels + 4 * kMaxRecordedDofs)];
+  char* out = row;
+  char* const end = row + sizeof row;
   const auto put = [&](double v) {
-    std::snprintf(buffer, sizeof buffer, ",%.10g", v);
-    csv_ << buffer;
+    *out++ = ',';
+    out = std::to_chars(out, end, v, std::chars_format::general, 10).ptr;
   };
-  csv_ << r.step;
+  out = std::to_chars(out, end, r.step).ptr;
   put(r.time_s);
   put(r.ground_acceleration_m_per_s2);
   for (int c = 0; c < channels_; ++c) {
@@ -113,7 +117,10 @@ void Recorder::write_row(const StepRecord& r) {
   put(r.kinetic_energy_j);
   put(r.damping_energy_j);
   put(r.restoring_energy_j);
-  csv_ << ',' << r.node_status << '\n';
+  *out++ = ',';
+  out = std::to_chars(out, end, r.node_status).ptr;
+  *out++ = '\n';
+  csv_.write(row, out - row);
 }
 
 }  // namespace rpsd::coordinator

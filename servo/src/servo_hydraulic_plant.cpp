@@ -8,11 +8,28 @@
 namespace rpsd::servo {
 
 ServoHydraulicPlant::ServoHydraulicPlant(const ServoSystemParameters& parameters)
-    : parameters_(parameters),
-      damping_n_s_per_m_(parameters.specimen.damping_n_s_per_m()),
-      compressibility_m5_per_n_(parameters.actuator.compressibility_m5_per_n()),
-      max_step_s_(1.0 / parameters.plant_rate_hz) {
+    : parameters_(parameters), max_step_s_(1.0 / parameters.plant_rate_hz) {
   parameters_.validate();
+  const auto& p = parameters_;
+  const auto& valve = p.servovalve;
+  const double c_f = p.sensors.lvdt_gain_v_per_m;
+  k_.position_gain_v_per_m = p.controller.proportional_gain * c_f;
+  k_.rate_gain_v_s_per_m = p.controller.derivative_gain_s * c_f;
+  k_.pilot_gain_m3_per_s2_per_v = valve.pilot_flow_gain_m3_per_s_per_v / valve.pilot_time_constant_s;
+  k_.spool_feedback_v = valve.spool_lvdt_gain_v_per_m * valve.max_spool_stroke_m;
+  k_.pilot_rate_per_s = 1.0 / valve.pilot_time_constant_s;
+  k_.opening_per_m3 = 1.0 / (valve.main_spool_area_m2 * valve.max_spool_stroke_m);
+  k_.flow_gain_m3_per_s = p.flow.no_load_flow_gain_m3_per_s;
+  k_.rolloff_squared = p.flow.nonlinear_flow_gain ? p.flow.flow_gain_rolloff * p.flow.flow_gain_rolloff : 0.0;
+  k_.load_pressure_per_pa = p.flow.load_pressure_effect ? 1.0 / p.flow.supply_pressure_pa : 0.0;
+  k_.piston_area_m2 = p.actuator.piston_area_m2;
+  k_.leakage_m3_per_s_per_pa = p.actuator.leakage_m3_per_s_per_pa;
+  k_.stiffness_per_compressibility = 1.0 / p.actuator.compressibility_m5_per_n();
+  k_.stiffness = p.specimen.stiffness;
+  k_.damping_n_s_per_m = p.specimen.damping_n_s_per_m();
+  k_.friction_force_n = p.specimen.friction_force_n;
+  k_.friction_per_velocity_s_per_m = 1.0 / p.specimen.friction_regularisation_velocity_m_per_s;
+  k_.inverse_mass_per_kg = 1.0 / p.specimen.mass_kg;
   reset(0.0);
 }
 
@@ -33,60 +50,57 @@ void ServoHydraulicPlant::reset(double displacement_m) {
   time_s_ = 0.0;
 }
 
-ServoHydraulicPlant::State ServoHydraulicPlant::derivative(const State& s, double command_m,
-                                                           double command_rate_m_per_s) const {
-  const auto& p = parameters_;
+// The whole physics; inline so that RK4's four evaluations are one straight piece of code.
+inline ServoHydraulicPlant::State ServoHydraulicPlant::rate(const State& s, double command_m,
+                                                            double command_rate_m_per_s) const {
   const double opening = s[kSpoolOpening];
   const double pilot_flow = s[kPilotFlow];
   const double load_pressure = s[kLoadPressure];
   const double x = s[kDisplacement];
   const double xdot = s[kVelocity];
 
-  const double c_f = p.sensors.lvdt_gain_v_per_m;
-  const double valve_command_v = p.controller.proportional_gain * c_f * (command_m - x) +
-                                 p.controller.derivative_gain_s * c_f * (command_rate_m_per_s - xdot);
-
-  const auto& valve = p.servovalve;
-  const double spool_position_m = valve.max_spool_stroke_m * opening;
+  const double valve_command_v =
+      k_.position_gain_v_per_m * (command_m - x) + k_.rate_gain_v_s_per_m * (command_rate_m_per_s - xdot);
   const double pilot_flow_rate =
-      (valve.pilot_flow_gain_m3_per_s_per_v * (valve_command_v - valve.spool_lvdt_gain_v_per_m * spool_position_m) -
-       pilot_flow) / valve.pilot_time_constant_s;
-  double opening_rate = pilot_flow / (valve.main_spool_area_m2 * valve.max_spool_stroke_m);
+      k_.pilot_gain_m3_per_s2_per_v * (valve_command_v - k_.spool_feedback_v * opening) - k_.pilot_rate_per_s * pilot_flow;
+  double opening_rate = k_.opening_per_m3 * pilot_flow;
   if ((opening >= 1.0 && opening_rate > 0.0) || (opening <= -1.0 && opening_rate < 0.0)) opening_rate = 0.0;
 
-  double pressure_factor = 1.0;
-  if (p.flow.load_pressure_effect && opening != 0.0) {
-    // Flow stops when the load opposes with the full supply pressure; an aiding load can at
-    // most double the valve drop.
-    const double drop = 1.0 - std::copysign(1.0, opening) * load_pressure / p.flow.supply_pressure_pa;
-    pressure_factor = std::sqrt(std::clamp(drop, 0.0, 2.0));
-  }
-  const double valve_flow = p.flow.flow_gain_at(opening) * opening * pressure_factor;
+  // Q_L = K_v0 x_v sqrt(drop / (1 + (r x_v)^2)): the load-pressure drop and the flow-gain
+  // roll-off under one square root. The roll-off's reciprocal depends on the opening only,
+  // so it is computed while the pressure's path is still on its way (the pressure is on the
+  // longest chain of dependent operations from one RK4 stage to the next). Flow stops when
+  // the load opposes with the full supply pressure; an aiding load can at most double the
+  // valve drop. With a term switched off its factor is exactly 1.
+  const double rolloff = 1.0 / (1.0 + k_.rolloff_squared * (opening * opening));
+  const double load_ratio = k_.load_pressure_per_pa * load_pressure;
+  const double drop = std::clamp(opening > 0.0 ? 1.0 - load_ratio : 1.0 + load_ratio, 0.0, 2.0);
+  const double valve_flow = (k_.flow_gain_m3_per_s * opening) * std::sqrt(drop * rolloff);
 
-  const auto& act = p.actuator;
   const double pressure_rate =
-      (valve_flow - act.piston_area_m2 * xdot - act.leakage_m3_per_s_per_pa * load_pressure) / compressibility_m5_per_n_;
+      (valve_flow - k_.piston_area_m2 * xdot - k_.leakage_m3_per_s_per_pa * load_pressure) * k_.stiffness_per_compressibility;
 
-  const double specimen_force = spring_force_n(p.specimen.stiffness, x) + damping_n_s_per_m_ * xdot +
-                                friction_force_n(p.specimen, xdot);
-  const double acceleration = (act.piston_area_m2 * load_pressure - specimen_force) / p.specimen.mass_kg;
+  const double specimen_force = spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot +
+                                friction_force_n(k_.friction_force_n, k_.friction_per_velocity_s_per_m, xdot);
+  const double acceleration = (k_.piston_area_m2 * load_pressure - specimen_force) * k_.inverse_mass_per_kg;
 
-  State rate;
-  rate << opening_rate, pilot_flow_rate, pressure_rate, xdot, acceleration;
-  return rate;
+  State r;
+  r << opening_rate, pilot_flow_rate, pressure_rate, xdot, acceleration;
+  return r;
 }
 
-void ServoHydraulicPlant::apply_spool_stops(State& s) const {
-  s[kSpoolOpening] = std::clamp(s[kSpoolOpening], -1.0, 1.0);
+ServoHydraulicPlant::State ServoHydraulicPlant::derivative(const State& state, double command_m,
+                                                           double command_rate_m_per_s) const {
+  return rate(state, command_m, command_rate_m_per_s);
 }
 
 void ServoHydraulicPlant::rk4_step(double h, double u0, double command_rate) {
-  const State k1 = derivative(state_, u0, command_rate);
-  const State k2 = derivative(state_ + 0.5 * h * k1, u0 + 0.5 * h * command_rate, command_rate);
-  const State k3 = derivative(state_ + 0.5 * h * k2, u0 + 0.5 * h * command_rate, command_rate);
-  const State k4 = derivative(state_ + h * k3, u0 + h * command_rate, command_rate);
+  const State k1 = rate(state_, u0, command_rate);
+  const State k2 = rate(state_ + 0.5 * h * k1, u0 + 0.5 * h * command_rate, command_rate);
+  const State k3 = rate(state_ + 0.5 * h * k2, u0 + 0.5 * h * command_rate, command_rate);
+  const State k4 = rate(state_ + h * k3, u0 + h * command_rate, command_rate);
   state_ += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-  apply_spool_stops(state_);
+  state_[kSpoolOpening] = std::clamp(state_[kSpoolOpening], -1.0, 1.0);  // the spool's stops
 }
 
 void ServoHydraulicPlant::advance(double command_start_m, double command_end_m, double duration_s) {
@@ -102,7 +116,7 @@ void ServoHydraulicPlant::advance(double command_start_m, double command_end_m, 
 }
 
 PlantMeasurement ServoHydraulicPlant::measure() const {
-  return {state_[kDisplacement], parameters_.actuator.piston_area_m2 * state_[kLoadPressure]};
+  return {state_[kDisplacement], k_.piston_area_m2 * state_[kLoadPressure]};
 }
 
 }  // namespace rpsd::servo
