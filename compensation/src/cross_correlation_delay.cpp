@@ -76,25 +76,51 @@ DelayEstimate cross_correlation_delay(std::span<const double> target_m, std::spa
     detail::fail(what + ": record length", "must exceed max_lag_samples + 2 = " + std::to_string(lag + 2),
                  static_cast<double>(target_m.size()));
   }
-  const std::size_t w = target_m.size() - lag;
-  double measured_sum = 0.0, measured_square_sum = 0.0;
-  for (std::size_t k = lag; k < target_m.size(); ++k) {
-    measured_sum += measured_m[k];
-    measured_square_sum += measured_m[k] * measured_m[k];
+  CrossCorrelationAccumulator sums(options);
+  for (std::size_t k = 0; k < target_m.size(); ++k) sums.add(target_m[k], measured_m[k]);
+  return sums.estimate();
+}
+
+CrossCorrelationAccumulator::CrossCorrelationAccumulator(const CrossCorrelationOptions& options)
+    : options_(options), lag_(0) {
+  validate_options(options, "cross-correlation accumulator");
+  lag_ = static_cast<std::size_t>(options.max_lag_samples);
+  recent_targets_.assign(2 * (lag_ + 1), 0.0);
+  product_sum_.assign(lag_ + 1, 0.0);
+  if (options.measure == CorrelationMeasure::kPearson) {
+    target_sum_.assign(lag_ + 1, 0.0);
+    target_square_sum_.assign(lag_ + 1, 0.0);
   }
-  std::vector<double> values(lag + 1);
-  for (std::size_t j = 0; j <= lag; ++j) {
-    LagSums s;
-    for (std::size_t k = lag; k < target_m.size(); ++k) {
-      const double t = target_m[k - j];
-      s.product += measured_m[k] * t;
-      s.target += t;
-      s.target_square += t * t;
+}
+
+void CrossCorrelationAccumulator::add(double target_m, double measured_m) noexcept {
+  // Over the whole record the sums run over k = max_lag .. N-1, so that every lag has the
+  // same W = N - max_lag products: S(j) += x_m(k) x_t(k - j).
+  const std::size_t slot = count_ % (lag_ + 1);
+  recent_targets_[slot] = recent_targets_[slot + lag_ + 1] = target_m;
+  ++count_;
+  if (count_ <= lag_) return;
+  const double* t = recent_targets_.data() + slot + 1;  // t[i] = x_t(k - (max_lag - i))
+  for (std::size_t i = 0; i <= lag_; ++i) product_sum_[i] += measured_m * t[i];
+  if (!target_sum_.empty()) {
+    for (std::size_t i = 0; i <= lag_; ++i) {
+      target_sum_[i] += t[i];
+      target_square_sum_[i] += t[i] * t[i];
     }
-    values[j] = measure_value(options.measure, s, measured_sum, measured_square_sum, static_cast<double>(w));
   }
-  return pick_peak(options.max_lag_samples, options.subsample_refinement,
-                   [&](int j) { return values[static_cast<std::size_t>(j)]; });
+  measured_sum_ += measured_m;
+  measured_square_sum_ += measured_m * measured_m;
+}
+
+DelayEstimate CrossCorrelationAccumulator::estimate() const noexcept {
+  if (count_ < lag_ + 3) return DelayEstimate{};
+  const double w = static_cast<double>(count_ - lag_);
+  const bool pearson = !target_sum_.empty();
+  return pick_peak(options_.max_lag_samples, options_.subsample_refinement, [&](int j) {
+    const std::size_t i = lag_ - static_cast<std::size_t>(j);
+    const LagSums s{product_sum_[i], pearson ? target_sum_[i] : 0.0, pearson ? target_square_sum_[i] : 0.0};
+    return measure_value(options_.measure, s, measured_sum_, measured_square_sum_, w);
+  });
 }
 
 void CrossCorrelationDelayParameters::validate() const {

@@ -115,6 +115,52 @@ TEST(CrossCorrelationDelay, OnlineSlidingWindowAgreesWithOfflineAndTracksAChange
   }
 }
 
+// The definition summed lag by lag (S(j) over k = max_lag .. N-1), for the product sum.
+std::vector<double> product_sums_by_definition(const Records& r, int max_lag) {
+  std::vector<double> s(static_cast<std::size_t>(max_lag) + 1, 0.0);
+  for (int j = 0; j <= max_lag; ++j) {
+    for (std::size_t k = static_cast<std::size_t>(max_lag); k < r.target.size(); ++k) {
+      s[static_cast<std::size_t>(j)] += r.measured[k] * r.target[k - static_cast<std::size_t>(j)];
+    }
+  }
+  return s;
+}
+
+TEST(CrossCorrelationDelay, AccumulatorEqualsTheWholeRecordBitForBitAtEveryLength) {
+  // A test is evaluated as it runs, without keeping its history: the accumulator after N
+  // samples must give what the offline function gives on those N samples, exactly.
+  const Records r = delayed(17.4, kWindow + 49);
+  for (CorrelationMeasure measure : {CorrelationMeasure::kProductSum, CorrelationMeasure::kPearson}) {
+    CrossCorrelationOptions options;
+    options.measure = measure;
+    CrossCorrelationAccumulator sums(options);
+    EXPECT_FALSE(sums.estimate().valid);
+    for (std::size_t k = 0; k < r.target.size(); ++k) {
+      sums.add(r.target[k], r.measured[k]);
+      const std::size_t n = k + 1;
+      if (n < 52) {
+        EXPECT_FALSE(sums.estimate().valid);
+        continue;
+      }
+      if (!(n == 52 || n == 53 || n % 397 == 0 || n == r.target.size())) continue;
+      const std::span<const double> t(r.target.data(), n), m(r.measured.data(), n);
+      const DelayEstimate offline = cross_correlation_delay(t, m, options);
+      const DelayEstimate online = sums.estimate();
+      ASSERT_TRUE(online.valid);
+      EXPECT_EQ(online.lag_samples, offline.lag_samples);
+      EXPECT_EQ(online.delay_samples, offline.delay_samples);
+      EXPECT_EQ(online.peak, offline.peak);
+    }
+    EXPECT_NEAR(sums.estimate().delay_samples, 17.4, 1e-3);
+  }
+  // The product sum is the definition's, bit for bit.
+  CrossCorrelationAccumulator sums;
+  for (std::size_t k = 0; k < r.target.size(); ++k) sums.add(r.target[k], r.measured[k]);
+  const auto by_definition = product_sums_by_definition(r, 49);
+  const DelayEstimate e = sums.estimate();
+  EXPECT_EQ(e.peak, by_definition[static_cast<std::size_t>(e.lag_samples)]);
+}
+
 TEST(CrossCorrelationDelay, RejectsBadInput) {
   std::vector<double> a(100), b(99);
   EXPECT_THROW(cross_correlation_delay(a, b), std::invalid_argument);

@@ -13,6 +13,7 @@
 // interior peak.
 #pragma once
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -38,6 +39,32 @@ struct CrossCorrelationOptions {
 /// on bad lengths or options. Not real-time safe.
 DelayEstimate cross_correlation_delay(std::span<const double> target_m, std::span<const double> measured_m,
                                       const CrossCorrelationOptions& options = {});
+
+/// cross_correlation_delay() over a record that arrives one sample at a time: after N samples
+/// estimate() equals cross_correlation_delay() of those N samples bit for bit (it is how that
+/// function computes), in O(max_lag) memory and O(max_lag) time per sample, so that a test of
+/// any length is evaluated without keeping its history.
+class CrossCorrelationAccumulator {
+ public:
+  /// Throws std::invalid_argument on bad options. Not real-time safe.
+  explicit CrossCorrelationAccumulator(const CrossCorrelationOptions& options = {});
+  /// Adds sample k = samples(). Real-time safe.
+  void add(double target_m, double measured_m) noexcept;
+  std::size_t samples() const noexcept { return count_; }
+  /// The delay over every sample added; invalid until there are more than max_lag + 2.
+  /// Real-time safe.
+  DelayEstimate estimate() const noexcept;
+
+ private:
+  CrossCorrelationOptions options_;
+  std::size_t lag_;
+  /// The last max_lag + 1 targets, stored twice so that x_t(k - max_lag .. k) is contiguous.
+  std::vector<double> recent_targets_;
+  // Per lag, in reverse order (index max_lag - j), so the inner loop runs forward.
+  std::vector<double> product_sum_, target_sum_, target_square_sum_;
+  double measured_sum_ = 0.0, measured_square_sum_ = 0.0;
+  std::size_t count_ = 0;
+};
 
 struct CrossCorrelationDelayParameters {
   CrossCorrelationOptions options;

@@ -1,0 +1,143 @@
+// Coordinator overhead per step: everything the loop does apart from the integrator and the
+// plant. Measured as the difference of two timings taken in the same run:
+//   (1) the paper's SDOF RPsD loop (as in scenarios/elcentro-sdof.yaml: numerical mass and
+//       damping, central difference, phase lead, ground-motion load, in-process link, the
+//       recorder hand-off to its writer thread) with a node whose plant follows the command
+//       exactly and does no physics (x = command, F = k x);
+//   (2) the same integrator, configured identically, stepped alone over the same record
+//       with the same restoring force k d.
+// (1) - (2) is the coordinator's own cost per step: the compensator, the link and node
+// hand-off, the partition, the numerical model's restoring force, the energy balance, the
+// tracking indicator and filling and queueing the step record.
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "bench_report.h"
+#include "rpsd/coordinator/sdof_rpsd.h"
+#include "rpsd/integrators/factory.h"
+#include "rpsd/scenarios/study_file.h"
+
+namespace {
+
+using namespace rpsd;
+
+// A plant that is exactly where it was commanded at the end of every interval.
+class FollowingPlant final : public servo::Plant {
+ public:
+  explicit FollowingPlant(double stiffness_n_per_m) : k_(stiffness_n_per_m) {}
+  void reset(double displacement_m) override { x_ = displacement_m; }
+  void advance(double, double command_end_m, double) override { x_ = command_end_m; }
+  servo::PlantMeasurement measure() const override { return {x_, k_ * x_}; }
+
+ private:
+  double k_;
+  double x_ = 0.0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  const bench::Options options = bench::parse_options(argc, argv, 15);
+  bench::Fragment fragment("coordinator_overhead", argc, argv);
+  const auto file = scenarios::load_study(options.source_dir / "scenarios/elcentro-sdof.yaml",
+                                          {scenarios::parse_override("ground_motion.pad_after_s=20")});
+  const auto& scenario = std::get<scenarios::TestScenario>(file.study);
+  const double m = 7080.0, k = 700.8e3, zeta = 0.011;
+  const auto& ground = scenario.ground_motion->acceleration_m_per_s2;
+  const auto steps = static_cast<std::int64_t>(ground.size()) - 1;
+
+  coordinator::SdofRpsdSetup setup;
+  setup.mass_kg = m;
+  setup.damping_ratio = zeta;
+  setup.stiffness_n_per_m = k;
+  setup.initial_displacement_m = 0.0;
+  setup.dt_s = 1.0 / scenario.control_rate_hz;
+  setup.duration_s = static_cast<double>(steps) * setup.dt_s;
+  setup.integrator = scenario.integrator;
+  setup.compensator = scenario.compensation;
+  setup.ground_acceleration_m_per_s2 = ground;
+
+  const auto loop_s = bench::time_trials(options.repetitions, 1, [&] {
+    FollowingPlant plant(k);
+    coordinator::SdofRpsdTest test(setup, plant);
+    for (std::int64_t n = 0; n < steps; ++n) {
+      if (test.step() != coordinator::StepOutcome::kOk) throw std::runtime_error("the loop stopped");
+    }
+    test.finish();
+  });
+
+  // The integrator alone, with the loop's matrices: M, C and K0 = the specimen's stiffness.
+  const double c = 2.0 * zeta * std::sqrt(k * m);
+  double sink = 0.0;
+  const auto integrator_s = bench::time_trials(options.repetitions, 1, [&] {
+    auto integrator = integrators::make_integrator(setup.integrator);
+    integrator->configure(integrators::DenseStructuralMatrices{Eigen::MatrixXd::Constant(1, 1, m),
+                                                               Eigen::MatrixXd::Constant(1, 1, c),
+                                                               Eigen::MatrixXd::Constant(1, 1, k)},
+                          setup.dt_s);
+    Eigen::VectorXd force = Eigen::VectorXd::Constant(1, -m * ground[0]);
+    Eigen::VectorXd restoring = Eigen::VectorXd::Zero(1);
+    integrator->initialize(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), restoring, force);
+    for (std::int64_t n = 0; n < steps; ++n) {
+      force[0] = -m * ground[static_cast<std::size_t>(n + 1)];
+      integrator->begin_step(force);
+      for (int i = 0; i < integrator->iterations_per_step(); ++i) {
+        restoring[0] = k * integrator->target_displacement()[0];
+        integrator->set_measured_restoring_force(restoring);
+      }
+      integrator->end_step();
+    }
+    sink += integrator->displacement()[0];
+  });
+  if (!(sink == sink)) std::puts("");
+
+  const auto per_step_us = [&](double s) { return 1e6 * s / static_cast<double>(steps); };
+  const bench::Summary loop = bench::map_summary(bench::summarize(loop_s), per_step_us);
+  const bench::Summary integrator = bench::map_summary(bench::summarize(integrator_s), per_step_us);
+  // The spread of a difference: the extremes of one against the median of the other.
+  bench::Summary overhead = loop;
+  overhead.median = loop.median - integrator.median;
+  overhead.min = loop.min - integrator.median;
+  overhead.max = loop.max - integrator.median;
+  overhead.p25 = loop.p25 - integrator.median;
+  overhead.p75 = loop.p75 - integrator.median;
+
+  bench::Figure f;
+  f.id = "coordinator_overhead_us";
+  f.title = "Coordinator overhead per step (all but integrator and plant), SDOF";
+  f.unit = "us";
+  f.value = overhead;
+  f.target = "< 5";
+  f.meets_target = overhead.median < 5.0;
+  f.baseline_id = "integrator_alone_sdof_us";
+  f.ratio_label = "overhead / integrator step";
+  f.ratio_to_baseline = overhead.median / integrator.median;
+  fragment.add(f);
+
+  bench::Figure l;
+  l.id = "loop_following_plant_sdof_us";
+  l.title = "  loop step with a plant that follows exactly (no physics)";
+  l.unit = "us";
+  l.value = loop;
+  fragment.add(l);
+
+  bench::Figure i;
+  i.id = "integrator_alone_sdof_us";
+  i.title = "  central difference step alone, same SDOF";
+  i.unit = "us";
+  i.value = integrator;
+  fragment.add(i);
+
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "Overhead = loop step with a no-physics plant - integrator step alone (medians of %d trials of %lld steps "
+                "each; the spread shown is the loop's, less the integrator's median).",
+                options.repetitions, static_cast<long long>(steps));
+  fragment.note(text);
+  fragment.write(options.out);
+  return 0;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "coordinator_overhead: %s\n", e.what());
+  return 1;
+}
