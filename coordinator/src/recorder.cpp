@@ -6,8 +6,8 @@
 
 namespace rpsd::coordinator {
 
-Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, std::size_t queue_capacity)
-    : queue_(queue_capacity), channels_(channels), dofs_(dofs) {
+Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, RecorderOptions options)
+    : queue_(options.queue_capacity), channels_(channels), dofs_(dofs), keep_records_(options.keep_records) {
   if (channels > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
     throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
   }
@@ -38,7 +38,7 @@ void Recorder::run() {
     bool any = false;
     while (queue_.try_pop(r)) {
       any = true;
-      records_.push_back(r);
+      if (keep_records_) records_.push_back(r);
       if (csv_.is_open()) {
         write_row(r);
         if (++since_flush >= 256) {
@@ -51,7 +51,7 @@ void Recorder::run() {
       if (stopping_.load(std::memory_order_acquire)) {
         // One last drain: the producer stopped before setting the flag.
         while (queue_.try_pop(r)) {
-          records_.push_back(r);
+          if (keep_records_) records_.push_back(r);
           if (csv_.is_open()) write_row(r);
         }
         break;

@@ -69,6 +69,7 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
   parts_.integrator->initialize(d0, Eigen::VectorXd::Zero(dofs_), restoring_, force_);
   step_ = 0;
   exchange_ = 0;
+  record_ = StepRecord{};
   previous_d_ = d0;
   previous_v_.setZero();
   previous_r_ = restoring_;
@@ -143,16 +144,15 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   previous_r_ = r;
   previous_f_ = force_;
 
-  StepRecord record;
-  record.step = step_;
-  record.time_s = integrator.time_s();
-  record.ground_acceleration_m_per_s2 = ground;
-  fill_record(record);
-  record.node_status = feedback_.status;
+  record_.step = step_;
+  record_.time_s = integrator.time_s();
+  record_.ground_acceleration_m_per_s2 = ground;
+  fill_record(record_);
+  record_.node_status = feedback_.status;
   if (parts_.wait_for_recorder) {
-    recorder.record_or_wait(record);
+    recorder.record_or_wait(record_);
   } else {
-    recorder.record(record);
+    recorder.record(record_);
   }
   return StepOutcome::kOk;
 }

@@ -16,6 +16,7 @@ struct SdofRpsdTest::Parts {
   std::unique_ptr<servo::PlantNode> node;
   std::unique_ptr<transport::InProcessLink> link;
   substructure::GroundMotionLoad ground_load;
+  std::vector<double> ground_acceleration_m_per_s2;  ///< the loop borrows it
   std::unique_ptr<RpsdLoop> loop;
   std::unique_ptr<Recorder> recorder;
 };
@@ -61,7 +62,8 @@ SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, cons
   parts.recorded_dofs = {0};
   if (!setup.ground_acceleration_m_per_s2.empty()) {
     p.ground_load.configure(p.numerical.mass(), p.partition.influence());
-    parts.ground_acceleration_m_per_s2 = setup.ground_acceleration_m_per_s2;
+    p.ground_acceleration_m_per_s2 = setup.ground_acceleration_m_per_s2;
+    parts.ground_acceleration_m_per_s2 = p.ground_acceleration_m_per_s2;
     parts.ground_load = &p.ground_load;
   }
   p.loop = std::make_unique<RpsdLoop>(parts);

@@ -110,9 +110,11 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::St
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
-  const TestRun test = run_test(scenario, dir / "time_history.csv", false, progress);
-  const TestRun reference = run_test(scenario, dir / "reference_history.csv", true);
-  const Criteria criteria = evaluate(scenario, test, reference);
+  // The test and its reference run side by side and are evaluated as they go, so memory
+  // does not grow with the record's length.
+  const EvaluatedTest run = run_test_and_reference(scenario, dir / "time_history.csv", dir / "reference_history.csv", progress);
+  const TestRun& test = run.test;
+  const Criteria& criteria = run.criteria;
   const bool completed = test.outcome == StepOutcome::kOk || test.outcome == StepOutcome::kRecordEnded;
 
   using nlohmann::json;
@@ -153,7 +155,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::St
       {"description", file.description},
       {"outcome", outcome_text(test.outcome)},
       {"completed", completed},
-      {"steps", test.records.size()},
+      {"steps", test.steps},
       {"steps_planned", test.steps_planned},
       {"control_rate_hz", scenario.control_rate_hz},
       {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(scenario.integrator))) + " " + integrators::describe(scenario.integrator)},

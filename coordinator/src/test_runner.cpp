@@ -4,6 +4,8 @@
 #include <cmath>
 #include <memory>
 
+#include "rpsd/coordinator/recorder.h"
+
 #include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/servo/plant_node.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
@@ -51,155 +53,176 @@ integrators::StructuralMatrices integrator_matrices(const substructure::Numerica
 
 }  // namespace
 
-TestRun run_test(const scenarios::TestScenario& s, const std::filesystem::path& csv, bool perfect_actuator,
-                 const std::function<void(std::int64_t, std::int64_t)>& progress) {
-  auto numerical = make_numerical(s);
-  const Eigen::Index dofs = numerical->dofs();
+struct TestAssembly::Parts {
+  std::unique_ptr<substructure::NumericalModel> numerical;
+  substructure::Partition partition;
+  std::unique_ptr<integrators::Integrator> integrator;
+  std::vector<std::unique_ptr<compensation::CommandCompensator>> compensators;
+  std::vector<std::unique_ptr<servo::Plant>> plants;
+  std::unique_ptr<servo::PlantNode> node;
+  std::unique_ptr<transport::InProcessLink> link;
+  substructure::GroundMotionLoad ground_load;
+  std::unique_ptr<RpsdLoop> loop;
+  std::unique_ptr<Recorder> recorder;
+  std::int64_t steps_planned = 0;
+  std::int64_t steps = 0;
+};
+
+TestAssembly::TestAssembly(const scenarios::TestScenario& s, const std::filesystem::path& csv, bool perfect_actuator,
+                           bool keep_records)
+    : parts_(std::make_unique<Parts>()) {
+  Parts& p = *parts_;
+  p.numerical = make_numerical(s);
+  const Eigen::Index dofs = p.numerical->dofs();
   const int channels = static_cast<int>(s.experimental.size());
 
-  substructure::Partition partition;
   substructure::PartitionConfig split;
   split.dofs = dofs;
   for (const auto& e : s.experimental) split.experimental.push_back(e.dof);
   split.influence = s.influence;
-  partition.configure(split);
+  p.partition.configure(split);
 
-  auto integrator = integrators::make_integrator(s.integrator);
+  p.integrator = integrators::make_integrator(s.integrator);
   const double dt_s = 1.0 / s.control_rate_hz;
-  integrator->configure(integrator_matrices(*numerical, partition.with_specimen_stiffness(numerical->initial_stiffness())),
-                        dt_s);
-  const double control_period_s = dt_s / integrator->iterations_per_step();
+  p.integrator->configure(
+      integrator_matrices(*p.numerical, p.partition.with_specimen_stiffness(p.numerical->initial_stiffness())), dt_s);
+  const double control_period_s = dt_s / p.integrator->iterations_per_step();
 
-  std::vector<std::unique_ptr<compensation::CommandCompensator>> compensators;
-  std::vector<std::unique_ptr<servo::Plant>> plants;
-  std::vector<servo::Plant*> plant_pointers;
+  // Channels are numbered 0..n-1 by the partition; the node's plants, the compensators and
+  // the force paths follow that order.
   LoopParts parts;
-  for (int c = 0; c < channels; ++c) {
-    const auto& channel = s.experimental[static_cast<std::size_t>(c)];
-    compensators.push_back(compensation::make_compensator(
+  parts.compensators.resize(static_cast<std::size_t>(channels));
+  parts.force_paths.resize(static_cast<std::size_t>(channels));
+  std::vector<servo::Plant*> by_channel(static_cast<std::size_t>(channels));
+  for (const auto& channel : s.experimental) {
+    const auto ch = static_cast<std::size_t>(channel.dof.actuator_channel);
+    p.compensators.push_back(compensation::make_compensator(
         perfect_actuator ? compensation::CompensatorConfig{compensation::PassThroughParameters{}} : s.compensation,
         control_period_s));
-    parts.compensators.push_back(compensators.back().get());
+    parts.compensators[ch] = p.compensators.back().get();
     const double k = channel.dof.specimen_stiffness_estimate_n_per_m;
-    plants.push_back(perfect_actuator ? std::make_unique<servo::PureDelayPlant>(servo::PureDelayParameters{0.0, k, 8192.0})
-                                      : make_plant(s.plant));
-    plant_pointers.push_back(plants.back().get());
-    parts.force_paths.push_back({channel.restoring_force == scenarios::RestoringForceSource::kMeasuredForce
-                                     ? RestoringForcePath::Kind::kMeasuredForce
-                                     : RestoringForcePath::Kind::kStiffnessTimesMeasuredDisplacement,
-                                 k});
+    p.plants.push_back(perfect_actuator ? std::make_unique<servo::PureDelayPlant>(servo::PureDelayParameters{0.0, k, 8192.0})
+                                        : make_plant(s.plant));
+    by_channel[ch] = p.plants.back().get();
+    parts.force_paths[ch] = {channel.restoring_force == scenarios::RestoringForceSource::kMeasuredForce
+                                 ? RestoringForcePath::Kind::kMeasuredForce
+                                 : RestoringForcePath::Kind::kStiffnessTimesMeasuredDisplacement,
+                             k};
   }
-  // Channels are numbered 0..n-1 by the partition; the node's plants follow that order.
-  std::vector<servo::Plant*> by_channel(static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c) {
-    by_channel[static_cast<std::size_t>(s.experimental[static_cast<std::size_t>(c)].dof.actuator_channel)] =
-        plant_pointers[static_cast<std::size_t>(c)];
-  }
-  servo::PlantNode node(by_channel, control_period_s);
-  transport::InProcessLink link(node);
+  p.node = std::make_unique<servo::PlantNode>(by_channel, control_period_s);
+  p.link = std::make_unique<transport::InProcessLink>(*p.node);
 
-  substructure::GroundMotionLoad ground_load;
-  parts.integrator = integrator.get();
-  parts.numerical = numerical.get();
-  parts.partition = &partition;
-  parts.link = &link;
+  parts.integrator = p.integrator.get();
+  parts.numerical = p.numerical.get();
+  parts.partition = &p.partition;
+  parts.link = p.link.get();
   parts.recorded_dofs = s.record_dofs;
   if (s.ground_motion) {
-    ground_load.configure(numerical->mass(), s.influence);
+    p.ground_load.configure(p.numerical->mass(), s.influence);
     parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
-    parts.ground_load = &ground_load;
+    parts.ground_load = &p.ground_load;
   }
-  // Compensators and force paths were pushed in scenario order; the loop wants channel order.
-  {
-    LoopParts ordered = parts;
-    for (int c = 0; c < channels; ++c) {
-      const auto ch = static_cast<std::size_t>(s.experimental[static_cast<std::size_t>(c)].dof.actuator_channel);
-      ordered.compensators[ch] = parts.compensators[static_cast<std::size_t>(c)];
-      ordered.force_paths[ch] = parts.force_paths[static_cast<std::size_t>(c)];
-    }
-    parts = ordered;
-  }
-  RpsdLoop loop(parts);
+  const std::vector<RestoringForcePath> force_paths = parts.force_paths;
+  p.loop = std::make_unique<RpsdLoop>(std::move(parts));
 
   // Start at rest at the initial displacement, the specimens holding it.
   Eigen::VectorXd hold(channels);
-  partition.extract_commands(s.initial_displacement_m, hold);
-  node.reset(std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
+  p.partition.extract_commands(s.initial_displacement_m, hold);
+  p.node->reset(std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
   std::vector<double> force0(static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c) {
-    force0[static_cast<std::size_t>(c)] = parts.force_paths[static_cast<std::size_t>(c)].kind == RestoringForcePath::Kind::kMeasuredForce
-                                              ? by_channel[static_cast<std::size_t>(c)]->measure().force_n
-                                              : parts.force_paths[static_cast<std::size_t>(c)].stiffness_n_per_m * hold[c];
+  for (std::size_t c = 0; c < force0.size(); ++c) {
+    const RestoringForcePath& path = force_paths[c];
+    force0[c] = path.kind == RestoringForcePath::Kind::kMeasuredForce ? by_channel[c]->measure().force_n
+                                                                      : path.stiffness_n_per_m * hold[static_cast<Eigen::Index>(c)];
   }
-  loop.start(s.initial_displacement_m, force0);
+  p.loop->start(s.initial_displacement_m, force0);
 
+  p.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
+  if (p.loop->steps_available() >= 0) p.steps_planned = std::min(p.steps_planned, p.loop->steps_available());
+  RecorderOptions recording;
+  recording.keep_records = keep_records;
+  p.recorder = std::make_unique<Recorder>(csv, channels, static_cast<int>(s.record_dofs.size()), recording);
+}
+
+TestAssembly::~TestAssembly() = default;
+
+std::int64_t TestAssembly::steps_planned() const { return parts_->steps_planned; }
+
+StepOutcome TestAssembly::step() {
+  const StepOutcome outcome = parts_->loop->step(*parts_->recorder);
+  if (outcome == StepOutcome::kOk) ++parts_->steps;
+  return outcome;
+}
+
+const StepRecord& TestAssembly::last_record() const { return parts_->loop->last_record(); }
+
+TestRun TestAssembly::finish(StepOutcome outcome) {
   TestRun run;
-  run.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
-  if (loop.steps_available() >= 0) run.steps_planned = std::min(run.steps_planned, loop.steps_available());
-  Recorder recorder(csv, channels, static_cast<int>(s.record_dofs.size()));
-  const auto report_every = std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * s.control_rate_hz));
-  for (std::int64_t n = 0; n < run.steps_planned; ++n) {
-    run.outcome = loop.step(recorder);
-    if (run.outcome != StepOutcome::kOk) break;
-    if (progress && (n + 1) % report_every == 0) progress(n + 1, run.steps_planned);
-  }
-  run.dropped_records = recorder.dropped();
-  run.records = recorder.finish();
+  run.outcome = outcome;
+  run.steps = parts_->steps;
+  run.steps_planned = parts_->steps_planned;
+  run.dropped_records = parts_->recorder->dropped();
+  run.records = parts_->recorder->finish();
   return run;
 }
 
-ChannelCriteria channel_criteria(const std::vector<StepRecord>& records, int c, double control_rate_hz) {
-  std::vector<double> target, measured;
-  double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0;
-  for (const auto& r : records) {
-    target.push_back(r.target_m[c]);
-    measured.push_back(r.measured_m[c]);
-    const double e = r.measured_m[c] - r.target_m[c];
-    error2 += e * e;
-    target2 += r.target_m[c] * r.target_m[c];
-    peak_error = std::max(peak_error, std::abs(e));
-    peak_target = std::max(peak_target, std::abs(r.target_m[c]));
+namespace {
+
+std::int64_t progress_interval(const scenarios::TestScenario& s) {
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * s.control_rate_hz));
+}
+
+}  // namespace
+
+TestRun run_test(const scenarios::TestScenario& s, const std::filesystem::path& csv, bool perfect_actuator,
+                 const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  TestAssembly assembly(s, csv, perfect_actuator, true);
+  const std::int64_t planned = assembly.steps_planned(), report_every = progress_interval(s);
+  StepOutcome outcome = StepOutcome::kOk;
+  for (std::int64_t n = 0; n < planned; ++n) {
+    outcome = assembly.step();
+    if (outcome != StepOutcome::kOk) break;
+    if (progress && (n + 1) % report_every == 0) progress(n + 1, planned);
   }
-  ChannelCriteria cc;
-  compensation::CrossCorrelationOptions options;
-  options.max_lag_samples = static_cast<int>(0.2 * control_rate_hz);  // up to 200 ms
-  cc.j1_tracking_delay_ms = std::nan("");
-  if (target.size() > static_cast<std::size_t>(2 * options.max_lag_samples)) {
-    const auto j1 = compensation::cross_correlation_delay(target, measured, options);
-    if (j1.valid) cc.j1_tracking_delay_ms = 1e3 * j1.delay_samples / control_rate_hz;
+  return assembly.finish(outcome);
+}
+
+EvaluatedTest run_test_and_reference(const scenarios::TestScenario& s, const std::filesystem::path& test_csv,
+                                     const std::filesystem::path& reference_csv,
+                                     const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  TestAssembly test(s, test_csv, false, false);
+  TestAssembly reference(s, reference_csv, true, false);
+  CriteriaAccumulator sums(static_cast<int>(s.experimental.size()), static_cast<int>(s.record_dofs.size()),
+                           s.control_rate_hz);
+  const std::int64_t planned = test.steps_planned(), report_every = progress_interval(s);
+  StepOutcome test_outcome = StepOutcome::kOk, reference_outcome = StepOutcome::kOk;
+  for (std::int64_t n = 0; n < planned; ++n) {
+    const bool testing = test_outcome == StepOutcome::kOk;
+    if (testing) test_outcome = test.step();
+    if (reference_outcome == StepOutcome::kOk) reference_outcome = reference.step();
+    if (testing && test_outcome == StepOutcome::kOk) {
+      sums.add_test(test.last_record());
+      if (reference_outcome == StepOutcome::kOk) sums.add_pair(test.last_record(), reference.last_record());
+    }
+    if (test_outcome != StepOutcome::kOk && reference_outcome != StepOutcome::kOk) break;
+    if (progress && (n + 1) % report_every == 0) progress(n + 1, planned);
   }
-  cc.j2_rms_tracking_error_percent = target2 > 0.0 ? 100.0 * std::sqrt(error2 / target2) : 0.0;
-  cc.j3_peak_tracking_error_percent = peak_target > 0.0 ? 100.0 * peak_error / peak_target : 0.0;
-  cc.final_tracking_indicator_m2 = records.empty() ? 0.0 : records.back().tracking_indicator_m2[c];
-  return cc;
+  EvaluatedTest result;
+  result.test = test.finish(test_outcome);
+  result.reference = reference.finish(reference_outcome);
+  result.criteria = sums.criteria();
+  return result;
 }
 
 Criteria evaluate(const scenarios::TestScenario& s, const TestRun& test, const TestRun& reference) {
-  Criteria criteria;
-  for (int c = 0; c < static_cast<int>(s.experimental.size()); ++c) {
-    criteria.channels.push_back(channel_criteria(test.records, c, s.control_rate_hz));
+  CriteriaAccumulator sums(static_cast<int>(s.experimental.size()), static_cast<int>(s.record_dofs.size()),
+                           s.control_rate_hz);
+  const std::size_t pairs = std::min(test.records.size(), reference.records.size());
+  for (std::size_t i = 0; i < test.records.size(); ++i) {
+    sums.add_test(test.records[i]);
+    if (i < pairs) sums.add_pair(test.records[i], reference.records[i]);
   }
-  const std::size_t n = std::min(test.records.size(), reference.records.size());
-  for (std::size_t d = 0; d < s.record_dofs.size(); ++d) {
-    DofCriteria dc;
-    double error2 = 0.0, reference2 = 0.0, peak_error = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double x = test.records[i].displacement_m[d], xr = reference.records[i].displacement_m[d];
-      error2 += (x - xr) * (x - xr);
-      reference2 += xr * xr;
-      peak_error = std::max(peak_error, std::abs(x - xr));
-      dc.peak_displacement_m = std::max(dc.peak_displacement_m, std::abs(x));
-      dc.reference_peak_displacement_m = std::max(dc.reference_peak_displacement_m, std::abs(xr));
-    }
-    dc.rms_error_percent = reference2 > 0.0 ? 100.0 * std::sqrt(error2 / reference2) : 0.0;
-    dc.peak_error_percent = dc.reference_peak_displacement_m > 0.0 ? 100.0 * peak_error / dc.reference_peak_displacement_m : 0.0;
-    criteria.dofs.push_back(dc);
-  }
-  if (!test.records.empty()) {
-    const auto& last = test.records.back();
-    criteria.energy_error_j = last.input_energy_j - (last.kinetic_energy_j + last.damping_energy_j + last.restoring_energy_j);
-  }
-  return criteria;
+  return sums.criteria();
 }
 
 }  // namespace rpsd::coordinator

@@ -48,5 +48,48 @@ TEST(TestRunner, EveryRecordedStepIsKeptWhenRunningAsFastAsPossible) {
   EXPECT_EQ(c.dofs.size(), 3u);
 }
 
+void expect_same(double a, double b, const char* what) {
+  if (std::isnan(a) || std::isnan(b)) {
+    EXPECT_TRUE(std::isnan(a) && std::isnan(b)) << what;
+  } else {
+    EXPECT_EQ(a, b) << what;
+  }
+}
+
+TEST(TestRunner, CriteriaComputedAsTheTestRunsEqualThoseFromKeptRecordsBitForBit) {
+  // rpsd run evaluates the test and its reference step by step without keeping them (memory
+  // stays flat over long records); the numbers must be those of the whole kept records.
+  const auto file = scenarios::load_study(testing::source_dir() / "scenarios/elcentro-sdof.yaml",
+                                          {scenarios::parse_override("ground_motion.trim={end_s: 6}")});
+  const auto& scenario = std::get<scenarios::TestScenario>(file.study);
+  const EvaluatedTest streamed = run_test_and_reference(scenario, {}, {});
+  const TestRun test = run_test(scenario, {}, false), reference = run_test(scenario, {}, true);
+  const Criteria kept = evaluate(scenario, test, reference);
+  EXPECT_TRUE(streamed.test.records.empty());
+  EXPECT_EQ(streamed.test.steps, test.steps_planned);
+  EXPECT_EQ(streamed.reference.steps, test.steps_planned);
+  EXPECT_EQ(static_cast<std::int64_t>(test.records.size()), test.steps);
+  ASSERT_EQ(streamed.criteria.channels.size(), 1u);
+  ASSERT_EQ(streamed.criteria.dofs.size(), 1u);
+  const auto& a = streamed.criteria.channels[0];
+  const auto& b = kept.channels[0];
+  EXPECT_TRUE(std::isfinite(a.j1_tracking_delay_ms));
+  expect_same(a.j1_tracking_delay_ms, b.j1_tracking_delay_ms, "J1");
+  expect_same(a.j2_rms_tracking_error_percent, b.j2_rms_tracking_error_percent, "J2");
+  expect_same(a.j3_peak_tracking_error_percent, b.j3_peak_tracking_error_percent, "J3");
+  expect_same(a.final_tracking_indicator_m2, b.final_tracking_indicator_m2, "TI");
+  const auto& x = streamed.criteria.dofs[0];
+  const auto& y = kept.dofs[0];
+  expect_same(x.rms_error_percent, y.rms_error_percent, "J4");
+  expect_same(x.peak_error_percent, y.peak_error_percent, "J7");
+  expect_same(x.peak_displacement_m, y.peak_displacement_m, "peak");
+  expect_same(x.reference_peak_displacement_m, y.reference_peak_displacement_m, "reference peak");
+  expect_same(streamed.criteria.energy_error_j, kept.energy_error_j, "energy");
+  // And the channel criteria of the Figure 8 study's path agree too.
+  const ChannelCriteria direct = channel_criteria(test.records, 0, scenario.control_rate_hz);
+  expect_same(direct.j1_tracking_delay_ms, b.j1_tracking_delay_ms, "J1 (channel_criteria)");
+  expect_same(direct.j2_rms_tracking_error_percent, b.j2_rms_tracking_error_percent, "J2 (channel_criteria)");
+}
+
 }  // namespace
 }  // namespace rpsd::coordinator

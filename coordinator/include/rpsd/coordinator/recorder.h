@@ -1,6 +1,6 @@
 // Hands step records from the real-time loop to a writer thread, which appends them to a
 // CSV file (flushed every few hundred rows, so a crash loses at most the unflushed tail)
-// and keeps them in memory for the metrics after the run.
+// and, if asked, keeps them in memory for metrics after the run.
 #pragma once
 
 #include <atomic>
@@ -16,10 +16,18 @@
 
 namespace rpsd::coordinator {
 
+struct RecorderOptions {
+  /// Keep every record in memory for finish(). Off when the metrics are computed as the test
+  /// runs: memory then stays flat however long the test is.
+  bool keep_records = true;
+  /// Records the queue to the writer thread holds (712 bytes each): 4096 is 1 s at 4096 Hz.
+  std::size_t queue_capacity = 1 << 12;
+};
+
 class Recorder {
  public:
-  /// Opens the CSV (empty path: memory only) and starts the writer. Not real-time safe.
-  Recorder(const std::filesystem::path& csv, int channels, int dofs, std::size_t queue_capacity = 1 << 14);
+  /// Opens the CSV (empty path: none) and starts the writer. Not real-time safe.
+  Recorder(const std::filesystem::path& csv, int channels, int dofs, RecorderOptions options = {});
   ~Recorder();
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
@@ -29,7 +37,8 @@ class Recorder {
   /// Waits (yielding) while the queue is full, so nothing is lost: for runs paced as fast as
   /// possible, where a slower writer must slow the test down instead. Not real-time safe.
   void record_or_wait(const StepRecord& r);
-  /// Stops the writer after it has drained the queue; returns all records. Not real-time safe.
+  /// Stops the writer after it has drained the queue; returns all records (none unless
+  /// RecorderOptions::keep_records). Not real-time safe.
   std::vector<StepRecord> finish();
   std::uint64_t dropped() const { return dropped_.load(); }
 
@@ -41,6 +50,7 @@ class Recorder {
   SpscQueue<StepRecord> queue_;
   std::ofstream csv_;
   int channels_, dofs_;
+  bool keep_records_;
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};
   std::atomic<std::uint64_t> dropped_{0};

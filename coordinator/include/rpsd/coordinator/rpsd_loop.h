@@ -48,7 +48,7 @@ struct LoopParts {
   std::vector<compensation::CommandCompensator*> compensators;  ///< one per channel, configured
   std::vector<RestoringForcePath> force_paths;                  ///< one per channel
   std::vector<Eigen::Index> recorded_dofs;                      ///< at most kMaxRecordedDofs
-  std::vector<double> ground_acceleration_m_per_s2;  ///< at t = n dt; empty: free vibration
+  std::span<const double> ground_acceleration_m_per_s2;  ///< at t = n dt (borrowed); empty: free vibration
   const substructure::GroundMotionLoad* ground_load = nullptr;  ///< F = -M iota a_g; needed with a record
   std::uint32_t test_id = 1;
   /// As fast as possible, a full recorder queue makes the loop wait (nothing is lost); in
@@ -71,6 +71,9 @@ class RpsdLoop {
   /// Advances the test by one integration step and records it. Real-time safe.
   StepOutcome step(Recorder& recorder);
 
+  /// The record of the last step taken (what step() handed to the recorder). Real-time safe.
+  const StepRecord& last_record() const { return record_; }
+
   std::int64_t step_index() const { return step_; }
   std::int64_t steps_available() const;  ///< ground-motion steps, or unlimited (-1)
   double dt_s() const { return parts_.integrator->dt_s(); }
@@ -87,6 +90,7 @@ class RpsdLoop {
   std::vector<compensation::TrackingIndicator> tracking_;
   transport::CommandSample command_;
   transport::FeedbackSample feedback_;
+  StepRecord record_;
   std::int64_t step_ = 0;
   std::int64_t exchange_ = 0;
   double input_energy_j_ = 0.0, damping_energy_j_ = 0.0, restoring_energy_j_ = 0.0, kinetic_energy_j_ = 0.0;

@@ -1,56 +1,77 @@
 // Runs an `rpsd_test` scenario: builds every part from the typed scenario, runs the test as
-// fast as possible, runs the same structure again with a perfect actuator as the reference,
-// and computes the benchmark criteria. Not real-time safe as a whole; the loop inside is.
+// fast as possible, runs the same structure with a perfect actuator as the reference, and
+// computes the benchmark criteria. Not real-time safe as a whole; the loop inside is.
 #pragma once
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "rpsd/coordinator/rpsd_loop.h"
+#include "rpsd/coordinator/test_criteria.h"
 #include "rpsd/scenarios/test_scenario.h"
 
 namespace rpsd::coordinator {
 
 struct TestRun {
-  std::vector<StepRecord> records;
+  std::vector<StepRecord> records;  ///< every step, when the run kept them
+  std::int64_t steps = 0;           ///< steps taken
   StepOutcome outcome = StepOutcome::kOk;
   std::int64_t steps_planned = 0;
   std::uint64_t dropped_records = 0;
 };
 
-/// Runs the scenario; `csv` receives every step as it happens (empty: memory only). With
-/// `perfect_actuator` the plant is replaced by one that follows its command exactly and the
-/// compensation is switched off. `progress` (optional) is called about every 0.5 s of
-/// simulated time with (steps done, steps planned).
+/// One run of a scenario with every part built and started at rest: the numerical model,
+/// partition, integrator, compensators, the plants behind a simulated node and the
+/// in-process link, the loop and its recorder. Building is not real-time safe; step() is.
+class TestAssembly {
+ public:
+  /// `csv` receives every step as it happens (empty: none). With `perfect_actuator` the plant
+  /// is replaced by one that follows its command exactly and the compensation is switched off.
+  /// `keep_records`: keep every record in memory for finish(). The scenario must outlive the
+  /// assembly (the loop reads its ground motion in place).
+  TestAssembly(const scenarios::TestScenario& scenario, const std::filesystem::path& csv, bool perfect_actuator,
+               bool keep_records);
+  ~TestAssembly();
+  TestAssembly(const TestAssembly&) = delete;
+  TestAssembly& operator=(const TestAssembly&) = delete;
+
+  /// Steps in the scenario (its duration, or the record's length if shorter).
+  std::int64_t steps_planned() const;
+  /// One step, recorded. Real-time safe.
+  StepOutcome step();
+  const StepRecord& last_record() const;
+  /// Stops the recorder. Not real-time safe.
+  TestRun finish(StepOutcome outcome);
+
+ private:
+  struct Parts;
+  std::unique_ptr<Parts> parts_;
+};
+
+/// Runs the scenario, keeping every record in memory; `csv` as for TestAssembly. `progress`
+/// (optional) is called about every 0.5 s of simulated time with (steps done, steps planned).
 TestRun run_test(const scenarios::TestScenario& scenario, const std::filesystem::path& csv, bool perfect_actuator,
                  const std::function<void(std::int64_t, std::int64_t)>& progress = {});
 
-/// The benchmark's evaluation criteria (reference sheet section 7), per channel and per
-/// recorded DOF. RMS values are raw (not mean-removed); J4-J9 follow the paper's order.
-struct ChannelCriteria {
-  double j1_tracking_delay_ms = 0.0;   ///< cross-correlation lag of measured behind target
-  double j2_rms_tracking_error_percent = 0.0;
-  double j3_peak_tracking_error_percent = 0.0;
-  double final_tracking_indicator_m2 = 0.0;
-};
-/// J1-J3 and the final tracking indicator of one channel from its records (target vs
-/// measured); J1 searches lags up to 200 ms and is NaN when the record is too short.
-ChannelCriteria channel_criteria(const std::vector<StepRecord>& records, int channel, double control_rate_hz);
-
-struct DofCriteria {
-  double peak_displacement_m = 0.0;
-  double reference_peak_displacement_m = 0.0;
-  double rms_error_percent = 0.0;   ///< J4-J6 for floors 1-3
-  double peak_error_percent = 0.0;  ///< J7-J9 for floors 1-3
-};
-struct Criteria {
-  std::vector<ChannelCriteria> channels;
-  std::vector<DofCriteria> dofs;
-  double energy_error_j = 0.0;  ///< input - (kinetic + damping + restoring) at the end
+/// A test and its perfect-actuator reference, and the criteria between them.
+struct EvaluatedTest {
+  TestRun test;       ///< without records
+  TestRun reference;  ///< without records
+  Criteria criteria;
 };
 
+/// Runs the test and its reference side by side, step for step, and computes the criteria as
+/// they go: nothing is kept per step, so memory stays flat however long the record. The
+/// reference goes on to the end when the test aborts. CSVs as for TestAssembly.
+EvaluatedTest run_test_and_reference(const scenarios::TestScenario& scenario, const std::filesystem::path& test_csv,
+                                     const std::filesystem::path& reference_csv,
+                                     const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+
+/// The criteria from two runs that kept their records; the same numbers as
+/// run_test_and_reference gives.
 Criteria evaluate(const scenarios::TestScenario& scenario, const TestRun& test, const TestRun& reference);
 
 }  // namespace rpsd::coordinator

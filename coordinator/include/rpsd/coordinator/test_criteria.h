@@ -1,0 +1,73 @@
+// The benchmark's evaluation criteria (reference sheet section 7), computed as a test runs:
+// one step record at a time, so that a test of any length is evaluated without keeping its
+// history. Per channel J1-J3 and the final tracking indicator; per recorded DOF J4-J9
+// against the perfect-actuator reference; the energy error at the end. RMS values are raw
+// (not mean-removed); J4-J9 follow the paper's order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "rpsd/compensation/cross_correlation_delay.h"
+#include "rpsd/coordinator/step_record.h"
+
+namespace rpsd::coordinator {
+
+struct ChannelCriteria {
+  double j1_tracking_delay_ms = 0.0;   ///< cross-correlation lag of measured behind target
+  double j2_rms_tracking_error_percent = 0.0;
+  double j3_peak_tracking_error_percent = 0.0;
+  double final_tracking_indicator_m2 = 0.0;
+};
+
+struct DofCriteria {
+  double peak_displacement_m = 0.0;
+  double reference_peak_displacement_m = 0.0;
+  double rms_error_percent = 0.0;   ///< J4-J6 for floors 1-3
+  double peak_error_percent = 0.0;  ///< J7-J9 for floors 1-3
+};
+
+struct Criteria {
+  std::vector<ChannelCriteria> channels;
+  std::vector<DofCriteria> dofs;
+  double energy_error_j = 0.0;  ///< input - (kinetic + damping + restoring) at the end
+};
+
+class CriteriaAccumulator {
+ public:
+  /// J1 searches lags up to 200 ms and is NaN for a record not longer than twice that.
+  /// Not real-time safe.
+  CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz);
+
+  /// A step of the test: J1-J3, the tracking indicator and the energy. Real-time safe.
+  void add_test(const StepRecord& test);
+  /// The same step of the test and of its reference, for J4-J9; pairs run from the first
+  /// step while both runs have one. Real-time safe.
+  void add_pair(const StepRecord& test, const StepRecord& reference);
+
+  std::int64_t test_steps() const { return test_steps_; }
+  ChannelCriteria channel(int c) const;
+  Criteria criteria() const;
+
+ private:
+  struct ChannelSums {
+    compensation::CrossCorrelationAccumulator delay;
+    double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0, final_tracking_indicator_m2 = 0.0;
+  };
+  struct DofSums {
+    DofCriteria peaks;
+    double error2 = 0.0, reference2 = 0.0, peak_error = 0.0;
+  };
+  int max_lag_samples_;
+  double control_rate_hz_;
+  std::vector<ChannelSums> channels_;
+  std::vector<DofSums> dofs_;
+  std::int64_t test_steps_ = 0;
+  double energy_error_j_ = 0.0;
+};
+
+/// J1-J3 and the final tracking indicator of one channel from kept records (target vs
+/// measured); the same numbers CriteriaAccumulator gives.
+ChannelCriteria channel_criteria(const std::vector<StepRecord>& records, int channel, double control_rate_hz);
+
+}  // namespace rpsd::coordinator
