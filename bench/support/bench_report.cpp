@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
+#include <ctime>
 
 namespace rpsd::bench {
 namespace {
@@ -47,16 +48,25 @@ Summary map_summary(const Summary& s, const std::function<double(double)>& f) {
   return m;
 }
 
-std::vector<double> time_trials(int trials, int warmup, const std::function<void()>& body) {
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+Trials time_trials(int trials, int warmup, const std::function<void()>& body) {
   for (int i = 0; i < warmup; ++i) body();
-  std::vector<double> seconds;
-  seconds.reserve(static_cast<std::size_t>(trials));
+  Trials t;
+  t.wall_s.reserve(static_cast<std::size_t>(trials));
+  t.cpu_s.reserve(static_cast<std::size_t>(trials));
   for (int i = 0; i < trials; ++i) {
+    const double cpu_start = thread_cpu_s();
     const auto start = Clock::now();
     body();
-    seconds.push_back(seconds_since(start));
+    t.wall_s.push_back(seconds_since(start));
+    t.cpu_s.push_back(thread_cpu_s() - cpu_start);
   }
-  return seconds;
+  return t;
 }
 
 Fragment::Fragment(std::string step, int argc, char** argv) : step_(std::move(step)) {
@@ -74,6 +84,7 @@ Fragment::Fragment(std::string step, int argc, char** argv) : step_(std::move(st
 
 void Fragment::add(const Figure& f) {
   nlohmann::json j = {{"id", f.id}, {"title", f.title}, {"unit", f.unit}, {"value", to_json(f.value)}};
+  if (f.cpu_value.samples > 0) j["cpu_value"] = to_json(f.cpu_value);
   if (!f.target.empty()) {
     j["target"] = f.target;
     j["meets_target"] = f.meets_target;
@@ -99,9 +110,11 @@ void Fragment::write(const std::filesystem::path& file) const {
   }
   for (const auto& f : figures_) {
     const auto& v = f["value"];
-    std::printf("%-58s %12.4g %-14s (min %.4g, max %.4g, n %d)\n", f["title"].get<std::string>().c_str(),
+    std::printf("%-66s %10.4g %-12s (min %.4g, max %.4g, n %d)", f["title"].get<std::string>().c_str(),
                 v["median"].get<double>(), f["unit"].get<std::string>().c_str(), v["min"].get<double>(),
                 v["max"].get<double>(), v["samples"].get<int>());
+    if (f.contains("cpu_value")) std::printf("  [thread CPU time: %.4g]", f["cpu_value"]["median"].get<double>());
+    std::printf("\n");
   }
   for (const auto& n : notes_) std::printf("  note: %s\n", n.get<std::string>().c_str());
 }

@@ -29,8 +29,18 @@ Summary summarize(std::vector<double> values);
 /// be monotonic, so the median maps to the median and the spread keeps its order.
 Summary map_summary(const Summary& s, const std::function<double(double)>& f);
 
-/// Wall-clock seconds of `trials` calls of `body`, after `warmup` untimed calls.
-std::vector<double> time_trials(int trials, int warmup, const std::function<void()>& body);
+/// Seconds per trial: wall clock, and CPU time of the calling thread (on a shared machine
+/// the gap between the two is time the thread waited for a core, or for another thread).
+struct Trials {
+  std::vector<double> wall_s;
+  std::vector<double> cpu_s;
+};
+
+/// `trials` timed calls of `body`, after `warmup` untimed calls.
+Trials time_trials(int trials, int warmup, const std::function<void()>& body);
+
+/// CPU seconds the calling thread has used.
+double thread_cpu_s();
 
 using Clock = std::chrono::steady_clock;
 inline double seconds_since(Clock::time_point start) {
@@ -44,6 +54,9 @@ struct Figure {
   std::string title;     ///< what the row says in the table
   std::string unit;
   Summary value;
+  /// The same figure from the measuring thread's CPU time instead of the wall clock, where
+  /// that is meaningful (samples == 0: not reported).
+  Summary cpu_value;
   std::string target;    ///< the issue's target, or empty
   bool meets_target = true;
   std::string baseline_id;

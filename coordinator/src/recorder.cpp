@@ -4,6 +4,8 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "rpsd/coordinator/csv_number.h"
+
 namespace rpsd::coordinator {
 
 Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, RecorderOptions options)
@@ -24,35 +26,36 @@ Recorder::~Recorder() {
 }
 
 void Recorder::record(const StepRecord& r) {
-  if (!queue_.try_push(r)) dropped_.fetch_add(1, std::memory_order_relaxed);
+  if (!queue_.try_push_with([&](StepRecord& slot) { copy_used(r, slot); })) dropped_.fetch_add(1, std::memory_order_relaxed);
 }
 
 void Recorder::record_or_wait(const StepRecord& r) {
-  while (!queue_.try_push(r)) std::this_thread::yield();
+  while (!queue_.try_push_with([&](StepRecord& slot) { copy_used(r, slot); })) std::this_thread::yield();
+}
+
+void Recorder::take(const StepRecord& r) {
+  // A slot's entries beyond the record's channels and DOFs are never written (every record
+  // of one recorder has the same counts), so they hold the queue's initial zeros.
+  if (keep_records_) records_.push_back(r);
+  if (csv_.is_open()) write_row(r);
 }
 
 void Recorder::run() {
-  StepRecord r;
+  const auto take_one = [this](const StepRecord& r) { take(r); };
   std::size_t since_flush = 0;
   for (;;) {
     bool any = false;
-    while (queue_.try_pop(r)) {
+    while (queue_.try_pop_with(take_one)) {
       any = true;
-      if (keep_records_) records_.push_back(r);
-      if (csv_.is_open()) {
-        write_row(r);
-        if (++since_flush >= 256) {
-          csv_.flush();
-          since_flush = 0;
-        }
+      if (csv_.is_open() && ++since_flush >= 256) {
+        csv_.flush();
+        since_flush = 0;
       }
     }
     if (!any) {
       if (stopping_.load(std::memory_order_acquire)) {
         // One last drain: the producer stopped before setting the flag.
-        while (queue_.try_pop(r)) {
-          if (keep_records_) records_.push_back(r);
-          if (csv_.is_open()) write_row(r);
+        while (queue_.try_pop_with(take_one)) {
         }
         break;
       }
@@ -87,14 +90,13 @@ void Recorder::write_header() {
 }
 
 void Recorder::write_row(const StepRecord& r) {
-  // std::to_chars with precision 10 writes what printf's %.10g writes, several times faster;
-  // the row is built in one buffer and handed to the stream once.
-  char row[64 + 24 * (7 + 6 * transport::kMaxChannels + 4 * kMaxRecordedDofs)];
+  // What printf's %.10g writes (format_g10), built in one buffer and handed to the stream once.
+  char row[64 + (kG10MaxChars + 1) * (7 + 6 * transport::kMaxChannels + 4 * kMaxRecordedDofs)];
   char* out = row;
   char* const end = row + sizeof row;
   const auto put = [&](double v) {
     *out++ = ',';
-    out = std::to_chars(out, end, v, std::chars_format::general, 10).ptr;
+    out = format_g10(out, v);
   };
   out = std::to_chars(out, end, r.step).ptr;
   put(r.time_s);

@@ -74,7 +74,9 @@ SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, cons
   const double force0[] = {setup.force_path == RestoringForcePath::Kind::kMeasuredForce ? plant.measure().force_n
                                                                                           : k * d0};
   p.loop->start(Eigen::VectorXd::Constant(1, d0), force0);
-  p.recorder = std::make_unique<Recorder>(csv, 1, 1);
+  RecorderOptions recording;
+  recording.keep_records = setup.keep_records;
+  p.recorder = std::make_unique<Recorder>(csv, 1, 1, recording);
 }
 
 SdofRpsdTest::~SdofRpsdTest() = default;

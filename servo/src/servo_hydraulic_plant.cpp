@@ -19,17 +19,18 @@ ServoHydraulicPlant::ServoHydraulicPlant(const ServoSystemParameters& parameters
   k_.spool_feedback_v = valve.spool_lvdt_gain_v_per_m * valve.max_spool_stroke_m;
   k_.pilot_rate_per_s = 1.0 / valve.pilot_time_constant_s;
   k_.opening_per_m3 = 1.0 / (valve.main_spool_area_m2 * valve.max_spool_stroke_m);
-  k_.flow_gain_m3_per_s = p.flow.no_load_flow_gain_m3_per_s;
   k_.rolloff_squared = p.flow.nonlinear_flow_gain ? p.flow.flow_gain_rolloff * p.flow.flow_gain_rolloff : 0.0;
   k_.load_pressure_per_pa = p.flow.load_pressure_effect ? 1.0 / p.flow.supply_pressure_pa : 0.0;
-  k_.piston_area_m2 = p.actuator.piston_area_m2;
-  k_.leakage_m3_per_s_per_pa = p.actuator.leakage_m3_per_s_per_pa;
-  k_.stiffness_per_compressibility = 1.0 / p.actuator.compressibility_m5_per_n();
+  const double compressibility = p.actuator.compressibility_m5_per_n();
+  k_.flow_gain_per_compressibility = p.flow.no_load_flow_gain_m3_per_s / compressibility;
+  k_.area_per_compressibility = p.actuator.piston_area_m2 / compressibility;
+  k_.leakage_per_compressibility = p.actuator.leakage_m3_per_s_per_pa / compressibility;
   k_.stiffness = p.specimen.stiffness;
   k_.damping_n_s_per_m = p.specimen.damping_n_s_per_m();
-  k_.friction_force_n = p.specimen.friction_force_n;
-  k_.friction_per_velocity_s_per_m = 1.0 / p.specimen.friction_regularisation_velocity_m_per_s;
   k_.inverse_mass_per_kg = 1.0 / p.specimen.mass_kg;
+  k_.area_per_mass = p.actuator.piston_area_m2 / p.specimen.mass_kg;
+  k_.friction_per_mass = p.specimen.friction_force_n / p.specimen.mass_kg;
+  k_.friction_per_velocity_s_per_m = 1.0 / p.specimen.friction_regularisation_velocity_m_per_s;
   reset(0.0);
 }
 
@@ -51,7 +52,7 @@ void ServoHydraulicPlant::reset(double displacement_m) {
 }
 
 // The whole physics; inline so that RK4's four evaluations are one straight piece of code.
-inline ServoHydraulicPlant::State ServoHydraulicPlant::rate(const State& s, double command_m,
+inline ServoHydraulicPlant::Rates ServoHydraulicPlant::rate(const Rates& s, double command_m,
                                                             double command_rate_m_per_s) const {
   const double opening = s[kSpoolOpening];
   const double pilot_flow = s[kPilotFlow];
@@ -67,40 +68,49 @@ inline ServoHydraulicPlant::State ServoHydraulicPlant::rate(const State& s, doub
   if ((opening >= 1.0 && opening_rate > 0.0) || (opening <= -1.0 && opening_rate < 0.0)) opening_rate = 0.0;
 
   // Q_L = K_v0 x_v sqrt(drop / (1 + (r x_v)^2)): the load-pressure drop and the flow-gain
-  // roll-off under one square root. The roll-off's reciprocal depends on the opening only,
-  // so it is computed while the pressure's path is still on its way (the pressure is on the
-  // longest chain of dependent operations from one RK4 stage to the next). Flow stops when
-  // the load opposes with the full supply pressure; an aiding load can at most double the
-  // valve drop. With a term switched off its factor is exactly 1.
+  // roll-off under one square root. Flow stops when the load opposes with the full supply
+  // pressure; an aiding load can at most double the valve drop. With a term switched off its
+  // factor is exactly 1.
+  // From one RK4 stage to the next the pressure is on the longest chain of dependent
+  // operations (pressure, drop, root, pressure rate, next stage's pressure), so everything
+  // that does not depend on it (the roll-off, the signs, the other flows) is formed first:
+  // rolloff * drop = rolloff - (rolloff sgn(x_v) / P_s) P_L, clamped to [0, 2 rolloff].
   const double rolloff = 1.0 / (1.0 + k_.rolloff_squared * (opening * opening));
-  const double load_ratio = k_.load_pressure_per_pa * load_pressure;
-  const double drop = std::clamp(opening > 0.0 ? 1.0 - load_ratio : 1.0 + load_ratio, 0.0, 2.0);
-  const double valve_flow = (k_.flow_gain_m3_per_s * opening) * std::sqrt(drop * rolloff);
+  const double opposing_per_pa = (opening > 0.0 ? rolloff : -rolloff) * k_.load_pressure_per_pa;
+  const double drop = std::clamp(rolloff - opposing_per_pa * load_pressure, 0.0, 2.0 * rolloff);
+  const double other_flows = k_.area_per_compressibility * xdot + k_.leakage_per_compressibility * load_pressure;
+  const double pressure_rate = (k_.flow_gain_per_compressibility * opening) * std::sqrt(drop) - other_flows;
 
-  const double pressure_rate =
-      (valve_flow - k_.piston_area_m2 * xdot - k_.leakage_m3_per_s_per_pa * load_pressure) * k_.stiffness_per_compressibility;
+  // The same for the velocity, whose chain runs through the friction's tanh.
+  const double other_forces = k_.area_per_mass * load_pressure -
+                              (spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot) * k_.inverse_mass_per_kg;
+  const double acceleration =
+      other_forces - friction_force_n(k_.friction_per_mass, k_.friction_per_velocity_s_per_m, xdot);
 
-  const double specimen_force = spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot +
-                                friction_force_n(k_.friction_force_n, k_.friction_per_velocity_s_per_m, xdot);
-  const double acceleration = (k_.piston_area_m2 * load_pressure - specimen_force) * k_.inverse_mass_per_kg;
-
-  State r;
-  r << opening_rate, pilot_flow_rate, pressure_rate, xdot, acceleration;
-  return r;
+  return {opening_rate, pilot_flow_rate, pressure_rate, xdot, acceleration};
 }
 
 ServoHydraulicPlant::State ServoHydraulicPlant::derivative(const State& state, double command_m,
                                                            double command_rate_m_per_s) const {
-  return rate(state, command_m, command_rate_m_per_s);
+  const Rates r = rate({state[0], state[1], state[2], state[3], state[4]}, command_m, command_rate_m_per_s);
+  return State(r.data());
 }
 
-void ServoHydraulicPlant::rk4_step(double h, double u0, double command_rate) {
-  const State k1 = rate(state_, u0, command_rate);
-  const State k2 = rate(state_ + 0.5 * h * k1, u0 + 0.5 * h * command_rate, command_rate);
-  const State k3 = rate(state_ + 0.5 * h * k2, u0 + 0.5 * h * command_rate, command_rate);
-  const State k4 = rate(state_ + h * k3, u0 + h * command_rate, command_rate);
-  state_ += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-  state_[kSpoolOpening] = std::clamp(state_[kSpoolOpening], -1.0, 1.0);  // the spool's stops
+// Plain arrays rather than Eigen's 5-vectors here: with everything inlined the state stays in
+// registers, where packed 2-wide Eigen operations would bounce each stage through memory.
+void ServoHydraulicPlant::rk4_step(Rates& y, double h, double u0, double command_rate) const {
+  const double half = 0.5 * h;
+  Rates stage;
+  const Rates k1 = rate(y, u0, command_rate);
+  for (std::size_t i = 0; i < y.size(); ++i) stage[i] = y[i] + half * k1[i];
+  const Rates k2 = rate(stage, u0 + half * command_rate, command_rate);
+  for (std::size_t i = 0; i < y.size(); ++i) stage[i] = y[i] + half * k2[i];
+  const Rates k3 = rate(stage, u0 + half * command_rate, command_rate);
+  for (std::size_t i = 0; i < y.size(); ++i) stage[i] = y[i] + h * k3[i];
+  const Rates k4 = rate(stage, u0 + h * command_rate, command_rate);
+  const double sixth = h / 6.0;
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] += sixth * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+  y[kSpoolOpening] = std::clamp(y[kSpoolOpening], -1.0, 1.0);  // the spool's stops
 }
 
 void ServoHydraulicPlant::advance(double command_start_m, double command_end_m, double duration_s) {
@@ -109,14 +119,16 @@ void ServoHydraulicPlant::advance(double command_start_m, double command_end_m, 
   const int substeps = std::max(1, static_cast<int>(std::ceil(duration_s / max_step_s_ - 1e-9)));
   const double h = duration_s / substeps;
   const double command_rate = (command_end_m - command_start_m) / duration_s;
+  Rates y{state_[0], state_[1], state_[2], state_[3], state_[4]};
   for (int i = 0; i < substeps; ++i) {
-    rk4_step(h, command_start_m + command_rate * (i * h), command_rate);
+    rk4_step(y, h, command_start_m + command_rate * (i * h), command_rate);
   }
+  state_ = State(y.data());
   time_s_ += duration_s;
 }
 
 PlantMeasurement ServoHydraulicPlant::measure() const {
-  return {state_[kDisplacement], k_.piston_area_m2 * state_[kLoadPressure]};
+  return {state_[kDisplacement], parameters_.actuator.piston_area_m2 * state_[kLoadPressure]};
 }
 
 }  // namespace rpsd::servo

@@ -11,6 +11,7 @@
 
 #include "paper_rig.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/servo/regularised_tanh.h"
 #include "rpsd/servo/specimen_forces.h"
 
 namespace rpsd::servo {
@@ -23,20 +24,20 @@ std::int64_t ulps_apart(double a, double b) {
   return ia > ib ? ia - ib : ib - ia;  // same sign here: tanh keeps the sign of x
 }
 
-TEST(RegularisationTanh, WithinTwoUlpsOfStdTanhAndExactlyOneWhereTanhRoundsToOne) {
+TEST(RegularisedTanh, WithinTwoUlpsOfStdTanhAndExactlyOneWhereTanhRoundsToOne) {
   std::int64_t worst = 0;
   for (double x = -25.0; x <= 25.0; x += 3.7e-5) {
     if (x == 0.0) continue;
-    worst = std::max(worst, ulps_apart(regularisation_tanh(x), std::tanh(x)));
+    worst = std::max(worst, ulps_apart(regularised_tanh(x), std::tanh(x)));
   }
   EXPECT_LE(worst, 2);
   for (double x : {19.1, 19.2, 22.0, 100.0, 1e300}) {
-    EXPECT_EQ(regularisation_tanh(x), 1.0);
-    EXPECT_EQ(regularisation_tanh(-x), -1.0);
+    EXPECT_EQ(regularised_tanh(x), 1.0);
+    EXPECT_EQ(regularised_tanh(-x), -1.0);
     EXPECT_EQ(std::tanh(x), 1.0);
   }
-  EXPECT_EQ(regularisation_tanh(0.0), 0.0);
-  EXPECT_EQ(regularisation_tanh(1e-300), std::tanh(1e-300));
+  EXPECT_EQ(regularised_tanh(0.0), 0.0);
+  EXPECT_EQ(regularised_tanh(1e-300), std::tanh(1e-300));
 }
 
 // Eqs. 1-4 and the specimen, as the header states them, one operation at a time. `scale`

@@ -45,6 +45,7 @@ class Recorder {
  private:
   void write_header();
   void write_row(const StepRecord& r);
+  void take(const StepRecord& r);  ///< writer thread: one record off the queue
   void run();
 
   SpscQueue<StepRecord> queue_;

@@ -32,6 +32,8 @@ struct SdofRpsdSetup {
   /// Ground acceleration at t = n dt (F = -m a_g); empty for free vibration. The test then
   /// ends with the record.
   std::vector<double> ground_acceleration_m_per_s2;
+  /// Keep every step record in memory for finish() (the Figure 8 study needs them).
+  bool keep_records = true;
 };
 
 struct SdofRpsdResult {

@@ -38,4 +38,34 @@ struct StepRecord {
   std::uint32_t node_status = 0;
 };
 
+/// Copies what `from` uses (its channels and recorded DOFs) into `to`; the entries beyond
+/// stay as they were. Cheaper than copying the whole fixed-size record, which is mostly
+/// room for channels and DOFs a test does not have. Real-time safe.
+inline void copy_used(const StepRecord& from, StepRecord& to) {
+  to.step = from.step;
+  to.time_s = from.time_s;
+  to.ground_acceleration_m_per_s2 = from.ground_acceleration_m_per_s2;
+  to.channels = from.channels;
+  to.dofs = from.dofs;
+  for (int c = 0; c < from.channels; ++c) {
+    to.target_m[c] = from.target_m[c];
+    to.command_m[c] = from.command_m[c];
+    to.measured_m[c] = from.measured_m[c];
+    to.measured_force_n[c] = from.measured_force_n[c];
+    to.specimen_restoring_force_n[c] = from.specimen_restoring_force_n[c];
+    to.tracking_indicator_m2[c] = from.tracking_indicator_m2[c];
+  }
+  for (int d = 0; d < from.dofs; ++d) {
+    to.displacement_m[d] = from.displacement_m[d];
+    to.velocity_m_per_s[d] = from.velocity_m_per_s[d];
+    to.acceleration_m_per_s2[d] = from.acceleration_m_per_s2[d];
+    to.restoring_force_n[d] = from.restoring_force_n[d];
+  }
+  to.input_energy_j = from.input_energy_j;
+  to.kinetic_energy_j = from.kinetic_energy_j;
+  to.damping_energy_j = from.damping_energy_j;
+  to.restoring_energy_j = from.restoring_energy_j;
+  to.node_status = from.node_status;
+}
+
 }  // namespace rpsd::coordinator

@@ -12,11 +12,13 @@
 //
 // The plant runs 32 derivative evaluations per 1024 Hz control step, so the derivative is
 // written for speed: the parameters are folded once into products and reciprocals
-// (Coefficients), and one evaluation costs one division, one square root and, with friction,
-// one tanh. It is inlined into the RK4 step; nothing is virtual below advance().
+// (Coefficients), one evaluation costs one division, one square root and, with friction, one
+// tanh, and the terms are ordered to keep the chain of dependent operations from one RK4
+// stage to the next short. It is inlined into the RK4 step; nothing is virtual below advance().
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 
 #include "rpsd/servo/plant.h"
 #include "rpsd/servo/servo_parameters.h"
@@ -56,21 +58,22 @@ class ServoHydraulicPlant final : public Plant {
     double spool_feedback_v = 0.0;             ///< K_3 x_vmax: volts per unit opening
     double pilot_rate_per_s = 0.0;             ///< 1 / tau
     double opening_per_m3 = 0.0;               ///< 1 / (A_v x_vmax)
-    double flow_gain_m3_per_s = 0.0;           ///< K_v0
     double rolloff_squared = 0.0;              ///< r^2, or 0 with the flow gain held constant
     double load_pressure_per_pa = 0.0;         ///< 1 / P_s, or 0 without the load-pressure term
-    double piston_area_m2 = 0.0;
-    double leakage_m3_per_s_per_pa = 0.0;
-    double stiffness_per_compressibility = 0.0;  ///< 1 / K_a, Pa/m^3
+    double flow_gain_per_compressibility = 0.0;  ///< K_v0 / K_a
+    double area_per_compressibility = 0.0;       ///< A / K_a
+    double leakage_per_compressibility = 0.0;    ///< C_l / K_a
     SpecimenStiffness stiffness;
     double damping_n_s_per_m = 0.0;
-    double friction_force_n = 0.0;
-    double friction_per_velocity_s_per_m = 0.0;  ///< 1 / v_reg
     double inverse_mass_per_kg = 0.0;
+    double area_per_mass = 0.0;                  ///< A / m
+    double friction_per_mass = 0.0;              ///< F_c / m
+    double friction_per_velocity_s_per_m = 0.0;  ///< 1 / v_reg
   };
 
-  State rate(const State& s, double command_m, double command_rate_m_per_s) const;
-  void rk4_step(double h, double u0, double command_rate);
+  using Rates = std::array<double, 5>;  ///< a state or its derivative, in the State order
+  Rates rate(const Rates& s, double command_m, double command_rate_m_per_s) const;
+  void rk4_step(Rates& y, double h, double u0, double command_rate) const;
 
   ServoSystemParameters parameters_;
   Coefficients k_;
