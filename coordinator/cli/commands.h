@@ -24,7 +24,8 @@ void add_plot(CLI::App& app);
 
 /// A test that stopped before its end; its files are complete for every step it took.
 struct TestAborted : std::runtime_error {
-  explicit TestAborted(const std::string& summary) : std::runtime_error("test aborted; the reason is in " + summary) {}
+  explicit TestAborted(const std::string& summary, const std::string& reason = {})
+      : std::runtime_error("test " + (reason.empty() ? std::string("aborted") : reason) + "; every recorded step is in " + summary) {}
 };
 
 }  // namespace rpsd::cli

@@ -76,12 +76,13 @@ void add_run(CLI::App& app) {
     double rate_hz = 1024.0;
     if (const auto* test = std::get_if<scenarios::TestScenario>(&file.study)) rate_hz = test->control_rate_hz;
     bool completed = true;
+    std::string reason;
     {
       ProgressBar bar(rate_hz);
-      completed = coordinator::run_and_write(file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); });
+      completed = coordinator::run_and_write(file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); }, &reason);
     }
     std::cout << "rpsd run: " << file.name << " -> " << options->out << "/summary.json\n";
-    if (!completed) throw TestAborted(options->out + "/summary.json");
+    if (!completed) throw TestAborted(options->out + "/time_history.csv", reason);
   });
 }
 

@@ -83,7 +83,9 @@ void Recorder::write_header() {
     csv_ << ",displacement_m_dof" << d << ",velocity_m_per_s_dof" << d << ",acceleration_m_per_s2_dof" << d
          << ",restoring_force_n_dof" << d;
   }
-  csv_ << ",input_energy_j,kinetic_energy_j,damping_energy_j,restoring_energy_j,node_status\n";
+  csv_ << ",input_energy_j,kinetic_energy_j,damping_energy_j,restoring_energy_j,node_status,limit_flags";
+  for (int c = 0; c < channels_; ++c) csv_ << ",round_trip_s_ch" << c;
+  csv_ << ",cycle_lateness_s,late_feedback\n";
 }
 
 void Recorder::write_row(const StepRecord& r) {
@@ -113,7 +115,10 @@ void Recorder::write_row(const StepRecord& r) {
   put(r.kinetic_energy_j);
   put(r.damping_energy_j);
   put(r.restoring_energy_j);
-  csv_ << ',' << r.node_status << '\n';
+  csv_ << ',' << r.node_status << ',' << r.limit_flags;
+  for (int c = 0; c < channels_; ++c) put(r.round_trip_s[c]);
+  put(r.cycle_lateness_s);
+  csv_ << ',' << static_cast<int>(r.late_feedback) << '\n';
 }
 
 }  // namespace rpsd::coordinator

@@ -5,10 +5,10 @@
 #include <memory>
 
 #include "rpsd/compensation/cross_correlation_delay.h"
-#include "rpsd/servo/plant_node.h"
-#include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/coordinator/actuator_links.h"
+#include "rpsd/realtime/latency_histogram.h"
+#include "rpsd/realtime/pacer.h"
 #include "rpsd/substructure/ground_motion_load.h"
-#include "rpsd/transport/in_process_link.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -30,23 +30,54 @@ std::unique_ptr<substructure::NumericalModel> make_numerical(const scenarios::Te
       s.structure);
 }
 
-std::unique_ptr<servo::Plant> make_plant(const scenarios::PlantConfig& config) {
-  return std::visit(
-      [](const auto& c) -> std::unique_ptr<servo::Plant> {
-        using C = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<C, servo::ServoSystemParameters>) return std::make_unique<servo::ServoHydraulicPlant>(c);
-        else if constexpr (std::is_same_v<C, servo::PureDelayParameters>) return std::make_unique<servo::PureDelayPlant>(c);
-        else return std::make_unique<servo::TransferFunctionPlant>(c);
-      },
-      config);
-}
-
 integrators::StructuralMatrices integrator_matrices(const substructure::NumericalModel& model,
                                                     const substructure::StructuralMatrix& k0) {
   if (model.mass().is_sparse() || k0.is_sparse()) {
     return integrators::SparseStructuralMatrices{model.mass().to_sparse(), model.damping().to_sparse(), k0.to_sparse()};
   }
   return integrators::DenseStructuralMatrices{model.mass().to_dense(), model.damping().to_dense(), k0.to_dense()};
+}
+
+// The paced loop: absolute deadlines at the integration step; each cycle may wait for its
+// feedback until a fraction of the period is left for the integrator and the recorder.
+TimingReport run_paced(RpsdLoop& loop, Recorder& recorder, ActuatorLinks& actuators, const scenarios::TestScenario& s,
+                       TestRun& run) {
+  TimingReport timing;
+  timing.real_time = true;
+  const realtime::RealTimeSetupReport granted = realtime::apply_realtime(s.clock.realtime);
+  timing.memory_locked = granted.memory_locked;
+  timing.fifo_granted = granted.fifo_granted;
+  timing.refused = granted.refused;
+  const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / s.control_rate_hz));
+  realtime::Pacer pacer(period_ns);
+  realtime::LatencyHistogram jitter;
+  pacer.start();
+  for (std::int64_t n = 0; n < run.steps_planned; ++n) {
+    const std::int64_t late_ns = pacer.wait_next();
+    jitter.add(late_ns);
+    loop.set_cycle_lateness_ns(late_ns);
+    actuators.set_receive_deadline_ns(pacer.current_deadline_ns() + period_ns * 8 / 10);
+    run.outcome = loop.step(recorder);
+    if (run.outcome != StepOutcome::kOk) break;
+  }
+  timing.cycles = pacer.cycles();
+  timing.overruns = pacer.overruns();
+  timing.skipped_deadlines = pacer.skipped_deadlines();
+  timing.jitter = jitter.summary();
+  timing.late_feedback = loop.late_feedback_total();
+  return timing;
+}
+
+// Command-to-feedback latency per site from the records (each site's first channel).
+void fill_latency(TestRun& run, const ActuatorLinks& actuators) {
+  for (const SiteSummary& site : actuators.sites()) {
+    realtime::LatencyHistogram h;
+    const int ch = site.channels.front();
+    for (const StepRecord& r : run.records) h.add(static_cast<std::int64_t>(std::llround(r.round_trip_s[ch] * 1e9)));
+    run.timing.sites.push_back({site.site_id, h.summary()});
+  }
+  run.timing.over_dds = actuators.over_dds();
+  if (actuators.over_dds()) run.timing.dds_counters = actuators.dds_counters();
 }
 
 }  // namespace
@@ -71,64 +102,48 @@ TestRun run_test(const scenarios::TestScenario& s, const std::filesystem::path& 
   const double control_period_s = dt_s / integrator->iterations_per_step();
 
   std::vector<std::unique_ptr<compensation::CommandCompensator>> compensators;
-  std::vector<std::unique_ptr<servo::Plant>> plants;
-  std::vector<servo::Plant*> plant_pointers;
   LoopParts parts;
-  for (int c = 0; c < channels; ++c) {
-    const auto& channel = s.experimental[static_cast<std::size_t>(c)];
+  parts.compensators.resize(static_cast<std::size_t>(channels));
+  parts.force_paths.resize(static_cast<std::size_t>(channels));
+  for (const auto& channel : s.experimental) {
+    // The loop wants channel order; the partition numbered the channels 0..n-1.
+    const auto ch = static_cast<std::size_t>(channel.dof.actuator_channel);
     compensators.push_back(compensation::make_compensator(
         perfect_actuator ? compensation::CompensatorConfig{compensation::PassThroughParameters{}} : s.compensation,
         control_period_s));
-    parts.compensators.push_back(compensators.back().get());
-    const double k = channel.dof.specimen_stiffness_estimate_n_per_m;
-    plants.push_back(perfect_actuator ? std::make_unique<servo::PureDelayPlant>(servo::PureDelayParameters{0.0, k, 8192.0})
-                                      : make_plant(s.plant));
-    plant_pointers.push_back(plants.back().get());
-    parts.force_paths.push_back({channel.restoring_force == scenarios::RestoringForceSource::kMeasuredForce
-                                     ? RestoringForcePath::Kind::kMeasuredForce
-                                     : RestoringForcePath::Kind::kStiffnessTimesMeasuredDisplacement,
-                                 k});
+    parts.compensators[ch] = compensators.back().get();
+    parts.force_paths[ch] = {channel.restoring_force == scenarios::RestoringForceSource::kMeasuredForce
+                                 ? RestoringForcePath::Kind::kMeasuredForce
+                                 : RestoringForcePath::Kind::kStiffnessTimesMeasuredDisplacement,
+                             channel.dof.specimen_stiffness_estimate_n_per_m};
   }
-  // Channels are numbered 0..n-1 by the partition; the node's plants follow that order.
-  std::vector<servo::Plant*> by_channel(static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c) {
-    by_channel[static_cast<std::size_t>(s.experimental[static_cast<std::size_t>(c)].dof.actuator_channel)] =
-        plant_pointers[static_cast<std::size_t>(c)];
-  }
-  servo::PlantNode node(by_channel, control_period_s);
-  transport::InProcessLink link(node);
+
+  // Start at rest at the initial displacement, the specimens holding it.
+  Eigen::VectorXd hold(channels);
+  partition.extract_commands(s.initial_displacement_m, hold);
+  ActuatorLinks actuators(s, control_period_s, perfect_actuator,
+                          std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
 
   substructure::GroundMotionLoad ground_load;
   parts.integrator = integrator.get();
   parts.numerical = numerical.get();
   parts.partition = &partition;
-  parts.link = &link;
+  parts.link = &actuators.link();
   parts.recorded_dofs = s.record_dofs;
+  parts.test_id = s.transport.test_id;
+  const bool real_time = s.clock.mode == scenarios::ClockConfig::Mode::kRealTime && !perfect_actuator;
+  parts.wait_for_recorder = !real_time;
+  parts.max_late_feedback = real_time ? s.clock.max_late_feedback : 0;
   if (s.ground_motion) {
     ground_load.configure(numerical->mass(), s.influence);
     parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
     parts.ground_load = &ground_load;
   }
-  // Compensators and force paths were pushed in scenario order; the loop wants channel order.
-  {
-    LoopParts ordered = parts;
-    for (int c = 0; c < channels; ++c) {
-      const auto ch = static_cast<std::size_t>(s.experimental[static_cast<std::size_t>(c)].dof.actuator_channel);
-      ordered.compensators[ch] = parts.compensators[static_cast<std::size_t>(c)];
-      ordered.force_paths[ch] = parts.force_paths[static_cast<std::size_t>(c)];
-    }
-    parts = ordered;
-  }
   RpsdLoop loop(parts);
-
-  // Start at rest at the initial displacement, the specimens holding it.
-  Eigen::VectorXd hold(channels);
-  partition.extract_commands(s.initial_displacement_m, hold);
-  node.reset(std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
   std::vector<double> force0(static_cast<std::size_t>(channels));
   for (int c = 0; c < channels; ++c) {
     force0[static_cast<std::size_t>(c)] = parts.force_paths[static_cast<std::size_t>(c)].kind == RestoringForcePath::Kind::kMeasuredForce
-                                              ? by_channel[static_cast<std::size_t>(c)]->measure().force_n
+                                              ? actuators.initial_force_n(c)
                                               : parts.force_paths[static_cast<std::size_t>(c)].stiffness_n_per_m * hold[c];
   }
   loop.start(s.initial_displacement_m, force0);
@@ -138,13 +153,19 @@ TestRun run_test(const scenarios::TestScenario& s, const std::filesystem::path& 
   if (loop.steps_available() >= 0) run.steps_planned = std::min(run.steps_planned, loop.steps_available());
   Recorder recorder(csv, channels, static_cast<int>(s.record_dofs.size()));
   const auto report_every = std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * s.control_rate_hz));
-  for (std::int64_t n = 0; n < run.steps_planned; ++n) {
-    run.outcome = loop.step(recorder);
-    if (run.outcome != StepOutcome::kOk) break;
-    if (progress && (n + 1) % report_every == 0) progress(n + 1, run.steps_planned);
+  if (real_time) {
+    run.timing = run_paced(loop, recorder, actuators, s, run);
+  } else {
+    for (std::int64_t n = 0; n < run.steps_planned; ++n) {
+      run.outcome = loop.step(recorder);
+      if (run.outcome != StepOutcome::kOk) break;
+      if (progress && (n + 1) % report_every == 0) progress(n + 1, run.steps_planned);
+    }
   }
+  run.late_feedback_in_a_row = loop.late_feedback_in_a_row();
   run.dropped_records = recorder.dropped();
   run.records = recorder.finish();
+  fill_latency(run, actuators);
   return run;
 }
 

@@ -36,6 +36,12 @@ struct StepRecord {
   double damping_energy_j = 0.0;
   double restoring_energy_j = 0.0;
   std::uint32_t node_status = 0;
+  std::uint32_t limit_flags = 0;
+  // Timing (zero as fast as possible in process).
+  /// Command-to-feedback time of each channel's site this step, s.
+  std::array<double, transport::kMaxChannels> round_trip_s{};
+  double cycle_lateness_s = 0.0;  ///< how late the paced cycle woke after its deadline
+  std::uint8_t late_feedback = 0; ///< 1 when the feedback of this step was late (real time)
 };
 
 }  // namespace rpsd::coordinator

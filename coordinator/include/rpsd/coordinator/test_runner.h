@@ -9,15 +9,35 @@
 #include <vector>
 
 #include "rpsd/coordinator/rpsd_loop.h"
+#include "rpsd/realtime/latency_histogram.h"
+#include "rpsd/transport/dds_link.h"
 #include "rpsd/scenarios/test_scenario.h"
 
 namespace rpsd::coordinator {
+
+/// How the clock and the link behaved (real time and/or over DDS).
+struct TimingReport {
+  bool real_time = false;
+  bool over_dds = false;
+  bool memory_locked = false, fifo_granted = false;
+  std::string refused;  ///< what the OS refused (mlockall, SCHED_FIFO), once
+  std::int64_t cycles = 0, overruns = 0, skipped_deadlines = 0, late_feedback = 0;
+  realtime::LatencySummary jitter;  ///< wake-up lateness of the paced cycles
+  struct Site {
+    std::uint32_t site_id = 1;
+    realtime::LatencySummary round_trip;  ///< command-to-feedback, per step
+  };
+  std::vector<Site> sites;
+  std::vector<transport::DdsLinkCounters> dds_counters;  ///< per site, over DDS
+};
 
 struct TestRun {
   std::vector<StepRecord> records;
   StepOutcome outcome = StepOutcome::kOk;
   std::int64_t steps_planned = 0;
   std::uint64_t dropped_records = 0;
+  int late_feedback_in_a_row = 0;  ///< periods without fresh feedback when it stopped
+  TimingReport timing;
 };
 
 /// Runs the scenario; `csv` receives every step as it happens (empty: memory only). With
