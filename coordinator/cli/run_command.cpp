@@ -21,12 +21,6 @@ struct RunOptions {
   std::string record;
 };
 
-std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
-  std::vector<scenarios::Override> overrides;
-  for (const auto& t : texts) overrides.push_back(scenarios::parse_override(t));
-  return overrides;
-}
-
 // Steps, simulated time, speed as a multiple of real time, ETA; on a terminal only, and
 // only once the run has lasted a second.
 class ProgressBar {
@@ -56,6 +50,12 @@ class ProgressBar {
 };
 
 }  // namespace
+
+std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<scenarios::Override> overrides;
+  for (const auto& t : texts) overrides.push_back(scenarios::parse_override(t));
+  return overrides;
+}
 
 void add_run(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();

@@ -271,6 +271,10 @@ void read_transport(MappingReader r, const std::filesystem::path& file, TestScen
 
 }  // namespace
 
+PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m) {
+  return read_plant(std::move(section), file, specimen_stiffness_n_per_m);
+}
+
 Eigen::Index structure_dofs(const TestScenario& t) {
   return std::visit(
       [](const auto& c) -> Eigen::Index {
