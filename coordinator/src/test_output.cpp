@@ -223,7 +223,13 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::St
                           {"recorded_dofs", scenario.record_dofs.size()},
                           {"ground_motion", scenario.ground_motion.has_value()}};
   std::ofstream(dir / "plot.json") << plot_info.dump(2) << '\n';
-  draw(dir, plot_info);
+  // An aborted test keeps its exit status: a plot that cannot be drawn (too few steps) is
+  // reported, not fatal.
+  try {
+    if (test.records.size() >= 2) draw(dir, plot_info);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
+  }
   TestHeadline headline;
   headline.result = completed ? RunResult::kCompleted : RunResult::kAborted;
   headline.outcome = outcome;

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "rpsd/realtime/pacer.h"
+#include "rpsd/realtime/pacer.h"  // monotonic_now_ns
 
 namespace rpsd::servo {
 namespace {
@@ -55,7 +55,6 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   const auto heartbeat_every = std::max<std::int64_t>(1, std::llround(1.0 / (options.heartbeat_rate_hz * period_s)));
   const std::int64_t start_ns = realtime::monotonic_now_ns();
   const std::int64_t end_ns = options.duration_s > 0.0 ? start_ns + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
-  realtime::Pacer pacer(period_ns);
   realtime::LatencyHistogram jitter;
   TickWatch watch{controller, report};
   transport::CommandSample command;
@@ -73,19 +72,33 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   };
 
   if (options.real_time) {
-    pacer.start();
+    // Ticks are triggered by the commands: a command is applied the moment it arrives and
+    // the next tick is due one period (plus a grace of a quarter period for the
+    // coordinator's jitter) after it. When none comes, the node ticks on that deadline
+    // anyway, one period apart, and after command_timeout_periods such ticks it holds. So
+    // the node follows the coordinator's clock without a phase offset adding latency, and
+    // its watchdog runs on its own clock.
+    const std::int64_t grace_ns = period_ns / 4;
+    std::int64_t deadline = realtime::monotonic_now_ns() + period_ns + grace_ns;
     while (!stop.load(std::memory_order_relaxed)) {
-      jitter.add(pacer.wait_next());
+      const bool command_came = endpoint.wait_for_command_until(deadline);
+      const std::int64_t woke = realtime::monotonic_now_ns();
+      if (!command_came) jitter.add(woke - deadline);
       while (endpoint.take_command(command)) controller.accept(command);
       controller.tick(feedback);
       watch.after_tick();
       publish();
-      if (watch.tick % heartbeat_every == 0) maybe_heartbeat(realtime::monotonic_now_ns());
-      if (end_ns > 0 && realtime::monotonic_now_ns() >= end_ns) break;
+      ++report.cycles;
+      const std::int64_t done = realtime::monotonic_now_ns();
+      deadline = command_came ? woke + period_ns + grace_ns : deadline + period_ns;
+      if (done > deadline) {
+        // The tick itself took longer than a period: count it and re-anchor.
+        ++report.overruns;
+        deadline = done + period_ns;
+      }
+      if (watch.tick % heartbeat_every == 0) maybe_heartbeat(done);
+      if (end_ns > 0 && done >= end_ns) break;
     }
-    report.cycles = pacer.cycles();
-    report.overruns = pacer.overruns();
-    report.skipped_deadlines = pacer.skipped_deadlines();
     report.jitter = jitter.summary();
   } else {
     while (!stop.load(std::memory_order_relaxed)) {

@@ -1,9 +1,10 @@
 // The servo node's control loop around its controller and its DDS endpoint (the pattern of
 // ros2_control_node: lock memory, raise priority, absolute deadlines, count overruns).
 //
-// Real time: every control period it takes the commands that arrived, ticks the controller
-// (the newest command is applied on this tick; none for command_timeout_periods periods and
-// the node holds), publishes the feedback, and a heartbeat a few times a second.
+// Real time: each command is applied on the tick it triggers; when commands stop, the node
+// keeps ticking on its own deadlines one control period apart and, after
+// command_timeout_periods periods without one, holds. Every tick publishes feedback; a
+// heartbeat goes out a few times a second.
 // Lock-step: one tick per command, as fast as commands come; for rehearsals over the real
 // link with simulated actuators, where the plant must not advance while the coordinator
 // computes.
@@ -30,7 +31,7 @@ struct ServoNodeLoopOptions {
 struct ServoNodeLoopReport {
   realtime::RealTimeSetupReport granted;
   std::int64_t cycles = 0, overruns = 0, skipped_deadlines = 0;
-  realtime::LatencySummary jitter;
+  realtime::LatencySummary jitter;  ///< wake-up lateness of the ticks made without a command
   std::int64_t last_command_tick = -1;  ///< tick on which the last command was applied
   std::int64_t hold_tick = -1;          ///< first tick the watchdog held after it (-1: never)
   std::int64_t faulted_tick = -1;       ///< first tick with a latched fault (-1: never)
