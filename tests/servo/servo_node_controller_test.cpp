@@ -89,6 +89,16 @@ FeedbackSample send(ServoNodeController& node, const CommandSample& c) {
   return out;
 }
 
+// An ideal actuator and a node started at zero.
+struct Rig {
+  explicit Rig(const ServoNodeConfig& c, double stiffness_n_per_m = 0.0) : actuator(c.channels, stiffness_n_per_m), node(c, actuator) {
+    const std::vector<double> x0(static_cast<std::size_t>(c.channels), 0.0);
+    node.start(x0);
+  }
+  IdealActuator actuator;
+  ServoNodeController node;
+};
+
 FeedbackSample idle(ServoNodeController& node) {
   FeedbackSample out;
   node.tick(out);
@@ -188,12 +198,10 @@ TEST(ServoNodeController, AppliesEachCommandOnTheNextTickAndReportsIt) {
 }
 
 TEST(ServoNodeController, StrokeClampGivesExactlyTheBound) {
-  IdealActuator actuator(1);
   auto c = config();
   c.limits[0].max_stroke_m = 0.05;
-  ServoNodeController node(c, actuator);
-  const double x0[] = {0.0};
-  node.start(x0);
+  Rig rig(c);
+  auto& [actuator, node] = rig;
   FeedbackSample out = send(node, command(1, {0.06}));
   EXPECT_EQ(actuator.last(), 0.05);
   EXPECT_EQ(out.limit_flags, transport::kLimitStroke);
@@ -223,13 +231,11 @@ TEST(ServoNodeController, StrokeClampGivesExactlyTheBound) {
 }
 
 TEST(ServoNodeController, StrokeHoldFreezesEveryChannelUntilAnInLimitCommand) {
-  IdealActuator actuator(2);
   auto c = config(2);
   c.limits[0].max_stroke_m = 0.05;
   c.actions.stroke = LimitAction::kHold;
-  ServoNodeController node(c, actuator);
-  const double x0[] = {0.0, 0.0};
-  node.start(x0);
+  Rig rig(c);
+  auto& [actuator, node] = rig;
   send(node, command(1, {0.01, 0.02}));
   FeedbackSample out = send(node, command(2, {0.06, 0.03}));
   EXPECT_EQ(actuator.last(0), 0.01);
@@ -252,13 +258,11 @@ TEST(ServoNodeController, StrokeHoldFreezesEveryChannelUntilAnInLimitCommand) {
 }
 
 TEST(ServoNodeController, StrokeAbortLatchesAFaultUntilRestart) {
-  IdealActuator actuator(1);
   auto c = config();
   c.limits[0].max_stroke_m = 0.05;
   c.actions.stroke = LimitAction::kAbort;
-  ServoNodeController node(c, actuator);
-  const double x0[] = {0.0};
-  node.start(x0);
+  Rig rig(c);
+  auto& [actuator, node] = rig;
   send(node, command(1, {0.02}));
   FeedbackSample out = send(node, command(2, {0.051}));
   EXPECT_EQ(actuator.last(), 0.02);
@@ -273,6 +277,7 @@ TEST(ServoNodeController, StrokeAbortLatchesAFaultUntilRestart) {
   }
   EXPECT_EQ(node.counters().faults, 1u);
   EXPECT_EQ(node.counters().dropped(CommandVerdict::kNotFollowing), 17u);
+  const double x0[] = {0.0};
   node.start(x0);
   EXPECT_FALSE(node.faulted());
   out = send(node, command(1, {0.01}));
@@ -281,12 +286,11 @@ TEST(ServoNodeController, StrokeAbortLatchesAFaultUntilRestart) {
 }
 
 TEST(ServoNodeController, VelocityClampGivesIncrementsOfExactlyVT) {
-  IdealActuator actuator(1);
   auto c = config();
   c.limits[0].max_velocity_m_per_s = 0.125;  // v T = 2^-3 2^-10 = 2^-13 m
-  ServoNodeController node(c, actuator);
-  const double x0[] = {0.0}, step_m = 0.125 * kPeriod, target = 0.01;
-  node.start(x0);
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  const double step_m = 0.125 * kPeriod, target = 0.01;
   // The coordinator keeps asking for 10 mm; 10 mm / 2^-13 m = 81.92 periods.
   int clamped_ticks = 0;
   for (int step = 1; step <= 100; ++step) {
@@ -309,14 +313,12 @@ TEST(ServoNodeController, VelocityClampGivesIncrementsOfExactlyVT) {
 }
 
 TEST(ServoNodeController, IncrementClampAndTheTighterOfTheTwoRateLimits) {
-  IdealActuator actuator(2);
   auto c = config(2);
   c.limits[0].max_increment_m = 0.00048828125;  // 2^-11 m
   c.limits[1].max_increment_m = 0.00048828125;
   c.limits[1].max_velocity_m_per_s = 0.125;     // 2^-13 m per period: tighter on channel 1
-  ServoNodeController node(c, actuator);
-  const double x0[] = {0.0, 0.0};
-  node.start(x0);
+  Rig rig(c);
+  auto& [actuator, node] = rig;
   FeedbackSample out = send(node, command(1, {0.003, 0.003}));
   EXPECT_EQ(actuator.last(0), 0.00048828125);
   EXPECT_EQ(actuator.last(1), 0.0001220703125);
@@ -330,13 +332,11 @@ TEST(ServoNodeController, IncrementClampAndTheTighterOfTheTwoRateLimits) {
 
 TEST(ServoNodeController, VelocityHoldAndIncrementAbort) {
   {
-    IdealActuator actuator(1);
     auto c = config();
     c.limits[0].max_velocity_m_per_s = 1.0;  // ~0.98 mm per period
     c.actions.velocity = LimitAction::kHold;
-    ServoNodeController node(c, actuator);
-    const double x0[] = {0.0};
-    node.start(x0);
+    Rig rig(c);
+    auto& [actuator, node] = rig;
     FeedbackSample out = send(node, command(1, {0.002}));
     EXPECT_EQ(actuator.last(), 0.0);
     EXPECT_EQ(out.status, transport::kNodeLimitActive);
@@ -345,13 +345,11 @@ TEST(ServoNodeController, VelocityHoldAndIncrementAbort) {
     EXPECT_FALSE(node.faulted());
   }
   {
-    IdealActuator actuator(1);
     auto c = config();
     c.limits[0].max_increment_m = 0.001;
     c.actions.increment = LimitAction::kAbort;
-    ServoNodeController node(c, actuator);
-    const double x0[] = {0.0};
-    node.start(x0);
+    Rig rig(c);
+    auto& [actuator, node] = rig;
     send(node, command(1, {0.0009}));
     const FeedbackSample out = send(node, command(2, {0.0021}));
     EXPECT_EQ(actuator.last(), 0.0009);
@@ -363,77 +361,70 @@ TEST(ServoNodeController, VelocityHoldAndIncrementAbort) {
 
 // Ideal actuator on a 1 MN/m specimen, commands rising 1 mm per step, force limit 5.5 kN:
 // the load cell reads 6 kN after step 6, so the limit acts on the tick of step 7.
-struct ForceRig {
-  explicit ForceRig(LimitAction action) : actuator(1, 1e6), node(make(action), actuator) {
-    const double x0[] = {0.0};
-    node.start(x0);
-  }
-  static ServoNodeConfig make(LimitAction action) {
-    auto c = config();
-    c.limits[0].max_force_n = 5500.0;
-    c.actions.force = action;
-    return c;
-  }
-  IdealActuator actuator;
-  ServoNodeController node;
-};
+ServoNodeConfig force_config(LimitAction action) {
+  auto c = config();
+  c.limits[0].max_force_n = 5500.0;
+  c.actions.force = action;
+  return c;
+}
 
 TEST(ServoNodeController, ForceAbortLatchesOnTheTickAfterTheMeasurement) {
-  ForceRig rig(LimitAction::kAbort);
+  Rig rig(force_config(LimitAction::kAbort), 1e6);
+  auto& [actuator, node] = rig;
   FeedbackSample out;
   for (int step = 1; step <= 6; ++step) {
-    out = send(rig.node, command(step, {step * 1e-3}));
+    out = send(node, command(step, {step * 1e-3}));
     ASSERT_EQ(out.status, transport::kNodeOk) << step;
   }
   EXPECT_EQ(out.force_n[0], 6000.0);
-  out = send(rig.node, command(7, {7e-3}));
-  EXPECT_EQ(rig.actuator.last(), 6e-3);
+  out = send(node, command(7, {7e-3}));
+  EXPECT_EQ(actuator.last(), 6e-3);
   EXPECT_EQ(out.status, transport::kNodeFault | transport::kNodeLimitActive);
   EXPECT_EQ(out.limit_flags, transport::kLimitForce);
-  EXPECT_EQ(rig.node.accept(command(8, {5e-3})), CommandVerdict::kNotFollowing);
-  rig.node.tick(out);
-  EXPECT_EQ(rig.actuator.last(), 6e-3);
-  ASSERT_EQ(rig.node.events().size(), 1u);
-  EXPECT_EQ(rig.node.events()[0].tick, 6u);
-  EXPECT_EQ(rig.node.events()[0].step, 7);
-  EXPECT_EQ(rig.node.events()[0].observed, 6000.0);
-  EXPECT_EQ(rig.node.events()[0].bound, 5500.0);
+  EXPECT_EQ(node.accept(command(8, {5e-3})), CommandVerdict::kNotFollowing);
+  node.tick(out);
+  EXPECT_EQ(actuator.last(), 6e-3);
+  ASSERT_EQ(node.events().size(), 1u);
+  EXPECT_EQ(node.events()[0].tick, 6u);
+  EXPECT_EQ(node.events()[0].step, 7);
+  EXPECT_EQ(node.events()[0].observed, 6000.0);
+  EXPECT_EQ(node.events()[0].bound, 5500.0);
 }
 
 TEST(ServoNodeController, ForceClampStopsLoadingFurtherButAllowsUnloading) {
-  ForceRig rig(LimitAction::kClamp);
-  for (int step = 1; step <= 6; ++step) send(rig.node, command(step, {step * 1e-3}));
+  Rig rig(force_config(LimitAction::kClamp), 1e6);
+  auto& [actuator, node] = rig;
+  for (int step = 1; step <= 6; ++step) send(node, command(step, {step * 1e-3}));
   for (int step = 7; step <= 10; ++step) {
-    const FeedbackSample out = send(rig.node, command(step, {step * 1e-3}));
-    EXPECT_EQ(rig.actuator.last(), 6e-3) << step;
+    const FeedbackSample out = send(node, command(step, {step * 1e-3}));
+    EXPECT_EQ(actuator.last(), 6e-3) << step;
     EXPECT_EQ(out.limit_flags, transport::kLimitForce);
   }
-  const FeedbackSample out = send(rig.node, command(11, {4e-3}));
-  EXPECT_EQ(rig.actuator.last(), 4e-3);
+  const FeedbackSample out = send(node, command(11, {4e-3}));
+  EXPECT_EQ(actuator.last(), 4e-3);
   EXPECT_EQ(out.limit_flags, transport::kLimitForce);  // it acted on this tick (6 kN measured before it)
-  EXPECT_EQ(send(rig.node, command(12, {4.5e-3})).limit_flags, transport::kLimitNone);
-  EXPECT_FALSE(rig.node.faulted());
-  EXPECT_EQ(rig.node.counters().activations(LimitKind::kForce), 1u);
+  EXPECT_EQ(send(node, command(12, {4.5e-3})).limit_flags, transport::kLimitNone);
+  EXPECT_FALSE(node.faulted());
+  EXPECT_EQ(node.counters().activations(LimitKind::kForce), 1u);
 }
 
 TEST(ServoNodeController, ForceHoldFreezesTheCommandWhileTheForceIsExceeded) {
-  ForceRig rig(LimitAction::kHold);
-  for (int step = 1; step <= 6; ++step) send(rig.node, command(step, {step * 1e-3}));
+  Rig rig(force_config(LimitAction::kHold), 1e6);
+  auto& [actuator, node] = rig;
+  for (int step = 1; step <= 6; ++step) send(node, command(step, {step * 1e-3}));
   for (int step = 7; step <= 12; ++step) {
-    const FeedbackSample out = send(rig.node, command(step, {(14 - step) * 1e-3}));
-    EXPECT_EQ(rig.actuator.last(), 6e-3) << step;  // frozen whatever the command
+    const FeedbackSample out = send(node, command(step, {(14 - step) * 1e-3}));
+    EXPECT_EQ(actuator.last(), 6e-3) << step;  // frozen whatever the command
     EXPECT_EQ(out.status, transport::kNodeLimitActive);
   }
-  EXPECT_FALSE(rig.node.faulted());
+  EXPECT_FALSE(node.faulted());
 }
 
 TEST(ServoNodeController, WatchdogHoldsAfterExactlyNMissingPeriods) {
-  IdealActuator actuator(1);
   auto c = config();
   c.command_timeout_periods = 5;
-  ServoNodeController node(c, actuator);
-  const double x0[] = {0.0};
-  node.start(x0);
+  Rig rig(c);
+  auto& [actuator, node] = rig;
   for (int step = 1; step <= 10; ++step) send(node, command(step, {step * 1e-4}));
   for (int missing = 1; missing <= 4; ++missing) {
     const FeedbackSample out = idle(node);
@@ -457,15 +448,13 @@ TEST(ServoNodeController, WatchdogHoldsAfterExactlyNMissingPeriods) {
 }
 
 TEST(ServoNodeController, RampToSafeReachesTheSafePositionAtTheConfiguredRate) {
-  IdealActuator actuator(2);
   auto c = config(2);
   c.command_timeout_periods = 3;
   c.on_command_loss = LossAction::kRampToSafe;
   c.safe_ramp_velocity_m_per_s = 0.0625;  // 2^-4 m/s: 2^-14 m per period
   c.safe_position_m = {0.0, 0.001953125};  // channel 1 already there (2^-9 m)
-  ServoNodeController node(c, actuator);
-  const double x0[] = {0.0, 0.0};
-  node.start(x0);
+  Rig rig(c);
+  auto& [actuator, node] = rig;
   // 2^-7 + 2^-16 m from safe: 128.25 ramp periods, so 129 ticks, the last one partial.
   const double start_m = 0.0078125 + 0.0000152587890625, step_m = 0.0625 * kPeriod;
   send(node, command(1, {start_m, 0.001953125}));
@@ -536,10 +525,9 @@ TEST(ServoNodeController, BadCommandsAreDroppedCountedAndNeverApplied) {
 }
 
 TEST(ServoNodeController, TheNewestPendingCommandWins) {
-  IdealActuator actuator(1);
-  ServoNodeController node(config(), actuator);
-  const double x0[] = {0.0};
-  node.start(x0);
+  auto c = config();
+  Rig rig(c);
+  auto& [actuator, node] = rig;
   EXPECT_EQ(node.accept(command(1, {0.001})), CommandVerdict::kAccepted);
   EXPECT_EQ(node.accept(command(2, {0.002})), CommandVerdict::kAccepted);
   EXPECT_EQ(node.accept(command(1, {0.003})), CommandVerdict::kNotNewer);
@@ -552,10 +540,9 @@ TEST(ServoNodeController, TheNewestPendingCommandWins) {
 }
 
 TEST(ServoNodeController, ActuatorNoReplyKeepsTheLastMeasurementAndAFaultLatches) {
-  IdealActuator actuator(1, 1e5);
-  ServoNodeController node(config(), actuator);
-  const double x0[] = {0.0};
-  node.start(x0);
+  auto c = config();
+  Rig rig(c, 1e5);
+  auto& [actuator, node] = rig;
   send(node, command(1, {0.001}));
   actuator.script = {ActuatorStatus::kNoReply};
   FeedbackSample out = send(node, command(2, {0.002}));
@@ -577,13 +564,11 @@ TEST(ServoNodeController, ActuatorNoReplyKeepsTheLastMeasurementAndAFaultLatches
 }
 
 TEST(ServoNodeController, TheEventLogKeepsTheFirstActivationsAndCountsTheRest) {
-  IdealActuator actuator(1);
   auto c = config();
   c.limits[0].max_stroke_m = 0.05;
   c.event_log_capacity = 2;
-  ServoNodeController node(c, actuator);
-  const double x0[] = {0.0};
-  node.start(x0);
+  Rig rig(c);
+  auto& [actuator, node] = rig;
   for (int step = 1; step <= 8; ++step) send(node, command(step, {step % 2 ? 0.06 : 0.0}));
   EXPECT_EQ(node.counters().activations(LimitKind::kStroke), 4u);
   ASSERT_EQ(node.events().size(), 2u);
