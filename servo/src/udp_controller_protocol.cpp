@@ -23,6 +23,15 @@ std::uint64_t load(std::span<const std::byte> bytes, std::size_t at, int size) {
 void store_double(std::span<std::byte> bytes, std::size_t at, double value) { store(bytes, at, std::bit_cast<std::uint64_t>(value), 8); }
 double load_double(std::span<const std::byte> bytes, std::size_t at) { return std::bit_cast<double>(load(bytes, at, 8)); }
 
+// The 16 bytes both packets start with.
+void store_header(std::span<std::byte> bytes, std::uint32_t magic, std::uint8_t channels, std::uint8_t flags_or_status, std::uint64_t sequence) {
+  store(bytes, kMagicAt, magic, 4);
+  store(bytes, kVersionAt, kVersion, 2);
+  store(bytes, kChannelsAt, channels, 1);
+  store(bytes, kFlagsOrStatusAt, flags_or_status, 1);
+  store(bytes, kSequenceAt, sequence, 8);
+}
+
 bool valid_channels(int channels) { return channels >= 1 && channels <= kMaxChannels; }
 
 bool all_finite(const std::array<double, kMaxChannels>& values, int channels) {
@@ -77,11 +86,7 @@ const char* packet_status_name(PacketStatus status) {
 
 PacketStatus encode_command(const ControllerCommand& command, CommandPacket& out) noexcept {
   if (const PacketStatus s = check(command); s != PacketStatus::kOk) return s;
-  store(out, kMagicAt, kCommandMagic, 4);
-  store(out, kVersionAt, kVersion, 2);
-  store(out, kChannelsAt, command.channels, 1);
-  store(out, kFlagsOrStatusAt, command.query ? kFlagQuery : 0u, 1);
-  store(out, kSequenceAt, command.sequence, 8);
+  store_header(out, kCommandMagic, command.channels, command.query ? kFlagQuery : 0u, command.sequence);
   store_double(out, kPeriodAt, command.period_s);
   for (int c = 0; c < kMaxChannels; ++c) {
     store_double(out, kCommandDisplacementAt + 8 * c, c < command.channels ? command.displacement_m[c] : 0.0);
@@ -108,11 +113,7 @@ PacketStatus decode_command(std::span<const std::byte> bytes, ControllerCommand&
 
 PacketStatus encode_reply(const ControllerReply& reply, ReplyPacket& out) noexcept {
   if (const PacketStatus s = check(reply); s != PacketStatus::kOk) return s;
-  store(out, kMagicAt, kReplyMagic, 4);
-  store(out, kVersionAt, kVersion, 2);
-  store(out, kChannelsAt, reply.channels, 1);
-  store(out, kFlagsOrStatusAt, static_cast<std::uint8_t>(reply.status), 1);
-  store(out, kSequenceAt, reply.sequence, 8);
+  store_header(out, kReplyMagic, reply.channels, static_cast<std::uint8_t>(reply.status), reply.sequence);
   for (int c = 0; c < kMaxChannels; ++c) {
     const bool used = c < reply.channels;
     store_double(out, kReplyDisplacementAt + 8 * c, used ? reply.displacement_m[c] : 0.0);

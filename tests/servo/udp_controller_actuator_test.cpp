@@ -4,6 +4,7 @@
 // answer, has other channels or stands elsewhere; the emulator ignores bad datagrams.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <numbers>
@@ -52,6 +53,14 @@ UdpControllerConfig adapter_config(const ControllerEmulator& emulator, int chann
   return config;
 }
 
+// An emulated controller whose actuator is perfect: it measures its command at the end of
+// each period, and the load cell reads 1e5 N/m times that.
+struct IdealController {
+  PureDelayPlant plant{{0.0, 1e5, 8192.0}};
+  std::array<Plant*, 1> plants{&plant};
+  ControllerEmulator emulator{plants, {"127.0.0.1", 0}};
+};
+
 TransferFunctionPlantParameters benchmark() {
   return {{Polynomial{2.18385e13}, Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}}, 1.19e6, 8192.0};
 }
@@ -93,9 +102,8 @@ TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {
 }
 
 TEST(UdpControllerActuator, MissingRepliesGiveNoReplyThenALatchedFault) {
-  PureDelayPlant plant({0.0, 1e5, 8192.0});
-  Plant* plants[] = {&plant};
-  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  IdealController ideal;
+  auto& [plant, plants, emulator] = ideal;
   UdpControllerConfig config = adapter_config(emulator, 1);
   config.reply_timeout_s = 0.01;
   config.max_missed_replies = 2;
@@ -130,9 +138,8 @@ TEST(UdpControllerActuator, MissingRepliesGiveNoReplyThenALatchedFault) {
 }
 
 TEST(UdpControllerActuator, StaleRepliesAreDrainedAndCounted) {
-  PureDelayPlant plant({0.0, 1e5, 8192.0});
-  Plant* plants[] = {&plant};
-  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  IdealController ideal;
+  auto& [plant, plants, emulator] = ideal;
   UdpControllerConfig config = adapter_config(emulator, 1);
   config.reply_timeout_s = 0.01;
   UdpControllerActuator adapter(config);
@@ -156,9 +163,8 @@ TEST(UdpControllerActuator, StaleRepliesAreDrainedAndCounted) {
 }
 
 TEST(UdpControllerActuator, ControllerFaultIsReportedWithTheMeasurement) {
-  PureDelayPlant plant({0.0, 1e5, 8192.0});
-  Plant* plants[] = {&plant};
-  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  IdealController ideal;
+  auto& [plant, plants, emulator] = ideal;
   UdpControllerActuator adapter(adapter_config(emulator, 1));
   const double x0[] = {0.002}, u[] = {0.003};
   emulator.start(x0);
@@ -186,9 +192,8 @@ std::string start_error(UdpControllerActuator& adapter, std::span<const double> 
 }
 
 TEST(UdpControllerActuator, StartRefusesAnAbsentMismatchedOrDisplacedController) {
-  PureDelayPlant plant({0.0, 1e5, 8192.0});
-  Plant* plants[] = {&plant};
-  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  IdealController ideal;
+  auto& [plant, plants, emulator] = ideal;
   const double zero[] = {0.0}, zeros[] = {0.0, 0.0}, away[] = {0.01};
   emulator.start(zero);
 
@@ -241,9 +246,8 @@ TEST(UdpControllerActuator, ConfigErrorsNameTheField) {
 }
 
 TEST(ControllerEmulator, IgnoresBadDatagramsAndStops) {
-  PureDelayPlant plant({0.0, 1e5, 8192.0});
-  Plant* plants[] = {&plant};
-  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  IdealController ideal;
+  auto& [plant, plants, emulator] = ideal;
   const double x0[] = {0.0};
   emulator.start(x0);
   UdpSocket client(Ipv4Endpoint::parse("127.0.0.1", 0, "test"));

@@ -34,7 +34,7 @@ ControllerReply sample_reply() {
   return r;
 }
 
-std::uint64_t le(const CommandPacket& p, std::size_t at, int size) {
+std::uint64_t le(std::span<const std::byte> p, std::size_t at, int size) {
   std::uint64_t v = 0;
   for (int i = 0; i < size; ++i) v |= static_cast<std::uint64_t>(p[at + i]) << (8 * i);
   return v;
@@ -70,11 +70,7 @@ TEST(UdpProtocol, ReplyLayoutIsTheDocumentedOne) {
   EXPECT_EQ(p.size(), 144u);
   const char magic[] = {'R', 'P', 'S', 'R'};
   EXPECT_EQ(std::memcmp(p.data(), magic, 4), 0);
-  const auto at = [&](std::size_t offset) {
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(p[offset + i]) << (8 * i);
-    return v;
-  };
+  const auto at = [&](std::size_t offset) { return le(p, offset, 8); };
   EXPECT_EQ(static_cast<int>(p[6]), 2);  // channels
   EXPECT_EQ(static_cast<int>(p[7]), 1);  // status: fault
   EXPECT_EQ(at(8), 42u);
