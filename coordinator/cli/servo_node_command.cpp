@@ -119,7 +119,6 @@ void run_servo_node(const NodeOptions& o) {
   endpoint_config.test_id = file.node.test_id;
   endpoint_config.site_id = file.node.site_id;
   endpoint_config.qos.control_period_s = file.node.control_period_s;
-  endpoint_config.qos.deadline_periods = file.node.command_timeout_periods;
   transport::DdsNodeEndpoint endpoint(participant, endpoint_config);
 
   servo::ServoNodeLoopOptions options;

@@ -18,6 +18,12 @@ std::int64_t monotonic_now_ns() {
   return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
 }
 
+void sleep_until_ns(std::int64_t deadline_ns) {
+  const timespec ts = to_timespec(deadline_ns);
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
 Pacer::Pacer(std::int64_t period_ns) : period_ns_(period_ns) {
   if (period_ns <= 0) throw std::invalid_argument("Pacer: the period must be positive");
 }
@@ -41,9 +47,7 @@ std::int64_t Pacer::wait_next() {
     deadline_ns_ += period_ns_;
     return late;
   }
-  const timespec ts = to_timespec(deadline_ns_);
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
+  sleep_until_ns(deadline_ns_);
   now = monotonic_now_ns();
   const std::int64_t late = now - deadline_ns_;
   deadline_ns_ += period_ns_;

@@ -73,16 +73,26 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
 
   if (options.real_time) {
     // Ticks are triggered by the commands: a command is applied the moment it arrives and
-    // the next tick is due one period (plus a grace of a quarter period for the
-    // coordinator's jitter) after it. When none comes, the node ticks on that deadline
+    // the next tick is due two periods after it (one period plus one of grace). When none comes, the node ticks on that deadline
     // anyway, one period apart, and after command_timeout_periods such ticks it holds. So
     // the node follows the coordinator's clock without a phase offset adding latency, and
     // its watchdog runs on its own clock.
-    const std::int64_t grace_ns = period_ns / 4;
+    // A command may come up to one period late before the node ticks without it (the
+    // coordinator's jitter on a loaded machine must not advance the plant on its own), and
+    // ticks stay at least 3/4 of a period apart, so a command that arrives just after a
+    // deadline tick waits instead of advancing the plant a second period.
+    const std::int64_t grace_ns = period_ns;
+    const std::int64_t min_spacing_ns = period_ns * 3 / 4;
     std::int64_t deadline = realtime::monotonic_now_ns() + period_ns + grace_ns;
+    std::int64_t last_tick = 0;
     while (!stop.load(std::memory_order_relaxed)) {
       const bool command_came = endpoint.wait_for_command_until(deadline);
-      const std::int64_t woke = realtime::monotonic_now_ns();
+      std::int64_t woke = realtime::monotonic_now_ns();
+      if (command_came && woke < last_tick + min_spacing_ns) {
+        realtime::sleep_until_ns(last_tick + min_spacing_ns);
+        woke = realtime::monotonic_now_ns();
+      }
+      last_tick = woke;
       if (!command_came) jitter.add(woke - deadline);
       while (endpoint.take_command(command)) controller.accept(command);
       controller.tick(feedback);

@@ -13,7 +13,6 @@ DdsQos stream_qos(const DdsQosSettings& s) {
   dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_MSECS(1));
   dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, s.history_depth);
   dds_qset_durability(q.get(), DDS_DURABILITY_VOLATILE);
-  dds_qset_deadline(q.get(), seconds(s.deadline_periods * s.control_period_s));
   dds_qset_liveliness(q.get(), DDS_LIVELINESS_AUTOMATIC, seconds(s.liveliness_lease_s));
   dds_qset_latency_budget(q.get(), 0);
   return q;

@@ -10,6 +10,8 @@ namespace rpsd::realtime {
 
 /// Nanoseconds on CLOCK_MONOTONIC. Real-time safe.
 std::int64_t monotonic_now_ns();
+/// Sleeps until the absolute CLOCK_MONOTONIC time. Real-time safe.
+void sleep_until_ns(std::int64_t deadline_ns);
 
 class Pacer {
  public:
