@@ -4,6 +4,9 @@
 #include <CLI/CLI.hpp>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::cli {
 
@@ -22,9 +25,16 @@ void add_validate(CLI::App& app);
 /// `rpsd plot DIR`: redraw the plots of a test output folder.
 void add_plot(CLI::App& app);
 
+/// `rpsd servo-node NODE.yaml` and `rpsd controller-emulator EMULATOR.yaml`.
+void add_servo_node(CLI::App& app);
+
+/// `--set key.path=value` texts to overrides (ConfigError on a malformed one).
+std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts);
+
 /// A test that stopped before its end; its files are complete for every step it took.
 struct TestAborted : std::runtime_error {
-  explicit TestAborted(const std::string& summary) : std::runtime_error("test aborted; the reason is in " + summary) {}
+  explicit TestAborted(const std::string& summary, const std::string& reason = {})
+      : std::runtime_error("test " + (reason.empty() ? std::string("aborted") : reason) + "; every recorded step is in " + summary) {}
 };
 
 }  // namespace rpsd::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   rpsd::cli::add_run(app);
   rpsd::cli::add_validate(app);
   rpsd::cli::add_plot(app);
+  rpsd::cli::add_servo_node(app);
 
   try {
     app.parse(argc, argv);

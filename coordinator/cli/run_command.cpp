@@ -21,12 +21,6 @@ struct RunOptions {
   std::string record;
 };
 
-std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
-  std::vector<scenarios::Override> overrides;
-  for (const auto& t : texts) overrides.push_back(scenarios::parse_override(t));
-  return overrides;
-}
-
 // Steps, simulated time, speed as a multiple of real time, ETA; on a terminal only, and
 // only once the run has lasted a second.
 class ProgressBar {
@@ -57,6 +51,12 @@ class ProgressBar {
 
 }  // namespace
 
+std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<scenarios::Override> overrides;
+  for (const auto& t : texts) overrides.push_back(scenarios::parse_override(t));
+  return overrides;
+}
+
 void add_run(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   auto* run = app.add_subcommand("run", "Run a scenario and write its results (CSV, summary.json, PNG plots)");
@@ -76,12 +76,13 @@ void add_run(CLI::App& app) {
     double rate_hz = 1024.0;
     if (const auto* test = std::get_if<scenarios::TestScenario>(&file.study)) rate_hz = test->control_rate_hz;
     bool completed = true;
+    std::string reason;
     {
       ProgressBar bar(rate_hz);
-      completed = coordinator::run_and_write(file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); });
+      completed = coordinator::run_and_write(file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); }, &reason);
     }
     std::cout << "rpsd run: " << file.name << " -> " << options->out << "/summary.json\n";
-    if (!completed) throw TestAborted(options->out + "/summary.json");
+    if (!completed) throw TestAborted(options->out + "/time_history.csv", reason);
   });
 }
 

@@ -9,7 +9,11 @@
 namespace rpsd::coordinator {
 
 Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, RecorderOptions options)
-    : queue_(options.queue_capacity), channels_(channels), dofs_(dofs), keep_records_(options.keep_records) {
+    : queue_(options.queue_capacity),
+      channels_(channels),
+      dofs_(dofs),
+      keep_records_(options.keep_records),
+      row_(static_cast<std::size_t>(64 + (kG10MaxChars + 1) * (10 + 7 * channels + 4 * dofs))) {
   if (channels > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
     throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
   }
@@ -86,14 +90,16 @@ void Recorder::write_header() {
     csv_ << ",displacement_m_dof" << d << ",velocity_m_per_s_dof" << d << ",acceleration_m_per_s2_dof" << d
          << ",restoring_force_n_dof" << d;
   }
-  csv_ << ",input_energy_j,kinetic_energy_j,damping_energy_j,restoring_energy_j,node_status\n";
+  csv_ << ",input_energy_j,kinetic_energy_j,damping_energy_j,restoring_energy_j,node_status,limit_flags";
+  for (int c = 0; c < channels_; ++c) csv_ << ",round_trip_s_ch" << c;
+  csv_ << ",cycle_lateness_s,late_feedback\n";
 }
 
 void Recorder::write_row(const StepRecord& r) {
   // What printf's %.10g writes (format_g10), built in one buffer and handed to the stream once.
-  char row[64 + (kG10MaxChars + 1) * (7 + 6 * transport::kMaxChannels + 4 * kMaxRecordedDofs)];
+  char* const row = row_.data();
+  char* const end = row + row_.size();
   char* out = row;
-  char* const end = row + sizeof row;
   const auto put = [&](double v) {
     *out++ = ',';
     out = format_g10(out, v);
@@ -121,6 +127,12 @@ void Recorder::write_row(const StepRecord& r) {
   put(r.restoring_energy_j);
   *out++ = ',';
   out = std::to_chars(out, end, r.node_status).ptr;
+  *out++ = ',';
+  out = std::to_chars(out, end, r.limit_flags).ptr;
+  for (int c = 0; c < channels_; ++c) put(r.round_trip_s[c]);
+  put(r.cycle_lateness_s);
+  *out++ = ',';
+  out = std::to_chars(out, end, static_cast<int>(r.late_feedback)).ptr;
   *out++ = '\n';
   csv_.write(row, out - row);
 }

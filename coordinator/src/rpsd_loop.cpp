@@ -70,6 +70,9 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
   step_ = 0;
   exchange_ = 0;
   record_ = StepRecord{};
+  late_total_ = 0;
+  late_in_a_row_ = 0;
+  feedback_.step = -1;
   previous_d_ = d0;
   previous_v_.setZero();
   previous_r_ = restoring_;
@@ -98,6 +101,7 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   if (integrator.begin_step(force_) != integrators::StepStatus::ok) return StepOutcome::kIntegratorError;
 
   const int iterations = integrator.iterations_per_step();
+  late_this_step_ = false;
   for (int it = 0; it < iterations; ++it) {
     const Eigen::VectorXd& d = integrator.target_displacement();
     partition.extract_commands(d, targets_);
@@ -105,7 +109,17 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     command_.time_s = (exchange_ + 1) * integrator.dt_s() / iterations;
     for (int c = 0; c < channels_; ++c) command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
     if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
-    if (parts_.link->receive(feedback_) != transport::LinkStatus::kOk || feedback_.step != exchange_) {
+    const transport::LinkStatus received = parts_.link->receive(feedback_);
+    if (received == transport::LinkStatus::kOk && feedback_.step == exchange_) {
+      late_in_a_row_ = 0;
+    } else if (received == transport::LinkStatus::kTimeout && late_in_a_row_ < parts_.max_late_feedback &&
+               feedback_.step >= 0 && feedback_.step < exchange_) {
+      // Real time: carry on with the newest measurement; the record says so.
+      ++late_in_a_row_;
+      ++late_total_;
+      late_this_step_ = true;
+    } else {
+      if (received != transport::LinkStatus::kOk) ++late_in_a_row_;
       return StepOutcome::kLinkFailure;
     }
     ++exchange_;
@@ -149,6 +163,9 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   record_.ground_acceleration_m_per_s2 = ground;
   fill_record(record_);
   record_.node_status = feedback_.status;
+  record_.limit_flags = feedback_.limit_flags;
+  record_.cycle_lateness_s = static_cast<double>(cycle_lateness_ns_) * 1e-9;
+  record_.late_feedback = late_this_step_ ? 1 : 0;
   if (parts_.wait_for_recorder) {
     recorder.record_or_wait(record_);
   } else {
@@ -168,6 +185,7 @@ void RpsdLoop::fill_record(StepRecord& r) const {
     r.measured_force_n[c] = feedback_.force_n[c];
     r.specimen_restoring_force_n[c] = specimen_forces_[c];
     r.tracking_indicator_m2[c] = tracking_[c].value_m2();
+    r.round_trip_s[c] = static_cast<double>(feedback_.round_trip_ns[c]) * 1e-9;
   }
   for (std::size_t i = 0; i < parts_.recorded_dofs.size(); ++i) {
     const Eigen::Index dof = parts_.recorded_dofs[i];

@@ -200,7 +200,7 @@ void write_max_gain(const std::filesystem::path& dir, const scenarios::StudyFile
 }
 
 bool run_and_write(const scenarios::StudyFile& file, const std::filesystem::path& dir,
-                   const std::function<void(std::int64_t, std::int64_t)>& progress) {
+                   const std::function<void(std::int64_t, std::int64_t)>& progress, std::string* abort_reason) {
   std::filesystem::create_directories(dir);
   bool completed = true;
   std::visit(
@@ -217,7 +217,9 @@ bool run_and_write(const scenarios::StudyFile& file, const std::filesystem::path
         } else if (!file.sweep.empty()) {
           completed = run_sweep_into(dir, file, progress) == RunResult::kCompleted;
         } else {
-          completed = run_test_into(dir, file, study, progress).result == RunResult::kCompleted;
+          const TestHeadline headline = run_test_into(dir, file, study, progress);
+          completed = headline.result == RunResult::kCompleted;
+          if (!completed && abort_reason) *abort_reason = headline.outcome;
         }
       },
       file.study);

@@ -39,9 +39,13 @@ void CriteriaAccumulator::add_test(const StepRecord& r) {
 }
 
 void CriteriaAccumulator::add_pair(const StepRecord& test, const StepRecord& reference) {
+  add_pair(std::span<const double>(test.displacement_m.data(), dofs_.size()), reference);
+}
+
+void CriteriaAccumulator::add_pair(std::span<const double> test_displacement_m, const StepRecord& reference) {
   for (std::size_t d = 0; d < dofs_.size(); ++d) {
     DofSums& s = dofs_[d];
-    const double x = test.displacement_m[d], xr = reference.displacement_m[d];
+    const double x = test_displacement_m[d], xr = reference.displacement_m[d];
     s.error2 += (x - xr) * (x - xr);
     s.reference2 += xr * xr;
     s.peak_error = std::max(s.peak_error, std::abs(x - xr));

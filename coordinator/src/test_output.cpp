@@ -17,7 +17,7 @@ const char* outcome_text(StepOutcome o) {
   switch (o) {
     case StepOutcome::kOk: return "completed";
     case StepOutcome::kRecordEnded: return "completed";
-    case StepOutcome::kLinkFailure: return "aborted: no feedback from the servo node for a step";
+    case StepOutcome::kLinkFailure: return "aborted: the servo node stopped answering";
     case StepOutcome::kIntegratorError: return "aborted: the integrator rejected a step";
     case StepOutcome::kNodeFault: return "aborted: the servo node reported a fault";
     case StepOutcome::kNonFinite: return "aborted: a non-finite measurement arrived";
@@ -102,6 +102,53 @@ nlohmann::json ground_motion_json(const scenarios::GroundMotion& motion) {
           {"pga_g", pga / 9.80665}};
 }
 
+std::string describe_outcome(const scenarios::TestScenario& s, const TestRun& test) {
+  std::string text = outcome_text(test.outcome);
+  if (test.outcome == StepOutcome::kLinkFailure) {
+    char detail[200];
+    if (test.timing.real_time) {
+      std::snprintf(detail, sizeof detail, " (%d consecutive control periods without fresh feedback; step %zu, t = %.4f s)",
+                    test.late_feedback_in_a_row, static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
+    } else {
+      std::snprintf(detail, sizeof detail, " (none within %g s at step %zu, t = %.4f s)", s.transport.feedback_timeout_s,
+                    static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
+    }
+    text += detail;
+  }
+  return text;
+}
+
+nlohmann::json latency_json(const realtime::LatencySummary& l) {
+  return {{"count", l.count}, {"p50_s", l.p50_s}, {"p99_s", l.p99_s}, {"p99_9_s", l.p999_s}, {"max_s", l.max_s}, {"mean_s", l.mean_s}};
+}
+
+nlohmann::json timing_json(const TimingReport& t) {
+  using nlohmann::json;
+  json sites = json::array();
+  for (std::size_t i = 0; i < t.sites.size(); ++i) {
+    json site = {{"site_id", t.sites[i].site_id}, {"round_trip", latency_json(t.sites[i].round_trip)}};
+    if (i < t.dds_counters.size()) {
+      const auto& c = t.dds_counters[i];
+      site["messages"] = {{"sent", c.sent}, {"received", c.received}, {"late", c.late},
+                          {"dropped_wrong_test_or_site", c.wrong_test_or_site},
+                          {"dropped_wrong_channels", c.wrong_channels}, {"dropped_older_step", c.older_step}};
+    }
+    sites.push_back(site);
+  }
+  json j = {{"real_time", t.real_time}, {"over_dds", t.over_dds}, {"sites", sites}};
+  if (t.real_time) {
+    j["cycles"] = t.cycles;
+    j["overruns"] = t.overruns;
+    j["skipped_deadlines"] = t.skipped_deadlines;
+    j["late_feedback"] = t.late_feedback;
+    j["jitter"] = latency_json(t.jitter);
+    j["memory_locked"] = t.memory_locked;
+    j["sched_fifo"] = t.fifo_granted;
+    j["refused"] = t.refused;
+  }
+  return j;
+}
+
 }  // namespace
 
 TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::StudyFile& file,
@@ -116,6 +163,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::St
   const TestRun& test = run.test;
   const Criteria& criteria = run.criteria;
   const bool completed = test.outcome == StepOutcome::kOk || test.outcome == StepOutcome::kRecordEnded;
+  const std::string outcome = describe_outcome(scenario, test);
 
   using nlohmann::json;
   json channels = json::array();
@@ -153,7 +201,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::St
       {"study", "rpsd_test"},
       {"scenario", file.name},
       {"description", file.description},
-      {"outcome", outcome_text(test.outcome)},
+      {"outcome", outcome},
       {"completed", completed},
       {"steps", test.steps},
       {"steps_planned", test.steps_planned},
@@ -166,8 +214,10 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::St
       {"benchmark_criteria", benchmark},
       {"energy_error_j", criteria.energy_error_j},
       {"dropped_records", test.dropped_records},
-      {"overruns", 0},
-      {"clock", "as_fast_as_possible"},
+      {"overruns", test.timing.overruns},
+      {"clock", scenario.clock.mode == scenarios::ClockConfig::Mode::kRealTime ? "real_time" : "as_fast_as_possible"},
+      {"transport", scenario.transport.kind == scenarios::TransportConfig::Kind::kDds ? "dds" : "in_process"},
+      {"timing", timing_json(test.timing)},
   };
   std::ofstream(dir / "summary.json") << summary.dump(2) << '\n';
   const json plot_info = {{"title", file.name},
@@ -175,9 +225,16 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const scenarios::St
                           {"recorded_dofs", scenario.record_dofs.size()},
                           {"ground_motion", scenario.ground_motion.has_value()}};
   std::ofstream(dir / "plot.json") << plot_info.dump(2) << '\n';
-  draw(dir, plot_info);
+  // An aborted test keeps its exit status: a plot that cannot be drawn (too few steps) is
+  // reported, not fatal.
+  try {
+    if (test.steps >= 2) draw(dir, plot_info);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
+  }
   TestHeadline headline;
   headline.result = completed ? RunResult::kCompleted : RunResult::kAborted;
+  headline.outcome = outcome;
   if (!criteria.channels.empty()) headline.j2_percent = criteria.channels[0].j2_rms_tracking_error_percent;
   if (!criteria.dofs.empty()) {
     headline.j4_percent = criteria.dofs[0].rms_error_percent;

@@ -4,13 +4,11 @@
 #include <cmath>
 #include <memory>
 
+#include "rpsd/coordinator/actuator_links.h"
 #include "rpsd/coordinator/recorder.h"
-
-#include "rpsd/compensation/cross_correlation_delay.h"
-#include "rpsd/servo/plant_node.h"
-#include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/realtime/latency_histogram.h"
+#include "rpsd/realtime/pacer.h"
 #include "rpsd/substructure/ground_motion_load.h"
-#include "rpsd/transport/in_process_link.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -32,17 +30,6 @@ std::unique_ptr<substructure::NumericalModel> make_numerical(const scenarios::Te
       s.structure);
 }
 
-std::unique_ptr<servo::Plant> make_plant(const scenarios::PlantConfig& config) {
-  return std::visit(
-      [](const auto& c) -> std::unique_ptr<servo::Plant> {
-        using C = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<C, servo::ServoSystemParameters>) return std::make_unique<servo::ServoHydraulicPlant>(c);
-        else if constexpr (std::is_same_v<C, servo::PureDelayParameters>) return std::make_unique<servo::PureDelayPlant>(c);
-        else return std::make_unique<servo::TransferFunctionPlant>(c);
-      },
-      config);
-}
-
 integrators::StructuralMatrices integrator_matrices(const substructure::NumericalModel& model,
                                                     const substructure::StructuralMatrix& k0) {
   if (model.mass().is_sparse() || k0.is_sparse()) {
@@ -51,27 +38,45 @@ integrators::StructuralMatrices integrator_matrices(const substructure::Numerica
   return integrators::DenseStructuralMatrices{model.mass().to_dense(), model.damping().to_dense(), k0.to_dense()};
 }
 
+std::int64_t progress_interval(const scenarios::TestScenario& s) {
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * s.control_rate_hz));
+}
+
 }  // namespace
 
 struct TestAssembly::Parts {
+  const scenarios::TestScenario* scenario = nullptr;
+  bool real_time = false;
   std::unique_ptr<substructure::NumericalModel> numerical;
   substructure::Partition partition;
   std::unique_ptr<integrators::Integrator> integrator;
   std::vector<std::unique_ptr<compensation::CommandCompensator>> compensators;
-  std::vector<std::unique_ptr<servo::Plant>> plants;
-  std::unique_ptr<servo::PlantNode> node;
-  std::unique_ptr<transport::InProcessLink> link;
+  std::unique_ptr<ActuatorLinks> actuators;
   substructure::GroundMotionLoad ground_load;
   std::unique_ptr<RpsdLoop> loop;
   std::unique_ptr<Recorder> recorder;
+  std::vector<realtime::LatencyHistogram> round_trips;  ///< per site, its first channel
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
+  TimingReport timing;
+
+  // Counts a step the loop took and hands its record on. Real-time safe.
+  void took_step(const std::function<void(const StepRecord&)>& after_step) {
+    ++steps;
+    const StepRecord& r = loop->last_record();
+    for (std::size_t i = 0; i < round_trips.size(); ++i) {
+      const int ch = actuators->sites()[i].channels.front();
+      round_trips[i].add(static_cast<std::int64_t>(std::llround(r.round_trip_s[static_cast<std::size_t>(ch)] * 1e9)));
+    }
+    if (after_step) after_step(r);
+  }
 };
 
 TestAssembly::TestAssembly(const scenarios::TestScenario& s, const std::filesystem::path& csv, bool perfect_actuator,
                            bool keep_records)
     : parts_(std::make_unique<Parts>()) {
   Parts& p = *parts_;
+  p.scenario = &s;
   p.numerical = make_numerical(s);
   const Eigen::Index dofs = p.numerical->dofs();
   const int channels = static_cast<int>(s.experimental.size());
@@ -88,57 +93,55 @@ TestAssembly::TestAssembly(const scenarios::TestScenario& s, const std::filesyst
       integrator_matrices(*p.numerical, p.partition.with_specimen_stiffness(p.numerical->initial_stiffness())), dt_s);
   const double control_period_s = dt_s / p.integrator->iterations_per_step();
 
-  // Channels are numbered 0..n-1 by the partition; the node's plants, the compensators and
-  // the force paths follow that order.
   LoopParts parts;
   parts.compensators.resize(static_cast<std::size_t>(channels));
   parts.force_paths.resize(static_cast<std::size_t>(channels));
-  std::vector<servo::Plant*> by_channel(static_cast<std::size_t>(channels));
   for (const auto& channel : s.experimental) {
+    // The loop wants channel order; the partition numbered the channels 0..n-1.
     const auto ch = static_cast<std::size_t>(channel.dof.actuator_channel);
     p.compensators.push_back(compensation::make_compensator(
         perfect_actuator ? compensation::CompensatorConfig{compensation::PassThroughParameters{}} : s.compensation,
         control_period_s));
     parts.compensators[ch] = p.compensators.back().get();
-    const double k = channel.dof.specimen_stiffness_estimate_n_per_m;
-    p.plants.push_back(perfect_actuator ? std::make_unique<servo::PureDelayPlant>(servo::PureDelayParameters{0.0, k, 8192.0})
-                                        : make_plant(s.plant));
-    by_channel[ch] = p.plants.back().get();
     parts.force_paths[ch] = {channel.restoring_force == scenarios::RestoringForceSource::kMeasuredForce
                                  ? RestoringForcePath::Kind::kMeasuredForce
                                  : RestoringForcePath::Kind::kStiffnessTimesMeasuredDisplacement,
-                             k};
+                             channel.dof.specimen_stiffness_estimate_n_per_m};
   }
-  p.node = std::make_unique<servo::PlantNode>(by_channel, control_period_s);
-  p.link = std::make_unique<transport::InProcessLink>(*p.node);
+
+  // Start at rest at the initial displacement, the specimens holding it.
+  Eigen::VectorXd hold(channels);
+  p.partition.extract_commands(s.initial_displacement_m, hold);
+  p.actuators = std::make_unique<ActuatorLinks>(s, control_period_s, perfect_actuator,
+                                                std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
 
   parts.integrator = p.integrator.get();
   parts.numerical = p.numerical.get();
   parts.partition = &p.partition;
-  parts.link = p.link.get();
+  parts.link = &p.actuators->link();
   parts.recorded_dofs = s.record_dofs;
+  parts.test_id = s.transport.test_id;
+  p.real_time = s.clock.mode == scenarios::ClockConfig::Mode::kRealTime && !perfect_actuator;
+  parts.wait_for_recorder = !p.real_time;
+  parts.max_late_feedback = p.real_time ? s.clock.max_late_feedback : 0;
   if (s.ground_motion) {
     p.ground_load.configure(p.numerical->mass(), s.influence);
     parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
     parts.ground_load = &p.ground_load;
   }
-  const std::vector<RestoringForcePath> force_paths = parts.force_paths;
-  p.loop = std::make_unique<RpsdLoop>(std::move(parts));
-
-  // Start at rest at the initial displacement, the specimens holding it.
-  Eigen::VectorXd hold(channels);
-  p.partition.extract_commands(s.initial_displacement_m, hold);
-  p.node->reset(std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
   std::vector<double> force0(static_cast<std::size_t>(channels));
-  for (std::size_t c = 0; c < force0.size(); ++c) {
-    const RestoringForcePath& path = force_paths[c];
-    force0[c] = path.kind == RestoringForcePath::Kind::kMeasuredForce ? by_channel[c]->measure().force_n
-                                                                      : path.stiffness_n_per_m * hold[static_cast<Eigen::Index>(c)];
+  for (int c = 0; c < channels; ++c) {
+    const RestoringForcePath& path = parts.force_paths[static_cast<std::size_t>(c)];
+    force0[static_cast<std::size_t>(c)] = path.kind == RestoringForcePath::Kind::kMeasuredForce
+                                              ? p.actuators->initial_force_n(c)
+                                              : path.stiffness_n_per_m * hold[c];
   }
+  p.loop = std::make_unique<RpsdLoop>(std::move(parts));
   p.loop->start(s.initial_displacement_m, force0);
 
   p.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
   if (p.loop->steps_available() >= 0) p.steps_planned = std::min(p.steps_planned, p.loop->steps_available());
+  p.round_trips.resize(p.actuators->sites().size());
   RecorderOptions recording;
   recording.keep_records = keep_records;
   p.recorder = std::make_unique<Recorder>(csv, channels, static_cast<int>(s.record_dofs.size()), recording);
@@ -148,68 +151,140 @@ TestAssembly::~TestAssembly() = default;
 
 std::int64_t TestAssembly::steps_planned() const { return parts_->steps_planned; }
 
+bool TestAssembly::real_time() const { return parts_->real_time; }
+
 StepOutcome TestAssembly::step() {
   const StepOutcome outcome = parts_->loop->step(*parts_->recorder);
-  if (outcome == StepOutcome::kOk) ++parts_->steps;
+  if (outcome == StepOutcome::kOk) parts_->took_step({});
   return outcome;
 }
 
 const StepRecord& TestAssembly::last_record() const { return parts_->loop->last_record(); }
 
+StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& after_step,
+                              const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  Parts& p = *parts_;
+  RpsdLoop& loop = *p.loop;
+  StepOutcome outcome = StepOutcome::kOk;
+  if (!p.real_time) {
+    const std::int64_t report_every = progress_interval(*p.scenario);
+    for (std::int64_t n = 0; n < p.steps_planned; ++n) {
+      outcome = loop.step(*p.recorder);
+      if (outcome != StepOutcome::kOk) break;
+      p.took_step(after_step);
+      if (progress && (n + 1) % report_every == 0) progress(n + 1, p.steps_planned);
+    }
+    return outcome;
+  }
+  // The paced loop: absolute deadlines at the integration step; each cycle may wait for its
+  // feedback until a fraction of the period is left for the integrator and the recorder.
+  TimingReport& timing = p.timing;
+  timing.real_time = true;
+  const realtime::RealTimeSetupReport granted = realtime::apply_realtime(p.scenario->clock.realtime);
+  timing.memory_locked = granted.memory_locked;
+  timing.fifo_granted = granted.fifo_granted;
+  timing.refused = granted.refused;
+  const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / p.scenario->control_rate_hz));
+  realtime::Pacer pacer(period_ns);
+  realtime::LatencyHistogram jitter;
+  // The first exchange may wait the full feedback timeout (the link's first sample, page
+  // faults after mlockall); the clock starts once it is done.
+  if (p.steps_planned > 0) {
+    p.actuators->set_receive_deadline_ns(0);
+    outcome = loop.step(*p.recorder);
+    if (outcome != StepOutcome::kOk) return outcome;
+    p.took_step(after_step);
+  }
+  pacer.start();
+  for (std::int64_t n = 1; n < p.steps_planned; ++n) {
+    const std::int64_t late_ns = pacer.wait_next();
+    jitter.add(late_ns);
+    loop.set_cycle_lateness_ns(late_ns);
+    p.actuators->set_receive_deadline_ns(pacer.current_deadline_ns() + period_ns * 8 / 10);
+    outcome = loop.step(*p.recorder);
+    if (outcome != StepOutcome::kOk) break;
+    p.took_step(after_step);
+  }
+  timing.cycles = pacer.cycles();
+  timing.overruns = pacer.overruns();
+  timing.skipped_deadlines = pacer.skipped_deadlines();
+  timing.jitter = jitter.summary();
+  timing.late_feedback = loop.late_feedback_total();
+  return outcome;
+}
+
 TestRun TestAssembly::finish(StepOutcome outcome) {
+  Parts& p = *parts_;
   TestRun run;
   run.outcome = outcome;
-  run.steps = parts_->steps;
-  run.steps_planned = parts_->steps_planned;
-  run.dropped_records = parts_->recorder->dropped();
-  run.records = parts_->recorder->finish();
+  run.steps = p.steps;
+  run.steps_planned = p.steps_planned;
+  run.late_feedback_in_a_row = p.loop->late_feedback_in_a_row();
+  run.dropped_records = p.recorder->dropped();
+  run.records = p.recorder->finish();
+  run.timing = p.timing;
+  // Command-to-feedback latency per site (each site's first channel).
+  for (std::size_t i = 0; i < p.round_trips.size(); ++i) {
+    run.timing.sites.push_back({p.actuators->sites()[i].site_id, p.round_trips[i].summary()});
+  }
+  run.timing.over_dds = p.actuators->over_dds();
+  if (p.actuators->over_dds()) run.timing.dds_counters = p.actuators->dds_counters();
   return run;
 }
-
-namespace {
-
-std::int64_t progress_interval(const scenarios::TestScenario& s) {
-  return std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * s.control_rate_hz));
-}
-
-}  // namespace
 
 TestRun run_test(const scenarios::TestScenario& s, const std::filesystem::path& csv, bool perfect_actuator,
                  const std::function<void(std::int64_t, std::int64_t)>& progress) {
   TestAssembly assembly(s, csv, perfect_actuator, true);
-  const std::int64_t planned = assembly.steps_planned(), report_every = progress_interval(s);
-  StepOutcome outcome = StepOutcome::kOk;
-  for (std::int64_t n = 0; n < planned; ++n) {
-    outcome = assembly.step();
-    if (outcome != StepOutcome::kOk) break;
-    if (progress && (n + 1) % report_every == 0) progress(n + 1, planned);
-  }
+  const StepOutcome outcome = assembly.run({}, progress);
   return assembly.finish(outcome);
 }
 
 EvaluatedTest run_test_and_reference(const scenarios::TestScenario& s, const std::filesystem::path& test_csv,
                                      const std::filesystem::path& reference_csv,
                                      const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  const auto channels = static_cast<int>(s.experimental.size());
+  const auto dofs = static_cast<std::size_t>(s.record_dofs.size());
+  CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz);
   TestAssembly test(s, test_csv, false, false);
-  TestAssembly reference(s, reference_csv, true, false);
-  CriteriaAccumulator sums(static_cast<int>(s.experimental.size()), static_cast<int>(s.record_dofs.size()),
-                           s.control_rate_hz);
-  const std::int64_t planned = test.steps_planned(), report_every = progress_interval(s);
-  StepOutcome test_outcome = StepOutcome::kOk, reference_outcome = StepOutcome::kOk;
-  for (std::int64_t n = 0; n < planned; ++n) {
-    const bool testing = test_outcome == StepOutcome::kOk;
-    if (testing) test_outcome = test.step();
-    if (reference_outcome == StepOutcome::kOk) reference_outcome = reference.step();
-    if (testing && test_outcome == StepOutcome::kOk) {
-      sums.add_test(test.last_record());
-      if (reference_outcome == StepOutcome::kOk) sums.add_pair(test.last_record(), reference.last_record());
-    }
-    if (test_outcome != StepOutcome::kOk && reference_outcome != StepOutcome::kOk) break;
-    if (progress && (n + 1) % report_every == 0) progress(n + 1, planned);
-  }
   EvaluatedTest result;
+  StepOutcome test_outcome = StepOutcome::kOk, reference_outcome = StepOutcome::kOk;
+
+  if (!test.real_time()) {
+    TestAssembly reference(s, reference_csv, true, false);
+    const std::int64_t planned = test.steps_planned(), report_every = progress_interval(s);
+    for (std::int64_t n = 0; n < planned; ++n) {
+      const bool testing = test_outcome == StepOutcome::kOk;
+      if (testing) test_outcome = test.step();
+      if (reference_outcome == StepOutcome::kOk) reference_outcome = reference.step();
+      if (testing && test_outcome == StepOutcome::kOk) {
+        sums.add_test(test.last_record());
+        if (reference_outcome == StepOutcome::kOk) sums.add_pair(test.last_record(), reference.last_record());
+      }
+      if (test_outcome != StepOutcome::kOk && reference_outcome != StepOutcome::kOk) break;
+      if (progress && (n + 1) % report_every == 0) progress(n + 1, planned);
+    }
+    result.reference = reference.finish(reference_outcome);
+  } else {
+    std::vector<double> displacements(static_cast<std::size_t>(test.steps_planned()) * dofs);
+    std::size_t taken = 0;
+    test_outcome = test.run(
+        [&](const StepRecord& r) {
+          sums.add_test(r);
+          std::copy_n(r.displacement_m.begin(), dofs, displacements.begin() + static_cast<std::ptrdiff_t>(taken * dofs));
+          ++taken;
+        },
+        progress);
+    TestAssembly reference(s, reference_csv, true, false);
+    std::size_t paired = 0;
+    reference_outcome = reference.run(
+        [&](const StepRecord& r) {
+          if (paired < taken) sums.add_pair(std::span<const double>(displacements.data() + paired * dofs, dofs), r);
+          ++paired;
+        },
+        {});
+    result.reference = reference.finish(reference_outcome);
+  }
   result.test = test.finish(test_outcome);
-  result.reference = reference.finish(reference_outcome);
   result.criteria = sums.criteria();
   return result;
 }

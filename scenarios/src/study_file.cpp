@@ -148,6 +148,8 @@ Override parse_override(const std::string& text) {
 namespace {
 
 // Walks key.path (mapping keys, or list indices as numbers) and replaces the value there.
+}  // namespace
+
 void apply_override(YAML::Node root, const Override& o) {
   std::vector<std::string> keys;
   std::size_t start = 0;
@@ -192,6 +194,8 @@ void apply_override(YAML::Node root, const Override& o) {
     throw ConfigError("--set " + o.key_path + ": the parent is not a mapping");
   }
 }
+
+namespace {
 
 }  // namespace
 

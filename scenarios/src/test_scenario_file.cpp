@@ -230,7 +230,50 @@ compensation::CompensatorConfig read_compensation(MappingReader r, double contro
   return config;
 }
 
+void read_clock(MappingReader clock, TestScenario& t) {
+  const std::string mode = clock.string("mode");
+  if (mode == "as_fast_as_possible") {
+    t.clock.mode = ClockConfig::Mode::kAsFastAsPossible;
+  } else if (mode == "real_time") {
+    t.clock.mode = ClockConfig::Mode::kRealTime;
+  } else {
+    clock.fail("mode", "expected as_fast_as_possible or real_time, got \"" + mode + "\"");
+  }
+  t.control_rate_hz = clock.positive_number("control_rate_hz");
+  if (t.control_rate_hz > 65536.0) clock.fail("control_rate_hz", "at most 65536 Hz");
+  t.clock.max_late_feedback = static_cast<int>(clock.whole_number_or("max_late_feedback", 0, 1000, t.clock.max_late_feedback));
+  t.clock.realtime.lock_memory = clock.boolean_or("lock_memory", t.clock.realtime.lock_memory);
+  t.clock.realtime.fifo_priority = static_cast<int>(clock.whole_number_or("fifo_priority", 0, 99, t.clock.realtime.fifo_priority));
+  clock.finish();
+}
+
+void read_transport(MappingReader r, const std::filesystem::path& file, TestScenario& t) {
+  const std::string kind = r.string("kind");
+  if (kind == "in_process") {
+    t.transport.kind = TransportConfig::Kind::kInProcess;
+  } else if (kind == "dds") {
+    t.transport.kind = TransportConfig::Kind::kDds;
+  } else {
+    r.fail("kind", "expected in_process or dds, got \"" + kind + "\"");
+  }
+  t.transport.test_id = static_cast<std::uint32_t>(r.whole_number_or("test_id", 1, 4'000'000'000L, t.transport.test_id));
+  t.transport.domain_id = static_cast<std::uint32_t>(r.whole_number_or("domain_id", 0, 232, t.transport.domain_id));
+  if (auto config = r.optional_string("dds_config")) {
+    t.transport.dds_config = file.parent_path() / *config;
+    if (!std::filesystem::exists(t.transport.dds_config)) {
+      r.fail("dds_config", "no such file: " + t.transport.dds_config.string());
+    }
+  }
+  t.transport.feedback_timeout_s = r.positive_number_or("feedback_timeout_s", t.transport.feedback_timeout_s);
+  t.transport.discovery_timeout_s = r.positive_number_or("discovery_timeout_s", t.transport.discovery_timeout_s);
+  r.finish();
+}
+
 }  // namespace
+
+PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m) {
+  return read_plant(std::move(section), file, specimen_stiffness_n_per_m);
+}
 
 Eigen::Index structure_dofs(const TestScenario& t) {
   return std::visit(
@@ -266,6 +309,7 @@ TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path
     } else {
       e.fail("restoring_force", "expected measured_force or stiffness_times_displacement, got \"" + source + "\"");
     }
+    channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1));
     if (!used.insert(channel.dof.dof).second) e.fail("dof", "is experimental twice");
     e.finish();
     t.experimental.push_back(channel);
@@ -281,16 +325,8 @@ TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path
   // One specimen stiffness for the plants' load cells: the first channel's estimate.
   t.plant = read_plant(root.mapping("servo"), file, t.experimental.front().dof.specimen_stiffness_estimate_n_per_m);
   if (root.has("integrator")) t.integrator = read_integrator(root.mapping("integrator"));
-  {
-    MappingReader clock = root.mapping("clock");
-    const std::string mode = clock.string("mode");
-    if (mode != "as_fast_as_possible") {
-      clock.fail("mode", "only as_fast_as_possible is available (real-time pacing comes with the transport issue)");
-    }
-    t.control_rate_hz = clock.positive_number("control_rate_hz");
-    if (t.control_rate_hz > 65536.0) clock.fail("control_rate_hz", "at most 65536 Hz");
-    clock.finish();
-  }
+  read_clock(root.mapping("clock"), t);
+  if (auto transport = root.optional_mapping("transport")) read_transport(*transport, file, t);
   const double dt_s = 1.0 / t.control_rate_hz;
   const double control_period_s = dt_s / integrators::make_integrator(t.integrator)->iterations_per_step();
   if (root.has("compensation")) t.compensation = read_compensation(root.mapping("compensation"), control_period_s);

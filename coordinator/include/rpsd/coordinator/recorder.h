@@ -52,6 +52,7 @@ class Recorder {
   std::ofstream csv_;
   int channels_, dofs_;
   bool keep_records_;
+  std::vector<char> row_;  ///< one CSV row, built by the writer thread
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};
   std::atomic<std::uint64_t> dropped_{0};

@@ -54,6 +54,10 @@ struct LoopParts {
   /// As fast as possible, a full recorder queue makes the loop wait (nothing is lost); in
   /// real time it drops and counts the record instead, so the loop never blocks.
   bool wait_for_recorder = true;
+  /// Lock-step (0): every step needs the feedback of its own command. Real time (> 0): a
+  /// feedback that misses its deadline is replaced by the newest measurement, counted and
+  /// flagged, up to this many periods in a row; one more stops the test.
+  int max_late_feedback = 0;
 };
 
 enum class StepOutcome : std::uint8_t { kOk, kRecordEnded, kLinkFailure, kIntegratorError, kNodeFault, kNonFinite };
@@ -74,6 +78,12 @@ class RpsdLoop {
   /// The record of the last step taken (what step() handed to the recorder). Real-time safe.
   const StepRecord& last_record() const { return record_; }
 
+  /// Real time: how late the current cycle woke (recorded with the step). Real-time safe.
+  void set_cycle_lateness_ns(std::int64_t ns) { cycle_lateness_ns_ = ns; }
+  std::int64_t late_feedback_total() const { return late_total_; }
+  /// Consecutive control periods without fresh feedback when the loop stopped.
+  int late_feedback_in_a_row() const { return late_in_a_row_; }
+
   std::int64_t step_index() const { return step_; }
   std::int64_t steps_available() const;  ///< ground-motion steps, or unlimited (-1)
   double dt_s() const { return parts_.integrator->dt_s(); }
@@ -93,6 +103,10 @@ class RpsdLoop {
   StepRecord record_;
   std::int64_t step_ = 0;
   std::int64_t exchange_ = 0;
+  std::int64_t cycle_lateness_ns_ = 0;
+  std::int64_t late_total_ = 0;
+  int late_in_a_row_ = 0;
+  bool late_this_step_ = false;
   double input_energy_j_ = 0.0, damping_energy_j_ = 0.0, restoring_energy_j_ = 0.0, kinetic_energy_j_ = 0.0;
 };
 

@@ -36,6 +36,12 @@ struct StepRecord {
   double damping_energy_j = 0.0;
   double restoring_energy_j = 0.0;
   std::uint32_t node_status = 0;
+  std::uint32_t limit_flags = 0;
+  // Timing (zero as fast as possible in process).
+  /// Command-to-feedback time of each channel's site this step, s.
+  std::array<double, transport::kMaxChannels> round_trip_s{};
+  double cycle_lateness_s = 0.0;  ///< how late the paced cycle woke after its deadline
+  std::uint8_t late_feedback = 0; ///< 1 when the feedback of this step was late (real time)
 };
 
 /// Copies what `from` uses (its channels and recorded DOFs) into `to`; the entries beyond
@@ -54,6 +60,7 @@ inline void copy_used(const StepRecord& from, StepRecord& to) {
     to.measured_force_n[c] = from.measured_force_n[c];
     to.specimen_restoring_force_n[c] = from.specimen_restoring_force_n[c];
     to.tracking_indicator_m2[c] = from.tracking_indicator_m2[c];
+    to.round_trip_s[c] = from.round_trip_s[c];
   }
   for (int d = 0; d < from.dofs; ++d) {
     to.displacement_m[d] = from.displacement_m[d];
@@ -66,6 +73,9 @@ inline void copy_used(const StepRecord& from, StepRecord& to) {
   to.damping_energy_j = from.damping_energy_j;
   to.restoring_energy_j = from.restoring_energy_j;
   to.node_status = from.node_status;
+  to.limit_flags = from.limit_flags;
+  to.cycle_lateness_s = from.cycle_lateness_s;
+  to.late_feedback = from.late_feedback;
 }
 
 }  // namespace rpsd::coordinator

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "rpsd/coordinator/servo_studies.h"
@@ -22,8 +23,10 @@ void write_max_gain(const std::filesystem::path& dir, const scenarios::StudyFile
                     const scenarios::MaxGainStudy& study, const std::vector<MaxGainRow>& rows);
 
 /// Runs whichever study the file holds and writes it into dir (created if missing). False
-/// when an `rpsd_test` run aborted (its files are still complete for every step it took).
+/// when an `rpsd_test` run aborted (its files are still complete for every step it took);
+/// `abort_reason` (optional) then receives why.
 bool run_and_write(const scenarios::StudyFile& file, const std::filesystem::path& dir,
-                   const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+                   const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+                   std::string* abort_reason = nullptr);
 
 }  // namespace rpsd::coordinator

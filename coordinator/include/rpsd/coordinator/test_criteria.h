@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "rpsd/compensation/cross_correlation_delay.h"
@@ -44,6 +45,8 @@ class CriteriaAccumulator {
   /// The same step of the test and of its reference, for J4-J9; pairs run from the first
   /// step while both runs have one. Real-time safe.
   void add_pair(const StepRecord& test, const StepRecord& reference);
+  /// The same with the test's recorded-DOF displacements kept apart. Real-time safe.
+  void add_pair(std::span<const double> test_displacement_m, const StepRecord& reference);
 
   std::int64_t test_steps() const { return test_steps_; }
   ChannelCriteria channel(int c) const;

@@ -17,6 +17,7 @@ enum class RunResult { kCompleted, kAborted };
 /// The headline numbers of one run, for sweep tables.
 struct TestHeadline {
   RunResult result = RunResult::kCompleted;
+  std::string outcome;                   ///< "completed", or why the test stopped
   double j2_percent = 0.0;               ///< channel 0
   double j4_percent = 0.0;               ///< first recorded DOF against the reference
   double peak_displacement_m = 0.0;      ///< first recorded DOF

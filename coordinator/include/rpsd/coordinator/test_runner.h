@@ -11,9 +11,27 @@
 
 #include "rpsd/coordinator/rpsd_loop.h"
 #include "rpsd/coordinator/test_criteria.h"
+#include "rpsd/realtime/latency_histogram.h"
+#include "rpsd/transport/dds_link.h"
 #include "rpsd/scenarios/test_scenario.h"
 
 namespace rpsd::coordinator {
+
+/// How the clock and the link behaved (real time and/or over DDS).
+struct TimingReport {
+  bool real_time = false;
+  bool over_dds = false;
+  bool memory_locked = false, fifo_granted = false;
+  std::string refused;  ///< what the OS refused (mlockall, SCHED_FIFO), once
+  std::int64_t cycles = 0, overruns = 0, skipped_deadlines = 0, late_feedback = 0;
+  realtime::LatencySummary jitter;  ///< wake-up lateness of the paced cycles
+  struct Site {
+    std::uint32_t site_id = 1;
+    realtime::LatencySummary round_trip;  ///< command-to-feedback, per step
+  };
+  std::vector<Site> sites;
+  std::vector<transport::DdsLinkCounters> dds_counters;  ///< per site, over DDS
+};
 
 struct TestRun {
   std::vector<StepRecord> records;  ///< every step, when the run kept them
@@ -21,11 +39,13 @@ struct TestRun {
   StepOutcome outcome = StepOutcome::kOk;
   std::int64_t steps_planned = 0;
   std::uint64_t dropped_records = 0;
+  int late_feedback_in_a_row = 0;  ///< periods without fresh feedback when it stopped
+  TimingReport timing;
 };
 
 /// One run of a scenario with every part built and started at rest: the numerical model,
-/// partition, integrator, compensators, the plants behind a simulated node and the
-/// in-process link, the loop and its recorder. Building is not real-time safe; step() is.
+/// partition, integrator, compensators, the actuators (simulated nodes in this process or
+/// DDS links to servo nodes), the loop and its recorder. Building is not real-time safe.
 class TestAssembly {
  public:
   /// `csv` receives every step as it happens (empty: none). With `perfect_actuator` the plant
@@ -40,10 +60,18 @@ class TestAssembly {
 
   /// Steps in the scenario (its duration, or the record's length if shorter).
   std::int64_t steps_planned() const;
-  /// One step, recorded. Real-time safe.
+  /// The test is paced by the real-time clock (the reference never is).
+  bool real_time() const;
+  /// One step as fast as possible, recorded. Real-time safe.
   StepOutcome step();
   const StepRecord& last_record() const;
-  /// Stops the recorder. Not real-time safe.
+  /// Every planned step: as fast as possible, or paced at the control rate in real time.
+  /// `after_step` (optional) sees each step's record; in real time it runs inside the cycle
+  /// and must be real-time safe. `progress` as for run_test (as fast as possible only).
+  StepOutcome run(const std::function<void(const StepRecord&)>& after_step,
+                  const std::function<void(std::int64_t, std::int64_t)>& progress);
+  /// Stops the recorder; the run's outcome, counts, timing and (if kept) records. Not
+  /// real-time safe.
   TestRun finish(StepOutcome outcome);
 
  private:
@@ -63,9 +91,12 @@ struct EvaluatedTest {
   Criteria criteria;
 };
 
-/// Runs the test and its reference side by side, step for step, and computes the criteria as
-/// they go: nothing is kept per step, so memory stays flat however long the record. The
-/// reference goes on to the end when the test aborts. CSVs as for TestAssembly.
+/// Runs the test and its reference and computes the criteria as they run, keeping no step
+/// records. As fast as possible the two run side by side, step for step, so memory stays flat
+/// however long the record. In real time the reference is not run inside the paced cycle: the
+/// test keeps only its recorded DOFs' displacements (8 bytes per DOF per step, allocated
+/// before the clock starts) and the reference runs afterwards. The reference goes on to the
+/// end when the test aborts. CSVs as for TestAssembly.
 EvaluatedTest run_test_and_reference(const scenarios::TestScenario& scenario, const std::filesystem::path& test_csv,
                                      const std::filesystem::path& reference_csv,
                                      const std::function<void(std::int64_t, std::int64_t)>& progress = {});

@@ -3,6 +3,8 @@
 // parameter files it names are relative to the study file. See scenarios/paper-fig*.yaml.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
 #include <filesystem>
 #include <optional>
 #include <string_view>
@@ -88,6 +90,8 @@ struct Override {
 
 /// Parses "key.path=value"; throws ConfigError naming the text when there is no '='.
 Override parse_override(const std::string& text);
+/// Applies one override to a parsed document (ConfigError naming the missing key).
+void apply_override(YAML::Node root, const Override& o);
 
 /// The default-parameter integrator for a scheme name (central_difference, newmark, hht_alpha,
 /// generalized_alpha, alpha_os, chang, chen_ricles, kolay_ricles_alpha); nullopt if unknown.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rpsd/compensation/compensator_factory.h"
+#include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_parameters.h"
@@ -28,6 +29,28 @@ enum class RestoringForceSource { kMeasuredForce, kStiffnessTimesMeasuredDisplac
 struct ExperimentalChannel {
   substructure::ExperimentalDof dof;  ///< DOF, channel, scales, specimen stiffness estimate
   RestoringForceSource restoring_force = RestoringForceSource::kMeasuredForce;
+  std::uint32_t site_id = 1;          ///< the servo node (site) that owns the actuator
+};
+
+/// How the loop is paced.
+struct ClockConfig {
+  enum class Mode { kAsFastAsPossible, kRealTime };
+  Mode mode = Mode::kAsFastAsPossible;
+  /// Real time: consecutive control periods whose feedback may arrive late (the newest
+  /// measurement is used instead, and counted) before the test stops.
+  int max_late_feedback = 4;
+  realtime::RealTimeRequest realtime;
+};
+
+/// Where the actuators are: simulated in this process, or servo nodes reached over DDS.
+struct TransportConfig {
+  enum class Kind { kInProcess, kDds };
+  Kind kind = Kind::kInProcess;
+  std::uint32_t test_id = 1;          ///< DDS partition: two tests on one network never cross
+  std::uint32_t domain_id = 0;
+  std::filesystem::path dds_config;   ///< Cyclone XML; empty: CYCLONEDDS_URI or defaults
+  double feedback_timeout_s = 1.0;    ///< lock-step: longest wait for one step's feedback
+  double discovery_timeout_s = 10.0;  ///< longest wait for every site's node at start
 };
 
 /// The actuator of every channel (each channel gets its own instance).
@@ -51,6 +74,8 @@ struct TestScenario {
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
   compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
   double control_rate_hz = 1024.0;  ///< integration step = control period x iterations
+  ClockConfig clock;
+  TransportConfig transport;
   /// Either a ground motion or an initial displacement (free vibration) drives the test.
   std::optional<GroundMotion> ground_motion;
   Eigen::VectorXd initial_displacement_m;

@@ -12,4 +12,8 @@ namespace rpsd::scenarios {
 /// Not real-time safe.
 TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path& file);
 
+/// A `servo:` section (servo_model with its parameter file relative to `file`,
+/// ideal_delay or transfer_function); shared by scenarios and servo-node files.
+PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m);
+
 }  // namespace rpsd::scenarios

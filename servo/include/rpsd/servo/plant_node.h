@@ -1,13 +1,11 @@
-// A simulated servo node: one Plant per actuator channel, advanced over one control period
-// per command. Between two commands each channel's command ramps linearly from the previous
-// value to the new one (first-order hold), as a ramp generator in front of the servo
-// controller does: the actuator sees a continuous path and the derivative gain no steps.
+// A simulated servo node for the in-process link: a SimulatedActuator (one Plant per
+// channel, first-order hold between commands) that turns each command into its feedback in
+// lock step. The full node with limits and a watchdog is ServoNodeController.
 #pragma once
 
-#include <array>
 #include <span>
 
-#include "rpsd/servo/plant.h"
+#include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/transport/link.h"
 
 namespace rpsd::servo {
@@ -25,9 +23,8 @@ class PlantNode final : public transport::CommandProcessor {
   void process(const transport::CommandSample& command, transport::FeedbackSample& feedback) override;
 
  private:
-  std::array<Plant*, transport::kMaxChannels> plants_{};
-  std::array<double, transport::kMaxChannels> last_command_m_{};
-  int channels_ = 0;
+  SimulatedActuator actuator_;
+  ActuatorReading reading_;
   double control_period_s_;
 };
 

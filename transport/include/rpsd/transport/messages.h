@@ -48,6 +48,22 @@ struct FeedbackSample {
   std::array<double, kMaxChannels> force_n{};
   std::uint32_t status = kNodeOk;
   std::uint32_t limit_flags = kLimitNone;
+  /// Filled by the coordinator's link, never sent: command-to-feedback time of the channel's
+  /// site for this step (0 in process).
+  std::array<std::int64_t, kMaxChannels> round_trip_ns{};
+};
+
+/// A node's periodic announcement: lets the coordinator discover the sites of its test.
+struct NodeHeartbeat {
+  enum State : std::uint32_t { kWaiting = 0, kRunning = 1, kHolding = 2, kFaulted = 3 };
+  std::uint32_t test_id = 0;
+  std::uint32_t site_id = 0;
+  std::uint8_t channels = 0;
+  std::uint32_t state = kWaiting;
+  std::int64_t ticks = 0;
+  std::int64_t overruns = 0;
+  std::int64_t dropped_messages = 0;
+  double control_period_s = 0.0;
 };
 
 }  // namespace rpsd::transport

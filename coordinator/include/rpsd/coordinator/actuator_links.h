@@ -1,0 +1,55 @@
+// The loop's way to a scenario's actuators, built from the scenario: per site either a
+// simulated node in this process (lock-step, deterministic) or a DDS link to the site's
+// `rpsd servo-node`, all behind one multi-site link so the loop cannot tell them apart.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "rpsd/scenarios/test_scenario.h"
+#include "rpsd/servo/plant.h"
+#include "rpsd/servo/plant_node.h"
+#include "rpsd/transport/dds_link.h"
+#include "rpsd/transport/multi_site_link.h"
+
+namespace rpsd::coordinator {
+
+struct SiteSummary {
+  std::uint32_t site_id = 1;
+  std::vector<int> channels;  ///< the test's channels this site owns
+};
+
+class ActuatorLinks {
+ public:
+  /// Builds the sites' links and puts every actuator at rest at hold_m (one value per
+  /// channel, in channel order). With perfect_actuator, in-process plants follow their
+  /// command exactly whatever the transport. DDS: waits for every site's node to be
+  /// discovered and throws std::runtime_error naming the missing sites. Not real-time safe.
+  ActuatorLinks(const scenarios::TestScenario& scenario, double control_period_s, bool perfect_actuator,
+                std::span<const double> hold_m);
+  ~ActuatorLinks();
+
+  transport::Link& link() { return *multi_site_; }
+  /// The specimen's force at rest, per channel: the simulated load cell, or (over DDS,
+  /// before any feedback) the specimen stiffness estimate times the hold position.
+  double initial_force_n(int channel) const { return initial_force_n_[static_cast<std::size_t>(channel)]; }
+  const std::vector<SiteSummary>& sites() const { return sites_; }
+  /// Real time: the receive deadline for every DDS site this cycle (0: none).
+  void set_receive_deadline_ns(std::int64_t deadline_ns);
+  bool over_dds() const { return !dds_links_.empty(); }
+  /// Over DDS: messages each site's link refused or found late.
+  std::vector<transport::DdsLinkCounters> dds_counters() const;
+
+ private:
+  std::vector<SiteSummary> sites_;
+  std::vector<std::unique_ptr<servo::Plant>> plants_;
+  std::vector<std::unique_ptr<servo::PlantNode>> nodes_;
+  std::vector<std::unique_ptr<transport::Link>> site_links_;
+  std::unique_ptr<transport::DdsParticipant> participant_;
+  std::vector<transport::DdsLink*> dds_links_;
+  std::unique_ptr<transport::MultiSiteLink> multi_site_;
+  std::vector<double> initial_force_n_;
+};
+
+}  // namespace rpsd::coordinator

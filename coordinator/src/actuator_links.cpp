@@ -1,0 +1,95 @@
+#include "rpsd/coordinator/actuator_links.h"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+#include "rpsd/coordinator/plant_factory.h"
+#include "rpsd/servo/pure_delay_plant.h"
+#include "rpsd/transport/in_process_link.h"
+
+namespace rpsd::coordinator {
+
+ActuatorLinks::~ActuatorLinks() = default;
+
+ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_period_s, bool perfect_actuator,
+                             std::span<const double> hold_m) {
+  const int channels = static_cast<int>(s.experimental.size());
+  initial_force_n_.assign(static_cast<std::size_t>(channels), 0.0);
+  // Sites in order of first appearance; each site's channels in the test's channel order.
+  std::map<std::uint32_t, std::size_t> index_of_site;
+  std::vector<const scenarios::ExperimentalChannel*> by_channel(static_cast<std::size_t>(channels));
+  for (const auto& e : s.experimental) by_channel[static_cast<std::size_t>(e.dof.actuator_channel)] = &e;
+  for (int ch = 0; ch < channels; ++ch) {
+    const std::uint32_t site = by_channel[static_cast<std::size_t>(ch)]->site_id;
+    auto [it, added] = index_of_site.emplace(site, sites_.size());
+    if (added) sites_.push_back({site, {}});
+    sites_[it->second].channels.push_back(ch);
+  }
+
+  const bool over_dds = s.transport.kind == scenarios::TransportConfig::Kind::kDds && !perfect_actuator;
+  if (over_dds) {
+    participant_ = std::make_unique<transport::DdsParticipant>(
+        transport::DdsDomainConfig{s.transport.domain_id, s.transport.dds_config.string()});
+  }
+  std::vector<transport::SiteRoute> routes;
+  std::string missing;
+  for (const SiteSummary& site : sites_) {
+    if (over_dds) {
+      transport::DdsLinkConfig config;
+      config.test_id = s.transport.test_id;
+      config.site_id = site.site_id;
+      config.channels = static_cast<int>(site.channels.size());
+      config.qos.control_period_s = control_period_s;
+      config.feedback_timeout_s = s.transport.feedback_timeout_s;
+      auto link = std::make_unique<transport::DdsLink>(*participant_, config);
+      dds_links_.push_back(link.get());
+      site_links_.push_back(std::move(link));
+      for (int ch : site.channels) {
+        const auto& e = *by_channel[static_cast<std::size_t>(ch)];
+        initial_force_n_[static_cast<std::size_t>(ch)] = e.dof.specimen_stiffness_estimate_n_per_m * hold_m[static_cast<std::size_t>(ch)];
+      }
+    } else {
+      std::vector<servo::Plant*> site_plants;
+      std::vector<double> site_hold;
+      for (int ch : site.channels) {
+        const double k = by_channel[static_cast<std::size_t>(ch)]->dof.specimen_stiffness_estimate_n_per_m;
+        plants_.push_back(perfect_actuator ? std::make_unique<servo::PureDelayPlant>(servo::PureDelayParameters{0.0, k, 8192.0})
+                                           : make_plant(s.plant));
+        site_plants.push_back(plants_.back().get());
+        site_hold.push_back(hold_m[static_cast<std::size_t>(ch)]);
+      }
+      nodes_.push_back(std::make_unique<servo::PlantNode>(site_plants, control_period_s));
+      nodes_.back()->reset(site_hold);
+      for (std::size_t i = 0; i < site.channels.size(); ++i) {
+        initial_force_n_[static_cast<std::size_t>(site.channels[i])] = site_plants[i]->measure().force_n;
+      }
+      site_links_.push_back(std::make_unique<transport::InProcessLink>(*nodes_.back()));
+    }
+    routes.push_back({site.site_id, site_links_.back().get(), site.channels});
+  }
+  multi_site_ = std::make_unique<transport::MultiSiteLink>(std::move(routes));
+
+  for (std::size_t i = 0; i < dds_links_.size(); ++i) {
+    if (!dds_links_[i]->wait_for_node(s.transport.discovery_timeout_s)) {
+      missing += (missing.empty() ? "" : ", ") + std::to_string(sites_[i].site_id);
+    }
+  }
+  if (!missing.empty()) {
+    throw std::runtime_error("no servo node answered for site(s) " + missing + " of test " + std::to_string(s.transport.test_id) +
+                             " within " + std::to_string(s.transport.discovery_timeout_s) +
+                             " s (is `rpsd servo-node` running with the same test_id, site_id and domain?)");
+  }
+}
+
+void ActuatorLinks::set_receive_deadline_ns(std::int64_t deadline_ns) {
+  for (auto* link : dds_links_) link->set_receive_deadline_ns(deadline_ns);
+}
+
+std::vector<transport::DdsLinkCounters> ActuatorLinks::dds_counters() const {
+  std::vector<transport::DdsLinkCounters> counters;
+  for (const auto* link : dds_links_) counters.push_back(link->counters());
+  return counters;
+}
+
+}  // namespace rpsd::coordinator

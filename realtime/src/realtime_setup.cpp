@@ -1,0 +1,39 @@
+#include "rpsd/realtime/realtime_setup.h"
+
+#include <pthread.h>
+#include <sched.h>
+#include <sys/mman.h>
+
+#include <cstring>
+#include <stdexcept>
+
+namespace rpsd::realtime {
+
+RealTimeSetupReport apply_realtime(const RealTimeRequest& request) {
+  if (request.fifo_priority < 0 || request.fifo_priority > 99) {
+    throw std::invalid_argument("realtime.fifo_priority: expected 0 (off) or 1..99, got " +
+                                std::to_string(request.fifo_priority));
+  }
+  RealTimeSetupReport report;
+  if (request.lock_memory) {
+    if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) {
+      report.memory_locked = true;
+    } else {
+      report.refused += std::string("mlockall refused: ") + std::strerror(errno) + "\n";
+    }
+  }
+  if (request.fifo_priority > 0) {
+    sched_param param{};
+    param.sched_priority = request.fifo_priority;
+    const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+    if (rc == 0) {
+      report.fifo_granted = true;
+    } else {
+      report.refused += "SCHED_FIFO priority " + std::to_string(request.fifo_priority) +
+                        " refused: " + std::strerror(rc) + "\n";
+    }
+  }
+  return report;
+}
+
+}  // namespace rpsd::realtime

@@ -1,0 +1,171 @@
+#include "rpsd/scenarios/servo_node_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/test_scenario_file.h"
+#include "rpsd/scenarios/yaml_reader.h"
+
+namespace rpsd::scenarios {
+namespace {
+
+YAML::Node read_document(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError(file.string() + ": cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  YAML::Node document = parse_yaml_text(text.str(), file.string());
+  for (const Override& o : overrides) apply_override(document, o);
+  return document;
+}
+
+servo::LimitAction limit_action(MappingReader& r, const std::string& key, servo::LimitAction fallback) {
+  const auto text = r.optional_string(key);
+  if (!text) return fallback;
+  if (*text == "clamp") return servo::LimitAction::kClamp;
+  if (*text == "hold") return servo::LimitAction::kHold;
+  if (*text == "abort") return servo::LimitAction::kAbort;
+  r.fail(key, "expected clamp, hold or abort, got \"" + *text + "\"");
+}
+
+std::vector<double> per_channel(MappingReader& r, const std::string& key, int channels, double fallback) {
+  if (!r.has(key)) return std::vector<double>(static_cast<std::size_t>(channels), fallback);
+  auto values = r.numbers(key);
+  if (static_cast<int>(values.size()) != channels) r.fail(key, "needs one value per channel (" + std::to_string(channels) + ")");
+  return values;
+}
+
+void read_limits(MappingReader r, ServoNodeFile& f) {
+  const int n = f.node.channels;
+  const auto stroke = per_channel(r, "max_stroke_m", n, servo::ChannelLimits::kNone);
+  const auto velocity = per_channel(r, "max_velocity_m_per_s", n, servo::ChannelLimits::kNone);
+  const auto force = per_channel(r, "max_force_n", n, servo::ChannelLimits::kNone);
+  const auto increment = per_channel(r, "max_increment_m", n, servo::ChannelLimits::kNone);
+  for (int c = 0; c < n; ++c) {
+    f.node.limits[c] = {stroke[c], velocity[c], force[c], increment[c]};
+  }
+  if (auto actions = r.optional_mapping("actions")) {
+    f.node.actions.stroke = limit_action(*actions, "stroke", f.node.actions.stroke);
+    f.node.actions.velocity = limit_action(*actions, "velocity", f.node.actions.velocity);
+    f.node.actions.force = limit_action(*actions, "force", f.node.actions.force);
+    f.node.actions.increment = limit_action(*actions, "increment", f.node.actions.increment);
+    actions->finish();
+  }
+  r.finish();
+}
+
+void read_watchdog(MappingReader r, ServoNodeFile& f) {
+  f.node.command_timeout_periods = static_cast<int>(r.whole_number_or("command_timeout_periods", 1, 1'000'000, f.node.command_timeout_periods));
+  const std::string loss = r.optional_string("on_command_loss").value_or("hold");
+  if (loss == "hold") {
+    f.node.on_command_loss = servo::LossAction::kHold;
+  } else if (loss == "ramp_to_safe") {
+    f.node.on_command_loss = servo::LossAction::kRampToSafe;
+  } else {
+    r.fail("on_command_loss", "expected hold or ramp_to_safe, got \"" + loss + "\"");
+  }
+  const auto safe = per_channel(r, "safe_position_m", f.node.channels, 0.0);
+  for (int c = 0; c < f.node.channels; ++c) f.node.safe_position_m[c] = safe[c];
+  f.node.safe_ramp_velocity_m_per_s = r.positive_number_or("safe_ramp_velocity_m_per_s", f.node.safe_ramp_velocity_m_per_s);
+  r.finish();
+}
+
+servo::UdpControllerConfig read_udp(MappingReader& r, int channels) {
+  servo::UdpControllerConfig u;
+  u.channels = channels;
+  u.controller_host = r.string("host");
+  u.controller_port = static_cast<std::uint16_t>(r.whole_number("port", 1, 65535));
+  u.local_host = r.optional_string("local_host").value_or(u.local_host);
+  u.local_port = static_cast<std::uint16_t>(r.whole_number_or("local_port", 0, 65535, 0));
+  u.reply_timeout_s = r.positive_number_or("reply_timeout_s", u.reply_timeout_s);
+  u.max_missed_replies = static_cast<int>(r.whole_number_or("max_missed_replies", 0, 1000, u.max_missed_replies));
+  return u;
+}
+
+}  // namespace
+
+ServoNodeFile load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  YAML::Node document = read_document(file, overrides);
+  MappingReader root(document, file.string(), "");
+  ServoNodeFile f;
+  f.name = file.stem().string();
+  root.optional_string("description");
+  {
+    MappingReader node = root.mapping("node");
+    f.node.test_id = static_cast<std::uint32_t>(node.whole_number("test_id", 1, 4'000'000'000L));
+    f.node.site_id = static_cast<std::uint32_t>(node.whole_number("site_id", 1, 1'000'000));
+    const std::string mode = node.string("mode");
+    if (mode == "real_time") {
+      f.mode = ServoNodeFile::Mode::kRealTime;
+    } else if (mode == "lock_step") {
+      f.mode = ServoNodeFile::Mode::kLockStep;
+    } else {
+      node.fail("mode", "expected real_time or lock_step, got \"" + mode + "\"");
+    }
+    f.node.control_period_s = 1.0 / node.positive_number("control_rate_hz");
+    f.heartbeat_rate_hz = node.positive_number_or("heartbeat_rate_hz", f.heartbeat_rate_hz);
+    f.realtime.lock_memory = node.boolean_or("lock_memory", f.realtime.lock_memory);
+    f.realtime.fifo_priority = static_cast<int>(node.whole_number_or("fifo_priority", 0, 99, f.realtime.fifo_priority));
+    node.finish();
+  }
+  {
+    MappingReader dds = root.mapping("dds");
+    f.dds.domain_id = static_cast<std::uint32_t>(dds.whole_number_or("domain_id", 0, 232, 0));
+    if (auto config = dds.optional_string("config")) {
+      const auto path = file.parent_path() / *config;
+      if (!std::filesystem::exists(path)) dds.fail("config", "no such file: " + path.string());
+      f.dds.config_file = path.string();
+    }
+    dds.finish();
+  }
+  {
+    MappingReader actuator = root.mapping("actuator");
+    f.node.channels = static_cast<int>(actuator.whole_number("channels", 1, transport::kMaxChannels));
+    f.initial_displacement_m = per_channel(actuator, "initial_displacement_m", f.node.channels, 0.0);
+    const std::string kind = actuator.string("kind");
+    if (kind == "simulated") {
+      const double k = actuator.non_negative_number_or("specimen_stiffness_n_per_m", 0.0);
+      f.actuator = SimulatedActuatorSection{read_plant_section(actuator.mapping("servo"), file, k)};
+    } else if (kind == "udp_controller") {
+      f.actuator = read_udp(actuator, f.node.channels);
+    } else {
+      actuator.fail("kind", "expected simulated or udp_controller, got \"" + kind + "\"");
+    }
+    actuator.finish();
+  }
+  if (auto limits = root.optional_mapping("limits")) read_limits(*limits, f);
+  if (auto watchdog = root.optional_mapping("watchdog")) read_watchdog(*watchdog, f);
+  root.finish();
+  try {
+    f.node.validate();
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(file.string() + ": " + e.what());
+  }
+  return f;
+}
+
+ControllerEmulatorFile load_controller_emulator(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  YAML::Node document = read_document(file, overrides);
+  MappingReader root(document, file.string(), "");
+  ControllerEmulatorFile f;
+  f.name = file.stem().string();
+  root.optional_string("description");
+  {
+    MappingReader udp = root.mapping("udp");
+    f.bind_host = udp.optional_string("bind_host").value_or(f.bind_host);
+    f.port = static_cast<std::uint16_t>(udp.whole_number("port", 1, 65535));
+    udp.finish();
+  }
+  MappingReader actuator = root.mapping("actuator");
+  f.channels = static_cast<int>(actuator.whole_number("channels", 1, transport::kMaxChannels));
+  f.initial_displacement_m = per_channel(actuator, "initial_displacement_m", f.channels, 0.0);
+  const double k = actuator.non_negative_number_or("specimen_stiffness_n_per_m", 0.0);
+  f.plant = read_plant_section(actuator.mapping("servo"), file, k);
+  actuator.finish();
+  root.finish();
+  return f;
+}
+
+}  // namespace rpsd::scenarios

@@ -1,0 +1,46 @@
+// The servo node's control loop around its controller and its DDS endpoint (the pattern of
+// ros2_control_node: lock memory, raise priority, absolute deadlines, count overruns).
+//
+// Real time: each command is applied on the tick it triggers; when commands stop, the node
+// keeps ticking on its own deadlines one control period apart and, after
+// command_timeout_periods periods without one, holds. Every tick publishes feedback; a
+// heartbeat goes out a few times a second.
+// Lock-step: one tick per command, as fast as commands come; for rehearsals over the real
+// link with simulated actuators, where the plant must not advance while the coordinator
+// computes.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "rpsd/realtime/latency_histogram.h"
+#include "rpsd/realtime/realtime_setup.h"
+#include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/transport/dds_node_endpoint.h"
+
+namespace rpsd::servo {
+
+struct ServoNodeLoopOptions {
+  bool real_time = true;
+  double heartbeat_rate_hz = 10.0;
+  realtime::RealTimeRequest realtime;
+  /// Stop after this long (0: until `stop` is set).
+  double duration_s = 0.0;
+};
+
+struct ServoNodeLoopReport {
+  realtime::RealTimeSetupReport granted;
+  std::int64_t cycles = 0, overruns = 0, skipped_deadlines = 0;
+  realtime::LatencySummary jitter;  ///< wake-up lateness of the ticks made without a command
+  std::int64_t last_command_tick = -1;  ///< tick on which the last command was applied
+  std::int64_t hold_tick = -1;          ///< first tick the watchdog held after it (-1: never)
+  std::int64_t faulted_tick = -1;       ///< first tick with a latched fault (-1: never)
+  std::int64_t feedback_published = 0, publish_failures = 0;
+};
+
+/// Runs until `stop` becomes true or the duration ends. The controller must be started.
+/// Not real-time safe to call; the loop inside is.
+ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transport::DdsNodeEndpoint& endpoint,
+                                        const ServoNodeLoopOptions& options, const std::atomic<bool>& stop);
+
+}  // namespace rpsd::servo

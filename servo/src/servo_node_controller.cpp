@@ -1,0 +1,253 @@
+#include "rpsd/servo/servo_node_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rpsd::servo {
+
+const char* command_verdict_name(CommandVerdict verdict) {
+  switch (verdict) {
+    case CommandVerdict::kAccepted: return "accepted";
+    case CommandVerdict::kWrongTestId: return "wrong test id";
+    case CommandVerdict::kWrongSiteId: return "wrong site id";
+    case CommandVerdict::kWrongChannelCount: return "wrong channel count";
+    case CommandVerdict::kNonFinite: return "non-finite value";
+    case CommandVerdict::kNotNewer: return "step not newer";
+    case CommandVerdict::kNotFollowing: return "node not following";
+  }
+  return "unknown";
+}
+
+std::uint64_t ServoNodeCounters::dropped_total() const {
+  std::uint64_t total = 0;
+  for (int v = 0; v < kCommandVerdicts; ++v) {
+    if (v != static_cast<int>(CommandVerdict::kAccepted)) total += by_verdict[v];
+  }
+  return total;
+}
+
+ServoNodeController::ServoNodeController(const ServoNodeConfig& config, Actuator& actuator) : config_(config), actuator_(actuator) {
+  config_.validate();
+  if (actuator.channels() != config_.channels) {
+    throw std::invalid_argument("channels: the config has " + std::to_string(config_.channels) + ", the actuator " +
+                                std::to_string(actuator.channels()));
+  }
+  events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
+}
+
+void ServoNodeController::start(std::span<const double> initial_displacement_m) {
+  const int channels = config_.channels;
+  if (static_cast<int>(initial_displacement_m.size()) != channels) {
+    throw std::invalid_argument("ServoNodeController::start: " + std::to_string(channels) + " initial displacements expected, got " +
+                                std::to_string(initial_displacement_m.size()));
+  }
+  for (int c = 0; c < channels; ++c) {
+    const double x0 = initial_displacement_m[c];
+    if (!std::isfinite(x0) || std::abs(x0) > config_.limits[c].max_stroke_m) {
+      throw std::invalid_argument("ServoNodeController::start: initial displacement of channel " + std::to_string(c) + " (" +
+                                  std::to_string(x0) + " m) is not within limits[" + std::to_string(c) + "].max_stroke_m");
+    }
+  }
+  started_ = false;
+  actuator_.start(initial_displacement_m);
+  reading_ = ActuatorReading{};
+  reading_.fresh = false;
+  for (int c = 0; c < channels; ++c) {
+    target_m_[c] = command_m_[c] = reading_.displacement_m[c] = initial_displacement_m[c];
+  }
+  has_pending_ = false;
+  newest_accepted_step_ = followed_step_ = -1;
+  followed_time_s_ = 0.0;
+  commands_began_ = holding_ = safe_state_ = fault_ = false;
+  missed_in_row_ = 0;
+  limit_was_active_ = {};
+  counters_ = ServoNodeCounters{};
+  events_.clear();
+  events_not_logged_ = 0;
+  started_ = true;
+}
+
+CommandVerdict ServoNodeController::accept(const transport::CommandSample& command) {
+  CommandVerdict verdict = CommandVerdict::kAccepted;
+  const int channels = config_.channels;
+  if (command.test_id != config_.test_id) {
+    verdict = CommandVerdict::kWrongTestId;
+  } else if (command.site_id != config_.site_id) {
+    verdict = CommandVerdict::kWrongSiteId;
+  } else if (command.channels != channels) {
+    verdict = CommandVerdict::kWrongChannelCount;
+  } else if (!std::isfinite(command.time_s) ||
+             !std::all_of(command.displacement_m.begin(), command.displacement_m.begin() + channels, [](double x) { return std::isfinite(x); })) {
+    verdict = CommandVerdict::kNonFinite;
+  } else if (command.step <= newest_accepted_step_) {
+    verdict = CommandVerdict::kNotNewer;
+  } else if (fault_ || safe_state_ || !started_) {
+    verdict = CommandVerdict::kNotFollowing;
+  }
+  ++counters_.by_verdict[static_cast<int>(verdict)];
+  if (verdict != CommandVerdict::kAccepted) return verdict;
+  if (has_pending_) ++counters_.superseded;
+  pending_ = command;
+  has_pending_ = true;
+  newest_accepted_step_ = command.step;
+  ++counters_.accepted;
+  return verdict;
+}
+
+void ServoNodeController::choose_target() {
+  const int channels = config_.channels;
+  if (fault_) {
+    has_pending_ = false;
+    target_m_ = command_m_;
+    return;
+  }
+  if (has_pending_) {
+    has_pending_ = false;
+    std::copy_n(pending_.displacement_m.begin(), channels, target_m_.begin());
+    followed_step_ = pending_.step;
+    followed_time_s_ = pending_.time_s;
+    ++counters_.applied;
+    commands_began_ = true;
+    missed_in_row_ = 0;
+    holding_ = false;
+    return;
+  }
+  // The watchdog runs once commands have begun: before the first, waiting is normal.
+  if (commands_began_ && !safe_state_) {
+    ++counters_.missed_periods;
+    if (!holding_ && ++missed_in_row_ >= config_.command_timeout_periods) {
+      holding_ = true;
+      ++counters_.holds;
+      target_m_ = command_m_;  // stop where the command is; a clamped command stops chasing
+      safe_state_ = config_.on_command_loss == LossAction::kRampToSafe;
+    }
+  }
+  if (safe_state_) {
+    const double step_m = config_.safe_ramp_velocity_m_per_s * config_.control_period_s;
+    for (int c = 0; c < channels; ++c) {
+      const double to_go = config_.safe_position_m[c] - command_m_[c];
+      target_m_[c] = std::abs(to_go) <= step_m ? config_.safe_position_m[c] : command_m_[c] + std::copysign(step_m, to_go);
+    }
+  }
+}
+
+void ServoNodeController::log(const LimitEvent& event) {
+  if (events_.size() < events_.capacity()) {
+    events_.push_back(event);  // within the reserved capacity: no allocation
+  } else {
+    ++events_not_logged_;
+  }
+}
+
+void ServoNodeController::latch_fault() {
+  if (!fault_) ++counters_.faults;
+  fault_ = true;
+  has_pending_ = false;
+}
+
+std::uint32_t ServoNodeController::apply_limits(Values& applied) {
+  struct Violation {
+    int channel;
+    LimitKind kind;
+    double observed, bound;
+  };
+  std::array<Violation, transport::kMaxChannels * kLimitKinds> violations{};
+  int count = 0;
+  std::array<bool, kLimitKinds> kind_acted{};
+  bool hold = false, abort = false;
+  const int channels = config_.channels;
+  const double period_s = config_.control_period_s;
+
+  for (int c = 0; c < channels; ++c) {
+    const ChannelLimits& limits = config_.limits[c];
+    const double previous = command_m_[c], target = target_m_[c], change = std::abs(target - previous);
+    const double force = reading_.force_n[c];
+    const double velocity_step_m = limits.max_velocity_m_per_s * period_s;
+    const auto check = [&](bool exceeded, LimitKind kind, double observed, double bound) {
+      if (!exceeded) return;
+      violations[count++] = {c, kind, observed, bound};
+      const LimitAction action = config_.actions.of(kind);
+      hold = hold || action == LimitAction::kHold;
+      abort = abort || action == LimitAction::kAbort;
+    };
+    check(std::abs(target) > limits.max_stroke_m, LimitKind::kStroke, std::abs(target), limits.max_stroke_m);
+    check(change > velocity_step_m, LimitKind::kVelocity, change / period_s, limits.max_velocity_m_per_s);
+    check(std::abs(force) > limits.max_force_n, LimitKind::kForce, std::abs(force), limits.max_force_n);
+    check(change > limits.max_increment_m, LimitKind::kIncrement, change, limits.max_increment_m);
+
+    // The clamped command: rate limit, stroke saturation, and no further motion in the
+    // direction of an excessive force (the direction that loads the specimen more).
+    const double rate_bound_m = std::min(velocity_step_m, limits.max_increment_m);
+    double x = change > rate_bound_m ? previous + std::copysign(rate_bound_m, target - previous) : target;
+    x = std::clamp(x, -limits.max_stroke_m, limits.max_stroke_m);
+    if (force > limits.max_force_n) x = std::min(x, previous);
+    if (force < -limits.max_force_n) x = std::max(x, previous);
+    applied[c] = x;
+  }
+
+  if (abort) latch_fault();
+  if (abort || hold) applied = command_m_;  // every channel: one channel frozen alone would load the setup unevenly
+
+  std::uint32_t flags = transport::kLimitNone;
+  std::array<std::array<bool, kLimitKinds>, transport::kMaxChannels> active{};
+  for (int i = 0; i < count; ++i) {
+    const Violation& v = violations[i];
+    const int k = static_cast<int>(v.kind);
+    active[v.channel][k] = true;
+    kind_acted[k] = true;
+    flags |= limit_flag(v.kind);
+    if (!limit_was_active_[v.channel][k]) {
+      ++counters_.limit_activations[k];
+      log({counters_.ticks, followed_step_, v.channel, v.kind, config_.actions.of(v.kind), target_m_[v.channel], applied[v.channel],
+           v.observed, v.bound});
+    }
+  }
+  for (int k = 0; k < kLimitKinds; ++k) counters_.limit_active_ticks[k] += kind_acted[k] ? 1 : 0;
+  limit_was_active_ = active;
+  return flags;
+}
+
+void ServoNodeController::tick(transport::FeedbackSample& out) {
+  const int channels = config_.channels;
+  out.test_id = config_.test_id;
+  out.site_id = config_.site_id;
+  out.channels = static_cast<std::uint8_t>(channels);
+  if (!started_) {
+    out.step = -1;
+    out.time_s = 0.0;
+    out.status = transport::kNodeFault;
+    out.limit_flags = transport::kLimitNone;
+    return;
+  }
+
+  choose_target();
+  Values applied = command_m_;
+  const std::uint32_t flags = apply_limits(applied);
+
+  const ActuatorStatus status =
+      actuator_.exchange(std::span<const double>(applied.data(), static_cast<std::size_t>(channels)), config_.control_period_s, reading_);
+  command_m_ = applied;
+  if (status == ActuatorStatus::kNoReply) ++counters_.actuator_no_replies;
+  if (status == ActuatorStatus::kFault) {
+    ++counters_.actuator_faults;
+    latch_fault();
+  }
+  ++counters_.ticks;
+
+  out.step = followed_step_;
+  out.time_s = followed_time_s_;
+  for (int c = 0; c < transport::kMaxChannels; ++c) {
+    const bool used = c < channels;
+    out.displacement_m[c] = used ? reading_.displacement_m[c] : 0.0;
+    out.force_n[c] = used ? reading_.force_n[c] : 0.0;
+  }
+  out.status = transport::kNodeOk;
+  if (flags != transport::kLimitNone) out.status |= transport::kNodeLimitActive;
+  if (holding_) out.status |= transport::kNodeHolding;
+  if (fault_) out.status |= transport::kNodeFault;
+  out.limit_flags = flags;
+}
+
+}  // namespace rpsd::servo

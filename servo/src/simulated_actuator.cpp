@@ -1,0 +1,65 @@
+#include "rpsd/servo/simulated_actuator.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rpsd::servo {
+
+SimulatedActuator::SimulatedActuator(std::span<Plant* const> plants) : channels_(static_cast<int>(plants.size())) {
+  if (plants.empty() || plants.size() > transport::kMaxChannels) {
+    throw std::invalid_argument("SimulatedActuator: between 1 and " + std::to_string(transport::kMaxChannels) +
+                                " plants (one per channel), got " + std::to_string(plants.size()));
+  }
+  for (int c = 0; c < channels_; ++c) {
+    if (plants[c] == nullptr) throw std::invalid_argument("SimulatedActuator: plant of channel " + std::to_string(c) + " is null");
+    plants_[c] = plants[c];
+  }
+}
+
+void SimulatedActuator::start(std::span<const double> initial_displacement_m) {
+  if (static_cast<int>(initial_displacement_m.size()) != channels_) {
+    throw std::invalid_argument("SimulatedActuator::start: " + std::to_string(channels_) + " initial displacements expected, got " +
+                                std::to_string(initial_displacement_m.size()));
+  }
+  for (double x : initial_displacement_m) {
+    if (!std::isfinite(x)) throw std::invalid_argument("SimulatedActuator::start: initial displacement is not finite");
+  }
+  reset(initial_displacement_m);
+}
+
+void SimulatedActuator::reset(std::span<const double> displacement_m) {
+  for (int c = 0; c < channels_; ++c) {
+    const double x0 = c < static_cast<int>(displacement_m.size()) ? displacement_m[c] : 0.0;
+    plants_[c]->reset(x0);
+    last_command_m_[c] = x0;
+  }
+}
+
+ActuatorStatus SimulatedActuator::exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) {
+  if (static_cast<int>(command_m.size()) != channels_ || !(period_s > 0.0) || !std::isfinite(period_s)) return ActuatorStatus::kFault;
+  for (int c = 0; c < channels_; ++c) {
+    if (!std::isfinite(command_m[c])) return ActuatorStatus::kFault;
+  }
+  for (int c = 0; c < channels_; ++c) {
+    plants_[c]->advance(last_command_m_[c], command_m[c], period_s);
+    last_command_m_[c] = command_m[c];
+    const PlantMeasurement m = plants_[c]->measure();
+    reading.displacement_m[c] = m.displacement_m;
+    reading.force_n[c] = m.force_n;
+  }
+  reading.fresh = true;
+  return ActuatorStatus::kOk;
+}
+
+ActuatorReading SimulatedActuator::measure() const {
+  ActuatorReading reading;
+  for (int c = 0; c < channels_; ++c) {
+    const PlantMeasurement m = plants_[c]->measure();
+    reading.displacement_m[c] = m.displacement_m;
+    reading.force_n[c] = m.force_n;
+  }
+  return reading;
+}
+
+}  // namespace rpsd::servo

@@ -1,0 +1,177 @@
+#include "rpsd/servo/udp_controller_actuator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace rpsd::servo {
+
+using udp_protocol::ControllerCommand;
+using udp_protocol::ControllerReply;
+using udp_protocol::ControllerStatus;
+using udp_protocol::PacketStatus;
+
+void UdpControllerConfig::validate() const {
+  if (channels < 1 || channels > transport::kMaxChannels) {
+    throw std::invalid_argument("channels: must be between 1 and " + std::to_string(transport::kMaxChannels) + ", got " +
+                                std::to_string(channels));
+  }
+  Ipv4Endpoint::parse(controller_host, controller_port, "controller_host");
+  Ipv4Endpoint::parse(local_host, local_port, "local_host");
+  if (controller_port == 0) throw std::invalid_argument("controller_port: required (1-65535)");
+  if (!(reply_timeout_s > 0.0) || !std::isfinite(reply_timeout_s)) throw std::invalid_argument("reply_timeout_s: must be positive");
+  if (max_missed_replies < 0) throw std::invalid_argument("max_missed_replies: must be zero or positive");
+  if (!(start_timeout_s > 0.0) || !std::isfinite(start_timeout_s)) throw std::invalid_argument("start_timeout_s: must be positive");
+  if (!(start_tolerance_m >= 0.0)) throw std::invalid_argument("start_tolerance_m: must be zero or positive");
+}
+
+namespace {
+Ipv4Endpoint validated_local(const UdpControllerConfig& config) {
+  config.validate();
+  return Ipv4Endpoint::parse(config.local_host, config.local_port, "local_host");
+}
+}  // namespace
+
+UdpControllerActuator::UdpControllerActuator(const UdpControllerConfig& config)
+    : config_(config),
+      controller_(Ipv4Endpoint::parse(config.controller_host, config.controller_port, "controller_host")),
+      socket_(validated_local(config)) {}
+
+bool UdpControllerActuator::send_packet() noexcept {
+  if (!socket_.send_to(command_packet_, controller_)) {
+    ++counters_.send_errors;
+    return false;
+  }
+  ++counters_.commands_sent;
+  return true;
+}
+
+bool UdpControllerActuator::take_queued(std::uint64_t sequence, ControllerReply& reply) noexcept {
+  for (;;) {
+    Ipv4Endpoint from;
+    const long size = socket_.receive(receive_buffer_, from);
+    if (size == UdpSocket::kNothingQueued) return false;
+    if (size == UdpSocket::kReceiveError) {
+      ++counters_.receive_errors;
+      return false;
+    }
+    if (!(from == controller_)) {
+      ++counters_.foreign_datagrams;
+      continue;
+    }
+    const auto bytes = std::span<const std::byte>(receive_buffer_.data(), std::min<std::size_t>(static_cast<std::size_t>(size), receive_buffer_.size()));
+    ControllerReply decoded;
+    if (udp_protocol::decode_reply(bytes, decoded) != PacketStatus::kOk) {
+      ++counters_.bad_replies;
+    } else if (decoded.sequence == sequence) {
+      reply = decoded;
+      return true;
+    } else if (decoded.sequence < sequence) {
+      ++counters_.stale_replies;
+    } else {
+      ++counters_.bad_replies;  // answers a command never sent
+    }
+  }
+}
+
+bool UdpControllerActuator::await(std::uint64_t sequence, double deadline_s, ControllerReply& reply) noexcept {
+  for (;;) {
+    if (take_queued(sequence, reply)) return true;
+    const double remaining_s = deadline_s - monotonic_seconds();
+    if (remaining_s <= 0.0) return false;
+    if (socket_.wait_readable(remaining_s) == UdpSocket::Wait::kError) {
+      ++counters_.receive_errors;
+      return false;
+    }
+  }
+}
+
+void UdpControllerActuator::start(std::span<const double> initial_displacement_m) {
+  const int channels = config_.channels;
+  if (static_cast<int>(initial_displacement_m.size()) != channels) {
+    throw std::invalid_argument("UdpControllerActuator::start: " + std::to_string(channels) + " initial displacements expected, got " +
+                                std::to_string(initial_displacement_m.size()));
+  }
+  ControllerCommand query;
+  query.channels = static_cast<std::uint8_t>(channels);
+  query.query = true;
+  std::copy(initial_displacement_m.begin(), initial_displacement_m.end(), query.displacement_m.begin());
+  ControllerReply reply;
+  bool answered = false;
+  const double give_up_s = monotonic_seconds() + config_.start_timeout_s;
+  // A lost datagram is likely enough on a busy network: ask again every 100 ms.
+  while (!answered && monotonic_seconds() < give_up_s) {
+    query.sequence = ++sequence_;
+    if (udp_protocol::encode_command(query, command_packet_) != PacketStatus::kOk) {
+      throw std::invalid_argument("UdpControllerActuator::start: initial displacement is not finite");
+    }
+    take_queued(query.sequence, reply);  // drop whatever an earlier session left queued
+    send_packet();
+    answered = await(query.sequence, std::min(give_up_s, monotonic_seconds() + 0.1), reply);
+  }
+  const std::string who = "UdpControllerActuator: controller at " + controller_.to_string();
+  if (!answered) {
+    std::ostringstream message;
+    message << who << " did not answer within " << config_.start_timeout_s << " s";
+    throw std::runtime_error(message.str());
+  }
+  if (reply.channels != channels) {
+    throw std::runtime_error(who + " has " + std::to_string(reply.channels) + " channels, the config " + std::to_string(channels));
+  }
+  if (reply.status != ControllerStatus::kOk) throw std::runtime_error(who + " reports a fault");
+  for (int c = 0; c < channels; ++c) {
+    if (std::abs(reply.displacement_m[c] - initial_displacement_m[c]) > config_.start_tolerance_m) {
+      std::ostringstream message;
+      message << who << ": channel " << c << " measures " << reply.displacement_m[c] << " m, the initial displacement is "
+              << initial_displacement_m[c] << " m (start_tolerance_m " << config_.start_tolerance_m << ")";
+      throw std::runtime_error(message.str());
+    }
+  }
+  consecutive_missed_ = 0;
+  link_fault_ = false;
+}
+
+ActuatorStatus UdpControllerActuator::exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) {
+  reading.fresh = false;
+  if (link_fault_) return ActuatorStatus::kFault;
+  const int channels = config_.channels;
+  if (static_cast<int>(command_m.size()) != channels) return ActuatorStatus::kFault;
+  ControllerCommand command;
+  command.sequence = ++sequence_;
+  command.channels = static_cast<std::uint8_t>(channels);
+  command.period_s = period_s;
+  std::copy(command_m.begin(), command_m.end(), command.displacement_m.begin());
+  if (udp_protocol::encode_command(command, command_packet_) != PacketStatus::kOk) return ActuatorStatus::kFault;
+
+  ControllerReply reply;
+  take_queued(command.sequence, reply);  // stale replies of earlier periods
+  const double deadline_s = monotonic_seconds() + period_s + config_.reply_timeout_s;
+  const bool answered = send_packet() && await(command.sequence, deadline_s, reply);
+  if (answered && reply.channels != channels) {
+    ++counters_.bad_replies;
+    return ActuatorStatus::kFault;
+  }
+  if (!answered) {
+    ++counters_.missed_replies;
+    if (++consecutive_missed_ > config_.max_missed_replies) {
+      link_fault_ = true;
+      return ActuatorStatus::kFault;
+    }
+    return ActuatorStatus::kNoReply;
+  }
+  ++counters_.replies;
+  consecutive_missed_ = 0;
+  for (int c = 0; c < channels; ++c) {
+    reading.displacement_m[c] = reply.displacement_m[c];
+    reading.force_n[c] = reply.force_n[c];
+  }
+  reading.fresh = true;
+  if (reply.status != ControllerStatus::kOk) {
+    ++counters_.controller_faults;
+    return ActuatorStatus::kFault;
+  }
+  return ActuatorStatus::kOk;
+}
+
+}  // namespace rpsd::servo

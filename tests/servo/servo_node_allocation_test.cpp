@@ -1,0 +1,138 @@
+// The servo node allocates nothing per control period: the controller with its limits
+// acting, events logged, bad commands dropped, the watchdog holding and ramping to safe,
+// over the simulated plants and over the UDP adapter (the emulator's thread is not counted:
+// only the control-loop thread must not allocate).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <numbers>
+#include <thread>
+
+#include "allocation_counter.h"
+#include "paper_rig.h"
+#include "rpsd/servo/controller_emulator.h"
+#include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/servo/simulated_actuator.h"
+#include "rpsd/servo/transfer_function_plant.h"
+#include "rpsd/servo/udp_controller_actuator.h"
+
+namespace rpsd::servo {
+namespace {
+
+ServoNodeConfig node_config() {
+  ServoNodeConfig c;
+  c.test_id = 11;
+  c.site_id = 2;
+  c.channels = 2;
+  c.control_period_s = 1.0 / 1024.0;
+  for (int ch = 0; ch < 2; ++ch) {
+    c.limits[ch].max_stroke_m = 0.015;  // the 20 mm sine below reaches it
+    c.limits[ch].max_velocity_m_per_s = 0.1;
+    c.limits[ch].max_increment_m = 0.01;
+  }
+  c.command_timeout_periods = 20;
+  c.on_command_loss = LossAction::kRampToSafe;
+  c.safe_ramp_velocity_m_per_s = 0.01;
+  c.event_log_capacity = 16;  // fewer than the activations: the overflow path runs too
+  return c;
+}
+
+struct RunResult {
+  long allocations = 0;
+  std::uint64_t activations = 0;
+  std::uint64_t dropped = 0;
+  bool reached_safe_state = false;
+  std::uint64_t events_not_logged = 0;
+  std::uint64_t missed_periods = 0;
+};
+
+// 3000 periods of commands (a 2 Hz, 20 mm sine with a bad command every 7th period and a
+// 10-period gap), then silence until the node has ramped to its safe state.
+RunResult run(ServoNodeController& node, int silent_periods) {
+  const double x0[] = {0.0, 0.0};
+  node.start(x0);
+  transport::CommandSample command;
+  command.test_id = 11;
+  command.site_id = 2;
+  command.channels = 2;
+  transport::FeedbackSample feedback;
+  const double dt = node.config().control_period_s;
+  rpsd::testing::begin_counting_allocations();
+  for (int i = 1; i <= 3000; ++i) {
+    const bool gap = i > 1000 && i <= 1010;  // shorter than the command timeout
+    if (!gap) {
+      command.step = i;
+      command.time_s = i * dt;
+      command.displacement_m[0] = 0.02 * std::sin(2.0 * std::numbers::pi * 2.0 * command.time_s);
+      command.displacement_m[1] = -0.5 * command.displacement_m[0];
+      node.accept(command);
+      if (i % 7 == 0) node.accept(command);  // a duplicate, dropped
+    }
+    node.tick(feedback);
+  }
+  for (int i = 0; i < silent_periods; ++i) node.tick(feedback);
+  RunResult result;
+  result.allocations = rpsd::testing::end_counting_allocations().total();
+  for (auto n : node.counters().limit_activations) result.activations += n;
+  result.dropped = node.counters().dropped_total();
+  result.reached_safe_state = node.in_safe_state() && node.command_m()[0] == 0.0;
+  result.events_not_logged = node.events_not_logged();
+  result.missed_periods = node.counters().missed_periods;
+  return result;
+}
+
+TEST(ServoNodeAllocation, CounterSeesAllocations) {
+  rpsd::testing::begin_counting_allocations();
+  auto* p = new int(1);
+  rpsd::testing::keep(p);
+  delete p;
+  EXPECT_EQ(rpsd::testing::end_counting_allocations().operator_new, 1);
+}
+
+TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
+  ServoHydraulicPlant paper(rpsd::testing::paper_rig());
+  TransferFunctionPlant benchmark(
+      {{Polynomial{2.18385e13}, Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}}, 1.19e6, 8192.0});
+  Plant* plants[] = {&paper, &benchmark};
+  SimulatedActuator actuator(plants);
+  ServoNodeController node(node_config(), actuator);
+  const RunResult r = run(node, 2000);
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_GT(r.activations, 16u);  // limits acted and the log overflowed: those paths ran
+  EXPECT_GT(r.events_not_logged, 0u);
+  EXPECT_EQ(r.dropped, 3000u / 7 - 2u);  // the duplicates, less the two that fell in the gap (1001, 1008)
+  EXPECT_GE(r.missed_periods, 10u + 20u);  // the gap, then the silence up to the timeout
+  EXPECT_TRUE(r.reached_safe_state);
+}
+
+TEST(ServoNodeAllocation, NoAllocationPerTickOverTheUdpAdapter) {
+  TransferFunctionPlant a({{Polynomial{1.0}, Polynomial{1.0, 0.01}}, 1e5, 8192.0});
+  TransferFunctionPlant b({{Polynomial{1.0}, Polynomial{1.0, 0.02}}, 1e5, 8192.0});
+  Plant* plants[] = {&a, &b};
+  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  const double x0[] = {0.0, 0.0};
+  emulator.start(x0);
+  std::atomic<bool> stop{false};
+  std::thread serving([&] {
+    while (!stop.load()) emulator.serve(0.01);
+  });
+  UdpControllerConfig config;
+  config.channels = 2;
+  config.controller_port = emulator.port();
+  config.local_host = "127.0.0.1";
+  config.reply_timeout_s = 2.0;
+  UdpControllerActuator adapter(config);
+  ServoNodeController node(node_config(), adapter);
+  const RunResult r = run(node, 2000);
+  stop.store(true);
+  serving.join();
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_EQ(adapter.counters().missed_replies, 0u);
+  EXPECT_EQ(node.counters().actuator_no_replies, 0u);
+  EXPECT_TRUE(r.reached_safe_state);
+}
+
+}  // namespace
+}  // namespace rpsd::servo

@@ -1,0 +1,591 @@
+// The servo node's logic with an ideal actuator (measured displacement = command, load cell
+// = k x): each limit with each action, the watchdog (hold, ramp to safe), and every kind of
+// bad command dropped, counted and never applied. Limits and rates are powers of two where
+// a test asserts exact increments, so that the expected values are exact in binary.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <deque>
+#include <initializer_list>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rpsd/servo/servo_node_controller.h"
+
+namespace rpsd::servo {
+namespace {
+
+using transport::CommandSample;
+using transport::FeedbackSample;
+
+class IdealActuator final : public Actuator {
+ public:
+  explicit IdealActuator(int channels, double stiffness_n_per_m = 0.0) : channels_(channels), stiffness_(stiffness_n_per_m) {}
+  int channels() const override { return channels_; }
+  void start(std::span<const double> x0) override {
+    started_at.assign(x0.begin(), x0.end());
+    commands.clear();
+  }
+  ActuatorStatus exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) override {
+    commands.emplace_back(command_m.begin(), command_m.end());
+    periods.push_back(period_s);
+    const ActuatorStatus status = script.empty() ? ActuatorStatus::kOk : script.front();
+    if (!script.empty()) script.pop_front();
+    if (status == ActuatorStatus::kNoReply) {
+      reading.fresh = false;
+      return status;
+    }
+    for (int c = 0; c < channels_; ++c) {
+      reading.displacement_m[c] = command_m[c];
+      reading.force_n[c] = stiffness_ * command_m[c];
+    }
+    reading.fresh = true;
+    return status;
+  }
+  double last(int channel = 0) const { return commands.back()[channel]; }
+
+  std::vector<double> started_at;
+  std::vector<std::vector<double>> commands;
+  std::vector<double> periods;
+  std::deque<ActuatorStatus> script;  ///< statuses to return, then kOk
+
+ private:
+  int channels_;
+  double stiffness_;
+};
+
+constexpr std::uint32_t kTest = 7, kSite = 3;
+constexpr double kPeriod = 1.0 / 1024.0;
+
+ServoNodeConfig config(int channels = 1) {
+  ServoNodeConfig c;
+  c.test_id = kTest;
+  c.site_id = kSite;
+  c.channels = channels;
+  c.control_period_s = kPeriod;
+  c.command_timeout_periods = 1000;
+  return c;
+}
+
+CommandSample command(std::int64_t step, std::initializer_list<double> x) {
+  CommandSample c;
+  c.test_id = kTest;
+  c.site_id = kSite;
+  c.step = step;
+  c.time_s = static_cast<double>(step) * kPeriod;
+  c.channels = static_cast<std::uint8_t>(x.size());
+  int i = 0;
+  for (double v : x) c.displacement_m[i++] = v;
+  return c;
+}
+
+// Accepts the command and runs one tick; returns the feedback.
+FeedbackSample send(ServoNodeController& node, const CommandSample& c) {
+  EXPECT_EQ(node.accept(c), CommandVerdict::kAccepted) << c.step;
+  FeedbackSample out;
+  node.tick(out);
+  return out;
+}
+
+// An ideal actuator and a node started at zero.
+struct Rig {
+  explicit Rig(const ServoNodeConfig& c, double stiffness_n_per_m = 0.0) : actuator(c.channels, stiffness_n_per_m), node(c, actuator) {
+    const std::vector<double> x0(static_cast<std::size_t>(c.channels), 0.0);
+    node.start(x0);
+  }
+  IdealActuator actuator;
+  ServoNodeController node;
+};
+
+FeedbackSample idle(ServoNodeController& node) {
+  FeedbackSample out;
+  node.tick(out);
+  return out;
+}
+
+std::string config_error(const ServoNodeConfig& c) {
+  try {
+    c.validate();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ServoNodeController, ConfigErrorsNameTheField) {
+  EXPECT_EQ(config_error(config()), "");
+  auto c = config();
+  c.channels = 0;
+  EXPECT_EQ(config_error(c).rfind("channels:", 0), 0u);
+  c = config();
+  c.control_period_s = -1e-3;
+  EXPECT_EQ(config_error(c).rfind("control_period_s:", 0), 0u);
+  c = config(2);
+  c.limits[1].max_stroke_m = 0.0;
+  EXPECT_EQ(config_error(c).rfind("limits[1].max_stroke_m:", 0), 0u) << config_error(c);
+  c = config(2);
+  c.limits[0].max_force_n = std::nan("");
+  EXPECT_EQ(config_error(c).rfind("limits[0].max_force_n:", 0), 0u);
+  c = config();
+  c.limits[0].max_velocity_m_per_s = -1.0;
+  EXPECT_EQ(config_error(c).rfind("limits[0].max_velocity_m_per_s:", 0), 0u);
+  c = config();
+  c.limits[0].max_increment_m = 0.0;
+  EXPECT_EQ(config_error(c).rfind("limits[0].max_increment_m:", 0), 0u);
+  c = config();
+  c.command_timeout_periods = 0;
+  EXPECT_EQ(config_error(c).rfind("command_timeout_periods:", 0), 0u);
+  c = config(2);
+  c.on_command_loss = LossAction::kRampToSafe;
+  c.limits[1].max_stroke_m = 0.05;
+  c.safe_position_m[1] = 0.06;
+  EXPECT_EQ(config_error(c).rfind("safe_position_m[1]: must lie within limits[1].max_stroke_m", 0), 0u) << config_error(c);
+  c.safe_position_m[1] = 0.0;
+  c.limits[0].max_velocity_m_per_s = 0.001;
+  EXPECT_EQ(config_error(c).rfind("safe_ramp_velocity_m_per_s: must not exceed limits[0].max_velocity_m_per_s", 0), 0u);
+  c.limits[0].max_velocity_m_per_s = 1.0;
+  c.safe_ramp_velocity_m_per_s = 0.0;
+  EXPECT_EQ(config_error(c).rfind("safe_ramp_velocity_m_per_s:", 0), 0u);
+
+  IdealActuator two(2);
+  EXPECT_THROW(ServoNodeController(config(1), two), std::invalid_argument);
+  auto bad = config();
+  bad.channels = 9;
+  IdealActuator one(1);
+  EXPECT_THROW(ServoNodeController(bad, one), std::invalid_argument);
+}
+
+TEST(ServoNodeController, AppliesEachCommandOnTheNextTickAndReportsIt) {
+  IdealActuator actuator(2, 1e5);
+  ServoNodeController node(config(2), actuator);
+  FeedbackSample out;
+  node.tick(out);  // before start(): a fault, nothing sent
+  EXPECT_EQ(out.status, transport::kNodeFault);
+  EXPECT_TRUE(actuator.commands.empty());
+
+  const double x0[] = {0.001, -0.002};
+  node.start(x0);
+  EXPECT_EQ(actuator.started_at, std::vector<double>({0.001, -0.002}));
+  // Before the first command the node holds its start position without calling it a loss.
+  for (int i = 0; i < 50; ++i) out = idle(node);
+  EXPECT_EQ(out.status, transport::kNodeOk);
+  EXPECT_EQ(out.step, -1);
+  EXPECT_EQ(actuator.last(1), -0.002);
+  EXPECT_EQ(node.counters().missed_periods, 0u);
+
+  ASSERT_EQ(node.accept(command(0, {0.003, 0.004})), CommandVerdict::kAccepted);
+  EXPECT_EQ(actuator.last(0), 0.001);  // accept() alone moves nothing
+  node.tick(out);
+  EXPECT_EQ(actuator.last(0), 0.003);
+  EXPECT_EQ(actuator.last(1), 0.004);
+  EXPECT_EQ(actuator.periods.back(), kPeriod);
+  EXPECT_EQ(out.test_id, kTest);
+  EXPECT_EQ(out.site_id, kSite);
+  EXPECT_EQ(out.step, 0);
+  EXPECT_EQ(out.time_s, 0.0);
+  EXPECT_EQ(out.channels, 2);
+  EXPECT_EQ(out.displacement_m[1], 0.004);
+  EXPECT_EQ(out.force_n[0], 1e5 * 0.003);
+  EXPECT_EQ(out.status, transport::kNodeOk);
+  EXPECT_EQ(out.limit_flags, transport::kLimitNone);
+  out = send(node, command(1, {0.0031, 0.0041}));
+  EXPECT_EQ(out.step, 1);
+  EXPECT_EQ(out.time_s, kPeriod);
+  EXPECT_EQ(node.counters().applied, 2u);
+  EXPECT_EQ(node.counters().ticks, 52u);
+}
+
+TEST(ServoNodeController, StrokeClampGivesExactlyTheBound) {
+  auto c = config();
+  c.limits[0].max_stroke_m = 0.05;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  FeedbackSample out = send(node, command(1, {0.06}));
+  EXPECT_EQ(actuator.last(), 0.05);
+  EXPECT_EQ(out.limit_flags, transport::kLimitStroke);
+  EXPECT_EQ(out.status, transport::kNodeLimitActive);
+  send(node, command(2, {-0.07}));
+  EXPECT_EQ(actuator.last(), -0.05);
+  send(node, command(3, {0.01}));
+  EXPECT_EQ(actuator.last(), 0.01);
+  out = send(node, command(4, {0.08}));
+  EXPECT_EQ(actuator.last(), 0.05);
+  // Two activations (the limit acted on steps 1-2 and again on step 4), three ticks active.
+  EXPECT_EQ(node.counters().activations(LimitKind::kStroke), 2u);
+  EXPECT_EQ(node.counters().limit_active_ticks[static_cast<int>(LimitKind::kStroke)], 3u);
+  ASSERT_EQ(node.events().size(), 2u);
+  const LimitEvent& e = node.events()[0];
+  EXPECT_EQ(e.tick, 0u);
+  EXPECT_EQ(e.step, 1);
+  EXPECT_EQ(e.channel, 0);
+  EXPECT_EQ(e.kind, LimitKind::kStroke);
+  EXPECT_EQ(e.action, LimitAction::kClamp);
+  EXPECT_EQ(e.commanded_m, 0.06);
+  EXPECT_EQ(e.applied_m, 0.05);
+  EXPECT_EQ(e.observed, 0.06);
+  EXPECT_EQ(e.bound, 0.05);
+  EXPECT_EQ(node.events()[1].tick, 3u);
+  EXPECT_FALSE(node.faulted());
+}
+
+TEST(ServoNodeController, StrokeHoldFreezesEveryChannelUntilAnInLimitCommand) {
+  auto c = config(2);
+  c.limits[0].max_stroke_m = 0.05;
+  c.actions.stroke = LimitAction::kHold;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  send(node, command(1, {0.01, 0.02}));
+  FeedbackSample out = send(node, command(2, {0.06, 0.03}));
+  EXPECT_EQ(actuator.last(0), 0.01);
+  EXPECT_EQ(actuator.last(1), 0.02);  // the in-limit channel is frozen too
+  EXPECT_EQ(out.status, transport::kNodeLimitActive);
+  EXPECT_EQ(out.step, 2);
+  send(node, command(3, {0.055, 0.04}));
+  EXPECT_EQ(actuator.last(0), 0.01);
+  out = idle(node);  // no new command: still the out-of-limit one, still frozen
+  EXPECT_EQ(actuator.last(0), 0.01);
+  out = send(node, command(4, {0.045, 0.04}));
+  EXPECT_EQ(actuator.last(0), 0.045);
+  EXPECT_EQ(actuator.last(1), 0.04);
+  EXPECT_EQ(out.status, transport::kNodeOk);
+  EXPECT_FALSE(node.faulted());
+  EXPECT_EQ(node.counters().activations(LimitKind::kStroke), 1u);
+  ASSERT_EQ(node.events().size(), 1u);
+  EXPECT_EQ(node.events()[0].applied_m, 0.01);
+  EXPECT_EQ(node.events()[0].action, LimitAction::kHold);
+}
+
+TEST(ServoNodeController, StrokeAbortLatchesAFaultUntilRestart) {
+  auto c = config();
+  c.limits[0].max_stroke_m = 0.05;
+  c.actions.stroke = LimitAction::kAbort;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  send(node, command(1, {0.02}));
+  FeedbackSample out = send(node, command(2, {0.051}));
+  EXPECT_EQ(actuator.last(), 0.02);
+  EXPECT_TRUE(node.faulted());
+  EXPECT_EQ(out.status, transport::kNodeFault | transport::kNodeLimitActive);
+  EXPECT_EQ(out.limit_flags, transport::kLimitStroke);
+  for (int step = 3; step < 20; ++step) {
+    EXPECT_EQ(node.accept(command(step, {0.01})), CommandVerdict::kNotFollowing);
+    node.tick(out);
+    EXPECT_EQ(actuator.last(), 0.02);
+    EXPECT_EQ(out.status, transport::kNodeFault);
+  }
+  EXPECT_EQ(node.counters().faults, 1u);
+  EXPECT_EQ(node.counters().dropped(CommandVerdict::kNotFollowing), 17u);
+  const double x0[] = {0.0};
+  node.start(x0);
+  EXPECT_FALSE(node.faulted());
+  out = send(node, command(1, {0.01}));
+  EXPECT_EQ(actuator.last(), 0.01);
+  EXPECT_EQ(out.status, transport::kNodeOk);
+}
+
+TEST(ServoNodeController, VelocityClampGivesIncrementsOfExactlyVT) {
+  auto c = config();
+  c.limits[0].max_velocity_m_per_s = 0.125;  // v T = 2^-3 2^-10 = 2^-13 m
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  const double step_m = 0.125 * kPeriod, target = 0.01;
+  // The coordinator keeps asking for 10 mm; 10 mm / 2^-13 m = 81.92 periods.
+  int clamped_ticks = 0;
+  for (int step = 1; step <= 100; ++step) {
+    const double before = actuator.commands.empty() ? 0.0 : actuator.last();
+    const FeedbackSample out = send(node, command(step, {target}));
+    if (step <= 81) {
+      ASSERT_EQ(actuator.last() - before, step_m) << step;
+      ASSERT_EQ(out.limit_flags, transport::kLimitVelocity);
+      ++clamped_ticks;
+    } else {
+      ASSERT_EQ(actuator.last(), target) << step;
+      ASSERT_EQ(out.limit_flags, transport::kLimitNone) << step;
+    }
+  }
+  EXPECT_EQ(clamped_ticks, 81);
+  EXPECT_EQ(node.counters().activations(LimitKind::kVelocity), 1u);
+  EXPECT_EQ(node.counters().limit_active_ticks[static_cast<int>(LimitKind::kVelocity)], 81u);
+  EXPECT_EQ(node.events()[0].observed, target / kPeriod);
+  EXPECT_EQ(node.events()[0].bound, 0.125);
+}
+
+TEST(ServoNodeController, IncrementClampAndTheTighterOfTheTwoRateLimits) {
+  auto c = config(2);
+  c.limits[0].max_increment_m = 0.00048828125;  // 2^-11 m
+  c.limits[1].max_increment_m = 0.00048828125;
+  c.limits[1].max_velocity_m_per_s = 0.125;     // 2^-13 m per period: tighter on channel 1
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  FeedbackSample out = send(node, command(1, {0.003, 0.003}));
+  EXPECT_EQ(actuator.last(0), 0.00048828125);
+  EXPECT_EQ(actuator.last(1), 0.0001220703125);
+  EXPECT_EQ(out.limit_flags, transport::kLimitIncrement | transport::kLimitVelocity);
+  for (int step = 2; step <= 6; ++step) send(node, command(step, {0.003, 0.003}));
+  EXPECT_EQ(actuator.last(0), 6 * 0.00048828125);  // 6.144 increments to go: 6 full ones
+  send(node, command(7, {0.003, 0.003}));
+  EXPECT_EQ(actuator.last(0), 0.003);
+  EXPECT_EQ(actuator.last(1), 7 * 0.0001220703125);
+}
+
+TEST(ServoNodeController, VelocityHoldAndIncrementAbort) {
+  {
+    auto c = config();
+    c.limits[0].max_velocity_m_per_s = 1.0;  // ~0.98 mm per period
+    c.actions.velocity = LimitAction::kHold;
+    Rig rig(c);
+    auto& [actuator, node] = rig;
+    FeedbackSample out = send(node, command(1, {0.002}));
+    EXPECT_EQ(actuator.last(), 0.0);
+    EXPECT_EQ(out.status, transport::kNodeLimitActive);
+    send(node, command(2, {0.0005}));  // back within one period's reach of the frozen command
+    EXPECT_EQ(actuator.last(), 0.0005);
+    EXPECT_FALSE(node.faulted());
+  }
+  {
+    auto c = config();
+    c.limits[0].max_increment_m = 0.001;
+    c.actions.increment = LimitAction::kAbort;
+    Rig rig(c);
+    auto& [actuator, node] = rig;
+    send(node, command(1, {0.0009}));
+    const FeedbackSample out = send(node, command(2, {0.0021}));
+    EXPECT_EQ(actuator.last(), 0.0009);
+    EXPECT_TRUE(node.faulted());
+    EXPECT_EQ(out.limit_flags, transport::kLimitIncrement);
+    EXPECT_EQ(node.events()[0].action, LimitAction::kAbort);
+  }
+}
+
+// Ideal actuator on a 1 MN/m specimen, commands rising 1 mm per step, force limit 5.5 kN:
+// the load cell reads 6 kN after step 6, so the limit acts on the tick of step 7.
+ServoNodeConfig force_config(LimitAction action) {
+  auto c = config();
+  c.limits[0].max_force_n = 5500.0;
+  c.actions.force = action;
+  return c;
+}
+
+TEST(ServoNodeController, ForceAbortLatchesOnTheTickAfterTheMeasurement) {
+  Rig rig(force_config(LimitAction::kAbort), 1e6);
+  auto& [actuator, node] = rig;
+  FeedbackSample out;
+  for (int step = 1; step <= 6; ++step) {
+    out = send(node, command(step, {step * 1e-3}));
+    ASSERT_EQ(out.status, transport::kNodeOk) << step;
+  }
+  EXPECT_EQ(out.force_n[0], 6000.0);
+  out = send(node, command(7, {7e-3}));
+  EXPECT_EQ(actuator.last(), 6e-3);
+  EXPECT_EQ(out.status, transport::kNodeFault | transport::kNodeLimitActive);
+  EXPECT_EQ(out.limit_flags, transport::kLimitForce);
+  EXPECT_EQ(node.accept(command(8, {5e-3})), CommandVerdict::kNotFollowing);
+  node.tick(out);
+  EXPECT_EQ(actuator.last(), 6e-3);
+  ASSERT_EQ(node.events().size(), 1u);
+  EXPECT_EQ(node.events()[0].tick, 6u);
+  EXPECT_EQ(node.events()[0].step, 7);
+  EXPECT_EQ(node.events()[0].observed, 6000.0);
+  EXPECT_EQ(node.events()[0].bound, 5500.0);
+}
+
+TEST(ServoNodeController, ForceClampStopsLoadingFurtherButAllowsUnloading) {
+  Rig rig(force_config(LimitAction::kClamp), 1e6);
+  auto& [actuator, node] = rig;
+  for (int step = 1; step <= 6; ++step) send(node, command(step, {step * 1e-3}));
+  for (int step = 7; step <= 10; ++step) {
+    const FeedbackSample out = send(node, command(step, {step * 1e-3}));
+    EXPECT_EQ(actuator.last(), 6e-3) << step;
+    EXPECT_EQ(out.limit_flags, transport::kLimitForce);
+  }
+  const FeedbackSample out = send(node, command(11, {4e-3}));
+  EXPECT_EQ(actuator.last(), 4e-3);
+  EXPECT_EQ(out.limit_flags, transport::kLimitForce);  // it acted on this tick (6 kN measured before it)
+  EXPECT_EQ(send(node, command(12, {4.5e-3})).limit_flags, transport::kLimitNone);
+  EXPECT_FALSE(node.faulted());
+  EXPECT_EQ(node.counters().activations(LimitKind::kForce), 1u);
+}
+
+TEST(ServoNodeController, ForceHoldFreezesTheCommandWhileTheForceIsExceeded) {
+  Rig rig(force_config(LimitAction::kHold), 1e6);
+  auto& [actuator, node] = rig;
+  for (int step = 1; step <= 6; ++step) send(node, command(step, {step * 1e-3}));
+  for (int step = 7; step <= 12; ++step) {
+    const FeedbackSample out = send(node, command(step, {(14 - step) * 1e-3}));
+    EXPECT_EQ(actuator.last(), 6e-3) << step;  // frozen whatever the command
+    EXPECT_EQ(out.status, transport::kNodeLimitActive);
+  }
+  EXPECT_FALSE(node.faulted());
+}
+
+TEST(ServoNodeController, WatchdogHoldsAfterExactlyNMissingPeriods) {
+  auto c = config();
+  c.command_timeout_periods = 5;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  for (int step = 1; step <= 10; ++step) send(node, command(step, {step * 1e-4}));
+  for (int missing = 1; missing <= 4; ++missing) {
+    const FeedbackSample out = idle(node);
+    EXPECT_EQ(out.status, transport::kNodeOk) << missing;
+    EXPECT_FALSE(node.holding());
+  }
+  FeedbackSample out = idle(node);  // the fifth missing period
+  EXPECT_EQ(out.status, transport::kNodeHolding);
+  EXPECT_EQ(out.step, 10);
+  for (int missing = 6; missing <= 40; ++missing) {
+    out = idle(node);
+    EXPECT_EQ(actuator.last(), 1e-3);  // holds the last command
+    EXPECT_EQ(out.status, transport::kNodeHolding);
+  }
+  EXPECT_EQ(node.counters().holds, 1u);
+  EXPECT_EQ(node.counters().missed_periods, 40u);
+  out = send(node, command(11, {1.1e-3}));  // commands resume: so does the node
+  EXPECT_EQ(out.status, transport::kNodeOk);
+  EXPECT_EQ(actuator.last(), 1.1e-3);
+  EXPECT_FALSE(node.holding());
+}
+
+TEST(ServoNodeController, RampToSafeReachesTheSafePositionAtTheConfiguredRate) {
+  auto c = config(2);
+  c.command_timeout_periods = 3;
+  c.on_command_loss = LossAction::kRampToSafe;
+  c.safe_ramp_velocity_m_per_s = 0.0625;  // 2^-4 m/s: 2^-14 m per period
+  c.safe_position_m = {0.0, 0.001953125};  // channel 1 already there (2^-9 m)
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  // 2^-7 + 2^-16 m from safe: 128.25 ramp periods, so 129 ticks, the last one partial.
+  const double start_m = 0.0078125 + 0.0000152587890625, step_m = 0.0625 * kPeriod;
+  send(node, command(1, {start_m, 0.001953125}));
+  idle(node);
+  idle(node);
+  for (int k = 1; k <= 128; ++k) {
+    const FeedbackSample out = idle(node);  // the first of these is the third missing period
+    ASSERT_EQ(actuator.last(0), start_m - k * step_m) << k;
+    ASSERT_EQ(actuator.last(1), 0.001953125);
+    ASSERT_EQ(out.status, transport::kNodeHolding);
+  }
+  idle(node);
+  EXPECT_EQ(actuator.last(0), 0.0);  // arrived after ceil(d / (v T)) = 129 periods
+  EXPECT_DOUBLE_EQ(129 * kPeriod, std::ceil((start_m - 0.0) / 0.0625 / kPeriod) * kPeriod);
+  for (int i = 0; i < 20; ++i) idle(node);
+  EXPECT_EQ(actuator.last(0), 0.0);
+  // The safe state is final: the node follows nothing until restarted.
+  EXPECT_EQ(node.accept(command(2, {0.001, 0.0})), CommandVerdict::kNotFollowing);
+  EXPECT_EQ(idle(node).status, transport::kNodeHolding);
+  EXPECT_TRUE(node.in_safe_state());
+  EXPECT_EQ(node.counters().limit_activations, (std::array<std::uint64_t, kLimitKinds>{}));  // within every limit
+}
+
+TEST(ServoNodeController, BadCommandsAreDroppedCountedAndNeverApplied) {
+  IdealActuator actuator(2);
+  auto c = config(2);
+  c.command_timeout_periods = 2;
+  ServoNodeController node(c, actuator);
+  const double x0[] = {0.001, 0.002};
+  node.start(x0);
+  send(node, command(5, {0.001, 0.002}));
+
+  auto wrong_test = command(6, {0.01, 0.01});
+  wrong_test.test_id = kTest + 1;
+  auto wrong_site = command(6, {0.01, 0.01});
+  wrong_site.site_id = kSite + 1;
+  auto nan = command(6, {0.01, std::nan("")});
+  auto infinite_time = command(6, {0.01, 0.01});
+  infinite_time.time_s = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(node.accept(wrong_test), CommandVerdict::kWrongTestId);
+  EXPECT_EQ(node.accept(wrong_site), CommandVerdict::kWrongSiteId);
+  EXPECT_EQ(node.accept(command(6, {0.01})), CommandVerdict::kWrongChannelCount);
+  EXPECT_EQ(node.accept(command(6, {0.01, 0.01, 0.01})), CommandVerdict::kWrongChannelCount);
+  EXPECT_EQ(node.accept(nan), CommandVerdict::kNonFinite);
+  EXPECT_EQ(node.accept(infinite_time), CommandVerdict::kNonFinite);
+  EXPECT_EQ(node.accept(command(5, {0.01, 0.01})), CommandVerdict::kNotNewer);  // duplicate
+  EXPECT_EQ(node.accept(command(3, {0.01, 0.01})), CommandVerdict::kNotNewer);  // out of order
+  EXPECT_EQ(node.accept(command(-1, {0.01, 0.01})), CommandVerdict::kNotNewer);
+  for (int i = 0; i < 10; ++i) {
+    const FeedbackSample out = idle(node);
+    EXPECT_EQ(out.step, 5);
+  }
+  for (const auto& sent : actuator.commands) EXPECT_EQ(sent, std::vector<double>({0.001, 0.002}));
+  const ServoNodeCounters& n = node.counters();
+  EXPECT_EQ(n.dropped(CommandVerdict::kWrongTestId), 1u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kWrongSiteId), 1u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kWrongChannelCount), 2u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kNonFinite), 2u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kNotNewer), 3u);
+  EXPECT_EQ(n.dropped_total(), 9u);
+  EXPECT_EQ(n.accepted, 1u);
+  EXPECT_TRUE(node.holding());  // dropped commands do not feed the watchdog
+
+  // A NaN in a slot beyond the node's channels is not part of the command.
+  auto padded = command(6, {0.0011, 0.0021});
+  padded.displacement_m[5] = std::nan("");
+  EXPECT_EQ(node.accept(padded), CommandVerdict::kAccepted);
+}
+
+TEST(ServoNodeController, TheNewestPendingCommandWins) {
+  auto c = config();
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  EXPECT_EQ(node.accept(command(1, {0.001})), CommandVerdict::kAccepted);
+  EXPECT_EQ(node.accept(command(2, {0.002})), CommandVerdict::kAccepted);
+  EXPECT_EQ(node.accept(command(1, {0.003})), CommandVerdict::kNotNewer);
+  const FeedbackSample out = idle(node);
+  EXPECT_EQ(actuator.last(), 0.002);
+  EXPECT_EQ(out.step, 2);
+  EXPECT_EQ(node.counters().superseded, 1u);
+  EXPECT_EQ(node.counters().applied, 1u);
+  EXPECT_EQ(actuator.commands.size(), 1u);
+}
+
+TEST(ServoNodeController, ActuatorNoReplyKeepsTheLastMeasurementAndAFaultLatches) {
+  auto c = config();
+  Rig rig(c, 1e5);
+  auto& [actuator, node] = rig;
+  send(node, command(1, {0.001}));
+  actuator.script = {ActuatorStatus::kNoReply};
+  FeedbackSample out = send(node, command(2, {0.002}));
+  EXPECT_EQ(out.displacement_m[0], 0.001);  // the last measurement, not the new command
+  EXPECT_EQ(out.force_n[0], 100.0);
+  EXPECT_EQ(out.step, 2);
+  EXPECT_EQ(out.status, transport::kNodeOk);
+  EXPECT_FALSE(node.reading().fresh);
+  EXPECT_EQ(node.counters().actuator_no_replies, 1u);
+  actuator.script = {ActuatorStatus::kFault};
+  out = send(node, command(3, {0.003}));
+  EXPECT_EQ(out.status, transport::kNodeFault);
+  EXPECT_TRUE(node.faulted());
+  EXPECT_EQ(node.accept(command(4, {0.004})), CommandVerdict::kNotFollowing);
+  idle(node);
+  EXPECT_EQ(actuator.last(), 0.003);  // the command it had when the fault came, held
+  EXPECT_EQ(node.counters().actuator_faults, 1u);
+  EXPECT_EQ(node.counters().faults, 1u);
+}
+
+TEST(ServoNodeController, TheEventLogKeepsTheFirstActivationsAndCountsTheRest) {
+  auto c = config();
+  c.limits[0].max_stroke_m = 0.05;
+  c.event_log_capacity = 2;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  for (int step = 1; step <= 8; ++step) send(node, command(step, {step % 2 ? 0.06 : 0.0}));
+  EXPECT_EQ(node.counters().activations(LimitKind::kStroke), 4u);
+  ASSERT_EQ(node.events().size(), 2u);
+  EXPECT_EQ(node.events()[1].step, 3);
+  EXPECT_EQ(node.events_not_logged(), 2u);
+}
+
+TEST(ServoNodeController, StartRefusesAnInitialPositionBeyondTheStroke) {
+  IdealActuator actuator(1);
+  auto c = config();
+  c.limits[0].max_stroke_m = 0.05;
+  ServoNodeController node(c, actuator);
+  const double beyond[] = {0.051}, two[] = {0.0, 0.0};
+  EXPECT_THROW(node.start(beyond), std::invalid_argument);
+  EXPECT_THROW(node.start(two), std::invalid_argument);
+  EXPECT_TRUE(actuator.started_at.empty());
+}
+
+}  // namespace
+}  // namespace rpsd::servo

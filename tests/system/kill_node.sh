@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Killing a servo node mid-test: the coordinator stops within 5 control periods with exit
+# code 3 and a clear reason, and every step it took is in the results.
+source "$(dirname "$0")/lib.sh"
+start_node 1 real_time
+start_node 2 real_time
+( sleep 3; kill -9 $NODE2_PID ) &
+set +e
+run_bridge "$WORK/rt" --set transport.kind=dds --set clock.mode=real_time > "$WORK/run.log" 2>&1
+code=$?
+set -e
+cat "$WORK/run.log"
+[ $code = 3 ] || fail "exit code $code, expected 3"
+grep -q "the servo node stopped answering (5 consecutive control periods" "$WORK/run.log" || fail "no clear reason"
+steps=$(json "$WORK/rt/summary.json" "j['steps']")
+rows=$(( $(wc -l < "$WORK/rt/time_history.csv") - 1 ))
+[ "$steps" = "$rows" ] && [ "$steps" -gt 100 ] || fail "$steps steps but $rows rows recorded"
+echo "PASS: stopped after $steps recorded steps, exit 3"

@@ -1,0 +1,160 @@
+// The DDS link between a coordinator and a node participant in one process, over the
+// loopback configuration shipped in transport/config/.
+#include "rpsd/transport/dds_link.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <string>
+#include <thread>
+
+#include "rpsd/realtime/pacer.h"
+#include "rpsd/transport/dds_node_endpoint.h"
+
+namespace rpsd::transport {
+namespace {
+
+DdsDomainConfig loopback() {
+  // A domain of its own per test binary run keeps parallel ctest processes apart.
+  return {static_cast<std::uint32_t>(40 + ::getpid() % 150), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+}
+
+DdsLinkConfig link_config(std::uint32_t test, std::uint32_t site, int channels, double timeout_s = 1.0) {
+  DdsLinkConfig c;
+  c.test_id = test;
+  c.site_id = site;
+  c.channels = channels;
+  c.feedback_timeout_s = timeout_s;
+  return c;
+}
+
+DdsNodeEndpointConfig node_config(std::uint32_t test, std::uint32_t site) {
+  DdsNodeEndpointConfig c;
+  c.test_id = test;
+  c.site_id = site;
+  return c;
+}
+
+// Answers every command of its site with x = 2 u, F = -u, until stopped.
+void echo(DdsNodeEndpoint& node, std::uint32_t site, const std::atomic<bool>& stop, int max_answers = 1 << 30) {
+  CommandSample c;
+  int answered = 0;
+  while (!stop && answered < max_answers) {
+    if (!node.wait_for_command_until(realtime::monotonic_now_ns() + 20'000'000)) continue;
+    while (node.take_command(c) && answered < max_answers) {
+      FeedbackSample f;
+      f.test_id = c.test_id;
+      f.site_id = site;
+      f.step = c.step;
+      f.time_s = c.time_s;
+      f.channels = c.channels;
+      for (int k = 0; k < c.channels; ++k) {
+        f.displacement_m[k] = 2.0 * c.displacement_m[k];
+        f.force_n[k] = -c.displacement_m[k];
+      }
+      node.publish(f);
+      ++answered;
+    }
+  }
+}
+
+TEST(DdsLink, LockStepRoundTripsCarryEveryStepAndMeasureTheirLatency) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(11, 3, 2));
+  DdsNodeEndpoint node(node_side, node_config(11, 3));
+  ASSERT_TRUE(link.wait_for_node(10.0));
+  std::atomic<bool> stop{false};
+  std::thread responder([&] { echo(node, 3, stop); });
+  for (int step = 0; step < 200; ++step) {
+    CommandSample c;
+    c.step = step;
+    c.channels = 2;
+    c.displacement_m[0] = 1e-3 * step;
+    c.displacement_m[1] = -1e-3 * step;
+    ASSERT_EQ(link.send(c), LinkStatus::kOk);
+    FeedbackSample f;
+    ASSERT_EQ(link.receive(f), LinkStatus::kOk) << "step " << step;
+    EXPECT_EQ(f.step, step);
+    EXPECT_EQ(f.test_id, 11u);
+    EXPECT_DOUBLE_EQ(f.displacement_m[0], 2e-3 * step);
+    EXPECT_DOUBLE_EQ(f.force_n[1], 1e-3 * step);
+    EXPECT_GT(f.round_trip_ns[0], 0);
+    EXPECT_EQ(f.round_trip_ns[0], f.round_trip_ns[1]);
+  }
+  stop = true;
+  responder.join();
+  EXPECT_EQ(link.counters().sent, 200);
+  EXPECT_EQ(link.counters().received, 200);
+  EXPECT_EQ(link.counters().late, 0);
+}
+
+TEST(DdsLink, TwoTestsOnOneNetworkNeverSeeEachOther) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(21, 1, 1));
+  DdsNodeEndpoint other_test(node_side, node_config(22, 1));
+  DdsNodeEndpoint other_site(node_side, node_config(21, 2));
+  EXPECT_FALSE(link.wait_for_node(1.0));
+  CommandSample c;
+  c.channels = 1;
+  link.send(c);
+  EXPECT_FALSE(other_test.wait_for_command_until(realtime::monotonic_now_ns() + 300'000'000));
+  EXPECT_FALSE(other_site.wait_for_command_until(realtime::monotonic_now_ns() + 10'000'000));
+  CommandSample got;
+  EXPECT_FALSE(other_test.take_command(got));
+  EXPECT_FALSE(other_site.take_command(got));
+}
+
+TEST(DdsLink, FeedbackWithAForeignSiteIdOrChannelCountIsDroppedAndCounted) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(31, 1, 1, 0.3));
+  DdsNodeEndpoint node(node_side, node_config(31, 1));
+  ASSERT_TRUE(link.wait_for_node(10.0));
+  CommandSample c;
+  c.channels = 1;
+  c.step = 0;
+  link.send(c);
+  FeedbackSample bad;
+  bad.test_id = 31;
+  bad.site_id = 9;  // in the partition of site 1, but claiming another site
+  bad.channels = 1;
+  node.publish(bad);
+  bad.site_id = 1;
+  bad.channels = 3;
+  node.publish(bad);
+  FeedbackSample f;
+  EXPECT_EQ(link.receive(f), LinkStatus::kTimeout);
+  EXPECT_EQ(link.counters().wrong_test_or_site, 1);
+  EXPECT_EQ(link.counters().wrong_channels, 1);
+  EXPECT_EQ(link.counters().received, 0);
+  EXPECT_EQ(link.counters().late, 1);
+}
+
+TEST(DdsLink, ARealTimeDeadlineEndsTheWaitAndHandsBackTheNewestSample) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(41, 1, 1, 5.0));
+  DdsNodeEndpoint node(node_side, node_config(41, 1));
+  ASSERT_TRUE(link.wait_for_node(10.0));
+  std::atomic<bool> stop{false};
+  std::thread responder([&] { echo(node, 1, stop, 1); });  // answers step 0 only
+  CommandSample c;
+  c.channels = 1;
+  c.displacement_m[0] = 0.25;
+  link.send(c);
+  FeedbackSample f;
+  ASSERT_EQ(link.receive(f), LinkStatus::kOk);
+  c.step = 1;
+  c.displacement_m[0] = 0.5;
+  link.send(c);
+  const std::int64_t t0 = realtime::monotonic_now_ns();
+  link.set_receive_deadline_ns(t0 + 50'000'000);
+  f = FeedbackSample{};
+  EXPECT_EQ(link.receive(f), LinkStatus::kTimeout);
+  EXPECT_GE(realtime::monotonic_now_ns() - t0, 50'000'000);  // waited for the deadline...
+  EXPECT_EQ(f.step, 0);                                       // ...and returned step 0's sample
+  EXPECT_DOUBLE_EQ(f.displacement_m[0], 0.5);
+  stop = true;
+  responder.join();
+}
+
+}  // namespace
+}  // namespace rpsd::transport

@@ -1,0 +1,69 @@
+#include "rpsd/transport/multi_site_link.h"
+
+#include <gtest/gtest.h>
+
+#include "rpsd/transport/in_process_link.h"
+
+namespace rpsd::transport {
+namespace {
+
+// A node whose channel k measures 10 * site + command and reports its site in the status.
+class EchoNode final : public CommandProcessor {
+ public:
+  explicit EchoNode(std::uint32_t site) : site_(site) {}
+  void process(const CommandSample& c, FeedbackSample& f) override {
+    seen = c;
+    f.test_id = c.test_id;
+    f.site_id = c.site_id;
+    f.step = c.step;
+    f.channels = c.channels;
+    for (int k = 0; k < c.channels; ++k) {
+      f.displacement_m[k] = 10.0 * site_ + c.displacement_m[k];
+      f.force_n[k] = -f.displacement_m[k];
+    }
+    f.status = site_ == 2 ? kNodeLimitActive : kNodeOk;
+  }
+  CommandSample seen;
+
+ private:
+  std::uint32_t site_;
+};
+
+TEST(MultiSiteLink, RoutesEachChannelToItsSiteAndMergesTheFeedback) {
+  EchoNode a(1), b(2);
+  InProcessLink la(a), lb(b);
+  MultiSiteLink link({{1, &la, {2, 0}}, {2, &lb, {1}}});
+  EXPECT_EQ(link.channels(), 3);
+  CommandSample c;
+  c.test_id = 7;
+  c.step = 4;
+  c.channels = 3;
+  c.displacement_m = {0.1, 0.2, 0.3};
+  ASSERT_EQ(link.send(c), LinkStatus::kOk);
+  EXPECT_EQ(a.seen.site_id, 1u);
+  EXPECT_EQ(a.seen.channels, 2);
+  EXPECT_DOUBLE_EQ(a.seen.displacement_m[0], 0.3);
+  EXPECT_DOUBLE_EQ(a.seen.displacement_m[1], 0.1);
+  EXPECT_EQ(b.seen.site_id, 2u);
+  EXPECT_DOUBLE_EQ(b.seen.displacement_m[0], 0.2);
+  FeedbackSample f;
+  ASSERT_EQ(link.receive(f), LinkStatus::kOk);
+  EXPECT_EQ(f.step, 4);
+  EXPECT_EQ(f.channels, 3);
+  EXPECT_DOUBLE_EQ(f.displacement_m[0], 10.1);
+  EXPECT_DOUBLE_EQ(f.displacement_m[1], 20.2);
+  EXPECT_DOUBLE_EQ(f.displacement_m[2], 10.3);
+  EXPECT_DOUBLE_EQ(f.force_n[1], -20.2);
+  EXPECT_EQ(f.status, kNodeLimitActive);  // one site's limit shows on the merged sample
+}
+
+TEST(MultiSiteLink, RejectsChannelsOwnedTwiceOrByNobody) {
+  EchoNode a(1);
+  InProcessLink la(a), lb(a);
+  EXPECT_THROW(MultiSiteLink({{1, &la, {0, 1}}, {2, &lb, {1}}}), std::invalid_argument);
+  EXPECT_THROW(MultiSiteLink({{1, &la, {0, 2}}}), std::invalid_argument);
+  EXPECT_THROW(MultiSiteLink({{1, nullptr, {0}}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rpsd::transport

@@ -1,0 +1,38 @@
+// The QoS of rpsd's three topics, in one place (the reasons are in docs/dds-transport.md):
+//
+//   topic        reliability  history      durability       liveliness
+//   Command      reliable     keep last 8  volatile         automatic, lease L
+//   Feedback     reliable     keep last 8  volatile         automatic, lease L
+//   Heartbeat    reliable     keep last 1  transient-local  automatic, lease L
+//
+// Reliable with keep-last never blocks the writer on a slow or dead reader (old samples are
+// replaced), yet repairs a lost packet when there is time. No DDS deadline: a requested
+// deadline shorter than the offered one (a node faster than its coordinator) would stop the
+// endpoints from matching at all; instead the coordinator and the node count missing
+// control periods themselves, which is what stops a test or makes a node hold, within k
+// periods. The liveliness lease L tells a dead peer from a slow one. Partitions
+// "rpsd/test-<id>/site-<id>" keep two tests on one network, and two sites of one test, from
+// ever crossing.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "rpsd/transport/dds_entity.h"
+
+namespace rpsd::transport {
+
+struct DdsQosSettings {
+  double control_period_s = 1.0 / 1024.0;
+  double liveliness_lease_s = 1.0;   ///< L
+  int history_depth = 8;
+};
+
+DdsQos command_qos(const DdsQosSettings& s);
+DdsQos feedback_qos(const DdsQosSettings& s);
+DdsQos heartbeat_qos(const DdsQosSettings& s);
+/// Publisher/subscriber QoS carrying the partition of one site of one test.
+DdsQos site_partition_qos(std::uint32_t test_id, std::uint32_t site_id);
+std::string site_partition_name(std::uint32_t test_id, std::uint32_t site_id);
+
+}  // namespace rpsd::transport

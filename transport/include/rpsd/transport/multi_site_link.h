@@ -1,0 +1,40 @@
+// One link that fans a test's commands out to several sites and merges their feedback:
+// each site gets its own channels (renumbered from 0), its own link (in-process or DDS)
+// and its own latency. The coordinator loop sees one link with all channels; a step is
+// complete when every site has answered.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "rpsd/transport/link.h"
+
+namespace rpsd::transport {
+
+struct SiteRoute {
+  std::uint32_t site_id = 1;
+  Link* link = nullptr;       ///< not owned
+  std::vector<int> channels;  ///< the test's channel of each of the site's channels
+};
+
+class MultiSiteLink final : public Link {
+ public:
+  /// Checks that every channel 0..n-1 belongs to exactly one site. Not real-time safe;
+  /// throws std::invalid_argument.
+  explicit MultiSiteLink(std::vector<SiteRoute> sites);
+
+  int channels() const { return channels_; }
+  /// Real-time safe.
+  LinkStatus send(const CommandSample& command) override;
+  /// Worst status over the sites; the feedback holds every site's newest sample. Real-time safe.
+  LinkStatus receive(FeedbackSample& feedback) override;
+
+ private:
+  std::vector<SiteRoute> sites_;
+  int channels_ = 0;
+  CommandSample site_command_;
+  FeedbackSample site_feedback_;
+};
+
+}  // namespace rpsd::transport

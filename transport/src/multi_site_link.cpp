@@ -1,0 +1,74 @@
+#include "rpsd/transport/multi_site_link.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace rpsd::transport {
+
+namespace {
+// kOk < kTimeout < kStaleStep < kPeerLost: the worst site decides.
+LinkStatus worse(LinkStatus a, LinkStatus b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
+}  // namespace
+
+MultiSiteLink::MultiSiteLink(std::vector<SiteRoute> sites) : sites_(std::move(sites)) {
+  if (sites_.empty()) throw std::invalid_argument("MultiSiteLink: at least one site");
+  std::array<int, kMaxChannels> owners{};
+  for (const SiteRoute& site : sites_) {
+    if (site.link == nullptr) throw std::invalid_argument("MultiSiteLink: site " + std::to_string(site.site_id) + " has no link");
+    if (site.channels.empty() || site.channels.size() > static_cast<std::size_t>(kMaxChannels)) {
+      throw std::invalid_argument("MultiSiteLink: site " + std::to_string(site.site_id) + " needs 1 to " +
+                                  std::to_string(kMaxChannels) + " channels");
+    }
+    for (int ch : site.channels) {
+      if (ch < 0 || ch >= kMaxChannels) throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " out of range");
+      if (owners[ch]++ > 0) throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " belongs to two sites");
+      channels_ = std::max(channels_, ch + 1);
+    }
+  }
+  for (int ch = 0; ch < channels_; ++ch) {
+    if (owners[ch] == 0) throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " belongs to no site");
+  }
+}
+
+LinkStatus MultiSiteLink::send(const CommandSample& command) {
+  LinkStatus status = LinkStatus::kOk;
+  for (const SiteRoute& site : sites_) {
+    site_command_ = command;
+    site_command_.site_id = site.site_id;
+    site_command_.channels = static_cast<std::uint8_t>(site.channels.size());
+    for (std::size_t i = 0; i < site.channels.size(); ++i) site_command_.displacement_m[i] = command.displacement_m[site.channels[i]];
+    status = worse(status, site.link->send(site_command_));
+  }
+  return status;
+}
+
+LinkStatus MultiSiteLink::receive(FeedbackSample& feedback) {
+  LinkStatus status = LinkStatus::kOk;
+  feedback.status = kNodeOk;
+  feedback.limit_flags = kLimitNone;
+  feedback.channels = static_cast<std::uint8_t>(channels_);
+  bool first = true;
+  for (const SiteRoute& site : sites_) {
+    status = worse(status, site.link->receive(site_feedback_));
+    // A step is only as recent as its slowest site.
+    feedback.step = first ? site_feedback_.step : std::min(feedback.step, site_feedback_.step);
+    if (first) {
+      feedback.test_id = site_feedback_.test_id;
+      feedback.time_s = site_feedback_.time_s;
+    }
+    first = false;
+    feedback.status |= site_feedback_.status;
+    feedback.limit_flags |= site_feedback_.limit_flags;
+    for (std::size_t i = 0; i < site.channels.size(); ++i) {
+      const int ch = site.channels[i];
+      feedback.displacement_m[ch] = site_feedback_.displacement_m[i];
+      feedback.force_n[ch] = site_feedback_.force_n[i];
+      feedback.round_trip_ns[ch] = site_feedback_.round_trip_ns[i];
+    }
+  }
+  feedback.site_id = 0;
+  return status;
+}
+
+}  // namespace rpsd::transport
