@@ -4,8 +4,8 @@
 //     Centro + 20 s of free vibration) and on 30 minutes of a synthetic record (the shipped
 //     synthetic-sdof scenario with its duration raised to 1800 s). The rpsd process's own
 //     peak resident set (VmHWM, sampled from /proc every 20 ms while it runs, so gnuplot's
-//     memory is not counted) and its wall time. Flat memory: the 30-minute peak is about the
-//     60 s one; what grows is the record itself (8 bytes per step).
+//     memory is not counted) and its wall time. The 30-minute peak exceeds the 60 s one by the
+//     input record it holds (8 bytes per step, twice while its spectrum is computed).
 // (2) In a fresh child process each: resident-set growth per simulated minute (peak less the
 //     resident set once the scenario is loaded; the slope between a 1-minute run and a long
 //     one) of the test and reference as `rpsd run` runs them (evaluated step by step, nothing
@@ -185,11 +185,9 @@ int main(int argc, char** argv) try {
   b.title = "Peak memory, `rpsd run` of " + long_seconds + " s (synthetic record), rpsd process";
   b.unit = "MB";
   b.value = single(long_run.peak_mb);
-  b.target = "flat";
   b.baseline_id = "peak_rss_60s_mb";
   b.ratio_label = "long run / 60 s run";
   b.ratio_to_baseline = long_run.peak_mb / a.value.median;
-  b.meets_target = b.ratio_to_baseline < 1.5;
   fragment.add(b);
 
   bench::Figure g;
@@ -197,6 +195,9 @@ int main(int argc, char** argv) try {
   g.title = "Memory growth per simulated minute, as `rpsd run` runs (test + reference)";
   g.unit = "MB/min";
   g.value = single(streamed_per_min);
+  // Flat: what a step leaves behind is below a byte (a kept record is about 860 bytes).
+  g.target = "flat (< 0.01 MB/min)";
+  g.meets_target = streamed_per_min < 0.01;
   g.baseline_id = "rss_growth_kept_records_mb_per_min";
   g.ratio_label = "streamed / records kept";
   g.ratio_to_baseline = streamed_per_min / kept_per_min;
@@ -226,6 +227,8 @@ int main(int argc, char** argv) try {
   char text[400];
   std::snprintf(text, sizeof text,
                 "Largest resident set including gnuplot children (wait4): %.0f MB for 60 s, %.0f MB for %s s. "
+                "The long run's peak exceeds the 60 s one by the record it holds (8 bytes per step) and, while the "
+                "response spectrum is computed before the test, a copy of it. "
                 "Growth per minute: (growth over the long run - growth over 1 min) / the minutes between, growth being "
                 "the peak resident set less the resident set with the scenario loaded, in a fresh process; the record "
                 "itself (8 bytes per step, %.0f MB for %s s at 1024 Hz) is loaded before.",
