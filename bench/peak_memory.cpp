@@ -224,7 +224,7 @@ int main(int argc, char** argv) try {
   lw.value = single(long_run.wall_s);
   fragment.add(lw);
 
-  char text[400];
+  char text[1000];
   std::snprintf(text, sizeof text,
                 "Largest resident set including gnuplot children (wait4): %.0f MB for 60 s, %.0f MB for %s s. "
                 "The long run's peak exceeds the 60 s one by the record it holds (8 bytes per step) and, while the "
