@@ -27,7 +27,7 @@ Sweep time_sweep(const std::filesystem::path& file, int repetitions) {
   Sweep s;
   s.study = std::get<scenarios::DelayCompensationStudy>(scenarios::load_study(file).study);
   for (const auto& c : coordinator::run_delay_compensation(s.study)) {
-    s.simulated_s += static_cast<double>(c.records.size()) / s.study.control_rate_hz;
+    s.simulated_s += static_cast<double>(c.steps) / s.study.control_rate_hz;
   }
   s.seconds = bench::time_trials(repetitions, 0, [&] {
     if (coordinator::run_delay_compensation(s.study).size() != s.study.compensated_delays_s.size()) {

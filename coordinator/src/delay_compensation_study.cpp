@@ -54,19 +54,6 @@ std::unique_ptr<servo::Plant> make_plant(const scenarios::DelayCompensationStudy
   return std::make_unique<servo::ServoHydraulicPlant>(std::get<servo::ServoSystemParameters>(study.plant));
 }
 
-void tracking_errors(DelayCompensationCase& c, double dt_s) {
-  const ChannelCriteria criteria = channel_criteria(c.records, 0, 1.0 / dt_s);
-  c.tracking_rms_error_percent = criteria.j2_rms_tracking_error_percent;
-  c.tracking_peak_error_percent = criteria.j3_peak_tracking_error_percent;
-  c.tracking_delay_s = 1e-3 * criteria.j1_tracking_delay_ms;
-  c.final_tracking_indicator_m2 = criteria.final_tracking_indicator_m2;
-  if (!c.records.empty()) {
-    const auto& last = c.records.back();
-    c.energy_balance_error_j =
-        last.input_energy_j - (last.kinetic_energy_j + last.damping_energy_j + last.restoring_energy_j);
-  }
-}
-
 }  // namespace
 
 std::string delay_case_csv_name(std::size_t index, double compensated_delay_s) {
@@ -106,20 +93,36 @@ std::vector<DelayCompensationCase> run_delay_compensation(const scenarios::Delay
     setup.abort_amplitude_factor = study.abort_amplitude_factor;
     setup.integrator = study.integrator;
     setup.compensator = lead;
+    setup.keep_records = false;  // the case is evaluated as it runs
     auto plant = make_plant(study);
-    SdofRpsdResult result = run_sdof_rpsd(setup, *plant, dir.empty() ? dir : dir / delay_case_csv_name(i, k.compensated_delay_s));
-    if (result.outcome != StepOutcome::kOk) throw std::runtime_error("delay-compensation case stopped: loop failure");
-    k.aborted_on_amplitude = result.aborted_on_amplitude;
-    k.records = std::move(result.records);
+    SdofRpsdTest test(setup, *plant, dir.empty() ? dir : dir / delay_case_csv_name(i, k.compensated_delay_s));
+    CriteriaAccumulator sums(1, 0, study.control_rate_hz);
     std::vector<double> x;
-    x.reserve(k.records.size());
-    for (const auto& r : k.records) x.push_back(r.displacement_m[0]);
+    const auto steps = static_cast<std::int64_t>(std::llround(setup.duration_s / setup.dt_s));
+    x.reserve(static_cast<std::size_t>(steps));
+    const double abort_level = setup.abort_amplitude_factor * std::abs(setup.initial_displacement_m);
+    for (std::int64_t n = 0; n < steps; ++n) {
+      if (test.step() != StepOutcome::kOk) throw std::runtime_error("delay-compensation case stopped: loop failure");
+      sums.add_test(test.last_record());
+      x.push_back(test.last_record().displacement_m[0]);
+      if (abort_level > 0.0 && std::abs(test.displacement_m()) > abort_level) {
+        k.aborted_on_amplitude = true;
+        break;
+      }
+    }
+    test.finish();
+    k.steps = static_cast<std::int64_t>(x.size());
     // Skip the first quarter second: the actuator settles from holding to following.
     const IdentifiedDamping identified = identify_damping(x, dt, 0.25, 1e-4);
     k.identified_damping_ratio = identified.damping_ratio;
     k.identified_frequency_hz = identified.damped_frequency_hz;
     k.stable = k.identified_damping_ratio > 0.0 && !k.aborted_on_amplitude;
-    tracking_errors(k, dt);
+    const ChannelCriteria criteria = sums.channel(0);
+    k.tracking_rms_error_percent = criteria.j2_rms_tracking_error_percent;
+    k.tracking_peak_error_percent = criteria.j3_peak_tracking_error_percent;
+    k.tracking_delay_s = 1e-3 * criteria.j1_tracking_delay_ms;
+    k.final_tracking_indicator_m2 = criteria.final_tracking_indicator_m2;
+    k.energy_balance_error_j = sums.criteria().energy_error_j;
     cases.push_back(std::move(k));
   }
   return cases;

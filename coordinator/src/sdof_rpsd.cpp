@@ -85,6 +85,8 @@ StepOutcome SdofRpsdTest::step() { return parts_->loop->step(*parts_->recorder);
 
 double SdofRpsdTest::displacement_m() const { return parts_->integrator->displacement()[0]; }
 
+const StepRecord& SdofRpsdTest::last_record() const { return parts_->loop->last_record(); }
+
 std::vector<StepRecord> SdofRpsdTest::finish() { return parts_->recorder->finish(); }
 
 std::uint64_t SdofRpsdTest::dropped_records() const { return parts_->recorder->dropped(); }

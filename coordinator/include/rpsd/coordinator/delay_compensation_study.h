@@ -3,10 +3,10 @@
 // the response and set against delay theory. Not real-time safe (it runs whole tests).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
-#include "rpsd/coordinator/step_record.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::coordinator {
@@ -28,7 +28,7 @@ struct DelayCompensationCase {
   double tracking_delay_s = 0.0;              ///< J1: cross-correlation of measured against target
   double energy_balance_error_j = 0.0;        ///< input - (kinetic + damping + restoring) at the end
   double final_tracking_indicator_m2 = 0.0;
-  std::vector<StepRecord> records;
+  std::int64_t steps = 0;                     ///< steps taken (fewer when aborted on amplitude)
 };
 
 /// Runs every case; `dir` (optional) receives one CSV per case.

@@ -54,6 +54,8 @@ class SdofRpsdTest {
   StepOutcome step();
   /// Displacement of the numerical DOF now.
   double displacement_m() const;
+  /// The record of the last step. Real-time safe.
+  const StepRecord& last_record() const;
   /// Stops the recorder and returns what was recorded. Not real-time safe.
   std::vector<StepRecord> finish();
   std::uint64_t dropped_records() const;
