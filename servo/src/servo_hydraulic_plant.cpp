@@ -52,13 +52,17 @@ void ServoHydraulicPlant::reset(double displacement_m) {
 }
 
 // The whole physics; inline so that RK4's four evaluations are one straight piece of code.
-inline ServoHydraulicPlant::Rates ServoHydraulicPlant::rate(const Rates& s, double command_m,
-                                                            double command_rate_m_per_s) const {
+// The two slow links of a stage, the square root of the valve flow and the friction's tanh,
+// are kept apart (Terms) so that the next stage's pressure and velocity can be formed with
+// one product and one sum after them (see rk4_step).
+inline ServoHydraulicPlant::Terms ServoHydraulicPlant::terms(const Rates& s, double command_m,
+                                                             double command_rate_m_per_s) const {
   const double opening = s[kSpoolOpening];
   const double pilot_flow = s[kPilotFlow];
   const double load_pressure = s[kLoadPressure];
   const double x = s[kDisplacement];
   const double xdot = s[kVelocity];
+  Terms t;
 
   const double valve_command_v =
       k_.position_gain_v_per_m * (command_m - x) + k_.rate_gain_v_s_per_m * (command_rate_m_per_s - xdot);
@@ -77,39 +81,47 @@ inline ServoHydraulicPlant::Rates ServoHydraulicPlant::rate(const Rates& s, doub
   // rolloff * drop = rolloff - (rolloff sgn(x_v) / P_s) P_L, clamped to [0, 2 rolloff].
   const double rolloff = 1.0 / (1.0 + k_.rolloff_squared * (opening * opening));
   const double opposing_per_pa = (opening > 0.0 ? rolloff : -rolloff) * k_.load_pressure_per_pa;
-  const double drop = std::clamp(rolloff - opposing_per_pa * load_pressure, 0.0, 2.0 * rolloff);
-  const double other_flows = k_.area_per_compressibility * xdot + k_.leakage_per_compressibility * load_pressure;
-  const double pressure_rate = (k_.flow_gain_per_compressibility * opening) * std::sqrt(drop) - other_flows;
+  t.root = std::sqrt(std::clamp(rolloff - opposing_per_pa * load_pressure, 0.0, 2.0 * rolloff));
+  t.root_coefficient = k_.flow_gain_per_compressibility * opening;
+  t.other_flows = k_.area_per_compressibility * xdot + k_.leakage_per_compressibility * load_pressure;
 
   // The same for the velocity, whose chain runs through the friction's tanh.
-  const double other_forces = k_.area_per_mass * load_pressure -
-                              (spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot) * k_.inverse_mass_per_kg;
-  const double acceleration =
-      other_forces - friction_force_n(k_.friction_per_mass, k_.friction_per_velocity_s_per_m, xdot);
+  t.other_forces = k_.area_per_mass * load_pressure -
+                   (spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot) * k_.inverse_mass_per_kg;
+  t.friction_tanh = k_.friction_per_mass == 0.0 ? 0.0 : regularised_tanh(xdot * k_.friction_per_velocity_s_per_m);
 
-  return {opening_rate, pilot_flow_rate, pressure_rate, xdot, acceleration};
+  t.rate = {opening_rate, pilot_flow_rate, t.root_coefficient * t.root - t.other_flows, xdot,
+            t.other_forces - k_.friction_per_mass * t.friction_tanh};
+  return t;
+}
+
+// The next stage's state y + c k. The pressure and the velocity take the slow link last:
+// y + c (a root - b) = (y - c b) + (c a) root, and likewise for the friction, so that only a
+// product and a sum follow the root and the tanh (equal to y + c k up to round-off).
+inline ServoHydraulicPlant::Rates ServoHydraulicPlant::stage_state(const Rates& y, double c, const Terms& t) const {
+  return {y[kSpoolOpening] + c * t.rate[kSpoolOpening], y[kPilotFlow] + c * t.rate[kPilotFlow],
+          (y[kLoadPressure] - c * t.other_flows) + (c * t.root_coefficient) * t.root, y[kDisplacement] + c * t.rate[kDisplacement],
+          (y[kVelocity] + c * t.other_forces) - (c * k_.friction_per_mass) * t.friction_tanh};
 }
 
 ServoHydraulicPlant::State ServoHydraulicPlant::derivative(const State& state, double command_m,
                                                            double command_rate_m_per_s) const {
-  const Rates r = rate({state[0], state[1], state[2], state[3], state[4]}, command_m, command_rate_m_per_s);
-  return State(r.data());
+  const Terms t = terms({state[0], state[1], state[2], state[3], state[4]}, command_m, command_rate_m_per_s);
+  return State(t.rate.data());
 }
 
 // Plain arrays rather than Eigen's 5-vectors here: with everything inlined the state stays in
 // registers, where packed 2-wide Eigen operations would bounce each stage through memory.
 void ServoHydraulicPlant::rk4_step(Rates& y, double h, double u0, double command_rate) const {
   const double half = 0.5 * h;
-  Rates stage;
-  const Rates k1 = rate(y, u0, command_rate);
-  for (std::size_t i = 0; i < y.size(); ++i) stage[i] = y[i] + half * k1[i];
-  const Rates k2 = rate(stage, u0 + half * command_rate, command_rate);
-  for (std::size_t i = 0; i < y.size(); ++i) stage[i] = y[i] + half * k2[i];
-  const Rates k3 = rate(stage, u0 + half * command_rate, command_rate);
-  for (std::size_t i = 0; i < y.size(); ++i) stage[i] = y[i] + h * k3[i];
-  const Rates k4 = rate(stage, u0 + h * command_rate, command_rate);
+  const Terms t1 = terms(y, u0, command_rate);
+  const Terms t2 = terms(stage_state(y, half, t1), u0 + half * command_rate, command_rate);
+  const Terms t3 = terms(stage_state(y, half, t2), u0 + half * command_rate, command_rate);
+  const Terms t4 = terms(stage_state(y, h, t3), u0 + h * command_rate, command_rate);
   const double sixth = h / 6.0;
-  for (std::size_t i = 0; i < y.size(); ++i) y[i] += sixth * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    y[i] += sixth * (t1.rate[i] + 2.0 * t2.rate[i] + 2.0 * t3.rate[i] + t4.rate[i]);
+  }
   y[kSpoolOpening] = std::clamp(y[kSpoolOpening], -1.0, 1.0);  // the spool's stops
 }
 

@@ -72,7 +72,16 @@ class ServoHydraulicPlant final : public Plant {
   };
 
   using Rates = std::array<double, 5>;  ///< a state or its derivative, in the State order
-  Rates rate(const Rates& s, double command_m, double command_rate_m_per_s) const;
+  /// The derivative, and the parts of the pressure and velocity rates that follow the slow
+  /// links: pressure rate = root_coefficient root - other_flows, acceleration = other_forces -
+  /// (F_c / m) friction_tanh.
+  struct Terms {
+    Rates rate;
+    double root = 0.0, root_coefficient = 0.0, other_flows = 0.0;
+    double friction_tanh = 0.0, other_forces = 0.0;
+  };
+  Terms terms(const Rates& s, double command_m, double command_rate_m_per_s) const;
+  Rates stage_state(const Rates& y, double c, const Terms& t) const;
   void rk4_step(Rates& y, double h, double u0, double command_rate) const;
 
   ServoSystemParameters parameters_;
