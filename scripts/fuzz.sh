@@ -67,4 +67,9 @@ run fuzz_at2 at2 -dict=fuzz/at2.dict -max_len=16384
 run fuzz_text_readers text
 # Short inputs keep every case fast: a long matrix would only measure dense algebra.
 run fuzz_scenario scenario -max_len=2048
+# Datagrams from the network: empty seeds; the decoders' magic and size checks are found fast.
+mkdir -p "$seeds/udp" "$build/corpus/udp"
+printf 'RPSC' >"$seeds/udp/command-magic"
+printf 'RPSR' >"$seeds/udp/reply-magic"
+run fuzz_udp_protocol udp -max_len=256
 exit $status
