@@ -108,34 +108,18 @@ int main(int argc, char** argv) try {
   const bench::Summary integrator = summary(integrator_s.wall_s), integrator_cpu = summary(integrator_s.cpu_s);
   const bench::Summary overhead = less(loop, integrator);
 
-  bench::Figure f;
-  f.id = "coordinator_overhead_us";
-  f.title = "Coordinator overhead per step (all but integrator and plant), SDOF";
-  f.unit = "us";
-  f.value = overhead;
-  f.cpu_value = less(loop_cpu, integrator_cpu);
-  f.target = "< 5";
-  f.meets_target = overhead.median < 5.0;
-  f.baseline_id = "integrator_alone_sdof_us";
-  f.ratio_label = "overhead / integrator step";
-  f.ratio_to_baseline = overhead.median / integrator.median;
-  fragment.add(f);
+  fragment.add(bench::figure("coordinator_overhead_us",
+                             "Coordinator overhead per step (all but integrator and plant), SDOF",
+                             "us", overhead, less(loop_cpu, integrator_cpu))
+      .against("integrator_alone_sdof_us", "overhead / integrator step", overhead.median / integrator.median)
+      .aiming_for("< 5", overhead.median < 5.0));
 
-  bench::Figure l;
-  l.id = "loop_following_plant_sdof_us";
-  l.title = "  loop step with a plant that follows exactly (no physics)";
-  l.unit = "us";
-  l.value = loop;
-  l.cpu_value = loop_cpu;
-  fragment.add(l);
+  fragment.add(bench::figure("loop_following_plant_sdof_us",
+                             "  loop step with a plant that follows exactly (no physics)",
+                             "us", loop, loop_cpu));
 
-  bench::Figure i;
-  i.id = "integrator_alone_sdof_us";
-  i.title = "  central difference step alone, same SDOF";
-  i.unit = "us";
-  i.value = integrator;
-  i.cpu_value = integrator_cpu;
-  fragment.add(i);
+  fragment.add(bench::figure("integrator_alone_sdof_us", "  central difference step alone, same SDOF",
+                             "us", integrator, integrator_cpu));
 
   char text[300];
   std::snprintf(text, sizeof text,

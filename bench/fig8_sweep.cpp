@@ -54,32 +54,17 @@ int main(int argc, char** argv) try {
   const auto [ideal_cases, ideal_cases_cpu] = per_second(ideal.seconds, static_cast<double>(ideal.study.compensated_delays_s.size()));
   const auto [servo_realtime, servo_realtime_cpu] = per_second(servo.seconds, servo.simulated_s);
 
-  bench::Figure f;
-  f.id = "fig8_sweep_cases_per_s";
-  f.title = "Figure 8 sweep (10 cases, servo model), cases per second";
-  f.unit = "cases/s";
-  f.value = servo_cases;
-  f.cpu_value = servo_cases_cpu;
-  f.baseline_id = "fig8_ideal_delay_cases_per_s";
-  f.ratio_label = "servo model / ideal delay (speed)";
-  f.ratio_to_baseline = servo_cases.median / ideal_cases.median;
-  fragment.add(f);
+  fragment.add(bench::figure("fig8_sweep_cases_per_s", "Figure 8 sweep (10 cases, servo model), cases per second",
+                             "cases/s", servo_cases, servo_cases_cpu)
+      .against("fig8_ideal_delay_cases_per_s", "servo model / ideal delay (speed)",
+                servo_cases.median / ideal_cases.median));
 
-  bench::Figure r;
-  r.id = "fig8_sweep_x_realtime";
-  r.title = "  the same, simulated time per wall time";
-  r.unit = "x real time";
-  r.value = servo_realtime;
-  r.cpu_value = servo_realtime_cpu;
-  fragment.add(r);
+  fragment.add(bench::figure("fig8_sweep_x_realtime", "  the same, simulated time per wall time",
+                             "x real time", servo_realtime, servo_realtime_cpu));
 
-  bench::Figure i;
-  i.id = "fig8_ideal_delay_cases_per_s";
-  i.title = "Baseline: the same sweep on the ideal 75 ms delay actuator";
-  i.unit = "cases/s";
-  i.value = ideal_cases;
-  i.cpu_value = ideal_cases_cpu;
-  fragment.add(i);
+  fragment.add(bench::figure("fig8_ideal_delay_cases_per_s",
+                             "Baseline: the same sweep on the ideal 75 ms delay actuator",
+                             "cases/s", ideal_cases, ideal_cases_cpu));
 
   char text[300];
   std::snprintf(text, sizeof text,

@@ -173,56 +173,33 @@ int main(int argc, char** argv) try {
   const double streamed_per_min = (growth(long_minutes, false) - growth(kShortMinutes, false)) / (long_minutes - kShortMinutes);
   const double kept_per_min = (growth(baseline_minutes, true) - growth(kShortMinutes, true)) / (baseline_minutes - kShortMinutes);
 
-  bench::Figure a;
-  a.id = "peak_rss_60s_mb";
-  a.title = "Peak memory, `rpsd run` of 60 s (El Centro + 20 s), rpsd process";
-  a.unit = "MB";
-  a.value = bench::summarize(short_peaks);
+  const bench::Figure a = bench::figure("peak_rss_60s_mb",
+                                        "Peak memory, `rpsd run` of 60 s (El Centro + 20 s), rpsd process",
+                                        "MB", bench::summarize(short_peaks));
   fragment.add(a);
 
-  bench::Figure b;
-  b.id = "peak_rss_30min_mb";
-  b.title = "Peak memory, `rpsd run` of " + long_seconds + " s (synthetic record), rpsd process";
-  b.unit = "MB";
-  b.value = single(long_run.peak_mb);
-  b.baseline_id = "peak_rss_60s_mb";
-  b.ratio_label = "long run / 60 s run";
-  b.ratio_to_baseline = long_run.peak_mb / a.value.median;
-  fragment.add(b);
+  fragment.add(bench::figure("peak_rss_30min_mb",
+                             "Peak memory, `rpsd run` of " + long_seconds + " s (synthetic record), rpsd process",
+                             "MB", single(long_run.peak_mb))
+      .against("peak_rss_60s_mb", "long run / 60 s run", long_run.peak_mb / a.value.median));
 
-  bench::Figure g;
-  g.id = "rss_growth_mb_per_min";
-  g.title = "Memory growth per simulated minute, as `rpsd run` runs (test + reference)";
-  g.unit = "MB/min";
-  g.value = single(streamed_per_min);
   // Flat: what a step leaves behind is below a byte (a kept record is about 860 bytes).
-  g.target = "flat (< 0.01 MB/min)";
-  g.meets_target = streamed_per_min < 0.01;
-  g.baseline_id = "rss_growth_kept_records_mb_per_min";
-  g.ratio_label = "streamed / records kept";
-  g.ratio_to_baseline = streamed_per_min / kept_per_min;
-  fragment.add(g);
+  fragment.add(bench::figure("rss_growth_mb_per_min",
+                             "Memory growth per simulated minute, as `rpsd run` runs (test + reference)",
+                             "MB/min", single(streamed_per_min))
+      .against("rss_growth_kept_records_mb_per_min", "streamed / records kept", streamed_per_min / kept_per_min)
+      .aiming_for("flat (< 0.01 MB/min)", streamed_per_min < 0.01));
 
-  bench::Figure k;
-  k.id = "rss_growth_kept_records_mb_per_min";
-  k.title = "Baseline: the same keeping every step record (rpsd run before this change)";
-  k.unit = "MB/min";
-  k.value = single(kept_per_min);
-  fragment.add(k);
+  fragment.add(bench::figure("rss_growth_kept_records_mb_per_min",
+                             "Baseline: the same keeping every step record (rpsd run before this change)",
+                             "MB/min", single(kept_per_min)));
 
-  bench::Figure w;
-  w.id = "rpsd_run_60s_wall_s";
-  w.title = "Wall time, `rpsd run` of 60 s end to end (test, reference, CSVs, plots)";
-  w.unit = "s";
-  w.value = bench::summarize(short_walls);
-  fragment.add(w);
+  fragment.add(bench::figure("rpsd_run_60s_wall_s",
+                             "Wall time, `rpsd run` of 60 s end to end (test, reference, CSVs, plots)",
+                             "s", bench::summarize(short_walls)));
 
-  bench::Figure lw;
-  lw.id = "rpsd_run_30min_wall_s";
-  lw.title = "Wall time, `rpsd run` of " + long_seconds + " s end to end";
-  lw.unit = "s";
-  lw.value = single(long_run.wall_s);
-  fragment.add(lw);
+  fragment.add(bench::figure("rpsd_run_30min_wall_s", "Wall time, `rpsd run` of " + long_seconds + " s end to end",
+                             "s", single(long_run.wall_s)));
 
   char text[1000];
   std::snprintf(text, sizeof text,

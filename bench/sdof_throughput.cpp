@@ -98,19 +98,15 @@ int main(int argc, char** argv) try {
     f.unit = "x real time";
     f.value = summary(t.wall_s);
     f.cpu_value = summary(t.cpu_s);
-    if (!baseline_id.empty()) {
-      f.baseline_id = baseline_id;
-      f.ratio_label = ratio_label;
-      f.ratio_to_baseline = f.value.median / baseline_median;
-    }
+    if (!baseline_id.empty()) f.against(baseline_id, ratio_label, f.value.median / baseline_median);
     fragment.add(f);
   };
   bench::Figure headline;
   headline.id = "sdof_afap_x_realtime";
   headline.title = "Paper SDOF RPsD in process, as fast as possible (loop + recorder hand-off)";
-  headline.target = ">= 1000";
-  headline.meets_target = loop_no_csv.median >= 1000.0;
-  loop_figure(headline, loop_no_csv_s, "servo_plant_alone_x_realtime", "loop speed / plant-alone speed", plant_alone.median);
+  headline.aiming_for(">= 1000", loop_no_csv.median >= 1000.0);
+  loop_figure(headline, loop_no_csv_s, "servo_plant_alone_x_realtime", "loop speed / plant-alone speed",
+              plant_alone.median);
 
   bench::Figure wall;
   wall.id = "sdof_afap_wall_ms";
@@ -122,13 +118,8 @@ int main(int argc, char** argv) try {
   wall.meets_target = wall.value.median < 60.0;
   fragment.add(wall);
 
-  bench::Figure per_step;
-  per_step.id = "sdof_afap_step_us";
-  per_step.title = "  the same: one control step (8 plant RK4 substeps)";
-  per_step.unit = "us";
-  per_step.value = bench::map_summary(bench::summarize(loop_no_csv_s.wall_s), [&](double s) { return 1e6 * s / steps; });
-  per_step.cpu_value = bench::map_summary(bench::summarize(loop_no_csv_s.cpu_s), [&](double s) { return 1e6 * s / steps; });
-  fragment.add(per_step);
+  fragment.add(bench::figure("sdof_afap_step_us", "  the same: one control step (8 plant RK4 substeps)",
+                             "us", bench::map_summary(bench::summarize(loop_no_csv_s.wall_s), [&](double s) { return 1e6 * s / steps; }), bench::map_summary(bench::summarize(loop_no_csv_s.cpu_s), [&](double s) { return 1e6 * s / steps; })));
 
   bench::Figure devnull;
   devnull.id = "sdof_afap_csv_devnull_x_realtime";
@@ -140,13 +131,9 @@ int main(int argc, char** argv) try {
   file_figure.title = "  the same, writer thread writing time_history.csv to a temp file";
   loop_figure(file_figure, loop_file_s, "sdof_afap_x_realtime", "with CSV file / without (speed)", loop_no_csv.median);
 
-  bench::Figure plant_figure;
-  plant_figure.id = "servo_plant_alone_x_realtime";
-  plant_figure.title = "Baseline: servo plant alone, RK4 at 8192 Hz, same commands";
-  plant_figure.unit = "x real time";
-  plant_figure.value = plant_alone;
-  plant_figure.cpu_value = summary(plant_s.cpu_s);
-  fragment.add(plant_figure);
+  fragment.add(bench::figure("servo_plant_alone_x_realtime",
+                             "Baseline: servo plant alone, RK4 at 8192 Hz, same commands",
+                             "x real time", plant_alone, summary(plant_s.cpu_s)));
 
   char text[400];
   std::snprintf(text, sizeof text,

@@ -62,7 +62,32 @@ struct Figure {
   std::string baseline_id;
   std::string ratio_label;  ///< how to read the ratio, e.g. "loop / plant alone"
   double ratio_to_baseline = 0.0;
+
+  /// Compares this figure with a baseline figure of the same run.
+  Figure& against(std::string baseline, std::string label, double ratio) {
+    baseline_id = std::move(baseline);
+    ratio_label = std::move(label);
+    ratio_to_baseline = ratio;
+    return *this;
+  }
+  /// The target and whether this run meets it.
+  Figure& aiming_for(std::string text, bool met) {
+    target = std::move(text);
+    meets_target = met;
+    return *this;
+  }
 };
+
+/// A row of the report: what it is and its value (and its CPU-time value where meaningful).
+inline Figure figure(std::string id, std::string title, std::string unit, Summary value, Summary cpu_value = {}) {
+  Figure f;
+  f.id = std::move(id);
+  f.title = std::move(title);
+  f.unit = std::move(unit);
+  f.value = value;
+  f.cpu_value = cpu_value;
+  return f;
+}
 
 /// The JSON fragment of one bench step: its command line, figures and notes.
 class Fragment {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "rpsd/coordinator/latency_json.h"
 #include "rpsd/coordinator/plant_factory.h"
 #include "rpsd/realtime/pacer.h"
 #include "rpsd/scenarios/servo_node_file.h"
@@ -30,10 +31,6 @@ void install_stop_handlers() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-}
-
-nlohmann::json latency_json(const realtime::LatencySummary& l) {
-  return {{"count", l.count}, {"p50_s", l.p50_s}, {"p99_s", l.p99_s}, {"p99_9_s", l.p999_s}, {"max_s", l.max_s}};
 }
 
 nlohmann::json node_summary(const scenarios::ServoNodeFile& file, const servo::ServoNodeController& controller,
@@ -83,8 +80,7 @@ nlohmann::json node_summary(const scenarios::ServoNodeFile& file, const servo::S
           {"feedback_published", report.feedback_published},
           {"cycles", report.cycles},
           {"overruns", report.overruns},
-          {"skipped_deadlines", report.skipped_deadlines},
-          {"jitter", latency_json(report.jitter)},
+          {"jitter", coordinator::latency_json(report.jitter)},
           {"memory_locked", report.granted.memory_locked},
           {"sched_fifo", report.granted.fifo_granted}};
 }
@@ -99,15 +95,11 @@ struct NodeOptions {
 void run_servo_node(const NodeOptions& o) {
   const auto file = scenarios::load_servo_node(o.config, parse_overrides(o.overrides));
   // The actuator: simulated plants (owned here) or the UDP controller adapter.
-  std::vector<std::unique_ptr<servo::Plant>> plants;
+  coordinator::PlantSet plants;
   std::unique_ptr<servo::Actuator> actuator;
   if (const auto* sim = std::get_if<scenarios::SimulatedActuatorSection>(&file.actuator)) {
-    std::vector<servo::Plant*> pointers;
-    for (int c = 0; c < file.node.channels; ++c) {
-      plants.push_back(coordinator::make_plant(sim->plant));
-      pointers.push_back(plants.back().get());
-    }
-    actuator = std::make_unique<servo::SimulatedActuator>(pointers);
+    plants = coordinator::make_plants(sim->plant, file.node.channels);
+    actuator = std::make_unique<servo::SimulatedActuator>(plants.pointers);
   } else {
     actuator = std::make_unique<servo::UdpControllerActuator>(std::get<servo::UdpControllerConfig>(file.actuator));
   }
@@ -141,16 +133,11 @@ void run_servo_node(const NodeOptions& o) {
 
 void run_controller_emulator(const NodeOptions& o) {
   const auto file = scenarios::load_controller_emulator(o.config, parse_overrides(o.overrides));
-  std::vector<std::unique_ptr<servo::Plant>> plants;
-  std::vector<servo::Plant*> pointers;
-  for (int c = 0; c < file.channels; ++c) {
-    plants.push_back(coordinator::make_plant(file.plant));
-    pointers.push_back(plants.back().get());
-  }
+  const coordinator::PlantSet plants = coordinator::make_plants(file.plant, file.channels);
   servo::ControllerEmulatorConfig config;
   config.bind_host = file.bind_host;
   config.port = file.port;
-  servo::ControllerEmulator emulator(pointers, config);
+  servo::ControllerEmulator emulator(plants.pointers, config);
   emulator.start(file.initial_displacement_m);
   install_stop_handlers();
   std::cout << "rpsd controller-emulator: " << file.channels << " channel(s) on udp " << file.bind_host << ":"

@@ -17,4 +17,13 @@ std::unique_ptr<servo::Plant> make_plant(const scenarios::PlantConfig& config) {
       config);
 }
 
+PlantSet make_plants(const scenarios::PlantConfig& config, int channels) {
+  PlantSet set;
+  for (int c = 0; c < channels; ++c) {
+    set.owned.push_back(make_plant(config));
+    set.pointers.push_back(set.owned.back().get());
+  }
+  return set;
+}
+
 }  // namespace rpsd::coordinator

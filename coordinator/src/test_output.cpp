@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "rpsd/coordinator/gnuplot.h"
+#include "rpsd/coordinator/latency_json.h"
 #include "rpsd/coordinator/test_runner.h"
 #include "rpsd/scenarios/ground_motion/response_spectrum.h"
 
@@ -116,10 +117,6 @@ std::string describe_outcome(const scenarios::TestScenario& s, const TestRun& te
     text += detail;
   }
   return text;
-}
-
-nlohmann::json latency_json(const realtime::LatencySummary& l) {
-  return {{"count", l.count}, {"p50_s", l.p50_s}, {"p99_s", l.p99_s}, {"p99_9_s", l.p999_s}, {"max_s", l.max_s}, {"mean_s", l.mean_s}};
 }
 
 nlohmann::json timing_json(const TimingReport& t) {

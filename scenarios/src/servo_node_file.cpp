@@ -1,8 +1,6 @@
 #include "rpsd/scenarios/servo_node_file.h"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/test_scenario_file.h"
@@ -10,16 +8,6 @@
 
 namespace rpsd::scenarios {
 namespace {
-
-YAML::Node read_document(const std::filesystem::path& file, const std::vector<Override>& overrides) {
-  std::ifstream in(file);
-  if (!in) throw ConfigError(file.string() + ": cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  YAML::Node document = parse_yaml_text(text.str(), file.string());
-  for (const Override& o : overrides) apply_override(document, o);
-  return document;
-}
 
 servo::LimitAction limit_action(MappingReader& r, const std::string& key, servo::LimitAction fallback) {
   const auto text = r.optional_string(key);
@@ -87,7 +75,7 @@ servo::UdpControllerConfig read_udp(MappingReader& r, int channels) {
 }  // namespace
 
 ServoNodeFile load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
-  YAML::Node document = read_document(file, overrides);
+  YAML::Node document = load_yaml_document(file, overrides);
   MappingReader root(document, file.string(), "");
   ServoNodeFile f;
   f.name = file.stem().string();
@@ -147,7 +135,7 @@ ServoNodeFile load_servo_node(const std::filesystem::path& file, const std::vect
 }
 
 ControllerEmulatorFile load_controller_emulator(const std::filesystem::path& file, const std::vector<Override>& overrides) {
-  YAML::Node document = read_document(file, overrides);
+  YAML::Node document = load_yaml_document(file, overrides);
   MappingReader root(document, file.string(), "");
   ControllerEmulatorFile f;
   f.name = file.stem().string();

@@ -148,8 +148,6 @@ Override parse_override(const std::string& text) {
 namespace {
 
 // Walks key.path (mapping keys, or list indices as numbers) and replaces the value there.
-}  // namespace
-
 void apply_override(YAML::Node root, const Override& o) {
   std::vector<std::string> keys;
   std::size_t start = 0;
@@ -194,8 +192,6 @@ void apply_override(YAML::Node root, const Override& o) {
     throw ConfigError("--set " + o.key_path + ": the parent is not a mapping");
   }
 }
-
-namespace {
 
 }  // namespace
 
@@ -270,12 +266,22 @@ StudyFile read_sweep(const std::string& text, const std::vector<Override>& comma
 
 }  // namespace
 
-StudyFile load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+std::string read_config_text(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw ConfigError(file.string() + ": cannot open file");
   std::stringstream text;
   text << in.rdbuf();
-  return parse_study(text.str(), file, overrides);
+  return text.str();
+}
+
+YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  YAML::Node document = parse_yaml_text(read_config_text(file), file.string());
+  for (const Override& o : overrides) apply_override(document, o);
+  return document;
+}
+
+StudyFile load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  return parse_study(read_config_text(file), file, overrides);
 }
 
 StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path& file,

@@ -52,7 +52,6 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   report.granted = realtime::apply_realtime(options.realtime);
   const double period_s = controller.config().control_period_s;
   const auto period_ns = static_cast<std::int64_t>(std::llround(period_s * 1e9));
-  const auto heartbeat_every = std::max<std::int64_t>(1, std::llround(1.0 / (options.heartbeat_rate_hz * period_s)));
   const std::int64_t start_ns = realtime::monotonic_now_ns();
   const std::int64_t end_ns = options.duration_s > 0.0 ? start_ns + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
   realtime::LatencyHistogram jitter;
@@ -106,7 +105,7 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
         ++report.overruns;
         deadline = done + period_ns;
       }
-      if (watch.tick % heartbeat_every == 0) maybe_heartbeat(done);
+      maybe_heartbeat(done);
       if (end_ns > 0 && done >= end_ns) break;
     }
     report.jitter = jitter.summary();

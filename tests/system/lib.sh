@@ -35,19 +35,3 @@ run_bridge() {
   local out=$1; shift
   $RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$out" --set transport.domain_id=$DOMAIN "$@"
 }
-
-# Compares the displacement columns of two time histories: max |a - b| / max |b|.
-relative_difference() {
-  python3 - "$1" "$2" <<'PY'
-import csv, sys
-def cols(path):
-    rows = list(csv.DictReader(open(path)))
-    keys = [k for k in rows[0] if k.startswith("displacement_m_dof")]
-    return rows, keys
-a, keys = cols(sys.argv[1]); b, _ = cols(sys.argv[2])
-n = min(len(a), len(b))
-peak = max(abs(float(r[k])) for r in b[:n] for k in keys)
-diff = max(abs(float(a[i][k]) - float(b[i][k])) for i in range(n) for k in keys)
-print(diff / peak)
-PY
-}

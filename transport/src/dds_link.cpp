@@ -30,10 +30,9 @@ bool DdsLink::wait_for_node(double timeout_s) const {
 
 LinkStatus DdsLink::send(const CommandSample& command) {
   rpsd_dds_Command wire{};
-  CommandSample routed = command;
-  routed.test_id = config_.test_id;
-  routed.site_id = config_.site_id;
-  to_wire(routed, wire);
+  copy_command(command, wire);
+  wire.test_id = config_.test_id;
+  wire.site_id = config_.site_id;
   sent_at_ns_ = realtime::monotonic_now_ns();
   if (dds_write(ports_.writer(), &wire) < 0) return LinkStatus::kPeerLost;
   sent_step_ = command.step;
@@ -48,7 +47,7 @@ void DdsLink::drain() {
   while (dds_take(ports_.reader(), samples, info, 1, 1) > 0) {
     if (!info[0].valid_data) continue;
     FeedbackSample sample;
-    from_wire(wire, sample);
+    copy_feedback(wire, sample);
     if (sample.test_id != config_.test_id || sample.site_id != config_.site_id) {
       ++counters_.wrong_test_or_site;
     } else if (sample.channels != config_.channels) {

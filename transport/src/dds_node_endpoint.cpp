@@ -21,7 +21,7 @@ bool DdsNodeEndpoint::take_command(CommandSample& command) {
   dds_sample_info_t info[1];
   while (dds_take(ports_.reader(), samples, info, 1, 1) > 0) {
     if (!info[0].valid_data) continue;
-    from_wire(wire, command);
+    copy_command(wire, command);
     return true;
   }
   return false;
@@ -29,13 +29,13 @@ bool DdsNodeEndpoint::take_command(CommandSample& command) {
 
 bool DdsNodeEndpoint::publish(const FeedbackSample& feedback) {
   rpsd_dds_Feedback wire{};
-  to_wire(feedback, wire);
+  copy_feedback(feedback, wire);
   return dds_write(ports_.writer(), &wire) >= 0;
 }
 
 bool DdsNodeEndpoint::publish_heartbeat(const NodeHeartbeat& heartbeat) {
   rpsd_dds_NodeHeartbeat wire{};
-  to_wire(heartbeat, wire);
+  copy_heartbeat(heartbeat, wire);
   return dds_write(heartbeat_writer_.get(), &wire) >= 0;
 }
 

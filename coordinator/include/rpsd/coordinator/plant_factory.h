@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "rpsd/scenarios/test_scenario.h"
 #include "rpsd/servo/plant.h"
@@ -10,5 +11,12 @@
 namespace rpsd::coordinator {
 
 std::unique_ptr<servo::Plant> make_plant(const scenarios::PlantConfig& config);
+
+/// One plant per channel, all of one configuration, with the pointers an actuator borrows.
+struct PlantSet {
+  std::vector<std::unique_ptr<servo::Plant>> owned;
+  std::vector<servo::Plant*> pointers;
+};
+PlantSet make_plants(const scenarios::PlantConfig& config, int channels);
 
 }  // namespace rpsd::coordinator

@@ -90,8 +90,10 @@ struct Override {
 
 /// Parses "key.path=value"; throws ConfigError naming the text when there is no '='.
 Override parse_override(const std::string& text);
-/// Applies one override to a parsed document (ConfigError naming the missing key).
-void apply_override(YAML::Node root, const Override& o);
+/// A configuration file's text (ConfigError naming the file if it cannot be read).
+std::string read_config_text(const std::filesystem::path& file);
+/// A configuration file parsed, with the overrides applied (ConfigError with file and line).
+YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vector<Override>& overrides);
 
 /// The default-parameter integrator for a scheme name (central_difference, newmark, hht_alpha,
 /// generalized_alpha, alpha_os, chang, chen_ricles, kolay_ricles_alpha); nullopt if unknown.

@@ -30,7 +30,7 @@ struct ServoNodeLoopOptions {
 
 struct ServoNodeLoopReport {
   realtime::RealTimeSetupReport granted;
-  std::int64_t cycles = 0, overruns = 0, skipped_deadlines = 0;
+  std::int64_t cycles = 0, overruns = 0;
   realtime::LatencySummary jitter;  ///< wake-up lateness of the ticks made without a command
   std::int64_t last_command_tick = -1;  ///< tick on which the last command was applied
   std::int64_t hold_tick = -1;          ///< first tick the watchdog held after it (-1: never)
