@@ -15,6 +15,7 @@ packages=(
   clang libclang-rt-14-dev           # scripts/fuzz.sh: clang, libFuzzer and the sanitizer runtimes
   cyclonedds-dev cyclonedds-tools    # DDS transport (libddsc, idlc) and ddsperf for bench/
   iproute2 nftables                  # system tests: network namespaces, veth links, packet filters
+  python3 python3-yaml               # system tests: checks on the results (JSON, CSV, YAML)
 )
 
 missing=()

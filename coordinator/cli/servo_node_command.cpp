@@ -69,6 +69,7 @@ nlohmann::json node_summary(const scenarios::ServoNodeFile& file, const servo::S
           {"commands_dropped", dropped},
           {"missed_periods", c.missed_periods},
           {"holds", c.holds},
+          {"first_command_tick", report.first_command_tick},
           {"last_command_tick", report.last_command_tick},
           {"hold_after_last_command", hold},
           {"faulted", controller.faulted()},
@@ -111,6 +112,7 @@ void run_servo_node(const NodeOptions& o) {
   endpoint_config.test_id = file.node.test_id;
   endpoint_config.site_id = file.node.site_id;
   endpoint_config.qos.control_period_s = file.node.control_period_s;
+  endpoint_config.qos.newest_only = file.mode == scenarios::ServoNodeFile::Mode::kRealTime;
   transport::DdsNodeEndpoint endpoint(participant, endpoint_config);
 
   servo::ServoNodeLoopOptions options;

@@ -41,6 +41,7 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
       config.site_id = site.site_id;
       config.channels = static_cast<int>(site.channels.size());
       config.qos.control_period_s = control_period_s;
+      config.qos.newest_only = s.clock.mode == scenarios::ClockConfig::Mode::kRealTime;
       config.feedback_timeout_s = s.transport.feedback_timeout_s;
       auto link = std::make_unique<transport::DdsLink>(*participant_, config);
       dds_links_.push_back(link.get());

@@ -92,7 +92,7 @@ void Recorder::write_header() {
   }
   csv_ << ",input_energy_j,kinetic_energy_j,damping_energy_j,restoring_energy_j,node_status,limit_flags";
   for (int c = 0; c < channels_; ++c) csv_ << ",round_trip_s_ch" << c;
-  csv_ << ",cycle_lateness_s,late_feedback\n";
+  csv_ << ",cycle_lateness_s,feedback_age_periods\n";
 }
 
 void Recorder::write_row(const StepRecord& r) {
@@ -132,7 +132,7 @@ void Recorder::write_row(const StepRecord& r) {
   for (int c = 0; c < channels_; ++c) put(r.round_trip_s[c]);
   put(r.cycle_lateness_s);
   *out++ = ',';
-  out = std::to_chars(out, end, static_cast<int>(r.late_feedback)).ptr;
+  out = std::to_chars(out, end, static_cast<int>(r.feedback_age_periods)).ptr;
   *out++ = '\n';
   csv_.write(row, out - row);
 }

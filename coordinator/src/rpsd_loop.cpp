@@ -1,5 +1,6 @@
 #include "rpsd/coordinator/rpsd_loop.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -71,7 +72,7 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
   exchange_ = 0;
   record_ = StepRecord{};
   late_total_ = 0;
-  late_in_a_row_ = 0;
+  feedback_age_ = 0;
   feedback_.step = -1;
   previous_d_ = d0;
   previous_v_.setZero();
@@ -101,7 +102,7 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   if (integrator.begin_step(force_) != integrators::StepStatus::ok) return StepOutcome::kIntegratorError;
 
   const int iterations = integrator.iterations_per_step();
-  late_this_step_ = false;
+  oldest_age_this_step_ = 0;
   for (int it = 0; it < iterations; ++it) {
     const Eigen::VectorXd& d = integrator.target_displacement();
     partition.extract_commands(d, targets_);
@@ -110,16 +111,18 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     for (int c = 0; c < channels_; ++c) command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
     if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
     const transport::LinkStatus received = parts_.link->receive(feedback_);
-    if (received == transport::LinkStatus::kOk && feedback_.step == exchange_) {
-      late_in_a_row_ = 0;
-    } else if (received == transport::LinkStatus::kTimeout && late_in_a_row_ < parts_.max_late_feedback &&
-               feedback_.step >= 0 && feedback_.step < exchange_) {
-      // Real time: carry on with the newest measurement; the record says so.
-      ++late_in_a_row_;
+    // How many commands behind the newest measurement is: 0 on time. Without any feedback
+    // yet, the age counts from before the first command.
+    feedback_age_ = exchange_ - (feedback_.step >= 0 ? feedback_.step : -1);
+    if (received == transport::LinkStatus::kOk && feedback_age_ == 0) {
+      // on time
+    } else if (received == transport::LinkStatus::kTimeout && feedback_.step >= 0 && feedback_age_ > 0 &&
+               feedback_age_ <= parts_.max_feedback_age_periods) {
+      // Real time: carry on with the newest measurement; the record says how old it is. A
+      // node that answers late but answers keeps the age small; a silent one does not.
       ++late_total_;
-      late_this_step_ = true;
+      oldest_age_this_step_ = std::max(oldest_age_this_step_, feedback_age_);
     } else {
-      if (received != transport::LinkStatus::kOk) ++late_in_a_row_;
       return StepOutcome::kLinkFailure;
     }
     ++exchange_;
@@ -165,7 +168,7 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   record_.node_status = feedback_.status;
   record_.limit_flags = feedback_.limit_flags;
   record_.cycle_lateness_s = static_cast<double>(cycle_lateness_ns_) * 1e-9;
-  record_.late_feedback = late_this_step_ ? 1 : 0;
+  record_.feedback_age_periods = static_cast<std::uint8_t>(std::min<std::int64_t>(oldest_age_this_step_, 255));
   if (parts_.wait_for_recorder) {
     recorder.record_or_wait(record_);
   } else {

@@ -15,6 +15,7 @@ struct SdofRpsdTest::Parts {
   std::unique_ptr<compensation::CommandCompensator> compensator;
   std::unique_ptr<servo::PlantNode> node;
   std::unique_ptr<transport::InProcessLink> link;
+  std::unique_ptr<transport::Link> network;
   substructure::GroundMotionLoad ground_load;
   std::vector<double> ground_acceleration_m_per_s2;  ///< the loop borrows it
   std::unique_ptr<RpsdLoop> loop;
@@ -56,7 +57,9 @@ SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, cons
   parts.integrator = p.integrator.get();
   parts.numerical = &p.numerical;
   parts.partition = &p.partition;
-  parts.link = p.link.get();
+  if (setup.network) p.network = setup.network(*p.link);
+  parts.link = p.network ? p.network.get() : p.link.get();
+  parts.max_feedback_age_periods = setup.max_feedback_age_periods;
   parts.compensators = {p.compensator.get()};
   parts.force_paths = {{setup.force_path, k}};
   parts.recorded_dofs = {0};

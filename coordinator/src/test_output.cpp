@@ -108,8 +108,8 @@ std::string describe_outcome(const scenarios::TestScenario& s, const TestRun& te
   if (test.outcome == StepOutcome::kLinkFailure) {
     char detail[200];
     if (test.timing.real_time) {
-      std::snprintf(detail, sizeof detail, " (%d consecutive control periods without fresh feedback; step %zu, t = %.4f s)",
-                    test.late_feedback_in_a_row, static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
+      std::snprintf(detail, sizeof detail, " (newest feedback %lld control periods old; step %zu, t = %.4f s)",
+                    static_cast<long long>(test.feedback_age_periods), static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
     } else {
       std::snprintf(detail, sizeof detail, " (none within %g s at step %zu, t = %.4f s)", s.transport.feedback_timeout_s,
                     static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);

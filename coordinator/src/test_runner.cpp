@@ -123,7 +123,7 @@ TestAssembly::TestAssembly(const scenarios::TestScenario& s, const std::filesyst
   parts.test_id = s.transport.test_id;
   p.real_time = s.clock.mode == scenarios::ClockConfig::Mode::kRealTime && !perfect_actuator;
   parts.wait_for_recorder = !p.real_time;
-  parts.max_late_feedback = p.real_time ? s.clock.max_late_feedback : 0;
+  parts.max_feedback_age_periods = p.real_time ? s.clock.max_feedback_age_periods : 0;
   if (s.ground_motion) {
     p.ground_load.configure(p.numerical->mass(), s.influence);
     parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
@@ -219,7 +219,7 @@ TestRun TestAssembly::finish(StepOutcome outcome) {
   run.outcome = outcome;
   run.steps = p.steps;
   run.steps_planned = p.steps_planned;
-  run.late_feedback_in_a_row = p.loop->late_feedback_in_a_row();
+  run.feedback_age_periods = p.loop->feedback_age_periods();
   run.dropped_records = p.recorder->dropped();
   run.records = p.recorder->finish();
   run.timing = p.timing;

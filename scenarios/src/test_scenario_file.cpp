@@ -241,7 +241,8 @@ void read_clock(MappingReader clock, TestScenario& t) {
   }
   t.control_rate_hz = clock.positive_number("control_rate_hz");
   if (t.control_rate_hz > 65536.0) clock.fail("control_rate_hz", "at most 65536 Hz");
-  t.clock.max_late_feedback = static_cast<int>(clock.whole_number_or("max_late_feedback", 0, 1000, t.clock.max_late_feedback));
+  t.clock.max_feedback_age_periods =
+      static_cast<int>(clock.whole_number_or("max_feedback_age_periods", 1, 1000, t.clock.max_feedback_age_periods));
   t.clock.realtime.lock_memory = clock.boolean_or("lock_memory", t.clock.realtime.lock_memory);
   t.clock.realtime.fifo_priority = static_cast<int>(clock.whole_number_or("fifo_priority", 0, 99, t.clock.realtime.fifo_priority));
   clock.finish();

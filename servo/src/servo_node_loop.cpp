@@ -18,6 +18,7 @@ struct TickWatch {
     const auto& c = controller.counters();
     if (c.applied != applied_before) {
       applied_before = c.applied;
+      if (report.first_command_tick < 0) report.first_command_tick = tick;
       report.last_command_tick = tick;
       report.hold_tick = -1;
     } else if (controller.holding() && report.hold_tick < 0 && report.last_command_tick >= 0) {

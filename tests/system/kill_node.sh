@@ -11,7 +11,7 @@ code=$?
 set -e
 cat "$WORK/run.log"
 [ $code = 3 ] || fail "exit code $code, expected 3"
-grep -q "the servo node stopped answering (5 consecutive control periods" "$WORK/run.log" || fail "no clear reason"
+grep -q "the servo node stopped answering (newest feedback 5 control periods old" "$WORK/run.log" || fail "no clear reason"
 steps=$(json "$WORK/rt/summary.json" "j['steps']")
 rows=$(( $(wc -l < "$WORK/rt/time_history.csv") - 1 ))
 [ "$steps" = "$rows" ] && [ "$steps" -gt 100 ] || fail "$steps steps but $rows rows recorded"

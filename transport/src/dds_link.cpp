@@ -10,8 +10,8 @@ namespace rpsd::transport {
 
 DdsLink::DdsLink(const DdsParticipant& participant, const DdsLinkConfig& config)
     : config_(config),
-      ports_(participant, config.test_id, config.site_id, participant.command_topic(), command_qos(config.qos),
-             participant.feedback_topic(), feedback_qos(config.qos)) {
+      ports_(participant, config.test_id, config.site_id, participant.command_topic(), stream_writer_qos(config.qos),
+             participant.feedback_topic(), stream_reader_qos(config.qos)) {
   if (config.channels < 1 || config.channels > kMaxChannels) {
     throw std::invalid_argument("DdsLink: a site has between 1 and " + std::to_string(kMaxChannels) + " channels");
   }

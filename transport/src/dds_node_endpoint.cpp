@@ -6,8 +6,8 @@ namespace rpsd::transport {
 
 DdsNodeEndpoint::DdsNodeEndpoint(const DdsParticipant& participant, const DdsNodeEndpointConfig& config)
     : config_(config),
-      ports_(participant, config.test_id, config.site_id, participant.feedback_topic(), feedback_qos(config.qos),
-             participant.command_topic(), command_qos(config.qos)) {
+      ports_(participant, config.test_id, config.site_id, participant.feedback_topic(), stream_writer_qos(config.qos),
+             participant.command_topic(), stream_reader_qos(config.qos)) {
   const DdsQos partition = site_partition_qos(config.test_id, config.site_id);
   heartbeat_publisher_ = DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr), "dds_create_publisher");
   heartbeat_writer_ = DdsEntity(

@@ -8,9 +8,9 @@ namespace {
 
 dds_duration_t seconds(double s) { return static_cast<dds_duration_t>(std::llround(s * 1e9)); }
 
-DdsQos stream_qos(const DdsQosSettings& s) {
+DdsQos stream_qos(const DdsQosSettings& s, dds_reliability_kind_t reliability) {
   DdsQos q;
-  dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_MSECS(1));
+  dds_qset_reliability(q.get(), reliability, DDS_MSECS(1));
   dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, s.history_depth);
   dds_qset_durability(q.get(), DDS_DURABILITY_VOLATILE);
   dds_qset_liveliness(q.get(), DDS_LIVELINESS_AUTOMATIC, seconds(s.liveliness_lease_s));
@@ -20,8 +20,10 @@ DdsQos stream_qos(const DdsQosSettings& s) {
 
 }  // namespace
 
-DdsQos command_qos(const DdsQosSettings& s) { return stream_qos(s); }
-DdsQos feedback_qos(const DdsQosSettings& s) { return stream_qos(s); }
+DdsQos stream_writer_qos(const DdsQosSettings& s) { return stream_qos(s, DDS_RELIABILITY_RELIABLE); }
+DdsQos stream_reader_qos(const DdsQosSettings& s) {
+  return stream_qos(s, s.newest_only ? DDS_RELIABILITY_BEST_EFFORT : DDS_RELIABILITY_RELIABLE);
+}
 
 DdsQos heartbeat_qos(const DdsQosSettings& s) {
   DdsQos q;

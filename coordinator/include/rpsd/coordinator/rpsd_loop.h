@@ -56,8 +56,9 @@ struct LoopParts {
   bool wait_for_recorder = true;
   /// Lock-step (0): every step needs the feedback of its own command. Real time (> 0): a
   /// feedback that misses its deadline is replaced by the newest measurement, counted and
-  /// flagged, up to this many periods in a row; one more stops the test.
-  int max_late_feedback = 0;
+  /// flagged, as long as that measurement answers a command at most this many control
+  /// periods old; an older one (a silent node) stops the test.
+  int max_feedback_age_periods = 0;
 };
 
 enum class StepOutcome : std::uint8_t { kOk, kRecordEnded, kLinkFailure, kIntegratorError, kNodeFault, kNonFinite };
@@ -81,8 +82,9 @@ class RpsdLoop {
   /// Real time: how late the current cycle woke (recorded with the step). Real-time safe.
   void set_cycle_lateness_ns(std::int64_t ns) { cycle_lateness_ns_ = ns; }
   std::int64_t late_feedback_total() const { return late_total_; }
-  /// Consecutive control periods without fresh feedback when the loop stopped.
-  int late_feedback_in_a_row() const { return late_in_a_row_; }
+  /// Control periods between the newest feedback and the last command sent, as of the last
+  /// exchange (0: on time).
+  std::int64_t feedback_age_periods() const { return feedback_age_; }
 
   std::int64_t step_index() const { return step_; }
   std::int64_t steps_available() const;  ///< ground-motion steps, or unlimited (-1)
@@ -105,8 +107,8 @@ class RpsdLoop {
   std::int64_t exchange_ = 0;
   std::int64_t cycle_lateness_ns_ = 0;
   std::int64_t late_total_ = 0;
-  int late_in_a_row_ = 0;
-  bool late_this_step_ = false;
+  std::int64_t feedback_age_ = 0;
+  std::int64_t oldest_age_this_step_ = 0;
   double input_energy_j_ = 0.0, damping_energy_j_ = 0.0, restoring_energy_j_ = 0.0, kinetic_energy_j_ = 0.0;
 };
 

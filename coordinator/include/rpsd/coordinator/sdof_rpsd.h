@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -34,6 +35,11 @@ struct SdofRpsdSetup {
   std::vector<double> ground_acceleration_m_per_s2;
   /// Keep every step record in memory for finish() (the Figure 8 study needs them).
   bool keep_records = true;
+  /// Optional: a link placed between the loop and the in-process plant node (a network
+  /// emulation that delays or loses feedback), built around the in-process link.
+  std::function<std::unique_ptr<transport::Link>(transport::Link& in_process)> network;
+  /// See LoopParts::max_feedback_age_periods (0: lock-step).
+  int max_feedback_age_periods = 0;
 };
 
 struct SdofRpsdResult {

@@ -41,7 +41,7 @@ struct StepRecord {
   /// Command-to-feedback time of each channel's site this step, s.
   std::array<double, transport::kMaxChannels> round_trip_s{};
   double cycle_lateness_s = 0.0;  ///< how late the paced cycle woke after its deadline
-  std::uint8_t late_feedback = 0; ///< 1 when the feedback of this step was late (real time)
+  std::uint8_t feedback_age_periods = 0; ///< periods the feedback used was behind its command (0: on time; real time)
 };
 
 /// Copies what `from` uses (its channels and recorded DOFs) into `to`; the entries beyond
@@ -75,7 +75,7 @@ inline void copy_used(const StepRecord& from, StepRecord& to) {
   to.node_status = from.node_status;
   to.limit_flags = from.limit_flags;
   to.cycle_lateness_s = from.cycle_lateness_s;
-  to.late_feedback = from.late_feedback;
+  to.feedback_age_periods = from.feedback_age_periods;
 }
 
 }  // namespace rpsd::coordinator

@@ -39,7 +39,7 @@ struct TestRun {
   StepOutcome outcome = StepOutcome::kOk;
   std::int64_t steps_planned = 0;
   std::uint64_t dropped_records = 0;
-  int late_feedback_in_a_row = 0;  ///< periods without fresh feedback when it stopped
+  std::int64_t feedback_age_periods = 0;  ///< how old the newest feedback was when it stopped (periods)
   TimingReport timing;
 };
 

@@ -36,9 +36,10 @@ struct ExperimentalChannel {
 struct ClockConfig {
   enum class Mode { kAsFastAsPossible, kRealTime };
   Mode mode = Mode::kAsFastAsPossible;
-  /// Real time: consecutive control periods whose feedback may arrive late (the newest
-  /// measurement is used instead, and counted) before the test stops.
-  int max_late_feedback = 4;
+  /// Real time: late feedback is replaced by the newest measurement (counted and flagged)
+  /// while that answers a command at most this many control periods old; beyond, the node
+  /// is taken for silent and the test stops (a dead node: on the 5th period with 4).
+  int max_feedback_age_periods = 4;
   realtime::RealTimeRequest realtime;
 };
 

@@ -1,12 +1,16 @@
 // The QoS of rpsd's three topics, in one place (the reasons are in docs/dds-transport.md):
 //
-//   topic        reliability  history      durability       liveliness
-//   Command      reliable     keep last 8  volatile         automatic, lease L
-//   Feedback     reliable     keep last 8  volatile         automatic, lease L
-//   Heartbeat    reliable     keep last 1  transient-local  automatic, lease L
+//   topic        reliability         history      durability       liveliness
+//   Command      reliable (reader *) keep last 8  volatile         automatic, lease L
+//   Feedback     reliable (reader *) keep last 8  volatile         automatic, lease L
+//   Heartbeat    reliable            keep last 1  transient-local  automatic, lease L
 //
 // Reliable with keep-last never blocks the writer on a slow or dead reader (old samples are
-// replaced), yet repairs a lost packet when there is time. No DDS deadline: a requested
+// replaced), yet repairs a lost packet when there is time. (*) In real time the readers are
+// best effort: a reliable reader delivers in order, so one lost packet would hold back every
+// newer sample until its repair (a NACK round, milliseconds), while a real-time loop wants
+// the newest sample now. A best-effort reader matches a reliable writer, so a lock-step peer
+// (reliable reader) and a real-time peer share the same writers. No DDS deadline: a requested
 // deadline shorter than the offered one (a node faster than its coordinator) would stop the
 // endpoints from matching at all; instead the coordinator and the node count missing
 // control periods themselves, which is what stops a test or makes a node hold, within k
@@ -26,10 +30,13 @@ struct DdsQosSettings {
   double control_period_s = 1.0 / 1024.0;
   double liveliness_lease_s = 1.0;   ///< L
   int history_depth = 8;
+  /// Real time: the reader takes what arrives and never waits for a repair (best effort).
+  bool newest_only = false;
 };
 
-DdsQos command_qos(const DdsQosSettings& s);
-DdsQos feedback_qos(const DdsQosSettings& s);
+/// Command and feedback writers (always reliable) and readers (see newest_only).
+DdsQos stream_writer_qos(const DdsQosSettings& s);
+DdsQos stream_reader_qos(const DdsQosSettings& s);
 DdsQos heartbeat_qos(const DdsQosSettings& s);
 /// Publisher/subscriber QoS carrying the partition of one site of one test.
 DdsQos site_partition_qos(std::uint32_t test_id, std::uint32_t site_id);

@@ -1,0 +1,120 @@
+// Late feedback in real time: the loop carries on with the newest measurement while it is
+// at most max_feedback_age_periods behind, and stops when a node falls silent. A constant
+// lag of one period is one more period of delay, so the damping must be the exact DDE
+// root's for the plant's delay plus one period.
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "rpsd/compensation/delay_theory.h"
+#include "rpsd/coordinator/damping_identification.h"
+#include "rpsd/coordinator/sdof_rpsd.h"
+#include "rpsd/servo/pure_delay_plant.h"
+
+namespace rpsd::coordinator {
+namespace {
+
+// Delivers each feedback `lag` exchanges late (as a real-time link does when the round
+// trip exceeds the period: the newest sample, with kTimeout), and none at all from
+// exchange `silent_from` on.
+class LaggingLink final : public transport::Link {
+ public:
+  LaggingLink(transport::Link& inner, int lag, std::int64_t silent_from) : inner_(inner), lag_(lag), silent_from_(silent_from) {}
+  transport::LinkStatus send(const transport::CommandSample& command) override {
+    exchange_ = command.step;
+    if (inner_.send(command) != transport::LinkStatus::kOk) return transport::LinkStatus::kPeerLost;
+    transport::FeedbackSample f;
+    if (inner_.receive(f) != transport::LinkStatus::kOk) return transport::LinkStatus::kPeerLost;
+    if (exchange_ < silent_from_) in_flight_.push_back(f);
+    return transport::LinkStatus::kOk;
+  }
+  transport::LinkStatus receive(transport::FeedbackSample& feedback) override {
+    // The first exchange always arrives (the real-time loop waits for it without a deadline).
+    while (!in_flight_.empty() && (in_flight_.front().step + lag_ <= exchange_ || in_flight_.front().step == 0)) {
+      newest_ = in_flight_.front();
+      in_flight_.pop_front();
+    }
+    feedback = newest_;
+    return newest_.step == exchange_ ? transport::LinkStatus::kOk : transport::LinkStatus::kTimeout;
+  }
+
+ private:
+  transport::Link& inner_;
+  int lag_;
+  std::int64_t silent_from_;
+  std::int64_t exchange_ = -1;
+  std::deque<transport::FeedbackSample> in_flight_;
+  transport::FeedbackSample newest_{};
+};
+
+SdofRpsdSetup lagging_setup(int lag, std::int64_t silent_from) {
+  SdofRpsdSetup setup;  // the paper's elastic SDOF: 7080 kg, 700.8 kN/m, 1.1 %
+  setup.abort_amplitude_factor = 0.0;
+  setup.max_feedback_age_periods = 4;
+  setup.network = [=](transport::Link& inner) { return std::make_unique<LaggingLink>(inner, lag, silent_from); };
+  return setup;
+}
+
+std::vector<double> displacements(const SdofRpsdResult& r) {
+  std::vector<double> x;
+  for (const auto& s : r.records) x.push_back(s.displacement_m[0]);
+  return x;
+}
+
+TEST(FeedbackAge, OnePeriodLateFeedbackIsOneMorePeriodOfDelay) {
+  const double plant_delay_s = 0.004;
+  SdofRpsdSetup setup = lagging_setup(1, 1 << 30);
+  setup.duration_s = 12.0;
+  servo::PureDelayPlant plant({plant_delay_s, setup.stiffness_n_per_m, 8192.0});
+  const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+  ASSERT_EQ(r.outcome, StepOutcome::kOk);
+  ASSERT_EQ(r.records.size(), static_cast<std::size_t>(12.0 / setup.dt_s));
+  EXPECT_EQ(r.records[0].feedback_age_periods, 0);
+  for (std::size_t n = 1; n < r.records.size(); ++n) ASSERT_EQ(r.records[n].feedback_age_periods, 1) << n;
+
+  const compensation::DelayedOscillator sdof{setup.mass_kg,
+                                             2.0 * setup.damping_ratio * std::sqrt(setup.stiffness_n_per_m * setup.mass_kg), 0.0,
+                                             setup.stiffness_n_per_m};
+  const double exact = compensation::damping_ratio_of(compensation::dominant_root(sdof, plant_delay_s + setup.dt_s));
+  const double without_lag = compensation::damping_ratio_of(compensation::dominant_root(sdof, plant_delay_s));
+  const IdentifiedDamping identified = identify_damping(displacements(r), setup.dt_s, 0.0, 1e-6);
+  EXPECT_NEAR(identified.damping_ratio, exact, 0.001);
+  // The extra period matters: the result is not the one without the lag.
+  EXPECT_GT(std::abs(exact - without_lag), 0.004);
+}
+
+TEST(FeedbackAge, LateButAnsweringNodeKeepsTheTestGoing) {
+  SdofRpsdSetup setup = lagging_setup(4, 1 << 30);
+  setup.duration_s = 1.0;
+  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
+  const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+  EXPECT_EQ(r.outcome, StepOutcome::kOk);
+  EXPECT_EQ(r.records.back().feedback_age_periods, 4);
+}
+
+TEST(FeedbackAge, ASilentNodeStopsTheTestOnTheFifthPeriod) {
+  const std::int64_t silent_from = 100;
+  SdofRpsdSetup setup = lagging_setup(0, silent_from);
+  setup.duration_s = 1.0;
+  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
+  const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+  EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
+  // Exchanges 100..103 go on with ages 1..4; the fifth (age 5) stops before recording.
+  ASSERT_EQ(r.records.size(), static_cast<std::size_t>(silent_from + 4));
+  for (int k = 1; k <= 4; ++k) EXPECT_EQ(r.records[silent_from + k - 1].feedback_age_periods, k);
+}
+
+TEST(FeedbackAge, LockStepStopsOnTheFirstLateFeedback) {
+  SdofRpsdSetup setup = lagging_setup(1, 1 << 30);
+  setup.max_feedback_age_periods = 0;
+  setup.duration_s = 1.0;
+  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
+  const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+  EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
+  EXPECT_EQ(r.records.size(), 1u);
+}
+
+}  // namespace
+}  // namespace rpsd::coordinator
