@@ -31,6 +31,9 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)) {
   for (Eigen::Index dof : parts_.recorded_dofs) {
     if (dof < 0 || dof >= dofs_) throw std::invalid_argument("RpsdLoop: recorded DOF " + std::to_string(dof) + " out of range");
   }
+  if (!parts_.limits.empty() && static_cast<int>(parts_.limits.size()) != channels_) {
+    throw std::invalid_argument("RpsdLoop: limits for every actuator channel or for none");
+  }
   if (!parts_.ground_acceleration_m_per_s2.empty() && parts_.ground_load == nullptr) {
     throw std::invalid_argument("RpsdLoop: a ground-motion record needs the ground-motion load (M iota)");
   }
@@ -43,6 +46,16 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)) {
   tracking_.resize(channels_);
   command_.test_id = feedback_.test_id = parts_.test_id;
   command_.channels = static_cast<std::uint8_t>(channels_);
+}
+
+const char* limit_stop_name(LimitStop::Kind kind) {
+  switch (kind) {
+    case LimitStop::Kind::kNone: return "none";
+    case LimitStop::Kind::kStroke: return "max_stroke_m";
+    case LimitStop::Kind::kIncrement: return "max_increment_m";
+    case LimitStop::Kind::kForce: return "max_force_n";
+  }
+  return "unknown";
 }
 
 std::int64_t RpsdLoop::steps_available() const {
@@ -59,7 +72,9 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
     parts_.compensators[c]->reset(targets_[c]);
     tracking_[c].reset(targets_[c], targets_[c]);
     specimen_forces_[c] = specimen_force0_n[c];
+    last_sent_m_[c] = targets_[c];  // the actuator holds the start
   }
+  limit_stop_ = LimitStop{};
   parts_.numerical->restoring_force(d0, restoring_);
   parts_.partition->add_forces(specimen_forces_, restoring_);
   parts_.numerical->commit();
@@ -79,6 +94,24 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
   previous_r_ = restoring_;
   previous_f_ = force_;
   input_energy_j_ = damping_energy_j_ = restoring_energy_j_ = kinetic_energy_j_ = 0.0;
+}
+
+bool RpsdLoop::commands_within_limits() {
+  if (parts_.limits.empty()) return true;
+  for (int c = 0; c < channels_; ++c) {
+    const scenarios::ChannelLimitsConfig& l = parts_.limits[c];
+    const double x = command_.displacement_m[c], change = x - last_sent_m_[c];
+    // A non-finite command fails both comparisons below, so test it first.
+    if (!std::isfinite(x) || std::abs(x) > l.max_stroke_m) {
+      limit_stop_ = {LimitStop::Kind::kStroke, c, x, l.max_stroke_m};
+      return false;
+    }
+    if (std::abs(change) > l.max_increment_m) {
+      limit_stop_ = {LimitStop::Kind::kIncrement, c, change, l.max_increment_m};
+      return false;
+    }
+  }
+  return true;
 }
 
 void RpsdLoop::experimental_forces(const transport::FeedbackSample& feedback) {
@@ -109,7 +142,9 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     command_.step = exchange_;
     command_.time_s = (exchange_ + 1) * integrator.dt_s() / iterations;
     for (int c = 0; c < channels_; ++c) command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
+    if (!commands_within_limits()) return StepOutcome::kLimit;
     if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
+    for (int c = 0; c < channels_; ++c) last_sent_m_[c] = command_.displacement_m[c];
     const transport::LinkStatus received = parts_.link->receive(feedback_);
     // How many commands behind the newest measurement is: 0 on time. Without any feedback
     // yet, the age counts from before the first command.
@@ -129,6 +164,10 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     if (feedback_.status & transport::kNodeFault) return StepOutcome::kNodeFault;
     for (int c = 0; c < channels_; ++c) {
       if (!std::isfinite(feedback_.displacement_m[c]) || !std::isfinite(feedback_.force_n[c])) return StepOutcome::kNonFinite;
+      if (!parts_.limits.empty() && std::abs(feedback_.force_n[c]) > parts_.limits[c].max_force_n) {
+        limit_stop_ = {LimitStop::Kind::kForce, c, feedback_.force_n[c], parts_.limits[c].max_force_n};
+        return StepOutcome::kLimit;
+      }
       parts_.compensators[c]->observe(targets_[c], feedback_.displacement_m[c]);
       tracking_[c].update(targets_[c], feedback_.displacement_m[c]);
     }

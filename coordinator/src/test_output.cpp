@@ -22,6 +22,7 @@ const char* outcome_text(StepOutcome o) {
     case StepOutcome::kIntegratorError: return "aborted: the integrator rejected a step";
     case StepOutcome::kNodeFault: return "aborted: the servo node reported a fault";
     case StepOutcome::kNonFinite: return "aborted: a non-finite measurement arrived";
+    case StepOutcome::kLimit: return "aborted: a coordinator limit was reached";
   }
   return "aborted";
 }
@@ -114,6 +115,16 @@ std::string describe_outcome(const scenarios::TestScenario& s, const TestRun& te
       std::snprintf(detail, sizeof detail, " (none within %g s at step %zu, t = %.4f s)", s.transport.feedback_timeout_s,
                     static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
     }
+    text += detail;
+  }
+  if (test.outcome == StepOutcome::kLimit) {
+    const LimitStop& l = test.limit_stop;
+    const bool force = l.kind == LimitStop::Kind::kForce;
+    char detail[240];
+    std::snprintf(detail, sizeof detail, " (channel %d: %s %.6g %s beyond limits.%s %.6g; %s; step %zu, t = %.4f s)", l.channel,
+                  force ? "measured force" : l.kind == LimitStop::Kind::kIncrement ? "command change" : "command", l.value,
+                  force ? "N" : "m", limit_stop_name(l.kind), l.bound, force ? "no further command was sent" : "the command was not sent",
+                  static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
     text += detail;
   }
   return text;

@@ -103,6 +103,11 @@ TestAssembly::TestAssembly(const scenarios::TestScenario& s, const std::filesyst
         perfect_actuator ? compensation::CompensatorConfig{compensation::PassThroughParameters{}} : s.compensation,
         control_period_s));
     parts.compensators[ch] = p.compensators.back().get();
+    // The reference is numerical: no rig, no limits.
+    if (!perfect_actuator) {
+      parts.limits.resize(static_cast<std::size_t>(channels));
+      parts.limits[ch] = channel.limits;
+    }
     parts.force_paths[ch] = {channel.restoring_force == scenarios::RestoringForceSource::kMeasuredForce
                                  ? RestoringForcePath::Kind::kMeasuredForce
                                  : RestoringForcePath::Kind::kStiffnessTimesMeasuredDisplacement,
@@ -220,6 +225,7 @@ TestRun TestAssembly::finish(StepOutcome outcome) {
   run.steps = p.steps;
   run.steps_planned = p.steps_planned;
   run.feedback_age_periods = p.loop->feedback_age_periods();
+  run.limit_stop = p.loop->limit_stop();
   run.dropped_records = p.recorder->dropped();
   run.records = p.recorder->finish();
   run.timing = p.timing;

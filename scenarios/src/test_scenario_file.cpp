@@ -311,6 +311,13 @@ TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path
       e.fail("restoring_force", "expected measured_force or stiffness_times_displacement, got \"" + source + "\"");
     }
     channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1));
+    if (auto limits = e.optional_mapping("limits")) {
+      ChannelLimitsConfig& l = channel.limits;
+      l.max_stroke_m = limits->positive_number_or("max_stroke_m", l.max_stroke_m);
+      l.max_increment_m = limits->positive_number_or("max_increment_m", l.max_increment_m);
+      l.max_force_n = limits->positive_number_or("max_force_n", l.max_force_n);
+      limits->finish();
+    }
     if (!used.insert(channel.dof.dof).second) e.fail("dof", "is experimental twice");
     e.finish();
     t.experimental.push_back(channel);

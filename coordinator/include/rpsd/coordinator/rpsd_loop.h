@@ -16,6 +16,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "rpsd/compensation/tracking_indicator.h"
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/integrators/integrator.h"
+#include "rpsd/scenarios/test_scenario.h"
 #include "rpsd/substructure/ground_motion_load.h"
 #include "rpsd/substructure/numerical_model.h"
 #include "rpsd/substructure/partition.h"
@@ -59,9 +61,21 @@ struct LoopParts {
   /// flagged, as long as that measurement answers a command at most this many control
   /// periods old; an older one (a silent node) stops the test.
   int max_feedback_age_periods = 0;
+  /// The coordinator's limits per channel (empty: none). A command beyond its stroke or
+  /// increment is never sent; a measured force beyond its bound stops the test at once.
+  std::vector<scenarios::ChannelLimitsConfig> limits;
 };
 
-enum class StepOutcome : std::uint8_t { kOk, kRecordEnded, kLinkFailure, kIntegratorError, kNodeFault, kNonFinite };
+/// Which coordinator limit stopped the test, on which channel, at what value.
+struct LimitStop {
+  enum class Kind : std::uint8_t { kNone, kStroke, kIncrement, kForce };
+  Kind kind = Kind::kNone;
+  int channel = -1;
+  double value = 0.0, bound = 0.0;
+};
+const char* limit_stop_name(LimitStop::Kind kind);
+
+enum class StepOutcome : std::uint8_t { kOk, kRecordEnded, kLinkFailure, kIntegratorError, kNodeFault, kNonFinite, kLimit };
 
 class RpsdLoop {
  public:
@@ -85,6 +99,8 @@ class RpsdLoop {
   /// Control periods between the newest feedback and the last command sent, as of the last
   /// exchange (0: on time).
   std::int64_t feedback_age_periods() const { return feedback_age_; }
+  /// The coordinator limit that stopped the loop (kind kNone if none did).
+  const LimitStop& limit_stop() const { return limit_stop_; }
 
   std::int64_t step_index() const { return step_; }
   std::int64_t steps_available() const;  ///< ground-motion steps, or unlimited (-1)
@@ -92,6 +108,7 @@ class RpsdLoop {
 
  private:
   void experimental_forces(const transport::FeedbackSample& feedback);
+  bool commands_within_limits();  ///< fills limit_stop_ when not
   void fill_record(StepRecord& r) const;
 
   LoopParts parts_;
@@ -108,6 +125,8 @@ class RpsdLoop {
   std::int64_t cycle_lateness_ns_ = 0;
   std::int64_t late_total_ = 0;
   std::int64_t feedback_age_ = 0;
+  LimitStop limit_stop_;
+  std::array<double, transport::kMaxChannels> last_sent_m_{};
   std::int64_t oldest_age_this_step_ = 0;
   double input_energy_j_ = 0.0, damping_energy_j_ = 0.0, restoring_energy_j_ = 0.0, kinetic_energy_j_ = 0.0;
 };

@@ -40,6 +40,7 @@ struct TestRun {
   std::int64_t steps_planned = 0;
   std::uint64_t dropped_records = 0;
   std::int64_t feedback_age_periods = 0;  ///< how old the newest feedback was when it stopped (periods)
+  LimitStop limit_stop;                   ///< the coordinator limit that stopped it, if one did
   TimingReport timing;
 };
 

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -26,10 +27,20 @@ namespace rpsd::scenarios {
 /// Where an experimental channel's restoring force comes from.
 enum class RestoringForceSource { kMeasuredForce, kStiffnessTimesMeasuredDisplacement };
 
+/// The coordinator's own limits for one actuator channel (specimen scale), checked before
+/// each command leaves and on each feedback: a second layer beside the servo node's. A limit
+/// left out of the scenario is not checked (infinity).
+struct ChannelLimitsConfig {
+  double max_stroke_m = std::numeric_limits<double>::infinity();     ///< |command|
+  double max_increment_m = std::numeric_limits<double>::infinity();  ///< |command change| per control period
+  double max_force_n = std::numeric_limits<double>::infinity();      ///< |measured force|
+};
+
 struct ExperimentalChannel {
   substructure::ExperimentalDof dof;  ///< DOF, channel, scales, specimen stiffness estimate
   RestoringForceSource restoring_force = RestoringForceSource::kMeasuredForce;
   std::uint32_t site_id = 1;          ///< the servo node (site) that owns the actuator
+  ChannelLimitsConfig limits;         ///< experimental[i].limits
 };
 
 /// How the loop is paced.
