@@ -31,6 +31,15 @@ void add_servo_node(CLI::App& app);
 /// `--set key.path=value` texts to overrides (ConfigError on a malformed one).
 std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts);
 
+/// `rpsd run --dry-run`: prints the pre-test check (and writes OUT/dry-run.json when `out` is
+/// not empty); true when the test is ready to run.
+bool report_dry_run(const scenarios::TestScenario& scenario, const std::string& out);
+
+/// The dry run found a limit exceeded, an undamped mode or an early stop (exit code 4).
+struct DryRunNotReady : std::runtime_error {
+  DryRunNotReady() : std::runtime_error("the dry run says the test is not ready (see above)") {}
+};
+
 /// A test that stopped before its end; its files are complete for every step it took.
 struct TestAborted : std::runtime_error {
   explicit TestAborted(const std::string& summary, const std::string& reason = {})

@@ -1,6 +1,7 @@
 // rpsd: one binary, one subcommand per job. Errors from any subcommand end here with a
 // message naming what failed and an exit code: 0 success, 1 failure, 2 bad input (scenario,
-// parameter or record files), 3 test aborted (the reason is in its summary.json).
+// parameter or record files), 3 test aborted (the reason is in its summary.json), 4 the dry
+// run says the test is not ready.
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
@@ -31,6 +32,9 @@ int main(int argc, char** argv) {
   } catch (const rpsd::cli::TestAborted& e) {
     std::cerr << "rpsd: " << e.what() << '\n';
     return 3;
+  } catch (const rpsd::cli::DryRunNotReady& e) {
+    std::cerr << "rpsd: " << e.what() << '\n';
+    return 4;
   } catch (const std::exception& e) {
     std::cerr << "rpsd: error: " << e.what() << '\n';
     return 1;

@@ -19,6 +19,7 @@ struct RunOptions {
   std::string out;
   std::vector<std::string> overrides;
   std::string record;
+  bool dry_run = false;
 };
 
 // Steps, simulated time, speed as a multiple of real time, ETA; on a terminal only, and
@@ -61,7 +62,10 @@ void add_run(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   auto* run = app.add_subcommand("run", "Run a scenario and write its results (CSV, summary.json, PNG plots)");
   run->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
-  run->add_option("--out", options->out, "Output folder (created if missing)")->required();
+  run->add_option("--out", options->out, "Output folder (created if missing; optional with --dry-run)");
+  run->add_flag("--dry-run", options->dry_run,
+                "Run against the simulated plant in this process first and report predicted peaks against the limits and "
+                "the stability margin; exit 4 when not ready");
   run->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
   run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's")
       ->check(CLI::ExistingFile);
@@ -73,6 +77,13 @@ void add_run(CLI::App& app) {
     }
     for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
     const auto file = scenarios::load_study(options->scenario, overrides);
+    if (options->dry_run) {
+      const auto* test = std::get_if<scenarios::TestScenario>(&file.study);
+      if (!test) throw std::runtime_error("--dry-run needs an rpsd_test scenario");
+      if (!report_dry_run(*test, options->out)) throw DryRunNotReady();
+      return;
+    }
+    if (options->out.empty()) throw CLI::ValidationError("--out", "required (except with --dry-run)");
     double rate_hz = 1024.0;
     if (const auto* test = std::get_if<scenarios::TestScenario>(&file.study)) rate_hz = test->control_rate_hz;
     bool completed = true;

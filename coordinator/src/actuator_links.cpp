@@ -16,6 +16,7 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
                              std::span<const double> hold_m) {
   const int channels = static_cast<int>(s.experimental.size());
   initial_force_n_.assign(static_cast<std::size_t>(channels), 0.0);
+  plant_of_channel_.assign(static_cast<std::size_t>(channels), nullptr);
   // Sites in order of first appearance; each site's channels in the test's channel order.
   std::map<std::uint32_t, std::size_t> index_of_site;
   std::vector<const scenarios::ExperimentalChannel*> by_channel(static_cast<std::size_t>(channels));
@@ -58,6 +59,7 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
         plants_.push_back(perfect_actuator ? std::make_unique<servo::PureDelayPlant>(servo::PureDelayParameters{0.0, k, 8192.0})
                                            : make_plant(s.plant));
         site_plants.push_back(plants_.back().get());
+        plant_of_channel_[static_cast<std::size_t>(ch)] = plants_.back().get();
         site_hold.push_back(hold_m[static_cast<std::size_t>(ch)]);
       }
       nodes_.push_back(std::make_unique<servo::PlantNode>(site_plants, control_period_s));

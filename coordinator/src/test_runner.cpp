@@ -218,6 +218,10 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
   return outcome;
 }
 
+const substructure::NumericalModel& TestAssembly::numerical() const { return *parts_->numerical; }
+const substructure::Partition& TestAssembly::partition() const { return parts_->partition; }
+const ActuatorLinks& TestAssembly::actuators() const { return *parts_->actuators; }
+
 TestRun TestAssembly::finish(StepOutcome outcome) {
   Parts& p = *parts_;
   TestRun run;

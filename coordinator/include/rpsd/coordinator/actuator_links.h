@@ -38,6 +38,8 @@ class ActuatorLinks {
   /// Real time: the receive deadline for every DDS site this cycle (0: none).
   void set_receive_deadline_ns(std::int64_t deadline_ns);
   bool over_dds() const { return !dds_links_.empty(); }
+  /// The simulated plant of a channel in this process (nullptr over DDS).
+  const servo::Plant* simulated_plant(int channel) const { return plant_of_channel_[static_cast<std::size_t>(channel)]; }
   /// Over DDS: messages each site's link refused or found late.
   std::vector<transport::DdsLinkCounters> dds_counters() const;
 
@@ -50,6 +52,7 @@ class ActuatorLinks {
   std::vector<transport::DdsLink*> dds_links_;
   std::unique_ptr<transport::MultiSiteLink> multi_site_;
   std::vector<double> initial_force_n_;
+  std::vector<const servo::Plant*> plant_of_channel_;
 };
 
 }  // namespace rpsd::coordinator

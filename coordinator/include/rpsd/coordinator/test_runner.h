@@ -17,6 +17,8 @@
 
 namespace rpsd::coordinator {
 
+class ActuatorLinks;
+
 /// How the clock and the link behaved (real time and/or over DDS).
 struct TimingReport {
   bool real_time = false;
@@ -74,6 +76,11 @@ class TestAssembly {
   /// Stops the recorder; the run's outcome, counts, timing and (if kept) records. Not
   /// real-time safe.
   TestRun finish(StepOutcome outcome);
+
+  /// The parts, for analyses beside the run (the dry run). Not real-time safe.
+  const substructure::NumericalModel& numerical() const;
+  const substructure::Partition& partition() const;
+  const ActuatorLinks& actuators() const;
 
  private:
   struct Parts;

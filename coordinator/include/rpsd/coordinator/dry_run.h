@@ -1,0 +1,58 @@
+// The pre-test check (`rpsd run --dry-run`): the scenario against its simulated plant, in this
+// process and as fast as possible, before any hardware moves. It predicts each channel's peak
+// stroke, velocity, force and servovalve opening against the coordinator's limits, and the
+// stability margin: the servo loop's proportional gain against its Routh bound, and for every
+// structural mode the damping left and the delay margin, from delay theory per mode
+// (s^2 + c s + k_n + g k_e e^{-s tau} = 0, mass-normalised) with the gain g and delay tau of
+// the compensator and plant in series measured by a sine test at the mode's frequency.
+// Not real-time safe.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "rpsd/coordinator/rpsd_loop.h"
+#include "rpsd/scenarios/test_scenario.h"
+
+namespace rpsd::coordinator {
+
+struct ChannelPrediction {
+  int channel = 0;
+  std::uint32_t site_id = 1;
+  double peak_command_m = 0.0, peak_displacement_m = 0.0, peak_velocity_m_per_s = 0.0, peak_increment_m = 0.0;
+  double peak_force_n = 0.0;
+  std::optional<double> peak_valve_opening;  ///< |x_v| of the servovalve, 0..1 (servo model only)
+  std::optional<double> tracking_delay_ms;   ///< measured lags target by this (negative: leads)
+  scenarios::ChannelLimitsConfig limits;
+  bool within_limits = true;
+};
+
+struct ModePrediction {
+  double frequency_hz = 0.0;
+  double damping_ratio = 0.0;            ///< of the structure alone (no delay)
+  double experimental_share = 0.0;       ///< k_e / k of the mode
+  double loop_gain = 1.0;                ///< compensator and plant, measured/target at the mode's frequency
+  double loop_delay_ms = 0.0;            ///< their equivalent delay there (negative: a lead)
+  double predicted_damping_ratio = 0.0;  ///< with that gain and delay
+  double critical_delay_ms = 0.0;        ///< +inf: stable for every delay
+};
+
+struct DryRunReport {
+  StepOutcome outcome = StepOutcome::kOk;
+  LimitStop limit_stop;
+  std::int64_t steps = 0, steps_planned = 0;
+  std::vector<ChannelPrediction> channels;
+  double residual_delay_ms = 0.0;  ///< the channels' mean tracking delay
+  std::vector<ModePrediction> modes;
+  /// Servo model only: its proportional gain and the largest stable one (eigenvalues of the
+  /// full linear model with the specimen).
+  std::optional<double> p_gain, max_stable_p_gain;
+  bool within_limits = true;  ///< completed, every peak within its limit, every mode damped
+};
+
+/// Runs the scenario's test (not the reference) with its simulated plant, whatever its transport
+/// and clock say. Throws what building the test throws.
+DryRunReport dry_run(const scenarios::TestScenario& scenario);
+
+}  // namespace rpsd::coordinator

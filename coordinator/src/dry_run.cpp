@@ -1,0 +1,173 @@
+#include "rpsd/coordinator/dry_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rpsd/compensation/cross_correlation_delay.h"
+#include "rpsd/compensation/delay_theory.h"
+#include "rpsd/coordinator/actuator_links.h"
+#include "rpsd/coordinator/plant_factory.h"
+#include "rpsd/servo/harmonic_fit.h"
+#include "rpsd/coordinator/test_runner.h"
+#include "rpsd/servo/linear_analysis.h"
+#include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/substructure/modal.h"
+
+namespace rpsd::coordinator {
+namespace {
+
+// Signed delay of measured behind target (negative: ahead), by cross-correlation both ways.
+std::optional<double> signed_delay_ms(const std::vector<double>& target, const std::vector<double>& measured, double rate_hz) {
+  compensation::CrossCorrelationOptions options;
+  options.max_lag_samples = static_cast<int>(0.2 * rate_hz);
+  options.measure = compensation::CorrelationMeasure::kPearson;
+  if (static_cast<int>(target.size()) <= 2 * options.max_lag_samples + 2) return std::nullopt;
+  const auto lag = compensation::cross_correlation_delay(target, measured, options);
+  const auto lead = compensation::cross_correlation_delay(measured, target, options);
+  if (!lag.valid && !lead.valid) return std::nullopt;
+  const bool lags = lag.valid && (!lead.valid || lag.peak >= lead.peak);
+  return 1e3 * (lags ? lag.delay_samples : -lead.delay_samples) / rate_hz;
+}
+
+// What the specimen sees of a sinusoidal target at w: the compensator and the simulated plant
+// in series, measured as a lab would (a sine test, settled, fitted). Returns the gain and the
+// equivalent delay -phase / w (negative: a lead).
+struct LoopResponse {
+  double gain = 1.0, delay_s = 0.0;
+};
+LoopResponse compensated_plant_response(const scenarios::TestScenario& s, double w_rad_s) {
+  const double period_s = 1.0 / s.control_rate_hz, amplitude_m = 1e-3;
+  auto plant = make_plant(s.plant);
+  auto compensator = compensation::make_compensator(s.compensation, period_s);
+  plant->reset(0.0);
+  compensator->reset(0.0);
+  const double cycle_s = 2.0 * M_PI / w_rad_s;
+  const auto settle = static_cast<std::int64_t>(std::ceil(6.0 * cycle_s / period_s));
+  const auto fitted = static_cast<std::int64_t>(std::ceil(4.0 * cycle_s / period_s));
+  std::vector<double> phase, target, measured;
+  double previous_command = 0.0;
+  for (std::int64_t n = 1; n <= settle + fitted; ++n) {
+    const double x = amplitude_m * std::sin(w_rad_s * n * period_s);
+    const double command = compensator->command(x);
+    plant->advance(previous_command, command, period_s);
+    previous_command = command;
+    const double y = plant->measure().displacement_m;
+    compensator->observe(x, y);
+    if (n > settle) {
+      phase.push_back(w_rad_s * n * period_s);
+      target.push_back(x);
+      measured.push_back(y);
+    }
+  }
+  const servo::HarmonicFit in = servo::fit_harmonic(phase, target), out = servo::fit_harmonic(phase, measured);
+  double lag = in.phase_rad - out.phase_rad;
+  lag = std::remainder(lag, 2.0 * M_PI);
+  return {out.amplitude / in.amplitude, lag / w_rad_s};
+}
+
+std::vector<ModePrediction> modes_under_delay(const TestAssembly& test, const scenarios::TestScenario& s) {
+  const auto& numerical = test.numerical();
+  const auto k = test.partition().with_specimen_stiffness(numerical.initial_stiffness());
+  const substructure::ModalSolution modal = substructure::modal_analysis(numerical.mass(), k);
+  const Eigen::MatrixXd c = numerical.damping().to_dense();
+  std::vector<ModePrediction> modes;
+  for (Eigen::Index i = 0; i < modal.omega_rad_s.size(); ++i) {
+    const Eigen::VectorXd phi = modal.modes.col(i);
+    const double w = modal.omega_rad_s[i];
+    double k_e = 0.0;
+    for (const auto& e : s.experimental) k_e += phi[e.dof.dof] * phi[e.dof.dof] * e.dof.specimen_stiffness_estimate_n_per_m;
+    // The specimen's share acts through the loop's gain and delay at the mode's frequency.
+    const LoopResponse loop = compensated_plant_response(s, w);
+    const compensation::DelayedOscillator mode{1.0, phi.dot(c * phi), w * w - k_e, k_e * loop.gain};
+    ModePrediction m;
+    m.loop_gain = loop.gain;
+    m.loop_delay_ms = 1e3 * loop.delay_s;
+    m.frequency_hz = w / (2.0 * M_PI);
+    m.damping_ratio = mode.damping_n_s_per_m / (2.0 * w);
+    m.experimental_share = k_e / (w * w);
+    m.predicted_damping_ratio = compensation::damping_ratio_of(compensation::dominant_root(mode, loop.delay_s));
+    m.critical_delay_ms = 1e3 * compensation::critical_delay_s(mode);
+    modes.push_back(m);
+  }
+  return modes;
+}
+
+}  // namespace
+
+DryRunReport dry_run(const scenarios::TestScenario& original) {
+  scenarios::TestScenario s = original;
+  s.transport.kind = scenarios::TransportConfig::Kind::kInProcess;
+  s.clock.mode = scenarios::ClockConfig::Mode::kAsFastAsPossible;
+  TestAssembly test(s, {}, false, false);
+
+  const int channels = static_cast<int>(s.experimental.size());
+  const double period_s = 1.0 / s.control_rate_hz;
+  DryRunReport report;
+  report.steps_planned = test.steps_planned();
+  report.channels.resize(static_cast<std::size_t>(channels));
+  std::vector<std::vector<double>> targets(channels), measured(channels);
+  std::vector<double> previous_x(channels), previous_command(channels);
+  for (const auto& e : s.experimental) {
+    auto& p = report.channels[static_cast<std::size_t>(e.dof.actuator_channel)];
+    p.channel = e.dof.actuator_channel;
+    p.site_id = e.site_id;
+    p.limits = e.limits;
+  }
+  Eigen::VectorXd hold(channels);
+  test.partition().extract_commands(s.initial_displacement_m, hold);
+  for (int c = 0; c < channels; ++c) previous_x[c] = previous_command[c] = hold[c];
+
+  const auto watch = [&](const StepRecord& r) {
+    for (int c = 0; c < channels; ++c) {
+      auto& p = report.channels[static_cast<std::size_t>(c)];
+      p.peak_command_m = std::max(p.peak_command_m, std::abs(r.command_m[c]));
+      p.peak_displacement_m = std::max(p.peak_displacement_m, std::abs(r.measured_m[c]));
+      p.peak_velocity_m_per_s = std::max(p.peak_velocity_m_per_s, std::abs(r.measured_m[c] - previous_x[c]) / period_s);
+      p.peak_increment_m = std::max(p.peak_increment_m, std::abs(r.command_m[c] - previous_command[c]));
+      p.peak_force_n = std::max(p.peak_force_n, std::abs(r.measured_force_n[c]));
+      previous_x[c] = r.measured_m[c];
+      previous_command[c] = r.command_m[c];
+      targets[c].push_back(r.target_m[c]);
+      measured[c].push_back(r.measured_m[c]);
+      if (const auto* servo = dynamic_cast<const servo::ServoHydraulicPlant*>(test.actuators().simulated_plant(c))) {
+        p.peak_valve_opening = std::max(p.peak_valve_opening.value_or(0.0), std::abs(servo->spool_opening()));
+      }
+    }
+  };
+  const StepOutcome outcome = test.run(watch, {});
+  const TestRun run = test.finish(outcome);
+  report.outcome = run.outcome;
+  report.limit_stop = run.limit_stop;
+  report.steps = run.steps;
+
+  double delay_sum_ms = 0.0;
+  int delays = 0;
+  for (int c = 0; c < channels; ++c) {
+    auto& p = report.channels[static_cast<std::size_t>(c)];
+    p.tracking_delay_ms = signed_delay_ms(targets[c], measured[c], s.control_rate_hz);
+    if (p.tracking_delay_ms) {
+      delay_sum_ms += *p.tracking_delay_ms;
+      ++delays;
+    }
+    // The increment limit holds the command; the others the measurement.
+    p.within_limits = p.peak_command_m <= p.limits.max_stroke_m && p.peak_displacement_m <= p.limits.max_stroke_m &&
+                      p.peak_increment_m <= p.limits.max_increment_m && p.peak_force_n <= p.limits.max_force_n;
+  }
+  report.residual_delay_ms = delays > 0 ? delay_sum_ms / delays : 0.0;
+  report.modes = modes_under_delay(test, s);
+
+  if (const auto* servo = std::get_if<servo::ServoSystemParameters>(&s.plant)) {
+    const servo::ServoAnalysis a = servo::analyze(*servo);
+    report.p_gain = a.p_gain;
+    report.max_stable_p_gain = a.max_stable_p_gain_full_model;
+  }
+  const bool completed = report.outcome == StepOutcome::kOk || report.outcome == StepOutcome::kRecordEnded;
+  report.within_limits = completed &&
+                         std::all_of(report.channels.begin(), report.channels.end(), [](const auto& p) { return p.within_limits; }) &&
+                         std::all_of(report.modes.begin(), report.modes.end(), [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
+                         (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
+  return report;
+}
+
+}  // namespace rpsd::coordinator
