@@ -67,9 +67,29 @@ run fuzz_at2 at2 -dict=fuzz/at2.dict -max_len=16384
 run fuzz_text_readers text
 # Short inputs keep every case fast: a long matrix would only measure dense algebra.
 run fuzz_scenario scenario -max_len=2048
-# Datagrams from the network: empty seeds; the decoders' magic and size checks are found fast.
+# Datagrams from the network: valid commands, queries and replies (docs/udp-controller-protocol.md),
+# little-endian, so the fuzzer starts past the magic, size and version checks and mutates the
+# fields the decoders judge (channel count, flags, period, non-finite values).
 mkdir -p "$seeds/udp" "$build/corpus/udp"
-printf 'RPSC' >"$seeds/udp/command-magic"
-printf 'RPSR' >"$seeds/udp/reply-magic"
+python3 - "$seeds/udp" <<'PY'
+import struct, sys
+out = sys.argv[1]
+def command(channels, flags, sequence, period, values):
+    values = list(values) + [0.0] * (8 - len(values))
+    return b"RPSC" + struct.pack("<HBBQd8d", 1, channels, flags, sequence, period, *values)
+def reply(channels, status, sequence, displacements, forces):
+    d = list(displacements) + [0.0] * (8 - len(displacements))
+    f = list(forces) + [0.0] * (8 - len(forces))
+    return b"RPSR" + struct.pack("<HBBQ8d8d", 1, channels, status, sequence, *d, *f)
+seeds = {
+    "command-1ch": command(1, 0, 1, 1 / 1024, [0.001]),
+    "command-8ch": command(8, 0, 2**40, 1 / 4096, [0.001 * c for c in range(8)]),
+    "query": command(2, 1, 7, 0.0, []),
+    "reply-ok": reply(1, 0, 1, [0.001], [700.8]),
+    "reply-fault": reply(3, 1, 9, [0.0, 0.01, -0.01], [1.0, -2.0, 3.0]),
+}
+for name, packet in seeds.items():
+    open(f"{out}/{name}", "wb").write(packet)
+PY
 run fuzz_udp_protocol udp -max_len=256
 exit $status
