@@ -92,4 +92,8 @@ for name, packet in seeds.items():
     open(f"{out}/{name}", "wb").write(packet)
 PY
 run fuzz_udp_protocol udp -max_len=256
+# Commands into a node's controller: no seeds needed, every byte string is a command stream.
+mkdir -p "$seeds/node" "$build/corpus/node"
+printf '\x01\x00' >"$seeds/node/one-command-one-tick"
+run fuzz_node_commands node -max_len=1024
 exit $status
