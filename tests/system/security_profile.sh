@@ -1,0 +1,151 @@
+#!/usr/bin/env bash
+# DDS Security profile (docs/dds-security.md) on loopback: a lab CA made at test time in the
+# test's temporary folder (removed on exit). Servo nodes with valid identities ignore every
+# coordinator that is not the lab's coordinator, and run the bridge lock-step with it:
+#   1. no identity (the plain loopback configuration), an identity from another CA, and the
+#      lab's monitor identity with forged permissions (signed by another permissions CA,
+#      granting what a coordinator has) never match the nodes: they exit 1 on discovery;
+#   2. the lab's monitor identity with its real (read-only) permissions may not create the
+#      command writer at all, and a site-1 node identity may not serve site 2;
+#   3. the nodes accepted no command from any of them;
+#   4. the lab's coordinator runs the test to the end with fresh nodes, encrypted.
+source "$(dirname "$0")/lib.sh"
+
+skip() { echo "SKIP: $*"; exit 77; }
+command -v openssl > /dev/null || skip "openssl not found"
+for plugin in auth ac crypto; do
+  # Debian's libddsc0debian puts the plugins in a folder of their own, where Cyclone looks.
+  compgen -G "/usr/lib/*/libddsc0debian/libdds_security_$plugin.so" > /dev/null \
+    || ldconfig -p | grep -q "libdds_security_$plugin.so" \
+    || skip "Cyclone DDS security plugin libdds_security_$plugin.so not installed (Debian: libddsc0debian)"
+done
+
+LAB=$WORK/lab
+ROGUE=$WORK/rogue
+bash "$SRC/scripts/make-lab-ca.sh" --lab "rogue lab" "$ROGUE" > "$WORK/rogue.log" 2>&1 &
+rogue_ca=$!
+bash "$SRC/scripts/make-lab-ca.sh" "$LAB" > "$WORK/lab.log" 2>&1 || fail "make-lab-ca.sh failed: $(cat "$WORK/lab.log")"
+wait $rogue_ca || fail "make-lab-ca.sh (rogue lab) failed: $(cat "$WORK/rogue.log")"
+SECURE_NODE=$SRC/transport/config/security/loopback-secure.xml
+PLAIN=$SRC/transport/config/loopback.xml
+
+# secure_node TAG SITE IDENTITY [extra --set ...]: a lock-step bridge node with a lab identity.
+secure_node() {
+  local tag=$1 site=$2 identity=$3; shift 3
+  env RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY="$identity" \
+    "$RPSD" servo-node "$SRC/scenarios/nodes/bridge-pier-site-$site.yaml" --set node.mode=lock_step \
+    --set dds.domain_id=$DOMAIN --set dds.config="$SECURE_NODE" --summary "$WORK/$tag.json" "$@" > "$WORK/$tag.log" 2>&1 &
+  PIDS+=($!)
+  eval "${tag}_PID=$!"
+}
+# stop_nodes TAG...: SIGTERM to all at once (each may linger a moment for the others'
+# acknowledgements), and wait for their summaries.
+stop_nodes() {
+  local tag pid
+  for tag in "$@"; do eval "pid=\$${tag}_PID"; kill -TERM "$pid"; done
+  for tag in "$@"; do
+    eval "pid=\$${tag}_PID"
+    wait "$pid" || fail "node $tag exited with $?: $(cat "$WORK/$tag.log")"
+  done
+}
+# coordinator TAG CONFIG [env VAR=... ...] -- [extra --set ...]: the bridge, 1 s of record.
+coordinator() {
+  local tag=$1 config=$2; shift 2
+  local vars=()
+  while [ $# -gt 0 ] && [ "$1" != -- ]; do vars+=("$1"); shift; done
+  [ $# -gt 0 ] && shift
+  env "${vars[@]}" "$RPSD" run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/$tag" --set transport.kind=dds \
+    --set transport.domain_id=$DOMAIN --set transport.dds_config="$config" --set "ground_motion.trim={end_s: 1}" "$@" \
+    > "$WORK/$tag.log" 2>&1
+}
+# expect_refused TAG MESSAGE: the coordinator TAG exited 1 with MESSAGE and wrote no results.
+expect_refused() {
+  local tag=$1 message=$2 code
+  code=$(cat "$WORK/$tag.code")
+  [ "$code" = 1 ] || fail "$tag: exit code $code, expected 1: $(cat "$WORK/$tag.log")"
+  grep -qF "$message" "$WORK/$tag.log" || fail "$tag: no \"$message\" in: $(cat "$WORK/$tag.log")"
+  [ ! -f "$WORK/$tag/time_history.csv" ] || fail "$tag: results written"
+}
+
+# Forged permissions: the monitor's subject with a coordinator's grant, signed by the rogue
+# lab's permissions CA (with its governance), so that the monitor's own process accepts them.
+subject=$(openssl x509 -in "$LAB/identities/monitor/identity.pem" -noout -subject -nameopt RFC2253 | sed 's/^subject=//')
+sed "s|<subject_name>.*</subject_name>|<subject_name>$subject</subject_name>|" \
+  "$LAB/identities/coordinator/permissions.xml" > "$WORK/forged.xml"
+openssl smime -sign -text -in "$WORK/forged.xml" -out "$WORK/forged.p7s" \
+  -signer "$ROGUE/permissions_ca.pem" -inkey "$ROGUE/ca-private/permissions_ca_key.pem"
+
+# 1-3: nodes with valid identities, and coordinators that must not reach them.
+secure_node n1 1 node-site-1
+secure_node n2 2 node-site-2
+sleep 0.5
+refused=(--set transport.discovery_timeout_s=3)
+attempts=()
+( set +e; coordinator plain "$PLAIN" -- "${refused[@]}"; echo $? > "$WORK/plain.code" ) &
+attempts+=($!)
+( set +e; coordinator rogue "$SECURE_NODE" RPSD_DDS_SECURITY_DIR="$ROGUE" RPSD_DDS_IDENTITY=coordinator -- "${refused[@]}"
+  echo $? > "$WORK/rogue.code" ) &
+attempts+=($!)
+( set +e; coordinator forged "$SECURE_NODE" RPSD_DDS_IDENTITY_CA="$LAB/identity_ca.pem" \
+    RPSD_DDS_IDENTITY_CERT="$LAB/identities/monitor/identity.pem" RPSD_DDS_PRIVATE_KEY="$LAB/identities/monitor/identity_key.pem" \
+    RPSD_DDS_PERMISSIONS_CA="$ROGUE/permissions_ca.pem" RPSD_DDS_GOVERNANCE="$ROGUE/governance.p7s" \
+    RPSD_DDS_PERMISSIONS="$WORK/forged.p7s" -- "${refused[@]}"
+  echo $? > "$WORK/forged.code" ) &
+attempts+=($!)
+( set +e; coordinator monitor "$SECURE_NODE" RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY=monitor -- "${refused[@]}"
+  echo $? > "$WORK/monitor.code" ) &
+attempts+=($!)
+# A site-1 identity standing in for site 2 (its own partition only): refused at start.
+set +e
+env RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY=node-site-1 "$RPSD" servo-node "$SRC/scenarios/nodes/bridge-pier-site-2.yaml" \
+  --set node.mode=lock_step --set dds.domain_id=$DOMAIN --set dds.config="$SECURE_NODE" --duration 5 > "$WORK/wrong-site.log" 2>&1
+code=$?
+set -e
+[ $code = 1 ] && grep -q "Not Allowed By Security" "$WORK/wrong-site.log" \
+  || fail "a site-1 identity served site 2 (exit $code): $(cat "$WORK/wrong-site.log")"
+wait "${attempts[@]}"
+
+discovery="no servo node answered for site(s) 1, 2 of test 7"
+expect_refused plain "$discovery"
+expect_refused rogue "$discovery"
+grep -q "Certificate not valid" "$WORK/rogue.log" || fail "rogue: no failed authentication reported: $(cat "$WORK/rogue.log")"
+expect_refused forged "$discovery"
+expect_refused monitor "dds_create_writer: Not Allowed By Security"
+# The nodes themselves turned the forged grant down (not only the coordinator's own checks).
+grep -q "Could not get remote participant .* permissions" "$WORK/n1.log" \
+  || fail "node 1 did not report the forged permissions: $(cat "$WORK/n1.log")"
+stop_nodes n1 n2
+python3 - "$WORK" <<'PY' || fail "a node heard a coordinator it must ignore"
+import json, sys
+for n in ("n1", "n2"):
+    j = json.load(open(f"{sys.argv[1]}/{n}.json"))
+    if j["commands_accepted"] != 0 or sum(j["commands_dropped"].values()) != 0:
+        sys.exit(f"{n}: {j['commands_accepted']} commands accepted, dropped {j['commands_dropped']}")
+PY
+
+# 4: the lab's coordinator with fresh nodes: the whole (1 s) record, every command accepted.
+secure_node s1 1 node-site-1
+secure_node s2 2 node-site-2
+sleep 0.5
+coordinator secure "$SECURE_NODE" RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY=coordinator -- \
+  --set transport.discovery_timeout_s=10 || fail "secure run failed: $(cat "$WORK/secure.log")"
+stop_nodes s1 s2
+python3 - "$WORK" <<'PY' || fail "the secured run is incomplete"
+import json, sys
+w = sys.argv[1]
+run = json.load(open(f"{w}/secure/summary.json"))
+rows = sum(1 for _ in open(f"{w}/secure/time_history.csv")) - 1
+steps = run["steps"]
+if steps != rows or steps < 1000:
+    sys.exit(f"{steps} steps, {rows} rows recorded")
+for s in (1, 2):
+    node = json.load(open(f"{w}/s{s}.json"))
+    if node["commands_accepted"] != steps:
+        sys.exit(f"node {s} accepted {node['commands_accepted']} of {steps} commands")
+    if run["timing"]["sites"][s - 1]["messages"]["late"] != 0:
+        sys.exit(f"late feedback from site {s} in lock-step")
+p50 = " / ".join("%.0f us" % (1e6 * t["round_trip"]["p50_s"]) for t in run["timing"]["sites"])
+print(f"PASS: plain, rogue-CA and forged-permission coordinators found no node; the monitor and a wrong-site "
+      f"node were refused; 0 commands accepted; the lab coordinator ran {steps} steps secured "
+      f"(round trip p50 {p50})")
+PY
