@@ -4,8 +4,10 @@
 #   OUT/identity_ca.pem        identity CA certificate (every host)
 #   OUT/permissions_ca.pem     permissions CA certificate (every host)
 #   OUT/governance.p7s         transport/config/security/governance.xml signed by the permissions CA
+#   OUT/identity_ca.crl.pem    the identity CA's revocation list (every host; empty at first)
 #   OUT/identities/NAME/       identity.pem (certificate), identity_key.pem (private key, that
 #                              host only), permissions.xml and its signed permissions.p7s
+#   OUT/revoked/NAME-SERIAL/   what a revoked identity had (--revoke)
 # Identities: coordinator, node-site-1..N (one per site), monitor (read-only), and any given
 # with --identity. Running it again reuses the CAs and the identities' keys and renews the
 # certificates and the signed documents, so an identity can be added or re-granted later.
@@ -23,7 +25,11 @@ usage: $0 [options] OUT_DIR
   --lab NAME                organisation in the certificates' subjects (default "rpsd lab")
   --test-ids PATTERN        test ids the grants cover, an fnmatch pattern (default "*")
   --domains MIN-MAX         DDS domains the grants cover (default 0-230, all of them)
-  --days N                  validity of certificates and grants (default 365)
+  --days N                  validity of certificates, grants and the revocation list
+                            (default 365)
+  --revoke NAME             revoke NAME's certificate (a lost or compromised host) and
+                            move its folder to OUT/revoked; an identity still in the list
+                            above gets a new key and certificate (repeatable)
 EOF
   exit 2
 }
@@ -35,6 +41,7 @@ domain_min=0
 domain_max=230
 days=365
 extra=()
+revoke=()
 out=""
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -44,6 +51,7 @@ while [ $# -gt 0 ]; do
     --test-ids) test_ids=${2:?}; shift 2 ;;
     --domains) domain_min=${2%-*}; domain_max=${2#*-}; shift 2 ;;
     --days) days=${2:?}; shift 2 ;;
+    --revoke) revoke+=("${2:?}"); shift 2 ;;
     -h|--help) usage ;;
     -*) echo "$0: unknown option $1" >&2; usage ;;
     *) [ -z "$out" ] || usage; out=$1; shift ;;
@@ -59,6 +67,7 @@ command -v openssl >/dev/null || { echo "$0: openssl not found" >&2; exit 1; }
 templates="$(cd "$(dirname "$0")/.." && pwd)/transport/config/security"
 mkdir -p "$out/ca-private" "$out/identities"
 chmod 700 "$out/ca-private"
+out=$(cd "$out" && pwd)
 
 # EC P-256 keys: accepted by Cyclone's authentication plugin (as is RSA-2048), and cheaper
 # to sign and verify with during the handshake.
@@ -76,6 +85,34 @@ make_ca() {
 }
 make_ca "$out/ca-private/identity_ca_key.pem" "$out/identity_ca.pem" "$lab identity CA" keyCertSign,cRLSign
 make_ca "$out/ca-private/permissions_ca_key.pem" "$out/permissions_ca.pem" "$lab permissions CA" digitalSignature,keyCertSign,cRLSign
+
+# Revocation: an `openssl ca` database of revoked identity certificates, published as a CRL
+# that every participant loads (Cyclone's Authentication/CRL) and checks peers against.
+ca_conf="$out/ca-private/identity_ca.cnf"
+cat > "$ca_conf" <<EOF
+[ ca ]
+default_ca = identity_ca
+[ identity_ca ]
+database = $out/ca-private/identity_ca_index.txt
+crlnumber = $out/ca-private/identity_ca_crlnumber
+certificate = $out/identity_ca.pem
+private_key = $out/ca-private/identity_ca_key.pem
+default_md = sha256
+default_crl_days = $days
+unique_subject = no
+EOF
+[ -f "$out/ca-private/identity_ca_index.txt" ] || : > "$out/ca-private/identity_ca_index.txt"
+[ -f "$out/ca-private/identity_ca_crlnumber" ] || echo 01 > "$out/ca-private/identity_ca_crlnumber"
+for name in "${revoke[@]}"; do
+  cert="$out/identities/$name/identity.pem"
+  [ -f "$cert" ] || { echo "$0: --revoke $name: no $cert" >&2; exit 2; }
+  serial=$(openssl x509 -in "$cert" -noout -serial | sed 's/^serial=//')
+  openssl ca -config "$ca_conf" -revoke "$cert" -crl_reason keyCompromise 2>/dev/null
+  mkdir -p "$out/revoked"
+  mv "$out/identities/$name" "$out/revoked/$name-$serial"
+  echo "$name: certificate $serial revoked"
+done
+openssl ca -config "$ca_conf" -gencrl -out "$out/identity_ca.crl.pem" 2>/dev/null
 
 # S/MIME (multipart/signed, signer certificate included), the form Cyclone's access control reads.
 sign() { openssl smime -sign -text -in "$1" -out "$2" -signer "$out/permissions_ca.pem" -inkey "$out/ca-private/permissions_ca_key.pem"; }

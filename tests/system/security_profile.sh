@@ -2,9 +2,10 @@
 # DDS Security profile (docs/dds-security.md) on loopback: a lab CA made at test time in the
 # test's temporary folder (removed on exit). Servo nodes with valid identities ignore every
 # coordinator that is not the lab's coordinator, and run the bridge lock-step with it:
-#   1. no identity (the plain loopback configuration), an identity from another CA, and the
-#      lab's monitor identity with forged permissions (signed by another permissions CA,
-#      granting what a coordinator has) never match the nodes: they exit 1 on discovery;
+#   1. no identity (the plain loopback configuration), an identity from another CA, a revoked
+#      coordinator identity (with the revocation list from before), and the lab's monitor
+#      identity with forged permissions (signed by another permissions CA, granting what a
+#      coordinator has) never match the nodes: they exit 1 on discovery;
 #   2. the lab's monitor identity with its real (read-only) permissions may not create the
 #      command writer at all, and a site-1 node identity may not serve site 2;
 #   3. the nodes accepted no command from any of them;
@@ -24,7 +25,14 @@ LAB=$WORK/lab
 ROGUE=$WORK/rogue
 bash "$SRC/scripts/make-lab-ca.sh" --lab "rogue lab" "$ROGUE" > "$WORK/rogue.log" 2>&1 &
 rogue_ca=$!
-bash "$SRC/scripts/make-lab-ca.sh" "$LAB" > "$WORK/lab.log" 2>&1 || fail "make-lab-ca.sh failed: $(cat "$WORK/lab.log")"
+# A second coordinator identity, revoked after its host kept the revocation list of before.
+bash "$SRC/scripts/make-lab-ca.sh" --identity old-coordinator:coordinator "$LAB" > "$WORK/lab.log" 2>&1 \
+  || fail "make-lab-ca.sh failed: $(cat "$WORK/lab.log")"
+cp "$LAB/identity_ca.crl.pem" "$WORK/stale.crl.pem"
+bash "$SRC/scripts/make-lab-ca.sh" --revoke old-coordinator "$LAB" > "$WORK/revoke.log" 2>&1 \
+  || fail "make-lab-ca.sh --revoke failed: $(cat "$WORK/revoke.log")"
+REVOKED=$(echo "$LAB"/revoked/old-coordinator-*)
+[ -f "$REVOKED/identity_key.pem" ] || fail "no revoked identity in $LAB/revoked"
 wait $rogue_ca || fail "make-lab-ca.sh (rogue lab) failed: $(cat "$WORK/rogue.log")"
 SECURE_NODE=$SRC/transport/config/security/loopback-secure.xml
 PLAIN=$SRC/transport/config/loopback.xml
@@ -88,9 +96,15 @@ attempts+=($!)
 attempts+=($!)
 ( set +e; coordinator forged "$SECURE_NODE" RPSD_DDS_IDENTITY_CA="$LAB/identity_ca.pem" \
     RPSD_DDS_IDENTITY_CERT="$LAB/identities/monitor/identity.pem" RPSD_DDS_PRIVATE_KEY="$LAB/identities/monitor/identity_key.pem" \
+    RPSD_DDS_IDENTITY_CRL="$LAB/identity_ca.crl.pem" \
     RPSD_DDS_PERMISSIONS_CA="$ROGUE/permissions_ca.pem" RPSD_DDS_GOVERNANCE="$ROGUE/governance.p7s" \
     RPSD_DDS_PERMISSIONS="$WORK/forged.p7s" -- "${refused[@]}"
   echo $? > "$WORK/forged.code" ) &
+attempts+=($!)
+( set +e; coordinator revoked "$SECURE_NODE" RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY=old-coordinator \
+    RPSD_DDS_IDENTITY_CERT="$REVOKED/identity.pem" RPSD_DDS_PRIVATE_KEY="$REVOKED/identity_key.pem" \
+    RPSD_DDS_PERMISSIONS="$REVOKED/permissions.p7s" RPSD_DDS_IDENTITY_CRL="$WORK/stale.crl.pem" -- "${refused[@]}"
+  echo $? > "$WORK/revoked.code" ) &
 attempts+=($!)
 ( set +e; coordinator monitor "$SECURE_NODE" RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY=monitor -- "${refused[@]}"
   echo $? > "$WORK/monitor.code" ) &
@@ -110,10 +124,16 @@ expect_refused plain "$discovery"
 expect_refused rogue "$discovery"
 grep -q "Certificate not valid" "$WORK/rogue.log" || fail "rogue: no failed authentication reported: $(cat "$WORK/rogue.log")"
 expect_refused forged "$discovery"
+expect_refused revoked "$discovery"
 expect_refused monitor "dds_create_writer: Not Allowed By Security"
-# The nodes themselves turned the forged grant down (not only the coordinator's own checks).
-grep -q "Could not get remote participant .* permissions" "$WORK/n1.log" \
-  || fail "node 1 did not report the forged permissions: $(cat "$WORK/n1.log")"
+# The nodes themselves turned the forged grant and the revoked certificate down (not only
+# the coordinators' own checks).
+for n in n1 n2; do
+  grep -q "Could not get remote participant .* permissions" "$WORK/$n.log" \
+    || fail "$n did not report the forged permissions: $(cat "$WORK/$n.log")"
+  grep -q "certificate revoked; subject: /O=rpsd lab/OU=coordinator/CN=old-coordinator" "$WORK/$n.log" \
+    || fail "$n did not report the revoked certificate: $(cat "$WORK/$n.log")"
+done
 stop_nodes n1 n2
 python3 - "$WORK" <<'PY' || fail "a node heard a coordinator it must ignore"
 import json, sys
@@ -145,7 +165,7 @@ for s in (1, 2):
     if run["timing"]["sites"][s - 1]["messages"]["late"] != 0:
         sys.exit(f"late feedback from site {s} in lock-step")
 p50 = " / ".join("%.0f us" % (1e6 * t["round_trip"]["p50_s"]) for t in run["timing"]["sites"])
-print(f"PASS: plain, rogue-CA and forged-permission coordinators found no node; the monitor and a wrong-site "
+print(f"PASS: plain, rogue-CA, revoked and forged-permission coordinators found no node; the monitor and a wrong-site "
       f"node were refused; 0 commands accepted; the lab coordinator ran {steps} steps secured "
       f"(round trip p50 {p50})")
 PY
