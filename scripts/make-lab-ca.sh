@@ -137,6 +137,14 @@ make_identity() {
     [ -f "$dir/identity_key.pem" ] || new_key "$dir/identity_key.pem"
     openssl req -new -key "$dir/identity_key.pem" -out "$dir/identity.csr" -subj "/O=$lab/OU=$role/CN=$name"
   fi
+  # A request made elsewhere must ask for exactly this identity's subject: a grant binds to the
+  # subject, so a request for another identity's subject would borrow that identity's grant.
+  local asked
+  asked=$(openssl req -in "$dir/identity.csr" -noout -subject -nameopt RFC2253 | sed 's/^subject=//')
+  if [ "$asked" != "CN=$name,OU=$role,O=$lab" ]; then
+    echo "$0: $dir/identity.csr asks for \"$asked\", not \"CN=$name,OU=$role,O=$lab\"" >&2
+    exit 1
+  fi
   local ext
   ext=$(mktemp)
   printf 'basicConstraints=critical,CA:FALSE\nkeyUsage=critical,digitalSignature\n' > "$ext"
