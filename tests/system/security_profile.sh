@@ -9,7 +9,9 @@
 #   2. the lab's monitor identity with its real (read-only) permissions may not create the
 #      command writer at all, and a site-1 node identity may not serve site 2;
 #   3. the nodes accepted no command from any of them;
-#   4. the lab's coordinator runs the test to the end with fresh nodes, encrypted.
+#   4. the lab's coordinator runs the test to the end with fresh nodes, under the profile;
+#      on the wire (captured on lo), its RTPS messages carry no command or feedback sample
+#      and no partition name in clear, while a plain run's do (the capture works).
 source "$(dirname "$0")/lib.sh"
 
 skip() { echo "SKIP: $*"; exit 77; }
@@ -46,8 +48,7 @@ secure_node() {
   PIDS+=($!)
   eval "${tag}_PID=$!"
 }
-# stop_nodes TAG...: SIGTERM to all at once (each may linger a moment for the others'
-# acknowledgements), and wait for their summaries.
+# stop_nodes TAG...: SIGTERM to all, then wait for their summaries.
 stop_nodes() {
   local tag pid
   for tag in "$@"; do eval "pid=\$${tag}_PID"; kill -TERM "$pid"; done
@@ -74,6 +75,51 @@ expect_refused() {
   grep -qF "$message" "$WORK/$tag.log" || fail "$tag: no \"$message\" in: $(cat "$WORK/$tag.log")"
   [ ! -f "$WORK/$tag/time_history.csv" ] || fail "$tag: results written"
 }
+
+# sniff TAG: capture this domain's RTPS packets on lo (raw socket: root) in the background
+# until $WORK/TAG.stop exists; $WORK/TAG.json then has counts of what was seen in clear.
+sniff() {
+  local tag=$1 low=$((7400 + 250 * DOMAIN))
+  python3 - "$WORK/$tag" $low $((low + 250)) <<'PY' &
+import collections, json, os, select, socket, sys
+out, low, high = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+seen = collections.Counter()
+try:
+    s = socket.socket(socket.AF_PACKET, socket.SOCK_RAW, socket.htons(3))  # ETH_P_ALL
+    s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 8 << 20)
+    s.bind(("lo", 0))
+except OSError as e:
+    json.dump({"error": str(e)}, open(out + ".json", "w"))
+    open(out + ".ready", "w").close()
+    sys.exit(0)
+open(out + ".ready", "w").close()
+# A Command or Feedback of test 7, site 1 or 2, as Cyclone serialises it: CDR little-endian
+# encapsulation (00 01 00 00), then test_id and site_id.
+samples = [bytes.fromhex("0001000007000000%02x000000" % site) for site in (1, 2)]
+while not os.path.exists(out + ".stop"):
+    if not select.select([s], [], [], 0.05)[0]:
+        continue
+    frame, address = s.recvfrom(65535)
+    if address[2] == socket.PACKET_OUTGOING or frame[12:14] != b"\x08\x00" or frame[23] != 17:
+        continue  # each packet once (lo shows it leaving and arriving); IPv4 UDP only
+    udp = 14 + (frame[14] & 15) * 4
+    if not low <= int.from_bytes(frame[udp + 2:udp + 4], "big") < high:
+        continue  # another domain
+    rtps = frame[udp + 8:]
+    if rtps[:4] != b"RTPS":
+        continue
+    seen["messages"] += 1
+    seen["secure"] += rtps[20:21] == b"\x33"  # SRTPS_PREFIX: a protected RTPS message
+    seen["samples"] += sum(rtps.count(m) for m in samples)
+    seen["partitions"] += rtps.count(b"rpsd/test-7/site-")
+json.dump(seen, open(out + ".json", "w"))
+PY
+  SNIFFER=$!
+  PIDS+=($SNIFFER)
+  for _ in $(seq 100); do [ -f "$WORK/$tag.ready" ] && return; sleep 0.1; done
+  fail "the capture did not start"
+}
+sniffed() { touch "$WORK/$1.stop"; wait $SNIFFER; }
 
 # Forged permissions: the monitor's subject with a coordinator's grant, signed by the rogue
 # lab's permissions CA (with its governance), so that the monitor's own process accepts them.
@@ -143,13 +189,29 @@ for n in ("n1", "n2"):
         sys.exit(f"{n}: {j['commands_accepted']} commands accepted, dropped {j['commands_dropped']}")
 PY
 
-# 4: the lab's coordinator with fresh nodes: the whole (1 s) record, every command accepted.
+# 4: the lab's coordinator with fresh nodes: the whole (1 s) record, every command accepted,
+# nothing readable on the wire. First a short plain run under the same capture, which must
+# see the samples: the check of the secured run means something.
+sniff wire-plain
+for s in 1 2; do
+  "$RPSD" servo-node "$SRC/scenarios/nodes/bridge-pier-site-$s.yaml" --set node.mode=lock_step \
+    --set dds.domain_id=$DOMAIN --set dds.config="$PLAIN" > "$WORK/p$s.log" 2>&1 &
+  PIDS+=($!)
+  eval "p${s}_PID=$!"
+done
+sleep 0.5
+coordinator clear "$PLAIN" -- --set "ground_motion.trim={end_s: 0.25}" || fail "plain run failed: $(cat "$WORK/clear.log")"
+kill -TERM $p1_PID $p2_PID
+wait $p1_PID $p2_PID || true
+sniffed wire-plain
+sniff wire-secure
 secure_node s1 1 node-site-1
 secure_node s2 2 node-site-2
 sleep 0.5
 coordinator secure "$SECURE_NODE" RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY=coordinator -- \
   --set transport.discovery_timeout_s=10 || fail "secure run failed: $(cat "$WORK/secure.log")"
 stop_nodes s1 s2
+sniffed wire-secure
 python3 - "$WORK" <<'PY' || fail "the secured run is incomplete"
 import json, sys
 w = sys.argv[1]
@@ -164,8 +226,21 @@ for s in (1, 2):
         sys.exit(f"node {s} accepted {node['commands_accepted']} of {steps} commands")
     if run["timing"]["sites"][s - 1]["messages"]["late"] != 0:
         sys.exit(f"late feedback from site {s} in lock-step")
+plain = json.load(open(f"{w}/wire-plain.json"))
+secure = json.load(open(f"{w}/wire-secure.json"))
+if "error" in secure:
+    wire = f"wire not checked: no capture ({secure['error']})"
+else:
+    if plain.get("samples", 0) < 256 or plain.get("partitions", 0) == 0:
+        sys.exit(f"the capture of the plain run missed its samples: {plain}")
+    if secure.get("samples", 0) != 0 or secure.get("partitions", 0) != 0:
+        sys.exit(f"the secured run showed samples or partitions in clear: {secure}")
+    if secure.get("secure", 0) < steps:
+        sys.exit(f"fewer protected RTPS messages than steps: {secure}")
+    wire = (f"on the wire: {plain['samples']} samples in clear in the plain run, none of "
+            f"{secure['messages']} messages of the secured run ({secure['secure']} protected)")
 p50 = " / ".join("%.0f us" % (1e6 * t["round_trip"]["p50_s"]) for t in run["timing"]["sites"])
 print(f"PASS: plain, rogue-CA, revoked and forged-permission coordinators found no node; the monitor and a wrong-site "
       f"node were refused; 0 commands accepted; the lab coordinator ran {steps} steps secured "
-      f"(round trip p50 {p50})")
+      f"(round trip p50 {p50}); {wire}")
 PY
