@@ -27,6 +27,8 @@ usage: $0 [options] OUT_DIR
   --domains MIN-MAX         DDS domains the grants cover (default 0-230, all of them)
   --days N                  validity of certificates, grants and the revocation list
                             (default 365)
+  --ca-days N               validity of the two CA certificates, made on the first run
+                            only (default 3650)
   --revoke NAME             revoke NAME's certificate (a lost or compromised host) and
                             move its folder to OUT/revoked; an identity still in the list
                             above gets a new key and certificate (repeatable)
@@ -40,6 +42,7 @@ test_ids="*"
 domain_min=0
 domain_max=230
 days=365
+ca_days=3650
 extra=()
 revoke=()
 out=""
@@ -51,6 +54,7 @@ while [ $# -gt 0 ]; do
     --test-ids) test_ids=${2:?}; shift 2 ;;
     --domains) domain_min=${2%-*}; domain_max=${2#*-}; shift 2 ;;
     --days) days=${2:?}; shift 2 ;;
+    --ca-days) ca_days=${2:?}; shift 2 ;;
     --revoke) revoke+=("${2:?}"); shift 2 ;;
     -h|--help) usage ;;
     -*) echo "$0: unknown option $1" >&2; usage ;;
@@ -58,9 +62,11 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ -n "$out" ] || usage
-[[ "$sites" =~ ^[0-9]+$ && "$days" =~ ^[1-9][0-9]*$ && "$domain_min" =~ ^[0-9]+$ && "$domain_max" =~ ^[0-9]+$ ]] \
-  || { echo "$0: --sites, --days and --domains take whole numbers" >&2; exit 2; }
-[[ "$lab" =~ ^[A-Za-z0-9\ ._-]+$ ]] || { echo "$0: --lab: letters, digits, space . _ - only" >&2; exit 2; }
+[[ "$sites" =~ ^[0-9]+$ && "$days" =~ ^[1-9][0-9]*$ && "$ca_days" =~ ^[1-9][0-9]*$ && "$domain_min" =~ ^[0-9]+$ \
+   && "$domain_max" =~ ^[0-9]+$ ]] || { echo "$0: --sites, --days, --ca-days and --domains take whole numbers" >&2; exit 2; }
+(( domain_min <= domain_max && domain_max <= 230 )) || { echo "$0: --domains: MIN <= MAX <= 230" >&2; exit 2; }
+[[ "$lab" =~ ^[A-Za-z0-9._-]([A-Za-z0-9\ ._-]*[A-Za-z0-9._-])?$ ]] \
+  || { echo "$0: --lab: letters, digits, space . _ - only, no space at either end" >&2; exit 2; }
 [[ "$test_ids" =~ ^[0-9*?]+$ ]] || { echo "$0: --test-ids: digits, * and ? only" >&2; exit 2; }
 command -v openssl >/dev/null || { echo "$0: openssl not found" >&2; exit 1; }
 
@@ -79,7 +85,7 @@ make_ca() {
   local key=$1 cert=$2 cn=$3 usage=$4
   [ -f "$key" ] || new_key "$key"
   if [ ! -f "$cert" ]; then
-    openssl req -x509 -new -key "$key" -sha256 -days "$days" -out "$cert" -subj "/O=$lab/CN=$cn" \
+    openssl req -x509 -new -key "$key" -sha256 -days "$ca_days" -out "$cert" -subj "/O=$lab/CN=$cn" \
       -addext "basicConstraints=critical,CA:TRUE" -addext "keyUsage=critical,$usage" 2>/dev/null
   fi
 }
