@@ -120,6 +120,8 @@ int main(int argc, char** argv) try {
     else throw std::invalid_argument("unknown option " + options.rest[i]);
   }
   if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
+  // ddsperf prints once a second and the first line (discovery) is left out.
+  if (ddsperf_seconds < 3) throw std::invalid_argument("--ddsperf-seconds: at least 3");
   bench::Fragment fragment("dds_link", argc, argv);
   bench::install_stop_handlers();
   const auto work = std::filesystem::temp_directory_path() / ("rpsd-bench-dds-" + std::to_string(getpid()));

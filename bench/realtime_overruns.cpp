@@ -59,6 +59,7 @@ int main(int argc, char** argv) try {
   std::vector<int> rates{1024, 2048, 4096};
   double seconds = 60.0;
   int domain = 0;
+  bool keep = false;  // --keep 1: leave the runs' folders and logs (for a look at an abort)
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
     const std::string& key = options.rest[i];
     const std::string& value = options.rest[i + 1];
@@ -67,6 +68,7 @@ int main(int argc, char** argv) try {
     else if (key == "--node-netns") node_ns = value;
     else if (key == "--seconds") seconds = std::stod(value);
     else if (key == "--domain") domain = std::stoi(value);
+    else if (key == "--keep") keep = value == "1";
     else if (key == "--rates") {
       rates.clear();
       std::stringstream list(value);
@@ -197,7 +199,8 @@ int main(int argc, char** argv) try {
                   (t.value("sched_fifo", false) ? "" : ", no SCHED_FIFO (" + t.value("refused", std::string()) + ")") + ";" +
                   node_text + " load average at start " + load_start + ", at end " + load_end + ".");
   }
-  std::filesystem::remove_all(work);
+  if (keep) std::fprintf(stderr, "realtime_overruns: kept %s\n", work.c_str());
+  else std::filesystem::remove_all(work);
   fragment.note("Coordinator (198.18.0.1) and both servo nodes (198.18.0.2) in two network namespaces joined by veth; "
                 "transport/config/lab-lan.xml on eth0 with unicast discovery; scenarios/two-site-bridge.yaml in real "
                 "time over DDS at the rate, " + format("%g", seconds) + " s of record (El Centro x 0.1 untrimmed, then free "
