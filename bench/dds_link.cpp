@@ -26,77 +26,19 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <regex>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bench_report.h"
 #include "child_process.h"
+#include "ddsperf.h"
 #include "rpsd/coordinator/test_runner.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace {
 
 using namespace rpsd;
-
-// Per-second percentile lines of `ddsperf ping`:
-//   [pid] 2.000  host:pid size 168 mean 81.365us min 19.526us 50% 27.070us 90% ... 99% 1351.550us max ... cnt 6042
-struct DdsperfLine {
-  double p50_us = 0.0, p99_us = 0.0;
-  long count = 0;
-};
-
-double to_us(const std::string& number, const std::string& unit) {
-  const double v = std::stod(number);
-  if (unit == "ns") return v * 1e-3;
-  if (unit == "us") return v;
-  if (unit == "ms") return v * 1e3;
-  if (unit == "s") return v * 1e6;
-  throw std::runtime_error("ddsperf: unknown unit " + unit);
-}
-
-std::vector<DdsperfLine> parse_ddsperf(const std::string& text) {
-  static const std::regex line_re(
-      R"( size \d+ mean \S+ min \S+ 50% ([0-9.]+)(ns|us|ms|s) 90% \S+ 99% ([0-9.]+)(ns|us|ms|s) max \S+ cnt (\d+))");
-  std::vector<DdsperfLine> lines;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::smatch m;
-    if (!std::regex_search(line, m, line_re)) continue;
-    lines.push_back({to_us(m[1], m[2]), to_us(m[3], m[4]), std::stol(m[5])});
-  }
-  return lines;
-}
-
-struct DdsperfRun {
-  std::vector<DdsperfLine> lines;  ///< without the first
-  std::string command;
-};
-
-// One ddsperf ping/pong pair for `seconds`; `rate` empty: closed loop.
-DdsperfRun run_ddsperf(const std::string& ddsperf, int domain, int seconds, const std::string& rate,
-                       const std::vector<std::string>& env, const std::filesystem::path& work) {
-  const auto pong_log = work / "pong.log", ping_log = work / "ping.log";
-  std::filesystem::remove(pong_log);
-  std::filesystem::remove(ping_log);
-  bench::ChildProcess pong({ddsperf, "-i", std::to_string(domain), "pong", "waitset"}, env, pong_log);
-  std::vector<std::string> ping_argv{ddsperf, "-i", std::to_string(domain), "-D", std::to_string(seconds), "ping"};
-  if (!rate.empty()) ping_argv.push_back(rate);
-  for (const char* w : {"size", "168", "waitset"}) ping_argv.emplace_back(w);
-  bench::ChildProcess ping(ping_argv, env, ping_log);
-  const int code = ping.wait_for(seconds + 30.0);
-  pong.stop(SIGTERM, 5.0);
-  if (code != 0) throw std::runtime_error("ddsperf ping failed (exit " + std::to_string(code) + "): " + bench::read_text(ping_log));
-  DdsperfRun run;
-  run.command = ping.command() + "  (with " + pong.command() + ")";
-  run.lines = parse_ddsperf(bench::read_text(ping_log));
-  if (run.lines.size() < 2) throw std::runtime_error("ddsperf printed fewer than two round-trip lines:\n" + bench::read_text(ping_log));
-  run.lines.erase(run.lines.begin());
-  return run;
-}
 
 struct LockStepRun {
   double discovery_s = 0.0, wall_s = 0.0, cpu_s = 0.0;
@@ -182,12 +124,18 @@ int main(int argc, char** argv) try {
   std::string perf_command, paced_command;
   for (int i = 0; i < options.repetitions; ++i) {
     runs.push_back(lock_step());
-    const DdsperfRun closed = run_ddsperf(ddsperf, domain, ddsperf_seconds, "", env, work);
+    bench::DdsperfOptions perf;
+    perf.program = ddsperf;
+    perf.domain = domain;
+    perf.seconds = ddsperf_seconds;
+    perf.env = env;
+    const bench::DdsperfRun closed = bench::run_ddsperf(perf, work);
     for (const auto& l : closed.lines) {
       perf_p50.push_back(l.p50_us);
       perf_p99.push_back(l.p99_us);
     }
-    const DdsperfRun paced = run_ddsperf(ddsperf, domain, ddsperf_seconds, "1024Hz", env, work);
+    perf.rate = "1024Hz";
+    const bench::DdsperfRun paced = bench::run_ddsperf(perf, work);
     for (const auto& l : paced.lines) {
       paced_p50.push_back(l.p50_us);
       paced_p99.push_back(l.p99_us);

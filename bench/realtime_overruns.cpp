@@ -24,6 +24,7 @@
 
 #include "bench_report.h"
 #include "child_process.h"
+#include "ddsperf.h"
 
 namespace {
 
@@ -59,6 +60,8 @@ int main(int argc, char** argv) try {
   std::vector<int> rates{1024, 2048, 4096};
   double seconds = 60.0;
   int domain = 0;
+  std::string ddsperf = "ddsperf";
+  int ddsperf_seconds = 10;
   bool keep = false;  // --keep 1: leave the runs' folders and logs (for a look at an abort)
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
     const std::string& key = options.rest[i];
@@ -69,6 +72,8 @@ int main(int argc, char** argv) try {
     else if (key == "--seconds") seconds = std::stod(value);
     else if (key == "--domain") domain = std::stoi(value);
     else if (key == "--keep") keep = value == "1";
+    else if (key == "--ddsperf") ddsperf = value;
+    else if (key == "--ddsperf-seconds") ddsperf_seconds = std::stoi(value);
     else if (key == "--rates") {
       rates.clear();
       std::stringstream list(value);
@@ -80,6 +85,7 @@ int main(int argc, char** argv) try {
     throw std::invalid_argument("--coordinator-netns and --node-netns are required (bench/realtime-overruns sets them up)");
   }
   if (seconds <= 0.0) throw std::invalid_argument("--seconds: positive");
+  if (ddsperf_seconds < 3) throw std::invalid_argument("--ddsperf-seconds: at least 3");
   bench::Fragment fragment("realtime_overruns", argc, argv);
   bench::install_stop_handlers();
   const auto work = std::filesystem::temp_directory_path() / ("rpsd-bench-rt-" + std::to_string(getpid()));
@@ -93,10 +99,36 @@ int main(int argc, char** argv) try {
   const std::string trim = seconds >= kRecordSeconds ? "{start_s: 0}" : "{start_s: 0, end_s: " + format("%g", seconds) + "}";
   const std::string pad = format("%g", std::max(0.0, seconds - kRecordSeconds));
   const std::string load_before = loadavg();
+  std::string ddsperf_command;
 
   for (const int rate : rates) {
     const std::string r = std::to_string(rate);
     const auto dir = work / (r + "hz");
+    // The baseline on the same link with the same configuration: ddsperf pong where the
+    // nodes run, ping where the coordinator runs, one ping per control period.
+    std::vector<double> perf_p50, perf_p99, perf_max;
+    try {
+      bench::DdsperfOptions perf;
+      perf.program = ddsperf;
+      perf.domain = domain;
+      perf.seconds = ddsperf_seconds;
+      perf.rate = r + "Hz";
+      perf.env = env;
+      perf.env.push_back("CYCLONEDDS_URI=file://" + (src / "transport/config/lab-lan.xml").string());
+      perf.pong_prefix = {"ip", "netns", "exec", node_ns};
+      perf.ping_prefix = {"ip", "netns", "exec", coord_ns};
+      const bench::DdsperfRun run = bench::run_ddsperf(perf, work);
+      for (const auto& l : run.lines) {
+        perf_p50.push_back(l.p50_us);
+        perf_p99.push_back(l.p99_us);
+        perf_max.push_back(l.max_us);
+      }
+      ddsperf_command = run.command;
+    } catch (const bench::Interrupted&) {
+      throw;
+    } catch (const std::exception& e) {
+      fragment.note(r + " Hz: ddsperf on the same link failed: " + std::string(e.what()));
+    }
     std::vector<std::unique_ptr<bench::ChildProcess>> nodes;
     for (int site = 1; site <= 2; ++site) {
       nodes.push_back(std::make_unique<bench::ChildProcess>(
@@ -183,12 +215,26 @@ int main(int argc, char** argv) try {
       max.push_back(1e6 * site["round_trip"].value("max_s", 0.0));
     }
     if (!p50.empty()) {
-      fragment.add(bench::figure("realtime_round_trip_" + r + "hz_us", "  round trip p50 (the worse site)", "us",
-                                 single(*std::max_element(p50.begin(), p50.end()))));
+      bench::Figure rt = bench::figure("realtime_round_trip_" + r + "hz_us", "  round trip p50 (the worse site)", "us",
+                                       single(*std::max_element(p50.begin(), p50.end())));
+      if (!perf_p50.empty()) {
+        rt.against("realtime_ddsperf_round_trip_" + r + "hz_us", "rpsd / ddsperf at the median",
+                   rt.value.median / bench::summarize(perf_p50).median);
+      }
+      fragment.add(rt);
       fragment.add(bench::figure("realtime_round_trip_p99_" + r + "hz_us", "  round trip p99 (the worse site)", "us",
                                  single(*std::max_element(p99.begin(), p99.end()))));
       fragment.add(bench::figure("realtime_round_trip_max_" + r + "hz_us", "  round trip max (the worse site)", "us",
                                  single(*std::max_element(max.begin(), max.end()))));
+    }
+    if (!perf_p50.empty()) {
+      fragment.add(bench::figure("realtime_ddsperf_round_trip_" + r + "hz_us",
+                                 "  ddsperf on the same link, ping at " + r + " Hz, p50 (median of per-second values)", "us",
+                                 bench::summarize(perf_p50)));
+      fragment.add(bench::figure("realtime_ddsperf_round_trip_p99_" + r + "hz_us", "  the same, p99", "us",
+                                 bench::summarize(perf_p99)));
+      fragment.add(bench::figure("realtime_ddsperf_round_trip_max_" + r + "hz_us", "  the same, max (largest second)", "us",
+                                 bench::summarize(perf_max)));
     }
     fragment.note(r + " Hz: " + status + ", " + std::to_string(s.value("steps", 0)) + " of " +
                   std::to_string(s.value("steps_planned", 0)) + " steps; coordinator " + std::to_string(t.value("overruns", 0)) +
@@ -207,7 +253,9 @@ int main(int argc, char** argv) try {
                 "vibration); nodes scenarios/nodes/bridge-pier-site-{1,2}.yaml with node.control_rate_hz = the rate "
                 "(their servo model at its own 8192 Hz). Overruns are cycles whose work ended past the next deadline, "
                 "from summary.json (timing.overruns / timing.cycles) and the nodes' --summary. One 60 s run per rate; "
-                "load average before " + load_before + ", after " + loadavg() + " (2 cores shared with other jobs).");
+                "load average before " + load_before + ", after " + loadavg() + " (2 cores shared with other jobs). Before each rate, "
+                "ddsperf on the same link and configuration (" + std::to_string(ddsperf_seconds) + " s, pong in the nodes' "
+                "namespace, ping paced at the rate in the coordinator's, 168 bytes): `" + ddsperf_command + "`.");
   fragment.write(options.out);
   return 0;
 } catch (const std::exception& e) {

@@ -91,7 +91,7 @@ int ChildProcess::wait_for(double timeout_s) { return wait(timeout_s, true); }
 int ChildProcess::wait(double timeout_s, bool interruptible) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (!reap(false)) {
-    if (interruptible && g_stop) throw std::runtime_error("interrupted (SIGINT or SIGTERM)");
+    if (interruptible && g_stop) throw Interrupted();
     if (std::chrono::steady_clock::now() >= end) return -1;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }

@@ -6,10 +6,16 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace rpsd::bench {
+
+/// Thrown by waits once this process has been asked to stop (install_stop_handlers).
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted (SIGINT or SIGTERM)") {}
+};
 
 class ChildProcess {
  public:
@@ -26,7 +32,7 @@ class ChildProcess {
   pid_t pid() const { return pid_; }
   bool running();
   /// Waits up to `timeout_s` for the child to exit; its exit code, or -1 (still running or
-  /// killed by a signal: see killed_by()). Throws std::runtime_error once this process has
+  /// killed by a signal: see killed_by()). Throws Interrupted once this process has
   /// been asked to stop (install_stop_handlers), so that the destructors end the children.
   int wait_for(double timeout_s);
   /// Sends `signal` and waits up to `timeout_s` (never throws); SIGKILL after that. The exit
