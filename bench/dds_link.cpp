@@ -14,7 +14,7 @@
 // (2) ddsperf between two processes (`ddsperf pong waitset`, `ddsperf ping size 168 waitset`):
 //     closed-loop pings, a new one as soon as the pong is in, the traffic pattern of lock-step
 //     (rpsd sends the next command when the feedback is in and the step integrated); 168
-//     bytes, the feedback sample's payload (the command's is 96). Then pings paced at 1024 Hz.
+//     bytes, about the feedback sample's size (the command's is about 96). Then pings paced at 1024 Hz.
 //     ddsperf prints the round trip's percentiles once a second; a figure is the median over
 //     those lines (the first, with discovery, left out).
 // The two alternate repetition by repetition, so both see the same load.
