@@ -252,7 +252,7 @@ int main(int argc, char** argv) try {
                 "time over DDS at the rate, " + format("%g", seconds) + " s of record (El Centro x 0.1 untrimmed, then free "
                 "vibration); nodes scenarios/nodes/bridge-pier-site-{1,2}.yaml with node.control_rate_hz = the rate "
                 "(their servo model at its own 8192 Hz). Overruns are cycles whose work ended past the next deadline, "
-                "from summary.json (timing.overruns / timing.cycles) and the nodes' --summary. One 60 s run per rate; "
+                "from summary.json (timing.overruns / timing.cycles) and the nodes' --summary. One run per rate; "
                 "load average before " + load_before + ", after " + loadavg() + " (2 cores shared with other jobs). Before each rate, "
                 "ddsperf on the same link and configuration (" + std::to_string(ddsperf_seconds) + " s, pong in the nodes' "
                 "namespace, ping paced at the rate in the coordinator's, 168 bytes): `" + ddsperf_command + "`.");
