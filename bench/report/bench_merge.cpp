@@ -187,8 +187,10 @@ int merge(const std::map<std::string, std::string>& flags, const std::vector<std
   md << "| figure | median | spread | unit | CPU | ratio to baseline | target |\n|---|---|---|---|---|---|---|\n";
   for (const auto& f : figures) {
     const auto& v = f.at("value");
-    md << "| " << escape(f.at("title")) << " | " << number(v.at("median")) << " | " << number(v.at("min")) << " - "
-       << number(v.at("max")) << " | " << escape(f.at("unit")) << " | "
+    md << "| " << escape(f.at("title")) << " | ";
+    if (v.is_null()) md << "not measured | | ";  // the title says why
+    else md << number(v.at("median")) << " | " << number(v.at("min")) << " - " << number(v.at("max")) << " | ";
+    md << escape(f.at("unit")) << " | "
        << (f.contains("cpu_value") ? number(f.at("cpu_value").at("median")) : std::string("")) << " | ";
     if (f.contains("ratio_to_baseline")) md << number(f.at("ratio_to_baseline")) << " (" << escape(f.at("ratio_label")) << ")";
     md << " | ";

@@ -83,7 +83,9 @@ Fragment::Fragment(std::string step, int argc, char** argv) : step_(std::move(st
 }
 
 void Fragment::add(const Figure& f) {
-  nlohmann::json j = {{"id", f.id}, {"title", f.title}, {"unit", f.unit}, {"value", to_json(f.value)}};
+  // No samples: the figure could not be measured (its title says why); its value is null.
+  nlohmann::json j = {{"id", f.id}, {"title", f.title}, {"unit", f.unit},
+                      {"value", f.value.samples > 0 ? to_json(f.value) : nlohmann::json(nullptr)}};
   if (f.cpu_value.samples > 0) j["cpu_value"] = to_json(f.cpu_value);
   if (!f.target.empty()) {
     j["target"] = f.target;
@@ -110,6 +112,10 @@ void Fragment::write(const std::filesystem::path& file) const {
   }
   for (const auto& f : figures_) {
     const auto& v = f["value"];
+    if (v.is_null()) {
+      std::printf("%-66s not measured\n", f["title"].get<std::string>().c_str());
+      continue;
+    }
     std::printf("%-66s %10.4g %-12s (min %.4g, max %.4g, n %d)", f["title"].get<std::string>().c_str(),
                 v["median"].get<double>(), f["unit"].get<std::string>().c_str(), v["min"].get<double>(),
                 v["max"].get<double>(), v["samples"].get<int>());

@@ -53,7 +53,7 @@ struct Figure {
   std::string id;        ///< stable key, e.g. "sdof_afap_x_realtime"
   std::string title;     ///< what the row says in the table
   std::string unit;
-  Summary value;
+  Summary value;  ///< samples == 0: not measured (the title says why; the report shows "-")
   /// The same figure from the measuring thread's CPU time instead of the wall clock, where
   /// that is meaningful (samples == 0: not reported).
   Summary cpu_value;

@@ -1,0 +1,208 @@
+// The DDS link on loopback, in one step so that rpsd and ddsperf meet the same machine load
+// and the same Cyclone configuration (transport/config/loopback.xml, a private domain).
+//
+// (1) The paper SDOF (scenarios/elcentro-sdof.yaml, El Centro + 20 s of free vibration,
+//     61,429 steps at 1024 Hz) lock-step over DDS: the coordinator built as `rpsd run` builds
+//     it (coordinator::TestAssembly with transport.kind=dds, test 7) in this process, the
+//     specimen on a separate `rpsd servo-node` process (scenarios/nodes/bridge-pier-site-1.yaml:
+//     the same 700.8 kN/m springs on the same MTS 244 servo model, lock_step). Timed: the
+//     steps, from after discovery (building the assembly) to the last feedback; not the
+//     reference run, the criteria or the plots that `rpsd run` adds. Multiple of real time,
+//     against the same test in process measured in the same run.
+//     Command-to-feedback round trip of those runs (summary.json's timing.sites[].round_trip,
+//     the same histogram): p50 and p99.
+// (2) ddsperf between two processes (`ddsperf pong waitset`, `ddsperf ping size 168 waitset`):
+//     closed-loop pings, a new one as soon as the pong is in, the traffic pattern of lock-step
+//     (rpsd sends the next command when the feedback is in and the step integrated); 168
+//     bytes, about the feedback sample's size (the command's is about 96). Then pings paced at 1024 Hz.
+//     ddsperf prints the round trip's percentiles once a second; a figure is the median over
+//     those lines (the first, with discovery, left out).
+// The two alternate repetition by repetition, so both see the same load.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bench_report.h"
+#include "child_process.h"
+#include "ddsperf.h"
+#include "rpsd/coordinator/test_runner.h"
+#include "rpsd/scenarios/study_file.h"
+
+namespace {
+
+using namespace rpsd;
+
+struct LockStepRun {
+  double discovery_s = 0.0, wall_s = 0.0, cpu_s = 0.0;
+  realtime::LatencySummary round_trip;
+  std::int64_t steps = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  const bench::Options options = bench::parse_options(argc, argv, 5);
+  std::string rpsd = RPSD_BENCH_RPSD, ddsperf = "ddsperf";
+  // Above the system tests' domains (1-200); ddsperf matches any ddsperf in its domain.
+  int domain = 201 + static_cast<int>(getpid() % 32);
+  int ddsperf_seconds = 10;
+  for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
+    if (options.rest[i] == "--rpsd") rpsd = options.rest[i + 1];
+    else if (options.rest[i] == "--ddsperf") ddsperf = options.rest[i + 1];
+    else if (options.rest[i] == "--domain") domain = std::stoi(options.rest[i + 1]);
+    else if (options.rest[i] == "--ddsperf-seconds") ddsperf_seconds = std::stoi(options.rest[i + 1]);
+    else throw std::invalid_argument("unknown option " + options.rest[i]);
+  }
+  if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
+  // ddsperf prints once a second and the first line (discovery) is left out.
+  if (ddsperf_seconds < 3) throw std::invalid_argument("--ddsperf-seconds: at least 3");
+  bench::Fragment fragment("dds_link", argc, argv);
+  bench::install_stop_handlers();
+  const auto work = std::filesystem::temp_directory_path() / ("rpsd-bench-dds-" + std::to_string(getpid()));
+  std::filesystem::create_directories(work);
+  const auto config = std::filesystem::absolute(options.source_dir / "transport/config/loopback.xml");
+  const std::vector<std::string> env{"CYCLONEDDS_URI=file://" + config.string()};
+  const auto node_yaml = (options.source_dir / "scenarios/nodes/bridge-pier-site-1.yaml").string();
+
+  const auto sdof = [&](const std::string& transport) {
+    return scenarios::load_study(
+        options.source_dir / "scenarios/elcentro-sdof.yaml",
+        {scenarios::parse_override("ground_motion.pad_after_s=20"),
+         scenarios::parse_override("transport={kind: " + transport + ", test_id: 7, domain_id: " + std::to_string(domain) +
+                                   ", dds_config: ../transport/config/loopback.xml, discovery_timeout_s: 20}")});
+  };
+  const auto dds_file = sdof("dds");
+  const auto local_file = sdof("in_process");
+  const auto& dds_scenario = std::get<scenarios::TestScenario>(dds_file.study);
+  const auto& local_scenario = std::get<scenarios::TestScenario>(local_file.study);
+  const double simulated_s = dds_scenario.duration_s;
+
+  // One lock-step run against a fresh node (its step count starts with the test's).
+  const auto lock_step = [&]() {
+    bench::ChildProcess node({rpsd, "servo-node", node_yaml, "--set", "node.mode=lock_step", "--set",
+                              "dds.domain_id=" + std::to_string(domain)},
+                             {}, work / "node.log");
+    LockStepRun r;
+    const auto start = bench::Clock::now();
+    coordinator::TestAssembly test(dds_scenario, {}, false, false);
+    r.discovery_s = bench::seconds_since(start);
+    const double cpu_start = bench::thread_cpu_s();
+    const auto loop_start = bench::Clock::now();
+    coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
+    for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n) outcome = test.step();
+    r.wall_s = bench::seconds_since(loop_start);
+    r.cpu_s = bench::thread_cpu_s() - cpu_start;
+    const coordinator::TestRun done = test.finish(outcome);
+    node.stop(SIGTERM, 10.0);
+    if (done.steps != done.steps_planned || done.timing.sites.size() != 1) {
+      throw std::runtime_error("the lock-step run stopped at step " + std::to_string(done.steps) + " of " +
+                               std::to_string(done.steps_planned) + "; node log:\n" + bench::read_text(work / "node.log"));
+    }
+    r.round_trip = done.timing.sites[0].round_trip;
+    r.steps = done.steps;
+    return r;
+  };
+
+  // Baseline: the same test in process, as sdof_throughput times it.
+  const auto local = bench::time_trials(options.repetitions, 1, [&] {
+    coordinator::TestAssembly test(local_scenario, {}, false, false);
+    coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
+    for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n) outcome = test.step();
+    if (test.finish(outcome).steps != test.steps_planned()) throw std::runtime_error("the in-process run stopped early");
+  });
+
+  std::vector<LockStepRun> runs;
+  std::vector<double> perf_p50, perf_p99, paced_p50, paced_p99;
+  std::string perf_command, paced_command;
+  for (int i = 0; i < options.repetitions; ++i) {
+    runs.push_back(lock_step());
+    bench::DdsperfOptions perf;
+    perf.program = ddsperf;
+    perf.domain = domain;
+    perf.seconds = ddsperf_seconds;
+    perf.env = env;
+    const bench::DdsperfRun closed = bench::run_ddsperf(perf, work);
+    for (const auto& l : closed.lines) {
+      perf_p50.push_back(l.p50_us);
+      perf_p99.push_back(l.p99_us);
+    }
+    perf.rate = "1024Hz";
+    const bench::DdsperfRun paced = bench::run_ddsperf(perf, work);
+    for (const auto& l : paced.lines) {
+      paced_p50.push_back(l.p50_us);
+      paced_p99.push_back(l.p99_us);
+    }
+    perf_command = closed.command;
+    paced_command = paced.command;
+  }
+  std::filesystem::remove_all(work);
+
+  std::vector<double> wall, cpu, discovery, rt_p50, rt_p99, rt_max;
+  for (const auto& r : runs) {
+    wall.push_back(r.wall_s);
+    cpu.push_back(r.cpu_s);
+    discovery.push_back(r.discovery_s);
+    rt_p50.push_back(1e6 * r.round_trip.p50_s);
+    rt_p99.push_back(1e6 * r.round_trip.p99_s);
+    rt_max.push_back(1e6 * r.round_trip.max_s);
+  }
+  const auto x_realtime = [&](double s) { return simulated_s / s; };
+  const bench::Summary dds_x = bench::map_summary(bench::summarize(wall), x_realtime);
+  const bench::Summary local_x = bench::map_summary(bench::summarize(local.wall_s), x_realtime);
+
+  fragment.add(bench::figure("sdof_dds_lockstep_x_realtime",
+                             "Paper SDOF RPsD lock-step through the DDS link (loopback, node process), 60 s of record",
+                             "x real time", dds_x, bench::map_summary(bench::summarize(cpu), x_realtime))
+                   .against("sdof_inprocess_x_realtime_same_run", "DDS / in process", dds_x.median / local_x.median)
+                   .aiming_for(">= 20", dds_x.median >= 20.0));
+  fragment.add(bench::figure("sdof_inprocess_x_realtime_same_run", "  baseline: the same test in process, same run",
+                             "x real time", local_x, bench::map_summary(bench::summarize(local.cpu_s), x_realtime)));
+  fragment.add(bench::figure("sdof_dds_discovery_s", "  discovery before the first step (not in the figure above)", "s",
+                             bench::summarize(discovery)));
+
+  const bench::Summary perf50 = bench::summarize(perf_p50);
+  const bench::Summary rpsd50 = bench::summarize(rt_p50);
+  const double ratio50 = rpsd50.median / perf50.median;
+  fragment.add(bench::figure("dds_round_trip_us", "DDS round trip, rpsd lock-step command to feedback, median (p50)", "us",
+                             rpsd50)
+                   .against("ddsperf_round_trip_us", "rpsd / ddsperf at the median", ratio50)
+                   .aiming_for("<= 1.5 x ddsperf at the median", ratio50 <= 1.5));
+  const bench::Summary perf99 = bench::summarize(perf_p99);
+  const bench::Summary rpsd99 = bench::summarize(rt_p99);
+  fragment.add(bench::figure("dds_round_trip_p99_us", "  the same, p99", "us", rpsd99)
+                   .against("ddsperf_round_trip_p99_us", "rpsd / ddsperf at p99", rpsd99.median / perf99.median));
+  fragment.add(bench::figure("dds_round_trip_max_us", "  the same, max", "us", bench::summarize(rt_max)));
+  fragment.add(bench::figure("ddsperf_round_trip_us", "DDS round trip, ddsperf closed-loop ping/pong, same config, median (p50)",
+                             "us", perf50));
+  fragment.add(bench::figure("ddsperf_round_trip_p99_us", "  the same, p99", "us", perf99));
+  fragment.add(bench::figure("ddsperf_1024hz_round_trip_us", "DDS round trip, ddsperf ping paced at 1024 Hz, median (p50)",
+                             "us", bench::summarize(paced_p50)));
+  fragment.add(bench::figure("ddsperf_1024hz_round_trip_p99_us", "  the same, p99", "us", bench::summarize(paced_p99)));
+
+  char text[1400];
+  std::snprintf(text, sizeof text,
+                "rpsd: %lld lock-step steps per run, %d runs, each against a fresh `%s servo-node %s --set node.mode=lock_step` "
+                "(domain %d, transport/config/loopback.xml); the coordinator is this process (coordinator::TestAssembly, "
+                "as `rpsd run` builds it). The rpsd round trip is the coordinator's command-to-feedback time and includes "
+                "the node's plant step (the servo model over one period, RK4 at 8192 Hz: 8 substeps, about 0.7 us) and "
+                "both sides' copies; its histogram has 1 us bins (upper edges). Each rpsd figure is the median over runs "
+                "of that run's p50/p99/max; throughput is simulated seconds (%.2f) over the loop's wall time, discovery "
+                "excluded. ddsperf: `%s`, CYCLONEDDS_URI=file://.../transport/config/loopback.xml, %d s a run; a sample is "
+                "one per-second line (the first left out). Paced: `%s`.",
+                static_cast<long long>(runs.front().steps), options.repetitions, rpsd.c_str(), node_yaml.c_str(), domain,
+                simulated_s, perf_command.c_str(), ddsperf_seconds, paced_command.c_str());
+  fragment.note(text);
+  fragment.write(options.out);
+  return 0;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "dds_link: %s\n", e.what());
+  return 1;
+}
