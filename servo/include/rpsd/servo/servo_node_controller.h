@@ -88,6 +88,8 @@ class ServoNodeController {
   std::span<const LimitEvent> events() const { return events_; }
   std::uint64_t events_not_logged() const { return events_not_logged_; }
 
+  /// The step of the newest command accepted (-1 before the first).
+  std::int64_t newest_accepted_step() const { return newest_accepted_step_; }
   bool faulted() const { return fault_; }
   bool holding() const { return holding_; }
   bool in_safe_state() const { return safe_state_; }
