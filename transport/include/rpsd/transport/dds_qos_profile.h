@@ -1,16 +1,16 @@
 // The QoS of rpsd's three topics, in one place (the reasons are in docs/dds-transport.md):
 //
-//   topic        reliability           history      durability       liveliness
-//   Command      reliable (lock-step)  keep last 8  volatile         automatic, lease L
-//   Feedback     best effort (real t.) keep last 8  volatile         automatic, lease L
-//   Heartbeat    reliable              keep last 1  transient-local  automatic, lease L
+//   topic        reliability                 history      durability       liveliness
+//   Command      reliable; real time: b. e.  keep last 8  volatile         automatic, lease L
+//   Feedback     reliable; real time: b. e.  keep last 8  volatile         automatic, lease L
+//   Heartbeat    reliable                    keep last 1  transient-local  automatic, lease L
 //
 // Lock-step: reliable with keep-last never blocks the writer on a slow or dead reader (old
 // samples are replaced), yet repairs a lost packet. Real time: writers and readers are best
 // effort. A reliable reader delivers in order, so one lost packet would hold back every newer
 // sample until its repair (a NACK round, milliseconds), while a real-time loop wants the
 // newest sample now. A best-effort reader of a reliable writer is not enough: Cyclone 0.10
-// then still withholds the samples that follow a lost one for about 3 ms, so one lost packet
+// then did not deliver the samples that follow a lost one for about 3 ms, so one lost packet
 // made 2 to 4 late steps instead of one, and at 5 % loss the test stopped within seconds
 // (tests/system/netns_packet_loss.sh). A best-effort writer does not match a reliable reader:
 // the coordinator and its nodes must run in the same mode (real time with real_time nodes,
