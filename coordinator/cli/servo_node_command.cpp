@@ -66,6 +66,7 @@ nlohmann::json node_summary(const scenarios::ServoNodeFile& file, const servo::S
           {"ticks", c.ticks},
           {"commands_accepted", c.accepted},
           {"commands_applied", c.applied},
+          {"last_command_step", controller.newest_accepted_step()},
           {"commands_dropped", dropped},
           {"missed_periods", c.missed_periods},
           {"holds", c.holds},

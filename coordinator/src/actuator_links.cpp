@@ -81,7 +81,8 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
   if (!missing.empty()) {
     throw std::runtime_error("no servo node answered for site(s) " + missing + " of test " + std::to_string(s.transport.test_id) +
                              " within " + std::to_string(s.transport.discovery_timeout_s) +
-                             " s (is `rpsd servo-node` running with the same test_id, site_id and domain?)");
+                             " s (is `rpsd servo-node` running with the same test_id, site_id and domain, and in mode " +
+                             (s.clock.mode == scenarios::ClockConfig::Mode::kRealTime ? "real_time" : "lock_step") + "?)");
   }
 }
 

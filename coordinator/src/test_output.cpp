@@ -116,6 +116,11 @@ std::string describe_outcome(const scenarios::TestScenario& s, const TestRun& te
                     static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
     }
     text += detail;
+  } else if (test.outcome != StepOutcome::kOk && test.outcome != StepOutcome::kRecordEnded) {
+    char detail[100];
+    std::snprintf(detail, sizeof detail, " (at step %zu, t = %.4f s)", static_cast<std::size_t>(test.steps + 1),
+                  static_cast<double>(test.steps + 1) / s.control_rate_hz);
+    text += detail;
   }
   if (test.outcome == StepOutcome::kLimit) {
     const LimitStop& l = test.limit_stop;

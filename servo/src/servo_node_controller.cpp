@@ -16,6 +16,7 @@ const char* command_verdict_name(CommandVerdict verdict) {
     case CommandVerdict::kNonFinite: return "non-finite value";
     case CommandVerdict::kNotNewer: return "step not newer";
     case CommandVerdict::kNotFollowing: return "node not following";
+    case CommandVerdict::kJoinedMidTest: return "joined mid-test";
   }
   return "unknown";
 }
@@ -85,6 +86,8 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
     verdict = CommandVerdict::kNotNewer;
   } else if (fault_ || safe_state_ || !started_) {
     verdict = CommandVerdict::kNotFollowing;
+  } else if (newest_accepted_step_ < 0 && command.step > config_.command_timeout_periods) {
+    verdict = CommandVerdict::kJoinedMidTest;
   }
   ++counters_.by_verdict[static_cast<int>(verdict)];
   if (verdict != CommandVerdict::kAccepted) return verdict;

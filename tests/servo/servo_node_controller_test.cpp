@@ -485,27 +485,27 @@ TEST(ServoNodeController, BadCommandsAreDroppedCountedAndNeverApplied) {
   ServoNodeController node(c, actuator);
   const double x0[] = {0.001, 0.002};
   node.start(x0);
-  send(node, command(5, {0.001, 0.002}));
+  send(node, command(2, {0.001, 0.002}));
 
-  auto wrong_test = command(6, {0.01, 0.01});
+  auto wrong_test = command(3, {0.01, 0.01});
   wrong_test.test_id = kTest + 1;
-  auto wrong_site = command(6, {0.01, 0.01});
+  auto wrong_site = command(3, {0.01, 0.01});
   wrong_site.site_id = kSite + 1;
-  auto nan = command(6, {0.01, std::nan("")});
-  auto infinite_time = command(6, {0.01, 0.01});
+  auto nan = command(3, {0.01, std::nan("")});
+  auto infinite_time = command(3, {0.01, 0.01});
   infinite_time.time_s = std::numeric_limits<double>::infinity();
   EXPECT_EQ(node.accept(wrong_test), CommandVerdict::kWrongTestId);
   EXPECT_EQ(node.accept(wrong_site), CommandVerdict::kWrongSiteId);
-  EXPECT_EQ(node.accept(command(6, {0.01})), CommandVerdict::kWrongChannelCount);
-  EXPECT_EQ(node.accept(command(6, {0.01, 0.01, 0.01})), CommandVerdict::kWrongChannelCount);
+  EXPECT_EQ(node.accept(command(3, {0.01})), CommandVerdict::kWrongChannelCount);
+  EXPECT_EQ(node.accept(command(3, {0.01, 0.01, 0.01})), CommandVerdict::kWrongChannelCount);
   EXPECT_EQ(node.accept(nan), CommandVerdict::kNonFinite);
   EXPECT_EQ(node.accept(infinite_time), CommandVerdict::kNonFinite);
-  EXPECT_EQ(node.accept(command(5, {0.01, 0.01})), CommandVerdict::kNotNewer);  // duplicate
-  EXPECT_EQ(node.accept(command(3, {0.01, 0.01})), CommandVerdict::kNotNewer);  // out of order
+  EXPECT_EQ(node.accept(command(2, {0.01, 0.01})), CommandVerdict::kNotNewer);  // duplicate
+  EXPECT_EQ(node.accept(command(1, {0.01, 0.01})), CommandVerdict::kNotNewer);  // out of order
   EXPECT_EQ(node.accept(command(-1, {0.01, 0.01})), CommandVerdict::kNotNewer);
   for (int i = 0; i < 10; ++i) {
     const FeedbackSample out = idle(node);
-    EXPECT_EQ(out.step, 5);
+    EXPECT_EQ(out.step, 2);
   }
   for (const auto& sent : actuator.commands) EXPECT_EQ(sent, std::vector<double>({0.001, 0.002}));
   const ServoNodeCounters& n = node.counters();
@@ -519,9 +519,38 @@ TEST(ServoNodeController, BadCommandsAreDroppedCountedAndNeverApplied) {
   EXPECT_TRUE(node.holding());  // dropped commands do not feed the watchdog
 
   // A NaN in a slot beyond the node's channels is not part of the command.
-  auto padded = command(6, {0.0011, 0.0021});
+  auto padded = command(3, {0.0011, 0.0021});
   padded.displacement_m[5] = std::nan("");
   EXPECT_EQ(node.accept(padded), CommandVerdict::kAccepted);
+}
+
+// A node restarted while its test carries on (the coordinator tolerating that many late
+// periods) sees the test first at a step far beyond 0. Its actuator starts at the node's own
+// initial position, not where the test had put the specimen: it must not take the test over.
+TEST(ServoNodeController, ANodeThatMissedTheStartOfATestNeverFollowsIt) {
+  IdealActuator actuator(1);
+  auto c = config();
+  c.command_timeout_periods = 4;
+  ServoNodeController node(c, actuator);
+  const double x0[] = {0.0};
+  node.start(x0);
+  for (int step = 1186; step < 1200; ++step) {
+    EXPECT_EQ(node.accept(command(step, {0.004})), CommandVerdict::kJoinedMidTest);
+    const FeedbackSample out = idle(node);
+    EXPECT_EQ(out.step, -1);
+    EXPECT_EQ(out.displacement_m[0], 0.0);
+  }
+  for (const auto& sent : actuator.commands) EXPECT_EQ(sent, std::vector<double>({0.0}));
+  EXPECT_EQ(node.counters().dropped(CommandVerdict::kJoinedMidTest), 14u);
+  EXPECT_EQ(node.counters().accepted, 0u);
+  EXPECT_FALSE(node.holding());  // nothing to hold after: the node still waits for a test
+  EXPECT_STREQ(command_verdict_name(CommandVerdict::kJoinedMidTest), "joined mid-test");
+
+  // A node there from the start may miss the first commands, up to its watchdog's reach.
+  node.start(x0);
+  EXPECT_EQ(node.accept(command(4, {0.001})), CommandVerdict::kAccepted);
+  EXPECT_EQ(idle(node).step, 4);
+  EXPECT_EQ(node.accept(command(1186, {0.001})), CommandVerdict::kAccepted);  // later steps: only newer
 }
 
 TEST(ServoNodeController, TheNewestPendingCommandWins) {

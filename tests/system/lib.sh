@@ -10,7 +10,7 @@ cleanup() {
   for p in "${PIDS[@]:-}"; do [ -n "$p" ] && kill "$p" 2>/dev/null || true; done
   wait 2>/dev/null || true
   if [ -n "${NETNS_CLEANUP:-}" ]; then eval "$NETNS_CLEANUP"; fi
-  rm -rf "$WORK"
+  if [ -n "${RPSD_KEEP_WORK:-}" ]; then echo "kept $WORK"; else rm -rf "$WORK"; fi
 }
 trap cleanup EXIT
 
@@ -34,4 +34,36 @@ start_node() {
 run_bridge() {
   local out=$1; shift
   $RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$out" --set transport.domain_id=$DOMAIN "$@"
+}
+
+# every_step_recorded DIR: time_history.csv has one row per step of summary.json, numbered
+# 1..n without a gap or a repeat (a test that stopped keeps every step it took).
+every_step_recorded() {
+  python3 - "$1" <<'PY' || fail "$1: the recorded steps do not match summary.json"
+import csv, json, sys
+d = sys.argv[1]
+steps = json.load(open(d + "/summary.json"))["steps"]
+got = [int(r["step"]) for r in csv.DictReader(open(d + "/time_history.csv"))]
+assert steps > 0 and got == list(range(1, steps + 1)), \
+    f"summary.json: {steps} steps; time_history.csv: {len(got)} rows, {got[:1]}..{got[-1:]}"
+PY
+}
+
+# column DIR NAME EXPR: a Python expression over the values of one time_history.csv column
+# (as floats, in a list `v`), e.g. `column D feedback_age_periods 'max(v)'`.
+column() {
+  python3 - "$1/time_history.csv" "$2" "$3" <<'PY'
+import csv, sys
+v = [float(r[sys.argv[2]]) for r in csv.DictReader(open(sys.argv[1]))]
+print(eval(sys.argv[3]))
+PY
+}
+
+# wait_for_rows CSV N PID: returns once CSV has more than N lines, PID has ended or 30 s passed.
+wait_for_rows() {
+  for _ in $(seq 300); do
+    [ "$(cat "$1" 2>/dev/null | wc -l)" -gt "$2" ] && return 0
+    kill -0 "$3" 2>/dev/null || return 0
+    sleep 0.1
+  done
 }

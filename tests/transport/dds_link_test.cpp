@@ -129,6 +129,46 @@ TEST(DdsLink, FeedbackWithAForeignSiteIdOrChannelCountIsDroppedAndCounted) {
   EXPECT_EQ(link.counters().late, 1);
 }
 
+TEST(DdsLink, FeedbackOfAnotherTestOrAnOlderStepIsDroppedAndCounted) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(51, 1, 1, 0.3));
+  DdsNodeEndpoint node(node_side, node_config(51, 1));
+  ASSERT_TRUE(link.wait_for_node(10.0));
+  CommandSample c;
+  c.channels = 1;
+  c.step = 5;
+  link.send(c);
+  FeedbackSample f;
+  f.test_id = 51;
+  f.site_id = 1;
+  f.channels = 1;
+  f.step = 5;
+  f.displacement_m[0] = 0.005;
+  FeedbackSample foreign = f;
+  foreign.test_id = 52;  // in the partition of test 51, but claiming test 52
+  foreign.displacement_m[0] = 1.0;
+  node.publish(foreign);
+  node.publish(f);
+  FeedbackSample older = f;
+  older.step = 4;  // late, or out of order
+  older.displacement_m[0] = 1.0;
+  node.publish(older);
+  node.publish(f);  // duplicated: the same step again is not older (a node re-reports its newest step)
+  FeedbackSample got;
+  ASSERT_EQ(link.receive(got), LinkStatus::kOk);
+  EXPECT_EQ(got.step, 5);
+  EXPECT_EQ(got.displacement_m[0], 0.005);
+  // The link takes everything waiting on its next receive: give the last two time to arrive.
+  c.step = 6;
+  link.send(c);
+  EXPECT_EQ(link.receive(got), LinkStatus::kTimeout);
+  EXPECT_EQ(got.step, 5);
+  EXPECT_EQ(got.displacement_m[0], 0.005);  // never the foreign or the older sample's 1 m
+  EXPECT_EQ(link.counters().wrong_test_or_site, 1);
+  EXPECT_EQ(link.counters().older_step, 1);
+  EXPECT_EQ(link.counters().received, 2);
+}
+
 TEST(DdsLink, ARealTimeDeadlineEndsTheWaitAndHandsBackTheNewestSample) {
   DdsParticipant coordinator(loopback()), node_side(loopback());
   DdsLink link(coordinator, link_config(41, 1, 1, 5.0));

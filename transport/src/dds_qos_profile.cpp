@@ -20,7 +20,9 @@ DdsQos stream_qos(const DdsQosSettings& s, dds_reliability_kind_t reliability) {
 
 }  // namespace
 
-DdsQos stream_writer_qos(const DdsQosSettings& s) { return stream_qos(s, DDS_RELIABILITY_RELIABLE); }
+DdsQos stream_writer_qos(const DdsQosSettings& s) {
+  return stream_qos(s, s.newest_only ? DDS_RELIABILITY_BEST_EFFORT : DDS_RELIABILITY_RELIABLE);
+}
 DdsQos stream_reader_qos(const DdsQosSettings& s) {
   return stream_qos(s, s.newest_only ? DDS_RELIABILITY_BEST_EFFORT : DDS_RELIABILITY_RELIABLE);
 }

@@ -25,8 +25,12 @@ enum class CommandVerdict : std::uint8_t {
   kNonFinite,     ///< a displacement of a used channel, or the time, is NaN or infinite
   kNotNewer,      ///< step not above the newest accepted one: a duplicate, reordered or negative
   kNotFollowing,  ///< the node has a latched fault or has ramped to its safe state
+  /// No command accepted yet and this one's step is beyond command_timeout_periods: the
+  /// test began without this node (a node restarted mid-test), which must not take it over
+  /// from its own initial position.
+  kJoinedMidTest,
 };
-inline constexpr int kCommandVerdicts = 7;
+inline constexpr int kCommandVerdicts = 8;
 const char* command_verdict_name(CommandVerdict verdict);
 
 struct ServoNodeCounters {
@@ -72,8 +76,10 @@ class ServoNodeController {
   void start(std::span<const double> initial_displacement_m);
 
   /// Checks an incoming command and keeps it as the pending one (a newer accepted command
-  /// replaces it); anything else is dropped, counted by reason and never applied.
-  /// Real-time safe.
+  /// replaces it); anything else is dropped, counted by reason and never applied. The first
+  /// command accepted after start() must have a step of at most command_timeout_periods
+  /// (a test's first is 0): a node that sees a test first later on, restarted while the
+  /// coordinator carried on, never follows it. Real-time safe.
   CommandVerdict accept(const transport::CommandSample& command);
 
   /// One control period: applies the pending command (or holds/ramps after
@@ -88,6 +94,8 @@ class ServoNodeController {
   std::span<const LimitEvent> events() const { return events_; }
   std::uint64_t events_not_logged() const { return events_not_logged_; }
 
+  /// The step of the newest command accepted (-1 before the first).
+  std::int64_t newest_accepted_step() const { return newest_accepted_step_; }
   bool faulted() const { return fault_; }
   bool holding() const { return holding_; }
   bool in_safe_state() const { return safe_state_; }

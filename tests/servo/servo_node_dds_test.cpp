@@ -1,0 +1,174 @@
+// Bad commands over DDS into a servo node: a raw Cyclone writer on the command topic, in the
+// node's partition, publishes what a faulty or foreign coordinator could send (a duplicated,
+// an older or out-of-order step, another test or site id, a wrong channel count, a NaN
+// displacement or time); the node's endpoint takes each, its controller drops and counts it
+// by reason, and the actuator never sees it.
+#include <dds/dds.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rpsd/realtime/pacer.h"
+#include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/transport/dds_node_endpoint.h"
+#include "rpsd/transport/dds_qos_profile.h"
+#include "rpsd_messages.h"
+
+namespace rpsd::servo {
+namespace {
+
+using transport::CommandSample;
+using transport::FeedbackSample;
+
+constexpr std::uint32_t kTest = 61, kSite = 2;
+
+transport::DdsDomainConfig loopback() {
+  // Domains 190..229 for this binary: apart from the other DDS tests' 40..189.
+  return {static_cast<std::uint32_t>(190 + ::getpid() % 40), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+}
+
+// Moves to every command at once and reads it back.
+class IdealActuator final : public Actuator {
+ public:
+  int channels() const override { return 1; }
+  void start(std::span<const double>) override {}
+  ActuatorStatus exchange(std::span<const double> command_m, double, ActuatorReading& reading) override {
+    sent.push_back(command_m[0]);
+    reading.displacement_m[0] = command_m[0];
+    reading.force_n[0] = 0.0;
+    reading.fresh = true;
+    return ActuatorStatus::kOk;
+  }
+  std::vector<double> sent;
+};
+
+// A coordinator's command writer without DdsLink's checks: it writes any sample.
+class RawCommandWriter {
+ public:
+  RawCommandWriter(const transport::DdsParticipant& participant, std::uint32_t test_id, std::uint32_t site_id) {
+    const transport::DdsQos partition = transport::site_partition_qos(test_id, site_id);
+    publisher_ = transport::DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr), "dds_create_publisher");
+    writer_ = transport::DdsEntity(
+        dds_create_writer(publisher_.get(), participant.command_topic(), transport::stream_writer_qos({}).get(), nullptr),
+        "dds_create_writer");
+  }
+  bool wait_for_reader(double timeout_s) const {
+    const std::int64_t until = realtime::monotonic_now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
+    dds_publication_matched_status_t status{};
+    while (dds_get_publication_matched_status(writer_.get(), &status) >= 0 && status.current_count == 0) {
+      if (realtime::monotonic_now_ns() > until) return false;
+      dds_sleepfor(DDS_MSECS(10));
+    }
+    return status.current_count > 0;
+  }
+  void write(std::uint32_t test_id, std::uint32_t site_id, std::int64_t step, std::uint8_t channels, double x_m,
+             double time_s = 0.0) {
+    rpsd_dds_Command wire{};
+    wire.test_id = test_id;
+    wire.site_id = site_id;
+    wire.step = step;
+    wire.time_s = time_s;
+    wire.channels = channels;
+    wire.displacement_m[0] = x_m;
+    ASSERT_GE(dds_write(writer_.get(), &wire), 0);
+  }
+
+ private:
+  transport::DdsEntity publisher_, writer_;
+};
+
+struct NodeOverDds : ::testing::Test {
+  NodeOverDds() : coordinator_side(loopback()), node_side(loopback()), writer(coordinator_side, kTest, kSite),
+                  endpoint(node_side, {kTest, kSite, {}}), node(config(), actuator) {
+    const double x0[] = {0.0};
+    node.start(x0);
+  }
+  static ServoNodeConfig config() {
+    ServoNodeConfig c;
+    c.test_id = kTest;
+    c.site_id = kSite;
+    c.channels = 1;
+    c.command_timeout_periods = 1000;  // the node must not hold while the test looks
+    return c;
+  }
+  // The next command off the wire: accepted or dropped, then one control tick.
+  CommandVerdict deliver(std::int64_t expected_step) {
+    EXPECT_TRUE(endpoint.wait_for_command_until(realtime::monotonic_now_ns() + 5'000'000'000));
+    CommandSample command;
+    EXPECT_TRUE(endpoint.take_command(command));
+    EXPECT_EQ(command.step, expected_step);  // reliable and in order: one sample each
+    const CommandVerdict verdict = node.accept(command);
+    node.tick(feedback);
+    return verdict;
+  }
+
+  transport::DdsParticipant coordinator_side, node_side;
+  RawCommandWriter writer;
+  transport::DdsNodeEndpoint endpoint;
+  IdealActuator actuator;
+  ServoNodeController node;
+  FeedbackSample feedback;
+};
+
+TEST_F(NodeOverDds, EveryBadCommandIsDroppedCountedByReasonAndNeverApplied) {
+  ASSERT_TRUE(writer.wait_for_reader(10.0));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  writer.write(kTest, kSite, 0, 1, 0.001);
+  EXPECT_EQ(deliver(0), CommandVerdict::kAccepted);
+  writer.write(kTest, kSite, 0, 1, 0.009);  // duplicated step
+  EXPECT_EQ(deliver(0), CommandVerdict::kNotNewer);
+  writer.write(kTest, kSite, 3, 1, 0.002);
+  EXPECT_EQ(deliver(3), CommandVerdict::kAccepted);
+  writer.write(kTest, kSite, 2, 1, 0.009);  // older: late, or out of order
+  EXPECT_EQ(deliver(2), CommandVerdict::kNotNewer);
+  writer.write(kTest + 1, kSite, 4, 1, 0.009);  // another test's id, in this test's partition
+  EXPECT_EQ(deliver(4), CommandVerdict::kWrongTestId);
+  writer.write(kTest, kSite + 1, 5, 1, 0.009);  // another site's id
+  EXPECT_EQ(deliver(5), CommandVerdict::kWrongSiteId);
+  writer.write(kTest, kSite, 6, 2, 0.009);  // two channels for a one-channel node
+  EXPECT_EQ(deliver(6), CommandVerdict::kWrongChannelCount);
+  writer.write(kTest, kSite, 7, 1, nan);
+  EXPECT_EQ(deliver(7), CommandVerdict::kNonFinite);
+  writer.write(kTest, kSite, 8, 1, 0.009, inf);
+  EXPECT_EQ(deliver(8), CommandVerdict::kNonFinite);
+
+  // The actuator saw 1 mm, then 2 mm on every tick after: no bad command moved it.
+  ASSERT_EQ(actuator.sent.size(), 9u);
+  EXPECT_EQ(actuator.sent[0], 0.001);
+  for (std::size_t i = 1; i < actuator.sent.size(); ++i) EXPECT_EQ(actuator.sent[i], i == 1 ? 0.001 : 0.002) << i;
+  EXPECT_EQ(feedback.step, 3);  // the feedback still answers step 3
+  const ServoNodeCounters& n = node.counters();
+  EXPECT_EQ(n.accepted, 2u);
+  EXPECT_EQ(n.applied, 2u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kNotNewer), 2u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kWrongTestId), 1u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kWrongSiteId), 1u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kWrongChannelCount), 1u);
+  EXPECT_EQ(n.dropped(CommandVerdict::kNonFinite), 2u);
+  EXPECT_EQ(n.dropped_total(), 7u);
+
+  // A good command after all that is followed.
+  writer.write(kTest, kSite, 9, 1, 0.003);
+  EXPECT_EQ(deliver(9), CommandVerdict::kAccepted);
+  EXPECT_EQ(actuator.sent.back(), 0.003);
+  EXPECT_EQ(feedback.step, 9);
+}
+
+TEST_F(NodeOverDds, ANodeStartedMidTestTakesNoneOfItsCommands) {
+  ASSERT_TRUE(writer.wait_for_reader(10.0));
+  for (std::int64_t step = 1186; step < 1190; ++step) {
+    writer.write(kTest, kSite, step, 1, 0.004);
+    EXPECT_EQ(deliver(step), CommandVerdict::kJoinedMidTest);
+  }
+  for (double x : actuator.sent) EXPECT_EQ(x, 0.0);
+  EXPECT_EQ(feedback.step, -1);
+  EXPECT_EQ(node.counters().dropped(CommandVerdict::kJoinedMidTest), 4u);
+}
+
+}  // namespace
+}  // namespace rpsd::servo

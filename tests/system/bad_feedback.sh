@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Fault: a node sends the coordinator bad feedback: a sample of another test, one claiming
+# another site, one with a wrong channel count, one of an older step, a duplicated answer,
+# (in real time) an answer 3 ms late, and finally a NaN displacement. rpsd_fault_node stands
+# in for both sites of the bridge (a perfect actuator: x = u) and does this on site 2. Every
+# bad sample carries 1 m, a displacement the coordinator must never use.
+# Coordinator: drops and counts the foreign, malformed and older samples (summary.json
+#   timing.sites[].messages); a duplicate of the newest step is taken again (the same step
+#   re-reported, never older); a late answer makes late steps that go on with the newest
+#   measurement; the NaN stops the test at once (RpsdLoop: kNonFinite), exit code 3 with the
+#   reason "a non-finite measurement arrived (at step n, t = ...)". Detection: the step the
+#   NaN answers, before it is used.
+# Results: every step before the NaN is recorded (steps 1..n, n the NaN's command step), and
+#   no recorded measurement is one of the bad samples' 1 m. Run lock-step (as fast as
+#   possible) and in real time at 1024 Hz.
+source "$(dirname "$0")/lib.sh"
+FAULT_NODE=${RPSD_FAULT_NODE:?path to rpsd_fault_node}
+for mode in lock_step real_time; do
+  out="$WORK/$mode"
+  if [ $mode = lock_step ]; then nan=1000 clock=as_fast_as_possible rt=0; else nan=2048 clock=real_time rt=1; fi
+  $FAULT_NODE --domain $DOMAIN --dds-config "$SRC/transport/config/loopback.xml" --real-time $rt --summary "$WORK/fault-$mode.json" \
+    --wrong-test 100 --wrong-site 200 --wrong-channels 300 --older 400 --duplicate 500 --late 1500 --late-ms 3 \
+    --nan $nan > "$WORK/fault-$mode.log" 2>&1 &
+  fault=$!
+  PIDS+=($fault)
+  set +e
+  run_bridge "$out" --set transport.kind=dds --set clock.mode=$clock > "$WORK/run-$mode.log" 2>&1
+  code=$?
+  set -e
+  kill -TERM $fault
+  wait $fault || true
+  cat "$WORK/run-$mode.log"
+  [ $code = 3 ] || fail "$mode: exit code $code, expected 3"
+  grep -q "test aborted: a non-finite measurement arrived (at step $((nan + 1))," "$WORK/run-$mode.log" || fail "$mode: no clear reason"
+  every_step_recorded "$out"
+  [ "$(json "$out/summary.json" "j['steps']")" = $nan ] || fail "$mode: $(json "$out/summary.json" "j['steps']") steps, expected $nan"
+  [ "$(column "$out" measured_m_ch1 'max(abs(x) for x in v) < 0.1')" = True ] || fail "$mode: a bad sample's measurement was used"
+  m="j['timing']['sites'][1]['messages']"
+  [ "$(json "$out/summary.json" "$m['dropped_wrong_test_or_site'], $m['dropped_wrong_channels'], $m['dropped_older_step']")" = "2 1 1" ] \
+    || fail "$mode: site 2 dropped $(json "$out/summary.json" "$m")"
+  [ "$(json "$out/summary.json" "j['timing']['sites'][0]['messages']")" = \
+    "$(json "$out/summary.json" "{'dropped_older_step': 0, 'dropped_wrong_channels': 0, 'dropped_wrong_test_or_site': 0, 'late': 0, 'received': $nan + 1, 'sent': $nan + 1}")" ] \
+    || [ $mode = real_time ] || fail "$mode: site 1 $(json "$out/summary.json" "j['timing']['sites'][0]['messages']")"
+  faults=$(json "$WORK/fault-$mode.json" "j['sites']['2']['faults']")
+  if [ $mode = lock_step ]; then
+    # Every answer once, the duplicate once more; nothing late in lock-step.
+    [ "$(json "$out/summary.json" "$m['received'], $m['sent'], $m['late']")" = "$((nan + 2)) $((nan + 1)) 0" ] \
+      || fail "lock-step: site 2 $(json "$out/summary.json" "$m")"
+  else
+    late=$(json "$out/summary.json" "$m['late']")
+    [ "$late" -ge 1 ] && [ "$(column "$out" feedback_age_periods 'max(v) >= 1')" = True ] || fail "real time: the late answer made no late step"
+  fi
+  echo "$mode: exit 3 at step $((nan + 1)) (NaN), $nan steps recorded; site 2 sent $faults; coordinator: $(json "$out/summary.json" "$m")"
+done
+echo "PASS: bad feedback dropped and counted by reason, the NaN stops the test with every step before it recorded"
