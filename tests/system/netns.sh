@@ -7,7 +7,9 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 TAG=$$
 NS_SWITCH=rpsd-sw-$TAG NS_COORD=rpsd-co-$TAG NS_SITE1=rpsd-s1-$TAG NS_SITE2=rpsd-s2-$TAG
-NETNS_CLEANUP="for n in $NS_COORD $NS_SITE1 $NS_SITE2 $NS_SWITCH; do ip netns del \$n 2>/dev/null || true; done"
+# Whatever still runs in a host is killed first: a process outlives its namespace's name, and a
+# real-time node left behind would keep a core busy for the tests after this one.
+NETNS_CLEANUP="for n in $NS_COORD $NS_SITE1 $NS_SITE2 $NS_SWITCH; do ip netns pids \$n 2>/dev/null | xargs -r kill -9 2>/dev/null; ip netns del \$n 2>/dev/null || true; done"
 ip netns add $NS_SWITCH
 ip -n $NS_SWITCH link add br0 type bridge
 ip -n $NS_SWITCH link set br0 up

@@ -7,7 +7,11 @@ source "$(dirname "$0")/lib.sh"
 start_node 1 real_time
 start_node 2 real_time
 set +e
-run_bridge "$WORK/dds" --set transport.kind=dds --set clock.mode=real_time > "$WORK/run.log" 2>&1
+# This test is about the result, not about stall detection (kill_node.sh, netns_partition.sh):
+# this VM stalls every thread for several milliseconds now and then (cyclictest: worst wake-up
+# 0.2-0.4 s), which would otherwise stop one run in five. A stall's stale feedback is counted
+# in the bound below like any late step.
+run_bridge "$WORK/dds" --set transport.kind=dds --set clock.mode=real_time --set clock.max_feedback_age_periods=100 > "$WORK/run.log" 2>&1
 code=$?
 set -e
 cat "$WORK/run.log"
