@@ -96,4 +96,9 @@ run fuzz_udp_protocol udp -max_len=256
 mkdir -p "$seeds/node" "$build/corpus/node"
 printf '\x01\x00' >"$seeds/node/one-command-one-tick"
 run fuzz_node_commands node -max_len=1024
+# Parameter files: the first byte picks the reader (0 servo parameters, 1 node, 2 emulator).
+mkdir -p "$seeds/params" "$build/corpus/params"
+{ printf '\x00'; cat servo/params/paper-mts-244.yaml; } >"$seeds/params/servo-parameters"
+for f in scenarios/nodes/*.yaml; do { printf '\x01'; cat "$f"; } >"$seeds/params/node-$(basename "$f")"; done
+run fuzz_parameter_files params -max_len=4096
 exit $status
