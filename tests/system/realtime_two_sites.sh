@@ -24,6 +24,8 @@ steps=$(json "$WORK/dds/summary.json" "j['steps']")
 rows=$(( $(wc -l < "$WORK/dds/time_history.csv") - 1 ))
 [ "$steps" = "$rows" ] && [ "$steps" = "$(json "$WORK/dds/summary.json" "j['steps_planned']")" ] \
   || fail "$steps steps of $(json "$WORK/dds/summary.json" "j['steps_planned']") planned, $rows rows recorded"
-python3 "$(dirname "$0")/transport_effect_bound.py" "$WORK/local" "$WORK/dds" "$WORK/node1.json" "$WORK/node2.json"
+# The rig's response delay (Eq. 12) is the time constant of the plant's lag.
+tau=$($RPSD analyze "$SRC/servo/params/paper-mts-244.yaml" --json | python3 -c "import json,sys; print(json.load(sys.stdin)['response_delay_ms'] / 1e3)")
+python3 "$(dirname "$0")/transport_effect_bound.py" "$WORK/local" "$WORK/dds" "$tau" "$WORK/node1.json" "$WORK/node2.json"
 echo "PASS: real time over DDS; round trip p50/p99 $(json "$WORK/dds/summary.json" \
   "', '.join('%.3f/%.3f ms' % (1e3*s['round_trip']['p50_s'], 1e3*s['round_trip']['p99_s']) for s in j['timing']['sites'])")"

@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Checks a real-time distributed run against the single-process run of the same scenario.
 
-usage: transport_effect_bound.py RESULTS_IN_ONE_PROCESS RESULTS_OVER_DDS NODE_SUMMARY...
+usage: transport_effect_bound.py RESULTS_IN_ONE_PROCESS RESULTS_OVER_DDS PLANT_TIME_CONSTANT_S NODE_SUMMARY...
 
 The two runs may differ only by what the transport did. Each step whose feedback was `a`
 periods old replaced the specimen force k x(t) by k x(t - aT): a force error of at most
-k a T v_peak for one period, an impulse of k a T^2 v_peak. Each command a node applied one
-tick late (it ticked on its own deadline first) or skipped (superseded by a newer one) is
-one more such impulse of one period. For an undamped linear structure with mass-normalised
+k a T v_peak for one period, an impulse of k a T^2 v_peak. Each tick a node made off the
+command timeline (on its own deadline before a late command, or a command skipped because a
+newer one superseded it) fed the plant one command for one period more or less: an input
+error of at most the largest command change dc, which the plant (a lag of time constant
+tau, its response delay) carries on as a decaying error, an impulse of at most k dc tau. For an undamped linear structure with mass-normalised
 modes, an impulse I at any DOF moves any DOF by at most I / (m_min w_min) (sum over modes
 of |phi_ik phi_ij| / w_i <= sqrt(Minv_kk Minv_jj) / w_min), and damping only lowers it. So
 the largest displacement difference must stay below the sum of the impulses over
@@ -47,7 +49,7 @@ def lowest_circular_frequency(mass, stiffness):
 
 
 def main():
-    local, dds, nodes = sys.argv[1], sys.argv[2], sys.argv[3:]
+    local, dds, tau, nodes = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4:]
     summary = json.load(open(f"{dds}/summary.json"))
     scenario = yaml.safe_load(open(f"{dds}/effective-scenario.yaml"))
     # YAML 1.1 reads 0.4e6 as text: convert every entry.
@@ -76,7 +78,10 @@ def main():
         n = json.load(open(path))
         ticks_while_commanded = n["last_command_tick"] - n["first_command_tick"] + 1
         node_events += (ticks_while_commanded - n["commands_applied"]) + (n["commands_accepted"] - n["commands_applied"])
-    impulse = k_specimen * period * period * v_peak * (ages + node_events)
+    channels = [c[len("command_m_ch"):] for c in a[0] if c.startswith("command_m_ch")]
+    command_step = max(abs(float(r[f"command_m_ch{c}"]) - float(s[f"command_m_ch{c}"]))
+                       for r, s in zip(a[1:], a[:-1]) for c in channels)
+    impulse = k_specimen * (period * period * v_peak * ages + command_step * tau * node_events)
     bound = impulse / (m_min * w_min)
     worst = max(abs(float(r[f"displacement_m_dof{d}"]) - float(s[f"displacement_m_dof{d}"])) for r, s in zip(a, b) for d in dofs)
     peak = max(abs(float(r[f"displacement_m_dof{d}"])) for r in a for d in dofs)
