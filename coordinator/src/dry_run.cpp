@@ -8,10 +8,10 @@
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/coordinator/actuator_links.h"
 #include "rpsd/coordinator/plant_factory.h"
-#include "rpsd/servo/harmonic_fit.h"
 #include "rpsd/coordinator/test_runner.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/servo/simulated_frequency_response.h"
 #include "rpsd/substructure/modal.h"
 
 namespace rpsd::coordinator {
@@ -30,40 +30,45 @@ std::optional<double> signed_delay_ms(const std::vector<double>& target, const s
   return 1e3 * (lags ? lag.delay_samples : -lead.delay_samples) / rate_hz;
 }
 
-// What the specimen sees of a sinusoidal target at w: the compensator and the simulated plant
-// in series, measured as a lab would (a sine test, settled, fitted). Returns the gain and the
-// equivalent delay -phase / w (negative: a lead).
+// The compensator and the simulated plant in series, seen as one plant: what the specimen
+// gets for a target, one control period per advance (as the loop drives them).
+class CompensatedPlant final : public servo::Plant {
+ public:
+  CompensatedPlant(const scenarios::TestScenario& s)
+      : plant_(make_plant(s.plant)), compensator_(compensation::make_compensator(s.compensation, 1.0 / s.control_rate_hz)) {}
+  void reset(double displacement_m) override {
+    plant_->reset(displacement_m);
+    compensator_->reset(displacement_m);
+    command_m_ = displacement_m;
+  }
+  void advance(double, double target_m, double duration_s) override {
+    const double command_m = compensator_->command(target_m);
+    plant_->advance(command_m_, command_m, duration_s);
+    command_m_ = command_m;
+    compensator_->observe(target_m, plant_->measure().displacement_m);
+  }
+  servo::PlantMeasurement measure() const override { return plant_->measure(); }
+
+ private:
+  std::unique_ptr<servo::Plant> plant_;
+  std::unique_ptr<compensation::CommandCompensator> compensator_;
+  double command_m_ = 0.0;
+};
+
+// Gain and equivalent delay -phase / w (negative: a lead) of compensator and plant at w,
+// measured by a sine test as a lab would (settled, fitted).
 struct LoopResponse {
   double gain = 1.0, delay_s = 0.0;
 };
 LoopResponse compensated_plant_response(const scenarios::TestScenario& s, double w_rad_s) {
-  const double period_s = 1.0 / s.control_rate_hz, amplitude_m = 1e-3;
-  auto plant = make_plant(s.plant);
-  auto compensator = compensation::make_compensator(s.compensation, period_s);
-  plant->reset(0.0);
-  compensator->reset(0.0);
-  const double cycle_s = 2.0 * M_PI / w_rad_s;
-  const auto settle = static_cast<std::int64_t>(std::ceil(6.0 * cycle_s / period_s));
-  const auto fitted = static_cast<std::int64_t>(std::ceil(4.0 * cycle_s / period_s));
-  std::vector<double> phase, target, measured;
-  double previous_command = 0.0;
-  for (std::int64_t n = 1; n <= settle + fitted; ++n) {
-    const double x = amplitude_m * std::sin(w_rad_s * n * period_s);
-    const double command = compensator->command(x);
-    plant->advance(previous_command, command, period_s);
-    previous_command = command;
-    const double y = plant->measure().displacement_m;
-    compensator->observe(x, y);
-    if (n > settle) {
-      phase.push_back(w_rad_s * n * period_s);
-      target.push_back(x);
-      measured.push_back(y);
-    }
-  }
-  const servo::HarmonicFit in = servo::fit_harmonic(phase, target), out = servo::fit_harmonic(phase, measured);
-  double lag = in.phase_rad - out.phase_rad;
-  lag = std::remainder(lag, 2.0 * M_PI);
-  return {out.amplitude / in.amplitude, lag / w_rad_s};
+  CompensatedPlant loop(s);
+  servo::SineTest test;
+  test.frequency_hz = w_rad_s / (2.0 * M_PI);
+  test.control_rate_hz = s.control_rate_hz;
+  test.settling_time_s = 6.0 / test.frequency_hz;
+  test.fitted_cycles = 4;
+  const std::complex<double> h = servo::simulated_frequency_response(loop, test);
+  return {std::abs(h), -std::arg(h) / w_rad_s};
 }
 
 std::vector<ModePrediction> modes_under_delay(const TestAssembly& test, const scenarios::TestScenario& s) {

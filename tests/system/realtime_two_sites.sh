@@ -20,10 +20,8 @@ kill -TERM $NODE1_PID $NODE2_PID
 wait $NODE1_PID $NODE2_PID || true
 [ $code = 0 ] || { cat "$WORK"/node*.log; fail "exit code $code"; }
 run_bridge "$WORK/local" > /dev/null
-steps=$(json "$WORK/dds/summary.json" "j['steps']")
-rows=$(( $(wc -l < "$WORK/dds/time_history.csv") - 1 ))
-[ "$steps" = "$rows" ] && [ "$steps" = "$(json "$WORK/dds/summary.json" "j['steps_planned']")" ] \
-  || fail "$steps steps of $(json "$WORK/dds/summary.json" "j['steps_planned']") planned, $rows rows recorded"
+every_step_recorded "$WORK/dds"
+[ "$(json "$WORK/dds/summary.json" "j['steps'] == j['steps_planned']")" = True ] || fail "the run did not take every planned step"
 # The rig's response delay (Eq. 12) is the time constant of the plant's lag.
 tau=$($RPSD analyze "$SRC/servo/params/paper-mts-244.yaml" --json | python3 -c "import json,sys; print(json.load(sys.stdin)['response_delay_ms'] / 1e3)")
 python3 "$(dirname "$0")/transport_effect_bound.py" "$WORK/local" "$WORK/dds" "$tau" "$WORK/node1.json" "$WORK/node2.json"
