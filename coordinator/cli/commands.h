@@ -31,9 +31,10 @@ void add_servo_node(CLI::App& app);
 /// `--set key.path=value` texts to overrides (ConfigError on a malformed one).
 std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts);
 
-/// `rpsd run --dry-run`: prints the pre-test check (and writes OUT/dry-run.json when `out` is
-/// not empty); true when the test is ready to run.
-bool report_dry_run(const scenarios::TestScenario& scenario, const std::string& out);
+/// `rpsd run --dry-run [--node FILE]...`: prints the pre-test check, against the limits of the
+/// servo nodes whose files are given too (and writes OUT/dry-run.json when `out` is not
+/// empty); true when the test is ready to run.
+bool report_dry_run(const scenarios::TestScenario& scenario, const std::string& out, const std::vector<std::string>& node_files);
 
 /// The dry run found a limit exceeded, an undamped mode or an early stop (exit code 4).
 struct DryRunNotReady : std::runtime_error {

@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "rpsd/coordinator/dry_run.h"
+#include "rpsd/scenarios/servo_node_file.h"
 
 namespace rpsd::cli {
 namespace {
@@ -30,10 +31,34 @@ std::string versus(double value, double limit, double scale, const char* unit) {
   return text;
 }
 
+// The limits a node enforces, as `rpsd servo-node FILE` would read them.
+coordinator::NodeLimits node_limits(const std::string& file) {
+  const scenarios::ServoNodeFile node = scenarios::load_servo_node(file);
+  coordinator::NodeLimits limits;
+  limits.name = file;
+  limits.test_id = node.node.test_id;
+  limits.site_id = node.node.site_id;
+  limits.control_period_s = node.node.control_period_s;
+  limits.channels.assign(node.node.limits.begin(), node.node.limits.begin() + node.node.channels);
+  return limits;
+}
+
+nlohmann::json node_json(const coordinator::NodeCheck& n) {
+  return {{"file", n.node},
+          {"max_stroke_m", bound(n.limits.max_stroke_m)},
+          {"max_increment_m", bound(n.limits.max_increment_m)},
+          {"max_velocity_m_per_s", bound(n.limits.max_velocity_m_per_s)},
+          {"max_force_n", bound(n.limits.max_force_n)},
+          {"peak_command_velocity_m_per_s", n.peak_command_velocity_m_per_s},
+          {"within_limits", n.within_limits}};
+}
+
 }  // namespace
 
-bool report_dry_run(const scenarios::TestScenario& scenario, const std::string& out) {
-  const coordinator::DryRunReport r = coordinator::dry_run(scenario);
+bool report_dry_run(const scenarios::TestScenario& scenario, const std::string& out, const std::vector<std::string>& node_files) {
+  std::vector<coordinator::NodeLimits> nodes;
+  for (const auto& f : node_files) nodes.push_back(node_limits(f));
+  const coordinator::DryRunReport r = coordinator::dry_run(scenario, nodes);
   std::cout << "rpsd run --dry-run: " << scenario.name << ", simulated plant in this process, " << r.steps << " of "
             << r.steps_planned << " steps\n";
   if (r.outcome != coordinator::StepOutcome::kOk && r.outcome != coordinator::StepOutcome::kRecordEnded) {
@@ -54,6 +79,13 @@ bool report_dry_run(const scenarios::TestScenario& scenario, const std::string& 
     if (c.peak_valve_opening) std::cout << ", servovalve opening " << std::lround(100.0 * *c.peak_valve_opening) << " %";
     if (c.tracking_delay_ms) std::cout << ", tracking delay " << *c.tracking_delay_ms << " ms";
     std::cout << "\n";
+    if (c.node) {
+      const auto& n = *c.node;
+      std::cout << "    its node (" << n.node << "): stroke " << versus(c.peak_command_m, n.limits.max_stroke_m, 1e3, "mm")
+                << ", increment " << versus(c.peak_increment_m, n.limits.max_increment_m, 1e3, "mm") << ", velocity "
+                << versus(n.peak_command_velocity_m_per_s, n.limits.max_velocity_m_per_s, 1e3, "mm/s") << ", force "
+                << versus(c.peak_force_n, n.limits.max_force_n, 1e-3, "kN") << "\n";
+    }
     channels.push_back({{"channel", c.channel},
                         {"site_id", c.site_id},
                         {"peak_command_m", c.peak_command_m},
@@ -66,6 +98,7 @@ bool report_dry_run(const scenarios::TestScenario& scenario, const std::string& 
                         {"limits", {{"max_stroke_m", bound(c.limits.max_stroke_m)},
                                     {"max_increment_m", bound(c.limits.max_increment_m)},
                                     {"max_force_n", bound(c.limits.max_force_n)}}},
+                        {"node_limits", c.node ? node_json(*c.node) : nlohmann::json(nullptr)},
                         {"within_limits", c.within_limits}});
   }
   std::cout << "  stability per mode (delay theory with the compensated plant's gain and delay at each mode):\n";

@@ -20,6 +20,7 @@ struct RunOptions {
   std::vector<std::string> overrides;
   std::string record;
   bool dry_run = false;
+  std::vector<std::string> node_files;
 };
 
 // Steps, simulated time, speed as a multiple of real time, ETA; on a terminal only, and
@@ -66,6 +67,9 @@ void add_run(CLI::App& app) {
   run->add_flag("--dry-run", options->dry_run,
                 "Run against the simulated plant in this process first and report predicted peaks against the limits and "
                 "the stability margin; exit 4 when not ready");
+  run->add_option("--node", options->node_files,
+                  "With --dry-run: a servo node's file (rpsd servo-node); its limits are checked too (repeatable, one per site)")
+      ->check(CLI::ExistingFile);
   run->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
   run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's")
       ->check(CLI::ExistingFile);
@@ -80,9 +84,10 @@ void add_run(CLI::App& app) {
     if (options->dry_run) {
       const auto* test = std::get_if<scenarios::TestScenario>(&file.study);
       if (!test) throw std::runtime_error("--dry-run needs an rpsd_test scenario");
-      if (!report_dry_run(*test, options->out)) throw DryRunNotReady();
+      if (!report_dry_run(*test, options->out, options->node_files)) throw DryRunNotReady();
       return;
     }
+    if (!options->node_files.empty()) throw CLI::ValidationError("--node", "only with --dry-run");
     if (options->out.empty()) throw CLI::ValidationError("--out", "required (except with --dry-run)");
     double rate_hz = 1024.0;
     if (const auto* test = std::get_if<scenarios::TestScenario>(&file.study)) rate_hz = test->control_rate_hz;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
@@ -98,9 +100,41 @@ std::vector<ModePrediction> modes_under_delay(const TestAssembly& test, const sc
   return modes;
 }
 
+// Gives each channel the limits of its site's node; throws when the files do not fit the test.
+void attach_nodes(DryRunReport& report, const scenarios::TestScenario& s, const std::vector<NodeLimits>& nodes) {
+  for (const NodeLimits& node : nodes) {
+    if (node.test_id != s.transport.test_id) {
+      throw std::invalid_argument(node.name + ": node.test_id is " + std::to_string(node.test_id) + ", the scenario's transport.test_id " +
+                                  std::to_string(s.transport.test_id));
+    }
+    std::vector<ChannelPrediction*> site;
+    for (auto& c : report.channels) {
+      if (c.site_id == node.site_id) site.push_back(&c);
+    }
+    if (site.empty()) {
+      throw std::invalid_argument(node.name + ": node.site_id " + std::to_string(node.site_id) + " is not a site of the scenario's experimental channels");
+    }
+    if (site.front()->node) throw std::invalid_argument(node.name + ": a second node file for site " + std::to_string(node.site_id));
+    if (site.size() != node.channels.size()) {
+      throw std::invalid_argument(node.name + ": " + std::to_string(node.channels.size()) + " channel(s), the scenario gives site " +
+                                  std::to_string(node.site_id) + " " + std::to_string(site.size()));
+    }
+    for (std::size_t i = 0; i < site.size(); ++i) site[i]->node = NodeCheck{node.name, node.channels[i], node.control_period_s};
+  }
+}
+
+// What the node would do with the commands the dry run sent: its limits are on the command
+// (stroke, increment, velocity as increment per its own period) and the measured force.
+void check_against_node(ChannelPrediction& p) {
+  NodeCheck& n = *p.node;
+  n.peak_command_velocity_m_per_s = p.peak_increment_m / n.control_period_s;
+  n.within_limits = p.peak_command_m <= n.limits.max_stroke_m && p.peak_increment_m <= n.limits.max_increment_m &&
+                    n.peak_command_velocity_m_per_s <= n.limits.max_velocity_m_per_s && p.peak_force_n <= n.limits.max_force_n;
+}
+
 }  // namespace
 
-DryRunReport dry_run(const scenarios::TestScenario& original) {
+DryRunReport dry_run(const scenarios::TestScenario& original, const std::vector<NodeLimits>& nodes) {
   scenarios::TestScenario s = original;
   s.transport.kind = scenarios::TransportConfig::Kind::kInProcess;
   s.clock.mode = scenarios::ClockConfig::Mode::kAsFastAsPossible;
@@ -119,6 +153,7 @@ DryRunReport dry_run(const scenarios::TestScenario& original) {
     p.site_id = e.site_id;
     p.limits = e.limits;
   }
+  attach_nodes(report, s, nodes);
   Eigen::VectorXd hold(channels);
   test.partition().extract_commands(s.initial_displacement_m, hold);
   for (int c = 0; c < channels; ++c) previous_x[c] = previous_command[c] = hold[c];
@@ -158,6 +193,10 @@ DryRunReport dry_run(const scenarios::TestScenario& original) {
     // The increment limit holds the command; the others the measurement.
     p.within_limits = p.peak_command_m <= p.limits.max_stroke_m && p.peak_displacement_m <= p.limits.max_stroke_m &&
                       p.peak_increment_m <= p.limits.max_increment_m && p.peak_force_n <= p.limits.max_force_n;
+    if (p.node) {
+      check_against_node(p);
+      p.within_limits = p.within_limits && p.node->within_limits;
+    }
   }
   report.residual_delay_ms = delays > 0 ? delay_sum_ms / delays : 0.0;
   report.modes = modes_under_delay(test, s);

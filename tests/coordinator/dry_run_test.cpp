@@ -54,6 +54,56 @@ TEST(DryRun, PeaksBeyondTheLimitsAreNotReady) {
   EXPECT_EQ(limited.outcome, StepOutcome::kLimit);
 }
 
+// The node's own limits, the layer on the rig: a 10 mm free vibration passes a 25 mm stroke
+// and fails a 5 mm one (at the node; the coordinator, without limits, runs to the end).
+NodeLimits node_with(servo::ChannelLimits limits) {
+  NodeLimits node;
+  node.name = "node-site-1.yaml";
+  node.test_id = 1;
+  node.site_id = 1;
+  node.control_period_s = 1.0 / 2048.0;
+  node.channels = {limits};
+  return node;
+}
+
+TEST(DryRun, ChecksTheCommandsAgainstTheNodesOwnLimits) {
+  servo::ChannelLimits wide;
+  wide.max_stroke_m = 0.025;
+  const DryRunReport ok = dry_run(sdof({}), {node_with(wide)});
+  ASSERT_TRUE(ok.channels[0].node.has_value());
+  EXPECT_TRUE(ok.channels[0].node->within_limits);
+  EXPECT_TRUE(ok.within_limits);
+  // The node's velocity is its command change per its own period (here 1/2048 s).
+  EXPECT_DOUBLE_EQ(ok.channels[0].node->peak_command_velocity_m_per_s, ok.channels[0].peak_increment_m * 2048.0);
+  // A 10 mm swing at 1.58 Hz: at most 2 pi f x0 = 99 mm/s, in 1/1024 s steps.
+  EXPECT_NEAR(ok.channels[0].peak_increment_m * 1024.0, 2.0 * M_PI * std::sqrt(700.8e3 / 7080.0) / (2.0 * M_PI) * 0.01, 0.01);
+
+  servo::ChannelLimits narrow = wide;
+  narrow.max_stroke_m = 0.005;
+  const DryRunReport stroke = dry_run(sdof({}), {node_with(narrow)});
+  EXPECT_EQ(stroke.outcome, StepOutcome::kOk);  // the coordinator itself had no reason to stop
+  EXPECT_FALSE(stroke.channels[0].node->within_limits);
+  EXPECT_FALSE(stroke.within_limits);
+
+  servo::ChannelLimits slow = wide;
+  slow.max_velocity_m_per_s = 0.1;  // 99 mm/s per 1/1024 s is 198 mm/s per the node's 1/2048 s
+  EXPECT_FALSE(dry_run(sdof({}), {node_with(slow)}).within_limits);
+}
+
+TEST(DryRun, RefusesNodeFilesThatDoNotFitTheTest) {
+  const auto s = sdof({});
+  NodeLimits other_test = node_with({});
+  other_test.test_id = 2;
+  EXPECT_THROW(dry_run(s, {other_test}), std::invalid_argument);
+  NodeLimits other_site = node_with({});
+  other_site.site_id = 3;
+  EXPECT_THROW(dry_run(s, {other_site}), std::invalid_argument);
+  NodeLimits two_channels = node_with({});
+  two_channels.channels.resize(2);
+  EXPECT_THROW(dry_run(s, {two_channels}), std::invalid_argument);
+  EXPECT_THROW(dry_run(s, {node_with({}), node_with({})}), std::invalid_argument);
+}
+
 TEST(DryRun, TheServoModelReportsItsValveOpeningAndRouthMargin) {
   const auto file = scenarios::load_study(testing::source_dir() / "scenarios/two-site-bridge.yaml",
                                           {scenarios::parse_override("ground_motion.trim={end_s: 2}")});

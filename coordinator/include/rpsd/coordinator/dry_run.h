@@ -5,27 +5,50 @@
 // structural mode the damping left and the delay margin, from delay theory per mode
 // (s^2 + c s + k_n + g k_e e^{-s tau} = 0, mass-normalised) with the gain g and delay tau of
 // the compensator and plant in series measured by a sine test at the mode's frequency.
+// Given the servo nodes' own files (`--node FILE`), it also checks each channel's command
+// against the limits its node enforces: the layer that stops the test on the rig.
 // Not real-time safe.
 #pragma once
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "rpsd/coordinator/rpsd_loop.h"
 #include "rpsd/scenarios/test_scenario.h"
+#include "rpsd/servo/servo_node_config.h"
 
 namespace rpsd::coordinator {
+
+/// The limits one servo node enforces on its site (from its file, as `rpsd servo-node` reads it).
+struct NodeLimits {
+  std::string name;  ///< the node file, for messages
+  std::uint32_t test_id = 0, site_id = 0;
+  double control_period_s = 1.0 / 1024.0;
+  /// The site's channels, in the test's channel order (how the coordinator addresses them).
+  std::vector<servo::ChannelLimits> channels;
+};
+
+/// One channel's peaks against its node's limits.
+struct NodeCheck {
+  std::string node;
+  servo::ChannelLimits limits;
+  double control_period_s = 1.0 / 1024.0;      ///< the node's
+  double peak_command_velocity_m_per_s = 0.0;  ///< |command change| / the node's control period
+  bool within_limits = true;
+};
 
 struct ChannelPrediction {
   int channel = 0;
   std::uint32_t site_id = 1;
   double peak_command_m = 0.0, peak_displacement_m = 0.0, peak_velocity_m_per_s = 0.0, peak_increment_m = 0.0;
   double peak_force_n = 0.0;
+  std::optional<NodeCheck> node;             ///< when the site's node file was given
   std::optional<double> peak_valve_opening;  ///< |x_v| of the servovalve, 0..1 (servo model only)
   std::optional<double> tracking_delay_ms;   ///< measured lags target by this (negative: leads)
   scenarios::ChannelLimitsConfig limits;
-  bool within_limits = true;
+  bool within_limits = true;  ///< within the coordinator's limits (and the node's, when given)
 };
 
 struct ModePrediction {
@@ -52,7 +75,9 @@ struct DryRunReport {
 };
 
 /// Runs the scenario's test (not the reference) with its simulated plant, whatever its transport
-/// and clock say. Throws what building the test throws.
-DryRunReport dry_run(const scenarios::TestScenario& scenario);
+/// and clock say. Throws what building the test throws, and std::invalid_argument naming the
+/// node file when a node serves another test, an unknown or repeated site, or another number
+/// of channels than the scenario gives its site.
+DryRunReport dry_run(const scenarios::TestScenario& scenario, const std::vector<NodeLimits>& nodes = {});
 
 }  // namespace rpsd::coordinator
