@@ -1,6 +1,8 @@
 #include "rpsd/servo/servo_node_loop.h"
 
+#include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "rpsd/realtime/pacer.h"  // monotonic_now_ns
 
@@ -111,19 +113,34 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
     }
     report.jitter = jitter.summary();
   } else {
-    while (!stop.load(std::memory_order_relaxed)) {
-      const std::int64_t now = realtime::monotonic_now_ns();
-      maybe_heartbeat(now);
-      if (end_ns > 0 && now >= end_ns) break;
-      // Wake at least every 50 ms to look at the stop flag and send heartbeats.
-      if (!endpoint.wait_for_command_until(now + 50'000'000)) continue;
+    // Lock-step: each command is answered on Cyclone's receive thread as it arrives, so no
+    // other thread has to be woken for it (the round trip loses one thread hand-off). This
+    // thread sends the heartbeats and watches the stop flag; the mutex keeps the two apart.
+    std::mutex mutex;
+    const auto answer = [&] {
+      const std::lock_guard lock(mutex);
       while (endpoint.take_command(command)) {
         if (controller.accept(command) != CommandVerdict::kAccepted) continue;
         controller.tick(feedback);
         watch.after_tick();
         publish();
       }
+    };
+    using Answer = decltype(answer);
+    endpoint.call_on_command_arrival([](void* a) { (*static_cast<const Answer*>(a))(); },
+                                     const_cast<void*>(static_cast<const void*>(&answer)));
+    answer();  // any command that came before the listener was in place
+    while (!stop.load(std::memory_order_relaxed)) {
+      const std::int64_t now = realtime::monotonic_now_ns();
+      {
+        const std::lock_guard lock(mutex);
+        maybe_heartbeat(now);
+      }
+      if (end_ns > 0 && now >= end_ns) break;
+      // Wake at least every 50 ms to look at the stop flag, and for the next heartbeat.
+      realtime::sleep_until_ns(std::min(now + 50'000'000, next_heartbeat_ns));
     }
+    endpoint.call_on_command_arrival(nullptr, nullptr);
   }
   return report;
 }

@@ -7,13 +7,16 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "rpsd/realtime/pacer.h"
 #include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/servo/servo_node_loop.h"
 #include "rpsd/transport/dds_node_endpoint.h"
 #include "rpsd/transport/dds_qos_profile.h"
 #include "rpsd_messages.h"
@@ -168,6 +171,69 @@ TEST_F(NodeOverDds, ANodeStartedMidTestTakesNoneOfItsCommands) {
   for (double x : actuator.sent) EXPECT_EQ(x, 0.0);
   EXPECT_EQ(feedback.step, -1);
   EXPECT_EQ(node.counters().dropped(CommandVerdict::kJoinedMidTest), 4u);
+}
+
+// The coordinator's side of the feedback topic, without DdsLink's checks: every sample.
+class RawFeedbackReader {
+ public:
+  RawFeedbackReader(const transport::DdsParticipant& participant, std::uint32_t test_id, std::uint32_t site_id) {
+    const transport::DdsQos partition = transport::site_partition_qos(test_id, site_id);
+    subscriber_ = transport::DdsEntity(dds_create_subscriber(participant.get(), partition.get(), nullptr), "dds_create_subscriber");
+    reader_ = transport::DdsEntity(
+        dds_create_reader(subscriber_.get(), participant.feedback_topic(), transport::stream_reader_qos({}).get(), nullptr),
+        "dds_create_reader");
+  }
+  // The steps of the feedback samples taken within `timeout_s`, until `count` of them.
+  std::vector<std::int64_t> take_steps(std::size_t count, double timeout_s) {
+    std::vector<std::int64_t> steps;
+    const std::int64_t until = realtime::monotonic_now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
+    rpsd_dds_Feedback wire{};
+    void* samples[1] = {&wire};
+    dds_sample_info_t info[1];
+    while (steps.size() < count && realtime::monotonic_now_ns() < until) {
+      if (dds_take(reader_.get(), samples, info, 1, 1) > 0) {
+        if (info[0].valid_data) steps.push_back(wire.step);
+      } else {
+        dds_sleepfor(DDS_MSECS(1));
+      }
+    }
+    return steps;
+  }
+
+ private:
+  transport::DdsEntity subscriber_, reader_;
+};
+
+// Lock-step as `rpsd servo-node` runs it: every command answered by one feedback sample of its
+// step (on Cyclone's receive thread); once the loop has returned, a command moves nothing.
+TEST_F(NodeOverDds, LockStepAnswersEveryCommandAndNothingAfterTheLoopEnds) {
+  RawFeedbackReader feedback_reader(coordinator_side, kTest, kSite);
+  ASSERT_TRUE(writer.wait_for_reader(10.0));
+  std::atomic<bool> stop{false};
+  ServoNodeLoopOptions options;
+  options.real_time = false;
+  options.realtime.lock_memory = false;
+  options.realtime.fifo_priority = 0;
+  ServoNodeLoopReport report;
+  std::thread loop([&] { report = run_servo_node_loop(node, endpoint, options, stop); });
+  feedback_reader.take_steps(1000, 1.0);  // discovery of the feedback reader; nothing is sent yet
+  for (std::int64_t step = 1; step <= 50; ++step) {
+    writer.write(kTest, kSite, step, 1, 1e-4 * static_cast<double>(step));
+    const auto got = feedback_reader.take_steps(1, 5.0);
+    ASSERT_EQ(got.size(), 1u) << "no feedback for step " << step;
+    EXPECT_EQ(got[0], step);
+  }
+  stop = true;
+  loop.join();
+  EXPECT_EQ(report.feedback_published, 50);
+  EXPECT_EQ(report.first_command_tick, 0);
+  EXPECT_EQ(report.last_command_tick, 49);
+  ASSERT_EQ(actuator.sent.size(), 50u);
+  EXPECT_EQ(actuator.sent.back(), 50e-4);
+
+  writer.write(kTest, kSite, 51, 1, 0.009);
+  EXPECT_TRUE(feedback_reader.take_steps(1, 0.3).empty());
+  EXPECT_EQ(actuator.sent.size(), 50u);
 }
 
 }  // namespace

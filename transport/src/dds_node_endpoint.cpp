@@ -33,6 +33,26 @@ bool DdsNodeEndpoint::publish(const FeedbackSample& feedback) {
   return dds_write(ports_.writer(), &wire) >= 0;
 }
 
+void DdsNodeEndpoint::call_on_command_arrival(void (*on_arrival)(void*), void* context) {
+  if (!on_arrival) {
+    // Waits for a listener call in progress to return (dds_set_listener does).
+    dds_check(dds_set_listener(ports_.reader(), nullptr), "dds_set_listener");
+    on_arrival_ = nullptr;
+    arrival_context_ = nullptr;
+    return;
+  }
+  on_arrival_ = on_arrival;
+  arrival_context_ = context;
+  dds_listener_t* listener = dds_create_listener(this);
+  dds_lset_data_available(listener, [](dds_entity_t, void* self) {
+    auto* endpoint = static_cast<DdsNodeEndpoint*>(self);
+    endpoint->on_arrival_(endpoint->arrival_context_);
+  });
+  const dds_return_t rc = dds_set_listener(ports_.reader(), listener);
+  dds_delete_listener(listener);
+  dds_check(rc, "dds_set_listener");
+}
+
 bool DdsNodeEndpoint::publish_heartbeat(const NodeHeartbeat& heartbeat) {
   rpsd_dds_NodeHeartbeat wire{};
   copy_heartbeat(heartbeat, wire);

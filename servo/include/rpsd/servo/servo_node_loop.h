@@ -5,9 +5,10 @@
 // keeps ticking on its own deadlines one control period apart and, after
 // command_timeout_periods periods without one, holds. Every tick publishes feedback; a
 // heartbeat goes out a few times a second.
-// Lock-step: one tick per command, as fast as commands come; for rehearsals over the real
+// Lock-step: one tick per command, as fast as commands come, answered on Cyclone's receive
+// thread as the command arrives (no thread is woken in between); for rehearsals over the real
 // link with simulated actuators, where the plant must not advance while the coordinator
-// computes.
+// computes. Once the loop returns, no command is answered any more.
 #pragma once
 
 #include <atomic>

@@ -31,6 +31,11 @@ class DdsNodeEndpoint {
   bool publish(const FeedbackSample& feedback);
   /// Not on the fast path; a few times a second.
   bool publish_heartbeat(const NodeHeartbeat& heartbeat);
+  /// Calls on_arrival(context) on Cyclone's receive thread whenever commands arrive (a
+  /// data-available listener), so that a lock-step node answers a command without waking
+  /// another thread: one thread hand-off less per exchange. nullptr stops the calls, after
+  /// waiting for one in progress. Not real-time safe; not from inside on_arrival.
+  void call_on_command_arrival(void (*on_arrival)(void*), void* context);
   /// True while a coordinator of this test and site is discovered.
   bool coordinator_matched() const { return ports_.peer_matched(); }
 
@@ -38,6 +43,8 @@ class DdsNodeEndpoint {
   DdsNodeEndpointConfig config_;
   DdsSitePorts ports_;
   DdsEntity heartbeat_publisher_, heartbeat_writer_;
+  void (*on_arrival_)(void*) = nullptr;
+  void* arrival_context_ = nullptr;
 };
 
 }  // namespace rpsd::transport
