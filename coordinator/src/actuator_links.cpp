@@ -44,6 +44,7 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
       config.qos.control_period_s = control_period_s;
       config.qos.newest_only = s.clock.mode == scenarios::ClockConfig::Mode::kRealTime;
       config.feedback_timeout_s = s.transport.feedback_timeout_s;
+      config.busy_wait_s = s.transport.busy_wait_s;
       auto link = std::make_unique<transport::DdsLink>(*participant_, config);
       dds_links_.push_back(link.get());
       site_links_.push_back(std::move(link));

@@ -267,6 +267,12 @@ void read_transport(MappingReader r, const std::filesystem::path& file, TestScen
   }
   t.transport.feedback_timeout_s = r.positive_number_or("feedback_timeout_s", t.transport.feedback_timeout_s);
   t.transport.discovery_timeout_s = r.positive_number_or("discovery_timeout_s", t.transport.discovery_timeout_s);
+  t.transport.busy_wait_s = r.non_negative_number_or("busy_wait_s", t.transport.busy_wait_s);
+  if (t.transport.busy_wait_s > 0.0 && t.clock.mode == ClockConfig::Mode::kRealTime) {
+    r.fail("busy_wait_s", "lock-step only (clock.mode as_fast_as_possible): a real-time loop must not spin on a core its "
+                          "own receive thread may need");
+  }
+  if (t.transport.busy_wait_s > 0.01) r.fail("busy_wait_s", "at most 0.01 s");
   r.finish();
 }
 

@@ -71,6 +71,20 @@ TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
                                 std::regex(R"(sdof-free-vibration\.yaml:\d+:\d+: compensation\.order: expected a whole number from 0 to 3)")));
 }
 
+// The lock-step busy wait: read as given, refused with a real-time clock (a spinning loop
+// could starve its own receive thread), negative or beyond 10 ms.
+TEST(TestScenarioFile, BusyWaitIsForLockStepOnly) {
+  const auto file = load_study(example(), {parse_override("transport={kind: dds, busy_wait_s: 0.0002}")});
+  EXPECT_DOUBLE_EQ(std::get<TestScenario>(file.study).transport.busy_wait_s, 0.0002);
+  EXPECT_DOUBLE_EQ(std::get<TestScenario>(load_study(example()).study).transport.busy_wait_s, 0.0);
+  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: 0.0002}"), parse_override("clock.mode=real_time")})
+                .find("transport.busy_wait_s: lock-step only"),
+            std::string::npos);
+  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: -1}")}).find("transport.busy_wait_s"), std::string::npos);
+  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: 0.5}")}).find("transport.busy_wait_s: at most 0.01 s"),
+            std::string::npos);
+}
+
 TEST(TestScenarioFile, OverrideNeedsAnEqualsSign) { EXPECT_THROW(parse_override("servo.delay_s"), ConfigError); }
 
 }  // namespace

@@ -88,6 +88,49 @@ TEST(DdsLink, LockStepRoundTripsCarryEveryStepAndMeasureTheirLatency) {
   EXPECT_EQ(link.counters().late, 0);
 }
 
+// Lock-step with a busy wait: every step still carried; a node slower than the busy wait is
+// still waited for (on the waitset), and a prompt one is picked up without sleeping at all
+// on some steps at least (all 200 answers taking longer than 10 ms would fail this).
+TEST(DdsLink, BusyWaitCarriesEveryStepAndFallsBackToWaiting) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLinkConfig config = link_config(12, 1, 1);
+  config.busy_wait_s = 0.01;
+  DdsLink link(coordinator, config);
+  DdsNodeEndpoint node(node_side, node_config(12, 1));
+  ASSERT_TRUE(link.wait_for_node(10.0));
+  std::atomic<bool> stop{false};
+  std::thread responder([&] { echo(node, 1, stop); });
+  const auto exchange = [&](int step) {
+    CommandSample c;
+    c.step = step;
+    c.channels = 1;
+    c.displacement_m[0] = 1e-3 * step;
+    ASSERT_EQ(link.send(c), LinkStatus::kOk);
+    FeedbackSample f;
+    ASSERT_EQ(link.receive(f), LinkStatus::kOk) << "step " << step;
+    EXPECT_EQ(f.step, step);
+    EXPECT_DOUBLE_EQ(f.displacement_m[0], 2e-3 * step);
+  };
+  for (int step = 0; step < 200; ++step) exchange(step);
+  EXPECT_LT(link.counters().waits, 200);
+  stop = true;
+  responder.join();
+
+  // A node that answers after 30 ms: the 10 ms busy wait runs out, the link sleeps and gets it.
+  stop = false;
+  std::thread slow([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    echo(node, 1, stop, 1);
+  });
+  const auto waits_before = link.counters().waits;
+  exchange(200);
+  EXPECT_GE(link.counters().waits, waits_before + 1);
+  stop = true;
+  slow.join();
+  EXPECT_EQ(link.counters().received, 201);
+  EXPECT_EQ(link.counters().late, 0);
+}
+
 TEST(DdsLink, TwoTestsOnOneNetworkNeverSeeEachOther) {
   DdsParticipant coordinator(loopback()), node_side(loopback());
   DdsLink link(coordinator, link_config(21, 1, 1));

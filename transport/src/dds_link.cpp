@@ -1,5 +1,6 @@
 #include "rpsd/transport/dds_link.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -16,6 +17,7 @@ DdsLink::DdsLink(const DdsParticipant& participant, const DdsLinkConfig& config)
     throw std::invalid_argument("DdsLink: a site has between 1 and " + std::to_string(kMaxChannels) + " channels");
   }
   if (!(config.feedback_timeout_s > 0.0)) throw std::invalid_argument("DdsLink: feedback_timeout_s must be positive");
+  if (!(config.busy_wait_s >= 0.0)) throw std::invalid_argument("DdsLink: busy_wait_s must not be negative");
   newest_.step = -1;
 }
 
@@ -67,7 +69,12 @@ LinkStatus DdsLink::receive(FeedbackSample& feedback) {
   std::int64_t deadline = sent_at_ns_ + static_cast<std::int64_t>(config_.feedback_timeout_s * 1e9);
   if (receive_deadline_ns_ > 0 && receive_deadline_ns_ < deadline) deadline = receive_deadline_ns_;
   drain();
+  if (config_.busy_wait_s > 0.0 && receive_deadline_ns_ <= 0) {
+    const std::int64_t until = std::min(deadline, sent_at_ns_ + static_cast<std::int64_t>(config_.busy_wait_s * 1e9));
+    while (!(have_newest_ && newest_.step >= sent_step_) && realtime::monotonic_now_ns() < until) drain();
+  }
   while (!(have_newest_ && newest_.step >= sent_step_)) {
+    ++counters_.waits;
     if (!ports_.wait_for_data_until(deadline)) break;
     drain();
   }

@@ -62,6 +62,8 @@ struct TransportConfig {
   std::uint32_t domain_id = 0;
   std::filesystem::path dds_config;   ///< Cyclone XML; empty: CYCLONEDDS_URI or defaults
   double feedback_timeout_s = 1.0;    ///< lock-step: longest wait for one step's feedback
+  /// Lock-step: poll for the feedback this long before sleeping until it comes (0: never).
+  double busy_wait_s = 0.0;
   double discovery_timeout_s = 10.0;  ///< longest wait for every site's node at start
 };
 
