@@ -10,7 +10,9 @@
 //     reference run, the criteria or the plots that `rpsd run` adds. Multiple of real time,
 //     against the same test in process measured in the same run.
 //     Command-to-feedback round trip of those runs (summary.json's timing.sites[].round_trip,
-//     the same histogram): p50 and p99.
+//     the same histogram): p50 and p99. Each repetition runs it twice: as configured by
+//     default, and with transport.busy_wait_s = 0.001 (the coordinator polls for its
+//     feedback for up to 1 ms before sleeping on the waitset).
 // (2) ddsperf between two processes (`ddsperf pong waitset`, `ddsperf ping size 168 waitset`):
 //     closed-loop pings, a new one as soon as the pong is in, the traffic pattern of lock-step
 //     (rpsd sends the next command when the feedback is in and the step integrated); 168
@@ -72,27 +74,30 @@ int main(int argc, char** argv) try {
   const std::vector<std::string> env{"CYCLONEDDS_URI=file://" + config.string()};
   const auto node_yaml = (options.source_dir / "scenarios/nodes/bridge-pier-site-1.yaml").string();
 
-  const auto sdof = [&](const std::string& transport) {
+  const auto sdof = [&](const std::string& transport, const std::string& more = {}) {
     return scenarios::load_study(
         options.source_dir / "scenarios/elcentro-sdof.yaml",
         {scenarios::parse_override("ground_motion.pad_after_s=20"),
          scenarios::parse_override("transport={kind: " + transport + ", test_id: 7, domain_id: " + std::to_string(domain) +
-                                   ", dds_config: ../transport/config/loopback.xml, discovery_timeout_s: 20}")});
+                                   ", dds_config: ../transport/config/loopback.xml, discovery_timeout_s: 20" + more + "}")});
   };
   const auto dds_file = sdof("dds");
+  // The same with the coordinator polling for its feedback for up to 1 ms before sleeping.
+  const auto busy_file = sdof("dds", ", busy_wait_s: 0.001");
   const auto local_file = sdof("in_process");
   const auto& dds_scenario = std::get<scenarios::TestScenario>(dds_file.study);
+  const auto& busy_scenario = std::get<scenarios::TestScenario>(busy_file.study);
   const auto& local_scenario = std::get<scenarios::TestScenario>(local_file.study);
   const double simulated_s = dds_scenario.duration_s;
 
   // One lock-step run against a fresh node (its step count starts with the test's).
-  const auto lock_step = [&]() {
+  const auto lock_step = [&](const scenarios::TestScenario& scenario) {
     bench::ChildProcess node({rpsd, "servo-node", node_yaml, "--set", "node.mode=lock_step", "--set",
                               "dds.domain_id=" + std::to_string(domain)},
                              {}, work / "node.log");
     LockStepRun r;
     const auto start = bench::Clock::now();
-    coordinator::TestAssembly test(dds_scenario, {}, false, false);
+    coordinator::TestAssembly test(scenario, {}, false, false);
     r.discovery_s = bench::seconds_since(start);
     const double cpu_start = bench::thread_cpu_s();
     const auto loop_start = bench::Clock::now();
@@ -119,11 +124,12 @@ int main(int argc, char** argv) try {
     if (test.finish(outcome).steps != test.steps_planned()) throw std::runtime_error("the in-process run stopped early");
   });
 
-  std::vector<LockStepRun> runs;
+  std::vector<LockStepRun> runs, busy_runs;
   std::vector<double> perf_p50, perf_p99, paced_p50, paced_p99;
   std::string perf_command, paced_command;
   for (int i = 0; i < options.repetitions; ++i) {
-    runs.push_back(lock_step());
+    runs.push_back(lock_step(dds_scenario));
+    busy_runs.push_back(lock_step(busy_scenario));
     bench::DdsperfOptions perf;
     perf.program = ddsperf;
     perf.domain = domain;
@@ -145,17 +151,27 @@ int main(int argc, char** argv) try {
   }
   std::filesystem::remove_all(work);
 
-  std::vector<double> wall, cpu, discovery, rt_p50, rt_p99, rt_max;
-  for (const auto& r : runs) {
-    wall.push_back(r.wall_s);
-    cpu.push_back(r.cpu_s);
-    discovery.push_back(r.discovery_s);
-    rt_p50.push_back(1e6 * r.round_trip.p50_s);
-    rt_p99.push_back(1e6 * r.round_trip.p99_s);
-    rt_max.push_back(1e6 * r.round_trip.max_s);
-  }
+  // Per run: loop wall and CPU time, discovery, round-trip p50/p99/max (us).
+  struct Series {
+    std::vector<double> wall, cpu, discovery, rt_p50, rt_p99, rt_max;
+  };
+  const auto series = [](const std::vector<LockStepRun>& of) {
+    Series s;
+    for (const auto& r : of) {
+      s.wall.push_back(r.wall_s);
+      s.cpu.push_back(r.cpu_s);
+      s.discovery.push_back(r.discovery_s);
+      s.rt_p50.push_back(1e6 * r.round_trip.p50_s);
+      s.rt_p99.push_back(1e6 * r.round_trip.p99_s);
+      s.rt_max.push_back(1e6 * r.round_trip.max_s);
+    }
+    return s;
+  };
+  const Series plain = series(runs), busy = series(busy_runs);
+  const auto& [wall, cpu, discovery, rt_p50, rt_p99, rt_max] = plain;
   const auto x_realtime = [&](double s) { return simulated_s / s; };
   const bench::Summary dds_x = bench::map_summary(bench::summarize(wall), x_realtime);
+  const bench::Summary busy_x = bench::map_summary(bench::summarize(busy.wall), x_realtime);
   const bench::Summary local_x = bench::map_summary(bench::summarize(local.wall_s), x_realtime);
 
   fragment.add(bench::figure("sdof_dds_lockstep_x_realtime",
@@ -163,23 +179,36 @@ int main(int argc, char** argv) try {
                              "x real time", dds_x, bench::map_summary(bench::summarize(cpu), x_realtime))
                    .against("sdof_inprocess_x_realtime_same_run", "DDS / in process", dds_x.median / local_x.median)
                    .aiming_for(">= 20", dds_x.median >= 20.0));
+  fragment.add(bench::figure("sdof_dds_lockstep_busy_wait_x_realtime", "  the same with transport.busy_wait_s = 0.001",
+                             "x real time", busy_x, bench::map_summary(bench::summarize(busy.cpu), x_realtime))
+                   .against("sdof_inprocess_x_realtime_same_run", "DDS / in process", busy_x.median / local_x.median)
+                   .aiming_for(">= 20", busy_x.median >= 20.0));
   fragment.add(bench::figure("sdof_inprocess_x_realtime_same_run", "  baseline: the same test in process, same run",
                              "x real time", local_x, bench::map_summary(bench::summarize(local.cpu_s), x_realtime)));
   fragment.add(bench::figure("sdof_dds_discovery_s", "  discovery before the first step (not in the figure above)", "s",
                              bench::summarize(discovery)));
 
   const bench::Summary perf50 = bench::summarize(perf_p50);
+  const bench::Summary perf99 = bench::summarize(perf_p99);
   const bench::Summary rpsd50 = bench::summarize(rt_p50);
   const double ratio50 = rpsd50.median / perf50.median;
   fragment.add(bench::figure("dds_round_trip_us", "DDS round trip, rpsd lock-step command to feedback, median (p50)", "us",
                              rpsd50)
                    .against("ddsperf_round_trip_us", "rpsd / ddsperf at the median", ratio50)
                    .aiming_for("<= 1.5 x ddsperf at the median", ratio50 <= 1.5));
-  const bench::Summary perf99 = bench::summarize(perf_p99);
   const bench::Summary rpsd99 = bench::summarize(rt_p99);
   fragment.add(bench::figure("dds_round_trip_p99_us", "  the same, p99", "us", rpsd99)
                    .against("ddsperf_round_trip_p99_us", "rpsd / ddsperf at p99", rpsd99.median / perf99.median));
   fragment.add(bench::figure("dds_round_trip_max_us", "  the same, max", "us", bench::summarize(rt_max)));
+  const bench::Summary busy50 = bench::summarize(busy.rt_p50);
+  const double busy_ratio50 = busy50.median / perf50.median;
+  fragment.add(bench::figure("dds_round_trip_busy_wait_us", "DDS round trip, rpsd lock-step with transport.busy_wait_s = 0.001, p50",
+                             "us", busy50)
+                   .against("ddsperf_round_trip_us", "rpsd / ddsperf at the median", busy_ratio50)
+                   .aiming_for("<= 1.5 x ddsperf at the median", busy_ratio50 <= 1.5));
+  const bench::Summary busy99 = bench::summarize(busy.rt_p99);
+  fragment.add(bench::figure("dds_round_trip_busy_wait_p99_us", "  the same, p99", "us", busy99)
+                   .against("ddsperf_round_trip_p99_us", "rpsd / ddsperf at p99", busy99.median / perf99.median));
   fragment.add(bench::figure("ddsperf_round_trip_us", "DDS round trip, ddsperf closed-loop ping/pong, same config, median (p50)",
                              "us", perf50));
   fragment.add(bench::figure("ddsperf_round_trip_p99_us", "  the same, p99", "us", perf99));
@@ -187,9 +216,10 @@ int main(int argc, char** argv) try {
                              "us", bench::summarize(paced_p50)));
   fragment.add(bench::figure("ddsperf_1024hz_round_trip_p99_us", "  the same, p99", "us", bench::summarize(paced_p99)));
 
-  char text[1400];
+  char text[1600];
   std::snprintf(text, sizeof text,
-                "rpsd: %lld lock-step steps per run, %d runs, each against a fresh `%s servo-node %s --set node.mode=lock_step` "
+                "rpsd: %lld lock-step steps per run, %d runs of each variant (default; transport.busy_wait_s = 0.001), "
+                "alternating, each against a fresh `%s servo-node %s --set node.mode=lock_step` "
                 "(domain %d, transport/config/loopback.xml); the coordinator is this process (coordinator::TestAssembly, "
                 "as `rpsd run` builds it). The rpsd round trip is the coordinator's command-to-feedback time and includes "
                 "the node's plant step (the servo model over one period, RK4 at 8192 Hz: 8 substeps, about 0.7 us) and "
