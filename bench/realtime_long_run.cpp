@@ -35,12 +35,12 @@ namespace {
 using namespace rpsd;
 using nlohmann::json;
 
-/// VmRSS of a process in KiB, or -1 once it is gone.
-double rss_kib(pid_t pid) {
+/// A number of /proc/PID/status ("VmRSS" in KiB, "Threads"), or -1 once the process is gone.
+double status_of(pid_t pid, const std::string& key) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/status");
   std::string line;
   while (std::getline(in, line)) {
-    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6));
+    if (line.rfind(key + ":", 0) == 0) return std::stod(line.substr(key.size() + 1));
   }
   return -1.0;
 }
@@ -54,7 +54,23 @@ std::uintmax_t size_or_zero(const std::filesystem::path& file) {
 struct Sample {
   double t_s = 0.0;
   double coordinator_kib = -1.0, node_kib = -1.0;
+  double coordinator_threads = -1.0, node_threads = -1.0;
   std::uintmax_t history_bytes = 0;
+};
+
+/// Where a process's resident set rose during the test: how often and by how much in all.
+struct Rises {
+  int count = 0;
+  double total_kib = 0.0, largest_kib = 0.0, largest_at_min = 0.0;
+  void see(double before, double after, double at_min) {
+    if (after <= before) return;
+    ++count;
+    total_kib += after - before;
+    if (after - before > largest_kib) {
+      largest_kib = after - before;
+      largest_at_min = at_min;
+    }
+  }
 };
 
 /// Least-squares slope of y over x (units of y per unit of x); 0 with fewer than 2 points.
@@ -177,33 +193,47 @@ int main(int argc, char** argv) try {
       fragment.note("the run had not ended 10 minutes after its record: stopped");
       break;
     }
-    samples.push_back({bench::seconds_since(start), rss_kib(run.pid()), rss_kib(node.pid()), size_or_zero(out / "time_history.csv")});
+    samples.push_back({bench::seconds_since(start), status_of(run.pid(), "VmRSS"), status_of(node.pid(), "VmRSS"),
+                       status_of(run.pid(), "Threads"), status_of(node.pid(), "Threads"), size_or_zero(out / "time_history.csv")});
   }
   node.stop(SIGTERM, 10.0);
   const std::string run_log = bench::read_text(work / "run.log");
   std::fprintf(stderr, "realtime_long_run: exit %d\n%s", code, run_log.c_str());
 
-  // The test's samples: those taken while time_history.csv grew, from its second minute on.
+  // The test's samples: those after which time_history.csv still grew (the test was running
+  // when they were taken; afterwards `rpsd run` builds the reference run), from its second
+  // minute on.
   std::vector<double> t_min, coord, nodes;
   double test_start = -1.0, coord_first = 0, node_first = 0, coord_peak = 0, node_peak = 0;
-  for (std::size_t i = 1; i < samples.size(); ++i) {
+  Rises coord_rises, node_rises;
+  double threads_first = -1, threads_max = 0;
+  for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
     const Sample& s = samples[i];
-    if (s.history_bytes <= samples[i - 1].history_bytes || s.coordinator_kib < 0 || s.node_kib < 0) continue;
+    if (samples[i + 1].history_bytes <= s.history_bytes || s.history_bytes == 0 || s.coordinator_kib < 0 || s.node_kib < 0) continue;
     if (test_start < 0) test_start = s.t_s;
     if (s.t_s - test_start < 60.0) continue;
+    const double at_min = (s.t_s - test_start) / 60.0;
     if (t_min.empty()) {
       coord_first = s.coordinator_kib;
       node_first = s.node_kib;
+      threads_first = s.coordinator_threads;
+    } else {
+      coord_rises.see(coord.back(), s.coordinator_kib, at_min);
+      node_rises.see(nodes.back(), s.node_kib, at_min);
     }
-    t_min.push_back((s.t_s - test_start) / 60.0);
+    threads_max = std::max(threads_max, s.coordinator_threads);
+    t_min.push_back(at_min);
     coord.push_back(s.coordinator_kib);
     nodes.push_back(s.node_kib);
     coord_peak = std::max(coord_peak, s.coordinator_kib);
     node_peak = std::max(node_peak, s.node_kib);
   }
   std::ofstream(work / "rss.txt") << [&] {
-    std::string text = "t_s coordinator_kib node_kib time_history_bytes\n";
-    for (const auto& s : samples) text += format("%.1f %.0f", s.t_s, s.coordinator_kib) + format(" %.0f", s.node_kib) + " " + std::to_string(s.history_bytes) + "\n";
+    std::string text = "t_s coordinator_kib node_kib coordinator_threads node_threads time_history_bytes\n";
+    for (const auto& s : samples) {
+      text += format("%.1f %.0f", s.t_s, s.coordinator_kib) + format(" %.0f %.0f", s.node_kib, s.coordinator_threads) +
+              format(" %.0f ", s.node_threads) + std::to_string(s.history_bytes) + "\n";
+    }
     return text;
   }();
 
@@ -232,9 +262,15 @@ int main(int argc, char** argv) try {
     fragment.add(bench::figure("long_run_rss_coordinator_mib", "  coordinator resident set, peak during the test", "MiB",
                                single(coord_peak / 1024.0)));
     fragment.add(bench::figure("long_run_rss_node_mib", "  servo node resident set, peak during the test", "MiB", single(node_peak / 1024.0)));
+    fragment.add(bench::figure("long_run_rss_change_coordinator_kib", "  coordinator resident set, end of the test less minute 1", "KiB",
+                               single(coord.back() - coord_first)));
     fragment.note(format("Resident sets at minute 1 and at the end of the test: coordinator %.0f", coord_first) +
                   format(" -> %.0f KiB, ", coord.back()) + format("node %.0f", node_first) + format(" -> %.0f KiB; ", nodes.back()) +
-                  std::to_string(t_min.size()) + " one-second samples.");
+                  std::to_string(t_min.size()) + " one-second samples. Rises: coordinator " + std::to_string(coord_rises.count) +
+                  format(" (%.0f KiB in all, the largest %.0f KiB", coord_rises.total_kib, coord_rises.largest_kib) +
+                  format(" at minute %.1f), node ", coord_rises.largest_at_min) + std::to_string(node_rises.count) +
+                  format(" (%.0f KiB in all); coordinator threads %.0f", node_rises.total_kib, threads_first) +
+                  format(" at minute 1, at most %.0f.", threads_max));
   }
   if (have_summary) {
     const json& t = summary["timing"];
