@@ -171,14 +171,19 @@ int main(int argc, char** argv) try {
   std::filesystem::create_directories(work);
   const auto src = std::filesystem::absolute(options.source_dir);
   const std::string r = std::to_string(rate), d = std::to_string(domain);
+  // A test id of its own: the system tests run test 7 on domains 1-200, and partitions by
+  // test id keep a test that shares the domain apart.
+  const std::string test_id = "9301";
   const double seconds = 60.0 * minutes;
 
   bench::ChildProcess node({rpsd, "servo-node", (src / "scenarios/nodes/bridge-pier-site-1.yaml").string(), "--set",
                             "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set", "dds.domain_id=" + d,
+                            "--set", "node.test_id=" + test_id,
                             "--summary", (work / "node.json").string()},
                            {}, work / "node.log");
   bench::ChildProcess run({rpsd, "run", (src / "scenarios/synthetic-sdof.yaml").string(), "--out", out.string(), "--set",
-                           "transport={kind: dds, test_id: 7, domain_id: " + d + ", dds_config: ../transport/config/loopback.xml}",
+                           "transport={kind: dds, test_id: " + test_id + ", domain_id: " + d +
+                               ", dds_config: ../transport/config/loopback.xml}",
                            "--set", "clock.mode=real_time", "--set", "clock.control_rate_hz=" + r, "--set",
                            "clock.max_feedback_age_periods=" + std::to_string(max_age), "--set",
                            "ground_motion.synthetic.duration_s=" + format("%g", seconds)},
