@@ -15,8 +15,9 @@
 #   itself woken 3 periods late (each such event may explain one hold). At 5 % the same, or
 #   the safe stop: exit 3 with its reason, every step recorded, the node holding within 4
 #   ticks of its last command. A run the host stalled (site 1, which loses nothing, late in
-#   the same steps, or the coordinator woken 2 periods late) is not the loss's doing: such a
-#   stopped 1 % run is repeated once. Measured: 2 of 24 runs at 5 % stopped; at 1 %, 2 of
+#   the same steps, or the coordinator woken 2 periods late, or stopped before the loss began)
+#   is not the loss's doing: such a stopped run is repeated, up to 3 runs in all per rate (two
+#   stalled in a row once in CI). Measured: 2 of 24 runs at 5 % stopped; at 1 %, 2 of
 #   about 12 did, both with site 1 late in the same steps (host stalls).
 #   Each lost command makes one late step, or two when the next command reaches the node
 #   just after the tick the node made without it (the node's missed-period ticks fall in
@@ -47,7 +48,7 @@ print(sum(1 for r in csv.DictReader(open(sys.argv[1]))
 PY
 }
 for percent in 1 5; do
-  for attempt in 1 2; do
+  for attempt in 1 2 3; do
     out="$WORK/loss$percent-$attempt"
     start_host_node 1 real_time
     start_host_node 2 real_time
@@ -67,8 +68,10 @@ for percent in 1 5; do
     kill -TERM $NODE1_PID $NODE2_PID
     wait $NODE1_PID $NODE2_PID || true
     cat "$out.log"
-    if [ $code = 3 ] && [ $percent = 1 ] && [ $attempt = 1 ] && [ "$(host_stall "$out")" = True ]; then
-      echo "$percent %: the host stalled (not the loss): once more"
+    # A stop before any packet was dropped, or with the host's stall signs, is not the loss's
+    # doing: run again (the last run is judged whatever it shows).
+    if [ $code = 3 ] && [ $attempt -lt 3 ] && { [ "$dropped_in" = 0 ] || [ "$(host_stall "$out")" = True ]; }; then
+      echo "$percent %: stopped by the host (a stall), not by the loss: once more"
       continue
     fi
     break
