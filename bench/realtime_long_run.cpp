@@ -233,14 +233,14 @@ int main(int argc, char** argv) try {
     coord_peak = std::max(coord_peak, s.coordinator_kib);
     node_peak = std::max(node_peak, s.node_kib);
   }
-  std::ofstream(work / "rss.txt") << [&] {
-    std::string text = "t_s coordinator_kib node_kib coordinator_threads node_threads time_history_bytes\n";
+  {
+    std::ofstream rss(work / "rss.txt");
+    rss << "t_s coordinator_kib node_kib coordinator_threads node_threads time_history_bytes\n";
     for (const auto& s : samples) {
-      text += format("%.1f %.0f", s.t_s, s.coordinator_kib) + format(" %.0f %.0f", s.node_kib, s.coordinator_threads) +
-              format(" %.0f ", s.node_threads) + std::to_string(s.history_bytes) + "\n";
+      rss << s.t_s << ' ' << s.coordinator_kib << ' ' << s.node_kib << ' ' << s.coordinator_threads << ' ' << s.node_threads
+          << ' ' << s.history_bytes << '\n';
     }
-    return text;
-  }();
+  }
 
   const bool have_summary = std::filesystem::exists(out / "summary.json");
   json summary = have_summary ? json::parse(std::ifstream(out / "summary.json")) : json::object();
