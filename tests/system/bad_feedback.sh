@@ -17,14 +17,20 @@ source "$(dirname "$0")/lib.sh"
 FAULT_NODE=${RPSD_FAULT_NODE:?path to rpsd_fault_node}
 for mode in lock_step real_time; do
   out="$WORK/$mode"
-  if [ $mode = lock_step ]; then nan=1000 clock=as_fast_as_possible rt=0; else nan=2048 clock=real_time rt=1; fi
+  # Lock-step waits for every step's feedback; in real time, a step goes on with feedback up
+  # to RT_AGE periods old (lib.sh).
+  if [ $mode = lock_step ]; then
+    nan=1000 clock=as_fast_as_possible rt=0 age=()
+  else
+    nan=2048 clock=real_time rt=1 age=(--set clock.max_feedback_age_periods=$RT_AGE)
+  fi
   $FAULT_NODE --domain $DOMAIN --dds-config "$SRC/transport/config/loopback.xml" --real-time $rt --summary "$WORK/fault-$mode.json" \
     --wrong-test 100 --wrong-site 200 --wrong-channels 300 --older 400 --duplicate 500 --late 1500 --late-ms 3 \
     --nan $nan > "$WORK/fault-$mode.log" 2>&1 &
   fault=$!
   PIDS+=($fault)
   set +e
-  run_bridge "$out" --set transport.kind=dds --set clock.mode=$clock > "$WORK/run-$mode.log" 2>&1
+  run_bridge "$out" --set transport.kind=dds --set clock.mode=$clock "${age[@]}" > "$WORK/run-$mode.log" 2>&1
   code=$?
   set -e
   kill -TERM $fault

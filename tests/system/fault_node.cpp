@@ -102,7 +102,17 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
   };
   if (o.real_time) rpsd::realtime::apply_realtime({});
   CommandSample c;
+  // Heartbeats as a servo node sends them: the coordinator starts once one says the node
+  // has found it.
+  rpsd::transport::NodeHeartbeat heartbeat;
+  heartbeat.test_id = o.test_id;
+  heartbeat.site_id = site;
+  std::int64_t next_heartbeat_ns = 0;
   while (!g_stop.load()) {
+    if (const std::int64_t now = rpsd::realtime::monotonic_now_ns(); now >= next_heartbeat_ns) {
+      node.publish_heartbeat(heartbeat);
+      next_heartbeat_ns = now + 100'000'000;
+    }
     if (!node.wait_for_command_until(rpsd::realtime::monotonic_now_ns() + 50'000'000)) continue;
     while (node.take_command(c)) {
       FeedbackSample f;

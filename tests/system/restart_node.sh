@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Fault: a servo node is killed (SIGKILL) mid-test and started again; real time at 1024 Hz on
 # loopback. Three parts.
-# 1. Restarted 0.3 s later, default coordinator: site 2 goes silent, so the test stops 5
-#    control periods (4.9 ms) after its last feedback with exit code 3 and the reason; every
-#    step taken is recorded. A test does not resume: the restarted node starts at its
+# 1. Restarted 0.3 s later: site 2 goes silent, so the test stops RT_AGE + 1 control periods
+#    (lib.sh; 99 ms) after its last feedback with exit code 3 and the reason; every step taken
+#    is recorded. A test does not resume: the restarted node starts at its
 #    initial position and waits; it is sent no command (commands are volatile: a node that
 #    joins gets no earlier command from DDS, and the stopped coordinator sends no new one).
 # 2. Restarted at once, with a coordinator that tolerates feedback up to 1000 periods
@@ -19,7 +19,7 @@ source "$(dirname "$0")/lib.sh"
 start_node 1 real_time
 start_node 2 real_time
 $RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN \
-  --set transport.kind=dds --set clock.mode=real_time > "$WORK/run.log" 2>&1 &
+  --set transport.kind=dds --set clock.mode=real_time --set clock.max_feedback_age_periods=$RT_AGE > "$WORK/run.log" 2>&1 &
 coordinator=$!
 PIDS+=($coordinator)
 wait_for_rows "$WORK/rt/time_history.csv" 1024 $coordinator
@@ -37,9 +37,8 @@ kill -TERM $NODE1_PID $NODE2_PID
 wait $NODE1_PID $NODE2_PID || true
 cat "$WORK/run.log"
 [ $code = 3 ] || fail "exit code $code, expected 3"
-grep -q "the servo node stopped answering (newest feedback 5 control periods old" "$WORK/run.log" || fail "no clear reason"
+stopped_on_silence "$WORK/rt" "$WORK/run.log"
 every_step_recorded "$WORK/rt"
-[ "$(column "$WORK/rt" feedback_age_periods 'v[-4:] == [1, 2, 3, 4]')" = True ] || fail "stopped without 4 late steps before"
 n2="$WORK/node2.json"
 [ "$(json "$n2" "j['commands_accepted'], j['commands_applied'], j['first_command_tick'], j['holds'], j['faulted']")" = "0 0 -1 0 False" ] \
   || { cat "$n2"; fail "the restarted node took a command"; }
@@ -86,7 +85,8 @@ kill -9 $NODE2_PID
 wait $NODE2_PID 2>/dev/null || true
 start_node 2 real_time
 set +e
-run_bridge "$WORK/rt2" --set transport.kind=dds --set clock.mode=real_time --set ground_motion.trim.end_s=3 > "$WORK/run2.log" 2>&1
+run_bridge "$WORK/rt2" --set transport.kind=dds --set clock.mode=real_time --set clock.max_feedback_age_periods=$RT_AGE \
+  --set ground_motion.trim.end_s=3 > "$WORK/run2.log" 2>&1
 code=$?
 set -e
 kill -TERM $NODE1_PID $NODE2_PID
@@ -96,7 +96,8 @@ cat "$WORK/run2.log"
 every_step_recorded "$WORK/rt2"
 steps=$(json "$WORK/rt2/summary.json" "j['steps']")
 [ "$steps" = "$(json "$WORK/rt2/summary.json" "j['steps_planned']")" ] || fail "part 3: $steps steps"
-[ "$(json "$n2" "j['last_command_step'] == $steps - 1 and sum(j['commands_dropped'].values()) == 0 and j['holds'] == 1")" = True ] \
-  || { cat "$n2"; fail "part 3: the restarted node did not follow the test"; }
+# Holds: the one after the last command, and any the host's delays explain (lib.sh).
+[ "$(json "$n2" "j['last_command_step'] == $steps - 1 and sum(j['commands_dropped'].values()) == 0 \
+  and 1 <= j['holds'] <= 1 + $(hold_reasons "$WORK/rt2")")" = True ] || { cat "$n2"; fail "part 3: the restarted node did not follow the test"; }
 echo "PASS: a node restarted mid-test takes no command of the test (exit 3 either way); one restarted" \
   "before the test serves all $steps steps"

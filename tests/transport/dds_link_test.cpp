@@ -35,6 +35,25 @@ DdsNodeEndpointConfig node_config(std::uint32_t test, std::uint32_t site) {
   return c;
 }
 
+// The node's side of the start handshake: heartbeats, as a servo node sends them, while the
+// link waits for the node; true once the link has found it.
+bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, std::uint32_t site, double timeout_s = 10.0) {
+  std::atomic<bool> done{false};
+  std::thread announcer([&] {
+    NodeHeartbeat h;
+    h.test_id = test;
+    h.site_id = site;
+    while (!done) {
+      node.publish_heartbeat(h);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  const bool found = link.wait_for_node(timeout_s);
+  done = true;
+  announcer.join();
+  return found;
+}
+
 // Answers every command of its site with x = 2 u, F = -u, until stopped.
 void echo(DdsNodeEndpoint& node, std::uint32_t site, const std::atomic<bool>& stop, int max_answers = 1 << 30) {
   CommandSample c;
@@ -62,7 +81,7 @@ TEST(DdsLink, LockStepRoundTripsCarryEveryStepAndMeasureTheirLatency) {
   DdsParticipant coordinator(loopback()), node_side(loopback());
   DdsLink link(coordinator, link_config(11, 3, 2));
   DdsNodeEndpoint node(node_side, node_config(11, 3));
-  ASSERT_TRUE(link.wait_for_node(10.0));
+  ASSERT_TRUE(connect(link, node, 11, 3));
   std::atomic<bool> stop{false};
   std::thread responder([&] { echo(node, 3, stop); });
   for (int step = 0; step < 200; ++step) {
@@ -97,7 +116,7 @@ TEST(DdsLink, BusyWaitCarriesEveryStepAndFallsBackToWaiting) {
   config.busy_wait_s = 0.01;
   DdsLink link(coordinator, config);
   DdsNodeEndpoint node(node_side, node_config(12, 1));
-  ASSERT_TRUE(link.wait_for_node(10.0));
+  ASSERT_TRUE(connect(link, node, 12, 1));
   std::atomic<bool> stop{false};
   std::thread responder([&] { echo(node, 1, stop); });
   const auto exchange = [&](int step) {
@@ -131,6 +150,23 @@ TEST(DdsLink, BusyWaitCarriesEveryStepAndFallsBackToWaiting) {
   EXPECT_EQ(link.counters().late, 0);
 }
 
+// Discovery ends on the two sides at different times; a command sent before the node's reader
+// knows the coordinator's writer is lost. So the link waits for the node's heartbeat saying
+// it has matched the coordinator, from the node of its own test and site.
+TEST(DdsLink, WaitsForTheNodesWordThatItFoundTheCoordinator) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(61, 1, 1));
+  DdsNodeEndpoint node(node_side, node_config(61, 1));
+  const std::int64_t until = realtime::monotonic_now_ns() + 10'000'000'000;
+  while (!node.coordinator_matched() && realtime::monotonic_now_ns() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(node.coordinator_matched());
+  EXPECT_FALSE(link.wait_for_node(0.5));  // matched both ways, but no word from the node
+  EXPECT_FALSE(connect(link, node, 61, 9, 0.5));  // a heartbeat claiming another site
+  EXPECT_TRUE(connect(link, node, 61, 1));
+}
+
 TEST(DdsLink, TwoTestsOnOneNetworkNeverSeeEachOther) {
   DdsParticipant coordinator(loopback()), node_side(loopback());
   DdsLink link(coordinator, link_config(21, 1, 1));
@@ -151,7 +187,7 @@ TEST(DdsLink, FeedbackWithAForeignSiteIdOrChannelCountIsDroppedAndCounted) {
   DdsParticipant coordinator(loopback()), node_side(loopback());
   DdsLink link(coordinator, link_config(31, 1, 1, 0.3));
   DdsNodeEndpoint node(node_side, node_config(31, 1));
-  ASSERT_TRUE(link.wait_for_node(10.0));
+  ASSERT_TRUE(connect(link, node, 31, 1));
   CommandSample c;
   c.channels = 1;
   c.step = 0;
@@ -176,7 +212,7 @@ TEST(DdsLink, FeedbackOfAnotherTestOrAnOlderStepIsDroppedAndCounted) {
   DdsParticipant coordinator(loopback()), node_side(loopback());
   DdsLink link(coordinator, link_config(51, 1, 1, 0.3));
   DdsNodeEndpoint node(node_side, node_config(51, 1));
-  ASSERT_TRUE(link.wait_for_node(10.0));
+  ASSERT_TRUE(connect(link, node, 51, 1));
   CommandSample c;
   c.channels = 1;
   c.step = 5;
@@ -216,7 +252,7 @@ TEST(DdsLink, ARealTimeDeadlineEndsTheWaitAndHandsBackTheNewestSample) {
   DdsParticipant coordinator(loopback()), node_side(loopback());
   DdsLink link(coordinator, link_config(41, 1, 1, 5.0));
   DdsNodeEndpoint node(node_side, node_config(41, 1));
-  ASSERT_TRUE(link.wait_for_node(10.0));
+  ASSERT_TRUE(connect(link, node, 41, 1));
   std::atomic<bool> stop{false};
   std::thread responder([&] { echo(node, 1, stop, 1); });  // answers step 0 only
   CommandSample c;

@@ -57,6 +57,33 @@ TEST(MultiSiteLink, RoutesEachChannelToItsSiteAndMergesTheFeedback) {
   EXPECT_EQ(f.status, kNodeLimitActive);  // one site's limit shows on the merged sample
 }
 
+// A link whose node has not answered yet: it leaves the feedback untouched (Link::receive).
+class SilentLink final : public Link {
+ public:
+  LinkStatus send(const CommandSample&) override { return LinkStatus::kOk; }
+  LinkStatus receive(FeedbackSample&) override { return LinkStatus::kTimeout; }
+};
+
+TEST(MultiSiteLink, ASiteThatNeverAnsweredIsAtStepMinusOneAndNotGivenAnotherSitesValues) {
+  EchoNode a(1);
+  InProcessLink la(a);
+  SilentLink lb;
+  MultiSiteLink link({{1, &la, {0}}, {2, &lb, {1}}});
+  CommandSample c;
+  c.step = 0;
+  c.channels = 2;
+  c.displacement_m = {0.1, 0.2};
+  ASSERT_EQ(link.send(c), LinkStatus::kOk);
+  FeedbackSample f;
+  f.displacement_m[1] = 0.5;  // what the caller holds for channel 1 (the start)
+  f.force_n[1] = 7.0;
+  EXPECT_EQ(link.receive(f), LinkStatus::kTimeout);
+  EXPECT_EQ(f.step, -1);
+  EXPECT_DOUBLE_EQ(f.displacement_m[0], 10.1);
+  EXPECT_DOUBLE_EQ(f.displacement_m[1], 0.5);  // not site 1's 10.1
+  EXPECT_DOUBLE_EQ(f.force_n[1], 7.0);
+}
+
 TEST(MultiSiteLink, RejectsChannelsOwnedTwiceOrByNobody) {
   EchoNode a(1);
   InProcessLink la(a), lb(a);

@@ -19,11 +19,29 @@ DdsLink::DdsLink(const DdsParticipant& participant, const DdsLinkConfig& config)
   if (!(config.feedback_timeout_s > 0.0)) throw std::invalid_argument("DdsLink: feedback_timeout_s must be positive");
   if (!(config.busy_wait_s >= 0.0)) throw std::invalid_argument("DdsLink: busy_wait_s must not be negative");
   newest_.step = -1;
+  const DdsQos partition = site_partition_qos(config.test_id, config.site_id);
+  heartbeat_subscriber_ = DdsEntity(dds_create_subscriber(participant.get(), partition.get(), nullptr), "dds_create_subscriber");
+  heartbeat_reader_ = DdsEntity(
+      dds_create_reader(heartbeat_subscriber_.get(), participant.heartbeat_topic(), heartbeat_qos(config.qos).get(), nullptr),
+      "dds_create_reader(heartbeat)");
 }
 
-bool DdsLink::wait_for_node(double timeout_s) const {
+bool DdsLink::node_reports_matched() {
+  rpsd_dds_NodeHeartbeat wire{};
+  void* samples[1] = {&wire};
+  dds_sample_info_t info[1];
+  while (dds_take(heartbeat_reader_.get(), samples, info, 1, 1) > 0) {
+    if (info[0].valid_data && wire.test_id == config_.test_id && wire.site_id == config_.site_id) {
+      node_matched_ = wire.coordinator_matched;
+    }
+  }
+  return node_matched_;
+}
+
+bool DdsLink::wait_for_node(double timeout_s) {
   const std::int64_t until = realtime::monotonic_now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
-  while (!ports_.peer_matched()) {
+  // Both conditions at once: the node's heartbeat may say so before this side has matched.
+  while (!(node_reports_matched() && ports_.peer_matched())) {
     if (realtime::monotonic_now_ns() > until) return false;
     dds_sleepfor(DDS_MSECS(10));
   }

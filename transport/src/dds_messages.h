@@ -50,6 +50,7 @@ inline void copy_heartbeat(const NodeHeartbeat& in, rpsd_dds_NodeHeartbeat& out)
   out.overruns = in.overruns;
   out.dropped_messages = in.dropped_messages;
   out.control_period_s = in.control_period_s;
+  out.coordinator_matched = in.coordinator_matched;
 }
 
 }  // namespace rpsd::transport

@@ -56,6 +56,7 @@ void DdsNodeEndpoint::call_on_command_arrival(void (*on_arrival)(void*), void* c
 bool DdsNodeEndpoint::publish_heartbeat(const NodeHeartbeat& heartbeat) {
   rpsd_dds_NodeHeartbeat wire{};
   copy_heartbeat(heartbeat, wire);
+  wire.coordinator_matched = ports_.peer_matched();
   return dds_write(heartbeat_writer_.get(), &wire) >= 0;
 }
 

@@ -1,6 +1,7 @@
 #include "rpsd/transport/multi_site_link.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -9,6 +10,7 @@ namespace rpsd::transport {
 namespace {
 // kOk < kTimeout < kStaleStep < kPeerLost: the worst site decides.
 LinkStatus worse(LinkStatus a, LinkStatus b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
+constexpr std::int64_t kNothingYet = std::numeric_limits<std::int64_t>::min();
 }  // namespace
 
 MultiSiteLink::MultiSiteLink(std::vector<SiteRoute> sites) : sites_(std::move(sites)) {
@@ -50,14 +52,20 @@ LinkStatus MultiSiteLink::receive(FeedbackSample& feedback) {
   feedback.channels = static_cast<std::uint8_t>(channels_);
   bool first = true;
   for (const SiteRoute& site : sites_) {
+    // Marks the buffer so that a site which has not answered yet (its link leaves the
+    // buffer untouched) is not taken for the site before it.
+    site_feedback_.step = kNothingYet;
     status = worse(status, site.link->receive(site_feedback_));
-    // A step is only as recent as its slowest site.
-    feedback.step = first ? site_feedback_.step : std::min(feedback.step, site_feedback_.step);
-    if (first) {
+    const bool answered = site_feedback_.step != kNothingYet;
+    // A step is only as recent as its slowest site; one that never answered is at -1.
+    const std::int64_t site_step = answered ? site_feedback_.step : -1;
+    feedback.step = first ? site_step : std::min(feedback.step, site_step);
+    if (first && answered) {
       feedback.test_id = site_feedback_.test_id;
       feedback.time_s = site_feedback_.time_s;
     }
     first = false;
+    if (!answered) continue;  // its channels keep what they held
     feedback.status |= site_feedback_.status;
     feedback.limit_flags |= site_feedback_.limit_flags;
     for (std::size_t i = 0; i < site.channels.size(); ++i) {

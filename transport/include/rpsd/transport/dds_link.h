@@ -42,8 +42,10 @@ class DdsLink final : public Link {
   /// Not real-time safe; throws DdsError or std::invalid_argument.
   DdsLink(const DdsParticipant& participant, const DdsLinkConfig& config);
 
-  /// Waits until the site's node is discovered (both directions matched). Not real-time safe.
-  bool wait_for_node(double timeout_s) const;
+  /// Waits until the site's node is discovered both ways on this side and its heartbeat says
+  /// it has discovered this coordinator too; only then does the first command reach it.
+  /// Not real-time safe.
+  bool wait_for_node(double timeout_s);
 
   /// Real-time safe (no allocation in rpsd's code; Cyclone serialises the sample).
   LinkStatus send(const CommandSample& command) override;
@@ -59,8 +61,13 @@ class DdsLink final : public Link {
   /// Takes every sample waiting; keeps the newest valid one in newest_. Real-time safe.
   void drain();
 
+  /// Takes the heartbeats waiting; true when the newest says the node has matched us.
+  bool node_reports_matched();
+
   DdsLinkConfig config_;
   DdsSitePorts ports_;
+  DdsEntity heartbeat_subscriber_, heartbeat_reader_;
+  bool node_matched_ = false;
   std::int64_t sent_step_ = -1;
   std::int64_t sent_at_ns_ = 0;
   std::int64_t receive_deadline_ns_ = 0;

@@ -29,7 +29,8 @@ class DdsNodeEndpoint {
   bool take_command(CommandSample& command);
   /// Real-time safe (Cyclone serialises the sample).
   bool publish(const FeedbackSample& feedback);
-  /// Not on the fast path; a few times a second.
+  /// Not on the fast path; a few times a second. coordinator_matched is this endpoint's own
+  /// (the coordinator waits for it before its first command), whatever `heartbeat` says.
   bool publish_heartbeat(const NodeHeartbeat& heartbeat);
   /// Calls on_arrival(context) on Cyclone's receive thread whenever commands arrive (a
   /// data-available listener), so that a lock-step node answers a command without waking

@@ -19,7 +19,9 @@ class Link {
   virtual ~Link() = default;
   /// Sends the command of one control step. Real-time safe.
   virtual LinkStatus send(const CommandSample& command) = 0;
-  /// Waits (within the link's deadline) for the feedback of the last command. Real-time safe.
+  /// Waits (within the link's deadline) for the feedback of the last command. Without it,
+  /// hands back the newest feedback the node sent, or leaves `feedback` untouched when the
+  /// node has sent none yet. Real-time safe.
   virtual LinkStatus receive(FeedbackSample& feedback) = 0;
 };
 

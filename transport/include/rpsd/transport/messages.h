@@ -64,6 +64,9 @@ struct NodeHeartbeat {
   std::int64_t overruns = 0;
   std::int64_t dropped_messages = 0;
   double control_period_s = 0.0;
+  /// The node's command reader and feedback writer have both matched a coordinator's (DDS
+  /// discovery done on the node's side too). Filled in by DdsNodeEndpoint::publish_heartbeat.
+  bool coordinator_matched = false;
 };
 
 }  // namespace rpsd::transport
