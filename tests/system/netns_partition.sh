@@ -9,7 +9,7 @@
 #   code 3 and the reason "the servo node stopped answering (newest feedback N control periods
 #   old ...)". Node 1 then holds as well, within 4 ticks of its last command.
 # Results: every step taken is in time_history.csv (steps 1..n, n = summary.json steps); its
-#   last RT_AGE rows carry feedback_age_periods 1, 2, ..., RT_AGE.
+#   last rows carry feedback_age_periods ..., RT_AGE - 1, RT_AGE (lib.sh: stopped_on_silence).
 source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/netns.sh"
 start_host_node 1 real_time
