@@ -29,6 +29,7 @@
 
 #include "bench_report.h"
 #include "child_process.h"
+#include "rpsd/coordinator/line_fit.h"
 
 namespace {
 
@@ -72,21 +73,6 @@ struct Rises {
     }
   }
 };
-
-/// Least-squares slope of y over x (units of y per unit of x); 0 with fewer than 2 points.
-double slope(const std::vector<double>& x, const std::vector<double>& y) {
-  const auto n = static_cast<double>(x.size());
-  if (x.size() < 2) return 0.0;
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    sx += x[i];
-    sy += y[i];
-    sxx += x[i] * x[i];
-    sxy += x[i] * y[i];
-  }
-  const double d = n * sxx - sx * sx;
-  return d != 0.0 ? (n * sxy - sx * sy) / d : 0.0;
-}
 
 /// What time_history.csv holds: rows, whether the steps run 1, 2, 3, ... without a gap, and
 /// the feedback ages (column feedback_age_periods).
@@ -250,7 +236,8 @@ int main(int argc, char** argv) try {
   const bool every_step = completed && history.rows == planned && history.steps_in_order &&
                           summary.value("dropped_records", std::uint64_t{1}) == 0;
   constexpr double kPageKiB = 4.0;
-  const double coord_slope = slope(t_min, coord), node_slope = slope(t_min, nodes);
+  const double coord_slope = coordinator::least_squares_slope(t_min, coord),
+               node_slope = coordinator::least_squares_slope(t_min, nodes);
   const std::string status = completed ? "completed" : "DID NOT COMPLETE: " + summary.value("outcome", std::string("exit " + std::to_string(code)));
 
   bench::Figure runs = bench::figure("long_run_completed", format("%g-minute real-time run at ", minutes) + r + " Hz over DDS (" + status + ")",

@@ -1,5 +1,7 @@
 #include "rpsd/coordinator/damping_identification.h"
 
+#include "rpsd/coordinator/line_fit.h"
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -26,14 +28,7 @@ IdentifiedDamping identify_damping(std::span<const double> x, double dt_s, doubl
   }
   if (times.size() < 3) throw std::invalid_argument("identify_damping: fewer than three peaks to fit");
   const double n = static_cast<double>(times.size());
-  double st = 0, sl = 0, stt = 0, stl = 0;
-  for (std::size_t i = 0; i < times.size(); ++i) {
-    st += times[i];
-    sl += logs[i];
-    stt += times[i] * times[i];
-    stl += times[i] * logs[i];
-  }
-  const double slope = (n * stl - st * sl) / (n * stt - st * st);  // = -sigma
+  const double slope = least_squares_slope(times, logs);  // = -sigma
   const double period = 2.0 * (times.back() - times.front()) / (n - 1.0);
   const double omega_d = 2.0 * std::numbers::pi / period;
   const double sigma = -slope;

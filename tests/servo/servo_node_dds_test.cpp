@@ -49,20 +49,17 @@ class IdealActuator final : public Actuator {
   std::vector<double> sent;
 };
 
-// A coordinator's command writer without DdsLink's checks: it writes any sample.
-class RawCommandWriter {
+// A coordinator's side of the site without DdsLink's checks: the site's ports (command writer,
+// feedback reader); it writes any command and takes every feedback sample.
+class RawCoordinator {
  public:
-  RawCommandWriter(const transport::DdsParticipant& participant, std::uint32_t test_id, std::uint32_t site_id) {
-    const transport::DdsQos partition = transport::site_partition_qos(test_id, site_id);
-    publisher_ = transport::DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr), "dds_create_publisher");
-    writer_ = transport::DdsEntity(
-        dds_create_writer(publisher_.get(), participant.command_topic(), transport::stream_writer_qos({}).get(), nullptr),
-        "dds_create_writer");
-  }
+  RawCoordinator(const transport::DdsParticipant& participant, std::uint32_t test_id, std::uint32_t site_id)
+      : ports_(participant, test_id, site_id, participant.command_topic(), transport::stream_writer_qos({}),
+               participant.feedback_topic(), transport::stream_reader_qos({})) {}
   bool wait_for_reader(double timeout_s) const {
     const std::int64_t until = realtime::monotonic_now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
     dds_publication_matched_status_t status{};
-    while (dds_get_publication_matched_status(writer_.get(), &status) >= 0 && status.current_count == 0) {
+    while (dds_get_publication_matched_status(ports_.writer(), &status) >= 0 && status.current_count == 0) {
       if (realtime::monotonic_now_ns() > until) return false;
       dds_sleepfor(DDS_MSECS(10));
     }
@@ -77,15 +74,31 @@ class RawCommandWriter {
     wire.time_s = time_s;
     wire.channels = channels;
     wire.displacement_m[0] = x_m;
-    ASSERT_GE(dds_write(writer_.get(), &wire), 0);
+    ASSERT_GE(dds_write(ports_.writer(), &wire), 0);
+  }
+  // The steps of the feedback samples taken within `timeout_s`, until `count` of them.
+  std::vector<std::int64_t> take_steps(std::size_t count, double timeout_s) {
+    std::vector<std::int64_t> steps;
+    const std::int64_t until = realtime::monotonic_now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
+    rpsd_dds_Feedback wire{};
+    void* samples[1] = {&wire};
+    dds_sample_info_t info[1];
+    while (steps.size() < count && realtime::monotonic_now_ns() < until) {
+      if (dds_take(ports_.reader(), samples, info, 1, 1) > 0) {
+        if (info[0].valid_data) steps.push_back(wire.step);
+      } else {
+        dds_sleepfor(DDS_MSECS(1));
+      }
+    }
+    return steps;
   }
 
  private:
-  transport::DdsEntity publisher_, writer_;
+  transport::DdsSitePorts ports_;
 };
 
 struct NodeOverDds : ::testing::Test {
-  NodeOverDds() : coordinator_side(loopback()), node_side(loopback()), writer(coordinator_side, kTest, kSite),
+  NodeOverDds() : coordinator_side(loopback()), node_side(loopback()), coordinator(coordinator_side, kTest, kSite),
                   endpoint(node_side, {kTest, kSite, {}}), node(config(), actuator) {
     const double x0[] = {0.0};
     node.start(x0);
@@ -110,7 +123,7 @@ struct NodeOverDds : ::testing::Test {
   }
 
   transport::DdsParticipant coordinator_side, node_side;
-  RawCommandWriter writer;
+  RawCoordinator coordinator;
   transport::DdsNodeEndpoint endpoint;
   IdealActuator actuator;
   ServoNodeController node;
@@ -118,26 +131,26 @@ struct NodeOverDds : ::testing::Test {
 };
 
 TEST_F(NodeOverDds, EveryBadCommandIsDroppedCountedByReasonAndNeverApplied) {
-  ASSERT_TRUE(writer.wait_for_reader(10.0));
+  ASSERT_TRUE(coordinator.wait_for_reader(10.0));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  writer.write(kTest, kSite, 0, 1, 0.001);
+  coordinator.write(kTest, kSite, 0, 1, 0.001);
   EXPECT_EQ(deliver(0), CommandVerdict::kAccepted);
-  writer.write(kTest, kSite, 0, 1, 0.009);  // duplicated step
+  coordinator.write(kTest, kSite, 0, 1, 0.009);  // duplicated step
   EXPECT_EQ(deliver(0), CommandVerdict::kNotNewer);
-  writer.write(kTest, kSite, 3, 1, 0.002);
+  coordinator.write(kTest, kSite, 3, 1, 0.002);
   EXPECT_EQ(deliver(3), CommandVerdict::kAccepted);
-  writer.write(kTest, kSite, 2, 1, 0.009);  // older: late, or out of order
+  coordinator.write(kTest, kSite, 2, 1, 0.009);  // older: late, or out of order
   EXPECT_EQ(deliver(2), CommandVerdict::kNotNewer);
-  writer.write(kTest + 1, kSite, 4, 1, 0.009);  // another test's id, in this test's partition
+  coordinator.write(kTest + 1, kSite, 4, 1, 0.009);  // another test's id, in this test's partition
   EXPECT_EQ(deliver(4), CommandVerdict::kWrongTestId);
-  writer.write(kTest, kSite + 1, 5, 1, 0.009);  // another site's id
+  coordinator.write(kTest, kSite + 1, 5, 1, 0.009);  // another site's id
   EXPECT_EQ(deliver(5), CommandVerdict::kWrongSiteId);
-  writer.write(kTest, kSite, 6, 2, 0.009);  // two channels for a one-channel node
+  coordinator.write(kTest, kSite, 6, 2, 0.009);  // two channels for a one-channel node
   EXPECT_EQ(deliver(6), CommandVerdict::kWrongChannelCount);
-  writer.write(kTest, kSite, 7, 1, nan);
+  coordinator.write(kTest, kSite, 7, 1, nan);
   EXPECT_EQ(deliver(7), CommandVerdict::kNonFinite);
-  writer.write(kTest, kSite, 8, 1, 0.009, inf);
+  coordinator.write(kTest, kSite, 8, 1, 0.009, inf);
   EXPECT_EQ(deliver(8), CommandVerdict::kNonFinite);
 
   // The actuator saw 1 mm, then 2 mm on every tick after: no bad command moved it.
@@ -156,16 +169,16 @@ TEST_F(NodeOverDds, EveryBadCommandIsDroppedCountedByReasonAndNeverApplied) {
   EXPECT_EQ(n.dropped_total(), 7u);
 
   // A good command after all that is followed.
-  writer.write(kTest, kSite, 9, 1, 0.003);
+  coordinator.write(kTest, kSite, 9, 1, 0.003);
   EXPECT_EQ(deliver(9), CommandVerdict::kAccepted);
   EXPECT_EQ(actuator.sent.back(), 0.003);
   EXPECT_EQ(feedback.step, 9);
 }
 
 TEST_F(NodeOverDds, ANodeStartedMidTestTakesNoneOfItsCommands) {
-  ASSERT_TRUE(writer.wait_for_reader(10.0));
+  ASSERT_TRUE(coordinator.wait_for_reader(10.0));
   for (std::int64_t step = 1186; step < 1190; ++step) {
-    writer.write(kTest, kSite, step, 1, 0.004);
+    coordinator.write(kTest, kSite, step, 1, 0.004);
     EXPECT_EQ(deliver(step), CommandVerdict::kJoinedMidTest);
   }
   for (double x : actuator.sent) EXPECT_EQ(x, 0.0);
@@ -173,42 +186,10 @@ TEST_F(NodeOverDds, ANodeStartedMidTestTakesNoneOfItsCommands) {
   EXPECT_EQ(node.counters().dropped(CommandVerdict::kJoinedMidTest), 4u);
 }
 
-// The coordinator's side of the feedback topic, without DdsLink's checks: every sample.
-class RawFeedbackReader {
- public:
-  RawFeedbackReader(const transport::DdsParticipant& participant, std::uint32_t test_id, std::uint32_t site_id) {
-    const transport::DdsQos partition = transport::site_partition_qos(test_id, site_id);
-    subscriber_ = transport::DdsEntity(dds_create_subscriber(participant.get(), partition.get(), nullptr), "dds_create_subscriber");
-    reader_ = transport::DdsEntity(
-        dds_create_reader(subscriber_.get(), participant.feedback_topic(), transport::stream_reader_qos({}).get(), nullptr),
-        "dds_create_reader");
-  }
-  // The steps of the feedback samples taken within `timeout_s`, until `count` of them.
-  std::vector<std::int64_t> take_steps(std::size_t count, double timeout_s) {
-    std::vector<std::int64_t> steps;
-    const std::int64_t until = realtime::monotonic_now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
-    rpsd_dds_Feedback wire{};
-    void* samples[1] = {&wire};
-    dds_sample_info_t info[1];
-    while (steps.size() < count && realtime::monotonic_now_ns() < until) {
-      if (dds_take(reader_.get(), samples, info, 1, 1) > 0) {
-        if (info[0].valid_data) steps.push_back(wire.step);
-      } else {
-        dds_sleepfor(DDS_MSECS(1));
-      }
-    }
-    return steps;
-  }
-
- private:
-  transport::DdsEntity subscriber_, reader_;
-};
-
 // Lock-step as `rpsd servo-node` runs it: every command answered by one feedback sample of its
 // step (on Cyclone's receive thread); once the loop has returned, a command moves nothing.
 TEST_F(NodeOverDds, LockStepAnswersEveryCommandAndNothingAfterTheLoopEnds) {
-  RawFeedbackReader feedback_reader(coordinator_side, kTest, kSite);
-  ASSERT_TRUE(writer.wait_for_reader(10.0));
+  ASSERT_TRUE(coordinator.wait_for_reader(10.0));
   std::atomic<bool> stop{false};
   ServoNodeLoopOptions options;
   options.real_time = false;
@@ -216,10 +197,10 @@ TEST_F(NodeOverDds, LockStepAnswersEveryCommandAndNothingAfterTheLoopEnds) {
   options.realtime.fifo_priority = 0;
   ServoNodeLoopReport report;
   std::thread loop([&] { report = run_servo_node_loop(node, endpoint, options, stop); });
-  feedback_reader.take_steps(1000, 1.0);  // discovery of the feedback reader; nothing is sent yet
+  coordinator.take_steps(1000, 1.0);  // discovery of the feedback reader; nothing is sent yet
   for (std::int64_t step = 1; step <= 50; ++step) {
-    writer.write(kTest, kSite, step, 1, 1e-4 * static_cast<double>(step));
-    const auto got = feedback_reader.take_steps(1, 5.0);
+    coordinator.write(kTest, kSite, step, 1, 1e-4 * static_cast<double>(step));
+    const auto got = coordinator.take_steps(1, 5.0);
     ASSERT_EQ(got.size(), 1u) << "no feedback for step " << step;
     EXPECT_EQ(got[0], step);
   }
@@ -231,8 +212,8 @@ TEST_F(NodeOverDds, LockStepAnswersEveryCommandAndNothingAfterTheLoopEnds) {
   ASSERT_EQ(actuator.sent.size(), 50u);
   EXPECT_EQ(actuator.sent.back(), 50e-4);
 
-  writer.write(kTest, kSite, 51, 1, 0.009);
-  EXPECT_TRUE(feedback_reader.take_steps(1, 0.3).empty());
+  coordinator.write(kTest, kSite, 51, 1, 0.009);
+  EXPECT_TRUE(coordinator.take_steps(1, 0.3).empty());
   EXPECT_EQ(actuator.sent.size(), 50u);
 }
 
