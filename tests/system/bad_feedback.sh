@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # Fault: a node sends the coordinator bad feedback: a sample of another test, one claiming
 # another site, one with a wrong channel count, one of an older step, a duplicated answer,
-# (in real time) an answer 3 ms late, and finally a NaN displacement. rpsd_fault_node stands
+# (in real time) an answer 3 ms late, and finally NaN displacements (a failed transducer, from
+# one step on). Each comes with the first command at or after its step (in real time a
+# command may be lost). rpsd_fault_node stands
 # in for both sites of the bridge (a perfect actuator: x = u) and does this on site 2. Every
 # bad sample carries 1 m, a displacement the coordinator must never use.
 # Coordinator: drops and counts the foreign, malformed and older samples (summary.json
 #   timing.sites[].messages); a duplicate of the newest step is taken again (the same step
 #   re-reported, never older); a late answer makes late steps that go on with the newest
 #   measurement; the NaN stops the test at once (RpsdLoop: kNonFinite), exit code 3 with the
-#   reason "a non-finite measurement arrived (at step n, t = ...)". Detection: the step the
-#   NaN answers, before it is used.
-# Results: every step before the NaN is recorded (steps 1..n, n the NaN's command step), and
+#   reason "a non-finite measurement arrived (at step n, t = ...)". Detection: in lock-step
+#   the step the first NaN answers, before it is used; in real time the step that first
+#   holds a NaN answer (the link holds one even when newer answers came with it), at most
+#   RT_AGE periods later.
+# Results: every step before the detecting one is recorded (1..n-1), and
 #   no recorded measurement is one of the bad samples' 1 m. Run lock-step (as fast as
 #   possible) and in real time at 1024 Hz.
 source "$(dirname "$0")/lib.sh"
@@ -37,17 +41,33 @@ for mode in lock_step real_time; do
   wait $fault || true
   cat "$WORK/run-$mode.log"
   [ $code = 3 ] || fail "$mode: exit code $code, expected 3"
-  grep -q "test aborted: a non-finite measurement arrived (at step $((nan + 1))," "$WORK/run-$mode.log" || fail "$mode: no clear reason"
+  # The command step the first NaN answered (0-based), and the step that stopped on it (1-based).
+  sent=$(json "$WORK/fault-$mode.json" "j['sites']['2']['fault_sent_at_step']['nan']")
+  stop=$(sed -n 's/.*test aborted: a non-finite measurement arrived (at step \([0-9]*\),.*/\1/p' "$WORK/run-$mode.log")
+  [ -n "$stop" ] || fail "$mode: no clear reason"
+  if [ $mode = lock_step ]; then
+    [ "$sent $stop" = "$nan $((nan + 1))" ] || fail "lock-step: NaN sent with step $sent, stopped at $stop; expected $nan, $((nan + 1))"
+  else
+    [ "$sent" -ge $nan ] && [ "$stop" -gt "$sent" ] && [ $((stop - 1 - sent)) -le $RT_AGE ] \
+      || fail "real time: NaN sent with step $sent, stopped at step $stop"
+  fi
   every_step_recorded "$out"
-  [ "$(json "$out/summary.json" "j['steps']")" = $nan ] || fail "$mode: $(json "$out/summary.json" "j['steps']") steps, expected $nan"
+  [ "$(json "$out/summary.json" "j['steps']")" = $((stop - 1)) ] || fail "$mode: $(json "$out/summary.json" "j['steps']") steps, expected $((stop - 1))"
   [ "$(column "$out" measured_m_ch1 'max(abs(x) for x in v) < 0.1')" = True ] || fail "$mode: a bad sample's measurement was used"
   m="j['timing']['sites'][1]['messages']"
-  [ "$(json "$out/summary.json" "$m['dropped_wrong_test_or_site'], $m['dropped_wrong_channels'], $m['dropped_older_step']")" = "2 1 1" ] \
-    || fail "$mode: site 2 dropped $(json "$out/summary.json" "$m")"
+  dropped=$(json "$out/summary.json" "$m['dropped_wrong_test_or_site'], $m['dropped_wrong_channels'], $m['dropped_older_step']")
+  if [ $mode = lock_step ]; then
+    [ "$dropped" = "2 1 1" ] || fail "lock-step: site 2 dropped $(json "$out/summary.json" "$m")"
+  else
+    # Best effort: a bad sample may be lost on the way (on 2026-11-21 this VM lost up to
+    # 2.4 % of the answers on loopback, 6 runs), so each is counted at most once.
+    [ "$(json "$out/summary.json" "$m['dropped_wrong_test_or_site'] <= 2 and $m['dropped_wrong_channels'] <= 1 and $m['dropped_older_step'] <= 1")" = True ] \
+      || fail "real time: site 2 dropped $(json "$out/summary.json" "$m")"
+  fi
   [ "$(json "$out/summary.json" "j['timing']['sites'][0]['messages']")" = \
-    "$(json "$out/summary.json" "{'dropped_older_step': 0, 'dropped_wrong_channels': 0, 'dropped_wrong_test_or_site': 0, 'late': 0, 'received': $nan + 1, 'sent': $nan + 1}")" ] \
+    "$(json "$out/summary.json" "{'dropped_older_step': 0, 'dropped_wrong_channels': 0, 'dropped_wrong_test_or_site': 0, 'late': 0, 'received': $stop, 'sent': $stop}")" ] \
     || [ $mode = real_time ] || fail "$mode: site 1 $(json "$out/summary.json" "j['timing']['sites'][0]['messages']")"
-  faults=$(json "$WORK/fault-$mode.json" "j['sites']['2']['faults']")
+  faults=$(json "$WORK/fault-$mode.json" "j['sites']['2']['fault_sent_at_step']")
   if [ $mode = lock_step ]; then
     # Every answer once, the duplicate once more; nothing late in lock-step.
     [ "$(json "$out/summary.json" "$m['received'], $m['sent'], $m['late']")" = "$((nan + 2)) $((nan + 1)) 0" ] \
@@ -56,6 +76,6 @@ for mode in lock_step real_time; do
     late=$(json "$out/summary.json" "$m['late']")
     [ "$late" -ge 1 ] && [ "$(column "$out" feedback_age_periods 'max(v) >= 1')" = True ] || fail "real time: the late answer made no late step"
   fi
-  echo "$mode: exit 3 at step $((nan + 1)) (NaN), $nan steps recorded; site 2 sent $faults; coordinator: $(json "$out/summary.json" "$m")"
+  echo "$mode: exit 3 at step $stop (NaN), $((stop - 1)) steps recorded; site 2 sent faults with command steps $faults; coordinator: $(json "$out/summary.json" "$m")"
 done
 echo "PASS: bad feedback dropped and counted by reason, the NaN stops the test with every step before it recorded"

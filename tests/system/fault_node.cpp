@@ -8,13 +8,17 @@
 //   --older S          a sample of step S - 10 (older than what the coordinator has)
 //   --duplicate S      the answer to step S twice
 //   --late S           the answer to step S only after --late-ms milliseconds
-//   --nan S            the answer to step S with a NaN displacement
+//   --nan S            a NaN displacement in the answer to step S and in every answer after it
+//                      (a failed transducer stays failed)
 //
+// Each fault comes with the first command at or after its step S: in real time commands are
+// best effort and the one of step S may be lost.
 // Every bad sample carries a displacement of 1 m, which the coordinator must never use.
 // --real-time makes its reader and writer best effort, as a real-time node's are, and runs
 // its threads at SCHED_FIFO 80 with memory locked (when allowed), as a node's loop.
 //
-// It writes what it sent (answers and each fault) as JSON to --summary when it stops
+// It writes what it sent (answers, and the command step each fault came with) as JSON to
+// --summary when it stops
 // (SIGTERM/SIGINT or --duration). Used by tests/system/bad_feedback.sh.
 #include <atomic>
 #include <csignal>
@@ -54,7 +58,7 @@ struct Options {
 
 struct SiteCounts {
   std::int64_t answers = 0;
-  std::map<std::string, std::int64_t> faults;
+  std::map<std::string, std::int64_t> fault_sent_at_step;  // fault name -> the command step it came with
 };
 
 [[noreturn]] void usage(const std::string& problem) {
@@ -94,12 +98,14 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
   using rpsd::transport::CommandSample;
   using rpsd::transport::FeedbackSample;
   const bool faulty = site == o.faulty_site;
+  // Once, with the first command at or after the fault's step.
   const auto at = [&](const char* fault, std::int64_t step) {
     const auto it = o.fault_step.find(fault);
-    const bool hit = faulty && it != o.fault_step.end() && it->second == step;
-    if (hit) ++counts.faults[fault];
+    const bool hit = faulty && it != o.fault_step.end() && step >= it->second && !counts.fault_sent_at_step.contains(fault);
+    if (hit) counts.fault_sent_at_step[fault] = step;
     return hit;
   };
+  bool transducer_failed = false;
   if (o.real_time) rpsd::realtime::apply_realtime({});
   CommandSample c;
   // Heartbeats as a servo node sends them: the coordinator starts once one says the node
@@ -149,7 +155,8 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
       if (at("late", c.step)) {
         std::this_thread::sleep_for(std::chrono::microseconds(static_cast<std::int64_t>(o.late_ms * 1e3)));
       }
-      if (at("nan", c.step)) f.displacement_m[0] = std::numeric_limits<double>::quiet_NaN();
+      if (at("nan", c.step)) transducer_failed = true;
+      if (transducer_failed) f.displacement_m[0] = std::numeric_limits<double>::quiet_NaN();
       node.publish(f);
       ++counts.answers;
       if (at("duplicate", c.step)) node.publish(f);
@@ -193,9 +200,9 @@ int main(int argc, char** argv) {
     std::ofstream out(o.summary);
     out << "{\"sites\": {";
     for (std::size_t i = 0; i < o.sites.size(); ++i) {
-      out << (i ? ", " : "") << '"' << o.sites[i] << "\": {\"answers\": " << counts[i].answers << ", \"faults\": {";
+      out << (i ? ", " : "") << '"' << o.sites[i] << "\": {\"answers\": " << counts[i].answers << ", \"fault_sent_at_step\": {";
       bool first = true;
-      for (const auto& [name, n] : counts[i].faults) {
+      for (const auto& [name, n] : counts[i].fault_sent_at_step) {
         out << (first ? "" : ", ") << '"' << name << "\": " << n;
         first = false;
       }

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <thread>
 
@@ -246,6 +248,66 @@ TEST(DdsLink, FeedbackOfAnotherTestOrAnOlderStepIsDroppedAndCounted) {
   EXPECT_EQ(link.counters().wrong_test_or_site, 1);
   EXPECT_EQ(link.counters().older_step, 1);
   EXPECT_EQ(link.counters().received, 2);
+}
+
+// Real time: answers to steps 1, 2 and 3 are all waiting when the coordinator looks. The
+// answer to step 1 is an alarm; the link hands it back rather than the newest, whatever comes.
+FeedbackSample newest_after_an_alarm(std::uint32_t test, const FeedbackSample& alarm) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(test, 1, 1, 0.2));
+  DdsNodeEndpoint node(node_side, node_config(test, 1));
+  EXPECT_TRUE(connect(link, node, test, 1));
+  CommandSample c;
+  c.channels = 1;
+  c.step = 3;
+  link.send(c);
+  FeedbackSample f;
+  f.test_id = test;
+  f.site_id = 1;
+  f.channels = 1;
+  for (std::int64_t step = 1; step <= 3; ++step) {
+    f.step = step;
+    f.displacement_m[0] = 0.001 * step;
+    node.publish(step == 1 ? alarm : f);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // all three in the reader
+  FeedbackSample got;
+  EXPECT_EQ(link.receive(got), LinkStatus::kTimeout);  // step 1 is not the step sent
+  c.step = 4;
+  link.send(c);
+  f.step = 4;
+  node.publish(f);
+  FeedbackSample again;
+  EXPECT_EQ(link.receive(again), LinkStatus::kTimeout);  // still held on the next receive
+  EXPECT_EQ(again.step, got.step);
+  EXPECT_EQ(link.counters().received, 4);
+  return got;
+}
+
+// The answer of test `test`, site 1, to step 1; the caller makes it an alarm.
+FeedbackSample answer_to_step_1(std::uint32_t test) {
+  FeedbackSample f;
+  f.test_id = test;
+  f.site_id = 1;
+  f.channels = 1;
+  f.step = 1;
+  return f;
+}
+
+TEST(DdsLink, ANonFiniteMeasurementIsHeldEvenWhenNewerAnswersFollowIt) {
+  FeedbackSample alarm = answer_to_step_1(71);
+  alarm.force_n[0] = std::numeric_limits<double>::quiet_NaN();
+  const FeedbackSample got = newest_after_an_alarm(71, alarm);
+  EXPECT_EQ(got.step, 1);
+  EXPECT_TRUE(std::isnan(got.force_n[0]));
+}
+
+TEST(DdsLink, ANodeFaultIsHeldEvenWhenNewerAnswersFollowIt) {
+  FeedbackSample alarm = answer_to_step_1(72);
+  alarm.status = kNodeFault;
+  const FeedbackSample got = newest_after_an_alarm(72, alarm);
+  EXPECT_EQ(got.step, 1);
+  EXPECT_EQ(got.status & kNodeFault, kNodeFault);
 }
 
 TEST(DdsLink, ARealTimeDeadlineEndsTheWaitAndHandsBackTheNewestSample) {

@@ -60,6 +60,21 @@ LinkStatus DdsLink::send(const CommandSample& command) {
   return LinkStatus::kOk;
 }
 
+namespace {
+
+// A sample that must stop the test: the node reports a fault, or a measurement is not a
+// number. In real time several samples can arrive between two receives and only the newest
+// is handed on, so such a sample is held rather than passed over.
+bool carries_alarm(const FeedbackSample& sample) {
+  if (sample.status & kNodeFault) return true;
+  for (int c = 0; c < sample.channels; ++c) {
+    if (!std::isfinite(sample.displacement_m[c]) || !std::isfinite(sample.force_n[c])) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void DdsLink::drain() {
   rpsd_dds_Feedback wire{};
   void* samples[1] = {&wire};
@@ -74,11 +89,14 @@ void DdsLink::drain() {
       ++counters_.wrong_channels;
     } else if (have_newest_ && sample.step < newest_.step) {
       ++counters_.older_step;
+    } else if (holding_alarm_) {
+      ++counters_.received;  // newer, but the alarm stays the newest until the loop has seen it
     } else {
       newest_ = sample;
       have_newest_ = true;
       newest_at_ns_ = realtime::monotonic_now_ns();
       ++counters_.received;
+      holding_alarm_ = carries_alarm(sample);
     }
   }
 }

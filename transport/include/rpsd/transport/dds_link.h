@@ -58,7 +58,9 @@ class DdsLink final : public Link {
   const DdsLinkCounters& counters() const { return counters_; }
 
  private:
-  /// Takes every sample waiting; keeps the newest valid one in newest_. Real-time safe.
+  /// Takes every sample waiting; keeps the newest valid one in newest_, except that a sample
+  /// reporting a node fault or a non-finite measurement stays there once taken, so the loop
+  /// stops on it even when newer answers came before it looked. Real-time safe.
   void drain();
 
   /// Takes the heartbeats waiting; true when the newest says the node has matched us.
@@ -73,6 +75,7 @@ class DdsLink final : public Link {
   std::int64_t receive_deadline_ns_ = 0;
   FeedbackSample newest_;
   bool have_newest_ = false;
+  bool holding_alarm_ = false;
   std::int64_t newest_at_ns_ = 0;
   DdsLinkCounters counters_;
 };
