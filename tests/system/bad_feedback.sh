@@ -42,7 +42,7 @@ for mode in lock_step real_time; do
   cat "$WORK/run-$mode.log"
   [ $code = 3 ] || fail "$mode: exit code $code, expected 3"
   # The command step the first NaN answered (0-based), and the step that stopped on it (1-based).
-  sent=$(json "$WORK/fault-$mode.json" "j['sites']['2']['fault_sent_at_step']['nan']")
+  sent=$(json "$WORK/fault-$mode.json" "j['sites']['2']['fault_sent_at_step'].get('nan', 'none')")
   stop=$(sed -n 's/.*test aborted: a non-finite measurement arrived (at step \([0-9]*\),.*/\1/p' "$WORK/run-$mode.log")
   [ -n "$stop" ] || fail "$mode: no clear reason"
   if [ $mode = lock_step ]; then

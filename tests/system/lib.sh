@@ -14,7 +14,51 @@ cleanup() {
 }
 trap cleanup EXIT
 
-fail() { echo "FAIL: $*" >&2; exit 1; }
+# A failed check fails the test only if the host kept time. This VM is shared: at times it
+# gets no CPU for 0.2-0.5 s (2026-11-21: steal time 40-60 % in vmstat; a node's worst wake-up
+# 0.49 s, the coordinator skipping 11,566 deadlines in 3,200 cycles), which no real-time test
+# survives. When a check fails and a real-time run of this attempt shows such starvation
+# (host_starved), the attempt is inconclusive: the test starts again from scratch, at most
+# RT_ATTEMPTS times in all, and if no attempt was conclusive it is skipped (exit 77) saying so.
+RT_ATTEMPTS=3
+fail() {
+  echo "FAIL: $*" >&2
+  local starved attempt=${RPSD_ATTEMPT:-1}
+  starved=$(host_starved) || starved=""
+  [ -n "$starved" ] || exit 1
+  echo "inconclusive (attempt $attempt of $RT_ATTEMPTS): the host did not keep real time: $starved" >&2
+  [ "$attempt" -lt $RT_ATTEMPTS ] || { echo "SKIPPED: no attempt ran on a host that kept time" >&2; exit 77; }
+  trap - EXIT
+  cleanup
+  RPSD_ATTEMPT=$((attempt + 1)) exec bash "$0"
+}
+
+# host_starved: what shows that the host starved this attempt's real-time runs, or nothing:
+# a coordinator that skipped more than 5 % of its deadlines, or a coordinator or node woken
+# more than 50 ms (half of RT_AGE periods) late.
+host_starved() {
+  python3 - "$WORK" <<'PY'
+import glob, json, sys
+why = []
+for f in sorted(glob.glob(sys.argv[1] + "/**/*.json", recursive=True)):
+    try:
+        j = json.load(open(f))
+    except (OSError, ValueError):
+        continue
+    if not isinstance(j, dict):
+        continue
+    # A coordinator's summary.json (timing.real_time) or a servo node's --summary (mode).
+    t = j.get("timing", j)
+    if not (t.get("real_time") or j.get("mode") == "real_time") or "jitter" not in t:
+        continue
+    name = f[len(sys.argv[1]) + 1:]
+    if t["jitter"]["max_s"] > 0.05:
+        why.append(f"{name}: woken up to {t['jitter']['max_s']:.3f} s late")
+    if "skipped_deadlines" in t and t["skipped_deadlines"] > 0.05 * max(t["cycles"], 1):
+        why.append(f"{name}: {t['skipped_deadlines']} deadlines skipped in {t['cycles']} cycles")
+print("; ".join(why))
+PY
+}
 # A domain per test run keeps parallel tests apart on one machine.
 DOMAIN=$(( 1 + $$ % 200 ))
 
