@@ -7,6 +7,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "rpsd/realtime/large_blocks.h"
+
 namespace rpsd::realtime {
 
 RealTimeSetupReport apply_realtime(const RealTimeRequest& request) {
@@ -15,6 +17,8 @@ RealTimeSetupReport apply_realtime(const RealTimeRequest& request) {
                                 std::to_string(request.fifo_priority));
   }
   RealTimeSetupReport report;
+  // Before the loop starts: a run of hours must not grow the heap (large_blocks.h).
+  if (!map_large_blocks_separately()) report.refused += "mallopt(M_MMAP_THRESHOLD) refused\n";
   if (request.lock_memory) {
     if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) {
       report.memory_locked = true;

@@ -1,5 +1,6 @@
 // What a real-time process asks of the OS before its loop starts: locked memory (no page
-// faults in the loop) and a SCHED_FIFO priority. Both may be refused (no privilege, a
+// faults in the loop), large blocks kept out of the heap (a long run must not grow;
+// large_blocks.h) and a SCHED_FIFO priority. Both may be refused (no privilege, a
 // container): the loop then still runs, and the refusal is reported once, not fatal.
 #pragma once
 
