@@ -3,7 +3,7 @@
 //
 // `rpsd servo-node scenarios/nodes/bridge-pier-site-1.yaml` (real time, its paper servo model)
 // and `rpsd run scenarios/synthetic-sdof.yaml` over DDS in real time with the synthetic record
-// lengthened to `--minutes`. Every second: VmRSS of the coordinator and of the node, and the
+// lengthened to `--minutes` (and any `--set KEY=VALUE` given, passed on to rpsd run). Every second: VmRSS of the coordinator and of the node, and the
 // size of time_history.csv (the test is running while it grows). Afterwards: the run's
 // summary.json, every row of time_history.csv (one per planned step, steps in order, none
 // missing) and the node's --summary.
@@ -137,6 +137,7 @@ int main(int argc, char** argv) try {
   double minutes = 30.0;
   int rate = 1024, domain = 93, max_age = 1000;
   bool keep = false;
+  std::vector<std::string> extra_settings;  // --set KEY=VALUE for rpsd run, in order
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
     const std::string& key = options.rest[i];
     const std::string& value = options.rest[i + 1];
@@ -146,6 +147,7 @@ int main(int argc, char** argv) try {
     else if (key == "--domain") domain = std::stoi(value);
     else if (key == "--max-feedback-age") max_age = std::stoi(value);
     else if (key == "--keep") keep = value == "1";
+    else if (key == "--set") extra_settings.push_back(value);
     else throw std::invalid_argument("unknown option " + key);
   }
   if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
@@ -167,13 +169,18 @@ int main(int argc, char** argv) try {
                             "--set", "node.test_id=" + test_id,
                             "--summary", (work / "node.json").string()},
                            {}, work / "node.log");
-  bench::ChildProcess run({rpsd, "run", (src / "scenarios/synthetic-sdof.yaml").string(), "--out", out.string(), "--set",
-                           "transport={kind: dds, test_id: " + test_id + ", domain_id: " + d +
-                               ", dds_config: ../transport/config/loopback.xml}",
-                           "--set", "clock.mode=real_time", "--set", "clock.control_rate_hz=" + r, "--set",
-                           "clock.max_feedback_age_periods=" + std::to_string(max_age), "--set",
-                           "ground_motion.synthetic.duration_s=" + format("%g", seconds)},
-                          {}, work / "run.log");
+  std::vector<std::string> run_argv{rpsd, "run", (src / "scenarios/synthetic-sdof.yaml").string(), "--out", out.string(), "--set",
+                                    "transport={kind: dds, test_id: " + test_id + ", domain_id: " + d +
+                                        ", dds_config: ../transport/config/loopback.xml}",
+                                    "--set", "clock.mode=real_time", "--set", "clock.control_rate_hz=" + r, "--set",
+                                    "clock.max_feedback_age_periods=" + std::to_string(max_age), "--set",
+                                    "ground_motion.synthetic.duration_s=" + format("%g", seconds)};
+  std::string extra_note;
+  for (const std::string& setting : extra_settings) {
+    run_argv.insert(run_argv.end(), {"--set", setting});
+    extra_note += " --set " + setting;
+  }
+  bench::ChildProcess run(run_argv, {}, work / "run.log");
   std::vector<Sample> samples;
   const auto start = bench::Clock::now();
   int code = -1;
@@ -287,7 +294,8 @@ int main(int argc, char** argv) try {
   fragment.note("rpsd servo-node scenarios/nodes/bridge-pier-site-1.yaml (real time at " + r + " Hz, the paper's servo model at its own "
                 "rate) and rpsd run scenarios/synthetic-sdof.yaml over DDS on loopback (transport/config/loopback.xml) in real time at " +
                 r + " Hz, " + format("%g", minutes) + " minutes of the synthetic record, clock.max_feedback_age_periods = " +
-                std::to_string(max_age) + " (the default 4 is the hardware safety setting; this VM stalls for up to 0.4 s). "
+                std::to_string(max_age) + " (the default 4 is the hardware safety setting; this VM stalls for up to 0.4 s)" +
+                (extra_note.empty() ? "" : "; also" + extra_note) + ". "
                 "Memory: VmRSS every second while time_history.csv grew; the slope is fitted from the test's second minute on.");
   if (keep) std::fprintf(stderr, "realtime_long_run: kept %s\n", work.c_str());
   else std::filesystem::remove_all(work);
