@@ -5,12 +5,16 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "rpsd/realtime/large_blocks.h"
 #include "rpsd/scenarios/config_error.h"
 
 #include <exception>
 #include <iostream>
 
 int main(int argc, char** argv) {
+  // Before anything allocates, so that Cyclone's first receive buffer gets a mapping of its
+  // own too: a run or a node of hours must not grow its heap (large_blocks.h).
+  rpsd::realtime::map_large_blocks_separately();
   CLI::App app{"rpsd - real-time pseudodynamic (hybrid) testing"};
   app.require_subcommand(1);
   auto* analyze = app.add_subcommand("analyze", "Linear analysis of a servo system or an integrator");
