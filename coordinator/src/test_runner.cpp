@@ -7,7 +7,6 @@
 #include "rpsd/coordinator/actuator_links.h"
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/realtime/latency_histogram.h"
-#include "rpsd/realtime/large_blocks.h"
 #include "rpsd/realtime/pacer.h"
 #include "rpsd/substructure/ground_motion_load.h"
 
@@ -172,9 +171,6 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
   Parts& p = *parts_;
   RpsdLoop& loop = *p.loop;
   StepOutcome outcome = StepOutcome::kOk;
-  // A rehearsal over DDS may run for hours too: Cyclone's replaced receive buffers must not
-  // grow the heap in either mode (large_blocks.h; the paced loop sets it in apply_realtime).
-  realtime::map_large_blocks_separately();
   if (!p.real_time) {
     const std::int64_t report_every = progress_interval(*p.scenario);
     for (std::int64_t n = 0; n < p.steps_planned; ++n) {
