@@ -151,10 +151,13 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     feedback_age_ = exchange_ - (feedback_.step >= 0 ? feedback_.step : -1);
     if (received == transport::LinkStatus::kOk && feedback_age_ == 0) {
       // on time
-    } else if (received == transport::LinkStatus::kTimeout && feedback_.step >= 0 && feedback_age_ > 0 &&
-               feedback_age_ <= parts_.max_feedback_age_periods) {
+    } else if ((received == transport::LinkStatus::kTimeout || received == transport::LinkStatus::kPeerLost) &&
+               feedback_.step >= 0 && feedback_age_ > 0 && feedback_age_ <= parts_.max_feedback_age_periods) {
       // Real time: carry on with the newest measurement; the record says how old it is. A
-      // node that answers late but answers keeps the age small; a silent one does not.
+      // node that answers late but answers keeps the age small; a silent one does not. The
+      // age, not DDS liveliness, decides here: the 1 s lease lapses long after the age limit
+      // has stopped a test on a dead node, while a lapse with recent feedback is a host that
+      // stalled both processes for over a second, and the node answers again on waking.
       ++late_total_;
       oldest_age_this_step_ = std::max(oldest_age_this_step_, feedback_age_);
     } else {

@@ -18,10 +18,12 @@ namespace {
 
 // Delivers each feedback `lag` exchanges late (as a real-time link does when the round
 // trip exceeds the period: the newest sample, with kTimeout), and none at all from
-// exchange `silent_from` on.
+// exchange `silent_from` on. With `lease_lapsed`, a late answer comes with kPeerLost, as
+// from a DdsLink whose node's liveliness lease lapsed while the host stalled.
 class LaggingLink final : public transport::Link {
  public:
-  LaggingLink(transport::Link& inner, int lag, std::int64_t silent_from) : inner_(inner), lag_(lag), silent_from_(silent_from) {}
+  LaggingLink(transport::Link& inner, int lag, std::int64_t silent_from, bool lease_lapsed)
+      : inner_(inner), lag_(lag), silent_from_(silent_from), lease_lapsed_(lease_lapsed) {}
   transport::LinkStatus send(const transport::CommandSample& command) override {
     exchange_ = command.step;
     if (inner_.send(command) != transport::LinkStatus::kOk) return transport::LinkStatus::kPeerLost;
@@ -37,24 +39,33 @@ class LaggingLink final : public transport::Link {
       in_flight_.pop_front();
     }
     feedback = newest_;
-    return newest_.step == exchange_ ? transport::LinkStatus::kOk : transport::LinkStatus::kTimeout;
+    if (newest_.step == exchange_) return transport::LinkStatus::kOk;
+    return lease_lapsed_ ? transport::LinkStatus::kPeerLost : transport::LinkStatus::kTimeout;
   }
 
  private:
   transport::Link& inner_;
   int lag_;
   std::int64_t silent_from_;
+  bool lease_lapsed_;
   std::int64_t exchange_ = -1;
   std::deque<transport::FeedbackSample> in_flight_;
   transport::FeedbackSample newest_{};
 };
 
-SdofRpsdSetup lagging_setup(int lag, std::int64_t silent_from) {
+SdofRpsdSetup lagging_setup(int lag, std::int64_t silent_from, bool lease_lapsed = false) {
   SdofRpsdSetup setup;  // the paper's elastic SDOF: 7080 kg, 700.8 kN/m, 1.1 %
   setup.abort_amplitude_factor = 0.0;
   setup.max_feedback_age_periods = 4;
-  setup.network = [=](transport::Link& inner) { return std::make_unique<LaggingLink>(inner, lag, silent_from); };
+  setup.network = [=](transport::Link& inner) { return std::make_unique<LaggingLink>(inner, lag, silent_from, lease_lapsed); };
   return setup;
+}
+
+// One second of the test against a plant without delay: what matters is the link.
+SdofRpsdResult run_one_second(SdofRpsdSetup setup) {
+  setup.duration_s = 1.0;
+  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
+  return run_sdof_rpsd(setup, plant);
 }
 
 std::vector<double> displacements(const SdofRpsdResult& r) {
@@ -87,9 +98,7 @@ TEST(FeedbackAge, OnePeriodLateFeedbackIsOneMorePeriodOfDelay) {
 
 TEST(FeedbackAge, LateButAnsweringNodeKeepsTheTestGoing) {
   SdofRpsdSetup setup = lagging_setup(4, 1 << 30);
-  setup.duration_s = 1.0;
-  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
-  const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+  const SdofRpsdResult r = run_one_second(setup);
   EXPECT_EQ(r.outcome, StepOutcome::kOk);
   EXPECT_EQ(r.records.back().feedback_age_periods, 4);
 }
@@ -97,21 +106,43 @@ TEST(FeedbackAge, LateButAnsweringNodeKeepsTheTestGoing) {
 TEST(FeedbackAge, ASilentNodeStopsTheTestOnTheFifthPeriod) {
   const std::int64_t silent_from = 100;
   SdofRpsdSetup setup = lagging_setup(0, silent_from);
-  setup.duration_s = 1.0;
-  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
-  const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+  const SdofRpsdResult r = run_one_second(setup);
   EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
   // Exchanges 100..103 go on with ages 1..4; the fifth (age 5) stops before recording.
   ASSERT_EQ(r.records.size(), static_cast<std::size_t>(silent_from + 4));
   for (int k = 1; k <= 4; ++k) EXPECT_EQ(r.records[silent_from + k - 1].feedback_age_periods, k);
 }
 
+// A liveliness lease that lapsed while feedback kept coming (a host that stalled both
+// processes) is judged by the feedback's age, like a timeout: the test goes on.
+TEST(FeedbackAge, ALapsedLeaseWithRecentFeedbackKeepsARealTimeTestGoing) {
+  SdofRpsdSetup setup = lagging_setup(4, 1 << 30, true);
+  const SdofRpsdResult r = run_one_second(setup);
+  EXPECT_EQ(r.outcome, StepOutcome::kOk);
+  EXPECT_EQ(r.records.size(), static_cast<std::size_t>(1.0 / setup.dt_s));
+  EXPECT_EQ(r.records.back().feedback_age_periods, 4);
+}
+
+TEST(FeedbackAge, ALapsedLeaseAndASilentNodeStillStopOnTheFifthPeriod) {
+  const std::int64_t silent_from = 100;
+  SdofRpsdSetup setup = lagging_setup(0, silent_from, true);
+  const SdofRpsdResult r = run_one_second(setup);
+  EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
+  ASSERT_EQ(r.records.size(), static_cast<std::size_t>(silent_from + 4));
+}
+
+TEST(FeedbackAge, LockStepStopsOnALapsedLease) {
+  SdofRpsdSetup setup = lagging_setup(1, 1 << 30, true);
+  setup.max_feedback_age_periods = 0;
+  const SdofRpsdResult r = run_one_second(setup);
+  EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
+  EXPECT_EQ(r.records.size(), 1u);
+}
+
 TEST(FeedbackAge, LockStepStopsOnTheFirstLateFeedback) {
   SdofRpsdSetup setup = lagging_setup(1, 1 << 30);
   setup.max_feedback_age_periods = 0;
-  setup.duration_s = 1.0;
-  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
-  const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+  const SdofRpsdResult r = run_one_second(setup);
   EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
   EXPECT_EQ(r.records.size(), 1u);
 }
