@@ -165,8 +165,8 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     }
     ++exchange_;
     if (feedback_.status & transport::kNodeFault) return StepOutcome::kNodeFault;
+    if (transport::has_non_finite_measurement(feedback_, channels_)) return StepOutcome::kNonFinite;
     for (int c = 0; c < channels_; ++c) {
-      if (!std::isfinite(feedback_.displacement_m[c]) || !std::isfinite(feedback_.force_n[c])) return StepOutcome::kNonFinite;
       if (!parts_.limits.empty() && std::abs(feedback_.force_n[c]) > parts_.limits[c].max_force_n) {
         limit_stop_ = {LimitStop::Kind::kForce, c, feedback_.force_n[c], parts_.limits[c].max_force_n};
         return StepOutcome::kLimit;

@@ -1,7 +1,6 @@
 #include "rpsd/transport/dds_link.h"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 #include "dds_messages.h"
@@ -66,11 +65,7 @@ namespace {
 // number. In real time several samples can arrive between two receives and only the newest
 // is handed on, so such a sample is held rather than passed over.
 bool carries_alarm(const FeedbackSample& sample) {
-  if (sample.status & kNodeFault) return true;
-  for (int c = 0; c < sample.channels; ++c) {
-    if (!std::isfinite(sample.displacement_m[c]) || !std::isfinite(sample.force_n[c])) return true;
-  }
-  return false;
+  return (sample.status & kNodeFault) != 0 || has_non_finite_measurement(sample, sample.channels);
 }
 
 }  // namespace

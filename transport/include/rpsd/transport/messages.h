@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace rpsd::transport {
@@ -52,6 +53,15 @@ struct FeedbackSample {
   /// site for this step (0 in process).
   std::array<std::int64_t, kMaxChannels> round_trip_ns{};
 };
+
+/// True when the measured displacement or force of one of the first `channels` channels is
+/// not a finite number: a failed transducer, which must stop a test.
+inline bool has_non_finite_measurement(const FeedbackSample& sample, int channels) {
+  for (int c = 0; c < channels; ++c) {
+    if (!std::isfinite(sample.displacement_m[c]) || !std::isfinite(sample.force_n[c])) return true;
+  }
+  return false;
+}
 
 /// A node's periodic announcement: lets the coordinator discover the sites of its test.
 struct NodeHeartbeat {
