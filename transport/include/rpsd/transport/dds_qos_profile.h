@@ -18,7 +18,8 @@
 // deadline shorter than the offered one (a node faster than its coordinator) would stop the
 // endpoints from matching at all; instead the coordinator and the node count missing
 // control periods themselves, which is what stops a test or makes a node hold, within k
-// periods. The liveliness lease L tells a dead peer from a slow one. Partitions
+// periods. The liveliness lease L tells a dead peer from a slow one in lock-step; in real
+// time the feedback's age decides, since L lapses after any host stall longer than L. Partitions
 // "rpsd/test-<id>/site-<id>" keep two tests on one network, and two sites of one test, from
 // ever crossing.
 #pragma once
