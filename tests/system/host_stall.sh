@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A host that stalls every process of a real-time test for longer than the DDS liveliness
 # lease (1 s), as this shared VM does at times: the coordinator and both servo nodes are
-# stopped together for 1.5 s (SIGSTOP) 3 s into the run, then continued. On waking, the
+# stopped together for 1.5 s (SIGSTOP) once 1 s of the run is recorded, then continued. On waking, the
 # coordinator's Cyclone finds the nodes' leases lapsed before their next sample arrives; the
 # feedback is only a few periods old, so the test must go on to the end, every step recorded,
 # not stop as if the nodes had died (kill_node.sh is that case).
@@ -29,7 +29,8 @@ cat "$WORK/run.log"
 every_step_recorded "$WORK/rt"
 [ "$(json "$WORK/rt/summary.json" "j['steps'] == j['steps_planned']")" = True ] || fail "the run did not take every planned step"
 late=$(json "$WORK/rt/summary.json" "j['timing']['jitter']['max_s']")
-python3 -c "import sys; sys.exit(0 if $late >= 1.0 else 1)" || fail "the coordinator was woken at most $late s late: no stall happened"
+[ "$(json "$WORK/rt/summary.json" "j['timing']['jitter']['max_s'] >= 1.0")" = True ] \
+  || fail "the coordinator was woken at most $late s late: no stall happened"
 kill -TERM $NODE1_PID $NODE2_PID
 wait $NODE1_PID $NODE2_PID || true
 echo "PASS: a 1.5 s stall of all three processes (coordinator woken $late s late); the test went on, every step recorded;" \
