@@ -25,6 +25,7 @@
 #include "bench_report.h"
 #include "child_process.h"
 #include "ddsperf.h"
+#include "rpsd/realtime/cpu_wake_latency.h"
 
 namespace {
 
@@ -122,6 +123,10 @@ int main(int argc, char** argv) try {
       perf.env.push_back("CYCLONEDDS_URI=file://" + (src / "transport/config/lab-lan.xml").string());
       perf.pong_prefix = {"ip", "netns", "exec", node_ns};
       perf.ping_prefix = {"ip", "netns", "exec", coord_ns};
+      // Under the same host conditions as rpsd's run, whose real-time processes keep the
+      // CPUs out of slow idle states (clock.keep_cpus_awake, node.keep_cpus_awake).
+      const realtime::CpuWakeLatencyHold awake(0);
+      if (!awake.held()) fragment.note(r + " Hz: ddsperf ran with the CPUs free to idle: " + awake.refused());
       const bench::DdsperfRun run = bench::run_ddsperf(perf, work);
       for (const auto& l : run.lines) {
         perf_p50.push_back(l.p50_us);
@@ -209,7 +214,8 @@ int main(int argc, char** argv) try {
                    std::to_string(ncycles) + " cycles, " + std::to_string(n.value("missed_periods", std::int64_t{0})) +
                    " missed periods, " + std::to_string(n.value("holds", std::int64_t{0})) + " holds, jitter p99 " +
                    format("%.1f us", 1e6 * n["jitter"].value("p99_s", 0.0)) + (n.value("faulted", false) ? ", FAULTED" : "") +
-                   (n.value("sched_fifo", false) ? "" : ", no SCHED_FIFO") + ";";
+                   (n.value("sched_fifo", false) ? "" : ", no SCHED_FIFO") +
+                   (n.value("cpus_kept_awake", false) ? "" : ", CPUs free to idle") + ";";
     }
     fragment.add(bench::figure("realtime_node_overruns_" + r + "hz", "  node overruns (the worse of the two nodes)",
                                "% of cycles", single(node_overruns)));
@@ -248,7 +254,8 @@ int main(int argc, char** argv) try {
                   std::to_string(t.value("late_feedback", 0)) + " late feedback of " + std::to_string(cycles) +
                   " cycles, wake-up jitter p99 " + format("%.1f us", 1e6 * t["jitter"].value("p99_s", 0.0)) + ", max " +
                   format("%.1f us", 1e6 * t["jitter"].value("max_s", 0.0)) +
-                  (t.value("sched_fifo", false) ? "" : ", no SCHED_FIFO (" + t.value("refused", std::string()) + ")") + ";" +
+                  (t.value("sched_fifo", false) ? "" : ", no SCHED_FIFO (" + t.value("refused", std::string()) + ")") +
+                  (t.value("cpus_kept_awake", false) ? ", CPUs kept awake" : ", CPUs free to idle") + ";" +
                   node_text + " load average at start " + load_start + ", at end " + load_end + ".");
   }
   if (keep) std::fprintf(stderr, "realtime_overruns: kept %s\n", work.c_str());

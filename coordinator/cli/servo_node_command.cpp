@@ -84,7 +84,8 @@ nlohmann::json node_summary(const scenarios::ServoNodeFile& file, const servo::S
           {"overruns", report.overruns},
           {"jitter", coordinator::latency_json(report.jitter)},
           {"memory_locked", report.granted.memory_locked},
-          {"sched_fifo", report.granted.fifo_granted}};
+          {"sched_fifo", report.granted.fifo_granted},
+          {"cpus_kept_awake", report.granted.cpus_kept_awake}};
 }
 
 struct NodeOptions {

@@ -157,6 +157,7 @@ nlohmann::json timing_json(const TimingReport& t) {
     j["jitter"] = latency_json(t.jitter);
     j["memory_locked"] = t.memory_locked;
     j["sched_fifo"] = t.fifo_granted;
+    j["cpus_kept_awake"] = t.cpus_kept_awake;
     j["refused"] = t.refused;
   }
   return j;

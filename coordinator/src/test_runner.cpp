@@ -185,9 +185,11 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
   // feedback until a fraction of the period is left for the integrator and the recorder.
   TimingReport& timing = p.timing;
   timing.real_time = true;
-  const realtime::RealTimeSetupReport granted = realtime::apply_realtime(p.scenario->clock.realtime);
+  realtime::RealTimeSetupReport granted = realtime::apply_realtime(p.scenario->clock.realtime);
+  const realtime::CpuWakeLatencyHold awake = realtime::hold_cpus_awake(p.scenario->clock.realtime, granted);
   timing.memory_locked = granted.memory_locked;
   timing.fifo_granted = granted.fifo_granted;
+  timing.cpus_kept_awake = granted.cpus_kept_awake;
   timing.refused = granted.refused;
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / p.scenario->control_rate_hz));
   realtime::Pacer pacer(period_ns);

@@ -40,4 +40,12 @@ RealTimeSetupReport apply_realtime(const RealTimeRequest& request) {
   return report;
 }
 
+CpuWakeLatencyHold hold_cpus_awake(const RealTimeRequest& request, RealTimeSetupReport& report) {
+  if (!request.keep_cpus_awake) return {};
+  CpuWakeLatencyHold hold(0);
+  report.cpus_kept_awake = hold.held();
+  if (!hold.held()) report.refused += "keeping the CPUs awake refused: " + hold.refused() + "\n";
+  return hold;
+}
+
 }  // namespace rpsd::realtime

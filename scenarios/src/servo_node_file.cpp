@@ -96,6 +96,7 @@ ServoNodeFile load_servo_node(const std::filesystem::path& file, const std::vect
     f.heartbeat_rate_hz = node.positive_number_or("heartbeat_rate_hz", f.heartbeat_rate_hz);
     f.realtime.lock_memory = node.boolean_or("lock_memory", f.realtime.lock_memory);
     f.realtime.fifo_priority = static_cast<int>(node.whole_number_or("fifo_priority", 0, 99, f.realtime.fifo_priority));
+    f.realtime.keep_cpus_awake = node.boolean_or("keep_cpus_awake", f.realtime.keep_cpus_awake);
     node.finish();
   }
   {

@@ -245,6 +245,7 @@ void read_clock(MappingReader clock, TestScenario& t) {
       static_cast<int>(clock.whole_number_or("max_feedback_age_periods", 1, 1000, t.clock.max_feedback_age_periods));
   t.clock.realtime.lock_memory = clock.boolean_or("lock_memory", t.clock.realtime.lock_memory);
   t.clock.realtime.fifo_priority = static_cast<int>(clock.whole_number_or("fifo_priority", 0, 99, t.clock.realtime.fifo_priority));
+  t.clock.realtime.keep_cpus_awake = clock.boolean_or("keep_cpus_awake", t.clock.realtime.keep_cpus_awake);
   clock.finish();
 }
 

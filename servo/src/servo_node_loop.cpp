@@ -74,6 +74,7 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   };
 
   if (options.real_time) {
+    const realtime::CpuWakeLatencyHold awake = realtime::hold_cpus_awake(options.realtime, report.granted);
     // Ticks are triggered by the commands: a command is applied the moment it arrives and
     // the next tick is due two periods after it (one period plus one of grace). When none comes, the node ticks on that deadline
     // anyway, one period apart, and after command_timeout_periods such ticks it holds. So

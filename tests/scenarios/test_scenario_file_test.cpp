@@ -52,6 +52,14 @@ TEST(TestScenarioFile, OverridesReplaceValuesAndAreSavedInTheEffectiveScenario) 
   EXPECT_NE(file.effective_yaml.find("delay_s: 0.02"), std::string::npos) << file.effective_yaml;
 }
 
+// A real-time run keeps the CPUs out of slow idle states unless the scenario says not to.
+TEST(TestScenarioFile, KeepingTheCpusAwakeIsOnUnlessTurnedOff) {
+  EXPECT_TRUE(std::get<TestScenario>(load_study(example()).study).clock.realtime.keep_cpus_awake);
+  EXPECT_FALSE(std::get<TestScenario>(load_study(example(), {parse_override("clock.keep_cpus_awake=false")}).study)
+                   .clock.realtime.keep_cpus_awake);
+  EXPECT_NE(error_of({parse_override("clock.keep_cpus_awake=sometimes")}).find("clock.keep_cpus_awake"), std::string::npos);
+}
+
 TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
   EXPECT_NE(error_of({parse_override("experimental.0.dof=3")}).find("experimental[0].dof: expected a whole number from 0 to 0"),
             std::string::npos);

@@ -23,8 +23,8 @@ class ActuatorLinks;
 struct TimingReport {
   bool real_time = false;
   bool over_dds = false;
-  bool memory_locked = false, fifo_granted = false;
-  std::string refused;  ///< what the OS refused (mlockall, SCHED_FIFO), once
+  bool memory_locked = false, fifo_granted = false, cpus_kept_awake = false;
+  std::string refused;  ///< what the OS refused (mlockall, SCHED_FIFO, CPUs kept awake), once
   std::int64_t cycles = 0, overruns = 0, skipped_deadlines = 0, late_feedback = 0;
   realtime::LatencySummary jitter;  ///< wake-up lateness of the paced cycles
   struct Site {

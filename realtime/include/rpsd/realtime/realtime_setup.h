@@ -1,25 +1,36 @@
 // What a real-time process asks of the OS before its loop starts: locked memory (no page
 // faults in the loop), large blocks kept out of the heap (a long run must not grow;
-// large_blocks.h) and a SCHED_FIFO priority. Both may be refused (no privilege, a
-// container): the loop then still runs, and the refusal is reported once, not fatal.
+// large_blocks.h), a SCHED_FIFO priority, and CPUs kept out of slow idle states
+// (cpu_wake_latency.h). Each may be refused (no privilege, a container): the loop then still
+// runs, and the refusal is reported once, not fatal.
 #pragma once
 
 #include <string>
+
+#include "rpsd/realtime/cpu_wake_latency.h"
 
 namespace rpsd::realtime {
 
 struct RealTimeRequest {
   bool lock_memory = true;
   int fifo_priority = 80;  ///< 1..99; 0 keeps the default scheduler
+  /// Keep every CPU out of idle states that take time to wake (cpu_wake_latency.h).
+  bool keep_cpus_awake = true;
 };
 
 struct RealTimeSetupReport {
   bool memory_locked = false;
   bool fifo_granted = false;
+  bool cpus_kept_awake = false;
   std::string refused;  ///< one line per refusal with the OS's reason; empty when all granted
 };
 
 /// Applies the request to the calling process/thread. Not real-time safe.
 RealTimeSetupReport apply_realtime(const RealTimeRequest& request);
+
+/// The request's keep_cpus_awake, for as long as the returned hold lives (keep it for the
+/// loop's run); its outcome goes into `report` (cpus_kept_awake, or a line in refused).
+/// Not real-time safe.
+CpuWakeLatencyHold hold_cpus_awake(const RealTimeRequest& request, RealTimeSetupReport& report);
 
 }  // namespace rpsd::realtime

@@ -1,0 +1,30 @@
+// rpsd servo-node files: the real-time requests a node makes of its host.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "../servo/paper_rig.h"
+#include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/servo_node_file.h"
+
+namespace rpsd::scenarios {
+namespace {
+
+std::filesystem::path pier_node() { return testing::source_dir() / "scenarios/nodes/bridge-pier-site-1.yaml"; }
+
+TEST(ServoNodeFile, ARealTimeNodeKeepsTheCpusAwakeUnlessTurnedOff) {
+  const ServoNodeFile file = load_servo_node(pier_node());
+  EXPECT_EQ(file.mode, ServoNodeFile::Mode::kRealTime);
+  EXPECT_TRUE(file.realtime.keep_cpus_awake);
+  EXPECT_EQ(file.realtime.fifo_priority, 80);
+  EXPECT_FALSE(load_servo_node(pier_node(), {parse_override("node.keep_cpus_awake=false")}).realtime.keep_cpus_awake);
+  try {
+    load_servo_node(pier_node(), {parse_override("node.keep_cpus_awake=7")});
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("node.keep_cpus_awake"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rpsd::scenarios
