@@ -36,6 +36,7 @@
 #include "child_process.h"
 #include "ddsperf.h"
 #include "rpsd/coordinator/test_runner.h"
+#include "rpsd/realtime/cpu_wake_latency.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace {
@@ -135,6 +136,10 @@ int main(int argc, char** argv) try {
     perf.domain = domain;
     perf.seconds = ddsperf_seconds;
     perf.env = env;
+    // Under the same host conditions as rpsd's runs: the lock-step node keeps the CPUs out
+    // of slow idle states while it runs (node.keep_cpus_awake), so ddsperf gets the same.
+    const realtime::CpuWakeLatencyHold awake(0);
+    if (!awake.held()) fragment.note("ddsperf ran with the CPUs free to idle: " + awake.refused());
     const bench::DdsperfRun closed = bench::run_ddsperf(perf, work);
     for (const auto& l : closed.lines) {
       perf_p50.push_back(l.p50_us);

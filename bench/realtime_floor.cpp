@@ -1,11 +1,12 @@
 // The floor under the real-time overrun figures: what this machine does to a paced loop that
 // does nothing. One thread, SCHED_FIFO 80 and locked memory as rpsd's loops ask, sleeps to
 // absolute deadlines (realtime::Pacer, as the coordinator and the node pace) at each control
-// rate for --seconds, with no work, no DDS and no other process of rpsd running. An overrun
-// here is a wake-up later than the next deadline: time the host did not give the thread. No
-// loop with work in it can overrun less often on the same host, so this bounds what the
-// 4096 Hz target of realtime_overruns can reach here. The host's steal time over the run
-// (from /proc/stat) is reported beside it: on a VM the hypervisor's, not rpsd's, share.
+// rate for --seconds, with no work, no DDS and no other process of rpsd running; once with the
+// CPUs free to idle and once kept awake (cpu_wake_latency.h, as rpsd's real-time loops do by
+// default). An overrun here is a wake-up later than the next deadline: time the host did not
+// give the thread. No loop with work in it can overrun less often on the same host, so this
+// bounds what the 4096 Hz target of realtime_overruns can reach here. The host's steal time
+// over the run (from /proc/stat) is reported beside it: on a VM the hypervisor's share.
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "bench_report.h"
+#include "rpsd/realtime/cpu_wake_latency.h"
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/realtime/pacer.h"
 #include "rpsd/realtime/realtime_setup.h"
@@ -51,6 +53,37 @@ std::string percent(double v) {
   return text;
 }
 
+// One rate: the empty loop paced for `seconds`, its figures added to the fragment.
+void measure_empty_loop(int rate, double seconds, bool awake, bench::Fragment& fragment) {
+  if (rate <= 0) throw std::invalid_argument("--rates: positive");
+  const std::string r = std::to_string(rate);
+  const std::string how = awake ? "CPUs kept awake" : "CPUs free to idle";
+  realtime::Pacer pacer(1'000'000'000LL / rate);
+  realtime::LatencyHistogram lateness;
+  const auto cycles = static_cast<std::int64_t>(seconds * rate);
+  const CpuTimes before = read_cpu_times();
+  pacer.start();
+  while (pacer.cycles() < cycles) lateness.add(pacer.wait_next());
+  const CpuTimes after = read_cpu_times();
+  const double steal_pct = after.total > before.total
+                               ? 100.0 * static_cast<double>(after.steal - before.steal) / static_cast<double>(after.total - before.total)
+                               : 0.0;
+  const double overruns_pct = 100.0 * static_cast<double>(pacer.overruns()) / static_cast<double>(pacer.cycles());
+  const realtime::LatencySummary late = lateness.summary();
+  const std::string id = "realtime_floor_" + r + "hz" + (awake ? "_awake" : "");
+  bench::Figure f = bench::figure(id, "Empty paced loop (no work, no DDS), SCHED_FIFO, " + how + ": overruns at " + r + " Hz",
+                                  "% of cycles", single(overruns_pct));
+  if (rate == 4096) f.aiming_for("< 0.1 % (else the DDS target cannot be met on this host)", overruns_pct < 0.1);
+  fragment.add(f);
+  fragment.add(bench::figure(id + "_wakeup_p999", "  wake-up lateness p99.9", "us", single(late.p999_s * 1e6)));
+  fragment.add(bench::figure(id + "_wakeup_max", "  wake-up lateness max", "us", single(late.max_s * 1e6)));
+  fragment.add(bench::figure(id + "_steal", "  host steal time during the run", "% of CPU time", single(steal_pct)));
+  fragment.note(how + ", " + r + " Hz: " + std::to_string(pacer.cycles()) + " cycles, " + std::to_string(pacer.overruns()) +
+                " overruns (" + percent(overruns_pct) + " %), " + std::to_string(pacer.skipped_deadlines()) +
+                " deadlines skipped; wake-up p50 " + percent(late.p50_s * 1e6) + " us, p99 " + percent(late.p99_s * 1e6) +
+                " us; steal " + percent(steal_pct) + " %");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -74,32 +107,13 @@ int main(int argc, char** argv) try {
   const realtime::RealTimeSetupReport granted = realtime::apply_realtime({});
   if (!granted.refused.empty()) fragment.note("real-time request refused, figures are for the default scheduler: " + granted.refused);
 
-  for (const int rate : rates) {
-    if (rate <= 0) throw std::invalid_argument("--rates: positive");
-    const std::string r = std::to_string(rate);
-    realtime::Pacer pacer(1'000'000'000LL / rate);
-    realtime::LatencyHistogram lateness;
-    const auto cycles = static_cast<std::int64_t>(seconds * rate);
-    const CpuTimes before = read_cpu_times();
-    pacer.start();
-    while (pacer.cycles() < cycles) lateness.add(pacer.wait_next());
-    const CpuTimes after = read_cpu_times();
-    const double steal_pct = after.total > before.total
-                                 ? 100.0 * static_cast<double>(after.steal - before.steal) / static_cast<double>(after.total - before.total)
-                                 : 0.0;
-    const double overruns_pct = 100.0 * static_cast<double>(pacer.overruns()) / static_cast<double>(pacer.cycles());
-    const realtime::LatencySummary late = lateness.summary();
-    bench::Figure f = bench::figure("realtime_floor_" + r + "hz",
-                                    "Empty paced loop (no work, no DDS), SCHED_FIFO: overruns at " + r + " Hz", "% of cycles",
-                                    single(overruns_pct));
-    if (rate == 4096) f.aiming_for("< 0.1 % (else the DDS target cannot be met on this host)", overruns_pct < 0.1);
-    fragment.add(f);
-    fragment.add(bench::figure("realtime_floor_" + r + "hz_wakeup_p999", "  wake-up lateness p99.9", "us", single(late.p999_s * 1e6)));
-    fragment.add(bench::figure("realtime_floor_" + r + "hz_wakeup_max", "  wake-up lateness max", "us", single(late.max_s * 1e6)));
-    fragment.add(bench::figure("realtime_floor_" + r + "hz_steal", "  host steal time during the run", "% of CPU time", single(steal_pct)));
-    fragment.note(r + " Hz: " + std::to_string(pacer.cycles()) + " cycles, " + std::to_string(pacer.overruns()) + " overruns (" +
-                  percent(overruns_pct) + " %), " + std::to_string(pacer.skipped_deadlines()) + " deadlines skipped; wake-up p50 " +
-                  percent(late.p50_s * 1e6) + " us, p99 " + percent(late.p99_s * 1e6) + " us; steal " + percent(steal_pct) + " %");
+  for (const bool awake : {false, true}) {
+    const realtime::CpuWakeLatencyHold hold = awake ? realtime::CpuWakeLatencyHold(0) : realtime::CpuWakeLatencyHold();
+    if (awake && !hold.held()) {
+      fragment.note("the CPUs could not be kept awake: " + hold.refused());
+      break;
+    }
+    for (const int rate : rates) measure_empty_loop(rate, seconds, awake, fragment);
   }
   fragment.write(options.out);
   return 0;

@@ -149,6 +149,10 @@ nlohmann::json timing_json(const TimingReport& t) {
     sites.push_back(site);
   }
   json j = {{"real_time", t.real_time}, {"over_dds", t.over_dds}, {"sites", sites}};
+  if (t.over_dds && !t.real_time) {
+    j["cpus_kept_awake"] = t.cpus_kept_awake;
+    j["refused"] = t.refused;
+  }
   if (t.real_time) {
     j["cycles"] = t.cycles;
     j["overruns"] = t.overruns;

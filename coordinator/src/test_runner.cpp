@@ -172,6 +172,14 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
   RpsdLoop& loop = *p.loop;
   StepOutcome outcome = StepOutcome::kOk;
   if (!p.real_time) {
+    // Lock-step over DDS waits one round trip per step, and each trip wakes threads on other
+    // CPUs, slow from an idle state (docs/dds-transport.md). In process there is no such
+    // hand-off, and the CPUs are left alone.
+    realtime::RealTimeSetupReport awake_report;
+    const realtime::CpuWakeLatencyHold awake = p.actuators->over_dds() ? realtime::hold_cpus_awake(p.scenario->clock.realtime, awake_report)
+                                                                       : realtime::CpuWakeLatencyHold();
+    p.timing.cpus_kept_awake = awake_report.cpus_kept_awake;
+    p.timing.refused = awake_report.refused;
     const std::int64_t report_every = progress_interval(*p.scenario);
     for (std::int64_t n = 0; n < p.steps_planned; ++n) {
       outcome = loop.step(*p.recorder);

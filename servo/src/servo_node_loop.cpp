@@ -53,6 +53,9 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
                                         const ServoNodeLoopOptions& options, const std::atomic<bool>& stop) {
   ServoNodeLoopReport report;
   report.granted = realtime::apply_realtime(options.realtime);
+  // Both modes: a real-time node wakes for every command, and a lock-step one answers on
+  // Cyclone's receive thread, woken for every command too.
+  const realtime::CpuWakeLatencyHold awake = realtime::hold_cpus_awake(options.realtime, report.granted);
   const double period_s = controller.config().control_period_s;
   const auto period_ns = static_cast<std::int64_t>(std::llround(period_s * 1e9));
   const std::int64_t start_ns = realtime::monotonic_now_ns();
@@ -74,7 +77,6 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   };
 
   if (options.real_time) {
-    const realtime::CpuWakeLatencyHold awake = realtime::hold_cpus_awake(options.realtime, report.granted);
     // Ticks are triggered by the commands: a command is applied the moment it arrives and
     // the next tick is due two periods after it (one period plus one of grace). When none comes, the node ticks on that deadline
     // anyway, one period apart, and after command_timeout_periods such ticks it holds. So
