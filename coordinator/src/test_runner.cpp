@@ -59,6 +59,7 @@ struct TestAssembly::Parts {
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
   TimingReport timing;
+  realtime::CpuWakeLatencyHold lock_step_awake;  ///< from the start to finish(), lock-step over DDS
 
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const StepRecord&)>& after_step) {
@@ -144,6 +145,16 @@ TestAssembly::TestAssembly(const scenarios::TestScenario& s, const std::filesyst
   p.loop = std::make_unique<RpsdLoop>(std::move(parts));
   p.loop->start(s.initial_displacement_m, force0);
 
+  // Lock-step over DDS waits one round trip per step, and each trip wakes threads on other
+  // CPUs, slow from an idle state (docs/dds-transport.md): the CPUs are kept awake until
+  // finish(), whichever way the steps are taken. In process there is no such hand-off.
+  if (!p.real_time && p.actuators->over_dds()) {
+    realtime::RealTimeSetupReport awake;
+    p.lock_step_awake = realtime::hold_cpus_awake(s.clock.realtime, awake);
+    p.timing.cpus_kept_awake = awake.cpus_kept_awake;
+    p.timing.refused = awake.refused;
+  }
+
   p.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
   if (p.loop->steps_available() >= 0) p.steps_planned = std::min(p.steps_planned, p.loop->steps_available());
   p.round_trips.resize(p.actuators->sites().size());
@@ -172,14 +183,6 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
   RpsdLoop& loop = *p.loop;
   StepOutcome outcome = StepOutcome::kOk;
   if (!p.real_time) {
-    // Lock-step over DDS waits one round trip per step, and each trip wakes threads on other
-    // CPUs, slow from an idle state (docs/dds-transport.md). In process there is no such
-    // hand-off, and the CPUs are left alone.
-    realtime::RealTimeSetupReport awake_report;
-    const realtime::CpuWakeLatencyHold awake = p.actuators->over_dds() ? realtime::hold_cpus_awake(p.scenario->clock.realtime, awake_report)
-                                                                       : realtime::CpuWakeLatencyHold();
-    p.timing.cpus_kept_awake = awake_report.cpus_kept_awake;
-    p.timing.refused = awake_report.refused;
     const std::int64_t report_every = progress_interval(*p.scenario);
     for (std::int64_t n = 0; n < p.steps_planned; ++n) {
       outcome = loop.step(*p.recorder);
@@ -234,6 +237,7 @@ const ActuatorLinks& TestAssembly::actuators() const { return *parts_->actuators
 
 TestRun TestAssembly::finish(StepOutcome outcome) {
   Parts& p = *parts_;
+  p.lock_step_awake = {};
   TestRun run;
   run.outcome = outcome;
   run.steps = p.steps;

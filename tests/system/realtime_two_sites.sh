@@ -22,6 +22,13 @@ wait $NODE1_PID $NODE2_PID || true
 run_bridge "$WORK/local" > /dev/null
 every_step_recorded "$WORK/dds"
 [ "$(json "$WORK/dds/summary.json" "j['steps'] == j['steps_planned']")" = True ] || fail "the run did not take every planned step"
+# Run as root, every process kept the CPUs out of slow idle states while it ran.
+if [ "$(id -u)" = 0 ]; then
+  [ "$(json "$WORK/dds/summary.json" "j['timing']['cpus_kept_awake']")" = True ] || fail "the coordinator did not keep the CPUs awake"
+  for n in 1 2; do
+    [ "$(json "$WORK/node$n.json" "j['cpus_kept_awake']")" = True ] || fail "node $n did not keep the CPUs awake"
+  done
+fi
 # The rig's response delay (Eq. 12) is the time constant of the plant's lag.
 tau=$($RPSD analyze "$SRC/servo/params/paper-mts-244.yaml" --json | python3 -c "import json,sys; print(json.load(sys.stdin)['response_delay_ms'] / 1e3)")
 python3 "$(dirname "$0")/transport_effect_bound.py" "$WORK/local" "$WORK/dds" "$tau" "$WORK/node1.json" "$WORK/node2.json"
