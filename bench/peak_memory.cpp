@@ -116,8 +116,6 @@ double growth_in_child(const std::function<void()>& body, const std::function<vo
   return growth;
 }
 
-bench::Summary single(double v) { return bench::summarize({v}); }
-
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -180,26 +178,26 @@ int main(int argc, char** argv) try {
 
   fragment.add(bench::figure("peak_rss_30min_mb",
                              "Peak memory, `rpsd run` of " + long_seconds + " s (synthetic record), rpsd process",
-                             "MB", single(long_run.peak_mb))
+                             "MB", bench::single(long_run.peak_mb))
       .against("peak_rss_60s_mb", "long run / 60 s run", long_run.peak_mb / a.value.median));
 
   // Flat: what a step leaves behind is below a byte (a kept record is about 860 bytes).
   fragment.add(bench::figure("rss_growth_mb_per_min",
                              "Memory growth per simulated minute, as `rpsd run` runs (test + reference)",
-                             "MB/min", single(streamed_per_min))
+                             "MB/min", bench::single(streamed_per_min))
       .against("rss_growth_kept_records_mb_per_min", "streamed / records kept", streamed_per_min / kept_per_min)
       .aiming_for("flat (< 0.01 MB/min)", streamed_per_min < 0.01));
 
   fragment.add(bench::figure("rss_growth_kept_records_mb_per_min",
                              "Baseline: the same keeping every step record (rpsd run before this change)",
-                             "MB/min", single(kept_per_min)));
+                             "MB/min", bench::single(kept_per_min)));
 
   fragment.add(bench::figure("rpsd_run_60s_wall_s",
                              "Wall time, `rpsd run` of 60 s end to end (test, reference, CSVs, plots)",
                              "s", bench::summarize(short_walls)));
 
   fragment.add(bench::figure("rpsd_run_30min_wall_s", "Wall time, `rpsd run` of " + long_seconds + " s end to end",
-                             "s", single(long_run.wall_s)));
+                             "s", bench::single(long_run.wall_s)));
 
   char text[1000];
   std::snprintf(text, sizeof text,

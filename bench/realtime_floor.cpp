@@ -9,7 +9,6 @@
 // over the run (from /proc/stat) is reported beside it: on a VM the hypervisor's share.
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -45,8 +44,6 @@ CpuTimes read_cpu_times() {
   return t;
 }
 
-bench::Summary single(double v) { return bench::summarize({v}); }
-
 std::string percent(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", v);
@@ -55,7 +52,6 @@ std::string percent(double v) {
 
 // One rate: the empty loop paced for `seconds`, its figures added to the fragment.
 void measure_empty_loop(int rate, double seconds, bool awake, bench::Fragment& fragment) {
-  if (rate <= 0) throw std::invalid_argument("--rates: positive");
   const std::string r = std::to_string(rate);
   const std::string how = awake ? "CPUs kept awake" : "CPUs free to idle";
   realtime::Pacer pacer(1'000'000'000LL / rate);
@@ -72,12 +68,12 @@ void measure_empty_loop(int rate, double seconds, bool awake, bench::Fragment& f
   const realtime::LatencySummary late = lateness.summary();
   const std::string id = "realtime_floor_" + r + "hz" + (awake ? "_awake" : "");
   bench::Figure f = bench::figure(id, "Empty paced loop (no work, no DDS), SCHED_FIFO, " + how + ": overruns at " + r + " Hz",
-                                  "% of cycles", single(overruns_pct));
+                                  "% of cycles", bench::single(overruns_pct));
   if (rate == 4096) f.aiming_for("< 0.1 % (else the DDS target cannot be met on this host)", overruns_pct < 0.1);
   fragment.add(f);
-  fragment.add(bench::figure(id + "_wakeup_p999", "  wake-up lateness p99.9", "us", single(late.p999_s * 1e6)));
-  fragment.add(bench::figure(id + "_wakeup_max", "  wake-up lateness max", "us", single(late.max_s * 1e6)));
-  fragment.add(bench::figure(id + "_steal", "  host steal time during the run", "% of CPU time", single(steal_pct)));
+  fragment.add(bench::figure(id + "_wakeup_p999", "  wake-up lateness p99.9", "us", bench::single(late.p999_s * 1e6)));
+  fragment.add(bench::figure(id + "_wakeup_max", "  wake-up lateness max", "us", bench::single(late.max_s * 1e6)));
+  fragment.add(bench::figure(id + "_steal", "  host steal time during the run", "% of CPU time", bench::single(steal_pct)));
   fragment.note(how + ", " + r + " Hz: " + std::to_string(pacer.cycles()) + " cycles, " + std::to_string(pacer.overruns()) +
                 " overruns (" + percent(overruns_pct) + " %), " + std::to_string(pacer.skipped_deadlines()) +
                 " deadlines skipped; wake-up p50 " + percent(late.p50_s * 1e6) + " us, p99 " + percent(late.p99_s * 1e6) +
@@ -94,11 +90,8 @@ int main(int argc, char** argv) try {
     const std::string& key = options.rest[i];
     const std::string& value = options.rest[i + 1];
     if (key == "--seconds") seconds = std::stod(value);
-    else if (key == "--rates") {
-      rates.clear();
-      std::stringstream list(value);
-      for (std::string r; std::getline(list, r, ',');) rates.push_back(std::stoi(r));
-    } else throw std::invalid_argument("unknown option " + key);
+    else if (key == "--rates") rates = bench::parse_rates(value);
+    else throw std::invalid_argument("unknown option " + key);
   }
   if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
   if (!(seconds > 0.0)) throw std::invalid_argument("--seconds: positive");

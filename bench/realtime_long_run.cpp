@@ -127,8 +127,6 @@ std::string format(const char* pattern, double a, double b = 0.0) {
   return text;
 }
 
-bench::Summary single(double v) { return bench::summarize({v}); }
-
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -248,21 +246,21 @@ int main(int argc, char** argv) try {
   const std::string status = completed ? "completed" : "DID NOT COMPLETE: " + summary.value("outcome", std::string("exit " + std::to_string(code)));
 
   bench::Figure runs = bench::figure("long_run_completed", format("%g-minute real-time run at ", minutes) + r + " Hz over DDS (" + status + ")",
-                                     "steps recorded", single(static_cast<double>(history.rows)));
+                                     "steps recorded", bench::single(static_cast<double>(history.rows)));
   runs.aiming_for("every planned step (" + std::to_string(planned) + ") recorded, in order", every_step);
   fragment.add(runs);
   if (!t_min.empty()) {
     fragment.add(bench::figure("long_run_rss_slope_coordinator_kib_per_min", "  coordinator resident set growth (least squares, minute 2 on)",
-                               "KiB/min", single(coord_slope))
+                               "KiB/min", bench::single(coord_slope))
                      .aiming_for("< 4 KiB/min (flat)", coord_slope < kPageKiB));
     fragment.add(bench::figure("long_run_rss_slope_node_kib_per_min", "  servo node resident set growth (least squares, minute 2 on)",
-                               "KiB/min", single(node_slope))
+                               "KiB/min", bench::single(node_slope))
                      .aiming_for("< 4 KiB/min (flat)", node_slope < kPageKiB));
     fragment.add(bench::figure("long_run_rss_coordinator_mib", "  coordinator resident set, peak during the test", "MiB",
-                               single(coord_peak / 1024.0)));
-    fragment.add(bench::figure("long_run_rss_node_mib", "  servo node resident set, peak during the test", "MiB", single(node_peak / 1024.0)));
+                               bench::single(coord_peak / 1024.0)));
+    fragment.add(bench::figure("long_run_rss_node_mib", "  servo node resident set, peak during the test", "MiB", bench::single(node_peak / 1024.0)));
     fragment.add(bench::figure("long_run_rss_change_coordinator_kib", "  coordinator resident set, end of the test less minute 1", "KiB",
-                               single(coord.back() - coord_first)));
+                               bench::single(coord.back() - coord_first)));
     fragment.note(format("Resident sets at minute 1 and at the end of the test: coordinator %.0f", coord_first) +
                   format(" -> %.0f KiB, ", coord.back()) + format("node %.0f", node_first) + format(" -> %.0f KiB; ", nodes.back()) +
                   std::to_string(t_min.size()) + " one-second samples. Rises: coordinator " + std::to_string(coord_rises.count) +
@@ -275,9 +273,9 @@ int main(int argc, char** argv) try {
     const json& t = summary["timing"];
     const auto cycles = t.value("cycles", std::int64_t{0});
     fragment.add(bench::figure("long_run_late_feedback_pct", "  steps run on old feedback (late feedback)", "% of cycles",
-                               single(cycles > 0 ? 100.0 * static_cast<double>(t.value("late_feedback", std::int64_t{0})) / static_cast<double>(cycles) : 0.0)));
+                               bench::single(cycles > 0 ? 100.0 * static_cast<double>(t.value("late_feedback", std::int64_t{0})) / static_cast<double>(cycles) : 0.0)));
     fragment.add(bench::figure("long_run_max_feedback_age_periods", "  oldest feedback a step ran on", "control periods",
-                               single(history.max_feedback_age)));
+                               bench::single(history.max_feedback_age)));
     fragment.note(std::to_string(history.rows) + " rows of " + std::to_string(planned) + " planned steps" +
                   (history.steps_in_order ? ", steps in order without a gap" : ", first gap at row " + std::to_string(history.first_gap_at)) +
                   "; " + std::to_string(history.rows_on_old_feedback) + " rows on old feedback, oldest " +

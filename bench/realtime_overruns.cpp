@@ -17,7 +17,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -51,8 +50,6 @@ std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0
   return text;
 }
 
-bench::Summary single(double v) { return bench::summarize({v}); }
-
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -80,11 +77,8 @@ int main(int argc, char** argv) try {
     else if (key == "--max-feedback-age") max_age = std::stoi(value);
     else if (key == "--ddsperf") ddsperf = value;
     else if (key == "--ddsperf-seconds") ddsperf_seconds = std::stoi(value);
-    else if (key == "--rates") {
-      rates.clear();
-      std::stringstream list(value);
-      for (std::string r; std::getline(list, r, ',');) rates.push_back(std::stoi(r));
-    } else throw std::invalid_argument("unknown option " + key);
+    else if (key == "--rates") rates = bench::parse_rates(value);
+    else throw std::invalid_argument("unknown option " + key);
   }
   if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
   if (coord_ns.empty() || node_ns.empty()) {
@@ -190,12 +184,12 @@ int main(int argc, char** argv) try {
 
     bench::Figure f = bench::figure("realtime_overruns_" + r + "hz",
                                     "Real-time overruns at " + r + " Hz, coordinator, 2 netns (" + status + ")",
-                                    "% of cycles", single(overruns_pct));
+                                    "% of cycles", bench::single(overruns_pct));
     if (rate == 4096) f.aiming_for("< 0.1 %", completed && overruns_pct < 0.1);
     else if (!completed) f.aiming_for("runs to completion", false);
     fragment.add(f);
     fragment.add(bench::figure("realtime_late_feedback_" + r + "hz", "  late feedback (cycles without this step's feedback)",
-                               "% of cycles", single(late_pct)));
+                               "% of cycles", bench::single(late_pct)));
 
     double node_overruns = 0.0, node_missed = 0.0;
     std::string node_text;
@@ -218,7 +212,7 @@ int main(int argc, char** argv) try {
                    (n.value("cpus_kept_awake", false) ? "" : ", CPUs free to idle") + ";";
     }
     fragment.add(bench::figure("realtime_node_overruns_" + r + "hz", "  node overruns (the worse of the two nodes)",
-                               "% of cycles", single(node_overruns)));
+                               "% of cycles", bench::single(node_overruns)));
 
     std::vector<double> p50, p99, max;
     for (const auto& site : t["sites"]) {
@@ -228,16 +222,16 @@ int main(int argc, char** argv) try {
     }
     if (!p50.empty()) {
       bench::Figure rt = bench::figure("realtime_round_trip_" + r + "hz_us", "  round trip p50 (the worse site)", "us",
-                                       single(*std::max_element(p50.begin(), p50.end())));
+                                       bench::single(*std::max_element(p50.begin(), p50.end())));
       if (!perf_p50.empty()) {
         rt.against("realtime_ddsperf_round_trip_" + r + "hz_us", "rpsd / ddsperf at the median",
                    rt.value.median / bench::summarize(perf_p50).median);
       }
       fragment.add(rt);
       fragment.add(bench::figure("realtime_round_trip_p99_" + r + "hz_us", "  round trip p99 (the worse site)", "us",
-                                 single(*std::max_element(p99.begin(), p99.end()))));
+                                 bench::single(*std::max_element(p99.begin(), p99.end()))));
       fragment.add(bench::figure("realtime_round_trip_max_" + r + "hz_us", "  round trip max (the worse site)", "us",
-                                 single(*std::max_element(max.begin(), max.end()))));
+                                 bench::single(*std::max_element(max.begin(), max.end()))));
     }
     if (!perf_p50.empty()) {
       fragment.add(bench::figure("realtime_ddsperf_round_trip_" + r + "hz_us",

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <ctime>
 
@@ -150,6 +151,17 @@ Options parse_options(int argc, char** argv, int default_repetitions) {
     }
   }
   return o;
+}
+
+std::vector<int> parse_rates(const std::string& list) {
+  std::vector<int> rates;
+  std::stringstream items(list);
+  for (std::string item; std::getline(items, item, ',');) {
+    const int rate = std::stoi(item);
+    if (rate <= 0) throw std::invalid_argument("--rates: positive whole numbers, got " + item);
+    rates.push_back(rate);
+  }
+  return rates;
 }
 
 }  // namespace rpsd::bench

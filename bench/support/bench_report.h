@@ -25,6 +25,9 @@ struct Summary {
 /// Summarises the values; throws std::invalid_argument when there are none.
 Summary summarize(std::vector<double> values);
 
+/// The summary of a figure measured once.
+inline Summary single(double value) { return summarize({value}); }
+
 /// The summary of f(v) for every value (for example seconds -> multiple of real time); f must
 /// be monotonic, so the median maps to the median and the spread keeps its order.
 Summary map_summary(const Summary& s, const std::function<double(double)>& f);
@@ -115,5 +118,9 @@ struct Options {
 };
 /// Throws std::invalid_argument on a malformed option.
 Options parse_options(int argc, char** argv, int default_repetitions);
+
+/// A comma-separated list of control rates in Hz ("1024,2048,4096"); throws
+/// std::invalid_argument on a value that is not a positive whole number.
+std::vector<int> parse_rates(const std::string& list);
 
 }  // namespace rpsd::bench

@@ -149,7 +149,7 @@ nlohmann::json timing_json(const TimingReport& t) {
     sites.push_back(site);
   }
   json j = {{"real_time", t.real_time}, {"over_dds", t.over_dds}, {"sites", sites}};
-  if (t.over_dds && !t.real_time) {
+  if (t.real_time || t.over_dds) {
     j["cpus_kept_awake"] = t.cpus_kept_awake;
     j["refused"] = t.refused;
   }
@@ -161,8 +161,6 @@ nlohmann::json timing_json(const TimingReport& t) {
     j["jitter"] = latency_json(t.jitter);
     j["memory_locked"] = t.memory_locked;
     j["sched_fifo"] = t.fifo_granted;
-    j["cpus_kept_awake"] = t.cpus_kept_awake;
-    j["refused"] = t.refused;
   }
   return j;
 }

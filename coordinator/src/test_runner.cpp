@@ -59,7 +59,7 @@ struct TestAssembly::Parts {
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
   TimingReport timing;
-  realtime::CpuWakeLatencyHold lock_step_awake;  ///< from the start to finish(), lock-step over DDS
+  realtime::CpuWakeLatencyHold cpus_awake;  ///< from the start to finish(): real time, or over DDS
 
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const StepRecord&)>& after_step) {
@@ -145,12 +145,13 @@ TestAssembly::TestAssembly(const scenarios::TestScenario& s, const std::filesyst
   p.loop = std::make_unique<RpsdLoop>(std::move(parts));
   p.loop->start(s.initial_displacement_m, force0);
 
-  // Lock-step over DDS waits one round trip per step, and each trip wakes threads on other
-  // CPUs, slow from an idle state (docs/dds-transport.md): the CPUs are kept awake until
-  // finish(), whichever way the steps are taken. In process there is no such hand-off.
-  if (!p.real_time && p.actuators->over_dds()) {
+  // A paced loop must wake on time, and lock-step over DDS waits one round trip per step whose
+  // wake-ups land on other CPUs; both are slow from an idle state (docs/dds-transport.md).
+  // The CPUs are kept awake until finish(), whichever way the steps are taken. As fast as
+  // possible in process there is no such wake-up, and the CPUs are left alone.
+  if (p.real_time || p.actuators->over_dds()) {
     realtime::RealTimeSetupReport awake;
-    p.lock_step_awake = realtime::hold_cpus_awake(s.clock.realtime, awake);
+    p.cpus_awake = realtime::hold_cpus_awake(s.clock.realtime, awake);
     p.timing.cpus_kept_awake = awake.cpus_kept_awake;
     p.timing.refused = awake.refused;
   }
@@ -196,12 +197,10 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
   // feedback until a fraction of the period is left for the integrator and the recorder.
   TimingReport& timing = p.timing;
   timing.real_time = true;
-  realtime::RealTimeSetupReport granted = realtime::apply_realtime(p.scenario->clock.realtime);
-  const realtime::CpuWakeLatencyHold awake = realtime::hold_cpus_awake(p.scenario->clock.realtime, granted);
+  const realtime::RealTimeSetupReport granted = realtime::apply_realtime(p.scenario->clock.realtime);
   timing.memory_locked = granted.memory_locked;
   timing.fifo_granted = granted.fifo_granted;
-  timing.cpus_kept_awake = granted.cpus_kept_awake;
-  timing.refused = granted.refused;
+  timing.refused += granted.refused;
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / p.scenario->control_rate_hz));
   realtime::Pacer pacer(period_ns);
   realtime::LatencyHistogram jitter;
@@ -237,7 +236,7 @@ const ActuatorLinks& TestAssembly::actuators() const { return *parts_->actuators
 
 TestRun TestAssembly::finish(StepOutcome outcome) {
   Parts& p = *parts_;
-  p.lock_step_awake = {};
+  p.cpus_awake = {};
   TestRun run;
   run.outcome = outcome;
   run.steps = p.steps;

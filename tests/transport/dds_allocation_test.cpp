@@ -3,8 +3,6 @@
 // DdsNodeEndpoint::take_command on the node's. Its own binary: it replaces the allocation
 // functions to count them. The sending half, dds_write, allocates inside Cyclone 0.10 (it
 // serialises into a buffer of its own per sample); README "Not yet here" gives the count.
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -12,6 +10,7 @@
 #include <thread>
 
 #include "allocation_counter.h"
+#include "dds_test_peers.h"
 #include "rpsd/realtime/pacer.h"
 #include "rpsd/transport/dds_link.h"
 #include "rpsd/transport/dds_node_endpoint.h"
@@ -22,46 +21,15 @@ namespace {
 constexpr std::uint32_t kTest = 71, kSite = 1;
 constexpr int kWarmUp = 500, kCounted = 2000;
 
-DdsDomainConfig loopback() {
-  return {static_cast<std::uint32_t>(40 + ::getpid() % 150), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
-}
-
 class DdsReceivePath : public ::testing::Test {
  protected:
-  DdsReceivePath() : coordinator_(loopback()), node_side_(loopback()), link_(coordinator_, link_config()), node_(node_side_, node_config()) {}
+  DdsReceivePath()
+      : coordinator_(testing::loopback()),
+        node_side_(testing::loopback()),
+        link_(coordinator_, testing::link_config(kTest, kSite, 2, 2.0)),
+        node_(node_side_, testing::node_config(kTest, kSite)) {}
 
-  static DdsLinkConfig link_config() {
-    DdsLinkConfig c;
-    c.test_id = kTest;
-    c.site_id = kSite;
-    c.channels = 2;
-    c.feedback_timeout_s = 2.0;
-    return c;
-  }
-  static DdsNodeEndpointConfig node_config() {
-    DdsNodeEndpointConfig c;
-    c.test_id = kTest;
-    c.site_id = kSite;
-    return c;
-  }
-
-  void SetUp() override {
-    std::atomic<bool> found{false};
-    std::thread announcer([&] {
-      NodeHeartbeat h;
-      h.test_id = kTest;
-      h.site_id = kSite;
-      while (!found) {
-        node_.publish_heartbeat(h);
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      }
-    });
-    found = link_.wait_for_node(10.0);
-    const bool connected = found;
-    found = true;
-    announcer.join();
-    ASSERT_TRUE(connected);
-  }
+  void SetUp() override { ASSERT_TRUE(testing::connect(link_, node_, kTest, kSite)); }
 
   // Answers commands until `stop`; counts, when asked, the allocations of its take_command calls.
   void answer(const std::atomic<bool>& stop, bool count_takes) {
@@ -69,9 +37,9 @@ class DdsReceivePath : public ::testing::Test {
     while (!stop) {
       if (!node_.wait_for_command_until(realtime::monotonic_now_ns() + 20'000'000)) continue;
       for (;;) {
-        if (count_takes && answered_ >= kWarmUp) testing::begin_counting_allocations();
+        if (count_takes && answered_ >= kWarmUp) rpsd::testing::begin_counting_allocations();
         const bool took = node_.take_command(c);
-        if (count_takes && answered_ >= kWarmUp) take_allocations_ += testing::end_counting_allocations().total();
+        if (count_takes && answered_ >= kWarmUp) take_allocations_ += rpsd::testing::end_counting_allocations().total();
         if (!took) break;
         FeedbackSample f;
         f.test_id = kTest;
@@ -93,9 +61,9 @@ class DdsReceivePath : public ::testing::Test {
     c.displacement_m[0] = 1e-5 * step;
     EXPECT_EQ(link_.send(c), LinkStatus::kOk);
     FeedbackSample f;
-    if (count_receive) testing::begin_counting_allocations();
+    if (count_receive) rpsd::testing::begin_counting_allocations();
     const LinkStatus status = link_.receive(f);
-    const long allocations = count_receive ? testing::end_counting_allocations().total() : 0;
+    const long allocations = count_receive ? rpsd::testing::end_counting_allocations().total() : 0;
     EXPECT_EQ(status, LinkStatus::kOk) << "step " << step;
     EXPECT_EQ(f.step, step);
     return allocations;

@@ -10,51 +10,17 @@
 #include <string>
 #include <thread>
 
+#include "dds_test_peers.h"
 #include "rpsd/realtime/pacer.h"
 #include "rpsd/transport/dds_node_endpoint.h"
 
 namespace rpsd::transport {
 namespace {
 
-DdsDomainConfig loopback() {
-  // A domain of its own per test binary run keeps parallel ctest processes apart.
-  return {static_cast<std::uint32_t>(40 + ::getpid() % 150), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
-}
-
-DdsLinkConfig link_config(std::uint32_t test, std::uint32_t site, int channels, double timeout_s = 1.0) {
-  DdsLinkConfig c;
-  c.test_id = test;
-  c.site_id = site;
-  c.channels = channels;
-  c.feedback_timeout_s = timeout_s;
-  return c;
-}
-
-DdsNodeEndpointConfig node_config(std::uint32_t test, std::uint32_t site) {
-  DdsNodeEndpointConfig c;
-  c.test_id = test;
-  c.site_id = site;
-  return c;
-}
-
-// The node's side of the start handshake: heartbeats, as a servo node sends them, while the
-// link waits for the node; true once the link has found it.
-bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, std::uint32_t site, double timeout_s = 10.0) {
-  std::atomic<bool> done{false};
-  std::thread announcer([&] {
-    NodeHeartbeat h;
-    h.test_id = test;
-    h.site_id = site;
-    while (!done) {
-      node.publish_heartbeat(h);
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-  });
-  const bool found = link.wait_for_node(timeout_s);
-  done = true;
-  announcer.join();
-  return found;
-}
+using testing::connect;
+using testing::link_config;
+using testing::loopback;
+using testing::node_config;
 
 // Answers every command of its site with x = 2 u, F = -u, until stopped.
 void echo(DdsNodeEndpoint& node, std::uint32_t site, const std::atomic<bool>& stop, int max_answers = 1 << 30) {
