@@ -1,6 +1,6 @@
 // Coordinator overhead per step: everything the loop does apart from the integrator and the
 // plant. Measured as the difference of two timings taken in the same run:
-//   (1) the paper's SDOF RPsD loop (as in scenarios/elcentro-sdof.yaml: numerical mass and
+//   (1) the paper's SDOF RPsD loop (as in examples/scenarios/elcentro-sdof.yaml: numerical mass and
 //       damping, central difference, phase lead, ground-motion load, in-process link, the
 //       recorder hand-off to its writer thread) with a node whose plant follows the command
 //       exactly and does no physics (x = command, F = k x);
@@ -40,7 +40,7 @@ class FollowingPlant final : public servo::Plant {
 int main(int argc, char** argv) try {
   const bench::Options options = bench::parse_options(argc, argv, 15);
   bench::Fragment fragment("coordinator_overhead", argc, argv);
-  const auto file = scenarios::load_study(options.source_dir / "scenarios/elcentro-sdof.yaml",
+  const auto file = scenarios::load_study(options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
                                           {scenarios::parse_override("ground_motion.pad_after_s=20")});
   const auto& scenario = std::get<scenarios::TestScenario>(file.study);
   const double m = 7080.0, k = 700.8e3, zeta = 0.011;

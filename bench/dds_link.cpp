@@ -1,10 +1,10 @@
 // The DDS link on loopback, in one step so that rpsd and ddsperf meet the same machine load
 // and the same Cyclone configuration (transport/config/loopback.xml, a private domain).
 //
-// (1) The paper SDOF (scenarios/elcentro-sdof.yaml, El Centro + 20 s of free vibration,
+// (1) The paper SDOF (examples/scenarios/elcentro-sdof.yaml, El Centro + 20 s of free vibration,
 //     61,429 steps at 1024 Hz) lock-step over DDS: the coordinator built as `rpsd run` builds
 //     it (coordinator::TestAssembly with transport.kind=dds, test 7) in this process, the
-//     specimen on a separate `rpsd servo-node` process (scenarios/nodes/bridge-pier-site-1.yaml:
+//     specimen on a separate `rpsd servo-node` process (examples/nodes/bridge-pier-site-1.yaml:
 //     the same 700.8 kN/m springs on the same MTS 244 servo model, lock_step). Timed: the
 //     steps, from after discovery (building the assembly) to the last feedback; not the
 //     reference run, the criteria or the plots that `rpsd run` adds. Multiple of real time,
@@ -73,11 +73,11 @@ int main(int argc, char** argv) try {
   std::filesystem::create_directories(work);
   const auto config = std::filesystem::absolute(options.source_dir / "transport/config/loopback.xml");
   const std::vector<std::string> env{"CYCLONEDDS_URI=file://" + config.string()};
-  const auto node_yaml = (options.source_dir / "scenarios/nodes/bridge-pier-site-1.yaml").string();
+  const auto node_yaml = (options.source_dir / "examples/nodes/bridge-pier-site-1.yaml").string();
 
   const auto sdof = [&](const std::string& transport, const std::string& more = {}) {
     return scenarios::load_study(
-        options.source_dir / "scenarios/elcentro-sdof.yaml",
+        options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
         {scenarios::parse_override("ground_motion.pad_after_s=20"),
          scenarios::parse_override("transport={kind: " + transport + ", test_id: 7, domain_id: " + std::to_string(domain) +
                                    ", dds_config: ../transport/config/loopback.xml, discovery_timeout_s: 20" + more + "}")});

@@ -1,11 +1,11 @@
-// The seed paper's Figure 8 study as `rpsd run scenarios/paper-fig8-delay-compensation.yaml`
+// The seed paper's Figure 8 study as `rpsd run examples/scenarios/paper-fig8-delay-compensation.yaml`
 // runs it (coordinator::run_delay_compensation): ten RPsD free-vibration tests of the
 // paper's SDOF on the full servo model, one per compensated delay, each with its delay
 // theory and damping identification. Timed: the whole sweep, without CSV files or plots.
 // Figures: cases per second, and simulated seconds per wall second (cases that go unstable
 // stop early at 10 times the initial displacement, so they simulate less than 8 s).
 // Baseline in the same run: the same sweep on the ideal-delay actuator
-// (scenarios/paper-fig8-ideal-delay.yaml), which has no plant dynamics to integrate.
+// (examples/scenarios/paper-fig8-ideal-delay.yaml), which has no plant dynamics to integrate.
 #include <cstdio>
 #include <stdexcept>
 
@@ -42,8 +42,8 @@ Sweep time_sweep(const std::filesystem::path& file, int repetitions) {
 int main(int argc, char** argv) try {
   const bench::Options options = bench::parse_options(argc, argv, 7);
   bench::Fragment fragment("fig8_sweep", argc, argv);
-  const Sweep servo = time_sweep(options.source_dir / "scenarios/paper-fig8-delay-compensation.yaml", options.repetitions);
-  const Sweep ideal = time_sweep(options.source_dir / "scenarios/paper-fig8-ideal-delay.yaml", options.repetitions);
+  const Sweep servo = time_sweep(options.source_dir / "examples/scenarios/paper-fig8-delay-compensation.yaml", options.repetitions);
+  const Sweep ideal = time_sweep(options.source_dir / "examples/scenarios/paper-fig8-ideal-delay.yaml", options.repetitions);
 
   const auto cases = static_cast<double>(servo.study.compensated_delays_s.size());
   const auto per_second = [&](const bench::Trials& t, double count) {

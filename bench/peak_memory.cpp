@@ -132,8 +132,8 @@ int main(int argc, char** argv) try {
   const auto work = std::filesystem::temp_directory_path() / ("rpsd-bench-memory-" + std::to_string(getpid()));
   std::filesystem::create_directories(work);
   const std::string long_seconds = std::to_string(static_cast<long>(long_minutes * 60.0));
-  const auto elcentro = (options.source_dir / "scenarios/elcentro-sdof.yaml").string();
-  const auto synthetic = (options.source_dir / "scenarios/synthetic-sdof.yaml").string();
+  const auto elcentro = (options.source_dir / "examples/scenarios/elcentro-sdof.yaml").string();
+  const auto synthetic = (options.source_dir / "examples/scenarios/synthetic-sdof.yaml").string();
 
   // (1) rpsd run end to end.
   std::vector<double> short_peaks, short_children, short_walls;

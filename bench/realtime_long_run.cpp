@@ -1,8 +1,8 @@
 // The long run: a 30-minute real-time test at 1024 Hz against a simulated servo node over
 // Cyclone DDS on loopback, with the resident memory of both processes sampled throughout.
 //
-// `rpsd servo-node scenarios/nodes/bridge-pier-site-1.yaml` (real time, its paper servo model)
-// and `rpsd run scenarios/synthetic-sdof.yaml` over DDS in real time with the synthetic record
+// `rpsd servo-node examples/nodes/bridge-pier-site-1.yaml` (real time, its paper servo model)
+// and `rpsd run examples/scenarios/synthetic-sdof.yaml` over DDS in real time with the synthetic record
 // lengthened to `--minutes` (and any `--set KEY=VALUE` given, passed on to rpsd run). Every second: VmRSS of the coordinator and of the node, and the
 // size of time_history.csv (the test is running while it grows). Afterwards: the run's
 // summary.json, every row of time_history.csv (one per planned step, steps in order, none
@@ -162,12 +162,12 @@ int main(int argc, char** argv) try {
   const std::string test_id = "9301";
   const double seconds = 60.0 * minutes;
 
-  bench::ChildProcess node({rpsd, "servo-node", (src / "scenarios/nodes/bridge-pier-site-1.yaml").string(), "--set",
+  bench::ChildProcess node({rpsd, "servo-node", (src / "examples/nodes/bridge-pier-site-1.yaml").string(), "--set",
                             "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set", "dds.domain_id=" + d,
                             "--set", "node.test_id=" + test_id,
                             "--summary", (work / "node.json").string()},
                            {}, work / "node.log");
-  std::vector<std::string> run_argv{rpsd, "run", (src / "scenarios/synthetic-sdof.yaml").string(), "--out", out.string(), "--set",
+  std::vector<std::string> run_argv{rpsd, "run", (src / "examples/scenarios/synthetic-sdof.yaml").string(), "--out", out.string(), "--set",
                                     "transport={kind: dds, test_id: " + test_id + ", domain_id: " + d +
                                         ", dds_config: ../transport/config/loopback.xml}",
                                     "--set", "clock.mode=real_time", "--set", "clock.control_rate_hz=" + r, "--set",
@@ -289,8 +289,8 @@ int main(int argc, char** argv) try {
                   " overruns, " + std::to_string(n.value("missed_periods", std::int64_t{0})) + " missed periods, " +
                   std::to_string(n.value("holds", std::int64_t{0})) + " holds" + (n.value("faulted", false) ? ", FAULTED" : "") + ".");
   }
-  fragment.note("rpsd servo-node scenarios/nodes/bridge-pier-site-1.yaml (real time at " + r + " Hz, the paper's servo model at its own "
-                "rate) and rpsd run scenarios/synthetic-sdof.yaml over DDS on loopback (transport/config/loopback.xml) in real time at " +
+  fragment.note("rpsd servo-node examples/nodes/bridge-pier-site-1.yaml (real time at " + r + " Hz, the paper's servo model at its own "
+                "rate) and rpsd run examples/scenarios/synthetic-sdof.yaml over DDS on loopback (transport/config/loopback.xml) in real time at " +
                 r + " Hz, " + format("%g", minutes) + " minutes of the synthetic record, clock.max_feedback_age_periods = " +
                 std::to_string(max_age) + " (the default 4 is the hardware safety setting; this VM stalls for up to 0.4 s)" +
                 (extra_note.empty() ? "" : "; also" + extra_note) + ". "

@@ -4,7 +4,7 @@
 // discovery. bench/realtime-overruns makes the namespaces, runs this, and removes them.
 //
 // For each control rate: `rpsd servo-node` for both piers (real_time, node.control_rate_hz =
-// the rate) and `rpsd run scenarios/two-site-bridge.yaml` in real time at the rate for
+// the rate) and `rpsd run examples/scenarios/two-site-bridge.yaml` in real time at the rate for
 // `--seconds` of record (El Centro untrimmed, 40 s, and free vibration after it), both with
 // SCHED_FIFO 80 and locked memory as the scenario files ask. Read afterwards: the run's
 // summary.json (timing.cycles, overruns, late_feedback, round trip per site, outcome) and
@@ -137,7 +137,7 @@ int main(int argc, char** argv) try {
     for (int site = 1; site <= 2; ++site) {
       nodes.push_back(std::make_unique<bench::ChildProcess>(
           std::vector<std::string>{"ip", "netns", "exec", node_ns, rpsd, "servo-node",
-                                   (src / ("scenarios/nodes/bridge-pier-site-" + std::to_string(site) + ".yaml")).string(),
+                                   (src / ("examples/nodes/bridge-pier-site-" + std::to_string(site) + ".yaml")).string(),
                                    "--set", "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set",
                                    "dds.config=../../transport/config/lab-lan.xml", "--set",
                                    "dds.domain_id=" + std::to_string(domain), "--summary",
@@ -145,9 +145,9 @@ int main(int argc, char** argv) try {
           env, work / (r + "-node" + std::to_string(site) + ".log")));
     }
     const std::string load_start = loadavg();
-    std::vector<std::string> run_argv{"ip", "netns", "exec", coord_ns, rpsd, "run", (src / "scenarios/two-site-bridge.yaml").string(),
+    std::vector<std::string> run_argv{"ip", "netns", "exec", coord_ns, rpsd, "run", (src / "examples/scenarios/two-site-bridge.yaml").string(),
                                       "--out", dir.string(), "--set", "transport.kind=dds", "--set",
-                                      "transport.dds_config=../transport/config/lab-lan.xml", "--set",
+                                      "transport.dds_config=../../transport/config/lab-lan.xml", "--set",
                                       "transport.domain_id=" + std::to_string(domain), "--set", "clock.mode=real_time", "--set",
                                       "clock.control_rate_hz=" + r, "--set", "ground_motion.trim=" + trim, "--set",
                                       "ground_motion.pad_after_s=" + pad};
@@ -255,9 +255,9 @@ int main(int argc, char** argv) try {
   if (keep) std::fprintf(stderr, "realtime_overruns: kept %s\n", work.c_str());
   else std::filesystem::remove_all(work);
   fragment.note("Coordinator (198.18.0.1) and both servo nodes (198.18.0.2) in two network namespaces joined by veth; "
-                "transport/config/lab-lan.xml on eth0 with unicast discovery; scenarios/two-site-bridge.yaml in real "
+                "transport/config/lab-lan.xml on eth0 with unicast discovery; examples/scenarios/two-site-bridge.yaml in real "
                 "time over DDS at the rate, " + format("%g", seconds) + " s of record (El Centro x 0.1 untrimmed, then free "
-                "vibration); nodes scenarios/nodes/bridge-pier-site-{1,2}.yaml with node.control_rate_hz = the rate "
+                "vibration); nodes examples/nodes/bridge-pier-site-{1,2}.yaml with node.control_rate_hz = the rate "
                 "(their servo model at its own 8192 Hz), clock.max_feedback_age_periods " +
                 (max_age > 0 ? std::to_string(max_age) + " (the default 4 is the hardware safety setting)" : std::string("as the scenario sets it (4)")) +
                 ". Overruns are cycles whose work ended past the next deadline, "

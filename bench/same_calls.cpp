@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   }
   using namespace rpsd;
   const int n = argc > 2 ? std::atoi(argv[2]) : 9;
-  const auto file = scenarios::load_study(std::string(argv[1]) + "/scenarios/elcentro-sdof.yaml", {scenarios::parse_override("ground_motion.pad_after_s=20")});
+  const auto file = scenarios::load_study(std::string(argv[1]) + "/examples/scenarios/elcentro-sdof.yaml", {scenarios::parse_override("ground_motion.pad_after_s=20")});
   const auto& s = std::get<scenarios::TestScenario>(file.study);
   const double sim = s.duration_s;
   const auto first = coordinator::run_test(s, {}, false);
@@ -50,6 +50,6 @@ int main(int argc, char** argv) {
     for (const auto& r : first.records) { plant.advance(prev, r.command_m[0], 1.0 / 1024); prev = r.command_m[0]; sink += plant.measure().displacement_m; }
   });
   std::printf("(%g, %zu steps)\n", sink, first.records.size());
-  const auto f8 = std::get<scenarios::DelayCompensationStudy>(scenarios::load_study(std::string(argv[1]) + "/scenarios/paper-fig8-delay-compensation.yaml").study);
+  const auto f8 = std::get<scenarios::DelayCompensationStudy>(scenarios::load_study(std::string(argv[1]) + "/examples/scenarios/paper-fig8-delay-compensation.yaml").study);
   trial("Figure 8 sweep (10 cases; 62 s sim)", n, 62.0, [&] { coordinator::run_delay_compensation(f8); });
 }

@@ -1,5 +1,5 @@
 // As-fast-as-possible throughput of the seed paper's SDOF RPsD test, built exactly as
-// `rpsd run scenarios/elcentro-sdof.yaml` builds it (coordinator::TestAssembly): numerical
+// `rpsd run examples/scenarios/elcentro-sdof.yaml` builds it (coordinator::TestAssembly): numerical
 // mass and damping, the 700.8 kN/m specimen on the full nonlinear servo-hydraulic model
 // (RK4 at its internal 8192 Hz), phase-lead compensation, central difference at 1024 Hz,
 // the in-process link and the recorder hand-off to its writer thread.
@@ -37,7 +37,7 @@ int main(int argc, char** argv) try {
   const bench::Options options = bench::parse_options(argc, argv, 15);
   bench::Fragment fragment("sdof_throughput", argc, argv);
 
-  const auto file = scenarios::load_study(options.source_dir / "scenarios/elcentro-sdof.yaml",
+  const auto file = scenarios::load_study(options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
                                           {scenarios::parse_override("ground_motion.pad_after_s=" + std::to_string(kPadSeconds))});
   const auto& scenario = std::get<scenarios::TestScenario>(file.study);
   const double simulated_s = scenario.duration_s;

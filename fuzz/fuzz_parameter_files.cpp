@@ -17,7 +17,7 @@
 
 namespace {
 
-// Beside the shipped node files, so their relative paths (../../servo/params/...) resolve.
+// Beside the shipped node files, so their relative paths (../../examples/servo/...) resolve.
 const std::filesystem::path& input_file() {
   static const std::filesystem::path path =
       std::filesystem::path(RPSD_FUZZ_NODES_DIR) / ("fuzz-input-" + std::to_string(::getpid()) + ".yaml");

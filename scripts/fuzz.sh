@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-20}
 per_input_timeout=10
 build=build-fuzz
-records=../shared/ground-motions
+records=data/ground-motions
 
 command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (bash scripts/install-deps.sh)" >&2; exit 2; }
 cmake -S fuzz -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
@@ -47,7 +47,7 @@ fi
 
 # Scenario seeds: the shipped scenarios and the test scenarios.
 mkdir -p "$seeds/scenario" "$build/corpus/scenario"
-cp scenarios/*.yaml tests/coordinator/data/*.yaml "$seeds/scenario/"
+cp examples/scenarios/*.yaml tests/coordinator/data/*.yaml "$seeds/scenario/"
 
 status=0
 run() {
@@ -98,7 +98,7 @@ printf '\x01\x00' >"$seeds/node/one-command-one-tick"
 run fuzz_node_commands node -max_len=1024
 # Parameter files: the first byte picks the reader (0 servo parameters, 1 node, 2 emulator).
 mkdir -p "$seeds/params" "$build/corpus/params"
-{ printf '\x00'; cat servo/params/paper-mts-244.yaml; } >"$seeds/params/servo-parameters"
-for f in scenarios/nodes/*.yaml; do { printf '\x01'; cat "$f"; } >"$seeds/params/node-$(basename "$f")"; done
+{ printf '\x00'; cat examples/servo/paper-mts-244.yaml; } >"$seeds/params/servo-parameters"
+for f in examples/nodes/*.yaml; do { printf '\x01'; cat "$f"; } >"$seeds/params/node-$(basename "$f")"; done
 run fuzz_parameter_files params -max_len=4096
 exit $status

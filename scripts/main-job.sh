@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
 out=${1:-results}
-rig=servo/params/paper-mts-244.yaml
+rig=examples/servo/paper-mts-244.yaml
 echo
 ./build/rpsd analyze "$rig"
 mkdir -p "$out"

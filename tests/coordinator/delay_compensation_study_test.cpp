@@ -11,7 +11,7 @@ namespace {
 
 scenarios::DelayCompensationStudy shipped(const std::string& name) {
   return std::get<scenarios::DelayCompensationStudy>(
-      scenarios::load_study(testing::source_dir() / "scenarios" / name).study);
+      scenarios::load_study(testing::source_dir() / "examples/scenarios" / name).study);
 }
 
 TEST(Figure8, UnderCompensationDestabilisesOverCompensationAddsDamping) {

@@ -105,7 +105,7 @@ TEST(DryRun, RefusesNodeFilesThatDoNotFitTheTest) {
 }
 
 TEST(DryRun, TheServoModelReportsItsValveOpeningAndRouthMargin) {
-  const auto file = scenarios::load_study(testing::source_dir() / "scenarios/two-site-bridge.yaml",
+  const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/two-site-bridge.yaml",
                                           {scenarios::parse_override("ground_motion.trim={end_s: 2}")});
   const DryRunReport r = dry_run(std::get<scenarios::TestScenario>(file.study));
   ASSERT_TRUE(r.p_gain && r.max_stable_p_gain);

@@ -17,7 +17,7 @@ namespace rpsd::coordinator {
 namespace {
 
 scenarios::StudyFile shipped(const std::string& name) {
-  return scenarios::load_study(testing::source_dir() / "scenarios" / name);
+  return scenarios::load_study(testing::source_dir() / "examples/scenarios" / name);
 }
 
 TEST(Figure5, SweepAmplitudeRatiosFollowTheLinearModelWithServovalve) {

@@ -16,7 +16,7 @@ TEST(TestRunner, PerfectActuatorMatchesTheExactPiecewiseLinearSolutionOfTheRecor
   // The El Centro SDOF scenario with a perfect actuator is plain integration of
   // m x'' + c x' + k x = -m a_g; the exact solution for the piecewise-linear record is the
   // Nigam-Jennings recurrence. Peak displacements must agree to 0.5 %.
-  const auto file = scenarios::load_study(testing::source_dir() / "scenarios/elcentro-sdof.yaml");
+  const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml");
   const auto& scenario = std::get<scenarios::TestScenario>(file.study);
   ASSERT_TRUE(scenario.ground_motion.has_value());
   const TestRun run = run_test(scenario, {}, true);
@@ -36,7 +36,7 @@ TEST(TestRunner, PerfectActuatorMatchesTheExactPiecewiseLinearSolutionOfTheRecor
 }
 
 TEST(TestRunner, EveryRecordedStepIsKeptWhenRunningAsFastAsPossible) {
-  const auto file = scenarios::load_study(testing::source_dir() / "scenarios/rths-benchmark-case1.yaml",
+  const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/rths-benchmark-case1.yaml",
                                           {scenarios::parse_override("ground_motion.trim={end_s: 5}")});
   const auto& scenario = std::get<scenarios::TestScenario>(file.study);
   const TestRun run = run_test(scenario, {}, false);
@@ -59,7 +59,7 @@ void expect_same(double a, double b, const char* what) {
 TEST(TestRunner, CriteriaComputedAsTheTestRunsEqualThoseFromKeptRecordsBitForBit) {
   // rpsd run evaluates the test and its reference step by step without keeping them (memory
   // stays flat over long records); the numbers must be those of the whole kept records.
-  const auto file = scenarios::load_study(testing::source_dir() / "scenarios/elcentro-sdof.yaml",
+  const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml",
                                           {scenarios::parse_override("ground_motion.trim={end_s: 6}")});
   const auto& scenario = std::get<scenarios::TestScenario>(file.study);
   const EvaluatedTest streamed = run_test_and_reference(scenario, {}, {});

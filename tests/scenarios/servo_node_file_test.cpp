@@ -10,7 +10,7 @@
 namespace rpsd::scenarios {
 namespace {
 
-std::filesystem::path pier_node() { return testing::source_dir() / "scenarios/nodes/bridge-pier-site-1.yaml"; }
+std::filesystem::path pier_node() { return testing::source_dir() / "examples/nodes/bridge-pier-site-1.yaml"; }
 
 TEST(ServoNodeFile, ARealTimeNodeKeepsTheCpusAwakeUnlessTurnedOff) {
   const ServoNodeFile file = load_servo_node(pier_node());

@@ -15,7 +15,7 @@ namespace rpsd::scenarios {
 namespace {
 
 std::string paper_file_text() {
-  std::ifstream in(testing::source_dir() / "servo/params/paper-mts-244.yaml");
+  std::ifstream in(testing::source_dir() / "examples/servo/paper-mts-244.yaml");
   std::stringstream text;
   text << in.rdbuf();
   return text.str();

@@ -102,7 +102,7 @@ namespace rpsd::scenarios {
 namespace {
 
 TEST(SweepFile, EveryCaseIsReadWithItsValuesFirstAxisFastest) {
-  const auto file = load_study(testing::source_dir() / "scenarios/elcentro-sdof-compensation-sweep.yaml");
+  const auto file = load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof-compensation-sweep.yaml");
   ASSERT_EQ(file.sweep.size(), 2u);
   EXPECT_EQ(file.sweep[0].key_path, "compensation.delay_s");
   ASSERT_EQ(file.sweep[0].values.size(), 4u);
@@ -120,7 +120,7 @@ TEST(SweepFile, EveryCaseIsReadWithItsValuesFirstAxisFastest) {
 
 TEST(SweepFile, ABadCaseIsNamedBeforeAnythingRuns) {
   try {
-    load_study(testing::source_dir() / "scenarios/elcentro-sdof-compensation-sweep.yaml",
+    load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof-compensation-sweep.yaml",
                {parse_override("sweep.1.values=[10, 0.5]")});
     FAIL();
   } catch (const ConfigError& e) {
@@ -139,7 +139,7 @@ namespace {
 TEST(ScenarioText, RepeatedKeysAreRejectedWithTheirLine) {
   const std::string text = "study: rpsd_test\nsweep:\n  - {key: servo.delay_s, values: [0.01]}\nsweep:\n  - {key: servo.delay_s, values: [0.02]}\n";
   try {
-    parse_study(text, testing::source_dir() / "scenarios/inline.yaml");
+    parse_study(text, testing::source_dir() / "examples/scenarios/inline.yaml");
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("inline.yaml:4:1: sweep: given more than once"), std::string::npos) << e.what();

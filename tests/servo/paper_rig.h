@@ -15,7 +15,7 @@ inline std::filesystem::path source_dir() {
 }
 
 inline servo::ServoSystemParameters paper_rig() {
-  return scenarios::load_servo_parameters(source_dir() / "servo/params/paper-mts-244.yaml");
+  return scenarios::load_servo_parameters(source_dir() / "examples/servo/paper-mts-244.yaml");
 }
 
 }  // namespace rpsd::testing

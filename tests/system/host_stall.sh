@@ -12,7 +12,7 @@ start_node 1 real_time
 start_node 2 real_time
 set +e
 # Not through run_bridge: $! must be rpsd itself, not a subshell running the function.
-$RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN --set transport.kind=dds \
+$RPSD run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN --set transport.kind=dds \
   --set clock.mode=real_time --set clock.max_feedback_age_periods=$RT_AGE > "$WORK/run.log" 2>&1 &
 COORDINATOR_PID=$!
 PIDS+=($COORDINATOR_PID)

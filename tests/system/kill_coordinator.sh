@@ -15,7 +15,7 @@ source "$(dirname "$0")/lib.sh"
 start_node 1 real_time
 start_node 2 real_time
 # Started directly (not through a shell function) so that $! is the coordinator itself.
-$RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN \
+$RPSD run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN \
   --set transport.kind=dds --set clock.mode=real_time --set clock.max_feedback_age_periods=200 > "$WORK/run.log" 2>&1 &
 coordinator=$!
 sleep 3

@@ -86,7 +86,7 @@ json() { python3 -c "import json,sys; j=json.load(open('$1')); print($2)"; }
 # start_node SITE MODE [extra --set ...]: a bridge pier node in the background.
 start_node() {
   local site=$1 mode=$2; shift 2
-  $RPSD servo-node "$SRC/scenarios/nodes/bridge-pier-site-$site.yaml" --set node.mode=$mode \
+  $RPSD servo-node "$SRC/examples/nodes/bridge-pier-site-$site.yaml" --set node.mode=$mode \
     --set dds.domain_id=$DOMAIN --summary "$WORK/node$site.json" "$@" > "$WORK/node$site.log" 2>&1 &
   PIDS+=($!)
   eval "NODE${site}_PID=$!"
@@ -95,7 +95,7 @@ start_node() {
 # The bridge scenario with the given extra --set options.
 run_bridge() {
   local out=$1; shift
-  $RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$out" --set transport.domain_id=$DOMAIN "$@"
+  $RPSD run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$out" --set transport.domain_id=$DOMAIN "$@"
 }
 
 # every_step_recorded DIR: time_history.csv has one row per step of summary.json, numbered

@@ -35,7 +35,7 @@ start_host_node() {
   local site=$1 mode=$2; shift 2
   local ns_var=NS_SITE$site
   # Not through in_host: started directly, $! is the node itself (a signal reaches it).
-  ip netns exec "${!ns_var}" "${LAN_ENV[@]}" $RPSD servo-node "$SRC/scenarios/nodes/bridge-pier-site-$site.yaml" --set node.mode=$mode \
+  ip netns exec "${!ns_var}" "${LAN_ENV[@]}" $RPSD servo-node "$SRC/examples/nodes/bridge-pier-site-$site.yaml" --set node.mode=$mode \
     --set dds.config=../../transport/config/lab-lan.xml --summary "$WORK/node$site.json" "$@" > "$WORK/node$site.log" 2>&1 &
   PIDS+=($!)
   eval "NODE${site}_PID=$!"

@@ -23,8 +23,8 @@ for percent in 1 5; do
   start_host_node 1 real_time
   start_host_node 2 real_time
   drop_coordinator_traffic 2 0
-  ip netns exec $NS_COORD "${LAN_ENV[@]}" $RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$out" --set transport.kind=dds \
-    --set transport.dds_config=../transport/config/lab-lan.xml --set clock.mode=real_time \
+  ip netns exec $NS_COORD "${LAN_ENV[@]}" $RPSD run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$out" --set transport.kind=dds \
+    --set transport.dds_config=../../transport/config/lab-lan.xml --set clock.mode=real_time \
     --set clock.max_feedback_age_periods=$RT_AGE --set ground_motion.trim.end_s=6 > "$out.log" 2>&1 &
   coordinator=$!
   PIDS+=($coordinator)

@@ -14,8 +14,8 @@ source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/netns.sh"
 start_host_node 1 real_time
 start_host_node 2 real_time
-ip netns exec $NS_COORD "${LAN_ENV[@]}" $RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.kind=dds \
-  --set transport.dds_config=../transport/config/lab-lan.xml --set clock.mode=real_time --set clock.max_feedback_age_periods=$RT_AGE > "$WORK/run.log" 2>&1 &
+ip netns exec $NS_COORD "${LAN_ENV[@]}" $RPSD run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.kind=dds \
+  --set transport.dds_config=../../transport/config/lab-lan.xml --set clock.mode=real_time --set clock.max_feedback_age_periods=$RT_AGE > "$WORK/run.log" 2>&1 &
 coordinator=$!
 PIDS+=($coordinator)
 # Partition once the test has run for a second (1024 steps recorded).

@@ -30,7 +30,7 @@ if [ "$(id -u)" = 0 ]; then
   done
 fi
 # The rig's response delay (Eq. 12) is the time constant of the plant's lag.
-tau=$($RPSD analyze "$SRC/servo/params/paper-mts-244.yaml" --json | python3 -c "import json,sys; print(json.load(sys.stdin)['response_delay_ms'] / 1e3)")
+tau=$($RPSD analyze "$SRC/examples/servo/paper-mts-244.yaml" --json | python3 -c "import json,sys; print(json.load(sys.stdin)['response_delay_ms'] / 1e3)")
 python3 "$(dirname "$0")/transport_effect_bound.py" "$WORK/local" "$WORK/dds" "$tau" "$WORK/node1.json" "$WORK/node2.json"
 echo "PASS: real time over DDS; round trip p50/p99 $(json "$WORK/dds/summary.json" \
   "', '.join('%.3f/%.3f ms' % (1e3*s['round_trip']['p50_s'], 1e3*s['round_trip']['p99_s']) for s in j['timing']['sites'])")"

@@ -18,7 +18,7 @@
 source "$(dirname "$0")/lib.sh"
 start_node 1 real_time
 start_node 2 real_time
-$RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN \
+$RPSD run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN \
   --set transport.kind=dds --set clock.mode=real_time --set clock.max_feedback_age_periods=$RT_AGE > "$WORK/run.log" 2>&1 &
 coordinator=$!
 PIDS+=($coordinator)
@@ -50,7 +50,7 @@ echo "part 1: exit 3 after $(json "$WORK/rt/summary.json" "j['steps']") steps; t
 # Part 2: the coordinator tolerates site 2's silence while the node restarts.
 start_node 1 real_time
 start_node 2 real_time
-$RPSD run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/tolerant" --set transport.domain_id=$DOMAIN \
+$RPSD run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/tolerant" --set transport.domain_id=$DOMAIN \
   --set transport.kind=dds --set clock.mode=real_time --set clock.max_feedback_age_periods=1000 \
   --set ground_motion.trim.end_s=4 > "$WORK/run-tolerant.log" 2>&1 &
 coordinator=$!

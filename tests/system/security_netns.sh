@@ -42,14 +42,14 @@ for site in 1 2; do
   ns_var=NS_SITE$site
   ip netns exec ${!ns_var} env RPSD_DDS_INTERFACE=eth0 RPSD_DDS_PEER_1=198.18.0.1 RPSD_DDS_PEER_2=198.18.0.2 \
     RPSD_DDS_PEER_3=198.18.0.3 RPSD_DDS_SECURITY_DIR="$WORK/host-site$site" RPSD_DDS_IDENTITY=node-site-$site \
-    "$RPSD" servo-node "$SRC/scenarios/nodes/bridge-pier-site-$site.yaml" --set node.mode=lock_step \
+    "$RPSD" servo-node "$SRC/examples/nodes/bridge-pier-site-$site.yaml" --set node.mode=lock_step \
     --set dds.config="$CONFIG" --summary "$WORK/node$site.json" > "$WORK/node$site.log" 2>&1 &
   PIDS+=($!)
   eval "NODE${site}_PID=$!"
 done
 trim=(--set "ground_motion.trim={end_s: 1}")
 in_host $NS_COORD env RPSD_DDS_SECURITY_DIR="$WORK/host-coordinator" RPSD_DDS_IDENTITY=coordinator \
-  "$RPSD" run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/dds" --set transport.kind=dds \
+  "$RPSD" run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/dds" --set transport.kind=dds \
   --set transport.dds_config="$CONFIG" --set transport.discovery_timeout_s=10 "${trim[@]}" > "$WORK/dds.log" 2>&1 \
   || fail "the secured three-host run failed: $(cat "$WORK/dds.log")"
 kill -TERM $NODE1_PID $NODE2_PID

@@ -43,7 +43,7 @@ PLAIN=$SRC/transport/config/loopback.xml
 secure_node() {
   local tag=$1 site=$2 identity=$3; shift 3
   env RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY="$identity" \
-    "$RPSD" servo-node "$SRC/scenarios/nodes/bridge-pier-site-$site.yaml" --set node.mode=lock_step \
+    "$RPSD" servo-node "$SRC/examples/nodes/bridge-pier-site-$site.yaml" --set node.mode=lock_step \
     --set dds.domain_id=$DOMAIN --set dds.config="$SECURE_NODE" --summary "$WORK/$tag.json" "$@" > "$WORK/$tag.log" 2>&1 &
   PIDS+=($!)
   eval "${tag}_PID=$!"
@@ -63,7 +63,7 @@ coordinator() {
   local vars=()
   while [ $# -gt 0 ] && [ "$1" != -- ]; do vars+=("$1"); shift; done
   [ $# -gt 0 ] && shift
-  env "${vars[@]}" "$RPSD" run "$SRC/scenarios/two-site-bridge.yaml" --out "$WORK/$tag" --set transport.kind=dds \
+  env "${vars[@]}" "$RPSD" run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/$tag" --set transport.kind=dds \
     --set transport.domain_id=$DOMAIN --set transport.dds_config="$config" --set "ground_motion.trim={end_s: 1}" "$@" \
     > "$WORK/$tag.log" 2>&1
 }
@@ -157,7 +157,7 @@ attempts+=($!)
 attempts+=($!)
 # A site-1 identity standing in for site 2 (its own partition only): refused at start.
 set +e
-env RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY=node-site-1 "$RPSD" servo-node "$SRC/scenarios/nodes/bridge-pier-site-2.yaml" \
+env RPSD_DDS_SECURITY_DIR="$LAB" RPSD_DDS_IDENTITY=node-site-1 "$RPSD" servo-node "$SRC/examples/nodes/bridge-pier-site-2.yaml" \
   --set node.mode=lock_step --set dds.domain_id=$DOMAIN --set dds.config="$SECURE_NODE" --duration 5 > "$WORK/wrong-site.log" 2>&1
 code=$?
 set -e
@@ -194,7 +194,7 @@ PY
 # see the samples: the check of the secured run means something.
 sniff wire-plain
 for s in 1 2; do
-  "$RPSD" servo-node "$SRC/scenarios/nodes/bridge-pier-site-$s.yaml" --set node.mode=lock_step \
+  "$RPSD" servo-node "$SRC/examples/nodes/bridge-pier-site-$s.yaml" --set node.mode=lock_step \
     --set dds.domain_id=$DOMAIN --set dds.config="$PLAIN" > "$WORK/p$s.log" 2>&1 &
   PIDS+=($!)
   eval "p${s}_PID=$!"

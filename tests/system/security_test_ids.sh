@@ -9,7 +9,7 @@ source "$(dirname "$0")/lib.sh"
 # plain_node TAG TEST SITE: a lock-step bridge node of test TEST (loopback configuration).
 plain_node() {
   local tag=$1 test=$2 site=$3
-  "$RPSD" servo-node "$SRC/scenarios/nodes/bridge-pier-site-$site.yaml" --set node.mode=lock_step \
+  "$RPSD" servo-node "$SRC/examples/nodes/bridge-pier-site-$site.yaml" --set node.mode=lock_step \
     --set node.test_id=$test --set dds.domain_id=$DOMAIN --summary "$WORK/$tag.json" > "$WORK/$tag.log" 2>&1 &
   PIDS+=($!)
   NODES+=($!)

@@ -30,7 +30,7 @@ struct SharedRecord {
   double last_g;
 };
 
-// NPTS and DT: shared/ground-motions/README.md. PGA: reference sheet section 5
+// NPTS and DT: data/ground-motions/README.md. PGA: reference sheet section 5
 // (I-ELC180 -0.312881 g at 2.15 s, NIS000 -0.5093 g, STM090 -0.8832 g); the full digits,
 // the index and HCH090's peak were read from the files.
 const SharedRecord shared_records[] = {

@@ -1,4 +1,4 @@
-// Test helpers: the shared ground-motion records (read in place, never copied) and a
+// Test helpers: the repository's ground-motion records (data/ground-motions) and a
 // per-test temporary directory for malformed files.
 #pragma once
 
@@ -18,9 +18,9 @@ inline std::filesystem::path source_dir() {
   return RPSD_TEST_SOURCE_DIR;
 }
 
-/// $RPSD_SOURCE_DIR/../shared/ground-motions/NAME
+/// $RPSD_SOURCE_DIR/data/ground-motions/NAME
 inline std::filesystem::path shared_record(const std::string& name) {
-  return source_dir() / ".." / "shared" / "ground-motions" / name;
+  return source_dir() / "data" / "ground-motions" / name;
 }
 
 inline std::string read_text(const std::filesystem::path& file) {

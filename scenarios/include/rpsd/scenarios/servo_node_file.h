@@ -1,4 +1,4 @@
-// The configuration file of `rpsd servo-node` (see scenarios/nodes/*.yaml): which test and
+// The configuration file of `rpsd servo-node` (see examples/nodes/*.yaml): which test and
 // site the node serves, how it is paced, its actuator (a simulated plant or a UDP
 // controller), its own limits and what it does when commands stop. And the file of
 // `rpsd controller-emulator`, which stands in for a hardware controller.

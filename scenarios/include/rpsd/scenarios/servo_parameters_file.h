@@ -1,4 +1,4 @@
-// Reads a servo-system parameter file (see servo/params/paper-mts-244.yaml for the schema).
+// Reads a servo-system parameter file (see examples/servo/paper-mts-244.yaml for the schema).
 #pragma once
 
 #include <filesystem>

@@ -1,6 +1,6 @@
 // Typed study scenarios: the servo-system studies of the seed paper (Figures 5, 6 and 7) and
 // the RPsD delay-compensation study (Figure 8). A study file names its kind with `study:`;
-// parameter files it names are relative to the study file. See scenarios/paper-fig*.yaml.
+// parameter files it names are relative to the study file. See examples/scenarios/paper-fig*.yaml.
 #pragma once
 
 #include <yaml-cpp/yaml.h>

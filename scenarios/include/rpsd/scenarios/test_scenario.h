@@ -1,7 +1,7 @@
 // A whole RPsD test as a typed scenario (`study: rpsd_test`): the numerical substructure,
 // the experimental DOFs, the servo plant, the integrator, the compensator, the excitation,
 // the clock and the output. The structs are the lower modules' own configuration types;
-// this file only names which is which. See scenarios/*.yaml for examples.
+// this file only names which is which. See examples/scenarios/*.yaml for examples.
 #pragma once
 
 #include <Eigen/Core>
