@@ -73,9 +73,9 @@ int main(int argc, char** argv) try {
   double sink = 0.0;
   const auto integrator_s = bench::time_trials(options.repetitions, 1, [&] {
     auto integrator = integrators::make_integrator(setup.integrator);
-    integrator->configure(integrators::DenseStructuralMatrices{Eigen::MatrixXd::Constant(1, 1, m),
+    integrator->configure(integrators::StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, m),
                                                                Eigen::MatrixXd::Constant(1, 1, c),
-                                                               Eigen::MatrixXd::Constant(1, 1, k)},
+                                                               Eigen::MatrixXd::Constant(1, 1, k)),
                           setup.dt_s);
     Eigen::VectorXd force = Eigen::VectorXd::Constant(1, -m * ground[0]);
     Eigen::VectorXd restoring = Eigen::VectorXd::Zero(1);

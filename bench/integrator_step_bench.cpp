@@ -33,12 +33,12 @@ void run_steps(benchmark::State& state, const IntegratorConfig& config, bool den
   const Matrix K = frame.stiffness;
   auto integrator = make_integrator(config);
   if (dense)
-    integrator->configure(DenseStructuralMatrices{Eigen::MatrixXd(frame.mass),
+    integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd(frame.mass),
                                                   Eigen::MatrixXd(frame.damping),
-                                                  Eigen::MatrixXd(frame.stiffness)},
+                                                  Eigen::MatrixXd(frame.stiffness)),
                           1.0 / 4096.0);
   else
-    integrator->configure(SparseStructuralMatrices{frame.mass, frame.damping, frame.stiffness},
+    integrator->configure(StructuralMatrices::sparse(frame.mass, frame.damping, frame.stiffness),
                           1.0 / 4096.0);
   Eigen::VectorXd d0 = Eigen::VectorXd::LinSpaced(n, 0.0, 1e-3);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);

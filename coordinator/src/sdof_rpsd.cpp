@@ -30,9 +30,9 @@ SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, cons
 
   // Numerical part: mass and damping, no stiffness (the spring is the specimen).
   substructure::LinearMdofConfig model;
-  model.mass_kg = substructure::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, m));
-  model.stiffness_n_per_m = substructure::StructuralMatrix(Eigen::MatrixXd::Zero(1, 1));
-  model.damping = substructure::DampingMatrix{substructure::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, c))};
+  model.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, m));
+  model.stiffness_n_per_m = linalg::StructuralMatrix(Eigen::MatrixXd::Zero(1, 1));
+  model.damping = substructure::DampingMatrix{linalg::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, c))};
   p.numerical.configure(model);
 
   substructure::PartitionConfig split;
@@ -42,9 +42,9 @@ SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, cons
   p.partition.configure(split);
 
   p.integrator = integrators::make_integrator(setup.integrator);
-  integrators::DenseStructuralMatrices matrices{
+  const auto matrices = integrators::StructuralMatrices::dense(
       Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, c),
-      p.partition.with_specimen_stiffness(p.numerical.initial_stiffness()).to_dense()};
+      p.partition.with_specimen_stiffness(p.numerical.initial_stiffness()).to_dense());
   p.integrator->configure(matrices, setup.dt_s);
   const double control_period_s = setup.dt_s / p.integrator->iterations_per_step();
 

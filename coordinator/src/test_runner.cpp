@@ -30,14 +30,6 @@ std::unique_ptr<substructure::NumericalModel> make_numerical(const scenarios::Te
       s.structure);
 }
 
-integrators::StructuralMatrices integrator_matrices(const substructure::NumericalModel& model,
-                                                    const substructure::StructuralMatrix& k0) {
-  if (model.mass().is_sparse() || k0.is_sparse()) {
-    return integrators::SparseStructuralMatrices{model.mass().to_sparse(), model.damping().to_sparse(), k0.to_sparse()};
-  }
-  return integrators::DenseStructuralMatrices{model.mass().to_dense(), model.damping().to_dense(), k0.to_dense()};
-}
-
 std::int64_t progress_interval(const scenarios::TestScenario& s) {
   return std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * s.control_rate_hz));
 }
@@ -91,7 +83,7 @@ TestAssembly::TestAssembly(const scenarios::TestScenario& s, const std::filesyst
   p.integrator = integrators::make_integrator(s.integrator);
   const double dt_s = 1.0 / s.control_rate_hz;
   p.integrator->configure(
-      integrator_matrices(*p.numerical, p.partition.with_specimen_stiffness(p.numerical->initial_stiffness())), dt_s);
+      {p.numerical->mass(), p.numerical->damping(), p.partition.with_specimen_stiffness(p.numerical->initial_stiffness())}, dt_s);
   const double control_period_s = dt_s / p.integrator->iterations_per_step();
 
   LoopParts parts;

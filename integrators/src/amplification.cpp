@@ -16,9 +16,9 @@ Eigen::Matrix3d amplification_matrix(const IntegratorConfig& config, double omeg
   auto integrator = make_integrator(config);
   // SDOF with omega = 1 rad/s: m = 1, k = 1, c = 2 xi, so dt = Omega.
   const double k = 1.0;
-  DenseStructuralMatrices m{Eigen::MatrixXd::Constant(1, 1, 1.0),
-                            Eigen::MatrixXd::Constant(1, 1, 2.0 * damping_ratio),
-                            Eigen::MatrixXd::Constant(1, 1, k)};
+  const auto m = StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, 1.0),
+                                           Eigen::MatrixXd::Constant(1, 1, 2.0 * damping_ratio),
+                                           Eigen::MatrixXd::Constant(1, 1, k));
   integrator->configure(m, omega_dt, ConfigureOptions{false});
   // Unit states in the natural scale of the SDOF (x ~ v/omega ~ a/omega^2, omega = 1).
   const Eigen::Vector3d scale(1.0, 1.0, 1.0);

@@ -43,11 +43,11 @@ void FixedIterationImplicitEngine::on_configure() {
   const double c1 = c_.gamma / (c_.beta * dt);
   const double sm = 1.0 - c_.alpha_m;
   const double sf = 1.0 - c_.alpha_f;
-  const SystemMatrix k_hat =
-      SystemMatrix::combine(sm * c0, mass_, sf * c1, damping_, sf, stiffness_);
+  const linalg::StructuralMatrix k_hat =
+      linalg::StructuralMatrix::linear_combination(sm * c0, mass_, sf * c1, damping_, sf, stiffness_).compacted();
   k_hat_solver_.factorize(k_hat, "effective stiffness (1-alpha_m)/(beta dt^2) M + "
                                  "(1-alpha_f) gamma/(beta dt) C + (1-alpha_f) K0");
-  k_dynamic_ = SystemMatrix::combine(sm * c0, mass_, sf * c1, damping_, 0.0, stiffness_);
+  k_dynamic_ = linalg::StructuralMatrix::linear_combination(sm * c0, mass_, sf * c1, damping_, 0.0, stiffness_).compacted();
   history_.assign(static_cast<std::size_t>(o_.poly_order - 1), Eigen::VectorXd::Zero(n_));
   for (auto* v : {&a_pred_, &v_pred_, &r_const_, &residual_, &delta_, &target_, &tmp_, &r_meas_})
     v->setZero(n_);

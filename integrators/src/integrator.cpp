@@ -8,11 +8,11 @@
 namespace rpsd::integrators {
 namespace {
 
-std::string dims(const SystemMatrix& m) {
+std::string dims(const linalg::StructuralMatrix& m) {
   return std::to_string(m.rows()) + "x" + std::to_string(m.cols());
 }
 
-void check_matrices(const SystemMatrix& M, const SystemMatrix& C, const SystemMatrix& K) {
+void check_matrices(const linalg::StructuralMatrix& M, const linalg::StructuralMatrix& C, const linalg::StructuralMatrix& K) {
   if (M.rows() == 0 || M.rows() != M.cols())
     throw std::invalid_argument("mass matrix must be square and non-empty, got " + dims(M));
   const auto n = M.rows();
@@ -41,16 +41,9 @@ void Integrator::configure(const StructuralMatrices& matrices, double dt_s,
   if (!(dt_s > 0.0) || !std::isfinite(dt_s))
     throw std::invalid_argument("time step dt_s must be positive and finite, got " +
                                 std::to_string(dt_s));
-  if (const auto* d = std::get_if<DenseStructuralMatrices>(&matrices)) {
-    mass_ = SystemMatrix::from_dense(d->mass_kg);
-    damping_ = SystemMatrix::from_dense(d->damping_N_s_per_m);
-    stiffness_ = SystemMatrix::from_dense(d->initial_stiffness_N_per_m);
-  } else {
-    const auto& s = std::get<SparseStructuralMatrices>(matrices);
-    mass_ = SystemMatrix::from_sparse(s.mass_kg);
-    damping_ = SystemMatrix::from_sparse(s.damping_N_s_per_m);
-    stiffness_ = SystemMatrix::from_sparse(s.initial_stiffness_N_per_m);
-  }
+  mass_ = matrices.mass_kg.compacted();
+  damping_ = matrices.damping_n_s_per_m.compacted();
+  stiffness_ = matrices.initial_stiffness_n_per_m.compacted();
   check_matrices(mass_, damping_, stiffness_);
   n_ = mass_.rows();
   dt_s_ = dt_s;

@@ -6,11 +6,11 @@ void ModelBasedExplicitEngine::on_configure() {
   const double dt = dt_s_;
   const double gdt = c_.gamma * dt;
   const double bdt2 = c_.beta * dt * dt;
-  d_matrix_ = SystemMatrix::combine(1.0, mass_, gdt, damping_, bdt2, stiffness_);
+  d_matrix_ = linalg::StructuralMatrix::linear_combination(1.0, mass_, gdt, damping_, bdt2, stiffness_).compacted();
   d_solver_.factorize(d_matrix_, "model-based matrix D = M + gamma dt C + beta dt^2 K0");
   const double sf = 1.0 - c_.alpha_f;
-  const SystemMatrix e = SystemMatrix::combine(1.0 - c_.alpha_m, mass_, sf * gdt, damping_,
-                                               sf * bdt2, stiffness_);
+  const linalg::StructuralMatrix e = linalg::StructuralMatrix::linear_combination(1.0 - c_.alpha_m, mass_, sf * gdt, damping_,
+                                               sf * bdt2, stiffness_).compacted();
   e_solver_.factorize(e, "equilibrium matrix (1-alpha_m) M + (1-alpha_f)(gamma dt C + "
                          "beta dt^2 K0)");
   for (auto* v : {&w_, &ma_, &v_next_, &r_meas_, &rhs_, &tmp_, &w_next_}) v->setZero(n_);

@@ -32,27 +32,27 @@ void check_pivots(const Vec& d, std::string_view what) {
 }
 }  // namespace
 
-void SymmetricSolver::factorize(const SystemMatrix& A, std::string_view what) {
+void SymmetricSolver::factorize(const linalg::StructuralMatrix& A, std::string_view what) {
   storage_ = A.storage();
   dense_.reset();
   sparse_amd_.reset();
   band_ = -1;
   band_l_.resize(0, 0);
   switch (storage_) {
-    case Storage::diagonal: {
+    case linalg::MatrixStorage::kDiagonal: {
       const auto& d = A.diagonal_values();
       if (d.size() == 0) singular(what, "it is empty");
       check_pivots(d, what);
       inverse_diagonal_ = d.cwiseInverse();
       return;
     }
-    case Storage::dense: {
+    case linalg::MatrixStorage::kDense: {
       dense_ = std::make_unique<Eigen::LDLT<Eigen::MatrixXd>>(A.dense());
       if (dense_->info() != Eigen::Success) singular(what, "LDL^T factorisation failed");
       check_pivots(dense_->vectorD(), what);
       return;
     }
-    case Storage::sparse: {
+    case linalg::MatrixStorage::kSparse: {
       const auto& a = A.sparse();
       Eigen::Index b = 0;
       for (int k = 0; k < a.outerSize(); ++k)
@@ -129,9 +129,9 @@ void SymmetricSolver::solve_band(const Eigen::VectorXd& rhs, Eigen::VectorXd& x)
 
 void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   switch (storage_) {
-    case Storage::diagonal: x.array() = inverse_diagonal_.array() * b.array(); break;
-    case Storage::dense: x = dense_->solve(b); break;
-    case Storage::sparse:
+    case linalg::MatrixStorage::kDiagonal: x.array() = inverse_diagonal_.array() * b.array(); break;
+    case linalg::MatrixStorage::kDense: x = dense_->solve(b); break;
+    case linalg::MatrixStorage::kSparse:
       if (band_ >= 0) {
         solve_band(b, x);
       } else if (sparse_amd_) {
@@ -148,24 +148,24 @@ void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const 
 
 Eigen::Index SymmetricSolver::factor_nonzeros() const {
   switch (storage_) {
-    case Storage::diagonal: return inverse_diagonal_.size();
-    case Storage::dense: return dense_->matrixLDLT().rows() * (dense_->matrixLDLT().rows() + 1) / 2;
-    case Storage::sparse:
+    case linalg::MatrixStorage::kDiagonal: return inverse_diagonal_.size();
+    case linalg::MatrixStorage::kDense: return dense_->matrixLDLT().rows() * (dense_->matrixLDLT().rows() + 1) / 2;
+    case linalg::MatrixStorage::kSparse:
       if (band_ >= 0) return band_l_.rows() * (band_ + 1);
       return sparse_amd_->matrixL().nestedExpression().nonZeros() + sparse_amd_->rows();
   }
   return 0;
 }
 
-bool is_positive_definite(const SystemMatrix& A) {
+bool is_positive_definite(const linalg::StructuralMatrix& A) {
   switch (A.storage()) {
-    case Storage::diagonal:
+    case linalg::MatrixStorage::kDiagonal:
       return A.diagonal_values().size() > 0 && (A.diagonal_values().array() > 0.0).all();
-    case Storage::dense: {
+    case linalg::MatrixStorage::kDense: {
       Eigen::LLT<Eigen::MatrixXd> llt(A.dense());
       return llt.info() == Eigen::Success;
     }
-    case Storage::sparse: {
+    case linalg::MatrixStorage::kSparse: {
       Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(A.sparse());
       return llt.info() == Eigen::Success;
     }
@@ -173,17 +173,17 @@ bool is_positive_definite(const SystemMatrix& A) {
   return false;
 }
 
-double frequency_upper_bound_rad_s(const SystemMatrix& mass, const SystemMatrix& stiffness) {
-  if (mass.storage() != Storage::diagonal) return std::numeric_limits<double>::infinity();
+double frequency_upper_bound_rad_s(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness) {
+  if (mass.storage() != linalg::MatrixStorage::kDiagonal) return std::numeric_limits<double>::infinity();
   // Gershgorin's theorem on M^-1/2 K M^-1/2.
   const Eigen::VectorXd s = mass.diagonal_values().cwiseSqrt().cwiseInverse();
   switch (stiffness.storage()) {
-    case Storage::diagonal:
+    case linalg::MatrixStorage::kDiagonal:
       return std::sqrt((stiffness.diagonal_values().cwiseAbs().array() * s.array().square()).maxCoeff());
-    case Storage::dense:
+    case linalg::MatrixStorage::kDense:
       return std::sqrt(
           (s.asDiagonal() * stiffness.dense().cwiseAbs() * s).maxCoeff());
-    case Storage::sparse: {
+    case linalg::MatrixStorage::kSparse: {
       Eigen::VectorXd row = Eigen::VectorXd::Zero(mass.rows());
       const auto& k = stiffness.sparse();
       for (int c = 0; c < k.outerSize(); ++c)
@@ -195,11 +195,11 @@ double frequency_upper_bound_rad_s(const SystemMatrix& mass, const SystemMatrix&
   return std::numeric_limits<double>::infinity();
 }
 
-double max_natural_frequency_rad_s(const SystemMatrix& mass, const SystemMatrix& stiffness,
+double max_natural_frequency_rad_s(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness,
                                    const SymmetricSolver& mass_solver) {
   const Eigen::Index n = mass.rows();
   if (stiffness.max_abs() == 0.0) return 0.0;
-  if (n <= 400 && mass.storage() != Storage::sparse && stiffness.storage() != Storage::sparse) {
+  if (n <= 400 && mass.storage() != linalg::MatrixStorage::kSparse && stiffness.storage() != linalg::MatrixStorage::kSparse) {
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
         stiffness.to_dense(), mass.to_dense(), Eigen::EigenvaluesOnly);
     if (es.info() == Eigen::Success) return std::sqrt(std::max(0.0, es.eigenvalues().maxCoeff()));

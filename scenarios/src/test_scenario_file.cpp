@@ -59,7 +59,7 @@ substructure::DampingConfig read_damping(MappingReader d, const Eigen::MatrixXd*
     const double k = d.positive_number("of_stiffness_n_per_m");
     if (!mass || mass->rows() != 1) d.fail("damping_ratio", "a single damping ratio needs a one-DOF structure; use rayleigh");
     damping = substructure::DampingMatrix{
-        substructure::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, 2.0 * zeta * std::sqrt(k * (*mass)(0, 0))))};
+        linalg::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, 2.0 * zeta * std::sqrt(k * (*mass)(0, 0))))};
   }
   if (forms > 1) d.fail("rayleigh", "give either rayleigh or damping_ratio, not both");
   d.finish();
@@ -102,8 +102,8 @@ void read_structure(MappingReader st, const std::filesystem::path& file, TestSce
       const Eigen::MatrixXd k = read_matrix(st, "stiffness_n_per_m");
       if (m.rows() != k.rows() || m.cols() != k.cols()) st.fail("stiffness_n_per_m", "must have the size of mass_kg");
       c.damping = st.has("damping") ? read_damping(st.mapping("damping"), &m) : substructure::Undamped{};
-      c.mass_kg = substructure::StructuralMatrix(m);
-      c.stiffness_n_per_m = substructure::StructuralMatrix(k);
+      c.mass_kg = linalg::StructuralMatrix(m);
+      c.stiffness_n_per_m = linalg::StructuralMatrix(k);
       substructure::LinearMdofModel probe;
       probe.configure(c);  // validates: symmetric, positive definite, sizes
       t.structure = std::move(c);

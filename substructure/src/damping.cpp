@@ -10,21 +10,21 @@
 namespace rpsd::substructure {
 namespace {
 
-StructuralMatrix zero_like(const StructuralMatrix& K) {
-  if (K.is_sparse()) return StructuralMatrix(SparseMatrix(K.rows(), K.cols()));
-  return StructuralMatrix(Eigen::MatrixXd::Zero(K.rows(), K.cols()));
+linalg::StructuralMatrix zero_like(const linalg::StructuralMatrix& K) {
+  if (K.is_sparse()) return linalg::StructuralMatrix(linalg::SparseMatrix(K.rows(), K.cols()));
+  return linalg::StructuralMatrix(Eigen::MatrixXd::Zero(K.rows(), K.cols()));
 }
 
-BuiltDamping rayleigh(const RayleighCoefficients& c, const StructuralMatrix& M,
-                      const StructuralMatrix& K) {
-  StructuralMatrix C = StructuralMatrix::linear_combination(c.a0_per_s, M, c.a1_s, K);
+BuiltDamping rayleigh(const RayleighCoefficients& c, const linalg::StructuralMatrix& M,
+                      const linalg::StructuralMatrix& K) {
+  linalg::StructuralMatrix C = linalg::StructuralMatrix::linear_combination(c.a0_per_s, M, c.a1_s, K);
   return {C.converted(K.storage()), c};
 }
 
 }  // namespace
 
-BuiltDamping build_damping(const DampingConfig& config, const StructuralMatrix& M,
-                           const StructuralMatrix& K, const std::string& context) {
+BuiltDamping build_damping(const DampingConfig& config, const linalg::StructuralMatrix& M,
+                           const linalg::StructuralMatrix& K, const std::string& context) {
   const Eigen::Index n = K.rows();
   return std::visit(
       [&](const auto& cfg) -> BuiltDamping {

@@ -16,20 +16,6 @@ std::string entry(Eigen::Index i, Eigen::Index j) {
   return buf;
 }
 
-// Calls f(i, j, value) for every stored entry.
-template <typename F>
-void for_each_entry(const StructuralMatrix& A, F&& f) {
-  if (A.is_sparse()) {
-    const SparseMatrix& s = A.sparse();
-    for (Eigen::Index j = 0; j < s.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(s, j); it; ++it) f(it.row(), it.col(), it.value());
-  } else {
-    const Eigen::MatrixXd& d = A.dense();
-    for (Eigen::Index j = 0; j < d.cols(); ++j)
-      for (Eigen::Index i = 0; i < d.rows(); ++i) f(i, j, d(i, j));
-  }
-}
-
 }  // namespace
 
 std::string fmt(double v) {
@@ -38,7 +24,7 @@ std::string fmt(double v) {
   return buf;
 }
 
-void require_square(const StructuralMatrix& A, const std::string& what) {
+void require_square(const linalg::StructuralMatrix& A, const std::string& what) {
   if (A.rows() == 0 || A.cols() == 0) throw std::invalid_argument(what + " is empty");
   if (A.rows() != A.cols()) {
     throw std::invalid_argument(what + " is not square: " + std::to_string(A.rows()) + " rows x " +
@@ -46,7 +32,7 @@ void require_square(const StructuralMatrix& A, const std::string& what) {
   }
 }
 
-void require_size(const StructuralMatrix& A, Eigen::Index n, const std::string& what) {
+void require_size(const linalg::StructuralMatrix& A, Eigen::Index n, const std::string& what) {
   if (A.rows() != n || A.cols() != n) {
     throw std::invalid_argument(what + " is " + std::to_string(A.rows()) + "x" +
                                 std::to_string(A.cols()) + " but the model has " +
@@ -54,29 +40,29 @@ void require_size(const StructuralMatrix& A, Eigen::Index n, const std::string& 
   }
 }
 
-void require_finite(const StructuralMatrix& A, const std::string& what) {
-  for_each_entry(A, [&](Eigen::Index i, Eigen::Index j, double v) {
+void require_finite(const linalg::StructuralMatrix& A, const std::string& what) {
+  A.for_each_entry([&](Eigen::Index i, Eigen::Index j, double v) {
     if (!std::isfinite(v)) {
       throw std::invalid_argument(what + " has a non-finite entry " + entry(i, j) + " = " + fmt(v));
     }
   });
 }
 
-void require_symmetric(const StructuralMatrix& A, const std::string& what, double rel_tol) {
+void require_symmetric(const linalg::StructuralMatrix& A, const std::string& what, double rel_tol) {
   double max_abs = 0.0;
-  for_each_entry(A, [&](Eigen::Index, Eigen::Index, double v) { max_abs = std::max(max_abs, std::abs(v)); });
+  A.for_each_entry([&](Eigen::Index, Eigen::Index, double v) { max_abs = std::max(max_abs, std::abs(v)); });
   double worst = 0.0;
   Eigen::Index wi = 0, wj = 0;
   if (A.is_sparse()) {
-    const SparseMatrix diff = A.sparse() - SparseMatrix(A.sparse().transpose());
+    const linalg::SparseMatrix diff = A.sparse() - linalg::SparseMatrix(A.sparse().transpose());
     for (Eigen::Index j = 0; j < diff.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(diff, j); it; ++it)
+      for (linalg::SparseMatrix::InnerIterator it(diff, j); it; ++it)
         if (std::abs(it.value()) > worst) {
           worst = std::abs(it.value());
           wi = it.row();
           wj = it.col();
         }
-  } else {
+  } else if (!A.is_diagonal()) {
     const Eigen::MatrixXd& d = A.dense();
     for (Eigen::Index j = 0; j < d.cols(); ++j)
       for (Eigen::Index i = j + 1; i < d.rows(); ++i)
@@ -93,7 +79,7 @@ void require_symmetric(const StructuralMatrix& A, const std::string& what, doubl
   }
 }
 
-void require_nonnegative_diagonal(const StructuralMatrix& A, const std::string& what) {
+void require_nonnegative_diagonal(const linalg::StructuralMatrix& A, const std::string& what) {
   const Eigen::Index n = std::min(A.rows(), A.cols());
   for (Eigen::Index i = 0; i < n; ++i) {
     const double v = A.coeff(i, i);
@@ -104,7 +90,7 @@ void require_nonnegative_diagonal(const StructuralMatrix& A, const std::string& 
   }
 }
 
-void require_positive_definite(const StructuralMatrix& A, const std::string& what) {
+void require_positive_definite(const linalg::StructuralMatrix& A, const std::string& what) {
   const Eigen::Index n = A.rows();
   for (Eigen::Index i = 0; i < n; ++i) {
     const double v = A.coeff(i, i);
@@ -116,8 +102,10 @@ void require_positive_definite(const StructuralMatrix& A, const std::string& wha
   }
   bool ok = false;
   if (A.is_sparse()) {
-    Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower> llt(A.sparse());
+    Eigen::SimplicialLLT<linalg::SparseMatrix, Eigen::Lower> llt(A.sparse());
     ok = llt.info() == Eigen::Success;
+  } else if (A.is_diagonal()) {
+    ok = true;  // every diagonal entry is positive (checked above)
   } else {
     Eigen::LLT<Eigen::MatrixXd> llt(A.dense());
     ok = llt.info() == Eigen::Success;

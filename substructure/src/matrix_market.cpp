@@ -154,15 +154,15 @@ Header prescan(const std::filesystem::path& file) {
   return h;
 }
 
-std::string shape(const SparseMatrix& A) {
+std::string shape(const linalg::SparseMatrix& A) {
   return std::to_string(A.rows()) + "x" + std::to_string(A.cols());
 }
 
 }  // namespace
 
-SparseMatrix load_matrix_market(const std::filesystem::path& file) {
+linalg::SparseMatrix load_matrix_market(const std::filesystem::path& file) {
   const Header h = prescan(file);
-  SparseMatrix A;
+  linalg::SparseMatrix A;
   if (!Eigen::loadMarket(A, file.string())) {
     throw std::invalid_argument(mm_file(file) + " cannot be opened for reading");
   }
@@ -175,17 +175,17 @@ SparseMatrix load_matrix_market(const std::filesystem::path& file) {
     // The file holds the lower triangle (checked above). Rebuild the full matrix from the
     // lower triangle, so the result is right whether or not loadMarket mirrored it (Eigen
     // 3.4.0 does not; later versions may).
-    const SparseMatrix lower = A.triangularView<Eigen::Lower>();
-    const SparseMatrix strict = A.triangularView<Eigen::StrictlyLower>();
-    A = lower + SparseMatrix(strict.transpose());
+    const linalg::SparseMatrix lower = A.triangularView<Eigen::Lower>();
+    const linalg::SparseMatrix strict = A.triangularView<Eigen::StrictlyLower>();
+    A = lower + linalg::SparseMatrix(strict.transpose());
   }
   A.makeCompressed();
   return A;
 }
 
-SparseMatrix load_square_matrix_market(const std::filesystem::path& file,
+linalg::SparseMatrix load_square_matrix_market(const std::filesystem::path& file,
                                        std::optional<Eigen::Index> expected_dofs) {
-  SparseMatrix A = load_matrix_market(file);
+  linalg::SparseMatrix A = load_matrix_market(file);
   if (A.rows() != A.cols()) {
     throw std::invalid_argument(mm_file(file) + " holds a " + shape(A) +
                                 " matrix; a structural matrix must be square");
@@ -200,10 +200,10 @@ SparseMatrix load_square_matrix_market(const std::filesystem::path& file,
 LinearMdofConfig linear_config_from_matrix_market(const MatrixMarketModelFiles& files,
                                                   DampingConfig damping) {
   LinearMdofConfig cfg;
-  SparseMatrix M = load_square_matrix_market(files.mass_file, std::nullopt);
+  linalg::SparseMatrix M = load_square_matrix_market(files.mass_file, std::nullopt);
   const Eigen::Index n = M.rows();
   auto sized = [&](const std::filesystem::path& p) {
-    SparseMatrix A = load_square_matrix_market(p, std::nullopt);
+    linalg::SparseMatrix A = load_square_matrix_market(p, std::nullopt);
     if (A.rows() != n) {
       throw std::invalid_argument(mm_file(p) + " holds a " + shape(A) +
                                   " matrix but the mass file " + quoted(files.mass_file) +
@@ -211,13 +211,13 @@ LinearMdofConfig linear_config_from_matrix_market(const MatrixMarketModelFiles& 
     }
     return A;
   };
-  SparseMatrix K = sized(files.stiffness_file);
-  cfg.mass_kg = StructuralMatrix(std::move(M));
-  cfg.stiffness_n_per_m = StructuralMatrix(std::move(K));
+  linalg::SparseMatrix K = sized(files.stiffness_file);
+  cfg.mass_kg = linalg::StructuralMatrix(std::move(M));
+  cfg.stiffness_n_per_m = linalg::StructuralMatrix(std::move(K));
   cfg.mass_source = file_label(files.mass_file);
   cfg.stiffness_source = file_label(files.stiffness_file);
   if (files.damping_file) {
-    cfg.damping = DampingMatrix{StructuralMatrix(sized(*files.damping_file))};
+    cfg.damping = DampingMatrix{linalg::StructuralMatrix(sized(*files.damping_file))};
     cfg.damping_source = file_label(*files.damping_file);
   } else {
     cfg.damping = std::move(damping);

@@ -11,8 +11,8 @@
 namespace rpsd::substructure {
 namespace {
 
-Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solve(const StructuralMatrix& M,
-                                                                 const StructuralMatrix& K,
+Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solve(const linalg::StructuralMatrix& M,
+                                                                 const linalg::StructuralMatrix& K,
                                                                  bool vectors) {
   const std::string ctx = "modal analysis: ";
   detail::require_square(M, ctx + "mass matrix M");
@@ -47,7 +47,7 @@ Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solve(const Structural
 
 }  // namespace
 
-ModalSolution modal_analysis(const StructuralMatrix& mass, const StructuralMatrix& stiffness) {
+ModalSolution modal_analysis(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness) {
   auto es = solve(mass, stiffness, true);
   ModalSolution out;
   out.omega_rad_s = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
@@ -55,8 +55,8 @@ ModalSolution modal_analysis(const StructuralMatrix& mass, const StructuralMatri
   return out;
 }
 
-Eigen::VectorXd natural_frequencies_rad_s(const StructuralMatrix& mass,
-                                          const StructuralMatrix& stiffness) {
+Eigen::VectorXd natural_frequencies_rad_s(const linalg::StructuralMatrix& mass,
+                                          const linalg::StructuralMatrix& stiffness) {
   auto es = solve(mass, stiffness, false);
   return es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
 }

@@ -122,7 +122,7 @@ void Partition::add_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured,
   }
 }
 
-StructuralMatrix Partition::with_specimen_stiffness(const StructuralMatrix& K_num) const {
+linalg::StructuralMatrix Partition::with_specimen_stiffness(const linalg::StructuralMatrix& K_num) const {
   if (K_num.rows() != n_ || K_num.cols() != n_) {
     const std::string ctx = "partition: stiffness matrix is ";
     throw std::invalid_argument(ctx + num(K_num.rows()) + "x" +
@@ -133,13 +133,13 @@ StructuralMatrix Partition::with_specimen_stiffness(const StructuralMatrix& K_nu
     diag.emplace_back(x.dof, x.dof,
                       x.force_scale * x.displacement_scale * x.specimen_stiffness_estimate_n_per_m);
   }
-  SparseMatrix D(n_, n_);
+  linalg::SparseMatrix D(n_, n_);
   D.setFromTriplets(diag.begin(), diag.end());
-  return StructuralMatrix::linear_combination(1.0, K_num, 1.0, StructuralMatrix(std::move(D)))
+  return linalg::StructuralMatrix::linear_combination(1.0, K_num, 1.0, linalg::StructuralMatrix(std::move(D)))
       .converted(K_num.storage());
 }
 
-void GroundMotionLoad::configure(const StructuralMatrix& mass, const Eigen::VectorXd& influence) {
+void GroundMotionLoad::configure(const linalg::StructuralMatrix& mass, const Eigen::VectorXd& influence) {
   const std::string ctx = "ground motion load: ";
   detail::require_square(mass, ctx + "mass matrix M");
   if (influence.size() != mass.rows()) {

@@ -45,14 +45,14 @@ void ShearBuilding::configure(const ShearBuildingConfig& config) {
   }
 
   const auto N = static_cast<Eigen::Index>(n);
-  const MatrixStorage storage = config.storage.value_or(
-      n <= ShearBuildingConfig::kDenseFloorLimit ? MatrixStorage::dense : MatrixStorage::sparse);
-  StructuralMatrix M, K;
-  if (storage == MatrixStorage::dense) {
+  const linalg::MatrixStorage storage = config.storage.value_or(
+      n <= ShearBuildingConfig::kDenseFloorLimit ? linalg::MatrixStorage::kDense : linalg::MatrixStorage::kSparse);
+  linalg::StructuralMatrix M, K;
+  if (storage == linalg::MatrixStorage::kDense) {
     Eigen::MatrixXd m = Eigen::MatrixXd::Zero(N, N);
     for (Eigen::Index i = 0; i < N; ++i) m(i, i) = config.floor_masses_kg[static_cast<std::size_t>(i)];
-    M = StructuralMatrix(std::move(m));
-    K = StructuralMatrix(Eigen::MatrixXd::Zero(N, N));
+    M = linalg::StructuralMatrix(std::move(m));
+    K = linalg::StructuralMatrix(Eigen::MatrixXd::Zero(N, N));
   } else {
     std::vector<Eigen::Triplet<double>> mt, kt;
     for (Eigen::Index i = 0; i < N; ++i) {
@@ -63,11 +63,11 @@ void ShearBuilding::configure(const ShearBuildingConfig& config) {
         kt.emplace_back(i + 1, i, 0.0);
       }
     }
-    SparseMatrix m(N, N), k(N, N);
+    linalg::SparseMatrix m(N, N), k(N, N);
     m.setFromTriplets(mt.begin(), mt.end());
     k.setFromTriplets(kt.begin(), kt.end());  // explicit zeros fix the tridiagonal pattern
-    M = StructuralMatrix(std::move(m));
-    K = StructuralMatrix(std::move(k));
+    M = linalg::StructuralMatrix(std::move(m));
+    K = linalg::StructuralMatrix(std::move(k));
   }
 
   assemble_tridiagonal(springs, K, false);
@@ -84,7 +84,7 @@ void ShearBuilding::configure(const ShearBuildingConfig& config) {
   tangent_stale_ = false;
 }
 
-void ShearBuilding::assemble_tridiagonal(const std::vector<StorySpring>& springs, StructuralMatrix& K,
+void ShearBuilding::assemble_tridiagonal(const std::vector<StorySpring>& springs, linalg::StructuralMatrix& K,
                                          bool tangent) noexcept {
   const auto N = static_cast<Eigen::Index>(springs.size());
   auto k = [&](Eigen::Index i) {
@@ -92,7 +92,7 @@ void ShearBuilding::assemble_tridiagonal(const std::vector<StorySpring>& springs
     return tangent ? s.tangent_stiffness() : s.initial_stiffness();
   };
   if (K.is_sparse()) {
-    SparseMatrix& S = K.sparse_mut();
+    linalg::SparseMatrix& S = K.sparse_mut();
     // The pattern is fixed at configure(): coeffRef finds existing entries and never inserts.
     for (Eigen::Index i = 0; i < N; ++i) {
       const double above = i + 1 < N ? k(i + 1) : 0.0;
@@ -102,6 +102,7 @@ void ShearBuilding::assemble_tridiagonal(const std::vector<StorySpring>& springs
         S.coeffRef(i + 1, i) = -above;
       }
     }
+    K.values_changed();
   } else {
     Eigen::MatrixXd& D = K.dense_mut();
     for (Eigen::Index i = 0; i < N; ++i) {
@@ -115,7 +116,7 @@ void ShearBuilding::assemble_tridiagonal(const std::vector<StorySpring>& springs
   }
 }
 
-const StructuralMatrix& ShearBuilding::tangent_stiffness() noexcept {
+const linalg::StructuralMatrix& ShearBuilding::tangent_stiffness() noexcept {
   if (tangent_stale_) {
     assemble_tridiagonal(springs_, Kt_, true);
     tangent_stale_ = false;

@@ -19,7 +19,7 @@ TEST(AverageAcceleration, ConservesEnergyInUndampedFreeVibration) {
       auto p = NewmarkParams::average_acceleration();
       p.fixed_iteration = {iterations, 1};
       auto integrator = make_integrator(p);
-      integrator->configure(DenseStructuralMatrices{M, Eigen::Matrix3d::Zero(), K}, dt);
+      integrator->configure(StructuralMatrices::dense(M, Eigen::Matrix3d::Zero(), K), dt);
       const Eigen::VectorXd d0 = Eigen::Vector3d(0.01, 0.02, 0.03);
       const Eigen::VectorXd v0 = Eigen::Vector3d(-0.1, 0.0, 0.2);
       const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3);

@@ -34,9 +34,9 @@ double sdof_max_error(const IntegratorConfig& config, const SdofExact& exact, do
   const double m = 2.0;
   const double k = m * exact.omega * exact.omega;
   const double c = 2.0 * exact.xi * m * exact.omega;
-  integrator->configure(DenseStructuralMatrices{Eigen::MatrixXd::Constant(1, 1, m),
+  integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, m),
                                                 Eigen::MatrixXd::Constant(1, 1, c),
-                                                Eigen::MatrixXd::Constant(1, 1, k)},
+                                                Eigen::MatrixXd::Constant(1, 1, k)),
                         dt);
   auto force = [&](double t) {
     return Eigen::VectorXd::Constant(1, m * exact.p0 * std::sin(exact.omega_f * t));
@@ -149,7 +149,7 @@ TYPED_TEST(EveryScheme, BenchmarkBuildingMatchesModalSuperposition) {
   const Eigen::Vector3d iota = Eigen::Vector3d::Ones();
   const Eigen::Vector3d gamma = b.Phi.transpose() * b.M * iota;
   auto integrator = make_integrator(TypeParam::config());
-  integrator->configure(DenseStructuralMatrices{b.M, b.C, b.K}, dt);
+  integrator->configure(StructuralMatrices::dense(b.M, b.C, b.K), dt);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3);
   integrator->initialize(zero, zero, zero, zero);
   const Eigen::MatrixXd K = b.K;
@@ -180,7 +180,7 @@ TYPED_TEST(EveryScheme, LinearMdofDoesNotGrowAtOmegaDt100) {
   const auto b = benchmark_building();
   const double dt = 100.0 / b.omega(2);
   auto integrator = make_integrator(TypeParam::config());
-  integrator->configure(DenseStructuralMatrices{b.M, Eigen::Matrix3d::Zero(), b.K}, dt);
+  integrator->configure(StructuralMatrices::dense(b.M, Eigen::Matrix3d::Zero(), b.K), dt);
   const Eigen::VectorXd d0 = Eigen::Vector3d(0.01, -0.02, 0.015);
   const Eigen::VectorXd v0 = Eigen::Vector3d(0.1, -0.2, 0.15);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3);
@@ -212,31 +212,31 @@ TYPED_TEST(EveryScheme, RejectsBadInputAtConfigure) {
   };
   Eigen::Matrix2d nonsym{{1.0, 0.1}, {0.0, 1.0}};
   Eigen::Matrix2d indefinite{{1.0, 2.0}, {2.0, 1.0}};
-  expect_error(DenseStructuralMatrices{nonsym, 0 * I, I}, 0.01, "mass matrix is not symmetric");
-  expect_error(DenseStructuralMatrices{indefinite, 0 * I, I}, 0.01,
+  expect_error(StructuralMatrices::dense(nonsym, 0 * I, I), 0.01, "mass matrix is not symmetric");
+  expect_error(StructuralMatrices::dense(indefinite, 0 * I, I), 0.01,
                "mass matrix is not positive definite");
-  expect_error(DenseStructuralMatrices{I, Eigen::Matrix3d::Zero(), I}, 0.01,
+  expect_error(StructuralMatrices::dense(I, Eigen::Matrix3d::Zero(), I), 0.01,
                "damping matrix is 3x3, expected 2x2");
-  expect_error(DenseStructuralMatrices{I, 0 * I, Eigen::MatrixXd::Identity(2, 3)}, 0.01,
+  expect_error(StructuralMatrices::dense(I, 0 * I, Eigen::MatrixXd::Identity(2, 3)), 0.01,
                "initial stiffness matrix is 2x3");
-  expect_error(DenseStructuralMatrices{I, nonsym, I}, 0.01, "damping matrix is not symmetric");
-  expect_error(DenseStructuralMatrices{I, 0 * I, I}, -0.01, "time step dt_s must be positive");
+  expect_error(StructuralMatrices::dense(I, nonsym, I), 0.01, "damping matrix is not symmetric");
+  expect_error(StructuralMatrices::dense(I, 0 * I, I), -0.01, "time step dt_s must be positive");
   const Eigen::SparseMatrix<double> s_nonsym = nonsym.sparseView();
   const Eigen::SparseMatrix<double> s_indef = indefinite.sparseView();
   const Eigen::SparseMatrix<double> s_eye = Eigen::MatrixXd(I).sparseView();
-  expect_error(SparseStructuralMatrices{s_nonsym, s_eye * 0.0, s_eye}, 0.01,
+  expect_error(StructuralMatrices::sparse(s_nonsym, s_eye * 0.0, s_eye), 0.01,
                "mass matrix is not symmetric");
-  expect_error(SparseStructuralMatrices{s_indef, s_eye * 0.0, s_eye}, 0.01,
+  expect_error(StructuralMatrices::sparse(s_indef, s_eye * 0.0, s_eye), 0.01,
                "mass matrix is not positive definite");
   // omega = 100 rad/s: dt beyond the limit must be rejected, dt inside accepted.
   const double limit = TypeParam::stability_limit;
   const Eigen::Matrix2d K = 1e4 * I;
   if (std::isfinite(limit)) {
-    expect_error(DenseStructuralMatrices{I, 0 * I, K}, 1.01 * limit / 100.0, "unstable time step");
-    expect_error(SparseStructuralMatrices{s_eye, s_eye * 0.0, Eigen::SparseMatrix<double>(K.sparseView())},
+    expect_error(StructuralMatrices::dense(I, 0 * I, K), 1.01 * limit / 100.0, "unstable time step");
+    expect_error(StructuralMatrices::sparse(s_eye, s_eye * 0.0, Eigen::SparseMatrix<double>(K.sparseView())),
                  1.01 * limit / 100.0, "unstable time step");
   }
-  EXPECT_NO_THROW(integrator->configure(DenseStructuralMatrices{I, 0 * I, K},
+  EXPECT_NO_THROW(integrator->configure(StructuralMatrices::dense(I, 0 * I, K),
                                         std::isfinite(limit) ? 0.99 * limit / 100.0 : 1.0));
 }
 
@@ -265,9 +265,9 @@ TEST(StepSequence, MisuseIsReportedNotThrown) {
   auto integrator = make_integrator(KolayRiclesAlphaParams{});
   const Eigen::VectorXd one = Eigen::VectorXd::Ones(1);
   EXPECT_EQ(integrator->begin_step(one), StepStatus::not_initialized);
-  integrator->configure(DenseStructuralMatrices{Eigen::MatrixXd::Ones(1, 1),
+  integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd::Ones(1, 1),
                                                 Eigen::MatrixXd::Zero(1, 1),
-                                                Eigen::MatrixXd::Ones(1, 1)},
+                                                Eigen::MatrixXd::Ones(1, 1)),
                         0.01);
   integrator->initialize(one, one * 0, one, one * 0);
   EXPECT_EQ(integrator->end_step(), StepStatus::out_of_sequence);
@@ -297,9 +297,9 @@ TEST(FixedIterations, CommandsAreInterpolatedTowardsTheImplicitSolution) {
     const int N = 4;
     auto integrator = make_integrator(HhtAlphaParams{-0.1, {N, order}});
     const double k = 400.0;
-    integrator->configure(DenseStructuralMatrices{Eigen::MatrixXd::Constant(1, 1, 1.0),
+    integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, 1.0),
                                                   Eigen::MatrixXd::Constant(1, 1, 0.5),
-                                                  Eigen::MatrixXd::Constant(1, 1, k)},
+                                                  Eigen::MatrixXd::Constant(1, 1, k)),
                           0.01);
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(1);
     integrator->initialize(Eigen::VectorXd::Constant(1, 0.01), zero,

@@ -15,7 +15,7 @@
 namespace rpsd::integrators::test {
 namespace {
 
-void expect_solves(const SystemMatrix& a) {
+void expect_solves(const linalg::StructuralMatrix& a) {
   SymmetricSolver solver;
   solver.factorize(a, "test matrix");
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
@@ -27,15 +27,15 @@ void expect_solves(const SystemMatrix& a) {
 
 TEST(SymmetricSolver, SolvesEveryStorage) {
   const auto frame = make_frame_model(200, 100.0, true);
-  const auto k = SystemMatrix::from_sparse(frame.stiffness);
-  const auto m = SystemMatrix::from_sparse(frame.mass);
-  const auto p = SystemMatrix::from_sparse(permuted(frame).stiffness);
-  ASSERT_EQ(k.storage(), Storage::sparse);
+  const auto k = linalg::StructuralMatrix(frame.stiffness).compacted();
+  const auto m = linalg::StructuralMatrix(frame.mass).compacted();
+  const auto p = linalg::StructuralMatrix(permuted(frame).stiffness).compacted();
+  ASSERT_EQ(k.storage(), linalg::MatrixStorage::kSparse);
   expect_solves(k);
   expect_solves(m);
   expect_solves(p);
-  expect_solves(SystemMatrix::from_dense(Eigen::MatrixXd(frame.stiffness)));
-  expect_solves(SystemMatrix::from_dense(Eigen::MatrixXd(Eigen::VectorXd::LinSpaced(5, 1, 2).asDiagonal())));
+  expect_solves(linalg::StructuralMatrix(Eigen::MatrixXd(frame.stiffness)).compacted());
+  expect_solves(linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::VectorXd::LinSpaced(5, 1, 2).asDiagonal())).compacted());
 }
 
 // A banded model uses the band solver (factor = n (b + 1)); a renumbered one is reordered
@@ -43,8 +43,8 @@ TEST(SymmetricSolver, SolvesEveryStorage) {
 TEST(SymmetricSolver, BandOrReorderKeepsTheFactorSmall) {
   const auto frame = make_frame_model(600, 100.0);
   SymmetricSolver banded, renumbered;
-  banded.factorize(SystemMatrix::from_sparse(frame.stiffness), "banded");
-  renumbered.factorize(SystemMatrix::from_sparse(permuted(frame).stiffness), "renumbered");
+  banded.factorize(linalg::StructuralMatrix(frame.stiffness).compacted(), "banded");
+  renumbered.factorize(linalg::StructuralMatrix(permuted(frame).stiffness).compacted(), "renumbered");
   // Band 32: the natural-order factor has at most n * 33 entries whatever the numbering.
   EXPECT_LE(banded.factor_nonzeros(), 600 * 33);
   EXPECT_LE(renumbered.factor_nonzeros(), 2 * banded.factor_nonzeros());
@@ -53,15 +53,15 @@ TEST(SymmetricSolver, BandOrReorderKeepsTheFactorSmall) {
 TEST(SymmetricSolver, RejectsSingularMatrix) {
   Eigen::MatrixXd a = Eigen::MatrixXd::Ones(3, 3);
   SymmetricSolver s;
-  EXPECT_THROW(s.factorize(SystemMatrix::from_dense(a), "all-ones"), std::invalid_argument);
+  EXPECT_THROW(s.factorize(linalg::StructuralMatrix(a).compacted(), "all-ones"), std::invalid_argument);
 }
 
 // omega_max for the central-difference check: the Lanczos estimate on a sparse model
 // (consistent mass) against the dense generalized eigensolver, and the Gershgorin bound.
 TEST(MaxNaturalFrequency, LanczosMatchesDenseEigenvalues) {
   const auto frame = make_frame_model(500, 3000.0, true);
-  const auto M = SystemMatrix::from_sparse(frame.mass);
-  const auto K = SystemMatrix::from_sparse(frame.stiffness);
+  const auto M = linalg::StructuralMatrix(frame.mass).compacted();
+  const auto K = linalg::StructuralMatrix(frame.stiffness).compacted();
   SymmetricSolver ms;
   ms.factorize(M, "mass");
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
@@ -71,8 +71,8 @@ TEST(MaxNaturalFrequency, LanczosMatchesDenseEigenvalues) {
   EXPECT_GE(lanczos, exact * (1.0 - 1e-6));
   EXPECT_LE(lanczos, exact * 1.01);
   const auto lumped = make_frame_model(500, 3000.0, false);
-  const double bound = frequency_upper_bound_rad_s(SystemMatrix::from_sparse(lumped.mass),
-                                                   SystemMatrix::from_sparse(lumped.stiffness));
+  const double bound = frequency_upper_bound_rad_s(linalg::StructuralMatrix(lumped.mass).compacted(),
+                                                   linalg::StructuralMatrix(lumped.stiffness).compacted());
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> el(
       Eigen::MatrixXd(lumped.stiffness), Eigen::MatrixXd(lumped.mass), Eigen::EigenvaluesOnly);
   EXPECT_GE(bound, std::sqrt(el.eigenvalues().maxCoeff()));
@@ -83,11 +83,11 @@ TEST(MaxNaturalFrequency, LanczosMatchesDenseEigenvalues) {
 // check rejects dt just above 2/omega_max and accepts dt just below.
 TEST(MaxNaturalFrequency, CentralDifferenceCheckOnLargeSparseModel) {
   const auto frame = make_frame_model(2000, 3000.0, true);
-  const SparseStructuralMatrices m{frame.mass, frame.damping, frame.stiffness};
-  const auto M = SystemMatrix::from_sparse(frame.mass);
+  const auto m = StructuralMatrices::sparse(frame.mass, frame.damping, frame.stiffness);
+  const auto M = linalg::StructuralMatrix(frame.mass).compacted();
   SymmetricSolver ms;
   ms.factorize(M, "mass");
-  const double w = max_natural_frequency_rad_s(M, SystemMatrix::from_sparse(frame.stiffness), ms);
+  const double w = max_natural_frequency_rad_s(M, linalg::StructuralMatrix(frame.stiffness).compacted(), ms);
   auto cd = make_integrator(CentralDifferenceParams{});
   EXPECT_THROW(cd->configure(m, 1.02 * 2.0 / w), std::invalid_argument);
   EXPECT_NO_THROW(cd->configure(m, 0.98 * 2.0 / w));
@@ -103,8 +103,8 @@ TEST(DenseAndSparse, GiveTheSameTrajectory) {
         IntegratorConfig{ChenRiclesParams{}}, IntegratorConfig{KolayRiclesAlphaParams{}}}) {
     auto dense = make_integrator(c);
     auto sparse = make_integrator(c);
-    dense->configure(DenseStructuralMatrices{M, C, K}, 1e-3);
-    sparse->configure(SparseStructuralMatrices{frame.mass, frame.damping, frame.stiffness}, 1e-3);
+    dense->configure(StructuralMatrices::dense(M, C, K), 1e-3);
+    sparse->configure(StructuralMatrices::sparse(frame.mass, frame.damping, frame.stiffness), 1e-3);
     const Eigen::VectorXd d0 = Eigen::VectorXd::LinSpaced(90, 0.0, 1e-3), z = Eigen::VectorXd::Zero(90);
     dense->initialize(d0, z, K * d0, z);
     sparse->initialize(d0, z, K * d0, z);

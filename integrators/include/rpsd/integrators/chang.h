@@ -22,7 +22,7 @@ class Chang final : public Integrator {
   void on_restoring_force(int iteration, const Eigen::VectorXd& r) override;
   void on_end_step() override;
 
-  SystemMatrix p_matrix_;  // M + dt/2 C
+  linalg::StructuralMatrix p_matrix_;  // M + dt/2 C
   SymmetricSolver b_solver_, p_solver_;
   Eigen::VectorXd ma_, rhs_, tmp_, r_meas_, a_next_;
 };

@@ -15,7 +15,7 @@
 // misuse is reported through StepStatus.
 #include "rpsd/integrators/structural_matrices.h"
 #include "rpsd/integrators/symmetric_solver.h"
-#include "rpsd/integrators/system_matrix.h"
+#include "rpsd/linalg/structural_matrix.h"
 
 #include <Eigen/Dense>
 
@@ -121,7 +121,7 @@ class Integrator {
   void set_iterations_per_step(int n) { iterations_ = n; }
 
   // Model (set by configure).
-  SystemMatrix mass_, damping_, stiffness_;
+  linalg::StructuralMatrix mass_, damping_, stiffness_;
   SymmetricSolver mass_solver_;
   double dt_s_ = 0.0;
   Eigen::Index n_ = 0;

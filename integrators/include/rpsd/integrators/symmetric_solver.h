@@ -1,9 +1,9 @@
 #pragma once
-// Factorises a symmetric SystemMatrix once (configure time) and solves with it on the
+// Factorises a symmetric linalg::StructuralMatrix once (configure time) and solves with it on the
 // real-time path: diagonal inverse, dense LDLT, a band LDL^T for sparse matrices that are
 // banded in their own numbering (frame models: contiguous, vectorised substitutions), or
 // Eigen's sparse simplicial LDL^T with AMD ordering otherwise.
-#include "rpsd/integrators/system_matrix.h"
+#include "rpsd/linalg/structural_matrix.h"
 
 #include <Eigen/SparseCholesky>
 
@@ -20,18 +20,18 @@ class SymmetricSolver {
   SymmetricSolver& operator=(SymmetricSolver&&) noexcept;
 
   /// Not real-time safe. Throws std::invalid_argument naming `what` if A is singular.
-  void factorize(const SystemMatrix& A, std::string_view what);
+  void factorize(const linalg::StructuralMatrix& A, std::string_view what);
   /// x = A^-1 b. Real-time safe; x must already have the right size and not alias b.
   /// Uses an internal work vector: one solver must not be used by two threads at once.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
-  Storage storage() const { return storage_; }
+  linalg::MatrixStorage storage() const { return storage_; }
   /// Non-zeros of the triangular factor (the per-solve cost); n for a diagonal matrix.
   Eigen::Index factor_nonzeros() const;
 
  private:
   using SparseLdlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
                                            Eigen::AMDOrdering<int>>;
-  Storage storage_ = Storage::diagonal;
+  linalg::MatrixStorage storage_ = linalg::MatrixStorage::kDiagonal;
   Eigen::VectorXd inverse_diagonal_;  // diagonal matrix, or D^-1 of the sparse AMD LDL^T
   std::unique_ptr<Eigen::LDLT<Eigen::MatrixXd>> dense_;
   std::unique_ptr<SparseLdlt> sparse_amd_;
@@ -46,16 +46,16 @@ class SymmetricSolver {
 };
 
 /// True if A is positive definite (Cholesky succeeds). Not real-time safe.
-bool is_positive_definite(const SystemMatrix& A);
+bool is_positive_definite(const linalg::StructuralMatrix& A);
 
 /// Largest natural circular frequency sqrt(max eig(K, M)) in rad/s. Exact for dense
 /// models up to 400 DOF; otherwise an 80-step Lanczos estimate (top Ritz value plus its
 /// residual estimate). Not real-time safe.
-double max_natural_frequency_rad_s(const SystemMatrix& mass, const SystemMatrix& stiffness,
+double max_natural_frequency_rad_s(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness,
                                    const SymmetricSolver& mass_solver);
 
 /// Gershgorin upper bound of omega_max for a lumped (diagonal) mass; +infinity otherwise.
 /// Not real-time safe.
-double frequency_upper_bound_rad_s(const SystemMatrix& mass, const SystemMatrix& stiffness);
+double frequency_upper_bound_rad_s(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness);
 
 }  // namespace rpsd::integrators

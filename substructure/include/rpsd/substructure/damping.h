@@ -2,7 +2,7 @@
 // How a model's damping matrix C is specified, and how it is built from M and K0.
 
 #include "rpsd/substructure/rayleigh.h"
-#include "rpsd/substructure/structural_matrix.h"
+#include "rpsd/linalg/structural_matrix.h"
 
 #include <optional>
 #include <string>
@@ -14,7 +14,7 @@ struct Undamped {};
 
 // C given explicitly (e.g. exported by a finite-element program).
 struct DampingMatrix {
-  StructuralMatrix c;
+  linalg::StructuralMatrix c;
 };
 
 // Rayleigh damping with ratio damping_ratio_a in mode mode_a and damping_ratio_b in mode_b.
@@ -40,15 +40,15 @@ using DampingConfig = std::variant<Undamped, DampingMatrix, RayleighFromModes,
                                    RayleighFromFrequencies, RayleighCoefficients>;
 
 struct BuiltDamping {
-  StructuralMatrix c;                          // same storage as K0
+  linalg::StructuralMatrix c;                          // same storage as K0
   std::optional<RayleighCoefficients> rayleigh;  // set for the three Rayleigh forms
 };
 
 // Builds C for a model whose M and K0 are already validated (square, same size, symmetric,
 // M positive definite). C = a0 M + a1 K0 for Rayleigh damping, with the storage of K0.
 // Errors are std::invalid_argument prefixed with `context`. Not real-time safe.
-[[nodiscard]] BuiltDamping build_damping(const DampingConfig& config, const StructuralMatrix& mass,
-                                         const StructuralMatrix& initial_stiffness,
+[[nodiscard]] BuiltDamping build_damping(const DampingConfig& config, const linalg::StructuralMatrix& mass,
+                                         const linalg::StructuralMatrix& initial_stiffness,
                                          const std::string& context);
 
 }  // namespace rpsd::substructure

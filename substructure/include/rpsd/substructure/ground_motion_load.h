@@ -1,7 +1,7 @@
 #pragma once
 // Effective earthquake load F(t) = −M ι a_g(t).
 
-#include "rpsd/substructure/structural_matrix.h"
+#include "rpsd/linalg/structural_matrix.h"
 
 #include <Eigen/Core>
 
@@ -11,7 +11,7 @@ class GroundMotionLoad {
  public:
   // Precomputes M ι. Throws std::invalid_argument if sizes differ or ι is not finite.
   // Not real-time safe.
-  void configure(const StructuralMatrix& mass, const Eigen::VectorXd& influence);
+  void configure(const linalg::StructuralMatrix& mass, const Eigen::VectorXd& influence);
 
   // force = −M ι · ground_acceleration. Real-time safe.
   void force(double ground_acceleration_m_s2, Eigen::Ref<Eigen::VectorXd> out) const noexcept {

@@ -11,8 +11,8 @@
 namespace rpsd::substructure {
 
 struct LinearMdofConfig {
-  StructuralMatrix mass_kg;           // symmetric positive definite
-  StructuralMatrix stiffness_n_per_m; // symmetric, no negative diagonal entry
+  linalg::StructuralMatrix mass_kg;           // symmetric positive definite
+  linalg::StructuralMatrix stiffness_n_per_m; // symmetric, no negative diagonal entry
   DampingConfig damping = Undamped{};
   // Where each matrix came from (e.g. "file 'k.mtx'"); added to error messages when set.
   std::string mass_source;
@@ -27,11 +27,11 @@ class LinearMdofModel final : public NumericalModel {
   void configure(const LinearMdofConfig& config);
 
   [[nodiscard]] Eigen::Index dofs() const noexcept override { return K_.rows(); }
-  [[nodiscard]] const StructuralMatrix& mass() const noexcept override { return M_; }
-  [[nodiscard]] const StructuralMatrix& damping() const noexcept override { return C_; }
-  [[nodiscard]] const StructuralMatrix& initial_stiffness() const noexcept override { return K_; }
+  [[nodiscard]] const linalg::StructuralMatrix& mass() const noexcept override { return M_; }
+  [[nodiscard]] const linalg::StructuralMatrix& damping() const noexcept override { return C_; }
+  [[nodiscard]] const linalg::StructuralMatrix& initial_stiffness() const noexcept override { return K_; }
   // A linear model's tangent is K. Real-time safe.
-  [[nodiscard]] const StructuralMatrix& tangent_stiffness() noexcept override { return K_; }
+  [[nodiscard]] const linalg::StructuralMatrix& tangent_stiffness() noexcept override { return K_; }
 
   // r_out = K d_trial. Real-time safe.
   void restoring_force(const Eigen::Ref<const Eigen::VectorXd>& d_trial,
@@ -45,7 +45,7 @@ class LinearMdofModel final : public NumericalModel {
   }
 
  private:
-  StructuralMatrix M_, C_, K_;
+  linalg::StructuralMatrix M_, C_, K_;
   std::optional<RayleighCoefficients> rayleigh_;
 };
 

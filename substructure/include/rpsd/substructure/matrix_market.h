@@ -14,10 +14,10 @@ namespace rpsd::substructure {
 // with the file name and line; the values are then loaded with Eigen's loadMarket.
 // Unsupported: the dense "array" format, complex/pattern fields, skew-symmetric/Hermitian.
 // Throws std::invalid_argument naming the file. Not real-time safe.
-[[nodiscard]] SparseMatrix load_matrix_market(const std::filesystem::path& file);
+[[nodiscard]] linalg::SparseMatrix load_matrix_market(const std::filesystem::path& file);
 
 // As load_matrix_market, and also requires a square matrix with expected_dofs rows when given.
-[[nodiscard]] SparseMatrix load_square_matrix_market(const std::filesystem::path& file,
+[[nodiscard]] linalg::SparseMatrix load_square_matrix_market(const std::filesystem::path& file,
                                                      std::optional<Eigen::Index> expected_dofs);
 
 struct MatrixMarketModelFiles {

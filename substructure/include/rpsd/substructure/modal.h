@@ -1,7 +1,7 @@
 #pragma once
 // Natural frequencies and mode shapes from the generalized eigenproblem K φ = ω² M φ.
 
-#include "rpsd/substructure/structural_matrix.h"
+#include "rpsd/linalg/structural_matrix.h"
 
 #include <Eigen/Core>
 
@@ -21,11 +21,11 @@ struct ModalSolution {
 // Throws std::invalid_argument when M and K differ in size, are not square, symmetric or
 // finite, when M is not positive definite, when K has a negative eigenvalue (beyond
 // round-off), or when the model exceeds kMaxDenseEigenDofs. Not real-time safe.
-[[nodiscard]] ModalSolution modal_analysis(const StructuralMatrix& mass,
-                                           const StructuralMatrix& stiffness);
+[[nodiscard]] ModalSolution modal_analysis(const linalg::StructuralMatrix& mass,
+                                           const linalg::StructuralMatrix& stiffness);
 
 // Only the frequencies (cheaper: no eigenvectors). Same checks. Not real-time safe.
-[[nodiscard]] Eigen::VectorXd natural_frequencies_rad_s(const StructuralMatrix& mass,
-                                                        const StructuralMatrix& stiffness);
+[[nodiscard]] Eigen::VectorXd natural_frequencies_rad_s(const linalg::StructuralMatrix& mass,
+                                                        const linalg::StructuralMatrix& stiffness);
 
 }  // namespace rpsd::substructure

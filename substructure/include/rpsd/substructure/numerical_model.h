@@ -11,7 +11,7 @@
 // number of trial evaluations within a step leave the history untouched; commit() accepts
 // the last trial as the converged state of the step.
 
-#include "rpsd/substructure/structural_matrix.h"
+#include "rpsd/linalg/structural_matrix.h"
 
 #include <Eigen/Core>
 
@@ -22,13 +22,13 @@ class NumericalModel {
   virtual ~NumericalModel() = default;
 
   [[nodiscard]] virtual Eigen::Index dofs() const noexcept = 0;
-  [[nodiscard]] virtual const StructuralMatrix& mass() const noexcept = 0;
-  [[nodiscard]] virtual const StructuralMatrix& damping() const noexcept = 0;
-  [[nodiscard]] virtual const StructuralMatrix& initial_stiffness() const noexcept = 0;
+  [[nodiscard]] virtual const linalg::StructuralMatrix& mass() const noexcept = 0;
+  [[nodiscard]] virtual const linalg::StructuralMatrix& damping() const noexcept = 0;
+  [[nodiscard]] virtual const linalg::StructuralMatrix& initial_stiffness() const noexcept = 0;
 
   // Tangent stiffness at the last trial state (K0 before the first trial). Updated in
   // place, same storage and sparsity pattern as K0. Real-time safe.
-  [[nodiscard]] virtual const StructuralMatrix& tangent_stiffness() noexcept = 0;
+  [[nodiscard]] virtual const linalg::StructuralMatrix& tangent_stiffness() noexcept = 0;
 
   // r_out = R(d_trial) from the committed state; both of size dofs(). Real-time safe.
   virtual void restoring_force(const Eigen::Ref<const Eigen::VectorXd>& d_trial,

@@ -7,7 +7,7 @@
 // specimen at length scale λ (specimen/model), displacement_scale = λ and, by similitude
 // with equal stress, force_scale = 1/λ².
 
-#include "rpsd/substructure/structural_matrix.h"
+#include "rpsd/linalg/structural_matrix.h"
 
 #include <Eigen/Core>
 
@@ -66,7 +66,7 @@ class Partition {
   // K_num plus the specimens' estimated stiffness in model units
   // (force_scale · displacement_scale · k_specimen on the diagonal of each experimental DOF),
   // with the storage of K_num. Not real-time safe.
-  [[nodiscard]] StructuralMatrix with_specimen_stiffness(const StructuralMatrix& K_num) const;
+  [[nodiscard]] linalg::StructuralMatrix with_specimen_stiffness(const linalg::StructuralMatrix& K_num) const;
 
  private:
   Eigen::Index n_ = 0;

@@ -20,7 +20,7 @@ struct ShearBuildingConfig {
   std::vector<StorySpringConfig> story_springs;  // story 1 (ground to floor 1) first
   DampingConfig damping = Undamped{};            // Rayleigh forms use the initial stiffness
   // Storage of M, C, K; by default dense up to kDenseFloorLimit floors, sparse beyond.
-  std::optional<MatrixStorage> storage;
+  std::optional<linalg::MatrixStorage> storage;
   static constexpr std::size_t kDenseFloorLimit = 64;
 };
 
@@ -31,11 +31,11 @@ class ShearBuilding final : public NumericalModel {
   void configure(const ShearBuildingConfig& config);
 
   [[nodiscard]] Eigen::Index dofs() const noexcept override { return static_cast<Eigen::Index>(springs_.size()); }
-  [[nodiscard]] const StructuralMatrix& mass() const noexcept override { return M_; }
-  [[nodiscard]] const StructuralMatrix& damping() const noexcept override { return C_; }
-  [[nodiscard]] const StructuralMatrix& initial_stiffness() const noexcept override { return K0_; }
+  [[nodiscard]] const linalg::StructuralMatrix& mass() const noexcept override { return M_; }
+  [[nodiscard]] const linalg::StructuralMatrix& damping() const noexcept override { return C_; }
+  [[nodiscard]] const linalg::StructuralMatrix& initial_stiffness() const noexcept override { return K0_; }
   // Assembled from the story tangents of the last trial. Real-time safe.
-  [[nodiscard]] const StructuralMatrix& tangent_stiffness() noexcept override;
+  [[nodiscard]] const linalg::StructuralMatrix& tangent_stiffness() noexcept override;
 
   // Real-time safe.
   void restoring_force(const Eigen::Ref<const Eigen::VectorXd>& d_trial,
@@ -51,12 +51,12 @@ class ShearBuilding final : public NumericalModel {
  private:
   // Writes the tridiagonal stiffness from the story initial or tangent stiffnesses into K,
   // whose pattern already holds the tridiagonal. Real-time safe.
-  static void assemble_tridiagonal(const std::vector<StorySpring>& springs, StructuralMatrix& K,
+  static void assemble_tridiagonal(const std::vector<StorySpring>& springs, linalg::StructuralMatrix& K,
                                    bool tangent) noexcept;
 
   std::vector<StorySpring> springs_;
   std::vector<double> V_;
-  StructuralMatrix M_, C_, K0_, Kt_;
+  linalg::StructuralMatrix M_, C_, K0_, Kt_;
   std::optional<RayleighCoefficients> rayleigh_;
   bool tangent_stale_ = false;
 };

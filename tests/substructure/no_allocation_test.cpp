@@ -70,12 +70,12 @@ LinearMdofConfig banded_model(Eigen::Index n, Eigen::Index half_band) {
     }
     kt.emplace_back(i, i, offsum + 2.0e6);
   }
-  SparseMatrix K(n, n), M(n, n);
+  linalg::SparseMatrix K(n, n), M(n, n);
   K.setFromTriplets(kt.begin(), kt.end());
   M.setFromTriplets(mt.begin(), mt.end());
   LinearMdofConfig c;
-  c.mass_kg = StructuralMatrix(std::move(M));
-  c.stiffness_n_per_m = StructuralMatrix(std::move(K));
+  c.mass_kg = linalg::StructuralMatrix(std::move(M));
+  c.stiffness_n_per_m = linalg::StructuralMatrix(std::move(K));
   c.damping = RayleighFromModes{1, 5, 0.05, 0.05};
   return c;
 }
@@ -109,10 +109,10 @@ TEST(NoAllocation, SparseLinearModel500Dofs) {
       for (int it = 0; it < 2; ++it) model.restoring_force(d, r);  // two iterations
       partition.add_forces(fm, r);
       model.commit();
-      const StructuralMatrix& Kt = model.tangent_stiffness();
+      const linalg::StructuralMatrix& Kt = model.tangent_stiffness();
       model.damping().multiply(d, scratch);
-      model.mass().multiply_add(d, 1.0, scratch);
-      Kt.multiply_add(d, -1.0, scratch);
+      model.mass().multiply_add(1.0, d, scratch);
+      Kt.multiply_add(-1.0, d, scratch);
       load.force(0.1 * s, f);
       check += r[n - 1] + f[0] + scratch[0];
     }
@@ -125,8 +125,8 @@ TEST(NoAllocation, SparseLinearModel500Dofs) {
 TEST(NoAllocation, DenseLinearModel) {
   // Dense storage: the GEMV products must not allocate either.
   LinearMdofConfig cfg = banded_model(200, 15);
-  cfg.mass_kg = cfg.mass_kg.converted(MatrixStorage::dense);
-  cfg.stiffness_n_per_m = cfg.stiffness_n_per_m.converted(MatrixStorage::dense);
+  cfg.mass_kg = cfg.mass_kg.converted(linalg::MatrixStorage::kDense);
+  cfg.stiffness_n_per_m = cfg.stiffness_n_per_m.converted(linalg::MatrixStorage::kDense);
   LinearMdofModel model;
   model.configure(cfg);
   ASSERT_FALSE(model.initial_stiffness().is_sparse());
@@ -139,7 +139,7 @@ TEST(NoAllocation, DenseLinearModel) {
       model.restoring_force(d, r);
       model.commit();
       model.damping().multiply(d, scratch);
-      model.tangent_stiffness().multiply_add(d, 1.0, scratch);
+      model.tangent_stiffness().multiply_add(1.0, d, scratch);
       check += r[0] + scratch[n - 1];
     }
   });
@@ -148,7 +148,7 @@ TEST(NoAllocation, DenseLinearModel) {
   EXPECT_TRUE(std::isfinite(check));
 }
 
-ShearBuildingConfig building(int floors, const StorySpringConfig& spring, MatrixStorage storage) {
+ShearBuildingConfig building(int floors, const StorySpringConfig& spring, linalg::MatrixStorage storage) {
   ShearBuildingConfig c;
   c.floor_masses_kg.assign(static_cast<std::size_t>(floors), 5.0e4);
   c.story_springs.assign(static_cast<std::size_t>(floors), spring);
@@ -184,7 +184,7 @@ TEST(NoAllocation, BoucWenBuilding50Stories) {
   bw.post_yield_ratio = 0.05;
   bw.n = 2.0;
   bw.beta = bw.gamma = 1.0 / (2.0 * 0.01 * 0.01);  // z_max = 1 cm
-  for (MatrixStorage storage : {MatrixStorage::dense, MatrixStorage::sparse}) {
+  for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
     ShearBuilding b;
     b.configure(building(50, bw, storage));
     run_building(b);
@@ -193,7 +193,7 @@ TEST(NoAllocation, BoucWenBuilding50Stories) {
 
 TEST(NoAllocation, BilinearBuilding50Stories) {
   ShearBuilding b;
-  b.configure(building(50, BilinearSpringConfig{5.0e7, 5.0e5, 0.05}, MatrixStorage::sparse));
+  b.configure(building(50, BilinearSpringConfig{5.0e7, 5.0e5, 0.05}, linalg::MatrixStorage::kSparse));
   run_building(b);
 }
 

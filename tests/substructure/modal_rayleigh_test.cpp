@@ -52,8 +52,8 @@ TEST(Rayleigh, RejectsBadAnchors) {
 }
 
 TEST(Modal, BenchmarkCase1Frequencies) {
-  const StructuralMatrix M(Eigen::MatrixXd(test::benchmark_case1_mass()));
-  const StructuralMatrix K(Eigen::MatrixXd(test::benchmark_case1_stiffness()));
+  const linalg::StructuralMatrix M(Eigen::MatrixXd(test::benchmark_case1_mass()));
+  const linalg::StructuralMatrix K(Eigen::MatrixXd(test::benchmark_case1_stiffness()));
   const Eigen::VectorXd w = natural_frequencies_rad_s(M, K);
   ASSERT_EQ(w.size(), 3);
   for (int i = 0; i < 3; ++i) {
@@ -61,8 +61,8 @@ TEST(Modal, BenchmarkCase1Frequencies) {
     EXPECT_NEAR(w[i] / (2.0 * kPi), test::kBenchmarkCase1FrequenciesHz[i], 5e-4) << "mode " << i + 1;
   }
   // Same result through sparse storage.
-  const Eigen::VectorXd ws = natural_frequencies_rad_s(M.converted(MatrixStorage::sparse),
-                                                       K.converted(MatrixStorage::sparse));
+  const Eigen::VectorXd ws = natural_frequencies_rad_s(M.converted(linalg::MatrixStorage::kSparse),
+                                                       K.converted(linalg::MatrixStorage::kSparse));
   EXPECT_LT((ws - w).cwiseAbs().maxCoeff(), 1e-9 * w.maxCoeff());
 }
 
@@ -75,8 +75,8 @@ TEST(Modal, UniformShearBuildingClosedForm) {
     K(i, i) = (i + 1 < N) ? 2.0 * k : k;
     if (i + 1 < N) K(i, i + 1) = K(i + 1, i) = -k;
   }
-  const ModalSolution modal = modal_analysis(StructuralMatrix(Eigen::MatrixXd(m * Eigen::MatrixXd::Identity(N, N))),
-                                             StructuralMatrix(K));
+  const ModalSolution modal = modal_analysis(linalg::StructuralMatrix(Eigen::MatrixXd(m * Eigen::MatrixXd::Identity(N, N))),
+                                             linalg::StructuralMatrix(K));
   for (int j = 1; j <= N; ++j) {
     const double exact = 2.0 * std::sqrt(k / m) * std::sin((2 * j - 1) * kPi / (2.0 * (2 * N + 1)));
     EXPECT_NEAR(modal.omega_rad_s[j - 1], exact, 1e-10 * exact) << "mode " << j;
@@ -87,11 +87,11 @@ TEST(Modal, UniformShearBuildingClosedForm) {
 }
 
 TEST(Modal, RejectsBadMatrices) {
-  const StructuralMatrix M(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)));
+  const linalg::StructuralMatrix M(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)));
   Eigen::MatrixXd Kneg(2, 2);
   Kneg << -1.0, 0.0, 0.0, 2.0;  // one negative eigenvalue
-  EXPECT_THROW((void)natural_frequencies_rad_s(M, StructuralMatrix(Kneg)), std::invalid_argument);
-  EXPECT_THROW((void)natural_frequencies_rad_s(M, StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(3, 3)))),
+  EXPECT_THROW((void)natural_frequencies_rad_s(M, linalg::StructuralMatrix(Kneg)), std::invalid_argument);
+  EXPECT_THROW((void)natural_frequencies_rad_s(M, linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(3, 3)))),
                std::invalid_argument);
 }
 
@@ -108,8 +108,8 @@ ModalDamping modal_damping(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, c
 
 TEST(Rayleigh, BenchmarkCase1ModalDampingMatchesAnalyticCurve) {
   LinearMdofConfig cfg;
-  cfg.mass_kg = StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_mass()));
-  cfg.stiffness_n_per_m = StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_stiffness()));
+  cfg.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_mass()));
+  cfg.stiffness_n_per_m = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_stiffness()));
   cfg.damping = RayleighFromModes{1, 2, 0.05, 0.05};  // ζ = 5 % as in the benchmark
   LinearMdofModel model;
   model.configure(cfg);
@@ -144,14 +144,14 @@ TEST(Rayleigh, EveryModeOfATenStoryBuildingFollowsTheCurve) {
     K(i, i) = k_here + k_above;
     if (i + 1 < N) K(i, i + 1) = K(i + 1, i) = -k_above;
   }
-  for (MatrixStorage storage : {MatrixStorage::dense, MatrixStorage::sparse}) {
+  for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
     LinearMdofConfig cfg;
-    cfg.mass_kg = StructuralMatrix(M).converted(storage);
-    cfg.stiffness_n_per_m = StructuralMatrix(K).converted(storage);
+    cfg.mass_kg = linalg::StructuralMatrix(M).converted(storage);
+    cfg.stiffness_n_per_m = linalg::StructuralMatrix(K).converted(storage);
     cfg.damping = RayleighFromModes{1, 3, 0.02, 0.04};
     LinearMdofModel model;
     model.configure(cfg);
-    EXPECT_EQ(model.damping().is_sparse(), storage == MatrixStorage::sparse);
+    EXPECT_EQ(model.damping().is_sparse(), storage == linalg::MatrixStorage::kSparse);
     const ModalDamping md = modal_damping(M, K, model.damping().to_dense());
     const double wa = md.omega[0], wb = md.omega[2];
     const double a1 = 2.0 * (0.04 * wb - 0.02 * wa) / (wb * wb - wa * wa);
@@ -166,8 +166,8 @@ TEST(Rayleigh, EveryModeOfATenStoryBuildingFollowsTheCurve) {
 }
 
 TEST(Rayleigh, FromGivenFrequenciesAndCoefficients) {
-  const StructuralMatrix M(Eigen::MatrixXd(test::benchmark_case1_mass()));
-  const StructuralMatrix K(Eigen::MatrixXd(test::benchmark_case1_stiffness()));
+  const linalg::StructuralMatrix M(Eigen::MatrixXd(test::benchmark_case1_mass()));
+  const linalg::StructuralMatrix K(Eigen::MatrixXd(test::benchmark_case1_stiffness()));
   const BuiltDamping b = build_damping(RayleighFromFrequencies{10.0, 30.0, 0.05, 0.05}, M, K, "");
   ASSERT_TRUE(b.rayleigh.has_value());
   EXPECT_NEAR(b.rayleigh->a0_per_s, 0.75, 1e-15);

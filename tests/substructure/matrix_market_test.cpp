@@ -71,14 +71,14 @@ const char* kBenchmarkM =
     "3 3 1000\n";
 
 TEST_F(MatrixMarket, SymmetricFileIsMirrored) {
-  const SparseMatrix K = load_matrix_market(write("k.mtx", kBenchmarkK));
+  const linalg::SparseMatrix K = load_matrix_market(write("k.mtx", kBenchmarkK));
   EXPECT_EQ(K.rows(), 3);
   EXPECT_EQ(K.nonZeros(), 9);
   EXPECT_EQ(Eigen::MatrixXd(K), Eigen::MatrixXd(test::benchmark_case1_stiffness()));
 }
 
 TEST_F(MatrixMarket, GeneralFileAndIntegerField) {
-  const SparseMatrix A = load_matrix_market(write("a.mtx",
+  const linalg::SparseMatrix A = load_matrix_market(write("a.mtx",
       "%%MatrixMarket matrix coordinate integer general\n%comment\n\n2 3 3\n1 1 4\n2 3 -7\n1 2 5\n"));
   Eigen::MatrixXd expected(2, 3);
   expected << 4, 5, 0, 0, 0, -7;
@@ -92,11 +92,11 @@ TEST_F(MatrixMarket, RoundTripThroughEigenSaveMarket) {
   std::uniform_int_distribution<int> idx(0, 39);
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 0; k < 200; ++k) t.emplace_back(idx(rng), idx(rng), val(rng));
-  SparseMatrix A(40, 40);
+  linalg::SparseMatrix A(40, 40);
   A.setFromTriplets(t.begin(), t.end());
   const fs::path p = dir_ / "random.mtx";
   ASSERT_TRUE(Eigen::saveMarket(A, p.string()));
-  const SparseMatrix B = load_matrix_market(p);
+  const linalg::SparseMatrix B = load_matrix_market(p);
   EXPECT_EQ(Eigen::MatrixXd(B), Eigen::MatrixXd(A));
 }
 

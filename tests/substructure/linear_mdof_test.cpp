@@ -13,10 +13,10 @@
 namespace rpsd::substructure {
 namespace {
 
-LinearMdofConfig benchmark_config(MatrixStorage storage) {
+LinearMdofConfig benchmark_config(linalg::MatrixStorage storage) {
   LinearMdofConfig cfg;
-  cfg.mass_kg = StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_mass())).converted(storage);
-  cfg.stiffness_n_per_m = StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_stiffness())).converted(storage);
+  cfg.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_mass())).converted(storage);
+  cfg.stiffness_n_per_m = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_stiffness())).converted(storage);
   return cfg;
 }
 
@@ -35,11 +35,11 @@ std::string configure_error(const LinearMdofConfig& cfg) {
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
 
 TEST(LinearMdof, RestoringForceIsThePublishedStiffnessColumns) {
-  for (MatrixStorage storage : {MatrixStorage::dense, MatrixStorage::sparse}) {
+  for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
     LinearMdofModel model;
     model.configure(benchmark_config(storage));
     EXPECT_EQ(model.dofs(), 3);
-    EXPECT_EQ(model.initial_stiffness().is_sparse(), storage == MatrixStorage::sparse);
+    EXPECT_EQ(model.initial_stiffness().is_sparse(), storage == linalg::MatrixStorage::kSparse);
     Eigen::VectorXd r(3);
     model.restoring_force(Eigen::Vector3d(1.0, 0.0, 0.0), r);  // column 1 of K, N per m
     EXPECT_DOUBLE_EQ(r[0], 26054883.88);
@@ -65,23 +65,23 @@ TEST(LinearMdof, RestoringForceIsThePublishedStiffnessColumns) {
 }
 
 TEST(LinearMdof, ExplicitDampingMatrix) {
-  LinearMdofConfig cfg = benchmark_config(MatrixStorage::dense);
+  LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
   Eigen::MatrixXd C = 0.01 * test::benchmark_case1_stiffness();
-  cfg.damping = DampingMatrix{StructuralMatrix(C)};
+  cfg.damping = DampingMatrix{linalg::StructuralMatrix(C)};
   LinearMdofModel model;
   model.configure(cfg);
   EXPECT_EQ(model.damping().dense(), C);
   EXPECT_FALSE(model.rayleigh().has_value());
-  cfg.damping = DampingMatrix{StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)))};
+  cfg.damping = DampingMatrix{linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)))};
   EXPECT_CONTAINS(configure_error(cfg), "damping matrix C is 2x2 but the model has 3 DOFs");
 }
 
 TEST(LinearMdof, RejectsNonSymmetricMass) {
-  for (MatrixStorage storage : {MatrixStorage::dense, MatrixStorage::sparse}) {
-    LinearMdofConfig cfg = benchmark_config(MatrixStorage::dense);
+  for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
+    LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
     Eigen::MatrixXd M = test::benchmark_case1_mass();
     M(0, 1) = 5.0;
-    cfg.mass_kg = StructuralMatrix(M).converted(storage);
+    cfg.mass_kg = linalg::StructuralMatrix(M).converted(storage);
     const std::string msg = configure_error(cfg);
     EXPECT_CONTAINS(msg, "mass matrix M is not symmetric");
     EXPECT_CONTAINS(msg, "[0,1] = 5");
@@ -89,54 +89,54 @@ TEST(LinearMdof, RejectsNonSymmetricMass) {
 }
 
 TEST(LinearMdof, RejectsNonPositiveDefiniteMass) {
-  for (MatrixStorage storage : {MatrixStorage::dense, MatrixStorage::sparse}) {
-    LinearMdofConfig cfg = benchmark_config(MatrixStorage::dense);
+  for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
+    LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
     Eigen::MatrixXd M = test::benchmark_case1_mass();
     M(0, 1) = M(1, 0) = 2000.0;  // positive diagonal, eigenvalue 1000 − 2000 < 0
-    cfg.mass_kg = StructuralMatrix(M).converted(storage);
+    cfg.mass_kg = linalg::StructuralMatrix(M).converted(storage);
     EXPECT_CONTAINS(configure_error(cfg), "mass matrix M is not positive definite");
     M = test::benchmark_case1_mass();
     M(2, 2) = 0.0;  // a massless DOF
-    cfg.mass_kg = StructuralMatrix(M).converted(storage);
+    cfg.mass_kg = linalg::StructuralMatrix(M).converted(storage);
     EXPECT_CONTAINS(configure_error(cfg), "diagonal entry [2,2] = 0");
     M(2, 2) = -1.0;
-    cfg.mass_kg = StructuralMatrix(M).converted(storage);
+    cfg.mass_kg = linalg::StructuralMatrix(M).converted(storage);
     EXPECT_CONTAINS(configure_error(cfg), "[2,2] = -1");
   }
 }
 
 TEST(LinearMdof, RejectsMismatchedAndMalformedMatrices) {
-  LinearMdofConfig cfg = benchmark_config(MatrixStorage::dense);
-  cfg.mass_kg = StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)));
+  LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
+  cfg.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)));
   EXPECT_CONTAINS(configure_error(cfg), "stiffness matrix K is 3x3 but mass matrix M is 2x2");
 
-  cfg = benchmark_config(MatrixStorage::dense);
-  cfg.stiffness_n_per_m = StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(3, 4)));
+  cfg = benchmark_config(linalg::MatrixStorage::kDense);
+  cfg.stiffness_n_per_m = linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(3, 4)));
   EXPECT_CONTAINS(configure_error(cfg), "stiffness matrix K is not square: 3 rows x 4 columns");
 
-  cfg = benchmark_config(MatrixStorage::dense);
-  cfg.mass_kg = StructuralMatrix(Eigen::MatrixXd(0, 0));
+  cfg = benchmark_config(linalg::MatrixStorage::kDense);
+  cfg.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd(0, 0));
   EXPECT_CONTAINS(configure_error(cfg), "mass matrix M is empty");
 
-  cfg = benchmark_config(MatrixStorage::dense);
+  cfg = benchmark_config(linalg::MatrixStorage::kDense);
   Eigen::MatrixXd K = test::benchmark_case1_stiffness();
   K(1, 1) = -1.0e6;
-  cfg.stiffness_n_per_m = StructuralMatrix(K);
+  cfg.stiffness_n_per_m = linalg::StructuralMatrix(K);
   EXPECT_CONTAINS(configure_error(cfg), "stiffness matrix K has a negative diagonal entry [1,1] = -1000000");
 
   K = test::benchmark_case1_stiffness();
   K(2, 0) += 1.0;  // asymmetry of 1 N/m on 3e7: well above round-off
-  cfg.stiffness_n_per_m = StructuralMatrix(K);
+  cfg.stiffness_n_per_m = linalg::StructuralMatrix(K);
   EXPECT_CONTAINS(configure_error(cfg), "stiffness matrix K is not symmetric");
 
   K = test::benchmark_case1_stiffness();
   K(0, 0) = std::numeric_limits<double>::quiet_NaN();
-  cfg.stiffness_n_per_m = StructuralMatrix(K);
+  cfg.stiffness_n_per_m = linalg::StructuralMatrix(K);
   EXPECT_CONTAINS(configure_error(cfg), "non-finite entry [0,0]");
 }
 
 TEST(LinearMdof, RejectsBadRayleighModes) {
-  LinearMdofConfig cfg = benchmark_config(MatrixStorage::dense);
+  LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
   cfg.damping = RayleighFromModes{1, 4, 0.05, 0.05};
   EXPECT_CONTAINS(configure_error(cfg), "mode number 4 is out of range 1..3");
   cfg.damping = RayleighFromModes{0, 2, 0.05, 0.05};
@@ -147,8 +147,8 @@ TEST(LinearMdof, RejectsBadRayleighModes) {
 
 TEST(LinearMdof, FailedConfigureKeepsThePreviousModel) {
   LinearMdofModel model;
-  model.configure(benchmark_config(MatrixStorage::dense));
-  LinearMdofConfig bad = benchmark_config(MatrixStorage::dense);
+  model.configure(benchmark_config(linalg::MatrixStorage::kDense));
+  LinearMdofConfig bad = benchmark_config(linalg::MatrixStorage::kDense);
   bad.damping = RayleighFromModes{1, 7, 0.05, 0.05};
   EXPECT_THROW(model.configure(bad), std::invalid_argument);
   EXPECT_EQ(model.dofs(), 3);

@@ -65,12 +65,12 @@ TEST(Partition, SpecimenStiffnessSeenFromTheModel) {
   p.extract_commands(d, u);
   f << 1.0e5 * u[0], 2.0e5 * u[1];  // specimen forces, specimen units
   p.scatter_forces(f, r);
-  const StructuralMatrix K = p.with_specimen_stiffness(StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Zero(5, 5))));
+  const linalg::StructuralMatrix K = p.with_specimen_stiffness(linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Zero(5, 5))));
   EXPECT_LT((r - K.dense() * d).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_DOUBLE_EQ(K.coeff(1, 1), 16.0 * 0.25 * 1.0e5);
   EXPECT_DOUBLE_EQ(K.coeff(3, 3), 4.0 * 0.5 * 2.0e5);
   // Sparse storage is kept.
-  const StructuralMatrix Ks = p.with_specimen_stiffness(StructuralMatrix(SparseMatrix(5, 5)));
+  const linalg::StructuralMatrix Ks = p.with_specimen_stiffness(linalg::StructuralMatrix(linalg::SparseMatrix(5, 5)));
   EXPECT_TRUE(Ks.is_sparse());
   EXPECT_EQ(Ks.to_dense(), K.dense());
 }
@@ -132,7 +132,7 @@ TEST(GroundMotionLoad, ShearBuildingIsMinusMassTimesAcceleration) {
   // horizontal DOFs of a frame): F = −M ι a_g.
   Eigen::Matrix3d M;
   M << 4, 1, 0, 1, 4, 1, 0, 1, 4;
-  g.configure(StructuralMatrix(Eigen::MatrixXd(M)).converted(MatrixStorage::sparse), Eigen::Vector3d(1, 0, 1));
+  g.configure(linalg::StructuralMatrix(Eigen::MatrixXd(M)).converted(linalg::MatrixStorage::kSparse), Eigen::Vector3d(1, 0, 1));
   g.force(-0.5, F);
   EXPECT_EQ(F, Eigen::Vector3d(2.0, 1.0, 2.0));
   EXPECT_THROW(g.configure(b.mass(), Eigen::VectorXd::Ones(2)), std::invalid_argument);

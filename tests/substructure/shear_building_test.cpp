@@ -29,13 +29,13 @@ TEST(ShearBuilding, StiffnessMatchesHandAssembledTridiagonal) {
             0, -2, 3, -1,
             0, 0, -1, 1;
   K_hand *= 1e6;
-  for (MatrixStorage storage : {MatrixStorage::dense, MatrixStorage::sparse}) {
+  for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
     ShearBuildingConfig c = linear_building({1e3, 2e3, 3e3, 4e3}, {4e6, 3e6, 2e6, 1e6});
     c.storage = storage;
     ShearBuilding b;
     b.configure(c);
     EXPECT_EQ(b.dofs(), 4);
-    EXPECT_EQ(b.initial_stiffness().is_sparse(), storage == MatrixStorage::sparse);
+    EXPECT_EQ(b.initial_stiffness().is_sparse(), storage == linalg::MatrixStorage::kSparse);
     EXPECT_EQ(b.initial_stiffness().to_dense(), Eigen::MatrixXd(K_hand));
     EXPECT_EQ(b.mass().to_dense(), Eigen::MatrixXd(Eigen::Vector4d(1e3, 2e3, 3e3, 4e3).asDiagonal()));
     // Linear springs: R(d) = K d and the tangent stays K.
@@ -76,7 +76,7 @@ TEST(ShearBuilding, RayleighDampingUsesInitialStiffness) {
 
 TEST(ShearBuilding, BilinearFirstStoryYieldsAndTangentFollows) {
   const double k1 = 2e6, fy = 2e4, alpha = 0.1, k2 = 1e6;
-  for (MatrixStorage storage : {MatrixStorage::dense, MatrixStorage::sparse}) {
+  for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
     ShearBuildingConfig c;
     c.floor_masses_kg = {1e3, 1e3};
     c.story_springs = {BilinearSpringConfig{k1, fy, alpha}, LinearSpringConfig{k2}};

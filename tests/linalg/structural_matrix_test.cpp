@@ -1,0 +1,113 @@
+// The one structural matrix type: every storage gives the product of the matrix it holds
+// (checked against Eigen's dense product), and storage is chosen and kept as documented.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+
+#include "rpsd/linalg/structural_matrix.h"
+
+namespace rpsd::linalg {
+namespace {
+
+Eigen::MatrixXd random_symmetric(int n, unsigned seed, double fill) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0), chance(0.0, 1.0);
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+  for (int j = 0; j < n; ++j) {
+    a(j, j) = 2.0 + value(rng);
+    for (int i = j + 1; i < n; ++i)
+      if (chance(rng) < fill) a(i, j) = a(j, i) = value(rng);
+  }
+  return a;
+}
+
+Eigen::VectorXd random_vector(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  Eigen::VectorXd x(n);
+  for (int i = 0; i < n; ++i) x[i] = value(rng);
+  return x;
+}
+
+void expect_products_equal(const StructuralMatrix& m, const Eigen::MatrixXd& reference) {
+  const auto n = static_cast<int>(reference.rows());
+  const Eigen::VectorXd x = random_vector(n, 7);
+  Eigen::VectorXd y(n);
+  m.multiply(x, y);
+  EXPECT_LT((y - reference * x).cwiseAbs().maxCoeff(), 1e-13);
+  Eigen::VectorXd z = random_vector(n, 8);
+  const Eigen::VectorXd z0 = z;
+  m.multiply_add(-2.5, x, z);
+  EXPECT_LT((z - (z0 - 2.5 * reference * x)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(StructuralMatrix, EveryStorageMultipliesLikeTheDenseMatrixItHolds) {
+  const Eigen::MatrixXd a = random_symmetric(30, 1, 0.1);
+  expect_products_equal(StructuralMatrix(a), a);
+  expect_products_equal(StructuralMatrix(a).converted(MatrixStorage::kSparse), a);
+  const Eigen::VectorXd d = Eigen::VectorXd::LinSpaced(30, 1.0, 4.0);
+  expect_products_equal(StructuralMatrix::diagonal(d), Eigen::MatrixXd(d.asDiagonal()));
+}
+
+TEST(StructuralMatrix, CompactingKeepsOnlyTheDiagonalOfADiagonalMatrix) {
+  const Eigen::MatrixXd lumped = Eigen::VectorXd::LinSpaced(5, 1.0, 5.0).asDiagonal();
+  const StructuralMatrix dense(lumped);
+  EXPECT_EQ(dense.storage(), MatrixStorage::kDense);  // stored as given
+  EXPECT_EQ(dense.compacted().storage(), MatrixStorage::kDiagonal);
+  EXPECT_EQ(dense.compacted().diagonal_values(), lumped.diagonal());
+  EXPECT_EQ(StructuralMatrix(dense.to_sparse()).compacted().storage(), MatrixStorage::kDiagonal);
+
+  const Eigen::MatrixXd coupled = random_symmetric(5, 2, 1.0);
+  EXPECT_EQ(StructuralMatrix(coupled).compacted().storage(), MatrixStorage::kDense);
+  EXPECT_EQ(StructuralMatrix(coupled).converted(MatrixStorage::kSparse).compacted().storage(), MatrixStorage::kSparse);
+  EXPECT_THROW((void)StructuralMatrix(coupled).converted(MatrixStorage::kDiagonal), std::invalid_argument);
+}
+
+TEST(StructuralMatrix, ALinearCombinationTakesTheMostGeneralStorage) {
+  const Eigen::MatrixXd k = random_symmetric(6, 3, 0.5);
+  const StructuralMatrix mass = StructuralMatrix::diagonal(Eigen::VectorXd::Constant(6, 2.0));
+  const StructuralMatrix stiffness(k);
+  const StructuralMatrix sum = StructuralMatrix::linear_combination(3.0, mass, 0.5, stiffness);
+  EXPECT_EQ(sum.storage(), MatrixStorage::kDense);
+  EXPECT_LT((sum.to_dense() - (6.0 * Eigen::MatrixXd::Identity(6, 6) + 0.5 * k)).cwiseAbs().maxCoeff(), 1e-15);
+  const StructuralMatrix sparse =
+      StructuralMatrix::linear_combination(1.0, mass, 1.0, stiffness, 2.0, stiffness.converted(MatrixStorage::kSparse));
+  EXPECT_EQ(sparse.storage(), MatrixStorage::kSparse);
+  EXPECT_LT((sparse.to_dense() - (2.0 * Eigen::MatrixXd::Identity(6, 6) + 3.0 * k)).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_EQ(StructuralMatrix::linear_combination(1.0, mass, 1.0, mass).storage(), MatrixStorage::kDiagonal);
+  EXPECT_THROW((void)StructuralMatrix::linear_combination(1.0, mass, 1.0, StructuralMatrix(Eigen::MatrixXd::Ones(2, 2))),
+               std::invalid_argument);
+}
+
+TEST(StructuralMatrix, ProductsFollowValuesChangedInPlace) {
+  // A tangent stiffness updated in place keeps its pattern; after values_changed() the
+  // products use the new values.
+  const Eigen::MatrixXd a = random_symmetric(12, 4, 0.3);
+  StructuralMatrix m = StructuralMatrix(a).converted(MatrixStorage::kSparse);
+  Eigen::MatrixXd changed = a;
+  for (Eigen::Index j = 0; j < m.sparse_mut().outerSize(); ++j) {
+    for (SparseMatrix::InnerIterator it(m.sparse_mut(), j); it; ++it) {
+      it.valueRef() *= 1.0 + 0.1 * static_cast<double>(it.row() + 2 * it.col());
+      changed(it.row(), it.col()) = it.value();
+    }
+  }
+  m.values_changed();
+  expect_products_equal(m, changed);
+}
+
+TEST(StructuralMatrix, ChecksSymmetryFinitenessAndSize) {
+  Eigen::MatrixXd a = random_symmetric(4, 5, 1.0);
+  EXPECT_TRUE(StructuralMatrix(a).is_symmetric());
+  EXPECT_DOUBLE_EQ(StructuralMatrix(a).max_abs(), a.cwiseAbs().maxCoeff());
+  a(0, 3) += 1e-3;
+  EXPECT_FALSE(StructuralMatrix(a).is_symmetric());
+  EXPECT_FALSE(StructuralMatrix(a).converted(MatrixStorage::kSparse).is_symmetric());
+  a(2, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(StructuralMatrix(a).all_finite());
+  EXPECT_FALSE(StructuralMatrix(a).converted(MatrixStorage::kSparse).all_finite());
+  EXPECT_THROW((void)StructuralMatrix(a).sparse(), std::logic_error);
+}
+
+}  // namespace
+}  // namespace rpsd::linalg
