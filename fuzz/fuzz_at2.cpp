@@ -1,15 +1,15 @@
 // libFuzzer target: PEER AT2 text from memory. Any input may be rejected, but only with a
-// ConfigError whose message starts with the source name; an accepted input must give a
+// RecordError whose message starts with the source name; an accepted input must give a
 // consistent record. Anything else (crash, other exception, sanitizer report) is a bug.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
 
-#include "rpsd/scenarios/config_error.h"
-#include "rpsd/scenarios/ground_motion/at2_reader.h"
+#include "rpsd/ground_motion/record_error.h"
+#include "rpsd/ground_motion/at2_reader.h"
 
-namespace gm = rpsd::scenarios::ground_motion;
+namespace gm = rpsd::ground_motion;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -22,7 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const double a : record.acceleration_m_per_s2) {
       if (!std::isfinite(a)) __builtin_trap();
     }
-  } catch (const rpsd::scenarios::ConfigError& e) {
+  } catch (const rpsd::ground_motion::RecordError& e) {
     if (std::string_view(e.what()).rfind("fuzz.AT2:", 0) != 0) __builtin_trap();
   }
   return 0;

@@ -1,15 +1,15 @@
 // libFuzzer target: the plain-text and two-column readers. The first byte chooses the
-// reader, unit, column and header lines; the rest is the file text. Only ConfigError with
+// reader, unit, column and header lines; the rest is the file text. Only RecordError with
 // the source name in front may come out; accepted records must be consistent.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
 
-#include "rpsd/scenarios/config_error.h"
-#include "rpsd/scenarios/ground_motion/text_readers.h"
+#include "rpsd/ground_motion/record_error.h"
+#include "rpsd/ground_motion/text_readers.h"
 
-namespace gm = rpsd::scenarios::ground_motion;
+namespace gm = rpsd::ground_motion;
 
 namespace {
 
@@ -61,7 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         break;
       }
     }
-  } catch (const rpsd::scenarios::ConfigError& e) {
+  } catch (const rpsd::ground_motion::RecordError& e) {
     if (std::string_view(e.what()).rfind("fuzz.txt", 0) != 0) __builtin_trap();
   }
   return 0;

@@ -9,7 +9,7 @@
 #include "rpsd/coordinator/gnuplot.h"
 #include "rpsd/coordinator/latency_json.h"
 #include "rpsd/coordinator/test_runner.h"
-#include "rpsd/scenarios/ground_motion/response_spectrum.h"
+#include "rpsd/ground_motion/response_spectrum.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -80,13 +80,13 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
 
 // Pseudo-acceleration and displacement spectra (5 %) of the record as applied.
 void write_spectrum(const std::filesystem::path& dir, const scenarios::GroundMotion& motion) {
-  scenarios::ground_motion::GroundMotionRecord record;
+  ground_motion::GroundMotionRecord record;
   record.source = motion.name;
   record.dt_s = motion.dt_s;
   record.acceleration_m_per_s2 = motion.acceleration_m_per_s2;
-  scenarios::ground_motion::ResponseSpectrumOptions options;
-  options.periods_s = scenarios::ground_motion::log_spaced_periods(0.02, 5.0, 80);
-  const auto spectrum = scenarios::ground_motion::response_spectrum(record, options);
+  ground_motion::ResponseSpectrumOptions options;
+  options.periods_s = ground_motion::log_spaced_periods(0.02, 5.0, 80);
+  const auto spectrum = ground_motion::response_spectrum(record, options);
   std::ofstream out(dir / "spectrum.csv");
   out << "period_s,pseudo_acceleration_m_per_s2,displacement_m\n";
   for (std::size_t i = 0; i < spectrum.periods_s.size(); ++i) {

@@ -1,9 +1,10 @@
 #include "rpsd/scenarios/ground_motion_section.h"
 
-#include "rpsd/scenarios/ground_motion/at2_reader.h"
-#include "rpsd/scenarios/ground_motion/processing.h"
-#include "rpsd/scenarios/ground_motion/synthetic.h"
-#include "rpsd/scenarios/ground_motion/text_readers.h"
+#include "rpsd/ground_motion/at2_reader.h"
+#include "rpsd/ground_motion/processing.h"
+#include "rpsd/ground_motion/record_error.h"
+#include "rpsd/ground_motion/synthetic.h"
+#include "rpsd/ground_motion/text_readers.h"
 
 namespace rpsd::scenarios {
 namespace {
@@ -64,13 +65,13 @@ gm::GroundMotionRecord read_synthetic(MappingReader s) {
   return gm::generate_synthetic_ground_motion(options);
 }
 
-}  // namespace
-
-GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
+GroundMotion read_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
   gm::GroundMotionRecord record;
   try {
     record = r.has("synthetic") ? read_synthetic(r.mapping("synthetic")) : read_file(r, scenario_file);
   } catch (const ConfigError&) {
+    throw;
+  } catch (const gm::RecordError&) {
     throw;
   } catch (const std::exception& e) {
     r.fail(r.has("synthetic") ? "synthetic" : "file", e.what());
@@ -118,6 +119,16 @@ GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::
   }
   r.finish();
   return {record.source, record.dt_s, std::move(record.acceleration_m_per_s2)};
+}
+
+}  // namespace
+
+GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
+  try {
+    return read_section(std::move(r), scenario_file, step_s);
+  } catch (const gm::RecordError& e) {
+    throw ConfigError(e.what());  // the message names the record's file and line
+  }
 }
 
 }  // namespace rpsd::scenarios

@@ -6,7 +6,7 @@
 
 #include "../servo/paper_rig.h"
 #include "rpsd/coordinator/test_runner.h"
-#include "rpsd/scenarios/ground_motion/response_spectrum.h"
+#include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::coordinator {
@@ -24,11 +24,11 @@ TEST(TestRunner, PerfectActuatorMatchesTheExactPiecewiseLinearSolutionOfTheRecor
   double peak = 0.0;
   for (const auto& r : run.records) peak = std::max(peak, std::abs(r.displacement_m[0]));
 
-  scenarios::ground_motion::GroundMotionRecord record;
+  ground_motion::GroundMotionRecord record;
   record.dt_s = scenario.ground_motion->dt_s;
   record.acceleration_m_per_s2 = scenario.ground_motion->acceleration_m_per_s2;
   const double omega = std::sqrt(700.8e3 / 7080.0);
-  const auto exact = scenarios::ground_motion::sdof_response_piecewise_linear(record, omega, 0.011);
+  const auto exact = ground_motion::sdof_response_piecewise_linear(record, omega, 0.011);
   double exact_peak = 0.0;
   for (double u : exact) exact_peak = std::max(exact_peak, std::abs(u));
   EXPECT_NEAR(peak / exact_peak, 1.0, 0.005);

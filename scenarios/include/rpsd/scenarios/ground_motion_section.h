@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "rpsd/scenarios/ground_motion/record.h"
+#include "rpsd/ground_motion/record.h"
 #include "rpsd/scenarios/test_scenario.h"
 #include "rpsd/scenarios/yaml_reader.h"
 
