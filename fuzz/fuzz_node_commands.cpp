@@ -9,7 +9,7 @@
 #include <cstring>
 
 #include "rpsd/servo/pure_delay_plant.h"
-#include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/node/servo_node_controller.h"
 #include "rpsd/servo/simulated_actuator.h"
 
 namespace servo = rpsd::servo;
@@ -33,7 +33,7 @@ T take(const std::uint8_t*& data, std::size_t& size) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  servo::ServoNodeConfig config;
+  node::ServoNodeConfig config;
   config.test_id = 7;
   config.site_id = 1;
   config.channels = kChannels;
@@ -43,7 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   servo::PureDelayPlant a({0.0, 1e5, 8192.0}), b({0.0, 1e5, 8192.0});
   servo::Plant* plants[] = {&a, &b};
   servo::SimulatedActuator actuator(plants);
-  servo::ServoNodeController controller(config, actuator);
+  node::ServoNodeController controller(config, actuator);
   const double start[kChannels] = {0.0, 0.0};
   controller.start(start);
 

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <span>
 
-#include "rpsd/servo/udp_controller_protocol.h"
+#include "rpsd/node/udp_controller_protocol.h"
 
-namespace udp = rpsd::servo::udp_protocol;
+namespace udp = rpsd::node::udp_protocol;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::span<const std::byte> bytes(reinterpret_cast<const std::byte*>(data), size);

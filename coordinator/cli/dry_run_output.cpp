@@ -33,7 +33,7 @@ std::string versus(double value, double limit, double scale, const char* unit) {
 
 // The limits a node enforces, as `rpsd servo-node FILE` would read them.
 coordinator::NodeLimits node_limits(const std::string& file) {
-  const scenarios::ServoNodeFile node = scenarios::load_servo_node(file);
+  const node::ServoNodeSetup node = scenarios::load_servo_node(file);
   coordinator::NodeLimits limits;
   limits.name = file;
   limits.test_id = node.node.test_id;

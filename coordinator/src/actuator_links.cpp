@@ -4,8 +4,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "rpsd/coordinator/plant_factory.h"
-#include "rpsd/servo/pure_delay_plant.h"
+#include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/transport/in_process_link.h"
 
 namespace rpsd::coordinator {
@@ -53,20 +52,31 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
         initial_force_n_[static_cast<std::size_t>(ch)] = e.dof.specimen_stiffness_estimate_n_per_m * hold_m[static_cast<std::size_t>(ch)];
       }
     } else {
-      std::vector<servo::Plant*> site_plants;
-      std::vector<double> site_hold;
+      // The site's node as `rpsd servo-node` runs it, answered in lock-step in this process.
+      const int site_channels = static_cast<int>(site.channels.size());
+      node::OwnedActuator simulated;
       for (int ch : site.channels) {
         const double k = by_channel[static_cast<std::size_t>(ch)]->dof.specimen_stiffness_estimate_n_per_m;
-        plants_.push_back(perfect_actuator ? std::make_unique<servo::PureDelayPlant>(servo::PureDelayParameters{0.0, k, 8192.0})
-                                           : make_plant(s.plant));
-        site_plants.push_back(plants_.back().get());
-        plant_of_channel_[static_cast<std::size_t>(ch)] = plants_.back().get();
-        site_hold.push_back(hold_m[static_cast<std::size_t>(ch)]);
+        simulated.plants.owned.push_back(servo::make_plant(
+            perfect_actuator ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0}} : s.plant));
+        simulated.plants.pointers.push_back(simulated.plants.owned.back().get());
       }
-      nodes_.push_back(std::make_unique<servo::PlantNode>(site_plants, control_period_s));
-      nodes_.back()->reset(site_hold);
+      simulated.actuator = std::make_unique<servo::SimulatedActuator>(simulated.plants.pointers);
+      actuators_.push_back(std::move(simulated));
+      node::ServoNodeConfig config;
+      config.test_id = s.transport.test_id;
+      config.site_id = site.site_id;
+      config.channels = site_channels;
+      config.control_period_s = control_period_s;
+      controllers_.push_back(std::make_unique<node::ServoNodeController>(config, *actuators_.back().actuator));
+      std::vector<double> site_hold;
+      for (int ch : site.channels) site_hold.push_back(hold_m[static_cast<std::size_t>(ch)]);
+      controllers_.back()->start(site_hold);
+      nodes_.push_back(std::make_unique<node::LockStepNode>(*controllers_.back()));
       for (std::size_t i = 0; i < site.channels.size(); ++i) {
-        initial_force_n_[static_cast<std::size_t>(site.channels[i])] = site_plants[i]->measure().force_n;
+        const auto ch = static_cast<std::size_t>(site.channels[i]);
+        plant_of_channel_[ch] = actuators_.back().plants.pointers[i];
+        initial_force_n_[ch] = plant_of_channel_[ch]->measure().force_n;
       }
       site_links_.push_back(std::make_unique<transport::InProcessLink>(*nodes_.back()));
     }

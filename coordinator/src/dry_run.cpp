@@ -9,7 +9,7 @@
 #include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/coordinator/actuator_links.h"
-#include "rpsd/coordinator/plant_factory.h"
+#include "rpsd/servo/plant_factory.h"
 #include "rpsd/coordinator/test_runner.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
@@ -37,7 +37,7 @@ std::optional<double> signed_delay_ms(const std::vector<double>& target, const s
 class CompensatedPlant final : public servo::Plant {
  public:
   CompensatedPlant(const scenarios::TestScenario& s)
-      : plant_(make_plant(s.plant)), compensator_(compensation::make_compensator(s.compensation, 1.0 / s.control_rate_hz)) {}
+      : plant_(servo::make_plant(s.plant)), compensator_(compensation::make_compensator(s.compensation, 1.0 / s.control_rate_hz)) {}
   void reset(double displacement_m) override {
     plant_->reset(displacement_m);
     compensator_->reset(displacement_m);

@@ -2,7 +2,8 @@
 
 #include <cmath>
 
-#include "rpsd/servo/plant_node.h"
+#include "rpsd/node/lock_step_node.h"
+#include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/substructure/linear_mdof_model.h"
 #include "rpsd/transport/in_process_link.h"
 
@@ -13,7 +14,9 @@ struct SdofRpsdTest::Parts {
   substructure::Partition partition;
   std::unique_ptr<integrators::Integrator> integrator;
   std::unique_ptr<compensation::CommandCompensator> compensator;
-  std::unique_ptr<servo::PlantNode> node;
+  std::unique_ptr<servo::SimulatedActuator> actuator;
+  std::unique_ptr<node::ServoNodeController> controller;
+  std::unique_ptr<node::LockStepNode> node;
   std::unique_ptr<transport::InProcessLink> link;
   std::unique_ptr<transport::Link> network;
   substructure::GroundMotionLoad ground_load;
@@ -50,7 +53,12 @@ SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, cons
 
   p.compensator = compensation::make_compensator(setup.compensator, control_period_s);
   servo::Plant* plants[] = {&plant};
-  p.node = std::make_unique<servo::PlantNode>(plants, control_period_s);
+  p.actuator = std::make_unique<servo::SimulatedActuator>(plants);
+  node::ServoNodeConfig node_config;
+  node_config.test_id = 1;  // the loop's, as LoopParts gives it; site 0: no multi-site link in between
+  node_config.control_period_s = control_period_s;
+  p.controller = std::make_unique<node::ServoNodeController>(node_config, *p.actuator);
+  p.node = std::make_unique<node::LockStepNode>(*p.controller);
   p.link = std::make_unique<transport::InProcessLink>(*p.node);
 
   LoopParts parts;
@@ -73,7 +81,7 @@ SdofRpsdTest::SdofRpsdTest(const SdofRpsdSetup& setup, servo::Plant& plant, cons
 
   const double d0 = setup.initial_displacement_m;
   const double hold[] = {d0};
-  p.node->reset(hold);
+  p.controller->start(hold);
   const double force0[] = {setup.force_path == RestoringForcePath::Kind::kMeasuredForce ? plant.measure().force_n
                                                                                           : k * d0};
   p.loop->start(Eigen::VectorXd::Constant(1, d0), force0);

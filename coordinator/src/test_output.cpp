@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "rpsd/coordinator/gnuplot.h"
-#include "rpsd/coordinator/latency_json.h"
+#include "rpsd/realtime/latency_json.h"
 #include "rpsd/coordinator/test_runner.h"
 #include "rpsd/ground_motion/response_spectrum.h"
 
@@ -139,7 +139,7 @@ nlohmann::json timing_json(const TimingReport& t) {
   using nlohmann::json;
   json sites = json::array();
   for (std::size_t i = 0; i < t.sites.size(); ++i) {
-    json site = {{"site_id", t.sites[i].site_id}, {"round_trip", latency_json(t.sites[i].round_trip)}};
+    json site = {{"site_id", t.sites[i].site_id}, {"round_trip", realtime::latency_json(t.sites[i].round_trip)}};
     if (i < t.dds_counters.size()) {
       const auto& c = t.dds_counters[i];
       site["messages"] = {{"sent", c.sent}, {"received", c.received}, {"late", c.late},
@@ -158,7 +158,7 @@ nlohmann::json timing_json(const TimingReport& t) {
     j["overruns"] = t.overruns;
     j["skipped_deadlines"] = t.skipped_deadlines;
     j["late_feedback"] = t.late_feedback;
-    j["jitter"] = latency_json(t.jitter);
+    j["jitter"] = realtime::latency_json(t.jitter);
     j["memory_locked"] = t.memory_locked;
     j["sched_fifo"] = t.fifo_granted;
   }

@@ -9,12 +9,12 @@
 namespace rpsd::scenarios {
 namespace {
 
-servo::LimitAction limit_action(MappingReader& r, const std::string& key, servo::LimitAction fallback) {
+node::LimitAction limit_action(MappingReader& r, const std::string& key, node::LimitAction fallback) {
   const auto text = r.optional_string(key);
   if (!text) return fallback;
-  if (*text == "clamp") return servo::LimitAction::kClamp;
-  if (*text == "hold") return servo::LimitAction::kHold;
-  if (*text == "abort") return servo::LimitAction::kAbort;
+  if (*text == "clamp") return node::LimitAction::kClamp;
+  if (*text == "hold") return node::LimitAction::kHold;
+  if (*text == "abort") return node::LimitAction::kAbort;
   r.fail(key, "expected clamp, hold or abort, got \"" + *text + "\"");
 }
 
@@ -25,12 +25,12 @@ std::vector<double> per_channel(MappingReader& r, const std::string& key, int ch
   return values;
 }
 
-void read_limits(MappingReader r, ServoNodeFile& f) {
+void read_limits(MappingReader r, node::ServoNodeSetup& f) {
   const int n = f.node.channels;
-  const auto stroke = per_channel(r, "max_stroke_m", n, servo::ChannelLimits::kNone);
-  const auto velocity = per_channel(r, "max_velocity_m_per_s", n, servo::ChannelLimits::kNone);
-  const auto force = per_channel(r, "max_force_n", n, servo::ChannelLimits::kNone);
-  const auto increment = per_channel(r, "max_increment_m", n, servo::ChannelLimits::kNone);
+  const auto stroke = per_channel(r, "max_stroke_m", n, node::ChannelLimits::kNone);
+  const auto velocity = per_channel(r, "max_velocity_m_per_s", n, node::ChannelLimits::kNone);
+  const auto force = per_channel(r, "max_force_n", n, node::ChannelLimits::kNone);
+  const auto increment = per_channel(r, "max_increment_m", n, node::ChannelLimits::kNone);
   for (int c = 0; c < n; ++c) {
     f.node.limits[c] = {stroke[c], velocity[c], force[c], increment[c]};
   }
@@ -44,13 +44,13 @@ void read_limits(MappingReader r, ServoNodeFile& f) {
   r.finish();
 }
 
-void read_watchdog(MappingReader r, ServoNodeFile& f) {
+void read_watchdog(MappingReader r, node::ServoNodeSetup& f) {
   f.node.command_timeout_periods = static_cast<int>(r.whole_number_or("command_timeout_periods", 1, 1'000'000, f.node.command_timeout_periods));
   const std::string loss = r.optional_string("on_command_loss").value_or("hold");
   if (loss == "hold") {
-    f.node.on_command_loss = servo::LossAction::kHold;
+    f.node.on_command_loss = node::LossAction::kHold;
   } else if (loss == "ramp_to_safe") {
-    f.node.on_command_loss = servo::LossAction::kRampToSafe;
+    f.node.on_command_loss = node::LossAction::kRampToSafe;
   } else {
     r.fail("on_command_loss", "expected hold or ramp_to_safe, got \"" + loss + "\"");
   }
@@ -60,8 +60,8 @@ void read_watchdog(MappingReader r, ServoNodeFile& f) {
   r.finish();
 }
 
-servo::UdpControllerConfig read_udp(MappingReader& r, int channels) {
-  servo::UdpControllerConfig u;
+node::UdpControllerConfig read_udp(MappingReader& r, int channels) {
+  node::UdpControllerConfig u;
   u.channels = channels;
   u.controller_host = r.string("host");
   u.controller_port = static_cast<std::uint16_t>(r.whole_number("port", 1, 65535));
@@ -74,10 +74,10 @@ servo::UdpControllerConfig read_udp(MappingReader& r, int channels) {
 
 }  // namespace
 
-ServoNodeFile load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   YAML::Node document = load_yaml_document(file, overrides);
   MappingReader root(document, file.string(), "");
-  ServoNodeFile f;
+  node::ServoNodeSetup f;
   f.name = file.stem().string();
   root.optional_string("description");
   {
@@ -86,9 +86,9 @@ ServoNodeFile load_servo_node(const std::filesystem::path& file, const std::vect
     f.node.site_id = static_cast<std::uint32_t>(node.whole_number("site_id", 1, 1'000'000));
     const std::string mode = node.string("mode");
     if (mode == "real_time") {
-      f.mode = ServoNodeFile::Mode::kRealTime;
+      f.mode = node::ServoNodeSetup::Mode::kRealTime;
     } else if (mode == "lock_step") {
-      f.mode = ServoNodeFile::Mode::kLockStep;
+      f.mode = node::ServoNodeSetup::Mode::kLockStep;
     } else {
       node.fail("mode", "expected real_time or lock_step, got \"" + mode + "\"");
     }
@@ -116,7 +116,7 @@ ServoNodeFile load_servo_node(const std::filesystem::path& file, const std::vect
     const std::string kind = actuator.string("kind");
     if (kind == "simulated") {
       const double k = actuator.non_negative_number_or("specimen_stiffness_n_per_m", 0.0);
-      f.actuator = SimulatedActuatorSection{read_plant_section(actuator.mapping("servo"), file, k)};
+      f.actuator = node::SimulatedActuatorConfig{read_plant_section(actuator.mapping("servo"), file, k)};
     } else if (kind == "udp_controller") {
       f.actuator = read_udp(actuator, f.node.channels);
     } else {
@@ -135,10 +135,10 @@ ServoNodeFile load_servo_node(const std::filesystem::path& file, const std::vect
   return f;
 }
 
-ControllerEmulatorFile load_controller_emulator(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   YAML::Node document = load_yaml_document(file, overrides);
   MappingReader root(document, file.string(), "");
-  ControllerEmulatorFile f;
+  node::ControllerEmulatorSetup f;
   f.name = file.stem().string();
   root.optional_string("description");
   {

@@ -7,8 +7,8 @@
 namespace rpsd::servo {
 
 SimulatedActuator::SimulatedActuator(std::span<Plant* const> plants) : channels_(static_cast<int>(plants.size())) {
-  if (plants.empty() || plants.size() > transport::kMaxChannels) {
-    throw std::invalid_argument("SimulatedActuator: between 1 and " + std::to_string(transport::kMaxChannels) +
+  if (plants.empty() || plants.size() > kMaxChannels) {
+    throw std::invalid_argument("SimulatedActuator: between 1 and " + std::to_string(kMaxChannels) +
                                 " plants (one per channel), got " + std::to_string(plants.size()));
   }
   for (int c = 0; c < channels_; ++c) {

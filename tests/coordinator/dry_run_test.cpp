@@ -56,7 +56,7 @@ TEST(DryRun, PeaksBeyondTheLimitsAreNotReady) {
 
 // The node's own limits, the layer on the rig: a 10 mm free vibration passes a 25 mm stroke
 // and fails a 5 mm one (at the node; the coordinator, without limits, runs to the end).
-NodeLimits node_with(servo::ChannelLimits limits) {
+NodeLimits node_with(node::ChannelLimits limits) {
   NodeLimits node;
   node.name = "node-site-1.yaml";
   node.test_id = 1;
@@ -67,7 +67,7 @@ NodeLimits node_with(servo::ChannelLimits limits) {
 }
 
 TEST(DryRun, ChecksTheCommandsAgainstTheNodesOwnLimits) {
-  servo::ChannelLimits wide;
+  node::ChannelLimits wide;
   wide.max_stroke_m = 0.025;
   const DryRunReport ok = dry_run(sdof({}), {node_with(wide)});
   ASSERT_TRUE(ok.channels[0].node.has_value());
@@ -78,14 +78,14 @@ TEST(DryRun, ChecksTheCommandsAgainstTheNodesOwnLimits) {
   // A 10 mm swing at 1.58 Hz: at most 2 pi f x0 = 99 mm/s, in 1/1024 s steps.
   EXPECT_NEAR(ok.channels[0].peak_increment_m * 1024.0, 2.0 * M_PI * std::sqrt(700.8e3 / 7080.0) / (2.0 * M_PI) * 0.01, 0.01);
 
-  servo::ChannelLimits narrow = wide;
+  node::ChannelLimits narrow = wide;
   narrow.max_stroke_m = 0.005;
   const DryRunReport stroke = dry_run(sdof({}), {node_with(narrow)});
   EXPECT_EQ(stroke.outcome, StepOutcome::kOk);  // the coordinator itself had no reason to stop
   EXPECT_FALSE(stroke.channels[0].node->within_limits);
   EXPECT_FALSE(stroke.within_limits);
 
-  servo::ChannelLimits slow = wide;
+  node::ChannelLimits slow = wide;
   slow.max_velocity_m_per_s = 0.1;  // 99 mm/s per 1/1024 s is 198 mm/s per the node's 1/2048 s
   EXPECT_FALSE(dry_run(sdof({}), {node_with(slow)}).within_limits);
 }

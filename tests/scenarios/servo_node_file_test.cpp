@@ -13,8 +13,8 @@ namespace {
 std::filesystem::path pier_node() { return testing::source_dir() / "examples/nodes/bridge-pier-site-1.yaml"; }
 
 TEST(ServoNodeFile, ARealTimeNodeKeepsTheCpusAwakeUnlessTurnedOff) {
-  const ServoNodeFile file = load_servo_node(pier_node());
-  EXPECT_EQ(file.mode, ServoNodeFile::Mode::kRealTime);
+  const node::ServoNodeSetup file = load_servo_node(pier_node());
+  EXPECT_EQ(file.mode, node::ServoNodeSetup::Mode::kRealTime);
   EXPECT_TRUE(file.realtime.keep_cpus_awake);
   EXPECT_EQ(file.realtime.fifo_priority, 80);
   EXPECT_FALSE(load_servo_node(pier_node(), {parse_override("node.keep_cpus_awake=false")}).realtime.keep_cpus_awake);

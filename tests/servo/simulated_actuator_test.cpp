@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "paper_rig.h"
-#include "rpsd/servo/plant_node.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
@@ -75,33 +74,6 @@ TEST(SimulatedActuator, RefusesBadCommandsWithoutAdvancing) {
   Plant* none[] = {&a, nullptr};
   EXPECT_THROW(SimulatedActuator{none}, std::invalid_argument);
   EXPECT_THROW(SimulatedActuator(std::span<Plant* const>{}), std::invalid_argument);
-}
-
-TEST(SimulatedActuator, PlantNodeFeedbackIsTheActuatorReading) {
-  const auto rig = rpsd::testing::paper_rig();
-  ServoHydraulicPlant for_node(rig), for_actuator(rig);
-  Plant* node_plants[] = {&for_node};
-  Plant* actuator_plants[] = {&for_actuator};
-  PlantNode node(node_plants, 1.0 / 2048.0);
-  SimulatedActuator actuator(actuator_plants);
-  const double x0[] = {0.001};
-  node.reset(x0);
-  actuator.start(x0);
-  transport::CommandSample command;
-  command.channels = 1;
-  transport::FeedbackSample feedback;
-  ActuatorReading reading;
-  for (int i = 1; i <= 512; ++i) {
-    command.step = i;
-    command.displacement_m[0] = sine_command(0, i, 1.0 / 2048.0);
-    node.process(command, feedback);
-    const double u[] = {command.displacement_m[0]};
-    actuator.exchange(u, 1.0 / 2048.0, reading);
-    ASSERT_EQ(feedback.step, i);
-    ASSERT_EQ(feedback.status, transport::kNodeOk);
-    ASSERT_EQ(feedback.displacement_m[0], reading.displacement_m[0]);
-    ASSERT_EQ(feedback.force_n[0], reading.force_n[0]);
-  }
 }
 
 }  // namespace

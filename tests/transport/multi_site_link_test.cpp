@@ -11,7 +11,7 @@ namespace {
 class EchoNode final : public CommandProcessor {
  public:
   explicit EchoNode(std::uint32_t site) : site_(site) {}
-  void process(const CommandSample& c, FeedbackSample& f) override {
+  bool process(const CommandSample& c, FeedbackSample& f) override {
     seen = c;
     f.test_id = c.test_id;
     f.site_id = c.site_id;
@@ -22,6 +22,7 @@ class EchoNode final : public CommandProcessor {
       f.force_n[k] = -f.displacement_m[k];
     }
     f.status = site_ == 2 ? kNodeLimitActive : kNodeOk;
+    return true;
   }
   CommandSample seen;
 

@@ -8,8 +8,9 @@
 #include <vector>
 
 #include "rpsd/scenarios/test_scenario.h"
+#include "rpsd/node/actuator_factory.h"
+#include "rpsd/node/lock_step_node.h"
 #include "rpsd/servo/plant.h"
-#include "rpsd/servo/plant_node.h"
 #include "rpsd/transport/dds_link.h"
 #include "rpsd/transport/multi_site_link.h"
 
@@ -45,8 +46,10 @@ class ActuatorLinks {
 
  private:
   std::vector<SiteSummary> sites_;
-  std::vector<std::unique_ptr<servo::Plant>> plants_;
-  std::vector<std::unique_ptr<servo::PlantNode>> nodes_;
+  // In process: per site its simulated actuator, the node's controller and the lock-step node.
+  std::vector<node::OwnedActuator> actuators_;
+  std::vector<std::unique_ptr<node::ServoNodeController>> controllers_;
+  std::vector<std::unique_ptr<node::LockStepNode>> nodes_;
   std::vector<std::unique_ptr<transport::Link>> site_links_;
   std::unique_ptr<transport::DdsParticipant> participant_;
   std::vector<transport::DdsLink*> dds_links_;

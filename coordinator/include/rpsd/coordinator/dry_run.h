@@ -17,7 +17,7 @@
 
 #include "rpsd/coordinator/rpsd_loop.h"
 #include "rpsd/scenarios/test_scenario.h"
-#include "rpsd/servo/servo_node_config.h"
+#include "rpsd/node/servo_node_config.h"
 
 namespace rpsd::coordinator {
 
@@ -27,13 +27,13 @@ struct NodeLimits {
   std::uint32_t test_id = 0, site_id = 0;
   double control_period_s = 1.0 / 1024.0;
   /// The site's channels, in the test's channel order (how the coordinator addresses them).
-  std::vector<servo::ChannelLimits> channels;
+  std::vector<node::ChannelLimits> channels;
 };
 
 /// One channel's peaks against its node's limits.
 struct NodeCheck {
   std::string node;
-  servo::ChannelLimits limits;
+  node::ChannelLimits limits;
   double control_period_s = 1.0 / 1024.0;      ///< the node's
   double peak_command_velocity_m_per_s = 0.0;  ///< |command change| / the node's control period
   bool within_limits = true;

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "rpsd/coordinator/spsc_queue.h"
+#include "rpsd/realtime/spsc_queue.h"
 #include "rpsd/coordinator/step_record.h"
 
 namespace rpsd::coordinator {
@@ -48,7 +48,7 @@ class Recorder {
   void take(const StepRecord& r);  ///< writer thread: one record off the queue
   void run();
 
-  SpscQueue<StepRecord> queue_;
+  realtime::SpscQueue<StepRecord> queue_;
   std::ofstream csv_;
   int channels_, dofs_;
   bool keep_records_;

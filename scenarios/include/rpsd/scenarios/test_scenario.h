@@ -15,9 +15,7 @@
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/integrators/factory.h"
-#include "rpsd/servo/pure_delay_plant.h"
-#include "rpsd/servo/servo_parameters.h"
-#include "rpsd/servo/transfer_function_plant.h"
+#include "rpsd/servo/plant_factory.h"
 #include "rpsd/substructure/linear_mdof_model.h"
 #include "rpsd/substructure/partition.h"
 #include "rpsd/substructure/shear_building.h"
@@ -68,8 +66,7 @@ struct TransportConfig {
 };
 
 /// The actuator of every channel (each channel gets its own instance).
-using PlantConfig =
-    std::variant<servo::ServoSystemParameters, servo::PureDelayParameters, servo::TransferFunctionPlantParameters>;
+using servo::PlantConfig;
 
 /// A ground-acceleration record already read and processed to the integration step.
 struct GroundMotion {

@@ -8,9 +8,11 @@
 #include <cstdint>
 #include <span>
 
-#include "rpsd/transport/messages.h"
 
 namespace rpsd::servo {
+
+/// Channels an actuator may have (the node's messages carry as many).
+inline constexpr int kMaxChannels = 8;
 
 enum class ActuatorStatus : std::uint8_t {
   kOk,       ///< the command was applied and `reading` holds the new measurement
@@ -22,8 +24,8 @@ const char* actuator_status_name(ActuatorStatus status);
 
 /// The sensors of every channel at the end of one control period.
 struct ActuatorReading {
-  std::array<double, transport::kMaxChannels> displacement_m{};
-  std::array<double, transport::kMaxChannels> force_n{};
+  std::array<double, kMaxChannels> displacement_m{};
+  std::array<double, kMaxChannels> force_n{};
   bool fresh = true;  ///< false when this period brought no new measurement
 };
 
@@ -31,7 +33,7 @@ class Actuator {
  public:
   virtual ~Actuator() = default;
 
-  /// Number of channels, fixed at construction (1..transport::kMaxChannels).
+  /// Number of channels, fixed at construction (1..kMaxChannels).
   virtual int channels() const = 0;
 
   /// Connects, homes or resets the actuator so that it holds initial_displacement_m (one

@@ -14,7 +14,7 @@ namespace rpsd::servo {
 
 class SimulatedActuator final : public Actuator {
  public:
-  /// `plants` are not owned and must outlive the actuator; 1..transport::kMaxChannels, none
+  /// `plants` are not owned and must outlive the actuator; 1..kMaxChannels, none
   /// null. Throws std::invalid_argument. Not real-time safe.
   explicit SimulatedActuator(std::span<Plant* const> plants);
 
@@ -36,8 +36,8 @@ class SimulatedActuator final : public Actuator {
   ActuatorReading measure() const;
 
  private:
-  std::array<Plant*, transport::kMaxChannels> plants_{};
-  std::array<double, transport::kMaxChannels> last_command_m_{};
+  std::array<Plant*, kMaxChannels> plants_{};
+  std::array<double, kMaxChannels> last_command_m_{};
   int channels_ = 0;
 };
 

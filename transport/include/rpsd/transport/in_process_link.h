@@ -1,5 +1,6 @@
 // Lock-step link to a node in the same process: send() runs the node's step at once and
-// receive() returns its feedback. Deterministic and bit-for-bit repeatable.
+// receive() returns its feedback (kTimeout when the node refused the command).
+// Deterministic and bit-for-bit repeatable.
 #pragma once
 
 #include "rpsd/transport/link.h"
@@ -11,8 +12,7 @@ class InProcessLink final : public Link {
   explicit InProcessLink(CommandProcessor& node) : node_(node) {}
 
   LinkStatus send(const CommandSample& command) override {
-    node_.process(command, feedback_);
-    pending_ = true;
+    pending_ = node_.process(command, feedback_);
     return LinkStatus::kOk;
   }
 

@@ -29,8 +29,9 @@ class Link {
 class CommandProcessor {
  public:
   virtual ~CommandProcessor() = default;
-  /// Real-time safe.
-  virtual void process(const CommandSample& command, FeedbackSample& feedback) = 0;
+  /// True with `feedback` filled when the node answered the command; false when it refused
+  /// it (feedback untouched). Real-time safe.
+  virtual bool process(const CommandSample& command, FeedbackSample& feedback) = 0;
 };
 
 }  // namespace rpsd::transport

@@ -1,6 +1,6 @@
 // The servo node's logic without I/O: it validates incoming commands, applies the newest on
 // the next control tick, enforces the node's own limits whatever the coordinator sends,
-// holds (or ramps to a safe position) when commands stop, drives the Actuator and fills the
+// holds (or ramps to a safe position) when commands stop, drives the servo::Actuator and fills the
 // feedback. The node process wraps it with the transport reader/writer and the pacer; call
 // accept() and tick() from the same (control-loop) thread.
 #pragma once
@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "rpsd/servo/actuator.h"
-#include "rpsd/servo/servo_node_config.h"
+#include "rpsd/node/servo_node_config.h"
 #include "rpsd/transport/messages.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 /// What accept() did with a command: kept it, or why it dropped it.
 enum class CommandVerdict : std::uint8_t {
@@ -69,7 +69,7 @@ class ServoNodeController {
  public:
   /// Validates the config (std::invalid_argument naming the field) and checks that the
   /// actuator has config.channels channels; sizes the event log. Not real-time safe.
-  ServoNodeController(const ServoNodeConfig& config, Actuator& actuator);
+  ServoNodeController(const ServoNodeConfig& config, servo::Actuator& actuator);
 
   /// Starts the actuator at initial_displacement_m (one per channel, within the stroke),
   /// clears counters, events and any latched fault or safe state. Throws. Not real-time safe.
@@ -101,7 +101,7 @@ class ServoNodeController {
   bool in_safe_state() const { return safe_state_; }
   /// The command sent to the actuator on the last tick (the initial displacement before).
   std::span<const double> command_m() const { return {command_m_.data(), static_cast<std::size_t>(config_.channels)}; }
-  const ActuatorReading& reading() const { return reading_; }
+  const servo::ActuatorReading& reading() const { return reading_; }
   const ServoNodeConfig& config() const { return config_; }
 
  private:
@@ -112,7 +112,7 @@ class ServoNodeController {
   void latch_fault();
 
   ServoNodeConfig config_;
-  Actuator& actuator_;
+  servo::Actuator& actuator_;
   bool started_ = false;
 
   transport::CommandSample pending_;
@@ -123,7 +123,7 @@ class ServoNodeController {
 
   Values target_m_{};   // what the node is moving the command toward
   Values command_m_{};  // what it sent to the actuator last
-  ActuatorReading reading_;
+  servo::ActuatorReading reading_;
 
   bool commands_began_ = false;
   int missed_in_row_ = 0;
@@ -137,4 +137,4 @@ class ServoNodeController {
   std::uint64_t events_not_logged_ = 0;
 };
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

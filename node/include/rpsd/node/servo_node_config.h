@@ -6,9 +6,12 @@
 #include <cstdint>
 #include <limits>
 
+#include "rpsd/servo/actuator.h"
 #include "rpsd/transport/messages.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
+
+static_assert(servo::kMaxChannels == transport::kMaxChannels, "a node's actuator has as many channels as its messages");
 
 /// What a limit does when a command or a measurement exceeds it.
 enum class LimitAction : std::uint8_t {
@@ -67,4 +70,4 @@ struct ServoNodeConfig {
   void validate() const;
 };
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

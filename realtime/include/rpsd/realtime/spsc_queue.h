@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace rpsd::coordinator {
+namespace rpsd::realtime {
 
 template <typename T>
 class SpscQueue {
@@ -67,4 +67,4 @@ class SpscQueue {
   std::size_t cached_head_ = 0;
 };
 
-}  // namespace rpsd::coordinator
+}  // namespace rpsd::realtime

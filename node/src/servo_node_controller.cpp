@@ -1,11 +1,11 @@
-#include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/node/servo_node_controller.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 const char* command_verdict_name(CommandVerdict verdict) {
   switch (verdict) {
@@ -29,7 +29,7 @@ std::uint64_t ServoNodeCounters::dropped_total() const {
   return total;
 }
 
-ServoNodeController::ServoNodeController(const ServoNodeConfig& config, Actuator& actuator) : config_(config), actuator_(actuator) {
+ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::Actuator& actuator) : config_(config), actuator_(actuator) {
   config_.validate();
   if (actuator.channels() != config_.channels) {
     throw std::invalid_argument("channels: the config has " + std::to_string(config_.channels) + ", the actuator " +
@@ -53,7 +53,7 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
   }
   started_ = false;
   actuator_.start(initial_displacement_m);
-  reading_ = ActuatorReading{};
+  reading_ = servo::ActuatorReading{};
   reading_.fresh = false;
   for (int c = 0; c < channels; ++c) {
     target_m_[c] = command_m_[c] = reading_.displacement_m[c] = initial_displacement_m[c];
@@ -229,11 +229,11 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
   Values applied = command_m_;
   const std::uint32_t flags = apply_limits(applied);
 
-  const ActuatorStatus status =
+  const servo::ActuatorStatus status =
       actuator_.exchange(std::span<const double>(applied.data(), static_cast<std::size_t>(channels)), config_.control_period_s, reading_);
   command_m_ = applied;
-  if (status == ActuatorStatus::kNoReply) ++counters_.actuator_no_replies;
-  if (status == ActuatorStatus::kFault) {
+  if (status == servo::ActuatorStatus::kNoReply) ++counters_.actuator_no_replies;
+  if (status == servo::ActuatorStatus::kFault) {
     ++counters_.actuator_faults;
     latch_fault();
   }
@@ -253,4 +253,4 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
   out.limit_flags = flags;
 }
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

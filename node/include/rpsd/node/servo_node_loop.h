@@ -16,10 +16,10 @@
 
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/realtime/realtime_setup.h"
-#include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/node/servo_node_controller.h"
 #include "rpsd/transport/dds_node_endpoint.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 struct ServoNodeLoopOptions {
   bool real_time = true;
@@ -45,4 +45,4 @@ struct ServoNodeLoopReport {
 ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transport::DdsNodeEndpoint& endpoint,
                                         const ServoNodeLoopOptions& options, const std::atomic<bool>& stop);
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -12,15 +12,15 @@
 #include <string>
 #include <vector>
 
-#include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/node/servo_node_controller.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
 namespace {
 
 using transport::CommandSample;
 using transport::FeedbackSample;
 
-class IdealActuator final : public Actuator {
+class IdealActuator final : public servo::Actuator {
  public:
   explicit IdealActuator(int channels, double stiffness_n_per_m = 0.0) : channels_(channels), stiffness_(stiffness_n_per_m) {}
   int channels() const override { return channels_; }
@@ -28,12 +28,12 @@ class IdealActuator final : public Actuator {
     started_at.assign(x0.begin(), x0.end());
     commands.clear();
   }
-  ActuatorStatus exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) override {
+  servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s, servo::ActuatorReading& reading) override {
     commands.emplace_back(command_m.begin(), command_m.end());
     periods.push_back(period_s);
-    const ActuatorStatus status = script.empty() ? ActuatorStatus::kOk : script.front();
+    const servo::ActuatorStatus status = script.empty() ? servo::ActuatorStatus::kOk : script.front();
     if (!script.empty()) script.pop_front();
-    if (status == ActuatorStatus::kNoReply) {
+    if (status == servo::ActuatorStatus::kNoReply) {
       reading.fresh = false;
       return status;
     }
@@ -49,7 +49,7 @@ class IdealActuator final : public Actuator {
   std::vector<double> started_at;
   std::vector<std::vector<double>> commands;
   std::vector<double> periods;
-  std::deque<ActuatorStatus> script;  ///< statuses to return, then kOk
+  std::deque<servo::ActuatorStatus> script;  ///< statuses to return, then kOk
 
  private:
   int channels_;
@@ -573,7 +573,7 @@ TEST(ServoNodeController, ActuatorNoReplyKeepsTheLastMeasurementAndAFaultLatches
   Rig rig(c, 1e5);
   auto& [actuator, node] = rig;
   send(node, command(1, {0.001}));
-  actuator.script = {ActuatorStatus::kNoReply};
+  actuator.script = {servo::ActuatorStatus::kNoReply};
   FeedbackSample out = send(node, command(2, {0.002}));
   EXPECT_EQ(out.displacement_m[0], 0.001);  // the last measurement, not the new command
   EXPECT_EQ(out.force_n[0], 100.0);
@@ -581,7 +581,7 @@ TEST(ServoNodeController, ActuatorNoReplyKeepsTheLastMeasurementAndAFaultLatches
   EXPECT_EQ(out.status, transport::kNodeOk);
   EXPECT_FALSE(node.reading().fresh);
   EXPECT_EQ(node.counters().actuator_no_replies, 1u);
-  actuator.script = {ActuatorStatus::kFault};
+  actuator.script = {servo::ActuatorStatus::kFault};
   out = send(node, command(3, {0.003}));
   EXPECT_EQ(out.status, transport::kNodeFault);
   EXPECT_TRUE(node.faulted());
@@ -617,4 +617,4 @@ TEST(ServoNodeController, StartRefusesAnInitialPositionBeyondTheStroke) {
 }
 
 }  // namespace
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

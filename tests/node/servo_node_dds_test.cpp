@@ -15,13 +15,13 @@
 #include <vector>
 
 #include "rpsd/realtime/pacer.h"
-#include "rpsd/servo/servo_node_controller.h"
-#include "rpsd/servo/servo_node_loop.h"
+#include "rpsd/node/servo_node_controller.h"
+#include "rpsd/node/servo_node_loop.h"
 #include "rpsd/transport/dds_node_endpoint.h"
 #include "rpsd/transport/dds_qos_profile.h"
 #include "rpsd_messages.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
 namespace {
 
 using transport::CommandSample;
@@ -35,16 +35,16 @@ transport::DdsDomainConfig loopback() {
 }
 
 // Moves to every command at once and reads it back.
-class IdealActuator final : public Actuator {
+class IdealActuator final : public servo::Actuator {
  public:
   int channels() const override { return 1; }
   void start(std::span<const double>) override {}
-  ActuatorStatus exchange(std::span<const double> command_m, double, ActuatorReading& reading) override {
+  servo::ActuatorStatus exchange(std::span<const double> command_m, double, servo::ActuatorReading& reading) override {
     sent.push_back(command_m[0]);
     reading.displacement_m[0] = command_m[0];
     reading.force_n[0] = 0.0;
     reading.fresh = true;
-    return ActuatorStatus::kOk;
+    return servo::ActuatorStatus::kOk;
   }
   std::vector<double> sent;
 };
@@ -218,4 +218,4 @@ TEST_F(NodeOverDds, LockStepAnswersEveryCommandAndNothingAfterTheLoopEnds) {
 }
 
 }  // namespace
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

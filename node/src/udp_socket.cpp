@@ -1,4 +1,4 @@
-#include "rpsd/servo/udp_socket.h"
+#include "rpsd/node/udp_socket.h"
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -13,7 +13,7 @@
 #include <ctime>
 #include <stdexcept>
 
-namespace rpsd::servo {
+namespace rpsd::node {
 namespace {
 
 sockaddr_in to_sockaddr(const Ipv4Endpoint& endpoint) {
@@ -118,4 +118,4 @@ double monotonic_seconds() noexcept {
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -12,7 +12,7 @@
 
 #include "rpsd/transport/messages.h"
 
-namespace rpsd::servo::udp_protocol {
+namespace rpsd::node::udp_protocol {
 
 inline constexpr std::uint32_t kCommandMagic = 0x43535052;  ///< bytes "RPSC" on the wire
 inline constexpr std::uint32_t kReplyMagic = 0x52535052;    ///< bytes "RPSR" on the wire
@@ -74,4 +74,4 @@ PacketStatus decode_command(std::span<const std::byte> bytes, ControllerCommand&
 PacketStatus encode_reply(const ControllerReply& reply, ReplyPacket& out) noexcept;
 PacketStatus decode_reply(std::span<const std::byte> bytes, ControllerReply& out) noexcept;
 
-}  // namespace rpsd::servo::udp_protocol
+}  // namespace rpsd::node::udp_protocol

@@ -1,11 +1,11 @@
-#include "rpsd/servo/servo_node_config.h"
+#include "rpsd/node/servo_node_config.h"
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 const char* limit_kind_name(LimitKind kind) {
   switch (kind) {
@@ -99,4 +99,4 @@ void ServoNodeConfig::validate() const {
   if (event_log_capacity < 0) fail("event_log_capacity", "must be zero or positive", event_log_capacity);
 }
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -1,11 +1,11 @@
-#include "rpsd/servo/udp_controller_actuator.h"
+#include "rpsd/node/udp_controller_actuator.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 using udp_protocol::ControllerCommand;
 using udp_protocol::ControllerReply;
@@ -132,17 +132,17 @@ void UdpControllerActuator::start(std::span<const double> initial_displacement_m
   link_fault_ = false;
 }
 
-ActuatorStatus UdpControllerActuator::exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) {
+servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> command_m, double period_s, servo::ActuatorReading& reading) {
   reading.fresh = false;
-  if (link_fault_) return ActuatorStatus::kFault;
+  if (link_fault_) return servo::ActuatorStatus::kFault;
   const int channels = config_.channels;
-  if (static_cast<int>(command_m.size()) != channels) return ActuatorStatus::kFault;
+  if (static_cast<int>(command_m.size()) != channels) return servo::ActuatorStatus::kFault;
   ControllerCommand command;
   command.sequence = ++sequence_;
   command.channels = static_cast<std::uint8_t>(channels);
   command.period_s = period_s;
   std::copy(command_m.begin(), command_m.end(), command.displacement_m.begin());
-  if (udp_protocol::encode_command(command, command_packet_) != PacketStatus::kOk) return ActuatorStatus::kFault;
+  if (udp_protocol::encode_command(command, command_packet_) != PacketStatus::kOk) return servo::ActuatorStatus::kFault;
 
   ControllerReply reply;
   take_queued(command.sequence, reply);  // stale replies of earlier periods
@@ -150,15 +150,15 @@ ActuatorStatus UdpControllerActuator::exchange(std::span<const double> command_m
   const bool answered = send_packet() && await(command.sequence, deadline_s, reply);
   if (answered && reply.channels != channels) {
     ++counters_.bad_replies;
-    return ActuatorStatus::kFault;
+    return servo::ActuatorStatus::kFault;
   }
   if (!answered) {
     ++counters_.missed_replies;
     if (++consecutive_missed_ > config_.max_missed_replies) {
       link_fault_ = true;
-      return ActuatorStatus::kFault;
+      return servo::ActuatorStatus::kFault;
     }
-    return ActuatorStatus::kNoReply;
+    return servo::ActuatorStatus::kNoReply;
   }
   ++counters_.replies;
   consecutive_missed_ = 0;
@@ -169,9 +169,9 @@ ActuatorStatus UdpControllerActuator::exchange(std::span<const double> command_m
   reading.fresh = true;
   if (reply.status != ControllerStatus::kOk) {
     ++counters_.controller_faults;
-    return ActuatorStatus::kFault;
+    return servo::ActuatorStatus::kFault;
   }
-  return ActuatorStatus::kOk;
+  return servo::ActuatorStatus::kOk;
 }
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -10,15 +10,15 @@
 #include <thread>
 
 #include "allocation_counter.h"
-#include "paper_rig.h"
-#include "rpsd/servo/controller_emulator.h"
+#include "../servo/paper_rig.h"
+#include "rpsd/node/controller_emulator.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
-#include "rpsd/servo/servo_node_controller.h"
+#include "rpsd/node/servo_node_controller.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
-#include "rpsd/servo/udp_controller_actuator.h"
+#include "rpsd/node/udp_controller_actuator.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
 namespace {
 
 ServoNodeConfig node_config() {
@@ -92,11 +92,11 @@ TEST(ServoNodeAllocation, CounterSeesAllocations) {
 }
 
 TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
-  ServoHydraulicPlant paper(rpsd::testing::paper_rig());
-  TransferFunctionPlant benchmark(
-      {{Polynomial{2.18385e13}, Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}}, 1.19e6, 8192.0});
-  Plant* plants[] = {&paper, &benchmark};
-  SimulatedActuator actuator(plants);
+  servo::ServoHydraulicPlant paper(rpsd::testing::paper_rig());
+  servo::TransferFunctionPlant benchmark(
+      {{servo::Polynomial{2.18385e13}, servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}}, 1.19e6, 8192.0});
+  servo::Plant* plants[] = {&paper, &benchmark};
+  servo::SimulatedActuator actuator(plants);
   ServoNodeController node(node_config(), actuator);
   const RunResult r = run(node, 2000);
   EXPECT_EQ(r.allocations, 0);
@@ -108,9 +108,9 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
 }
 
 TEST(ServoNodeAllocation, NoAllocationPerTickOverTheUdpAdapter) {
-  TransferFunctionPlant a({{Polynomial{1.0}, Polynomial{1.0, 0.01}}, 1e5, 8192.0});
-  TransferFunctionPlant b({{Polynomial{1.0}, Polynomial{1.0, 0.02}}, 1e5, 8192.0});
-  Plant* plants[] = {&a, &b};
+  servo::TransferFunctionPlant a({{servo::Polynomial{1.0}, servo::Polynomial{1.0, 0.01}}, 1e5, 8192.0});
+  servo::TransferFunctionPlant b({{servo::Polynomial{1.0}, servo::Polynomial{1.0, 0.02}}, 1e5, 8192.0});
+  servo::Plant* plants[] = {&a, &b};
   ControllerEmulator emulator(plants, {"127.0.0.1", 0});
   const double x0[] = {0.0, 0.0};
   emulator.start(x0);
@@ -135,4 +135,4 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverTheUdpAdapter) {
 }
 
 }  // namespace
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -10,10 +10,10 @@
 #include <string>
 
 #include "rpsd/servo/simulated_actuator.h"
-#include "rpsd/servo/udp_controller_protocol.h"
-#include "rpsd/servo/udp_socket.h"
+#include "rpsd/node/udp_controller_protocol.h"
+#include "rpsd/node/udp_socket.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 struct ControllerEmulatorConfig {
   std::string bind_host = "127.0.0.1";  ///< dotted IPv4
@@ -42,7 +42,7 @@ class ControllerEmulator {
 
   /// `plants` (one per channel, not owned) must outlive the emulator. Binds the socket.
   /// Throws std::invalid_argument or std::runtime_error. Not real-time safe.
-  ControllerEmulator(std::span<Plant* const> plants, const ControllerEmulatorConfig& config);
+  ControllerEmulator(std::span<servo::Plant* const> plants, const ControllerEmulatorConfig& config);
 
   std::uint16_t port() const { return socket_.local_port(); }
   int channels() const { return actuator_.channels(); }
@@ -71,10 +71,10 @@ class ControllerEmulator {
  private:
   void reply(std::uint64_t sequence, udp_protocol::ControllerStatus status, const Ipv4Endpoint& to);
 
-  SimulatedActuator actuator_;
+  servo::SimulatedActuator actuator_;
   UdpSocket socket_;
   ControllerEmulatorCounters counters_;
-  ActuatorReading reading_;
+  servo::ActuatorReading reading_;
   std::array<std::byte, udp_protocol::kCommandBytes + 1> receive_buffer_{};  // +1: oversized datagrams show
   udp_protocol::ReplyPacket reply_packet_{};
   std::uint64_t last_sequence_ = 0;
@@ -82,4 +82,4 @@ class ControllerEmulator {
   std::atomic<udp_protocol::ControllerStatus> status_{udp_protocol::ControllerStatus::kOk};
 };
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -13,15 +13,15 @@
 #include <thread>
 #include <vector>
 
-#include "paper_rig.h"
-#include "rpsd/servo/controller_emulator.h"
+#include "../servo/paper_rig.h"
+#include "rpsd/node/controller_emulator.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
-#include "rpsd/servo/udp_controller_actuator.h"
+#include "rpsd/node/udp_controller_actuator.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
 namespace {
 
 using udp_protocol::ControllerStatus;
@@ -56,23 +56,23 @@ UdpControllerConfig adapter_config(const ControllerEmulator& emulator, int chann
 // An emulated controller whose actuator is perfect: it measures its command at the end of
 // each period, and the load cell reads 1e5 N/m times that.
 struct IdealController {
-  PureDelayPlant plant{{0.0, 1e5, 8192.0}};
-  std::array<Plant*, 1> plants{&plant};
+  servo::PureDelayPlant plant{{0.0, 1e5, 8192.0}};
+  std::array<servo::Plant*, 1> plants{&plant};
   ControllerEmulator emulator{plants, {"127.0.0.1", 0}};
 };
 
-TransferFunctionPlantParameters benchmark() {
-  return {{Polynomial{2.18385e13}, Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}}, 1.19e6, 8192.0};
+servo::TransferFunctionPlantParameters benchmark() {
+  return {{servo::Polynomial{2.18385e13}, servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}}, 1.19e6, 8192.0};
 }
 
 TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {
   const auto rig = rpsd::testing::paper_rig();
-  ServoHydraulicPlant paper_remote(rig), paper_local(rig);
-  TransferFunctionPlant tf_remote(benchmark()), tf_local(benchmark());
-  Plant* remote[] = {&paper_remote, &tf_remote};
-  Plant* local[] = {&paper_local, &tf_local};
+  servo::ServoHydraulicPlant paper_remote(rig), paper_local(rig);
+  servo::TransferFunctionPlant tf_remote(benchmark()), tf_local(benchmark());
+  servo::Plant* remote[] = {&paper_remote, &tf_remote};
+  servo::Plant* local[] = {&paper_local, &tf_local};
   ControllerEmulator emulator(remote, {"127.0.0.1", 0});
-  SimulatedActuator in_process(local);
+  servo::SimulatedActuator in_process(local);
   UdpControllerActuator adapter(adapter_config(emulator, 2));
 
   const double dt = 1.0 / 1024.0, x0[] = {0.002, -0.001};
@@ -80,13 +80,13 @@ TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {
   in_process.start(x0);
   const Serving serving(emulator);
   adapter.start(x0);
-  ActuatorReading over_udp, direct;
+  servo::ActuatorReading over_udp, direct;
   const int periods = 2000;
   for (int i = 1; i <= periods; ++i) {
     const double t = i * dt;
     const double u[] = {0.002 + 0.02 * std::sin(2.0 * std::numbers::pi * 1.5 * t), -0.001 + 0.003 * std::sin(2.0 * std::numbers::pi * 4.0 * t)};
-    ASSERT_EQ(adapter.exchange(u, dt, over_udp), ActuatorStatus::kOk) << i;
-    ASSERT_EQ(in_process.exchange(u, dt, direct), ActuatorStatus::kOk);
+    ASSERT_EQ(adapter.exchange(u, dt, over_udp), servo::ActuatorStatus::kOk) << i;
+    ASSERT_EQ(in_process.exchange(u, dt, direct), servo::ActuatorStatus::kOk);
     ASSERT_TRUE(over_udp.fresh);
     for (int c = 0; c < 2; ++c) {
       ASSERT_EQ(over_udp.displacement_m[c], direct.displacement_m[c]) << i << " " << c;
@@ -110,21 +110,21 @@ TEST(UdpControllerActuator, MissingRepliesGiveNoReplyThenALatchedFault) {
   UdpControllerActuator adapter(config);
   const double x0[] = {0.001}, u[] = {0.0015};
   emulator.start(x0);
-  ActuatorReading reading;
+  servo::ActuatorReading reading;
   {
     const Serving serving(emulator);
     adapter.start(x0);
-    ASSERT_EQ(adapter.exchange(u, 0.001, reading), ActuatorStatus::kOk);
+    ASSERT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kOk);
   }
   ASSERT_EQ(reading.displacement_m[0], 0.0015);
   // The controller stops answering.
-  EXPECT_EQ(adapter.exchange(u, 0.001, reading), ActuatorStatus::kNoReply);
+  EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kNoReply);
   EXPECT_FALSE(reading.fresh);
   EXPECT_EQ(reading.displacement_m[0], 0.0015);  // the last values are kept
-  EXPECT_EQ(adapter.exchange(u, 0.001, reading), ActuatorStatus::kNoReply);
-  EXPECT_EQ(adapter.exchange(u, 0.001, reading), ActuatorStatus::kFault);  // the third in a row: more than 2
+  EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kNoReply);
+  EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kFault);  // the third in a row: more than 2
   const auto sent = adapter.counters().commands_sent;
-  EXPECT_EQ(adapter.exchange(u, 0.001, reading), ActuatorStatus::kFault);  // latched, nothing sent
+  EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kFault);  // latched, nothing sent
   EXPECT_EQ(adapter.counters().commands_sent, sent);
   EXPECT_EQ(adapter.counters().missed_replies, 3u);
 
@@ -132,7 +132,7 @@ TEST(UdpControllerActuator, MissingRepliesGiveNoReplyThenALatchedFault) {
   // missed are still queued at the emulator and are applied first (in order), then the query.
   const Serving serving(emulator);
   adapter.start(std::span<const double>(u, 1));
-  EXPECT_EQ(adapter.exchange(u, 0.001, reading), ActuatorStatus::kOk);
+  EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kOk);
   EXPECT_TRUE(reading.fresh);
   EXPECT_GE(adapter.counters().stale_replies, 3u);  // the replies to the three missed commands
 }
@@ -145,9 +145,9 @@ TEST(UdpControllerActuator, StaleRepliesAreDrainedAndCounted) {
   UdpControllerActuator adapter(config);
   const double x0[] = {0.0};
   emulator.start(x0);
-  ActuatorReading reading;
+  servo::ActuatorReading reading;
   const double late[] = {0.004}, next[] = {0.005};
-  EXPECT_EQ(adapter.exchange(late, 0.001, reading), ActuatorStatus::kNoReply);
+  EXPECT_EQ(adapter.exchange(late, 0.001, reading), servo::ActuatorStatus::kNoReply);
   // The controller answers late: its reply waits in the adapter's socket.
   EXPECT_EQ(emulator.serve(2.0), ControllerEmulator::Served::kApplied);
   // A datagram from some other program on the adapter's port.
@@ -155,7 +155,7 @@ TEST(UdpControllerActuator, StaleRepliesAreDrainedAndCounted) {
   const std::byte junk[3] = {};
   ASSERT_TRUE(stranger.send_to(junk, Ipv4Endpoint::parse("127.0.0.1", adapter.local_port(), "test")));
   const Serving serving(emulator);
-  ASSERT_EQ(adapter.exchange(next, 0.001, reading), ActuatorStatus::kOk);
+  ASSERT_EQ(adapter.exchange(next, 0.001, reading), servo::ActuatorStatus::kOk);
   EXPECT_EQ(reading.displacement_m[0], 0.005);  // the answer to this command, not the late one
   EXPECT_EQ(adapter.counters().stale_replies, 1u);
   EXPECT_EQ(adapter.counters().foreign_datagrams, 1u);
@@ -170,14 +170,14 @@ TEST(UdpControllerActuator, ControllerFaultIsReportedWithTheMeasurement) {
   emulator.start(x0);
   const Serving serving(emulator);
   adapter.start(x0);
-  ActuatorReading reading;
+  servo::ActuatorReading reading;
   emulator.set_status(ControllerStatus::kFault);
-  EXPECT_EQ(adapter.exchange(u, 0.001, reading), ActuatorStatus::kFault);
+  EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kFault);
   EXPECT_TRUE(reading.fresh);
   EXPECT_EQ(reading.displacement_m[0], 0.002);  // the interlocked controller did not move
   EXPECT_EQ(reading.force_n[0], 1e5 * 0.002);
   emulator.set_status(ControllerStatus::kOk);
-  EXPECT_EQ(adapter.exchange(u, 0.001, reading), ActuatorStatus::kOk);  // not latched: the controller's own state
+  EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kOk);  // not latched: the controller's own state
   EXPECT_EQ(reading.displacement_m[0], 0.003);
   EXPECT_EQ(adapter.counters().controller_faults, 1u);
 }
@@ -299,4 +299,4 @@ TEST(ControllerEmulator, IgnoresBadDatagramsAndStops) {
 }
 
 }  // namespace
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -10,9 +10,9 @@
 #include <random>
 #include <vector>
 
-#include "rpsd/servo/udp_controller_protocol.h"
+#include "rpsd/node/udp_controller_protocol.h"
 
-namespace rpsd::servo::udp_protocol {
+namespace rpsd::node::udp_protocol {
 namespace {
 
 ControllerCommand sample_command() {
@@ -261,4 +261,4 @@ TEST(UdpProtocol, AnyBytesGiveADefiniteAnswer) {
 }
 
 }  // namespace
-}  // namespace rpsd::servo::udp_protocol
+}  // namespace rpsd::node::udp_protocol

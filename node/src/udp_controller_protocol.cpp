@@ -1,9 +1,9 @@
-#include "rpsd/servo/udp_controller_protocol.h"
+#include "rpsd/node/udp_controller_protocol.h"
 
 #include <bit>
 #include <cmath>
 
-namespace rpsd::servo::udp_protocol {
+namespace rpsd::node::udp_protocol {
 namespace {
 
 // Byte offsets (docs/udp-controller-protocol.md).
@@ -141,4 +141,4 @@ PacketStatus decode_reply(std::span<const std::byte> bytes, ControllerReply& out
   return PacketStatus::kOk;
 }
 
-}  // namespace rpsd::servo::udp_protocol
+}  // namespace rpsd::node::udp_protocol

@@ -1,12 +1,13 @@
-#include "rpsd/servo/servo_node_loop.h"
+#include "rpsd/node/servo_node_loop.h"
 
 #include <algorithm>
 #include <cmath>
 #include <mutex>
 
+#include "rpsd/node/lock_step_node.h"
 #include "rpsd/realtime/pacer.h"  // monotonic_now_ns
 
-namespace rpsd::servo {
+namespace rpsd::node {
 namespace {
 
 // Bookkeeping shared by both modes after each tick.
@@ -123,8 +124,7 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
     const auto answer = [&] {
       const std::lock_guard lock(mutex);
       while (endpoint.take_command(command)) {
-        if (controller.accept(command) != CommandVerdict::kAccepted) continue;
-        controller.tick(feedback);
+        if (!answer_lock_step(controller, command, feedback)) continue;
         watch.after_tick();
         publish();
       }
@@ -148,4 +148,4 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   return report;
 }
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -1,15 +1,15 @@
-#include "rpsd/servo/controller_emulator.h"
+#include "rpsd/node/controller_emulator.h"
 
 #include <algorithm>
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 using udp_protocol::ControllerCommand;
 using udp_protocol::ControllerReply;
 using udp_protocol::ControllerStatus;
 using udp_protocol::PacketStatus;
 
-ControllerEmulator::ControllerEmulator(std::span<Plant* const> plants, const ControllerEmulatorConfig& config)
+ControllerEmulator::ControllerEmulator(std::span<servo::Plant* const> plants, const ControllerEmulatorConfig& config)
     : actuator_(plants), socket_(Ipv4Endpoint::parse(config.bind_host, config.port, "bind_host")) {
   reading_ = actuator_.measure();
 }
@@ -80,4 +80,4 @@ ControllerEmulator::Served ControllerEmulator::serve(double timeout_s) {
   return Served::kApplied;
 }
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 struct Ipv4Endpoint {
   std::array<std::uint8_t, 4> address{};  ///< in dotted order: 127.0.0.1 is {127, 0, 0, 1}
@@ -58,4 +58,4 @@ class UdpSocket {
 /// Seconds on CLOCK_MONOTONIC. Real-time safe.
 double monotonic_seconds() noexcept;
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

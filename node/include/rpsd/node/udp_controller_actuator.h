@@ -10,10 +10,10 @@
 #include <string>
 
 #include "rpsd/servo/actuator.h"
-#include "rpsd/servo/udp_controller_protocol.h"
-#include "rpsd/servo/udp_socket.h"
+#include "rpsd/node/udp_controller_protocol.h"
+#include "rpsd/node/udp_socket.h"
 
-namespace rpsd::servo {
+namespace rpsd::node {
 
 struct UdpControllerConfig {
   int channels = 1;                           ///< must equal the controller's
@@ -45,7 +45,7 @@ struct UdpControllerCounters {
   std::uint64_t controller_faults = 0;  ///< replies with status kFault
 };
 
-class UdpControllerActuator final : public Actuator {
+class UdpControllerActuator final : public servo::Actuator {
  public:
   /// Validates the config and binds the local socket (throws std::invalid_argument or
   /// std::runtime_error). Not real-time safe.
@@ -63,7 +63,7 @@ class UdpControllerActuator final : public Actuator {
   /// and counting stale ones. kNoReply on a missing reply; kFault, latched until start(),
   /// after more than max_missed_replies in a row; kFault (not latched) when the controller
   /// reports one. Real-time safe: no allocation.
-  ActuatorStatus exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) override;
+  servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s, servo::ActuatorReading& reading) override;
 
   const UdpControllerCounters& counters() const { return counters_; }
   std::uint16_t local_port() const { return socket_.local_port(); }
@@ -88,4 +88,4 @@ class UdpControllerActuator final : public Actuator {
   bool link_fault_ = false;
 };
 
-}  // namespace rpsd::servo
+}  // namespace rpsd::node

@@ -1,0 +1,123 @@
+#include "rpsd/node/servo_node_process.h"
+
+#include <ostream>
+#include <vector>
+
+#include "rpsd/node/controller_emulator.h"
+#include "rpsd/node/servo_node_loop.h"
+#include "rpsd/realtime/latency_json.h"
+#include "rpsd/realtime/pacer.h"
+
+namespace rpsd::node {
+namespace {
+
+nlohmann::json node_summary(const ServoNodeSetup& setup, const ServoNodeController& controller,
+                            const ServoNodeLoopReport& report) {
+  using nlohmann::json;
+  const auto& c = controller.counters();
+  json dropped = json::object();
+  for (int v = 1; v < kCommandVerdicts; ++v) {
+    dropped[command_verdict_name(static_cast<CommandVerdict>(v))] = c.by_verdict[v];
+  }
+  json limits = json::object();
+  for (int k = 0; k < kLimitKinds; ++k) {
+    limits[limit_kind_name(static_cast<LimitKind>(k))] = {{"activations", c.limit_activations[k]},
+                                                          {"active_ticks", c.limit_active_ticks[k]}};
+  }
+  json events = json::array();
+  for (const auto& e : controller.events()) {
+    events.push_back({{"tick", e.tick}, {"step", e.step}, {"channel", e.channel},
+                      {"limit", limit_kind_name(e.kind)}, {"action", limit_action_name(e.action)},
+                      {"commanded_m", e.commanded_m}, {"applied_m", e.applied_m}, {"observed", e.observed}, {"bound", e.bound}});
+  }
+  json hold = nullptr;
+  if (report.hold_tick >= 0) {
+    hold = {{"tick", report.hold_tick},
+            {"periods_after_last_command", report.hold_tick - report.last_command_tick},
+            {"position_m", std::vector<double>(controller.command_m().begin(), controller.command_m().end())}};
+  }
+  return {{"node", setup.name},
+          {"test_id", setup.node.test_id},
+          {"site_id", setup.node.site_id},
+          {"mode", setup.mode == ServoNodeSetup::Mode::kRealTime ? "real_time" : "lock_step"},
+          {"control_period_s", setup.node.control_period_s},
+          {"ticks", c.ticks},
+          {"commands_accepted", c.accepted},
+          {"commands_applied", c.applied},
+          {"last_command_step", controller.newest_accepted_step()},
+          {"commands_dropped", dropped},
+          {"missed_periods", c.missed_periods},
+          {"holds", c.holds},
+          {"first_command_tick", report.first_command_tick},
+          {"last_command_tick", report.last_command_tick},
+          {"hold_after_last_command", hold},
+          {"faulted", controller.faulted()},
+          {"faulted_tick", report.faulted_tick},
+          {"limits", limits},
+          {"limit_events", events},
+          {"limit_events_not_logged", controller.events_not_logged()},
+          {"actuator_no_replies", c.actuator_no_replies},
+          {"feedback_published", report.feedback_published},
+          {"cycles", report.cycles},
+          {"overruns", report.overruns},
+          {"jitter", realtime::latency_json(report.jitter)},
+          {"memory_locked", report.granted.memory_locked},
+          {"sched_fifo", report.granted.fifo_granted},
+          {"cpus_kept_awake", report.granted.cpus_kept_awake}};
+}
+
+}  // namespace
+
+nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& options, const std::atomic<bool>& stop,
+                          std::ostream& log) {
+  const OwnedActuator actuator = make_actuator(setup.actuator, setup.node.channels);
+  ServoNodeController controller(setup.node, *actuator.actuator);
+  controller.start(setup.initial_displacement_m);
+
+  transport::DdsParticipant participant(setup.dds);
+  transport::DdsNodeEndpointConfig endpoint_config;
+  endpoint_config.test_id = setup.node.test_id;
+  endpoint_config.site_id = setup.node.site_id;
+  endpoint_config.qos.control_period_s = setup.node.control_period_s;
+  endpoint_config.qos.newest_only = setup.mode == ServoNodeSetup::Mode::kRealTime;
+  transport::DdsNodeEndpoint endpoint(participant, endpoint_config);
+
+  ServoNodeLoopOptions loop;
+  loop.real_time = setup.mode == ServoNodeSetup::Mode::kRealTime;
+  loop.heartbeat_rate_hz = setup.heartbeat_rate_hz;
+  loop.realtime = setup.realtime;
+  loop.duration_s = options.duration_s;
+  log << "rpsd servo-node: test " << setup.node.test_id << " site " << setup.node.site_id << ", " << setup.node.channels
+      << " channel(s), " << (loop.real_time ? "real time" : "lock-step") << " at " << 1.0 / setup.node.control_period_s
+      << " Hz" << std::endl;
+  const ServoNodeLoopReport report = run_servo_node_loop(controller, endpoint, loop, stop);
+  if (!report.granted.refused.empty()) log << "rpsd servo-node: " << report.granted.refused;
+  const auto& c = controller.counters();
+  log << "rpsd servo-node: stopped after " << c.ticks << " ticks, " << c.applied << " commands applied, "
+      << c.dropped_total() << " dropped, " << report.overruns << " overruns" << (controller.faulted() ? ", FAULTED" : "")
+      << std::endl;
+  return node_summary(setup, controller, report);
+}
+
+nlohmann::json emulate_controller(const ControllerEmulatorSetup& setup, const ServeOptions& options,
+                                  const std::atomic<bool>& stop, std::ostream& log) {
+  const servo::PlantSet plants = servo::make_plants(setup.plant, setup.channels);
+  ControllerEmulatorConfig config;
+  config.bind_host = setup.bind_host;
+  config.port = setup.port;
+  ControllerEmulator emulator(plants.pointers, config);
+  emulator.start(setup.initial_displacement_m);
+  log << "rpsd controller-emulator: " << setup.channels << " channel(s) on udp " << setup.bind_host << ":" << emulator.port()
+      << std::endl;
+  const std::int64_t end_ns =
+      options.duration_s > 0.0 ? realtime::monotonic_now_ns() + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
+  while (!stop.load() && (end_ns == 0 || realtime::monotonic_now_ns() < end_ns)) emulator.serve(0.05);
+  const auto& c = emulator.counters();
+  log << "rpsd controller-emulator: stopped after " << c.commands_applied << " commands, " << c.bad_packets
+      << " bad packets ignored" << std::endl;
+  return {{"commands_applied", c.commands_applied}, {"queries", c.queries},
+          {"bad_packets", c.bad_packets},           {"wrong_channels", c.wrong_channels},
+          {"stale_commands", c.stale_commands},     {"refused_commands", c.refused_commands}};
+}
+
+}  // namespace rpsd::node
