@@ -1,9 +1,10 @@
 // Coordinator overhead per step: everything the loop does apart from the integrator and the
 // plant. Measured as the difference of two timings taken in the same run:
-//   (1) the paper's SDOF RPsD loop (as in examples/scenarios/elcentro-sdof.yaml: numerical mass and
-//       damping, central difference, phase lead, ground-motion load, in-process link, the
-//       recorder hand-off to its writer thread) with a node whose plant follows the command
-//       exactly and does no physics (x = command, F = k x);
+//   (1) the paper's SDOF RPsD test (as in examples/scenarios/elcentro-sdof.yaml: numerical mass
+//       and damping, central difference, phase lead, ground-motion load, in-process link to
+//       the site's servo node with its limit checks, the recorder hand-off to its writer
+//       thread) on a plant that follows the command exactly and does no physics (an ideal
+//       delay of zero sampled once per control period: x = command, F = k x);
 //   (2) the same integrator, configured identically, stepped alone over the same record
 //       with the same restoring force k d.
 // (1) - (2) is the coordinator's own cost per step: the compensator, the link and node
@@ -14,26 +15,14 @@
 #include <stdexcept>
 
 #include "bench_report.h"
-#include "rpsd/coordinator/sdof_rpsd.h"
+#include "rpsd/coordinator/specimen_sdof.h"
+#include "rpsd/coordinator/test_assembly.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace {
 
 using namespace rpsd;
-
-// A plant that is exactly where it was commanded at the end of every interval.
-class FollowingPlant final : public servo::Plant {
- public:
-  explicit FollowingPlant(double stiffness_n_per_m) : k_(stiffness_n_per_m) {}
-  void reset(double displacement_m) override { x_ = displacement_m; }
-  void advance(double, double command_end_m, double) override { x_ = command_end_m; }
-  servo::PlantMeasurement measure() const override { return {x_, k_ * x_}; }
-
- private:
-  double k_;
-  double x_ = 0.0;
-};
 
 }  // namespace
 
@@ -42,30 +31,29 @@ int main(int argc, char** argv) try {
   bench::Fragment fragment("coordinator_overhead", argc, argv);
   const auto file = scenarios::load_study(options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
                                           {scenarios::parse_override("ground_motion.pad_after_s=20")});
-  const auto& scenario = std::get<scenarios::TestScenario>(file.study);
+  const auto& scenario = std::get<coordinator::TestConfig>(file.study);
   const double m = 7080.0, k = 700.8e3, zeta = 0.011;
   const auto& ground = scenario.ground_motion->acceleration_m_per_s2;
   const auto steps = static_cast<std::int64_t>(ground.size()) - 1;
 
-  coordinator::SdofRpsdSetup setup;
+  coordinator::SpecimenSdof setup;
   setup.mass_kg = m;
   setup.damping_ratio = zeta;
   setup.stiffness_n_per_m = k;
-  setup.initial_displacement_m = 0.0;
-  setup.dt_s = 1.0 / scenario.control_rate_hz;
-  setup.duration_s = static_cast<double>(steps) * setup.dt_s;
+  setup.control_rate_hz = scenario.control_rate_hz;
   setup.integrator = scenario.integrator;
-  setup.compensator = scenario.compensation;
+  setup.compensation = scenario.compensation;
+  setup.plant = servo::PureDelayParameters{0.0, k, scenario.control_rate_hz};
   setup.ground_acceleration_m_per_s2 = ground;
-  setup.keep_records = false;  // as `rpsd run` runs
+  const coordinator::TestConfig config = coordinator::specimen_sdof_test(setup);
+  const double dt_s = 1.0 / scenario.control_rate_hz;
 
   const auto loop_s = bench::time_trials(options.repetitions, 1, [&] {
-    FollowingPlant plant(k);
-    coordinator::SdofRpsdTest test(setup, plant);
+    coordinator::TestAssembly test(config, {});  // keeps no records, as `rpsd run` runs
     for (std::int64_t n = 0; n < steps; ++n) {
       if (test.step() != coordinator::StepOutcome::kOk) throw std::runtime_error("the loop stopped");
     }
-    test.finish();
+    test.finish(coordinator::StepOutcome::kOk);
   });
 
   // The integrator alone, with the loop's matrices: M, C and K0 = the specimen's stiffness.
@@ -76,7 +64,7 @@ int main(int argc, char** argv) try {
     integrator->configure(integrators::StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, m),
                                                                Eigen::MatrixXd::Constant(1, 1, c),
                                                                Eigen::MatrixXd::Constant(1, 1, k)),
-                          setup.dt_s);
+                          dt_s);
     Eigen::VectorXd force = Eigen::VectorXd::Constant(1, -m * ground[0]);
     Eigen::VectorXd restoring = Eigen::VectorXd::Zero(1);
     integrator->initialize(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), restoring, force);

@@ -35,7 +35,7 @@
 #include "bench_report.h"
 #include "child_process.h"
 #include "ddsperf.h"
-#include "rpsd/coordinator/test_runner.h"
+#include "rpsd/coordinator/test_runs.h"
 #include "rpsd/realtime/cpu_wake_latency.h"
 #include "rpsd/scenarios/study_file.h"
 
@@ -86,19 +86,19 @@ int main(int argc, char** argv) try {
   // The same with the coordinator polling for its feedback for up to 1 ms before sleeping.
   const auto busy_file = sdof("dds", ", busy_wait_s: 0.001");
   const auto local_file = sdof("in_process");
-  const auto& dds_scenario = std::get<scenarios::TestScenario>(dds_file.study);
-  const auto& busy_scenario = std::get<scenarios::TestScenario>(busy_file.study);
-  const auto& local_scenario = std::get<scenarios::TestScenario>(local_file.study);
+  const auto& dds_scenario = std::get<coordinator::TestConfig>(dds_file.study);
+  const auto& busy_scenario = std::get<coordinator::TestConfig>(busy_file.study);
+  const auto& local_scenario = std::get<coordinator::TestConfig>(local_file.study);
   const double simulated_s = dds_scenario.duration_s;
 
   // One lock-step run against a fresh node (its step count starts with the test's).
-  const auto lock_step = [&](const scenarios::TestScenario& scenario) {
+  const auto lock_step = [&](const coordinator::TestConfig& scenario) {
     bench::ChildProcess node({rpsd, "servo-node", node_yaml, "--set", "node.mode=lock_step", "--set",
                               "dds.domain_id=" + std::to_string(domain)},
                              {}, work / "node.log");
     LockStepRun r;
     const auto start = bench::Clock::now();
-    coordinator::TestAssembly test(scenario, {}, false, false);
+    coordinator::TestAssembly test(scenario, {});
     r.discovery_s = bench::seconds_since(start);
     const double cpu_start = bench::thread_cpu_s();
     const auto loop_start = bench::Clock::now();
@@ -119,7 +119,7 @@ int main(int argc, char** argv) try {
 
   // Baseline: the same test in process, as sdof_throughput times it.
   const auto local = bench::time_trials(options.repetitions, 1, [&] {
-    coordinator::TestAssembly test(local_scenario, {}, false, false);
+    coordinator::TestAssembly test(local_scenario, {});
     coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
     for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n) outcome = test.step();
     if (test.finish(outcome).steps != test.steps_planned()) throw std::runtime_error("the in-process run stopped early");

@@ -1,5 +1,5 @@
 // The seed paper's Figure 8 study as `rpsd run examples/scenarios/paper-fig8-delay-compensation.yaml`
-// runs it (coordinator::run_delay_compensation): ten RPsD free-vibration tests of the
+// runs it (studies::run_delay_compensation): ten RPsD free-vibration tests of the
 // paper's SDOF on the full servo model, one per compensated delay, each with its delay
 // theory and damping identification. Timed: the whole sweep, without CSV files or plots.
 // Figures: cases per second, and simulated seconds per wall second (cases that go unstable
@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "bench_report.h"
-#include "rpsd/coordinator/delay_compensation_study.h"
+#include "rpsd/studies/delay_compensation_study.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace {
@@ -18,19 +18,19 @@ namespace {
 using namespace rpsd;
 
 struct Sweep {
-  scenarios::DelayCompensationStudy study;
+  studies::DelayCompensationStudy study;
   double simulated_s = 0.0;
   bench::Trials seconds;
 };
 
 Sweep time_sweep(const std::filesystem::path& file, int repetitions) {
   Sweep s;
-  s.study = std::get<scenarios::DelayCompensationStudy>(scenarios::load_study(file).study);
-  for (const auto& c : coordinator::run_delay_compensation(s.study)) {
+  s.study = std::get<studies::DelayCompensationStudy>(scenarios::load_study(file).study);
+  for (const auto& c : studies::run_delay_compensation(s.study)) {
     s.simulated_s += static_cast<double>(c.steps) / s.study.control_rate_hz;
   }
   s.seconds = bench::time_trials(repetitions, 0, [&] {
-    if (coordinator::run_delay_compensation(s.study).size() != s.study.compensated_delays_s.size()) {
+    if (studies::run_delay_compensation(s.study).size() != s.study.compensated_delays_s.size()) {
       throw std::runtime_error("a case is missing");
     }
   });

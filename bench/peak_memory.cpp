@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "bench_report.h"
-#include "rpsd/coordinator/test_runner.h"
+#include "rpsd/coordinator/test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace {
@@ -150,10 +150,10 @@ int main(int argc, char** argv) try {
   // (2) growth per simulated minute, in fresh child processes: the difference between a
   // short and a long run, so that fixed costs (threads, queues, buffers) cancel.
   const auto growth = [&](double minutes, bool keep_records) {
-    scenarios::StudyFile file;
+    studies::StudyDocument file;
     return growth_in_child(
         [&] {
-          const auto& s = std::get<scenarios::TestScenario>(file.study);
+          const auto& s = std::get<coordinator::TestConfig>(file.study);
           if (keep_records) {
             const auto test = coordinator::run_test(s, "/dev/null", false);
             const auto reference = coordinator::run_test(s, "/dev/null", true);

@@ -29,7 +29,7 @@
 
 #include "bench_report.h"
 #include "child_process.h"
-#include "rpsd/coordinator/line_fit.h"
+#include "rpsd/studies/line_fit.h"
 
 namespace {
 
@@ -241,8 +241,8 @@ int main(int argc, char** argv) try {
   const bool every_step = completed && history.rows == planned && history.steps_in_order &&
                           summary.value("dropped_records", std::uint64_t{1}) == 0;
   constexpr double kPageKiB = 4.0;
-  const double coord_slope = coordinator::least_squares_slope(t_min, coord),
-               node_slope = coordinator::least_squares_slope(t_min, nodes);
+  const double coord_slope = studies::least_squares_slope(t_min, coord),
+               node_slope = studies::least_squares_slope(t_min, nodes);
   const std::string status = completed ? "completed" : "DID NOT COMPLETE: " + summary.value("outcome", std::string("exit " + std::to_string(code)));
 
   bench::Figure runs = bench::figure("long_run_completed", format("%g-minute real-time run at ", minutes) + r + " Hz over DDS (" + status + ")",

@@ -21,7 +21,7 @@
 #include <stdexcept>
 
 #include "bench_report.h"
-#include "rpsd/coordinator/test_runner.h"
+#include "rpsd/coordinator/test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 
@@ -39,7 +39,7 @@ int main(int argc, char** argv) try {
 
   const auto file = scenarios::load_study(options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
                                           {scenarios::parse_override("ground_motion.pad_after_s=" + std::to_string(kPadSeconds))});
-  const auto& scenario = std::get<scenarios::TestScenario>(file.study);
+  const auto& scenario = std::get<coordinator::TestConfig>(file.study);
   const double simulated_s = scenario.duration_s;
   const auto& servo = std::get<servo::ServoSystemParameters>(scenario.plant);
 
@@ -57,7 +57,7 @@ int main(int argc, char** argv) try {
   // One timed run: build the parts, step to the end, drain the recorder; as `rpsd run` runs
   // the test (no records kept in memory).
   const auto run = [&](const std::filesystem::path& csv) {
-    coordinator::TestAssembly test(scenario, csv, false, false);
+    coordinator::TestAssembly test(scenario, {csv, false, false, {}});
     coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
     for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n) outcome = test.step();
     const coordinator::TestRun done = test.finish(outcome);

@@ -11,14 +11,14 @@ namespace rpsd::coordinator {
 
 ActuatorLinks::~ActuatorLinks() = default;
 
-ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_period_s, bool perfect_actuator,
+ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool perfect_actuator,
                              std::span<const double> hold_m) {
   const int channels = static_cast<int>(s.experimental.size());
   initial_force_n_.assign(static_cast<std::size_t>(channels), 0.0);
   plant_of_channel_.assign(static_cast<std::size_t>(channels), nullptr);
   // Sites in order of first appearance; each site's channels in the test's channel order.
   std::map<std::uint32_t, std::size_t> index_of_site;
-  std::vector<const scenarios::ExperimentalChannel*> by_channel(static_cast<std::size_t>(channels));
+  std::vector<const ExperimentalChannel*> by_channel(static_cast<std::size_t>(channels));
   for (const auto& e : s.experimental) by_channel[static_cast<std::size_t>(e.dof.actuator_channel)] = &e;
   for (int ch = 0; ch < channels; ++ch) {
     const std::uint32_t site = by_channel[static_cast<std::size_t>(ch)]->site_id;
@@ -27,7 +27,7 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
     sites_[it->second].channels.push_back(ch);
   }
 
-  const bool over_dds = s.transport.kind == scenarios::TransportConfig::Kind::kDds && !perfect_actuator;
+  const bool over_dds = s.transport.kind == TransportConfig::Kind::kDds && !perfect_actuator;
   if (over_dds) {
     participant_ = std::make_unique<transport::DdsParticipant>(
         transport::DdsDomainConfig{s.transport.domain_id, s.transport.dds_config.string()});
@@ -41,7 +41,7 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
       config.site_id = site.site_id;
       config.channels = static_cast<int>(site.channels.size());
       config.qos.control_period_s = control_period_s;
-      config.qos.newest_only = s.clock.mode == scenarios::ClockConfig::Mode::kRealTime;
+      config.qos.newest_only = s.clock.mode == ClockConfig::Mode::kRealTime;
       config.feedback_timeout_s = s.transport.feedback_timeout_s;
       config.busy_wait_s = s.transport.busy_wait_s;
       auto link = std::make_unique<transport::DdsLink>(*participant_, config);
@@ -64,6 +64,9 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
       simulated.actuator = std::make_unique<servo::SimulatedActuator>(simulated.plants.pointers);
       actuators_.push_back(std::move(simulated));
       node::ServoNodeConfig config;
+      if (const auto found = s.site_nodes.find(site.site_id); found != s.site_nodes.end() && !perfect_actuator) {
+        config = found->second;  // its limits, limit actions and watchdog
+      }
       config.test_id = s.transport.test_id;
       config.site_id = site.site_id;
       config.channels = site_channels;
@@ -93,7 +96,7 @@ ActuatorLinks::ActuatorLinks(const scenarios::TestScenario& s, double control_pe
     throw std::runtime_error("no servo node answered for site(s) " + missing + " of test " + std::to_string(s.transport.test_id) +
                              " within " + std::to_string(s.transport.discovery_timeout_s) +
                              " s (is `rpsd servo-node` running with the same test_id, site_id and domain, and in mode " +
-                             (s.clock.mode == scenarios::ClockConfig::Mode::kRealTime ? "real_time" : "lock_step") + "?)");
+                             (s.clock.mode == ClockConfig::Mode::kRealTime ? "real_time" : "lock_step") + "?)");
   }
 }
 

@@ -99,7 +99,7 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
 bool RpsdLoop::commands_within_limits() {
   if (parts_.limits.empty()) return true;
   for (int c = 0; c < channels_; ++c) {
-    const scenarios::ChannelLimitsConfig& l = parts_.limits[c];
+    const CoordinatorLimits& l = parts_.limits[c];
     const double x = command_.displacement_m[c], change = x - last_sent_m_[c];
     // A non-finite command fails both comparisons below, so test it first.
     if (!std::isfinite(x) || std::abs(x) > l.max_stroke_m) {
@@ -117,7 +117,7 @@ bool RpsdLoop::commands_within_limits() {
 void RpsdLoop::experimental_forces(const transport::FeedbackSample& feedback) {
   for (int c = 0; c < channels_; ++c) {
     const RestoringForcePath& path = parts_.force_paths[c];
-    specimen_forces_[c] = path.kind == RestoringForcePath::Kind::kMeasuredForce
+    specimen_forces_[c] = path.source == RestoringForceSource::kMeasuredForce
                               ? feedback.force_n[c]
                               : path.stiffness_n_per_m * feedback.displacement_m[c];
   }

@@ -65,7 +65,7 @@ gm::GroundMotionRecord read_synthetic(MappingReader s) {
   return gm::generate_synthetic_ground_motion(options);
 }
 
-GroundMotion read_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
+coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
   gm::GroundMotionRecord record;
   try {
     record = r.has("synthetic") ? read_synthetic(r.mapping("synthetic")) : read_file(r, scenario_file);
@@ -123,7 +123,7 @@ GroundMotion read_section(MappingReader r, const std::filesystem::path& scenario
 
 }  // namespace
 
-GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
+coordinator::GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
   try {
     return read_section(std::move(r), scenario_file, step_s);
   } catch (const gm::RecordError& e) {

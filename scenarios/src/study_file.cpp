@@ -25,8 +25,8 @@ std::vector<double> read_log_range(MappingReader range) {
   return log_spaced(start, stop, static_cast<int>(points));
 }
 
-SineSweepStudy read_sine_sweep(MappingReader& root, servo::ServoSystemParameters servo) {
-  SineSweepStudy s;
+studies::SineSweepStudy read_sine_sweep(MappingReader& root, servo::ServoSystemParameters servo) {
+  studies::SineSweepStudy s;
   s.servo = std::move(servo);
   s.command_rate_hz = root.positive_number_or("command_rate_hz", s.command_rate_hz);
   MappingReader sweep = root.mapping("sine_sweep");
@@ -50,8 +50,8 @@ SineSweepStudy read_sine_sweep(MappingReader& root, servo::ServoSystemParameters
   return s;
 }
 
-FrequencyResponseStudy read_frequency_response(MappingReader& root, servo::ServoSystemParameters servo) {
-  FrequencyResponseStudy s;
+studies::FrequencyResponseStudy read_frequency_response(MappingReader& root, servo::ServoSystemParameters servo) {
+  studies::FrequencyResponseStudy s;
   s.frequencies_hz = read_log_range(root.mapping("frequencies_hz"));
   MappingReader lead = root.mapping("phase_lead");
   const double a = lead.positive_number("ratio_a");
@@ -65,15 +65,15 @@ FrequencyResponseStudy read_frequency_response(MappingReader& root, servo::Servo
   return s;
 }
 
-MaxGainStudy read_max_gain(MappingReader& root, servo::ServoSystemParameters servo) {
-  MaxGainStudy s;
+studies::MaxGainStudy read_max_gain(MappingReader& root, servo::ServoSystemParameters servo) {
+  studies::MaxGainStudy s;
   s.servo = std::move(servo);
   s.masses_kg = read_log_range(root.mapping("attached_mass_kg"));
   return s;
 }
 
-DelayCompensationStudy read_delay_compensation(MappingReader& root, const std::filesystem::path& file) {
-  DelayCompensationStudy s;
+studies::DelayCompensationStudy read_delay_compensation(MappingReader& root, const std::filesystem::path& file) {
+  studies::DelayCompensationStudy s;
   MappingReader structure = root.mapping("structure");
   s.mass_kg = structure.positive_number("mass_kg");
   s.stiffness_n_per_m = structure.positive_number("stiffness_n_per_m");
@@ -197,7 +197,7 @@ void apply_override(YAML::Node root, const Override& o) {
 
 namespace {
 
-StudyFile read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
+studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
                         const std::vector<Override>& command_line, bool sweep_allowed = true);
 
 // Shortest text that reads back as the same double.
@@ -210,12 +210,12 @@ std::string number_text(double v) {
 // `sweep:` is a list of one or two axes, each `key` with `values: [...]` or
 // `range: {start, stop, count}`. Each case is the document with the axis values set as
 // overrides, read in full, so that every case is checked before the batch runs.
-StudyFile read_sweep(const std::string& text, const std::vector<Override>& command_line, MappingReader& root,
-                     const std::filesystem::path& file, StudyFile result) {
+studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line, MappingReader& root,
+                     const std::filesystem::path& file, studies::StudyDocument result) {
   auto axes = root.mappings("sweep");
   if (axes.size() > 2) root.fail("sweep", "at most two swept keys");
   for (auto& axis : axes) {
-    SweepAxis a;
+    studies::SweepAxis a;
     a.key_path = axis.string("key");
     if (a.key_path.rfind("sweep", 0) == 0 || a.key_path == "study") axis.fail("key", "cannot sweep this key");
     if (axis.has("values")) {
@@ -242,7 +242,7 @@ StudyFile read_sweep(const std::string& text, const std::vector<Override>& comma
         overrides.push_back({result.sweep[1].key_path, number_text(result.sweep[1].values[j])});
         values.push_back(result.sweep[1].values[j]);
       }
-      StudyFile one;
+      studies::StudyDocument one;
       try {
         // Parsed afresh from the text, so that every untouched value keeps its line and column.
         YAML::Node case_document = parse_yaml_text(text, file.string());
@@ -255,7 +255,7 @@ StudyFile read_sweep(const std::string& text, const std::vector<Override>& comma
         if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
         throw ConfigError(std::string(e.what()) + " (sweep case " + where + ")");
       }
-      result.sweep_cases.push_back(std::get<TestScenario>(one.study));
+      result.sweep_cases.push_back(std::get<coordinator::TestConfig>(one.study));
       result.sweep_values.push_back(values);
     }
   }
@@ -280,11 +280,11 @@ YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vect
   return document;
 }
 
-StudyFile load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   return parse_study(read_config_text(file), file, overrides);
 }
 
-StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path& file,
+studies::StudyDocument parse_study(const std::string& yaml_text, const std::filesystem::path& file,
                       const std::vector<Override>& overrides) {
   YAML::Node document = parse_yaml_text(yaml_text, file.string());
   for (const Override& o : overrides) apply_override(document, o);
@@ -294,10 +294,10 @@ StudyFile parse_study(const std::string& yaml_text, const std::filesystem::path&
 
 namespace {
 
-StudyFile read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
+studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
                         const std::vector<Override>& command_line, bool sweep_allowed) {
   MappingReader root(document, file.string(), "");
-  StudyFile result;
+  studies::StudyDocument result;
   result.name = file.stem().string();
   result.description = root.optional_string("description").value_or("");
   {
@@ -312,7 +312,7 @@ StudyFile read_document(YAML::Node document, const std::filesystem::path& file, 
       if (!sweep_allowed) root.fail("sweep", "given more than once");
       return read_sweep(text, command_line, root, file, std::move(result));
     }
-    TestScenario scenario = read_test_scenario(root, file);
+    coordinator::TestConfig scenario = read_test_config(root, file);
     scenario.description = result.description;
     result.study = std::move(scenario);
     root.finish();

@@ -93,7 +93,7 @@ substructure::StorySpringConfig read_story(MappingReader s) {
   return spring;
 }
 
-void read_structure(MappingReader st, const std::filesystem::path& file, TestScenario& t) {
+void read_structure(MappingReader st, const std::filesystem::path& file, coordinator::TestConfig& t) {
   const std::string kind = st.string("kind");
   try {
     if (kind == "linear") {
@@ -139,9 +139,9 @@ void read_structure(MappingReader st, const std::filesystem::path& file, TestSce
   st.finish();
 }
 
-PlantConfig read_plant(MappingReader p, const std::filesystem::path& file, double specimen_stiffness) {
+servo::PlantConfig read_plant(MappingReader p, const std::filesystem::path& file, double specimen_stiffness) {
   const std::string kind = p.string("kind");
-  PlantConfig plant;
+  servo::PlantConfig plant;
   if (kind == "servo_model") {
     const std::filesystem::path parameters = file.parent_path() / p.string("parameters");
     if (!std::filesystem::exists(parameters)) p.fail("parameters", "no such parameter file: " + parameters.string());
@@ -230,12 +230,12 @@ compensation::CompensatorConfig read_compensation(MappingReader r, double contro
   return config;
 }
 
-void read_clock(MappingReader clock, TestScenario& t) {
+void read_clock(MappingReader clock, coordinator::TestConfig& t) {
   const std::string mode = clock.string("mode");
   if (mode == "as_fast_as_possible") {
-    t.clock.mode = ClockConfig::Mode::kAsFastAsPossible;
+    t.clock.mode = coordinator::ClockConfig::Mode::kAsFastAsPossible;
   } else if (mode == "real_time") {
-    t.clock.mode = ClockConfig::Mode::kRealTime;
+    t.clock.mode = coordinator::ClockConfig::Mode::kRealTime;
   } else {
     clock.fail("mode", "expected as_fast_as_possible or real_time, got \"" + mode + "\"");
   }
@@ -249,12 +249,12 @@ void read_clock(MappingReader clock, TestScenario& t) {
   clock.finish();
 }
 
-void read_transport(MappingReader r, const std::filesystem::path& file, TestScenario& t) {
+void read_transport(MappingReader r, const std::filesystem::path& file, coordinator::TestConfig& t) {
   const std::string kind = r.string("kind");
   if (kind == "in_process") {
-    t.transport.kind = TransportConfig::Kind::kInProcess;
+    t.transport.kind = coordinator::TransportConfig::Kind::kInProcess;
   } else if (kind == "dds") {
-    t.transport.kind = TransportConfig::Kind::kDds;
+    t.transport.kind = coordinator::TransportConfig::Kind::kDds;
   } else {
     r.fail("kind", "expected in_process or dds, got \"" + kind + "\"");
   }
@@ -269,7 +269,7 @@ void read_transport(MappingReader r, const std::filesystem::path& file, TestScen
   t.transport.feedback_timeout_s = r.positive_number_or("feedback_timeout_s", t.transport.feedback_timeout_s);
   t.transport.discovery_timeout_s = r.positive_number_or("discovery_timeout_s", t.transport.discovery_timeout_s);
   t.transport.busy_wait_s = r.non_negative_number_or("busy_wait_s", t.transport.busy_wait_s);
-  if (t.transport.busy_wait_s > 0.0 && t.clock.mode == ClockConfig::Mode::kRealTime) {
+  if (t.transport.busy_wait_s > 0.0 && t.clock.mode == coordinator::ClockConfig::Mode::kRealTime) {
     r.fail("busy_wait_s", "lock-step only (clock.mode as_fast_as_possible): a real-time loop must not spin on a core its "
                           "own receive thread may need");
   }
@@ -279,22 +279,12 @@ void read_transport(MappingReader r, const std::filesystem::path& file, TestScen
 
 }  // namespace
 
-PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m) {
+servo::PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m) {
   return read_plant(std::move(section), file, specimen_stiffness_n_per_m);
 }
 
-Eigen::Index structure_dofs(const TestScenario& t) {
-  return std::visit(
-      [](const auto& c) -> Eigen::Index {
-        using C = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) return c.mass_kg.rows();
-        else return static_cast<Eigen::Index>(c.floor_masses_kg.size());
-      },
-      t.structure);
-}
-
-TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path& file) {
-  TestScenario t;
+coordinator::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file) {
+  coordinator::TestConfig t;
   t.name = file.stem().string();
   read_structure(root.mapping("structure"), file, t);
   const Eigen::Index dofs = structure_dofs(t);
@@ -302,7 +292,7 @@ TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path
   // Experimental channels.
   std::set<Eigen::Index> used;
   for (auto& e : root.mappings("experimental")) {
-    ExperimentalChannel channel;
+    coordinator::ExperimentalChannel channel;
     channel.dof.dof = e.whole_number("dof", 0, dofs - 1);
     channel.dof.actuator_channel = e.whole_number_or("channel", 0, transport::kMaxChannels - 1,
                                                      static_cast<long>(t.experimental.size()));
@@ -311,15 +301,15 @@ TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path
     channel.dof.specimen_stiffness_estimate_n_per_m = e.non_negative_number("specimen_stiffness_n_per_m");
     const std::string source = e.string("restoring_force");
     if (source == "measured_force") {
-      channel.restoring_force = RestoringForceSource::kMeasuredForce;
+      channel.restoring_force = coordinator::RestoringForceSource::kMeasuredForce;
     } else if (source == "stiffness_times_displacement") {
-      channel.restoring_force = RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
+      channel.restoring_force = coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
     } else {
       e.fail("restoring_force", "expected measured_force or stiffness_times_displacement, got \"" + source + "\"");
     }
     channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1));
     if (auto limits = e.optional_mapping("limits")) {
-      ChannelLimitsConfig& l = channel.limits;
+      coordinator::CoordinatorLimits& l = channel.limits;
       l.max_stroke_m = limits->positive_number_or("max_stroke_m", l.max_stroke_m);
       l.max_increment_m = limits->positive_number_or("max_increment_m", l.max_increment_m);
       l.max_force_n = limits->positive_number_or("max_force_n", l.max_force_n);

@@ -10,14 +10,14 @@
 #include <string>
 #include <unistd.h>
 
-#include "rpsd/coordinator/test_runner.h"
+#include "rpsd/coordinator/test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 #include "../servo/paper_rig.h"
 
 namespace rpsd::coordinator {
 namespace {
 
-scenarios::TestScenario scenario_with_limits(const std::string& limits) {
+coordinator::TestConfig scenario_with_limits(const std::string& limits) {
   std::ifstream in(testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string anchor = "    restoring_force: stiffness_times_displacement\n";
@@ -26,7 +26,7 @@ scenarios::TestScenario scenario_with_limits(const std::string& limits) {
   std::ofstream(path) << text;
   auto file = scenarios::load_study(path);
   std::filesystem::remove(path);
-  return std::get<scenarios::TestScenario>(file.study);
+  return std::get<coordinator::TestConfig>(file.study);
 }
 
 TEST(CoordinatorLimits, ACommandBeyondTheStrokeIsNeverSent) {

@@ -9,9 +9,8 @@
 #include <vector>
 
 #include "rpsd/compensation/delay_theory.h"
-#include "rpsd/coordinator/damping_identification.h"
-#include "rpsd/coordinator/sdof_rpsd.h"
-#include "rpsd/servo/pure_delay_plant.h"
+#include "rpsd/studies/damping_identification.h"
+#include "specimen_runs.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -53,60 +52,76 @@ class LaggingLink final : public transport::Link {
   transport::FeedbackSample newest_{};
 };
 
-SdofRpsdSetup lagging_setup(int lag, std::int64_t silent_from, bool lease_lapsed = false) {
-  SdofRpsdSetup setup;  // the paper's elastic SDOF: 7080 kg, 700.8 kN/m, 1.1 %
-  setup.abort_amplitude_factor = 0.0;
-  setup.max_feedback_age_periods = 4;
-  setup.network = [=](transport::Link& inner) { return std::make_unique<LaggingLink>(inner, lag, silent_from, lease_lapsed); };
-  return setup;
+// The test in real time (late feedback tolerated up to 4 periods) but stepped without
+// pacing, or in lock-step, its link lagging as LaggingLink does.
+struct LaggingTest {
+  SpecimenSdof sdof;
+  int lag = 0;
+  std::int64_t silent_from = 1 << 30;
+  bool lease_lapsed = false;
+  bool real_time = true;
+};
+
+LaggingTest lagging(int lag, std::int64_t silent_from, bool lease_lapsed, bool real_time) {
+  LaggingTest t;
+  t.lag = lag;
+  t.silent_from = silent_from;
+  t.lease_lapsed = lease_lapsed;
+  t.real_time = real_time;
+  return t;
+}
+
+testing::SdofRun run(const LaggingTest& t) {
+  TestConfig config = specimen_sdof_test(t.sdof);
+  if (t.real_time) config.clock.mode = ClockConfig::Mode::kRealTime;
+  config.clock.max_feedback_age_periods = 4;
+  AssemblyOptions options;
+  options.wrap_link = [t](transport::Link& inner) {
+    return std::make_unique<LaggingLink>(inner, t.lag, t.silent_from, t.lease_lapsed);
+  };
+  return testing::run_steps(config, options);
 }
 
 // One second of the test against a plant without delay: what matters is the link.
-SdofRpsdResult run_one_second(SdofRpsdSetup setup) {
-  setup.duration_s = 1.0;
-  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
-  return run_sdof_rpsd(setup, plant);
-}
-
-std::vector<double> displacements(const SdofRpsdResult& r) {
-  std::vector<double> x;
-  for (const auto& s : r.records) x.push_back(s.displacement_m[0]);
-  return x;
+testing::SdofRun run_one_second(LaggingTest t) {
+  t.sdof.duration_s = 1.0;
+  return run(t);
 }
 
 TEST(FeedbackAge, OnePeriodLateFeedbackIsOneMorePeriodOfDelay) {
   const double plant_delay_s = 0.004;
-  SdofRpsdSetup setup = lagging_setup(1, 1 << 30);
-  setup.duration_s = 12.0;
-  servo::PureDelayPlant plant({plant_delay_s, setup.stiffness_n_per_m, 8192.0});
-  const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+  LaggingTest t;
+  t.lag = 1;
+  t.sdof.duration_s = 12.0;
+  t.sdof.plant = servo::PureDelayParameters{plant_delay_s, t.sdof.stiffness_n_per_m, 8192.0};
+  const auto r = run(t);
+  const SpecimenSdof& setup = t.sdof;
+  const double dt_s = 1.0 / setup.control_rate_hz;
   ASSERT_EQ(r.outcome, StepOutcome::kOk);
-  ASSERT_EQ(r.records.size(), static_cast<std::size_t>(12.0 / setup.dt_s));
+  ASSERT_EQ(r.records.size(), static_cast<std::size_t>(12.0 / dt_s));
   EXPECT_EQ(r.records[0].feedback_age_periods, 0);
   for (std::size_t n = 1; n < r.records.size(); ++n) ASSERT_EQ(r.records[n].feedback_age_periods, 1) << n;
 
   const compensation::DelayedOscillator sdof{setup.mass_kg,
                                              2.0 * setup.damping_ratio * std::sqrt(setup.stiffness_n_per_m * setup.mass_kg), 0.0,
                                              setup.stiffness_n_per_m};
-  const double exact = compensation::damping_ratio_of(compensation::dominant_root(sdof, plant_delay_s + setup.dt_s));
+  const double exact = compensation::damping_ratio_of(compensation::dominant_root(sdof, plant_delay_s + dt_s));
   const double without_lag = compensation::damping_ratio_of(compensation::dominant_root(sdof, plant_delay_s));
-  const IdentifiedDamping identified = identify_damping(displacements(r), setup.dt_s, 0.0, 1e-6);
+  const studies::IdentifiedDamping identified = studies::identify_damping(testing::displacements(r), dt_s, 0.0, 1e-6);
   EXPECT_NEAR(identified.damping_ratio, exact, 0.001);
   // The extra period matters: the result is not the one without the lag.
   EXPECT_GT(std::abs(exact - without_lag), 0.004);
 }
 
 TEST(FeedbackAge, LateButAnsweringNodeKeepsTheTestGoing) {
-  SdofRpsdSetup setup = lagging_setup(4, 1 << 30);
-  const SdofRpsdResult r = run_one_second(setup);
+  const auto r = run_one_second(lagging(4, 1 << 30, false, true));
   EXPECT_EQ(r.outcome, StepOutcome::kOk);
   EXPECT_EQ(r.records.back().feedback_age_periods, 4);
 }
 
 TEST(FeedbackAge, ASilentNodeStopsTheTestOnTheFifthPeriod) {
   const std::int64_t silent_from = 100;
-  SdofRpsdSetup setup = lagging_setup(0, silent_from);
-  const SdofRpsdResult r = run_one_second(setup);
+  const auto r = run_one_second(lagging(0, silent_from, false, true));
   EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
   // Exchanges 100..103 go on with ages 1..4; the fifth (age 5) stops before recording.
   ASSERT_EQ(r.records.size(), static_cast<std::size_t>(silent_from + 4));
@@ -116,33 +131,27 @@ TEST(FeedbackAge, ASilentNodeStopsTheTestOnTheFifthPeriod) {
 // A liveliness lease that lapsed while feedback kept coming (a host that stalled both
 // processes) is judged by the feedback's age, like a timeout: the test goes on.
 TEST(FeedbackAge, ALapsedLeaseWithRecentFeedbackKeepsARealTimeTestGoing) {
-  SdofRpsdSetup setup = lagging_setup(4, 1 << 30, true);
-  const SdofRpsdResult r = run_one_second(setup);
+  const auto r = run_one_second(lagging(4, 1 << 30, true, true));
   EXPECT_EQ(r.outcome, StepOutcome::kOk);
-  EXPECT_EQ(r.records.size(), static_cast<std::size_t>(1.0 / setup.dt_s));
+  EXPECT_EQ(r.records.size(), 1024u);
   EXPECT_EQ(r.records.back().feedback_age_periods, 4);
 }
 
 TEST(FeedbackAge, ALapsedLeaseAndASilentNodeStillStopOnTheFifthPeriod) {
   const std::int64_t silent_from = 100;
-  SdofRpsdSetup setup = lagging_setup(0, silent_from, true);
-  const SdofRpsdResult r = run_one_second(setup);
+  const auto r = run_one_second(lagging(0, silent_from, true, true));
   EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
   ASSERT_EQ(r.records.size(), static_cast<std::size_t>(silent_from + 4));
 }
 
 TEST(FeedbackAge, LockStepStopsOnALapsedLease) {
-  SdofRpsdSetup setup = lagging_setup(1, 1 << 30, true);
-  setup.max_feedback_age_periods = 0;
-  const SdofRpsdResult r = run_one_second(setup);
+  const auto r = run_one_second(lagging(1, 1 << 30, true, false));
   EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
   EXPECT_EQ(r.records.size(), 1u);
 }
 
 TEST(FeedbackAge, LockStepStopsOnTheFirstLateFeedback) {
-  SdofRpsdSetup setup = lagging_setup(1, 1 << 30);
-  setup.max_feedback_age_periods = 0;
-  const SdofRpsdResult r = run_one_second(setup);
+  const auto r = run_one_second(lagging(1, 1 << 30, false, false));
   EXPECT_EQ(r.outcome, StepOutcome::kLinkFailure);
   EXPECT_EQ(r.records.size(), 1u);
 }

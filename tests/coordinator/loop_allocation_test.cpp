@@ -3,23 +3,26 @@
 #include <gtest/gtest.h>
 
 #include "allocation_counter.h"
-#include "rpsd/coordinator/sdof_rpsd.h"
-#include "rpsd/servo/pure_delay_plant.h"
-#include "rpsd/servo/servo_hydraulic_plant.h"
-#include "rpsd/servo/transfer_function_plant.h"
 #include "../servo/paper_rig.h"
+#include "rpsd/coordinator/specimen_sdof.h"
+#include "rpsd/coordinator/test_assembly.h"
 
 namespace rpsd::coordinator {
 namespace {
 
-long allocations_over_steps(const SdofRpsdSetup& setup, servo::Plant& plant, int steps) {
-  SdofRpsdTest test(setup, plant);
+// The whole test as rpsd runs it: loop, in-process servo node (controller, limits, watchdog),
+// simulated actuator, recorder hand-off.
+long allocations_over_steps(SpecimenSdof sdof, const servo::PlantConfig& plant, int steps) {
+  sdof.plant = plant;
+  sdof.duration_s = 2.0 * steps / sdof.control_rate_hz;
+  const TestConfig config = specimen_sdof_test(sdof);
+  TestAssembly test(config, {{}, false, true, {}});
   rpsd::testing::begin_counting_allocations();
   for (int i = 0; i < steps; ++i) {
     if (test.step() != StepOutcome::kOk) break;
   }
   const long allocations = rpsd::testing::end_counting_allocations().total();
-  EXPECT_EQ(test.finish().size(), static_cast<std::size_t>(steps));
+  EXPECT_EQ(test.finish(StepOutcome::kOk).records.size(), static_cast<std::size_t>(steps));
   return allocations;
 }
 
@@ -32,7 +35,7 @@ TEST(LoopAllocation, CounterSeesAllocations) {
 }
 
 TEST(LoopAllocation, NoAllocationPerStep) {
-  SdofRpsdSetup setup;
+  SpecimenSdof setup;
   setup.initial_displacement_m = 0.005;
   const compensation::CompensatorConfig compensators[] = {
       compensation::PassThroughParameters{},
@@ -45,16 +48,15 @@ TEST(LoopAllocation, NoAllocationPerStep) {
                                                        integrators::HhtAlphaParams{}};
   for (const auto& compensator : compensators) {
     for (const auto& integrator : integrators) {
-      setup.compensator = compensator;
+      setup.compensation = compensator;
       setup.integrator = integrator;
-      servo::PureDelayPlant delay({0.02, setup.stiffness_n_per_m, 8192.0});
+      const servo::PureDelayParameters delay{0.02, setup.stiffness_n_per_m, 8192.0};
       EXPECT_EQ(allocations_over_steps(setup, delay, 4000), 0) << compensation::compensator_name(compensator);
-      servo::ServoHydraulicPlant paper(rpsd::testing::paper_rig());
-      EXPECT_EQ(allocations_over_steps(setup, paper, 2000), 0) << compensation::compensator_name(compensator);
+      EXPECT_EQ(allocations_over_steps(setup, rpsd::testing::paper_rig(), 2000), 0) << compensation::compensator_name(compensator);
       // The RTHS benchmark's fifth-order plant.
-      servo::TransferFunctionPlant benchmark(
-          {{servo::Polynomial{2.18385e13}, servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
-           setup.stiffness_n_per_m, 8192.0});
+      const servo::TransferFunctionPlantParameters benchmark{
+          {servo::Polynomial{2.18385e13}, servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
+          setup.stiffness_n_per_m, 8192.0};
       EXPECT_EQ(allocations_over_steps(setup, benchmark, 2000), 0) << compensation::compensator_name(compensator);
     }
   }

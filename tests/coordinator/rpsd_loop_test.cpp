@@ -10,32 +10,31 @@
 
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/compensation/polynomial_extrapolation.h"
-#include "rpsd/coordinator/damping_identification.h"
-#include "rpsd/coordinator/sdof_rpsd.h"
-#include "rpsd/servo/pure_delay_plant.h"
+#include "rpsd/studies/damping_identification.h"
+#include "specimen_runs.h"
 
 namespace rpsd::coordinator {
 namespace {
 
-std::vector<double> displacements(const SdofRpsdResult& r) {
-  std::vector<double> x;
-  for (const auto& s : r.records) x.push_back(s.displacement_m[0]);
-  return x;
-}
+using studies::identify_damping;
+using studies::IdentifiedDamping;
+using testing::displacements;
+using testing::run_sdof;
 
-compensation::DelayedOscillator paper_sdof(const SdofRpsdSetup& s) {
+servo::PureDelayParameters delay_plant(double delay_s) { return {delay_s, SpecimenSdof{}.stiffness_n_per_m, 8192.0}; }
+
+compensation::DelayedOscillator paper_sdof(const SpecimenSdof& s) {
   return {s.mass_kg, 2.0 * s.damping_ratio * std::sqrt(s.stiffness_n_per_m * s.mass_kg), 0.0, s.stiffness_n_per_m};
 }
 
 TEST(RpsdLoop, UndercompensatedDelayGivesTheDampingOfTheExactDdeRoot) {
-  SdofRpsdSetup setup;  // the paper's elastic SDOF: 7080 kg, 700.8 kN/m, 1.1 %
+  SpecimenSdof setup;  // the paper's elastic SDOF: 7080 kg, 700.8 kN/m, 1.1 %
   setup.duration_s = 12.0;
-  setup.abort_amplitude_factor = 0.0;
   for (double delay_s : {0.0, 0.002, 0.005, 0.010}) {
-    servo::PureDelayPlant plant({delay_s, setup.stiffness_n_per_m, 8192.0});
-    const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+    setup.plant = delay_plant(delay_s);
+    const auto r = run_sdof(setup);
     ASSERT_EQ(r.outcome, StepOutcome::kOk);
-    const IdentifiedDamping identified = identify_damping(displacements(r), setup.dt_s, 0.0, 1e-6);
+    const IdentifiedDamping identified = identify_damping(displacements(r), (1.0 / setup.control_rate_hz), 0.0, 1e-6);
     const double exact = compensation::damping_ratio_of(compensation::dominant_root(paper_sdof(setup), delay_s));
     EXPECT_NEAR(identified.damping_ratio, exact, 0.001) << delay_s * 1e3 << " ms";
     RecordProperty("delay_" + std::to_string(static_cast<int>(delay_s * 1e3)) + "ms",
@@ -44,18 +43,18 @@ TEST(RpsdLoop, UndercompensatedDelayGivesTheDampingOfTheExactDdeRoot) {
 }
 
 TEST(RpsdLoop, PerfectCompensationTracksTheTargetToTheExtrapolationError) {
-  SdofRpsdSetup setup;
+  SpecimenSdof setup;
   setup.duration_s = 4.0;
   const double delay_s = 0.020;
   for (int order : {2, 3}) {
-    setup.compensator = compensation::PolynomialExtrapolationParameters{order, delay_s};
-    servo::PureDelayPlant plant({delay_s, setup.stiffness_n_per_m, 8192.0});
-    const SdofRpsdResult r = run_sdof_rpsd(setup, plant);
+    setup.compensation = compensation::PolynomialExtrapolationParameters{order, delay_s};
+    setup.plant = delay_plant(delay_s);
+    const auto r = run_sdof(setup);
     ASSERT_EQ(r.outcome, StepOutcome::kOk);
     // For a sinusoid of the structure's frequency, measured / target = H(e^{j w dt}) e^{-j w tau}.
     const double omega = std::sqrt(setup.stiffness_n_per_m / setup.mass_kg);
     const double bound =
-        std::abs(compensation::extrapolation_response(order, delay_s / setup.dt_s, omega * setup.dt_s) *
+        std::abs(compensation::extrapolation_response(order, delay_s / (1.0 / setup.control_rate_hz), omega * (1.0 / setup.control_rate_hz)) *
                      std::exp(std::complex<double>(0.0, -omega * delay_s)) -
                  1.0);
     double worst = 0.0, peak = 0.0;
@@ -67,16 +66,16 @@ TEST(RpsdLoop, PerfectCompensationTracksTheTargetToTheExtrapolationError) {
     }
     EXPECT_LT(worst / peak, 1.5 * bound) << "order " << order;
     // ...and the damping is the structure's own, not the delay's.
-    const IdentifiedDamping identified = identify_damping(displacements(r), setup.dt_s, 0.5, 1e-6);
+    const IdentifiedDamping identified = identify_damping(displacements(r), (1.0 / setup.control_rate_hz), 0.5, 1e-6);
     EXPECT_NEAR(identified.damping_ratio, setup.damping_ratio, 0.002) << "order " << order;
   }
 }
 
 TEST(RpsdLoop, AsFastAsPossibleRunsAreBitForBitRepeatable) {
-  SdofRpsdSetup setup;
+  SpecimenSdof setup;
   setup.duration_s = 1.0;
-  servo::PureDelayPlant a({0.01, setup.stiffness_n_per_m, 8192.0}), b({0.01, setup.stiffness_n_per_m, 8192.0});
-  const auto ra = run_sdof_rpsd(setup, a), rb = run_sdof_rpsd(setup, b);
+  setup.plant = delay_plant(0.01);
+  const auto ra = run_sdof(setup), rb = run_sdof(setup);
   ASSERT_EQ(ra.records.size(), rb.records.size());
   for (std::size_t i = 0; i < ra.records.size(); ++i) {
     ASSERT_EQ(ra.records[i].measured_m[0], rb.records[i].measured_m[0]);
@@ -86,10 +85,9 @@ TEST(RpsdLoop, AsFastAsPossibleRunsAreBitForBitRepeatable) {
 
 TEST(RpsdLoop, EnergyBalanceCloses) {
   // Input energy = kinetic energy + damping energy + restoring work, to discretisation error.
-  SdofRpsdSetup setup;
+  SpecimenSdof setup;
   setup.duration_s = 3.0;
-  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
-  const auto r = run_sdof_rpsd(setup, plant);
+  const auto r = run_sdof(setup);
   const double strain0 = 0.5 * setup.stiffness_n_per_m * setup.initial_displacement_m * setup.initial_displacement_m;
   for (const auto& s : r.records) {
     const double error = s.input_energy_j - (s.kinetic_energy_j + s.damping_energy_j + s.restoring_energy_j);
@@ -100,13 +98,11 @@ TEST(RpsdLoop, EnergyBalanceCloses) {
 TEST(RpsdLoop, GroundMotionResponseMatchesTheClosedForm) {
   // A perfect actuator (no delay) turns RPsD into plain integration: a harmonic ground
   // acceleration from rest must give the closed-form transient plus steady state.
-  SdofRpsdSetup setup;
+  SpecimenSdof setup;
   setup.initial_displacement_m = 0.0;
-  setup.abort_amplitude_factor = 0.0;
-  const double amplitude = 1.0, omega_g = 2.0 * std::numbers::pi * 1.2, dt = setup.dt_s;
+  const double amplitude = 1.0, omega_g = 2.0 * std::numbers::pi * 1.2, dt = (1.0 / setup.control_rate_hz);
   for (int n = 0; n <= 4 * 1024; ++n) setup.ground_acceleration_m_per_s2.push_back(amplitude * std::sin(omega_g * n * dt));
-  servo::PureDelayPlant plant({0.0, setup.stiffness_n_per_m, 8192.0});
-  const auto r = run_sdof_rpsd(setup, plant);
+  const auto r = run_sdof(setup);
   ASSERT_EQ(r.records.size(), 4u * 1024u);  // the test ends with the record
 
   const double m = setup.mass_kg, k = setup.stiffness_n_per_m, omega = std::sqrt(k / m), zeta = setup.damping_ratio;
@@ -130,30 +126,17 @@ TEST(RpsdLoop, GroundMotionResponseMatchesTheClosedForm) {
 TEST(RpsdLoop, MeasuredForcePathEqualsStiffnessPathWhenTheLoadCellReadsKx) {
   // An ideal plant whose load cell reads k x_m: both restoring-force paths see the same
   // numbers, so the two tests must agree to the last bit.
-  SdofRpsdSetup setup;
+  SpecimenSdof setup;
   setup.duration_s = 2.0;
-  servo::PureDelayPlant a({0.004, setup.stiffness_n_per_m, 8192.0}), b({0.004, setup.stiffness_n_per_m, 8192.0});
-  const auto by_stiffness = run_sdof_rpsd(setup, a);
-  setup.force_path = RestoringForcePath::Kind::kMeasuredForce;
-  const auto by_force = run_sdof_rpsd(setup, b);
+  setup.plant = delay_plant(0.004);
+  const auto by_stiffness = run_sdof(setup);
+  setup.restoring_force = RestoringForceSource::kMeasuredForce;
+  const auto by_force = run_sdof(setup);
   ASSERT_EQ(by_stiffness.records.size(), by_force.records.size());
   for (std::size_t i = 0; i < by_force.records.size(); ++i) {
     ASSERT_EQ(by_stiffness.records[i].displacement_m[0], by_force.records[i].displacement_m[0]) << i;
     ASSERT_EQ(by_force.records[i].specimen_restoring_force_n[0], by_force.records[i].measured_force_n[0]);
   }
-}
-
-TEST(DampingIdentification, RecoversTheDampingOfAClosedFormDecay) {
-  const double zeta = 0.03, omega = 2.0 * std::numbers::pi * 1.5, dt = 1.0 / 1024.0;
-  const double omega_d = omega * std::sqrt(1.0 - zeta * zeta);
-  std::vector<double> x;
-  for (int i = 0; i < 8 * 1024; ++i) x.push_back(std::exp(-zeta * omega * i * dt) * std::cos(omega_d * i * dt));
-  const IdentifiedDamping d = identify_damping(x, dt);
-  EXPECT_NEAR(d.damping_ratio, zeta, 1e-5);
-  EXPECT_NEAR(d.damped_frequency_hz, omega_d / (2.0 * std::numbers::pi), 1e-4);
-  // A growing response gives a negative ratio.
-  for (int i = 0; i < static_cast<int>(x.size()); ++i) x[i] = std::exp(0.02 * omega * i * dt) * std::cos(omega_d * i * dt);
-  EXPECT_NEAR(identify_damping(x, dt).damping_ratio, -0.02, 1e-5);
 }
 
 }  // namespace

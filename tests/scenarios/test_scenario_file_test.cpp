@@ -27,11 +27,11 @@ std::string error_of(const std::vector<Override>& overrides) {
 
 TEST(TestScenarioFile, ReadsTheTypedScenario) {
   const auto file = load_study(example());
-  const auto& t = std::get<TestScenario>(file.study);
+  const auto& t = std::get<coordinator::TestConfig>(file.study);
   EXPECT_EQ(structure_dofs(t), 1);
   ASSERT_EQ(t.experimental.size(), 1u);
   EXPECT_DOUBLE_EQ(t.experimental[0].dof.specimen_stiffness_estimate_n_per_m, 700.8e3);
-  EXPECT_EQ(t.experimental[0].restoring_force, RestoringForceSource::kStiffnessTimesMeasuredDisplacement);
+  EXPECT_EQ(t.experimental[0].restoring_force, coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement);
   EXPECT_DOUBLE_EQ(std::get<servo::PureDelayParameters>(t.plant).delay_s, 0.005);
   const auto& comp = std::get<compensation::PolynomialExtrapolationParameters>(t.compensation);
   EXPECT_EQ(comp.order, 3);
@@ -46,7 +46,7 @@ TEST(TestScenarioFile, ReadsTheTypedScenario) {
 
 TEST(TestScenarioFile, OverridesReplaceValuesAndAreSavedInTheEffectiveScenario) {
   const auto file = load_study(example(), {parse_override("servo.delay_s=0.02"), parse_override("clock.control_rate_hz=2048")});
-  const auto& t = std::get<TestScenario>(file.study);
+  const auto& t = std::get<coordinator::TestConfig>(file.study);
   EXPECT_DOUBLE_EQ(std::get<servo::PureDelayParameters>(t.plant).delay_s, 0.02);
   EXPECT_DOUBLE_EQ(t.control_rate_hz, 2048.0);
   EXPECT_NE(file.effective_yaml.find("delay_s: 0.02"), std::string::npos) << file.effective_yaml;
@@ -54,8 +54,8 @@ TEST(TestScenarioFile, OverridesReplaceValuesAndAreSavedInTheEffectiveScenario) 
 
 // A real-time run keeps the CPUs out of slow idle states unless the scenario says not to.
 TEST(TestScenarioFile, KeepingTheCpusAwakeIsOnUnlessTurnedOff) {
-  EXPECT_TRUE(std::get<TestScenario>(load_study(example()).study).clock.realtime.keep_cpus_awake);
-  EXPECT_FALSE(std::get<TestScenario>(load_study(example(), {parse_override("clock.keep_cpus_awake=false")}).study)
+  EXPECT_TRUE(std::get<coordinator::TestConfig>(load_study(example()).study).clock.realtime.keep_cpus_awake);
+  EXPECT_FALSE(std::get<coordinator::TestConfig>(load_study(example(), {parse_override("clock.keep_cpus_awake=false")}).study)
                    .clock.realtime.keep_cpus_awake);
   EXPECT_NE(error_of({parse_override("clock.keep_cpus_awake=sometimes")}).find("clock.keep_cpus_awake"), std::string::npos);
 }
@@ -83,8 +83,8 @@ TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
 // could starve its own receive thread), negative or beyond 10 ms.
 TEST(TestScenarioFile, BusyWaitIsForLockStepOnly) {
   const auto file = load_study(example(), {parse_override("transport={kind: dds, busy_wait_s: 0.0002}")});
-  EXPECT_DOUBLE_EQ(std::get<TestScenario>(file.study).transport.busy_wait_s, 0.0002);
-  EXPECT_DOUBLE_EQ(std::get<TestScenario>(load_study(example()).study).transport.busy_wait_s, 0.0);
+  EXPECT_DOUBLE_EQ(std::get<coordinator::TestConfig>(file.study).transport.busy_wait_s, 0.0002);
+  EXPECT_DOUBLE_EQ(std::get<coordinator::TestConfig>(load_study(example()).study).transport.busy_wait_s, 0.0);
   EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: 0.0002}"), parse_override("clock.mode=real_time")})
                 .find("transport.busy_wait_s: lock-step only"),
             std::string::npos);

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "rpsd/scenarios/test_scenario.h"
+#include "rpsd/coordinator/test_config.h"
 #include "rpsd/node/actuator_factory.h"
 #include "rpsd/node/lock_step_node.h"
 #include "rpsd/servo/plant.h"
@@ -27,7 +27,7 @@ class ActuatorLinks {
   /// channel, in channel order). With perfect_actuator, in-process plants follow their
   /// command exactly whatever the transport. DDS: waits for every site's node to be
   /// discovered and throws std::runtime_error naming the missing sites. Not real-time safe.
-  ActuatorLinks(const scenarios::TestScenario& scenario, double control_period_s, bool perfect_actuator,
+  ActuatorLinks(const TestConfig& config, double control_period_s, bool perfect_actuator,
                 std::span<const double> hold_m);
   ~ActuatorLinks();
 

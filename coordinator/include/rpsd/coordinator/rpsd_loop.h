@@ -23,24 +23,16 @@
 
 #include "rpsd/compensation/command_compensator.h"
 #include "rpsd/compensation/tracking_indicator.h"
+#include "rpsd/coordinator/coordinator_limits.h"
 #include "rpsd/coordinator/recorder.h"
+#include "rpsd/coordinator/restoring_force.h"
 #include "rpsd/integrators/integrator.h"
-#include "rpsd/scenarios/test_scenario.h"
 #include "rpsd/substructure/ground_motion_load.h"
 #include "rpsd/substructure/numerical_model.h"
 #include "rpsd/substructure/partition.h"
 #include "rpsd/transport/link.h"
 
 namespace rpsd::coordinator {
-
-/// How the experimental restoring force of a channel is obtained.
-struct RestoringForcePath {
-  enum class Kind { kMeasuredForce, kStiffnessTimesMeasuredDisplacement };
-  Kind kind = Kind::kMeasuredForce;
-  /// For kStiffnessTimesMeasuredDisplacement: the specimen's stiffness (the paper's Figure 8
-  /// experiment: the load cell also sees the inertia of the mass that is physically there).
-  double stiffness_n_per_m = 0.0;
-};
 
 struct LoopParts {
   integrators::Integrator* integrator = nullptr;          ///< configured with M, C, K0 and dt
@@ -63,7 +55,7 @@ struct LoopParts {
   int max_feedback_age_periods = 0;
   /// The coordinator's limits per channel (empty: none). A command beyond its stroke or
   /// increment is never sent; a measured force beyond its bound stops the test at once.
-  std::vector<scenarios::ChannelLimitsConfig> limits;
+  std::vector<CoordinatorLimits> limits;
 };
 
 /// Which coordinator limit stopped the test, on which channel, at what value.
@@ -93,6 +85,8 @@ class RpsdLoop {
   /// The record of the last step taken (what step() handed to the recorder). Real-time safe.
   const StepRecord& last_record() const { return record_; }
 
+  /// Whether a full recorder queue makes step() wait (LoopParts::wait_for_recorder).
+  void set_wait_for_recorder(bool wait) { parts_.wait_for_recorder = wait; }
   /// Real time: how late the current cycle woke (recorded with the step). Real-time safe.
   void set_cycle_lateness_ns(std::int64_t ns) { cycle_lateness_ns_ = ns; }
   std::int64_t late_feedback_total() const { return late_total_; }

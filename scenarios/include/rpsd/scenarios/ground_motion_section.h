@@ -6,14 +6,14 @@
 #include <filesystem>
 
 #include "rpsd/ground_motion/record.h"
-#include "rpsd/scenarios/test_scenario.h"
+#include "rpsd/coordinator/test_config.h"
 #include "rpsd/scenarios/yaml_reader.h"
 
 namespace rpsd::scenarios {
 
 /// Reads and processes the record; file paths are relative to the scenario file. Every
 /// error names the scenario's key or the record's file and line. Not real-time safe.
-GroundMotion read_ground_motion_section(MappingReader section, const std::filesystem::path& scenario_file,
+coordinator::GroundMotion read_ground_motion_section(MappingReader section, const std::filesystem::path& scenario_file,
                                         double integration_step_s);
 
 }  // namespace rpsd::scenarios

@@ -3,17 +3,17 @@
 
 #include <filesystem>
 
-#include "rpsd/scenarios/test_scenario.h"
+#include "rpsd/coordinator/test_config.h"
 #include "rpsd/scenarios/yaml_reader.h"
 
 namespace rpsd::scenarios {
 
 /// Reads the scenario from the document `root` of `file` (paths inside are relative to it).
 /// Not real-time safe.
-TestScenario read_test_scenario(MappingReader& root, const std::filesystem::path& file);
+coordinator::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file);
 
 /// A `servo:` section (servo_model with its parameter file relative to `file`,
 /// ideal_delay or transfer_function); shared by scenarios and servo-node files.
-PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m);
+servo::PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m);
 
 }  // namespace rpsd::scenarios

@@ -1,0 +1,154 @@
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "rpsd/commands.h"
+#include "rpsd/scenarios/servo_node_file.h"
+#include "rpsd/scenarios/study_file.h"
+#include "rpsd/studies/dry_run_report.h"
+#include "rpsd/studies/study_output.h"
+#include "rpsd/studies/test_output.h"
+
+namespace rpsd::cli {
+namespace {
+
+struct RunOptions {
+  std::string scenario;
+  std::string out;
+  std::vector<std::string> overrides;
+  std::string record;
+  bool dry_run = false;
+  std::vector<std::string> node_files;
+};
+
+// Steps, simulated time, speed as a multiple of real time, ETA; on a terminal only, and
+// only once the run has lasted a second.
+class ProgressBar {
+ public:
+  explicit ProgressBar(double control_rate_hz) : rate_hz_(control_rate_hz), start_(std::chrono::steady_clock::now()) {}
+  void operator()(std::int64_t done, std::int64_t planned) {
+    if (!isatty(STDERR_FILENO)) return;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (wall < 1.0) return;
+    const double simulated = done / rate_hz_;
+    const double speed = simulated / wall;
+    const double eta = speed > 0.0 ? (planned - done) / rate_hz_ / speed : 0.0;
+    const int width = 30, filled = planned > 0 ? static_cast<int>(width * done / planned) : 0;
+    std::fprintf(stderr, "\r[%.*s%*s] %lld/%lld steps  %.1f s simulated  %.1fx real time  ETA %.0f s ", filled,
+                 "##############################", width - filled, "", static_cast<long long>(done),
+                 static_cast<long long>(planned), simulated, speed, eta);
+    drawn_ = true;
+  }
+  ~ProgressBar() {
+    if (drawn_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  double rate_hz_;
+  std::chrono::steady_clock::time_point start_;
+  bool drawn_ = false;
+};
+
+// The limits a node enforces, as `rpsd servo-node FILE` reads them.
+studies::NodeLimits node_limits(const std::string& file) {
+  const node::ServoNodeSetup node = scenarios::load_servo_node(file);
+  studies::NodeLimits limits;
+  limits.name = file;
+  limits.test_id = node.node.test_id;
+  limits.site_id = node.node.site_id;
+  limits.control_period_s = node.node.control_period_s;
+  limits.channels.assign(node.node.limits.begin(), node.node.limits.begin() + node.node.channels);
+  return limits;
+}
+
+// The pre-test check: its table on stdout, its numbers in OUT/dry-run.json; true when ready.
+bool check_before_running(const coordinator::TestConfig& test, const std::string& out, const std::vector<std::string>& node_files) {
+  std::vector<studies::NodeLimits> nodes;
+  for (const auto& f : node_files) nodes.push_back(node_limits(f));
+  const studies::DryRunReport report = studies::dry_run(test, nodes);
+  const nlohmann::json numbers = studies::report_dry_run(report, test.name, std::cout);
+  if (!out.empty()) {
+    std::filesystem::create_directories(out);
+    std::ofstream(std::filesystem::path(out) / "dry-run.json") << numbers.dump(2) << '\n';
+  }
+  return report.within_limits;
+}
+
+}  // namespace
+
+std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<scenarios::Override> overrides;
+  for (const auto& t : texts) overrides.push_back(scenarios::parse_override(t));
+  return overrides;
+}
+
+void add_run(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  auto* run = app.add_subcommand("run", "Run a scenario and write its results (CSV, summary.json, PNG plots)");
+  run->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
+  run->add_option("--out", options->out, "Output folder (created if missing; optional with --dry-run)");
+  run->add_flag("--dry-run", options->dry_run,
+                "Run against the simulated plant in this process first and report predicted peaks against the limits and "
+                "the stability margin; exit 4 when not ready");
+  run->add_option("--node", options->node_files,
+                  "With --dry-run: a servo node's file (rpsd servo-node); its limits are checked too (repeatable, one per site)")
+      ->check(CLI::ExistingFile);
+  run->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
+  run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's")
+      ->check(CLI::ExistingFile);
+  run->callback([options] {
+    // --record replaces the whole ground_motion section first; --set may then refine it.
+    std::vector<scenarios::Override> overrides;
+    if (!options->record.empty()) {
+      overrides.push_back({"ground_motion", "{file: \"" + std::filesystem::absolute(options->record).string() + "\", format: peer_at2}"});
+    }
+    for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
+    const auto file = scenarios::load_study(options->scenario, overrides);
+    if (options->dry_run) {
+      const auto* test = std::get_if<coordinator::TestConfig>(&file.study);
+      if (!test) throw std::runtime_error("--dry-run needs an rpsd_test scenario");
+      if (!check_before_running(*test, options->out, options->node_files)) throw DryRunNotReady();
+      return;
+    }
+    if (!options->node_files.empty()) throw CLI::ValidationError("--node", "only with --dry-run");
+    if (options->out.empty()) throw CLI::ValidationError("--out", "required (except with --dry-run)");
+    double rate_hz = 1024.0;
+    if (const auto* test = std::get_if<coordinator::TestConfig>(&file.study)) rate_hz = test->control_rate_hz;
+    bool completed = true;
+    std::string reason;
+    {
+      ProgressBar bar(rate_hz);
+      completed = studies::run_and_write(file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); }, &reason);
+    }
+    std::cout << "rpsd run: " << file.name << " -> " << options->out << "/summary.json\n";
+    if (!completed) throw TestAborted(options->out + "/time_history.csv", reason);
+  });
+}
+
+void add_validate(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  auto* validate = app.add_subcommand("validate", "Check a scenario without running it");
+  validate->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
+  validate->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
+  validate->callback([options] {
+    const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
+    std::cout << options->scenario << ": ok\n";
+  });
+}
+
+void add_plot(CLI::App& app) {
+  auto dir = std::make_shared<std::string>();
+  auto* plot = app.add_subcommand("plot", "Redraw the plots of an rpsd_test output folder from its CSV files");
+  plot->add_option("dir", *dir, "Output folder of `rpsd run`")->required()->check(CLI::ExistingDirectory);
+  plot->callback([dir] {
+    studies::plot_test(*dir);
+    std::cout << "rpsd plot: " << *dir << "/test.png, " << *dir << "/response.png\n";
+  });
+}
+
+}  // namespace rpsd::cli

@@ -1,0 +1,92 @@
+// Everything a test needs, typed (scenarios/ reads a `study: rpsd_test` file into it): the
+// numerical substructure, the experimental channels, the plant, the integrator, the
+// compensator, the excitation, the clock, the transport and the output. The parts are the
+// lower modules' own configuration types; this file only names which is which.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "rpsd/compensation/compensator_factory.h"
+#include "rpsd/coordinator/coordinator_limits.h"
+#include "rpsd/coordinator/restoring_force.h"
+#include "rpsd/node/servo_node_config.h"
+#include "rpsd/realtime/realtime_setup.h"
+#include "rpsd/integrators/factory.h"
+#include "rpsd/servo/plant_factory.h"
+#include "rpsd/substructure/linear_mdof_model.h"
+#include "rpsd/substructure/partition.h"
+#include "rpsd/substructure/shear_building.h"
+
+namespace rpsd::coordinator {
+
+struct ExperimentalChannel {
+  substructure::ExperimentalDof dof;  ///< DOF, channel, scales, specimen stiffness estimate
+  RestoringForceSource restoring_force = RestoringForceSource::kMeasuredForce;
+  std::uint32_t site_id = 1;          ///< the servo node (site) that owns the actuator
+  CoordinatorLimits limits;           ///< experimental[i].limits
+};
+
+/// How the loop is paced.
+struct ClockConfig {
+  enum class Mode { kAsFastAsPossible, kRealTime };
+  Mode mode = Mode::kAsFastAsPossible;
+  /// Real time: late feedback is replaced by the newest measurement (counted and flagged)
+  /// while that answers a command at most this many control periods old; beyond, the node
+  /// is taken for silent and the test stops (a dead node: on the 5th period with 4).
+  int max_feedback_age_periods = 4;
+  realtime::RealTimeRequest realtime;
+};
+
+/// Where the actuators are: simulated in this process, or servo nodes reached over DDS.
+struct TransportConfig {
+  enum class Kind { kInProcess, kDds };
+  Kind kind = Kind::kInProcess;
+  std::uint32_t test_id = 1;          ///< DDS partition: two tests on one network never cross
+  std::uint32_t domain_id = 0;
+  std::filesystem::path dds_config;   ///< Cyclone XML; empty: CYCLONEDDS_URI or defaults
+  double feedback_timeout_s = 1.0;    ///< lock-step: longest wait for one step's feedback
+  /// Lock-step: poll for the feedback this long before sleeping until it comes (0: never).
+  double busy_wait_s = 0.0;
+  double discovery_timeout_s = 10.0;  ///< longest wait for every site's node at start
+};
+
+/// A ground-acceleration record already read and processed to the integration step.
+struct GroundMotion {
+  std::string name;                        ///< file or generator, for titles
+  double dt_s = 0.0;
+  std::vector<double> acceleration_m_per_s2;
+};
+
+struct TestConfig {
+  std::string name;
+  std::string description;
+  std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> structure;
+  std::vector<ExperimentalChannel> experimental;
+  Eigen::VectorXd influence;        ///< ground-motion influence vector (default: all ones)
+  servo::PlantConfig plant;         ///< every channel's actuator (each channel gets its own)
+  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
+  compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
+  double control_rate_hz = 1024.0;  ///< integration step = control period x iterations
+  ClockConfig clock;
+  TransportConfig transport;
+  /// Either a ground motion or an initial displacement (free vibration) drives the test.
+  std::optional<GroundMotion> ground_motion;
+  Eigen::VectorXd initial_displacement_m;
+  double duration_s = 0.0;          ///< free vibration length, or the record's length
+  std::vector<Eigen::Index> record_dofs;
+  /// In process: the servo node of a site, by site id (its limits, limit actions and
+  /// watchdog; identity, channels and period come from the test). A site without one runs
+  /// a node with ServoNodeConfig's defaults.
+  std::map<std::uint32_t, node::ServoNodeConfig> site_nodes;
+};
+
+/// DOFs of the scenario's structure.
+Eigen::Index structure_dofs(const TestConfig& config);
+
+}  // namespace rpsd::coordinator

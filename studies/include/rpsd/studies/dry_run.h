@@ -1,0 +1,83 @@
+// The pre-test check (`rpsd run --dry-run`): the scenario against its simulated plant, in this
+// process and as fast as possible, before any hardware moves. It predicts each channel's peak
+// stroke, velocity, force and servovalve opening against the coordinator's limits, and the
+// stability margin: the servo loop's proportional gain against its Routh bound, and for every
+// structural mode the damping left and the delay margin, from delay theory per mode
+// (s^2 + c s + k_n + g k_e e^{-s tau} = 0, mass-normalised) with the gain g and delay tau of
+// the compensator and plant in series measured by a sine test at the mode's frequency.
+// Given the servo nodes' own files (`--node FILE`), it also checks each channel's command
+// against the limits its node enforces: the layer that stops the test on the rig.
+// Not real-time safe.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rpsd/coordinator/rpsd_loop.h"
+#include "rpsd/coordinator/test_config.h"
+#include "rpsd/node/servo_node_config.h"
+
+namespace rpsd::studies {
+
+/// The limits one servo node enforces on its site (from its file, as `rpsd servo-node` reads it).
+struct NodeLimits {
+  std::string name;  ///< the node file, for messages
+  std::uint32_t test_id = 0, site_id = 0;
+  double control_period_s = 1.0 / 1024.0;
+  /// The site's channels, in the test's channel order (how the coordinator addresses them).
+  std::vector<node::ChannelLimits> channels;
+};
+
+/// One channel's peaks against its node's limits.
+struct NodeCheck {
+  std::string node;
+  node::ChannelLimits limits;
+  double control_period_s = 1.0 / 1024.0;      ///< the node's
+  double peak_command_velocity_m_per_s = 0.0;  ///< |command change| / the node's control period
+  bool within_limits = true;
+};
+
+struct ChannelPrediction {
+  int channel = 0;
+  std::uint32_t site_id = 1;
+  double peak_command_m = 0.0, peak_displacement_m = 0.0, peak_velocity_m_per_s = 0.0, peak_increment_m = 0.0;
+  double peak_force_n = 0.0;
+  std::optional<NodeCheck> node;             ///< when the site's node file was given
+  std::optional<double> peak_valve_opening;  ///< |x_v| of the servovalve, 0..1 (servo model only)
+  std::optional<double> tracking_delay_ms;   ///< measured lags target by this (negative: leads)
+  coordinator::CoordinatorLimits limits;
+  bool within_limits = true;  ///< within the coordinator's limits (and the node's, when given)
+};
+
+struct ModePrediction {
+  double frequency_hz = 0.0;
+  double damping_ratio = 0.0;            ///< of the structure alone (no delay)
+  double experimental_share = 0.0;       ///< k_e / k of the mode
+  double loop_gain = 1.0;                ///< compensator and plant, measured/target at the mode's frequency
+  double loop_delay_ms = 0.0;            ///< their equivalent delay there (negative: a lead)
+  double predicted_damping_ratio = 0.0;  ///< with that gain and delay
+  double critical_delay_ms = 0.0;        ///< +inf: stable for every delay
+};
+
+struct DryRunReport {
+  coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
+  coordinator::LimitStop limit_stop;
+  std::int64_t steps = 0, steps_planned = 0;
+  std::vector<ChannelPrediction> channels;
+  double residual_delay_ms = 0.0;  ///< the channels' mean tracking delay
+  std::vector<ModePrediction> modes;
+  /// Servo model only: its proportional gain and the largest stable one (eigenvalues of the
+  /// full linear model with the specimen).
+  std::optional<double> p_gain, max_stable_p_gain;
+  bool within_limits = true;  ///< completed, every peak within its limit, every mode damped
+};
+
+/// Runs the scenario's test (not the reference) with its simulated plant, whatever its transport
+/// and clock say. Throws what building the test throws, and std::invalid_argument naming the
+/// node file when a node serves another test, an unknown or repeated site, or another number
+/// of channels than the scenario gives its site.
+DryRunReport dry_run(const coordinator::TestConfig& scenario, const std::vector<NodeLimits>& nodes = {});
+
+}  // namespace rpsd::studies

@@ -1,0 +1,217 @@
+#include "rpsd/studies/dry_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "rpsd/compensation/cross_correlation_delay.h"
+#include "rpsd/compensation/delay_theory.h"
+#include "rpsd/coordinator/actuator_links.h"
+#include "rpsd/servo/plant_factory.h"
+#include "rpsd/coordinator/test_runs.h"
+#include "rpsd/servo/linear_analysis.h"
+#include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/servo/simulated_frequency_response.h"
+#include "rpsd/substructure/modal.h"
+
+namespace rpsd::studies {
+namespace {
+
+// Signed delay of measured behind target (negative: ahead), by cross-correlation both ways.
+std::optional<double> signed_delay_ms(const std::vector<double>& target, const std::vector<double>& measured, double rate_hz) {
+  compensation::CrossCorrelationOptions options;
+  options.max_lag_samples = static_cast<int>(0.2 * rate_hz);
+  options.measure = compensation::CorrelationMeasure::kPearson;
+  if (static_cast<int>(target.size()) <= 2 * options.max_lag_samples + 2) return std::nullopt;
+  const auto lag = compensation::cross_correlation_delay(target, measured, options);
+  const auto lead = compensation::cross_correlation_delay(measured, target, options);
+  if (!lag.valid && !lead.valid) return std::nullopt;
+  const bool lags = lag.valid && (!lead.valid || lag.peak >= lead.peak);
+  return 1e3 * (lags ? lag.delay_samples : -lead.delay_samples) / rate_hz;
+}
+
+// The compensator and the simulated plant in series, seen as one plant: what the specimen
+// gets for a target, one control period per advance (as the loop drives them).
+class CompensatedPlant final : public servo::Plant {
+ public:
+  CompensatedPlant(const coordinator::TestConfig& s)
+      : plant_(servo::make_plant(s.plant)), compensator_(compensation::make_compensator(s.compensation, 1.0 / s.control_rate_hz)) {}
+  void reset(double displacement_m) override {
+    plant_->reset(displacement_m);
+    compensator_->reset(displacement_m);
+    command_m_ = displacement_m;
+  }
+  void advance(double, double target_m, double duration_s) override {
+    const double command_m = compensator_->command(target_m);
+    plant_->advance(command_m_, command_m, duration_s);
+    command_m_ = command_m;
+    compensator_->observe(target_m, plant_->measure().displacement_m);
+  }
+  servo::PlantMeasurement measure() const override { return plant_->measure(); }
+
+ private:
+  std::unique_ptr<servo::Plant> plant_;
+  std::unique_ptr<compensation::CommandCompensator> compensator_;
+  double command_m_ = 0.0;
+};
+
+// Gain and equivalent delay -phase / w (negative: a lead) of compensator and plant at w,
+// measured by a sine test as a lab would (settled, fitted).
+struct LoopResponse {
+  double gain = 1.0, delay_s = 0.0;
+};
+LoopResponse compensated_plant_response(const coordinator::TestConfig& s, double w_rad_s) {
+  CompensatedPlant loop(s);
+  servo::SineTest test;
+  test.frequency_hz = w_rad_s / (2.0 * M_PI);
+  test.control_rate_hz = s.control_rate_hz;
+  test.settling_time_s = 6.0 / test.frequency_hz;
+  test.fitted_cycles = 4;
+  const std::complex<double> h = servo::simulated_frequency_response(loop, test);
+  return {std::abs(h), -std::arg(h) / w_rad_s};
+}
+
+std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& test, const coordinator::TestConfig& s) {
+  const auto& numerical = test.numerical();
+  const auto k = test.partition().with_specimen_stiffness(numerical.initial_stiffness());
+  const substructure::ModalSolution modal = substructure::modal_analysis(numerical.mass(), k);
+  const Eigen::MatrixXd c = numerical.damping().to_dense();
+  std::vector<ModePrediction> modes;
+  for (Eigen::Index i = 0; i < modal.omega_rad_s.size(); ++i) {
+    const Eigen::VectorXd phi = modal.modes.col(i);
+    const double w = modal.omega_rad_s[i];
+    double k_e = 0.0;
+    for (const auto& e : s.experimental) k_e += phi[e.dof.dof] * phi[e.dof.dof] * e.dof.specimen_stiffness_estimate_n_per_m;
+    // The specimen's share acts through the loop's gain and delay at the mode's frequency.
+    const LoopResponse loop = compensated_plant_response(s, w);
+    const compensation::DelayedOscillator mode{1.0, phi.dot(c * phi), w * w - k_e, k_e * loop.gain};
+    ModePrediction m;
+    m.loop_gain = loop.gain;
+    m.loop_delay_ms = 1e3 * loop.delay_s;
+    m.frequency_hz = w / (2.0 * M_PI);
+    m.damping_ratio = mode.damping_n_s_per_m / (2.0 * w);
+    m.experimental_share = k_e / (w * w);
+    m.predicted_damping_ratio = compensation::damping_ratio_of(compensation::dominant_root(mode, loop.delay_s));
+    m.critical_delay_ms = 1e3 * compensation::critical_delay_s(mode);
+    modes.push_back(m);
+  }
+  return modes;
+}
+
+// Gives each channel the limits of its site's node; throws when the files do not fit the test.
+void attach_nodes(DryRunReport& report, const coordinator::TestConfig& s, const std::vector<NodeLimits>& nodes) {
+  for (const NodeLimits& node : nodes) {
+    if (node.test_id != s.transport.test_id) {
+      throw std::invalid_argument(node.name + ": node.test_id is " + std::to_string(node.test_id) + ", the scenario's transport.test_id " +
+                                  std::to_string(s.transport.test_id));
+    }
+    std::vector<ChannelPrediction*> site;
+    for (auto& c : report.channels) {
+      if (c.site_id == node.site_id) site.push_back(&c);
+    }
+    if (site.empty()) {
+      throw std::invalid_argument(node.name + ": node.site_id " + std::to_string(node.site_id) + " is not a site of the scenario's experimental channels");
+    }
+    if (site.front()->node) throw std::invalid_argument(node.name + ": a second node file for site " + std::to_string(node.site_id));
+    if (site.size() != node.channels.size()) {
+      throw std::invalid_argument(node.name + ": " + std::to_string(node.channels.size()) + " channel(s), the scenario gives site " +
+                                  std::to_string(node.site_id) + " " + std::to_string(site.size()));
+    }
+    for (std::size_t i = 0; i < site.size(); ++i) site[i]->node = NodeCheck{node.name, node.channels[i], node.control_period_s};
+  }
+}
+
+// What the node would do with the commands the dry run sent: its limits are on the command
+// (stroke, increment, velocity as increment per its own period) and the measured force.
+void check_against_node(ChannelPrediction& p) {
+  NodeCheck& n = *p.node;
+  n.peak_command_velocity_m_per_s = p.peak_increment_m / n.control_period_s;
+  n.within_limits = p.peak_command_m <= n.limits.max_stroke_m && p.peak_increment_m <= n.limits.max_increment_m &&
+                    n.peak_command_velocity_m_per_s <= n.limits.max_velocity_m_per_s && p.peak_force_n <= n.limits.max_force_n;
+}
+
+}  // namespace
+
+DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<NodeLimits>& nodes) {
+  coordinator::TestConfig s = original;
+  s.transport.kind = coordinator::TransportConfig::Kind::kInProcess;
+  s.clock.mode = coordinator::ClockConfig::Mode::kAsFastAsPossible;
+  coordinator::TestAssembly test(s, {});
+
+  const int channels = static_cast<int>(s.experimental.size());
+  const double period_s = 1.0 / s.control_rate_hz;
+  DryRunReport report;
+  report.steps_planned = test.steps_planned();
+  report.channels.resize(static_cast<std::size_t>(channels));
+  std::vector<std::vector<double>> targets(channels), measured(channels);
+  std::vector<double> previous_x(channels), previous_command(channels);
+  for (const auto& e : s.experimental) {
+    auto& p = report.channels[static_cast<std::size_t>(e.dof.actuator_channel)];
+    p.channel = e.dof.actuator_channel;
+    p.site_id = e.site_id;
+    p.limits = e.limits;
+  }
+  attach_nodes(report, s, nodes);
+  Eigen::VectorXd hold(channels);
+  test.partition().extract_commands(s.initial_displacement_m, hold);
+  for (int c = 0; c < channels; ++c) previous_x[c] = previous_command[c] = hold[c];
+
+  const auto watch = [&](const coordinator::StepRecord& r) {
+    for (int c = 0; c < channels; ++c) {
+      auto& p = report.channels[static_cast<std::size_t>(c)];
+      p.peak_command_m = std::max(p.peak_command_m, std::abs(r.command_m[c]));
+      p.peak_displacement_m = std::max(p.peak_displacement_m, std::abs(r.measured_m[c]));
+      p.peak_velocity_m_per_s = std::max(p.peak_velocity_m_per_s, std::abs(r.measured_m[c] - previous_x[c]) / period_s);
+      p.peak_increment_m = std::max(p.peak_increment_m, std::abs(r.command_m[c] - previous_command[c]));
+      p.peak_force_n = std::max(p.peak_force_n, std::abs(r.measured_force_n[c]));
+      previous_x[c] = r.measured_m[c];
+      previous_command[c] = r.command_m[c];
+      targets[c].push_back(r.target_m[c]);
+      measured[c].push_back(r.measured_m[c]);
+      if (const auto* servo = dynamic_cast<const servo::ServoHydraulicPlant*>(test.actuators().simulated_plant(c))) {
+        p.peak_valve_opening = std::max(p.peak_valve_opening.value_or(0.0), std::abs(servo->spool_opening()));
+      }
+    }
+  };
+  const coordinator::StepOutcome outcome = test.run(watch, {});
+  const coordinator::TestRun run = test.finish(outcome);
+  report.outcome = run.outcome;
+  report.limit_stop = run.limit_stop;
+  report.steps = run.steps;
+
+  double delay_sum_ms = 0.0;
+  int delays = 0;
+  for (int c = 0; c < channels; ++c) {
+    auto& p = report.channels[static_cast<std::size_t>(c)];
+    p.tracking_delay_ms = signed_delay_ms(targets[c], measured[c], s.control_rate_hz);
+    if (p.tracking_delay_ms) {
+      delay_sum_ms += *p.tracking_delay_ms;
+      ++delays;
+    }
+    // The increment limit holds the command; the others the measurement.
+    p.within_limits = p.peak_command_m <= p.limits.max_stroke_m && p.peak_displacement_m <= p.limits.max_stroke_m &&
+                      p.peak_increment_m <= p.limits.max_increment_m && p.peak_force_n <= p.limits.max_force_n;
+    if (p.node) {
+      check_against_node(p);
+      p.within_limits = p.within_limits && p.node->within_limits;
+    }
+  }
+  report.residual_delay_ms = delays > 0 ? delay_sum_ms / delays : 0.0;
+  report.modes = modes_under_delay(test, s);
+
+  if (const auto* servo = std::get_if<servo::ServoSystemParameters>(&s.plant)) {
+    const servo::ServoAnalysis a = servo::analyze(*servo);
+    report.p_gain = a.p_gain;
+    report.max_stable_p_gain = a.max_stable_p_gain_full_model;
+  }
+  const bool completed = report.outcome == coordinator::StepOutcome::kOk || report.outcome == coordinator::StepOutcome::kRecordEnded;
+  report.within_limits = completed &&
+                         std::all_of(report.channels.begin(), report.channels.end(), [](const auto& p) { return p.within_limits; }) &&
+                         std::all_of(report.modes.begin(), report.modes.end(), [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
+                         (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
+  return report;
+}
+
+}  // namespace rpsd::studies

@@ -1,0 +1,28 @@
+#include "rpsd/studies/gnuplot.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+namespace rpsd::studies {
+
+void render_png(const std::filesystem::path& png, const std::string& script, int width_px, int height_px) {
+  const std::filesystem::path folder = png.parent_path().empty() ? std::filesystem::path(".") : png.parent_path();
+  std::filesystem::path gp = png;
+  gp.replace_extension(".gp");
+  {
+    std::ofstream out(gp);
+    if (!out) throw std::runtime_error(gp.string() + ": cannot write");
+    out << "set terminal pngcairo size " << width_px << ',' << height_px << " font 'sans,10'\n"
+        << "set output '" << png.filename().string() << "'\n"
+        << script;
+  }
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    throw std::runtime_error("gnuplot not found: run scripts/install-deps.sh (package gnuplot-nox) to draw " +
+                             png.string() + "; the data and " + gp.string() + " are written");
+  }
+  const std::string command = "cd '" + folder.string() + "' && gnuplot '" + gp.filename().string() + "'";
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("gnuplot failed on " + gp.string());
+}
+
+}  // namespace rpsd::studies

@@ -1,0 +1,338 @@
+#include "rpsd/studies/test_output.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "rpsd/studies/gnuplot.h"
+#include "rpsd/realtime/latency_json.h"
+#include "rpsd/coordinator/test_runs.h"
+#include "rpsd/ground_motion/response_spectrum.h"
+
+namespace rpsd::studies {
+namespace {
+
+const char* outcome_text(coordinator::StepOutcome o) {
+  switch (o) {
+    case coordinator::StepOutcome::kOk: return "completed";
+    case coordinator::StepOutcome::kRecordEnded: return "completed";
+    case coordinator::StepOutcome::kLinkFailure: return "aborted: the servo node stopped answering";
+    case coordinator::StepOutcome::kIntegratorError: return "aborted: the integrator rejected a step";
+    case coordinator::StepOutcome::kNodeFault: return "aborted: the servo node reported a fault";
+    case coordinator::StepOutcome::kNonFinite: return "aborted: a non-finite measurement arrived";
+    case coordinator::StepOutcome::kLimit: return "aborted: a coordinator limit was reached";
+  }
+  return "aborted";
+}
+
+// The plots read only the CSV files and plot.json, so `rpsd plot DIR` can redraw them.
+void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
+  const int channels = info.at("channels");
+  const int dofs = info.at("recorded_dofs");
+  const std::string title = info.at("title");
+  const bool has_record = info.at("ground_motion");
+  // time_history.csv columns: 1 step, 2 time, 3 a_g, then 6 per channel, then 4 per DOF.
+  std::string script = "set datafile separator ','\nset grid\nset key outside right\n";
+  script += "set multiplot layout " + std::to_string(has_record ? 4 : 3) + ",1 title '" + title + "'\n";
+  script += "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\nset title 'experimental channel 0'\n";
+  script += "plot 'time_history.csv' using 2:($4*1e3) with lines lw 1.5 title 'target', "
+            "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) with lines lw 1 title 'measured'\n";
+  script += "set ylabel 'tracking error (mm)'\nset title 'measured - target'\n";
+  script += "plot 'time_history.csv' using 2:(($6-$4)*1e3) with lines lw 1 notitle\n";
+  const int first_dof_column = 4 + 6 * channels;
+  script += "set xlabel 'measured displacement (mm)'\nset ylabel 'specimen restoring force (kN)'\nset title 'hysteresis, channel 0'\n";
+  script += "plot 'time_history.csv' using ($6*1e3):($8*1e-3) with lines lw 1 notitle\n";
+  if (has_record) {
+    script += "set xlabel 'time (s)'\nset ylabel 'ground acceleration (m/s^2)'\nset title 'record'\n";
+    script += "plot 'time_history.csv' using 2:3 with lines lw 1 notitle\n";
+  }
+  script += "unset multiplot\n";
+  render_png(dir / "test.png", script, 1100, has_record ? 1300 : 1000);
+
+  std::string floors = "set datafile separator ','\nset grid\nset key outside right\nset xlabel 'time (s)'\n"
+                       "set ylabel 'displacement (mm)'\nset title '" + title + ": recorded DOFs, test and perfect-actuator reference'\nplot ";
+  for (int d = 0; d < dofs; ++d) {
+    const int column = first_dof_column + 4 * d;
+    if (d > 0) floors += ", ";
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "'time_history.csv' using 2:($%d*1e3) with lines lw 1.5 title 'DOF %d', "
+                  "'reference_history.csv' using 2:($%d*1e3) with lines lw 1 dt 2 title 'DOF %d reference'",
+                  column, d, column, d);
+    floors += line;
+  }
+  render_png(dir / "response.png", floors + "\n", 1100, 600);
+
+  if (has_record) {
+    render_png(dir / "record.png",
+               "set datafile separator ','\nset grid\nset multiplot layout 2,1 title '" + title +
+                   ": ground motion as applied'\n"
+                   "set xlabel 'time (s)'\nset ylabel 'acceleration (m/s^2)'\n"
+                   "plot 'time_history.csv' using 2:3 with lines lw 1 notitle\n"
+                   "set logscale x\nset xlabel 'period (s)'\nset ylabel 'pseudo-acceleration (m/s^2)'\n"
+                   "set title '5 % damped response spectrum'\n"
+                   "plot 'spectrum.csv' using 1:2 with lines lw 2 notitle\nunset multiplot\n",
+               1000, 800);
+  }
+}
+
+// Pseudo-acceleration and displacement spectra (5 %) of the record as applied.
+void write_spectrum(const std::filesystem::path& dir, const coordinator::GroundMotion& motion) {
+  ground_motion::GroundMotionRecord record;
+  record.source = motion.name;
+  record.dt_s = motion.dt_s;
+  record.acceleration_m_per_s2 = motion.acceleration_m_per_s2;
+  ground_motion::ResponseSpectrumOptions options;
+  options.periods_s = ground_motion::log_spaced_periods(0.02, 5.0, 80);
+  const auto spectrum = ground_motion::response_spectrum(record, options);
+  std::ofstream out(dir / "spectrum.csv");
+  out << "period_s,pseudo_acceleration_m_per_s2,displacement_m\n";
+  for (std::size_t i = 0; i < spectrum.periods_s.size(); ++i) {
+    out << spectrum.periods_s[i] << ',' << spectrum.pseudo_acceleration_m_per_s2[i] << ',' << spectrum.displacement_m[i] << '\n';
+  }
+}
+
+nlohmann::json ground_motion_json(const coordinator::GroundMotion& motion) {
+  double pga = 0.0;
+  for (double a : motion.acceleration_m_per_s2) pga = std::max(pga, std::abs(a));
+  return {{"source", motion.name},
+          {"dt_s", motion.dt_s},
+          {"points", motion.acceleration_m_per_s2.size()},
+          {"pga_m_per_s2", pga},
+          {"pga_g", pga / 9.80665}};
+}
+
+std::string describe_outcome(const coordinator::TestConfig& s, const coordinator::TestRun& test) {
+  std::string text = outcome_text(test.outcome);
+  if (test.outcome == coordinator::StepOutcome::kLinkFailure) {
+    char detail[200];
+    if (test.timing.real_time) {
+      std::snprintf(detail, sizeof detail, " (newest feedback %lld control periods old; step %zu, t = %.4f s)",
+                    static_cast<long long>(test.feedback_age_periods), static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
+    } else {
+      std::snprintf(detail, sizeof detail, " (none within %g s at step %zu, t = %.4f s)", s.transport.feedback_timeout_s,
+                    static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
+    }
+    text += detail;
+  } else if (test.outcome != coordinator::StepOutcome::kOk && test.outcome != coordinator::StepOutcome::kRecordEnded) {
+    char detail[100];
+    std::snprintf(detail, sizeof detail, " (at step %zu, t = %.4f s)", static_cast<std::size_t>(test.steps + 1),
+                  static_cast<double>(test.steps + 1) / s.control_rate_hz);
+    text += detail;
+  }
+  if (test.outcome == coordinator::StepOutcome::kLimit) {
+    const coordinator::LimitStop& l = test.limit_stop;
+    const bool force = l.kind == coordinator::LimitStop::Kind::kForce;
+    char detail[240];
+    std::snprintf(detail, sizeof detail, " (channel %d: %s %.6g %s beyond limits.%s %.6g; %s; step %zu, t = %.4f s)", l.channel,
+                  force ? "measured force" : l.kind == coordinator::LimitStop::Kind::kIncrement ? "command change" : "command", l.value,
+                  force ? "N" : "m", coordinator::limit_stop_name(l.kind), l.bound, force ? "no further command was sent" : "the command was not sent",
+                  static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
+    text += detail;
+  }
+  return text;
+}
+
+nlohmann::json timing_json(const coordinator::TimingReport& t) {
+  using nlohmann::json;
+  json sites = json::array();
+  for (std::size_t i = 0; i < t.sites.size(); ++i) {
+    json site = {{"site_id", t.sites[i].site_id}, {"round_trip", realtime::latency_json(t.sites[i].round_trip)}};
+    if (i < t.dds_counters.size()) {
+      const auto& c = t.dds_counters[i];
+      site["messages"] = {{"sent", c.sent}, {"received", c.received}, {"late", c.late},
+                          {"dropped_wrong_test_or_site", c.wrong_test_or_site},
+                          {"dropped_wrong_channels", c.wrong_channels}, {"dropped_older_step", c.older_step}};
+    }
+    sites.push_back(site);
+  }
+  json j = {{"real_time", t.real_time}, {"over_dds", t.over_dds}, {"sites", sites}};
+  if (t.real_time || t.over_dds) {
+    j["cpus_kept_awake"] = t.cpus_kept_awake;
+    j["refused"] = t.refused;
+  }
+  if (t.real_time) {
+    j["cycles"] = t.cycles;
+    j["overruns"] = t.overruns;
+    j["skipped_deadlines"] = t.skipped_deadlines;
+    j["late_feedback"] = t.late_feedback;
+    j["jitter"] = realtime::latency_json(t.jitter);
+    j["memory_locked"] = t.memory_locked;
+    j["sched_fifo"] = t.fifo_granted;
+  }
+  return j;
+}
+
+}  // namespace
+
+TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
+                        const coordinator::TestConfig& scenario,
+                        const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
+  if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
+  // The test and its reference run side by side and are evaluated as they go, so memory
+  // does not grow with the record's length.
+  const coordinator::EvaluatedTest run = coordinator::run_test_and_reference(scenario, dir / "time_history.csv", dir / "reference_history.csv", progress);
+  const coordinator::TestRun& test = run.test;
+  const coordinator::Criteria& criteria = run.criteria;
+  const bool completed = test.outcome == coordinator::StepOutcome::kOk || test.outcome == coordinator::StepOutcome::kRecordEnded;
+  const std::string outcome = describe_outcome(scenario, test);
+
+  using nlohmann::json;
+  json channels = json::array();
+  for (std::size_t c = 0; c < criteria.channels.size(); ++c) {
+    const auto& cc = criteria.channels[c];
+    channels.push_back({{"channel", c},
+                        {"J1_tracking_delay_ms", std::isfinite(cc.j1_tracking_delay_ms) ? json(cc.j1_tracking_delay_ms) : json(nullptr)},
+                        {"J2_rms_tracking_error_percent", cc.j2_rms_tracking_error_percent},
+                        {"J3_peak_tracking_error_percent", cc.j3_peak_tracking_error_percent},
+                        {"final_tracking_indicator_m2", cc.final_tracking_indicator_m2}});
+  }
+  json dofs = json::array();
+  for (std::size_t d = 0; d < criteria.dofs.size(); ++d) {
+    const auto& dc = criteria.dofs[d];
+    dofs.push_back({{"dof", scenario.record_dofs[d]},
+                    {"peak_displacement_m", dc.peak_displacement_m},
+                    {"reference_peak_displacement_m", dc.reference_peak_displacement_m},
+                    {"rms_error_vs_reference_percent", dc.rms_error_percent},
+                    {"peak_error_vs_reference_percent", dc.peak_error_percent}});
+  }
+  // Benchmark numbering: J4-J6 RMS and J7-J9 peak errors of the first three recorded DOFs.
+  json benchmark = json::object();
+  static constexpr const char* kRmsNames[] = {"J4", "J5", "J6"};
+  static constexpr const char* kPeakNames[] = {"J7", "J8", "J9"};
+  for (std::size_t d = 0; d < std::min<std::size_t>(3, criteria.dofs.size()); ++d) {
+    benchmark[kRmsNames[d]] = criteria.dofs[d].rms_error_percent;
+    benchmark[kPeakNames[d]] = criteria.dofs[d].peak_error_percent;
+  }
+  if (!criteria.channels.empty()) {
+    benchmark["J1"] = channels[0]["J1_tracking_delay_ms"];
+    benchmark["J2"] = criteria.channels[0].j2_rms_tracking_error_percent;
+    benchmark["J3"] = criteria.channels[0].j3_peak_tracking_error_percent;
+  }
+  const json summary = {
+      {"study", "rpsd_test"},
+      {"scenario", file.name},
+      {"description", file.description},
+      {"outcome", outcome},
+      {"completed", completed},
+      {"steps", test.steps},
+      {"steps_planned", test.steps_planned},
+      {"control_rate_hz", scenario.control_rate_hz},
+      {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(scenario.integrator))) + " " + integrators::describe(scenario.integrator)},
+      {"compensation", std::string(compensation::compensator_name(scenario.compensation))},
+      {"ground_motion", scenario.ground_motion ? ground_motion_json(*scenario.ground_motion) : json(nullptr)},
+      {"channels", channels},
+      {"dofs", dofs},
+      {"benchmark_criteria", benchmark},
+      {"energy_error_j", criteria.energy_error_j},
+      {"dropped_records", test.dropped_records},
+      {"overruns", test.timing.overruns},
+      {"clock", scenario.clock.mode == coordinator::ClockConfig::Mode::kRealTime ? "real_time" : "as_fast_as_possible"},
+      {"transport", scenario.transport.kind == coordinator::TransportConfig::Kind::kDds ? "dds" : "in_process"},
+      {"timing", timing_json(test.timing)},
+  };
+  std::ofstream(dir / "summary.json") << summary.dump(2) << '\n';
+  const json plot_info = {{"title", file.name},
+                          {"channels", scenario.experimental.size()},
+                          {"recorded_dofs", scenario.record_dofs.size()},
+                          {"ground_motion", scenario.ground_motion.has_value()}};
+  std::ofstream(dir / "plot.json") << plot_info.dump(2) << '\n';
+  // An aborted test keeps its exit status: a plot that cannot be drawn (too few steps) is
+  // reported, not fatal.
+  try {
+    if (test.steps >= 2) draw(dir, plot_info);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
+  }
+  TestHeadline headline;
+  headline.result = completed ? RunResult::kCompleted : RunResult::kAborted;
+  headline.outcome = outcome;
+  if (!criteria.channels.empty()) headline.j2_percent = criteria.channels[0].j2_rms_tracking_error_percent;
+  if (!criteria.dofs.empty()) {
+    headline.j4_percent = criteria.dofs[0].rms_error_percent;
+    headline.peak_displacement_m = criteria.dofs[0].peak_displacement_m;
+    headline.reference_peak_displacement_m = criteria.dofs[0].reference_peak_displacement_m;
+  }
+  return headline;
+}
+
+namespace {
+std::string legend_entry(const std::string& key, double value) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%s = %g", key.c_str(), value);
+  return text;
+}
+}  // namespace
+
+RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file,
+                         const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
+  using nlohmann::json;
+  json cases = json::array();
+  std::ofstream table(dir / "sweep.csv");
+  for (const auto& axis : file.sweep) table << axis.key_path << ',';
+  table << "completed,J2_percent,J4_percent,peak_displacement_m,reference_peak_displacement_m,folder\n";
+  bool all_completed = true;
+  for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
+    char folder[32];
+    std::snprintf(folder, sizeof folder, "case_%03zu", i);
+    const TestHeadline h = run_test_into(dir / folder, file, file.sweep_cases[i], progress);
+    const bool completed = h.result == RunResult::kCompleted;
+    all_completed = all_completed && completed;
+    json values = json::object();
+    for (std::size_t a = 0; a < file.sweep.size(); ++a) {
+      values[file.sweep[a].key_path] = file.sweep_values[i][a];
+      table << file.sweep_values[i][a] << ',';
+    }
+    table << (completed ? 1 : 0) << ',' << h.j2_percent << ',' << h.j4_percent << ',' << h.peak_displacement_m << ','
+          << h.reference_peak_displacement_m << ',' << folder << '\n';
+    cases.push_back({{"values", values},
+                     {"completed", completed},
+                     {"J2_percent", h.j2_percent},
+                     {"J4_percent", h.j4_percent},
+                     {"peak_displacement_m", h.peak_displacement_m},
+                     {"reference_peak_displacement_m", h.reference_peak_displacement_m},
+                     {"folder", folder}});
+  }
+  table.close();
+  json axes = json::array();
+  for (const auto& axis : file.sweep) axes.push_back({{"key", axis.key_path}, {"values", axis.values}});
+  std::ofstream(dir / "summary.json") << json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"axes", axes}, {"cases", cases}}.dump(2)
+                                      << '\n';
+  // One line per value of the second axis (or one line), J2 and J4 against the first axis.
+  const std::size_t lines = file.sweep.size() > 1 ? file.sweep[1].values.size() : 1;
+  const std::size_t per_line = file.sweep[0].values.size();
+  const int metric_column = static_cast<int>(file.sweep.size()) + 2;  // J2 after the axes and `completed`
+  std::string plots;
+  for (const char* metric : {"J2 (tracking error, %)", "J4 (error against perfect actuator, %)"}) {
+    const int column = metric_column + (plots.empty() ? 0 : 1);
+    plots += std::string("set ylabel '") + metric + "'\nplot ";
+    for (std::size_t l = 0; l < lines; ++l) {
+      char piece[256];
+      std::snprintf(piece, sizeof piece, "%s'sweep.csv' skip 1 every ::%zu::%zu using 1:%d with linespoints lw 2 title '%s'",
+                    l ? ", " : "", l * per_line, (l + 1) * per_line - 1, column,
+                    lines > 1 ? legend_entry(file.sweep[1].key_path, file.sweep[1].values[l]).c_str() : "");
+      plots += piece;
+    }
+    plots += "\n";
+  }
+  render_png(dir / "sweep.png",
+             "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot layout 2,1 title '" + file.name +
+                 ": sweep of " + file.sweep[0].key_path + "'\nset xlabel '" + file.sweep[0].key_path + "'\n" + plots +
+                 "unset multiplot\n",
+             1000, 800);
+  return all_completed ? RunResult::kCompleted : RunResult::kAborted;
+}
+
+void plot_test(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "plot.json");
+  if (!in) throw std::runtime_error((dir / "plot.json").string() + ": not found; is this an rpsd_test output folder?");
+  draw(dir, nlohmann::json::parse(in));
+}
+
+}  // namespace rpsd::studies

@@ -1,0 +1,35 @@
+// Test helper: the specimen SDOF (the seed paper's elastic SDOF: 7080 kg, 700.8 kN/m, 1.1 %)
+// stepped through its planned steps without pacing, keeping every record.
+#pragma once
+
+#include <vector>
+
+#include "rpsd/coordinator/specimen_sdof.h"
+#include "rpsd/coordinator/test_assembly.h"
+
+namespace rpsd::coordinator::testing {
+
+struct SdofRun {
+  std::vector<StepRecord> records;
+  StepOutcome outcome = StepOutcome::kOk;
+};
+
+inline SdofRun run_steps(const TestConfig& config, AssemblyOptions options = {}) {
+  options.keep_records = true;
+  TestAssembly test(config, options);
+  StepOutcome outcome = StepOutcome::kOk;
+  for (std::int64_t n = 0; n < test.steps_planned() && outcome == StepOutcome::kOk; ++n) outcome = test.step();
+  return {test.finish(outcome).records, outcome};
+}
+
+inline SdofRun run_sdof(const SpecimenSdof& sdof, AssemblyOptions options = {}) {
+  return run_steps(specimen_sdof_test(sdof), std::move(options));
+}
+
+inline std::vector<double> displacements(const SdofRun& r) {
+  std::vector<double> x;
+  for (const auto& s : r.records) x.push_back(s.displacement_m[0]);
+  return x;
+}
+
+}  // namespace rpsd::coordinator::testing
