@@ -1,6 +1,7 @@
-# rpsd_add_module(NAME SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
-# One static library per module folder: target rpsd_NAME, alias rpsd::NAME, public
-# headers under NAME/include/rpsd/NAME/, installed and exported as rpsd::NAME.
+# rpsd_add_module(NAME [SOURCES ...] [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# One static library per module folder: target rpsd_NAME, alias rpsd::NAME, built from every
+# src/*.cpp (a new file needs no CMake edit) plus any generated SOURCES; public headers under
+# NAME/include/rpsd/NAME/, installed and exported as rpsd::NAME.
 set(RPSD_WARNING_FLAGS -Wall -Wextra -Wpedantic)
 
 function(rpsd_warnings target)
@@ -11,7 +12,8 @@ endfunction()
 function(rpsd_add_module name)
   cmake_parse_arguments(M "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   set(target rpsd_${name})
-  add_library(${target} STATIC ${M_SOURCES})
+  file(GLOB module_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
+  add_library(${target} STATIC ${module_sources} ${M_SOURCES})
   add_library(rpsd::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name}
                                              POSITION_INDEPENDENT_CODE ON)

@@ -1,5 +1,7 @@
 #include "rpsd/node/udp_controller_actuator.h"
 
+#include "rpsd/node/owned_actuator.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -172,6 +174,27 @@ servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> co
     return servo::ActuatorStatus::kFault;
   }
   return servo::ActuatorStatus::kOk;
+}
+
+
+UdpControllerConfig UdpControllerConfig::read(config::Source& section, int channels) {
+  UdpControllerConfig u;
+  u.channels = channels;
+  u.controller_host = section.text("host", "the controller's address (dotted IPv4)");
+  u.controller_port = static_cast<std::uint16_t>(section.whole_number("port", 1, 65535, "the controller's UDP port"));
+  u.local_host = section.has("local_host") ? section.text("local_host", "address to bind (dotted IPv4)") : u.local_host;
+  u.local_port = static_cast<std::uint16_t>(section.whole_number_or("local_port", 0, 65535, 0, "port to bind (0: any free one)"));
+  u.reply_timeout_s = section.number_or("reply_timeout_s", u.reply_timeout_s,
+                                        config::Number::positive("s", "how long past the control period to wait for a reply"));
+  u.max_missed_replies = static_cast<int>(section.whole_number_or(
+      "max_missed_replies", 0, 1000, u.max_missed_replies, "consecutive missing replies before the actuator faults"));
+  return u;
+}
+
+OwnedActuator UdpControllerConfig::make(const UdpControllerConfig& config, int) {
+  OwnedActuator owned;
+  owned.actuator = std::make_unique<UdpControllerActuator>(config);
+  return owned;
 }
 
 }  // namespace rpsd::node

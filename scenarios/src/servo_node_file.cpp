@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "rpsd/scenarios/config_error.h"
-#include "rpsd/scenarios/test_scenario_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
 
 namespace rpsd::scenarios {
@@ -60,18 +59,6 @@ void read_watchdog(MappingReader r, node::ServoNodeSetup& f) {
   r.finish();
 }
 
-node::UdpControllerConfig read_udp(MappingReader& r, int channels) {
-  node::UdpControllerConfig u;
-  u.channels = channels;
-  u.controller_host = r.string("host");
-  u.controller_port = static_cast<std::uint16_t>(r.whole_number("port", 1, 65535));
-  u.local_host = r.optional_string("local_host").value_or(u.local_host);
-  u.local_port = static_cast<std::uint16_t>(r.whole_number_or("local_port", 0, 65535, 0));
-  u.reply_timeout_s = r.positive_number_or("reply_timeout_s", u.reply_timeout_s);
-  u.max_missed_replies = static_cast<int>(r.whole_number_or("max_missed_replies", 0, 1000, u.max_missed_replies));
-  return u;
-}
-
 }  // namespace
 
 node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
@@ -113,15 +100,9 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
     MappingReader actuator = root.mapping("actuator");
     f.node.channels = static_cast<int>(actuator.whole_number("channels", 1, transport::kMaxChannels));
     f.initial_displacement_m = per_channel(actuator, "initial_displacement_m", f.node.channels, 0.0);
-    const std::string kind = actuator.string("kind");
-    if (kind == "simulated") {
-      const double k = actuator.non_negative_number_or("specimen_stiffness_n_per_m", 0.0);
-      f.actuator = node::SimulatedActuatorConfig{read_plant_section(actuator.mapping("servo"), file, k)};
-    } else if (kind == "udp_controller") {
-      f.actuator = read_udp(actuator, f.node.channels);
-    } else {
-      actuator.fail("kind", "expected simulated or udp_controller, got \"" + kind + "\"");
-    }
+    using Kinds = node::ActuatorKinds;
+    const std::string kind = actuator.choice("kind", Kinds::names(), "what the node drives (node/)");
+    f.actuator = *Kinds::read(kind, actuator, f.node.channels);
     actuator.finish();
   }
   if (auto limits = root.optional_mapping("limits")) read_limits(*limits, f);
@@ -150,8 +131,9 @@ node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::pa
   MappingReader actuator = root.mapping("actuator");
   f.channels = static_cast<int>(actuator.whole_number("channels", 1, transport::kMaxChannels));
   f.initial_displacement_m = per_channel(actuator, "initial_displacement_m", f.channels, 0.0);
-  const double k = actuator.non_negative_number_or("specimen_stiffness_n_per_m", 0.0);
-  f.plant = read_plant_section(actuator.mapping("servo"), file, k);
+  const double k = actuator.number_or("specimen_stiffness_n_per_m", 0.0,
+                                      config::Number::non_negative("N/m", "the specimen the load cell sees: F = k x"));
+  f.plant = servo::read_plant_config(*actuator.section("servo", "each channel's plant"), k);
   actuator.finish();
   root.finish();
   return f;

@@ -139,42 +139,6 @@ void read_structure(MappingReader st, const std::filesystem::path& file, coordin
   st.finish();
 }
 
-servo::PlantConfig read_plant(MappingReader p, const std::filesystem::path& file, double specimen_stiffness) {
-  const std::string kind = p.string("kind");
-  servo::PlantConfig plant;
-  if (kind == "servo_model") {
-    const std::filesystem::path parameters = file.parent_path() / p.string("parameters");
-    if (!std::filesystem::exists(parameters)) p.fail("parameters", "no such parameter file: " + parameters.string());
-    plant = load_servo_parameters(parameters);
-  } else if (kind == "ideal_delay") {
-    servo::PureDelayParameters d;
-    d.delay_s = p.non_negative_number("delay_s");
-    d.specimen_stiffness_n_per_m = specimen_stiffness;
-    plant = d;
-  } else if (kind == "transfer_function") {
-    // Coefficients in descending powers of s, as transfer functions are usually published.
-    auto numerator = p.numbers("numerator_descending");
-    auto denominator = p.numbers("denominator_descending");
-    std::reverse(numerator.begin(), numerator.end());
-    std::reverse(denominator.begin(), denominator.end());
-    servo::TransferFunctionPlantParameters t;
-    t.transfer_function = {servo::Polynomial(Eigen::Map<Eigen::VectorXd>(numerator.data(), static_cast<Eigen::Index>(numerator.size()))),
-                           servo::Polynomial(Eigen::Map<Eigen::VectorXd>(denominator.data(), static_cast<Eigen::Index>(denominator.size())))};
-    t.specimen_stiffness_n_per_m = specimen_stiffness;
-    t.plant_rate_hz = p.positive_number_or("plant_rate_hz", t.plant_rate_hz);
-    try {
-      t.validate();
-    } catch (const std::invalid_argument& e) {
-      p.fail("denominator_descending", e.what());
-    }
-    plant = t;
-  } else {
-    p.fail("kind", "unknown servo \"" + kind + "\" (expected servo_model, ideal_delay or transfer_function)");
-  }
-  p.finish();
-  return plant;
-}
-
 integrators::IntegratorConfig read_integrator(MappingReader r) {
   const std::string scheme = r.string("scheme");
   auto config = default_integrator(scheme);
@@ -193,41 +157,17 @@ integrators::IntegratorConfig read_integrator(MappingReader r) {
 }
 
 compensation::CompensatorConfig read_compensation(MappingReader r, double control_period_s) {
-  const std::string kind = r.string("kind");
-  compensation::CompensatorConfig config;
+  using Kinds = compensation::CompensatorKinds;
+  const std::string kind = r.choice("kind", Kinds::names(), "the compensator (compensation/)");
   try {
-  if (kind == "none") {
-    config = compensation::PassThroughParameters{};
-  } else if (kind == "phase_lead") {
-    config = compensation::DiscretePhaseLeadParameters::for_delay(r.positive_number("delay_s"), r.positive_number("ratio_a"));
-  } else if (kind == "polynomial_extrapolation") {
-    config = compensation::PolynomialExtrapolationParameters{static_cast<int>(r.whole_number("order", 0, 3)),
-                                                              r.non_negative_number("delay_s")};
-  } else if (kind == "inverse") {
-    config = compensation::InverseCompensationParameters{r.non_negative_number("delay_s")};
-  } else if (kind == "adaptive_inverse") {
-    compensation::AdaptiveInverseCompensationParameters a;
-    a.initial_delay_s = r.non_negative_number("initial_delay_s");
-    a.min_delay_s = r.non_negative_number_or("min_delay_s", a.min_delay_s);
-    a.max_delay_s = r.positive_number_or("max_delay_s", a.max_delay_s);
-    a.max_delay_rate = r.positive_number_or("max_delay_rate", a.max_delay_rate);
-    a.proportional_gain_s_per_m2 = r.non_negative_number_or("proportional_gain_s_per_m2", a.proportional_gain_s_per_m2);
-    a.integral_gain_per_m2 = r.non_negative_number_or("integral_gain_per_m2", a.integral_gain_per_m2);
-    config = a;
-  } else if (kind == "adaptive_time_series") {
-    config = compensation::AdaptiveTimeSeriesParameters{};
-  } else {
-    r.fail("kind",
-           "unknown compensation \"" + kind +
-               "\" (expected none, phase_lead, polynomial_extrapolation, inverse, adaptive_inverse or adaptive_time_series)");
-  }
-  r.finish();
+    const compensation::CompensatorConfig config = *Kinds::read(kind, r);
+    r.finish();
     compensation::make_compensator(config, control_period_s);
+    return config;
   } catch (const std::invalid_argument& e) {
     // The compensator's own checks (a design that cannot work at this control rate).
     r.fail("kind", e.what());
   }
-  return config;
 }
 
 void read_clock(MappingReader clock, coordinator::TestConfig& t) {
@@ -279,9 +219,6 @@ void read_transport(MappingReader r, const std::filesystem::path& file, coordina
 
 }  // namespace
 
-servo::PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m) {
-  return read_plant(std::move(section), file, specimen_stiffness_n_per_m);
-}
 
 coordinator::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file) {
   coordinator::TestConfig t;
@@ -328,7 +265,10 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
                     : Eigen::VectorXd::Ones(dofs);
 
   // One specimen stiffness for the plants' load cells: the first channel's estimate.
-  t.plant = read_plant(root.mapping("servo"), file, t.experimental.front().dof.specimen_stiffness_estimate_n_per_m);
+  {
+    MappingReader servo = root.mapping("servo");
+    t.plant = servo::read_plant_config(servo, t.experimental.front().dof.specimen_stiffness_estimate_n_per_m);
+  }
   if (root.has("integrator")) t.integrator = read_integrator(root.mapping("integrator"));
   read_clock(root.mapping("clock"), t);
   if (auto transport = root.optional_mapping("transport")) read_transport(*transport, file, t);

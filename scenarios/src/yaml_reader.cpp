@@ -1,6 +1,9 @@
 #include "rpsd/scenarios/yaml_reader.h"
 
 #include <cmath>
+#include <memory>
+
+#include "rpsd/config/key_table.h"
 #include <fstream>
 #include <sstream>
 
@@ -52,8 +55,8 @@ MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_
   }
 }
 
-std::string MappingReader::path_of(const std::string& key) const {
-  return key_path_.empty() ? key : key_path_ + '.' + key;
+std::string MappingReader::path_of(std::string_view key) const {
+  return key_path_.empty() ? std::string(key) : key_path_ + '.' + std::string(key);
 }
 
 void MappingReader::fail_at(const YAML::Node& node, const std::string& path, const std::string& message) const {
@@ -61,24 +64,24 @@ void MappingReader::fail_at(const YAML::Node& node, const std::string& path, con
                     message);
 }
 
-void MappingReader::fail(const std::string& key, const std::string& message) const {
-  const YAML::Node value = node_[key];
+void MappingReader::fail(std::string_view key, const std::string& message) const {
+  const YAML::Node value = node_[std::string(key)];
   fail_at(value ? value : node_, path_of(key), message);
 }
 
-bool MappingReader::has(const std::string& key) {
-  read_keys_.insert(key);
-  return static_cast<bool>(node_[key]);
+bool MappingReader::has(std::string_view key) {
+  read_keys_.insert(std::string(key));
+  return static_cast<bool>(node_[std::string(key)]);
 }
 
-YAML::Node MappingReader::required(const std::string& key) {
-  read_keys_.insert(key);
-  YAML::Node value = node_[key];
+YAML::Node MappingReader::required(std::string_view key) {
+  read_keys_.insert(std::string(key));
+  YAML::Node value = node_[std::string(key)];
   if (!value) fail_at(node_, path_of(key), "required key is missing");
   return value;
 }
 
-double MappingReader::parse_number(const YAML::Node& value, const std::string& key) const {
+double MappingReader::parse_number(const YAML::Node& value, std::string_view key) const {
   double result = 0.0;
   if (!value.IsScalar() || !YAML::convert<double>::decode(value, result) || !std::isfinite(result)) {
     fail_at(value, path_of(key), "expected a number, got " + describe(value));
@@ -86,35 +89,35 @@ double MappingReader::parse_number(const YAML::Node& value, const std::string& k
   return result;
 }
 
-double MappingReader::number(const std::string& key) { return parse_number(required(key), key); }
+double MappingReader::number(std::string_view key) { return parse_number(required(key), key); }
 
-double MappingReader::positive_number(const std::string& key) {
+double MappingReader::positive_number(std::string_view key) {
   const YAML::Node value = required(key);
   const double v = parse_number(value, key);
   if (!(v > 0.0)) fail_at(value, path_of(key), "expected a positive number, got " + describe(value));
   return v;
 }
 
-double MappingReader::non_negative_number(const std::string& key) {
+double MappingReader::non_negative_number(std::string_view key) {
   const YAML::Node value = required(key);
   const double v = parse_number(value, key);
   if (v < 0.0) fail_at(value, path_of(key), "expected zero or a positive number, got " + describe(value));
   return v;
 }
 
-double MappingReader::number_or(const std::string& key, double fallback) {
+double MappingReader::number_or(std::string_view key, double fallback) {
   return has(key) ? number(key) : fallback;
 }
-double MappingReader::positive_number_or(const std::string& key, double fallback) {
+double MappingReader::positive_number_or(std::string_view key, double fallback) {
   return has(key) ? positive_number(key) : fallback;
 }
-double MappingReader::non_negative_number_or(const std::string& key, double fallback) {
+double MappingReader::non_negative_number_or(std::string_view key, double fallback) {
   return has(key) ? non_negative_number(key) : fallback;
 }
 
-bool MappingReader::boolean_or(const std::string& key, bool fallback) {
-  read_keys_.insert(key);
-  const YAML::Node value = node_[key];
+bool MappingReader::boolean_or(std::string_view key, bool fallback) {
+  read_keys_.insert(std::string(key));
+  const YAML::Node value = node_[std::string(key)];
   if (!value) return fallback;
   bool result = false;
   if (!value.IsScalar() || !YAML::convert<bool>::decode(value, result)) {
@@ -123,18 +126,18 @@ bool MappingReader::boolean_or(const std::string& key, bool fallback) {
   return result;
 }
 
-std::string MappingReader::string(const std::string& key) {
+std::string MappingReader::string(std::string_view key) {
   const YAML::Node value = required(key);
   if (!value.IsScalar()) fail_at(value, path_of(key), "expected a string, got " + describe(value));
   return value.Scalar();
 }
 
-std::optional<std::string> MappingReader::optional_string(const std::string& key) {
+std::optional<std::string> MappingReader::optional_string(std::string_view key) {
   if (!has(key)) return std::nullopt;
   return string(key);
 }
 
-std::vector<double> MappingReader::positive_numbers(const std::string& key) {
+std::vector<double> MappingReader::positive_numbers(std::string_view key) {
   const YAML::Node value = required(key);
   if (!value.IsSequence() || value.size() == 0) {
     fail_at(value, path_of(key), "expected a non-empty list of numbers, got " + describe(value));
@@ -151,7 +154,7 @@ std::vector<double> MappingReader::positive_numbers(const std::string& key) {
   return numbers;
 }
 
-std::vector<double> MappingReader::numbers(const std::string& key) {
+std::vector<double> MappingReader::numbers(std::string_view key) {
   const YAML::Node value = required(key);
   if (!value.IsSequence() || value.size() == 0) {
     fail_at(value, path_of(key), "expected a non-empty list of numbers, got " + describe(value));
@@ -167,7 +170,7 @@ std::vector<double> MappingReader::numbers(const std::string& key) {
   return result;
 }
 
-std::vector<std::vector<double>> MappingReader::number_rows(const std::string& key) {
+std::vector<std::vector<double>> MappingReader::number_rows(std::string_view key) {
   const YAML::Node value = required(key);
   if (!value.IsSequence() || value.size() == 0) {
     fail_at(value, path_of(key), "expected a list of rows (lists of numbers), got " + describe(value));
@@ -193,7 +196,7 @@ std::vector<std::vector<double>> MappingReader::number_rows(const std::string& k
   return rows;
 }
 
-long MappingReader::whole_number(const std::string& key, long minimum, long maximum) {
+long MappingReader::whole_number(std::string_view key, long minimum, long maximum) {
   const YAML::Node value = required(key);
   const double v = parse_number(value, key);
   if (v != std::floor(v) || v < static_cast<double>(minimum) || v > static_cast<double>(maximum)) {
@@ -203,11 +206,11 @@ long MappingReader::whole_number(const std::string& key, long minimum, long maxi
   return static_cast<long>(v);
 }
 
-long MappingReader::whole_number_or(const std::string& key, long minimum, long maximum, long fallback) {
+long MappingReader::whole_number_or(std::string_view key, long minimum, long maximum, long fallback) {
   return has(key) ? whole_number(key, minimum, maximum) : fallback;
 }
 
-std::vector<MappingReader> MappingReader::mappings(const std::string& key) {
+std::vector<MappingReader> MappingReader::mappings(std::string_view key) {
   const YAML::Node value = required(key);
   if (!value.IsSequence() || value.size() == 0) fail_at(value, path_of(key), "expected a non-empty list, got " + describe(value));
   std::vector<MappingReader> result;
@@ -215,12 +218,12 @@ std::vector<MappingReader> MappingReader::mappings(const std::string& key) {
   return result;
 }
 
-MappingReader MappingReader::mapping(const std::string& key) {
+MappingReader MappingReader::mapping(std::string_view key) {
   const YAML::Node value = required(key);
   return MappingReader(value, file_, path_of(key));
 }
 
-std::optional<MappingReader> MappingReader::optional_mapping(const std::string& key) {
+std::optional<MappingReader> MappingReader::optional_mapping(std::string_view key) {
   if (!has(key)) return std::nullopt;
   return mapping(key);
 }
@@ -230,6 +233,79 @@ void MappingReader::finish() const {
     const std::string key = entry.first.Scalar();
     if (!read_keys_.contains(key)) fail_at(entry.first, path_of(key), "unknown key");
   }
+}
+
+
+double MappingReader::checked(double value, std::string_view key, const config::Number& spec) const {
+  if (!spec.admits(value)) {
+    const YAML::Node node = node_[std::string(key)];
+    fail_at(node ? node : node_, path_of(key), "expected a number " + config::range_text(spec) + ", got " + describe(node));
+  }
+  return value;
+}
+
+namespace {
+
+// The positive and non-negative ranges read as they always did, with the same messages.
+bool is_positive(const config::Number& spec) { return spec.min == 0.0 && spec.min_open && std::isinf(spec.max); }
+bool is_non_negative(const config::Number& spec) { return spec.min == 0.0 && !spec.min_open && std::isinf(spec.max); }
+
+}  // namespace
+
+double MappingReader::number(std::string_view key, const config::Number& spec) {
+  if (is_positive(spec)) return positive_number(key);
+  if (is_non_negative(spec)) return non_negative_number(key);
+  return checked(number(key), key, spec);
+}
+
+double MappingReader::number_or(std::string_view key, double fallback, const config::Number& spec) {
+  return has(key) ? number(key, spec) : fallback;
+}
+
+std::vector<double> MappingReader::numbers(std::string_view key, const config::Number& spec) {
+  if (is_positive(spec)) return positive_numbers(key);
+  std::vector<double> values = numbers(key);
+  const YAML::Node list = node_[std::string(key)];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!spec.admits(values[i])) {
+      fail_at(list[i], path_of(key) + '[' + std::to_string(i) + ']',
+              "expected a number " + config::range_text(spec) + ", got " + describe(list[i]));
+    }
+  }
+  return values;
+}
+
+long MappingReader::whole_number(std::string_view key, long minimum, long maximum, std::string_view) {
+  return whole_number(key, minimum, maximum);
+}
+
+long MappingReader::whole_number_or(std::string_view key, long minimum, long maximum, long fallback, std::string_view) {
+  return whole_number_or(key, minimum, maximum, fallback);
+}
+
+bool MappingReader::boolean_or(std::string_view key, bool fallback, std::string_view) { return boolean_or(key, fallback); }
+
+std::string MappingReader::choice(std::string_view key, const std::vector<std::string_view>& choices, std::string_view) {
+  const std::string value = string(key);
+  for (const auto& c : choices) {
+    if (value == c) return value;
+  }
+  std::string listed;
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    if (i > 0) listed += i + 1 == choices.size() ? " or " : ", ";
+    listed += choices[i];
+  }
+  fail(key, "expected " + listed + ", got \"" + value + "\"");
+}
+
+std::unique_ptr<config::Source> MappingReader::section(std::string_view key, std::string_view) {
+  return std::make_unique<MappingReader>(mapping(key));
+}
+
+std::unique_ptr<config::Source> MappingReader::file(std::string_view key, std::string_view) {
+  const std::filesystem::path path = std::filesystem::path(file_).parent_path() / string(key);
+  if (!std::filesystem::is_regular_file(path)) fail(key, "no such file: " + path.string());
+  return std::make_unique<MappingReader>(load_yaml_file(path), path.string(), "");
 }
 
 }  // namespace rpsd::scenarios

@@ -3,25 +3,18 @@
 #include "rpsd/servo/servo_hydraulic_plant.h"
 
 namespace rpsd::servo {
-namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-
-}  // namespace
 
 std::unique_ptr<Plant> make_plant(const PlantConfig& config) {
   return std::visit(
-      Overloaded{
-          [](const ServoSystemParameters& c) -> std::unique_ptr<Plant> { return std::make_unique<ServoHydraulicPlant>(c); },
-          [](const PureDelayParameters& c) -> std::unique_ptr<Plant> { return std::make_unique<PureDelayPlant>(c); },
-          [](const TransferFunctionPlantParameters& c) -> std::unique_ptr<Plant> {
-            return std::make_unique<TransferFunctionPlant>(c);
-          },
-      },
+      [](const auto& p) -> std::unique_ptr<Plant> { return std::make_unique<typename std::decay_t<decltype(p)>::Model>(p); },
       config);
+}
+
+PlantConfig read_plant_config(config::Source& section, double specimen_stiffness_n_per_m) {
+  const std::string kind = section.choice("kind", PlantKinds::names(), "the plant");
+  const PlantConfig plant = *PlantKinds::read(kind, section, specimen_stiffness_n_per_m);
+  section.finish();
+  return plant;
 }
 
 PlantSet make_plants(const PlantConfig& config, int channels) {

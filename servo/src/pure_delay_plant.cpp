@@ -69,4 +69,12 @@ PlantMeasurement PureDelayPlant::measure() const {
   return {x, parameters_.specimen_stiffness_n_per_m * x};
 }
 
+
+PureDelayParameters PureDelayParameters::read(config::Source& section, double specimen_stiffness_n_per_m) {
+  PureDelayParameters d;
+  d.delay_s = section.number("delay_s", config::Number::non_negative("s", "how long after its command the actuator is there"));
+  d.specimen_stiffness_n_per_m = specimen_stiffness_n_per_m;
+  return d;
+}
+
 }  // namespace rpsd::servo

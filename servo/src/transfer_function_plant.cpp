@@ -86,4 +86,24 @@ PlantMeasurement TransferFunctionPlant::measure() const {
   return {x, parameters_.specimen_stiffness_n_per_m * x};
 }
 
+
+TransferFunctionPlantParameters TransferFunctionPlantParameters::read(config::Source& section, double specimen_stiffness_n_per_m) {
+  // Coefficients in descending powers of s, as transfer functions are usually published.
+  auto numerator = section.numbers("numerator_descending", config::Number::any("", "b_m ... b_0 of the numerator"));
+  auto denominator = section.numbers("denominator_descending", config::Number::any("", "a_n ... a_0 of the denominator"));
+  std::reverse(numerator.begin(), numerator.end());
+  std::reverse(denominator.begin(), denominator.end());
+  TransferFunctionPlantParameters t;
+  t.transfer_function = {Polynomial(Eigen::Map<Eigen::VectorXd>(numerator.data(), static_cast<Eigen::Index>(numerator.size()))),
+                         Polynomial(Eigen::Map<Eigen::VectorXd>(denominator.data(), static_cast<Eigen::Index>(denominator.size())))};
+  t.specimen_stiffness_n_per_m = specimen_stiffness_n_per_m;
+  t.plant_rate_hz = section.number_or("plant_rate_hz", t.plant_rate_hz, config::Number::positive("Hz", "fixed-step integration rate"));
+  try {
+    t.validate();
+  } catch (const std::invalid_argument& e) {
+    section.fail("denominator_descending", e.what());
+  }
+  return t;
+}
+
 }  // namespace rpsd::servo

@@ -63,7 +63,7 @@ TEST(TestScenarioFile, KeepingTheCpusAwakeIsOnUnlessTurnedOff) {
 TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
   EXPECT_NE(error_of({parse_override("experimental.0.dof=3")}).find("experimental[0].dof: expected a whole number from 0 to 0"),
             std::string::npos);
-  EXPECT_NE(error_of({parse_override("servo.kind=hydraulic")}).find("servo.kind: unknown servo \"hydraulic\""), std::string::npos);
+  EXPECT_NE(error_of({parse_override("servo.kind=hydraulic")}).find("servo.kind: expected servo_model, ideal_delay or transfer_function, got \"hydraulic\""), std::string::npos);
   EXPECT_NE(error_of({parse_override("clock.mode=sometimes")}).find("clock.mode: expected as_fast_as_possible or real_time"),
             std::string::npos);
   EXPECT_NE(error_of({parse_override("clock.fifo_priority=120")}).find("clock.fifo_priority"), std::string::npos);

@@ -16,12 +16,23 @@
 // while tau sits on a bound and TI pushes it further out.
 #pragma once
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 #include "rpsd/compensation/command_compensator.h"
 #include "rpsd/compensation/tracking_indicator.h"
 
 namespace rpsd::compensation {
 
+class AdaptiveInverseCompensator;
+
 struct AdaptiveInverseCompensationParameters {
+  static constexpr std::string_view kName = "adaptive_inverse";
+  static constexpr std::string_view kSummary = "inverse compensation whose delay adapts to the tracking indicator (Chen and Ricles)";
+  using Compensator = AdaptiveInverseCompensator;
+  static AdaptiveInverseCompensationParameters read(config::Source& section);
+
   double initial_delay_s = 0.0;                 ///< tau_0
   double min_delay_s = 0.0;                     ///< tau_min >= 0
   double max_delay_s = 0.1;                     ///< tau_max >= tau_min
@@ -43,7 +54,7 @@ class AdaptiveInverseCompensator final : public CommandCompensator {
   double command(double target_m) noexcept override;
   void observe(double target_m, double measured_m) noexcept override;
   double compensated_delay_s() const noexcept override { return delay_s_; }
-  std::string_view name() const noexcept override { return "adaptive_inverse"; }
+  std::string_view name() const noexcept override { return AdaptiveInverseCompensationParameters::kName; }
 
   double alpha() const { return 1.0 + delay_s_ / dt_s_; }
   const TrackingIndicator& tracking_indicator() const { return indicator_; }

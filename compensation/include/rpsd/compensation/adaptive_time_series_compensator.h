@@ -31,6 +31,10 @@
 // are rebuilt from the ring buffers, so no rounding drift accumulates).
 #pragma once
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 #include <array>
 #include <vector>
 
@@ -38,7 +42,15 @@
 
 namespace rpsd::compensation {
 
+class AdaptiveTimeSeriesCompensator;
+
 struct AdaptiveTimeSeriesParameters {
+  static constexpr std::string_view kName = "adaptive_time_series";
+  static constexpr std::string_view kSummary =
+      "adaptive time-series compensation (Chae, Kazemibidokhti and Ricles), coefficients by least squares";
+  using Compensator = AdaptiveTimeSeriesCompensator;
+  static AdaptiveTimeSeriesParameters read(config::Source&) { return {}; }
+
   std::array<double, 3> initial_coefficients{1.0, 0.025, 0.5 * 0.025 * 0.025};  ///< a0, a1 s, a2 s^2
   std::array<double, 3> lower_bounds{0.7, 0.0, 0.0};
   std::array<double, 3> upper_bounds{1.3, 0.08, 0.0032};
@@ -64,7 +76,7 @@ class AdaptiveTimeSeriesCompensator final : public CommandCompensator {
   void observe(double target_m, double measured_m) noexcept override;
   /// The law's low-frequency lead a1 / a0.
   double compensated_delay_s() const noexcept override { return coefficients_[1] / coefficients_[0]; }
-  std::string_view name() const noexcept override { return "adaptive_time_series"; }
+  std::string_view name() const noexcept override { return AdaptiveTimeSeriesParameters::kName; }
 
   const std::array<double, 3>& coefficients() const { return coefficients_; }
   int window_samples() const { return window_samples_; }

@@ -1,9 +1,11 @@
-// A compensator from its typed configuration: the variant alternative selects the scheme.
+// Every compensator rpsd knows, registered in one place (the list below): a new one is its
+// own header and source (its parameters naming themselves with kName, reading their keys with
+// read(), and naming the CommandCompensator they configure) plus one entry here
+// (CONTRIBUTING.md).
 #pragma once
 
 #include <memory>
 #include <string_view>
-#include <variant>
 
 #include "rpsd/compensation/adaptive_inverse_compensator.h"
 #include "rpsd/compensation/adaptive_time_series_compensator.h"
@@ -12,12 +14,14 @@
 #include "rpsd/compensation/inverse_compensator.h"
 #include "rpsd/compensation/pass_through_compensator.h"
 #include "rpsd/compensation/polynomial_extrapolation.h"
+#include "rpsd/config/kind_list.h"
 
 namespace rpsd::compensation {
 
-using CompensatorConfig =
-    std::variant<PassThroughParameters, DiscretePhaseLeadParameters, PolynomialExtrapolationParameters,
-                 InverseCompensationParameters, AdaptiveInverseCompensationParameters, AdaptiveTimeSeriesParameters>;
+using CompensatorKinds =
+    config::KindList<PassThroughParameters, DiscretePhaseLeadParameters, PolynomialExtrapolationParameters,
+                     InverseCompensationParameters, AdaptiveInverseCompensationParameters, AdaptiveTimeSeriesParameters>;
+using CompensatorConfig = CompensatorKinds::Variant;
 
 /// The compensator for config, configured for control step dt_s and at rest at zero
 /// displacement (call reset() for another start). Throws std::invalid_argument with the
@@ -25,6 +29,6 @@ using CompensatorConfig =
 std::unique_ptr<CommandCompensator> make_compensator(const CompensatorConfig& config, double dt_s);
 
 /// The name() the compensator made from config will report. Real-time safe.
-std::string_view compensator_name(const CompensatorConfig& config) noexcept;
+inline std::string_view compensator_name(const CompensatorConfig& config) noexcept { return config::kind_name(config); }
 
 }  // namespace rpsd::compensation

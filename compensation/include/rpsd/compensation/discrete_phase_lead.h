@@ -13,6 +13,10 @@
 // frequency exactly.
 #pragma once
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 #include <complex>
 
 #include "rpsd/compensation/command_compensator.h"
@@ -20,7 +24,15 @@
 
 namespace rpsd::compensation {
 
+class DiscretePhaseLeadCompensator;
+
 struct DiscretePhaseLeadParameters {
+  static constexpr std::string_view kName = "phase_lead";
+  static constexpr std::string_view kSummary =
+      "the seed paper's first-order phase-lead network (1 + a T s) / (1 + T s), Tustin at the control rate";
+  using Compensator = DiscretePhaseLeadCompensator;
+  static DiscretePhaseLeadParameters read(config::Source& section);
+
   PhaseLeadParameters network;        ///< (a, T); see phase_lead_for_delay() for the design
   double prewarp_frequency_hz = 0.0;  ///< 0: plain Tustin; > 0: exact at this frequency
 
@@ -61,7 +73,7 @@ class DiscretePhaseLeadCompensator final : public CommandCompensator {
   void observe(double, double) noexcept override {}
   /// The discrete filter's low-frequency lead: (a - 1) T K dt / 2 ((a - 1) T unless pre-warped).
   double compensated_delay_s() const noexcept override { return low_frequency_lead_s_; }
-  std::string_view name() const noexcept override { return "phase_lead"; }
+  std::string_view name() const noexcept override { return DiscretePhaseLeadParameters::kName; }
 
   const FirstOrderSection& section() const { return section_; }
   const DiscretePhaseLeadParameters& parameters() const { return parameters_; }

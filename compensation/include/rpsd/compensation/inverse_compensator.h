@@ -9,11 +9,22 @@
 // delay_s (the same as polynomial extrapolation of order 1).
 #pragma once
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 #include "rpsd/compensation/command_compensator.h"
 
 namespace rpsd::compensation {
 
+class InverseCompensator;
+
 struct InverseCompensationParameters {
+  static constexpr std::string_view kName = "inverse";
+  static constexpr std::string_view kSummary = "inverts a first-order lag of the given delay (Chen and Ricles)";
+  using Compensator = InverseCompensator;
+  static InverseCompensationParameters read(config::Source& section);
+
   double delay_s = 0.0;  ///< lag to compensate; alpha = 1 + delay_s / dt_s
 
   /// Throws std::invalid_argument unless delay_s >= 0 and finite. Not real-time safe.
@@ -29,7 +40,7 @@ class InverseCompensator final : public CommandCompensator {
   double command(double target_m) noexcept override;
   void observe(double, double) noexcept override {}
   double compensated_delay_s() const noexcept override { return parameters_.delay_s; }
-  std::string_view name() const noexcept override { return "inverse"; }
+  std::string_view name() const noexcept override { return InverseCompensationParameters::kName; }
 
   /// Chen & Ricles' alpha = 1 + delay_s / dt_s.
   double alpha() const { return alpha_; }

@@ -1,12 +1,24 @@
 // The "none" compensator: the command is the target.
 #pragma once
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 #include "rpsd/compensation/command_compensator.h"
 
 namespace rpsd::compensation {
 
+class PassThroughCompensator;
+
 /// No parameters; present so that "none" is a typed configuration like the others.
-struct PassThroughParameters {};
+
+struct PassThroughParameters {
+  static constexpr std::string_view kName = "none";
+  static constexpr std::string_view kSummary = "no compensation: the command is the target";
+  using Compensator = PassThroughCompensator;
+  static PassThroughParameters read(config::Source&) { return {}; }
+};
 
 class PassThroughCompensator final : public CommandCompensator {
  public:
@@ -19,7 +31,7 @@ class PassThroughCompensator final : public CommandCompensator {
   double command(double target_m) noexcept override { return target_m; }
   void observe(double, double) noexcept override {}
   double compensated_delay_s() const noexcept override { return 0.0; }
-  std::string_view name() const noexcept override { return "none"; }
+  std::string_view name() const noexcept override { return PassThroughParameters::kName; }
 };
 
 }  // namespace rpsd::compensation

@@ -4,6 +4,10 @@
 // For a smooth target its error is x^(p+1)(xi) / (p+1)! * prod_{k=0..p} (alpha + k) dt^(p+1).
 #pragma once
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 #include <array>
 #include <complex>
 
@@ -21,7 +25,14 @@ std::array<double, kMaxExtrapolationOrder + 1> extrapolation_coefficients(int or
 /// (the ideal is e^{j alpha w dt}). Real-time safe.
 std::complex<double> extrapolation_response(int order, double alpha, double omega_dt_rad);
 
+class PolynomialExtrapolationCompensator;
+
 struct PolynomialExtrapolationParameters {
+  static constexpr std::string_view kName = "polynomial_extrapolation";
+  static constexpr std::string_view kSummary = "extrapolates the target tau ahead with a polynomial through its last p + 1 samples";
+  using Compensator = PolynomialExtrapolationCompensator;
+  static PolynomialExtrapolationParameters read(config::Source& section);
+
   int order = 2;         ///< p in 0..3 (0 holds the target: no compensation)
   double delay_s = 0.0;  ///< tau; alpha = tau / dt may be any non-negative ratio
 
@@ -39,7 +50,7 @@ class PolynomialExtrapolationCompensator final : public CommandCompensator {
   void observe(double, double) noexcept override {}
   /// delay_s, or 0 for order 0 (which holds the target and so advances nothing).
   double compensated_delay_s() const noexcept override { return parameters_.order == 0 ? 0.0 : parameters_.delay_s; }
-  std::string_view name() const noexcept override { return "polynomial_extrapolation"; }
+  std::string_view name() const noexcept override { return PolynomialExtrapolationParameters::kName; }
 
   double alpha() const { return alpha_; }
   const std::array<double, kMaxExtrapolationOrder + 1>& coefficients() const { return coefficients_; }

@@ -1,32 +1,23 @@
-// The actuators a servo node can drive, in one place: simulated plants (one per channel) or
-// a hardware controller on UDP. A new adapter is its own files (an servo::Actuator) plus one
-// alternative here and one branch in actuator_factory.cpp (CONTRIBUTING.md).
+// The actuators a servo node can drive, registered in one place (the list below): a new
+// adapter is its own files (an Actuator, and a config naming itself with kName, reading its
+// keys with read() and building the actuator with make()) plus one entry here
+// (CONTRIBUTING.md).
 #pragma once
 
-#include <memory>
-#include <variant>
-
+#include "rpsd/config/kind_list.h"
+#include "rpsd/node/owned_actuator.h"
+#include "rpsd/node/simulated_actuator_config.h"
 #include "rpsd/node/udp_controller_actuator.h"
-#include "rpsd/servo/actuator.h"
-#include "rpsd/servo/plant_factory.h"
 
 namespace rpsd::node {
 
-// Simulated actuators: one plant per channel, all of one configuration.
-struct SimulatedActuatorConfig {
-  servo::PlantConfig plant;
-};
-
-using ActuatorConfig = std::variant<SimulatedActuatorConfig, UdpControllerConfig>;
-
-// The actuator and whatever it borrows (the simulated plants), owned together.
-struct OwnedActuator {
-  servo::PlantSet plants;
-  std::unique_ptr<servo::Actuator> actuator;
-};
+using ActuatorKinds = config::KindList<SimulatedActuatorConfig, UdpControllerConfig>;
+using ActuatorConfig = ActuatorKinds::Variant;
 
 // Builds the actuator for `channels` channels. Not real-time safe; throws
 // std::invalid_argument naming what does not fit.
-OwnedActuator make_actuator(const ActuatorConfig& config, int channels);
+inline OwnedActuator make_actuator(const ActuatorConfig& config, int channels) {
+  return std::visit([channels](const auto& c) { return std::decay_t<decltype(c)>::make(c, channels); }, config);
+}
 
 }  // namespace rpsd::node

@@ -8,6 +8,9 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
+
+#include "rpsd/config/source.h"
 
 #include "rpsd/servo/actuator.h"
 #include "rpsd/node/udp_controller_protocol.h"
@@ -15,7 +18,15 @@
 
 namespace rpsd::node {
 
+struct OwnedActuator;
+
 struct UdpControllerConfig {
+  static constexpr std::string_view kName = "udp_controller";
+  static constexpr std::string_view kSummary =
+      "a hardware controller that closes the servo loop itself, on UDP (docs/udp-controller-protocol.md)";
+  static UdpControllerConfig read(config::Source& section, int channels);
+  static OwnedActuator make(const UdpControllerConfig& config, int channels);
+
   int channels = 1;                           ///< must equal the controller's
   std::string controller_host = "127.0.0.1";  ///< dotted IPv4
   std::uint16_t controller_port = 0;          ///< required

@@ -12,8 +12,4 @@ namespace rpsd::scenarios {
 /// Not real-time safe.
 coordinator::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file);
 
-/// A `servo:` section (servo_model with its parameter file relative to `file`,
-/// ideal_delay or transfer_function); shared by scenarios and servo-node files.
-servo::PlantConfig read_plant_section(MappingReader section, const std::filesystem::path& file, double specimen_stiffness_n_per_m);
-
 }  // namespace rpsd::scenarios

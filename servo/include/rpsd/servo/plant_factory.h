@@ -1,12 +1,12 @@
-// The simulated plants rpsd knows, in one place: their configurations as one variant, and the
-// plant each configuration builds. A new plant is its own files plus one line here and one
-// in plant_factory.cpp (CONTRIBUTING.md). Not real-time safe.
+// The simulated plants rpsd knows, registered in one place (the list below): a new plant is
+// its own files (its parameters naming themselves with kName, reading their keys with read(),
+// and naming the Plant they build) plus one entry here (CONTRIBUTING.md). Not real-time safe.
 #pragma once
 
 #include <memory>
-#include <variant>
 #include <vector>
 
+#include "rpsd/config/kind_list.h"
 #include "rpsd/servo/plant.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_parameters.h"
@@ -16,9 +16,14 @@ namespace rpsd::servo {
 
 // The actuator of a channel: the seed paper's servo-hydraulic model, an ideal delay, or a
 // transfer function from command to displacement.
-using PlantConfig = std::variant<ServoSystemParameters, PureDelayParameters, TransferFunctionPlantParameters>;
+using PlantKinds = config::KindList<ServoSystemParameters, PureDelayParameters, TransferFunctionPlantParameters>;
+using PlantConfig = PlantKinds::Variant;
 
 std::unique_ptr<Plant> make_plant(const PlantConfig& config);
+
+// A plant section: its `kind` and that kind's keys. The specimen stiffness is the load cell's
+// k for the plants that have no specimen of their own. Not real-time safe.
+PlantConfig read_plant_config(config::Source& section, double specimen_stiffness_n_per_m);
 
 // One plant per channel, all of one configuration, with the pointers an actuator borrows.
 struct PlantSet {

@@ -3,13 +3,24 @@
 // against which compensators and the coordinator loop are checked.
 #pragma once
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 #include <vector>
 
 #include "rpsd/servo/plant.h"
 
 namespace rpsd::servo {
 
+class PureDelayPlant;
+
 struct PureDelayParameters {
+  using Model = PureDelayPlant;  // the Plant these parameters build
+  static constexpr std::string_view kName = "ideal_delay";
+  static constexpr std::string_view kSummary = "an actuator that follows its command exactly, delay_s later";
+  static PureDelayParameters read(config::Source& section, double specimen_stiffness_n_per_m);
+
   double delay_s = 0.0;
   double specimen_stiffness_n_per_m = 0.0;  ///< the load cell reads k x_m (an elastic specimen)
   double sample_rate_hz = 8192.0;           ///< command history resolution; advances split to <= 1/rate

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <string>
+#include <string_view>
+
+#include "rpsd/config/source.h"
 
 namespace rpsd::servo {
 
@@ -87,7 +90,17 @@ struct SpecimenParameters {
 };
 
 /// The whole test system of the paper's Figure 3, plus the plant's integration rate.
+class ServoHydraulicPlant;
+
 struct ServoSystemParameters {
+  using Model = ServoHydraulicPlant;  // the Plant these parameters build
+  static constexpr std::string_view kName = "servo_model";
+  static constexpr std::string_view kSummary =
+      "the seed paper's servo-hydraulic model (controller, three-stage servovalve, actuator, specimen), from a parameter file";
+  // `parameters`: the parameter file, relative to the file that names it (the specimen is the
+  // file's own, so the scenario's specimen stiffness is not used).
+  static ServoSystemParameters read(config::Source& section, double specimen_stiffness_n_per_m);
+
   std::string name;
   ControllerParameters controller;
   ServovalveParameters servovalve;
@@ -100,5 +113,9 @@ struct ServoSystemParameters {
   /// Throws std::invalid_argument naming the first inconsistent field. Not real-time safe.
   void validate() const;
 };
+
+/// Reads a servo-system parameter file (its root section; examples/servo/paper-mts-244.yaml)
+/// and validates it. Not real-time safe.
+ServoSystemParameters read_servo_parameters(config::Source& file);
 
 }  // namespace rpsd::servo

@@ -4,6 +4,10 @@
 // a fixed internal rate with the command ramping linearly between samples.
 #pragma once
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 #include <Eigen/Core>
 
 #include "rpsd/servo/plant.h"
@@ -11,7 +15,15 @@
 
 namespace rpsd::servo {
 
+class TransferFunctionPlant;
+
 struct TransferFunctionPlantParameters {
+  using Model = TransferFunctionPlant;  // the Plant these parameters build
+  static constexpr std::string_view kName = "transfer_function";
+  static constexpr std::string_view kSummary =
+      "a linear plant from command to displacement, given by its numerator and denominator in descending powers of s";
+  static TransferFunctionPlantParameters read(config::Source& section, double specimen_stiffness_n_per_m);
+
   TransferFunction transfer_function;       ///< strictly proper or proper
   double specimen_stiffness_n_per_m = 0.0;  ///< the load cell reads k x_m
   double plant_rate_hz = 8192.0;

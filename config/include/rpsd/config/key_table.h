@@ -1,0 +1,58 @@
+// A Source that reads nothing and writes down every key asked for: the table of a section's
+// keys (path, type, unit, default, range, meaning) for the scenario reference. Numbers come
+// back as their default or as a value inside their range, so that a reader runs through.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rpsd/config/source.h"
+
+namespace rpsd::config {
+
+struct KeyRow {
+  std::string path;     // "compensation.delay_s"
+  std::string type;     // "number", "whole number", "list of numbers", "true or false", "one of ...", "section", "file"
+  std::string unit;
+  std::string fallback;  // the default, empty when the key is required
+  std::string range;
+  std::string meaning;
+};
+
+class KeyTable final : public Source {
+ public:
+  explicit KeyTable(std::string path = {}, std::shared_ptr<std::vector<KeyRow>> rows = nullptr);
+
+  const std::vector<KeyRow>& rows() const { return *rows_; }
+
+  double number(std::string_view key, const Number& spec) override;
+  double number_or(std::string_view key, double fallback, const Number& spec) override;
+  std::vector<double> numbers(std::string_view key, const Number& spec) override;
+  long whole_number(std::string_view key, long min, long max, std::string_view meaning) override;
+  long whole_number_or(std::string_view key, long min, long max, long fallback, std::string_view meaning) override;
+  bool boolean_or(std::string_view key, bool fallback, std::string_view meaning) override;
+  std::string text(std::string_view key, std::string_view meaning) override;
+  std::string choice(std::string_view key, const std::vector<std::string_view>& choices, std::string_view meaning) override;
+  bool has(std::string_view key) override;
+  std::unique_ptr<Source> section(std::string_view key, std::string_view meaning) override;
+  std::unique_ptr<Source> file(std::string_view key, std::string_view meaning) override;
+  void finish() override {}
+  [[noreturn]] void fail(std::string_view key, const std::string& message) override;
+  [[noreturn]] void fail_section(const std::string& message) override;
+
+ private:
+  std::string path_of(std::string_view key) const;
+  void add(std::string_view key, std::string type, std::string_view unit, std::string fallback, std::string range,
+           std::string_view meaning);
+
+  std::string path_;
+  std::shared_ptr<std::vector<KeyRow>> rows_;
+};
+
+// The text of a number as the reference prints it ("0.001", "1e+30", "inf").
+std::string number_text(double v);
+// "> 0", "0 to 1", ">= 1", "any"
+std::string range_text(const Number& spec);
+
+}  // namespace rpsd::config

@@ -1,0 +1,68 @@
+// How a module states, and reads, the keys of one section of a configuration file without
+// knowing the file's format: every key is read with its unit, its allowed range, its
+// default and one line of meaning. scenarios/ reads YAML files through it, and the scenario
+// reference (docs/scenario-reference.md) is written from the very same calls, so the two
+// cannot disagree. Not real-time safe.
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rpsd::config {
+
+// A real number's unit, range and meaning. The range is closed unless a bound is marked open.
+struct Number {
+  std::string_view unit;  // SI, as in the key's name ("s", "m", "N/m"); empty: none
+  std::string_view meaning;
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_open = false;
+  bool max_open = false;
+
+  static Number positive(std::string_view unit, std::string_view meaning) { return {unit, meaning, 0.0, kInf, true}; }
+  static Number non_negative(std::string_view unit, std::string_view meaning) { return {unit, meaning, 0.0, kInf}; }
+  static Number any(std::string_view unit, std::string_view meaning) { return {unit, meaning}; }
+  static Number between(double low, double high, std::string_view unit, std::string_view meaning) {
+    return {unit, meaning, low, high};
+  }
+  bool admits(double v) const { return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max); }
+
+ private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+};
+
+// One section (a mapping of keys) of a file.
+class Source {
+ public:
+  virtual ~Source() = default;
+
+  virtual double number(std::string_view key, const Number& spec) = 0;
+  virtual double number_or(std::string_view key, double fallback, const Number& spec) = 0;
+  // A non-empty list of numbers, each within the spec.
+  virtual std::vector<double> numbers(std::string_view key, const Number& spec) = 0;
+  virtual long whole_number(std::string_view key, long min, long max, std::string_view meaning) = 0;
+  virtual long whole_number_or(std::string_view key, long min, long max, long fallback, std::string_view meaning) = 0;
+  virtual bool boolean_or(std::string_view key, bool fallback, std::string_view meaning) = 0;
+  // A word or a name (free text).
+  virtual std::string text(std::string_view key, std::string_view meaning) = 0;
+  // One of `choices`; anything else is an error that lists them.
+  virtual std::string choice(std::string_view key, const std::vector<std::string_view>& choices,
+                             std::string_view meaning) = 0;
+  // Whether the key is given (it counts as known to finish() either way).
+  virtual bool has(std::string_view key) = 0;
+  // A nested section, and a section that is the root of another file named by the key
+  // (relative to this file).
+  virtual std::unique_ptr<Source> section(std::string_view key, std::string_view meaning) = 0;
+  virtual std::unique_ptr<Source> file(std::string_view key, std::string_view meaning) = 0;
+  // Rejects every key that was not read.
+  virtual void finish() = 0;
+  // An error at the key, with the file's location and the key's path; and one about the
+  // section as a whole (values that do not fit together).
+  [[noreturn]] virtual void fail(std::string_view key, const std::string& message) = 0;
+  [[noreturn]] virtual void fail_section(const std::string& message) = 0;
+};
+
+}  // namespace rpsd::config
