@@ -1,0 +1,128 @@
+// One node implementation: a site's node runs the same controller in this process (behind the
+// in-process link) as `rpsd servo-node` runs over DDS, so its limits act identically in a
+// rehearsal and on the rig. The same velocity limit, clamping the paper's SDOF in free
+// vibration, gives the same measurements and the same limit flags, step for step, both ways.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <string>
+#include <thread>
+
+#include "rpsd/node/servo_node_loop.h"
+#include "rpsd/servo/simulated_actuator.h"
+#include "specimen_runs.h"
+
+namespace rpsd::coordinator {
+namespace {
+
+constexpr std::uint32_t kTest = 71;
+
+transport::DdsDomainConfig loopback() {
+  // Domains 230..232 for this binary: apart from the transport (40..189) and node (190..229) tests'.
+  return {static_cast<std::uint32_t>(230 + ::getpid() % 3), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+}
+
+// The paper's SDOF released from 10 mm: its velocity peaks near 0.1 m/s, and the node lets
+// the command move at most 0.03 m/s (clamped).
+TestConfig clamped_sdof() {
+  SpecimenSdof sdof;
+  sdof.duration_s = 2.0;
+  sdof.plant = servo::PureDelayParameters{0.004, sdof.stiffness_n_per_m, 8192.0};
+  TestConfig config = specimen_sdof_test(sdof);
+  config.transport.test_id = kTest;
+  node::ServoNodeConfig node;
+  node.limits[0].max_velocity_m_per_s = 0.03;
+  config.site_nodes[1] = node;
+  return config;
+}
+
+// `rpsd servo-node` in lock-step, in a thread of this process: the same node configuration
+// and plant as the in-process site.
+class DdsNode {
+ public:
+  explicit DdsNode(const TestConfig& config)
+      : plant_(servo::make_plant(config.plant)), participant_(loopback()),
+        endpoint_(participant_, endpoint_config(config)) {
+    servo::Plant* plants[] = {plant_.get()};
+    actuator_ = std::make_unique<servo::SimulatedActuator>(plants);
+    node::ServoNodeConfig c = config.site_nodes.at(1);
+    c.test_id = kTest;
+    c.site_id = 1;
+    c.channels = 1;
+    c.control_period_s = 1.0 / config.control_rate_hz;
+    controller_ = std::make_unique<node::ServoNodeController>(c, *actuator_);
+    const double x0[] = {config.initial_displacement_m[0]};
+    controller_->start(x0);
+    thread_ = std::thread([this] {
+      node::ServoNodeLoopOptions options;
+      options.real_time = false;
+      options.realtime.lock_memory = false;
+      options.realtime.fifo_priority = 0;
+      options.realtime.keep_cpus_awake = false;
+      node::run_servo_node_loop(*controller_, endpoint_, options, stop_);
+    });
+  }
+  ~DdsNode() {
+    stop_ = true;
+    thread_.join();
+  }
+  const node::ServoNodeController& controller() const { return *controller_; }
+
+ private:
+  static transport::DdsNodeEndpointConfig endpoint_config(const TestConfig& config) {
+    transport::DdsNodeEndpointConfig c;
+    c.test_id = kTest;
+    c.site_id = 1;
+    c.qos.control_period_s = 1.0 / config.control_rate_hz;
+    return c;
+  }
+  std::unique_ptr<servo::Plant> plant_;
+  std::unique_ptr<servo::SimulatedActuator> actuator_;
+  transport::DdsParticipant participant_;
+  transport::DdsNodeEndpoint endpoint_;
+  std::unique_ptr<node::ServoNodeController> controller_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+TEST(SiteNode, AVelocityLimitActsIdenticallyInProcessAndOverDds) {
+  const TestConfig in_process = clamped_sdof();
+  const testing::SdofRun here = testing::run_steps(in_process);
+  ASSERT_EQ(here.outcome, StepOutcome::kOk);
+
+  TestConfig over_dds = in_process;
+  over_dds.transport.kind = TransportConfig::Kind::kDds;
+  over_dds.transport.domain_id = loopback().domain_id;
+  over_dds.transport.dds_config = loopback().config_file;
+  over_dds.clock.realtime.keep_cpus_awake = false;
+  testing::SdofRun there;
+  std::uint64_t velocity_activations = 0;
+  {
+    DdsNode node(over_dds);
+    there = testing::run_steps(over_dds);
+    velocity_activations = node.controller().counters().activations(node::LimitKind::kVelocity);
+  }
+  ASSERT_EQ(there.outcome, StepOutcome::kOk);
+  ASSERT_EQ(here.records.size(), there.records.size());
+  std::size_t limited = 0;
+  for (std::size_t n = 0; n < here.records.size(); ++n) {
+    ASSERT_EQ(here.records[n].measured_m[0], there.records[n].measured_m[0]) << n;
+    ASSERT_EQ(here.records[n].limit_flags, there.records[n].limit_flags) << n;
+    if (here.records[n].limit_flags & transport::kLimitVelocity) ++limited;
+  }
+  // The limit did act: on many steps, and it changed the response.
+  EXPECT_GT(limited, 100u);
+  EXPECT_GT(velocity_activations, 0u);
+  TestConfig free = in_process;
+  free.site_nodes.clear();
+  const testing::SdofRun unlimited = testing::run_steps(free);
+  double largest_difference = 0.0;
+  for (std::size_t n = 0; n < here.records.size(); ++n) {
+    largest_difference = std::max(largest_difference, std::abs(here.records[n].measured_m[0] - unlimited.records[n].measured_m[0]));
+  }
+  EXPECT_GT(largest_difference, 1e-3);
+}
+
+}  // namespace
+}  // namespace rpsd::coordinator
