@@ -45,8 +45,8 @@ double status_mb(const std::string& pid, const std::string& key) {
 }
 
 struct Measured {
-  double peak_mb = 0.0;           ///< the process's own VmHWM
-  double with_children_mb = 0.0;  ///< wait4's ru_maxrss: the largest of it and its children
+  double peak_mb = 0.0;           // the process's own VmHWM
+  double with_children_mb = 0.0;  // wait4's ru_maxrss: the largest of it and its children
   double wall_s = 0.0;
 };
 

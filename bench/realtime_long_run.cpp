@@ -36,7 +36,7 @@ namespace {
 using namespace rpsd;
 using nlohmann::json;
 
-/// A number of /proc/PID/status ("VmRSS" in KiB, "Threads"), or -1 once the process is gone.
+// A number of /proc/PID/status ("VmRSS" in KiB, "Threads"), or -1 once the process is gone.
 double status_of(pid_t pid, const std::string& key) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/status");
   std::string line;
@@ -59,7 +59,7 @@ struct Sample {
   std::uintmax_t history_bytes = 0;
 };
 
-/// Where a process's resident set rose during the test: how often and by how much in all.
+// Where a process's resident set rose during the test: how often and by how much in all.
 struct Rises {
   int count = 0;
   double total_kib = 0.0, largest_kib = 0.0, largest_at_min = 0.0;
@@ -74,8 +74,8 @@ struct Rises {
   }
 };
 
-/// What time_history.csv holds: rows, whether the steps run 1, 2, 3, ... without a gap, and
-/// the feedback ages (column feedback_age_periods).
+// What time_history.csv holds: rows, whether the steps run 1, 2, 3, ... without a gap, and
+// the feedback ages (column feedback_age_periods).
 struct History {
   std::int64_t rows = 0;
   bool steps_in_order = true;

@@ -10,33 +10,33 @@
 
 namespace rpsd::cli {
 
-/// `rpsd analyze SERVO.yaml [--json]`: linear analysis of a servo-system parameter file.
+// `rpsd analyze SERVO.yaml [--json]`: linear analysis of a servo-system parameter file.
 void add_analyze_servo(CLI::App& analyze);
 
-/// `rpsd analyze integrator NAME ...`: amplification-matrix properties of a scheme.
+// `rpsd analyze integrator NAME ...`: amplification-matrix properties of a scheme.
 void add_analyze_integrator_command(CLI::App& analyze);
 
-/// `rpsd run SCENARIO --out DIR [--set key=value ...]`: run a scenario, write results.
+// `rpsd run SCENARIO --out DIR [--set key=value ...]`: run a scenario, write results.
 void add_run(CLI::App& app);
 
-/// `rpsd validate SCENARIO [--set key=value ...]`: check a scenario without running it.
+// `rpsd validate SCENARIO [--set key=value ...]`: check a scenario without running it.
 void add_validate(CLI::App& app);
 
-/// `rpsd plot DIR`: redraw the plots of a test output folder.
+// `rpsd plot DIR`: redraw the plots of a test output folder.
 void add_plot(CLI::App& app);
 
-/// `rpsd servo-node NODE.yaml` and `rpsd controller-emulator EMULATOR.yaml`.
+// `rpsd servo-node NODE.yaml` and `rpsd controller-emulator EMULATOR.yaml`.
 void add_servo_node(CLI::App& app);
 
-/// `--set key.path=value` texts to overrides (ConfigError on a malformed one).
+// `--set key.path=value` texts to overrides (ConfigError on a malformed one).
 std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts);
 
-/// The dry run found a limit exceeded, an undamped mode or an early stop (exit code 4).
+// The dry run found a limit exceeded, an undamped mode or an early stop (exit code 4).
 struct DryRunNotReady : std::runtime_error {
   DryRunNotReady() : std::runtime_error("the dry run says the test is not ready (see above)") {}
 };
 
-/// A test that stopped before its end; its files are complete for every step it took.
+// A test that stopped before its end; its files are complete for every step it took.
 struct TestAborted : std::runtime_error {
   explicit TestAborted(const std::string& summary, const std::string& reason = {})
       : std::runtime_error("test " + (reason.empty() ? std::string("aborted") : reason) + "; every recorded step is in " + summary) {}

@@ -12,35 +12,35 @@
 
 namespace rpsd::bench {
 
-/// Thrown by waits once this process has been asked to stop (install_stop_handlers).
+// Thrown by waits once this process has been asked to stop (install_stop_handlers).
 struct Interrupted : std::runtime_error {
   Interrupted() : std::runtime_error("interrupted (SIGINT or SIGTERM)") {}
 };
 
 class ChildProcess {
  public:
-  /// Starts argv[0] (searched in PATH) with `env` ("NAME=value") added to this process's
-  /// environment, stdout and stderr appended to `log` (/dev/null when empty). Throws
-  /// std::runtime_error when fork fails; a program that cannot be executed exits with 127.
+  // Starts argv[0] (searched in PATH) with `env` ("NAME=value") added to this process's
+  // environment, stdout and stderr appended to `log` (/dev/null when empty). Throws
+  // std::runtime_error when fork fails; a program that cannot be executed exits with 127.
   ChildProcess(const std::vector<std::string>& argv, const std::vector<std::string>& env,
                const std::filesystem::path& log);
-  /// Kills the child (SIGKILL) if it still runs, and reaps it.
+  // Kills the child (SIGKILL) if it still runs, and reaps it.
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   pid_t pid() const { return pid_; }
   bool running();
-  /// Waits up to `timeout_s` for the child to exit; its exit code, or -1 (still running or
-  /// killed by a signal: see killed_by()). Throws Interrupted once this process has
-  /// been asked to stop (install_stop_handlers), so that the destructors end the children.
+  // Waits up to `timeout_s` for the child to exit; its exit code, or -1 (still running or
+  // killed by a signal: see killed_by()). Throws Interrupted once this process has
+  // been asked to stop (install_stop_handlers), so that the destructors end the children.
   int wait_for(double timeout_s);
-  /// Sends `signal` and waits up to `timeout_s` (never throws); SIGKILL after that. The exit
-  /// code as wait_for gives it.
+  // Sends `signal` and waits up to `timeout_s` (never throws); SIGKILL after that. The exit
+  // code as wait_for gives it.
   int stop(int signal, double timeout_s);
-  /// The signal that ended the child, or 0.
+  // The signal that ended the child, or 0.
   int killed_by() const { return signal_; }
-  /// The command line, words joined by spaces (for reports).
+  // The command line, words joined by spaces (for reports).
   const std::string& command() const { return command_; }
 
  private:
@@ -52,12 +52,12 @@ class ChildProcess {
   int wait(double timeout_s, bool interruptible);
 };
 
-/// SIGINT and SIGTERM no longer end this process at once: waits in ChildProcess throw instead,
-/// so that every child is ended by its destructor.
+// SIGINT and SIGTERM no longer end this process at once: waits in ChildProcess throw instead,
+// so that every child is ended by its destructor.
 void install_stop_handlers();
 bool stop_requested();
 
-/// The whole content of a text file ("" when it cannot be read).
+// The whole content of a text file ("" when it cannot be read).
 std::string read_text(const std::filesystem::path& file);
 
 }  // namespace rpsd::bench

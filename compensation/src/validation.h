@@ -8,7 +8,7 @@
 
 namespace rpsd::compensation::detail {
 
-/// Throws std::invalid_argument("<what>: <requirement>, got <value>").
+// Throws std::invalid_argument("<what>: <requirement>, got <value>").
 [[noreturn]] inline void fail(const std::string& what, const std::string& requirement, double value) {
   std::ostringstream s;
   s.precision(17);

@@ -132,7 +132,7 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
 
   const double ground = available >= 0 ? parts_.ground_acceleration_m_per_s2[step_ + 1] : 0.0;
   if (available >= 0) parts_.ground_load->force(ground, force_);
-  if (integrator.begin_step(force_) != integrators::StepStatus::ok) return StepOutcome::kIntegratorError;
+  if (integrator.begin_step(force_) != integrators::StepStatus::kOk) return StepOutcome::kIntegratorError;
 
   const int iterations = integrator.iterations_per_step();
   oldest_age_this_step_ = 0;
@@ -177,11 +177,11 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     experimental_forces(feedback_);
     numerical.restoring_force(d, restoring_);
     partition.add_forces(specimen_forces_, restoring_);
-    if (integrator.set_measured_restoring_force(restoring_) != integrators::StepStatus::ok) {
+    if (integrator.set_measured_restoring_force(restoring_) != integrators::StepStatus::kOk) {
       return StepOutcome::kIntegratorError;
     }
   }
-  if (integrator.end_step() != integrators::StepStatus::ok) return StepOutcome::kIntegratorError;
+  if (integrator.end_step() != integrators::StepStatus::kOk) return StepOutcome::kIntegratorError;
   numerical.commit();
   ++step_;
 

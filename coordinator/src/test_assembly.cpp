@@ -40,15 +40,15 @@ struct TestAssembly::Parts {
   std::unique_ptr<integrators::Integrator> integrator;
   std::vector<std::unique_ptr<compensation::CommandCompensator>> compensators;
   std::unique_ptr<ActuatorLinks> actuators;
-  std::unique_ptr<transport::Link> wrapped_link;  ///< AssemblyOptions::wrap_link around the actuators
+  std::unique_ptr<transport::Link> wrapped_link;  // AssemblyOptions::wrap_link around the actuators
   substructure::GroundMotionLoad ground_load;
   std::unique_ptr<RpsdLoop> loop;
   std::unique_ptr<Recorder> recorder;
-  std::vector<realtime::LatencyHistogram> round_trips;  ///< per site, its first channel
+  std::vector<realtime::LatencyHistogram> round_trips;  // per site, its first channel
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
   TimingReport timing;
-  realtime::CpuWakeLatencyHold cpus_awake;  ///< from the start to finish(): real time, or over DDS
+  realtime::CpuWakeLatencyHold cpus_awake;  // from the start to finish(): real time, or over DDS
 
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const StepRecord&)>& after_step) {

@@ -79,9 +79,9 @@ std::optional<AccelerationUnit> units_of_line3(std::string_view line, std::strin
   const auto in = [&](const auto& names) {
     return std::find(names.begin(), names.end(), unit) != names.end();
   };
-  if (in(g_names)) return AccelerationUnit::g;
-  if (in(cm_names)) return AccelerationUnit::cm_per_s2;
-  if (in(m_names)) return AccelerationUnit::m_per_s2;
+  if (in(g_names)) return AccelerationUnit::kG;
+  if (in(cm_names)) return AccelerationUnit::kCmPerS2;
+  if (in(m_names)) return AccelerationUnit::kMPerS2;
   throw RecordError(where(source, line_number, p + 1) +
                     "expected the units after UNITS (G, CM/S/S or M/S/S), got " +
                     detail::quoted(line.substr(std::min(p, line.size()))));
@@ -90,7 +90,7 @@ std::optional<AccelerationUnit> units_of_line3(std::string_view line, std::strin
 struct Line4 {
   std::size_t npts = 0;
   double dt_s = 0.0;
-  RecordFormat format = RecordFormat::peer_at2_old;
+  RecordFormat format = RecordFormat::kPeerAt2Old;
 };
 
 // A character cursor over the upper-cased line 4 that throws with the column.
@@ -118,7 +118,7 @@ class Line4Parser {
       dt_token = take_number_chars();
       skip_blanks();
       if (!keyword("SEC")) keyword("S");
-      if (optional(',')) out.format = RecordFormat::peer_at2_nga_west2;
+      if (optional(',')) out.format = RecordFormat::kPeerAt2NgaWest2;
     } else if (p_ < text_.size() && std::isdigit(static_cast<unsigned char>(text_[p_]))) {
       // 4000    0.0100    NPTS, DT
       npts_column = p_ + 1;
@@ -130,7 +130,7 @@ class Line4Parser {
       if (!keyword("NPTS")) fail("\"NPTS, DT\" after the two numbers");
       optional(',');
       if (!keyword("DT")) fail("\"DT\" after \"NPTS,\"");
-      out.format = RecordFormat::peer_at2_nga_west1;
+      out.format = RecordFormat::kPeerAt2NgaWest1;
     } else {
       fail("the point count and time step");
     }

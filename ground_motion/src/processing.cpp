@@ -174,7 +174,7 @@ GroundMotionRecord baseline_correct(const GroundMotionRecord& record,
   GroundMotionRecord out = record;
   auto& a = out.acceleration_m_per_s2;
   const std::size_t n = a.size();
-  if (options.method == BaselineMethod::remove_mean) {
+  if (options.method == BaselineMethod::kRemoveMean) {
     double sum = 0.0;
     for (double value : a) sum += value;
     const double mean = sum / static_cast<double>(n);

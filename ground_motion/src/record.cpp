@@ -7,30 +7,30 @@ namespace rpsd::ground_motion {
 
 double to_m_per_s2(AccelerationUnit unit) {
   switch (unit) {
-    case AccelerationUnit::g: return standard_gravity_m_per_s2;
-    case AccelerationUnit::m_per_s2: return 1.0;
-    case AccelerationUnit::cm_per_s2: return 0.01;
+    case AccelerationUnit::kG: return standard_gravity_m_per_s2;
+    case AccelerationUnit::kMPerS2: return 1.0;
+    case AccelerationUnit::kCmPerS2: return 0.01;
   }
   throw std::invalid_argument("unknown acceleration unit");
 }
 
 std::string_view unit_name(AccelerationUnit unit) {
   switch (unit) {
-    case AccelerationUnit::g: return "g";
-    case AccelerationUnit::m_per_s2: return "m/s^2";
-    case AccelerationUnit::cm_per_s2: return "cm/s^2";
+    case AccelerationUnit::kG: return "g";
+    case AccelerationUnit::kMPerS2: return "m/s^2";
+    case AccelerationUnit::kCmPerS2: return "cm/s^2";
   }
   return "?";
 }
 
 std::string_view format_name(RecordFormat format) {
   switch (format) {
-    case RecordFormat::peer_at2_old: return "PEER AT2 (old PEER header)";
-    case RecordFormat::peer_at2_nga_west1: return "PEER AT2 (NGA-West1 header)";
-    case RecordFormat::peer_at2_nga_west2: return "PEER AT2 (NGA-West2 header)";
-    case RecordFormat::plain_text: return "plain text";
-    case RecordFormat::time_acceleration: return "time/acceleration columns";
-    case RecordFormat::synthetic: return "synthetic";
+    case RecordFormat::kPeerAt2Old: return "PEER AT2 (old PEER header)";
+    case RecordFormat::kPeerAt2NgaWest1: return "PEER AT2 (NGA-West1 header)";
+    case RecordFormat::kPeerAt2NgaWest2: return "PEER AT2 (NGA-West2 header)";
+    case RecordFormat::kPlainText: return "plain text";
+    case RecordFormat::kTimeAcceleration: return "time/acceleration columns";
+    case RecordFormat::kSynthetic: return "synthetic";
   }
   return "?";
 }

@@ -26,8 +26,8 @@ SquareMatrix<N> multiply(const SquareMatrix<N>& a, const SquareMatrix<N>& b) {
   return c;
 }
 
-/// e^M. The matrix is scaled by 2^-s until its infinity norm is at most 1/2, where the
-/// Taylor series to degree 18 leaves a remainder below 1e-22; then squared s times.
+// e^M. The matrix is scaled by 2^-s until its infinity norm is at most 1/2, where the
+// Taylor series to degree 18 leaves a remainder below 1e-22; then squared s times.
 template <std::size_t N>
 SquareMatrix<N> matrix_exponential(SquareMatrix<N> m) {
   double norm = 0.0;

@@ -39,7 +39,7 @@ void validate(const SyntheticGroundMotionOptions& o) {
           "kanai_tajimi.omega_g_rad_per_s: expected > 0, got " + num(o.kanai_tajimi.omega_g_rad_per_s));
   require(positive(o.kanai_tajimi.zeta_g),
           "kanai_tajimi.zeta_g: expected > 0, got " + num(o.kanai_tajimi.zeta_g));
-  if (o.model == SpectralModel::clough_penzien) {
+  if (o.model == SpectralModel::kCloughPenzien) {
     require(positive(o.clough_penzien.omega_f_rad_per_s),
             "clough_penzien.omega_f_rad_per_s: expected > 0, got " +
                 num(o.clough_penzien.omega_f_rad_per_s));
@@ -53,8 +53,8 @@ void validate(const SyntheticGroundMotionOptions& o) {
             "target_pga_m_per_s2: expected > 0, got " + num(*o.target_pga_m_per_s2));
   }
   switch (o.envelope) {
-    case EnvelopeKind::stationary: break;
-    case EnvelopeKind::jennings_housner_tsai: {
+    case EnvelopeKind::kStationary: break;
+    case EnvelopeKind::kJenningsHousnerTsai: {
       const auto& e = o.jennings_housner_tsai;
       require(positive(e.rise_end_s), "jennings_housner_tsai.rise_end_s: expected > 0 (no default)");
       require(std::isfinite(e.strong_end_s) && e.strong_end_s >= e.rise_end_s,
@@ -63,13 +63,13 @@ void validate(const SyntheticGroundMotionOptions& o) {
               "jennings_housner_tsai.decay_rate_per_s: expected > 0 (no default)");
       break;
     }
-    case EnvelopeKind::shinozuka_sato: {
+    case EnvelopeKind::kShinozukaSato: {
       const auto& e = o.shinozuka_sato;
       require(positive(e.a_per_s) && positive(e.b_per_s) && e.a_per_s < e.b_per_s,
               "shinozuka_sato: expected 0 < a_per_s < b_per_s (no default)");
       break;
     }
-    case EnvelopeKind::gavin: {
+    case EnvelopeKind::kGavin: {
       const auto& e = o.gavin;
       require(std::isfinite(e.t0_s) && e.t0_s >= 0.0, "gavin.t0_s: expected >= 0, got " + num(e.t0_s));
       require(positive(e.aa), "gavin.aa: expected > 0, got " + num(e.aa));
@@ -88,27 +88,27 @@ std::string describe(const SyntheticGroundMotionOptions& o) {
   std::string text;
   const auto& kt = o.kanai_tajimi;
   switch (o.model) {
-    case SpectralModel::kanai_tajimi: text = "Kanai-Tajimi"; break;
-    case SpectralModel::clough_penzien: text = "Clough-Penzien"; break;
-    case SpectralModel::band_pass: text = "band-pass (Gavin)"; break;
+    case SpectralModel::kKanaiTajimi: text = "Kanai-Tajimi"; break;
+    case SpectralModel::kCloughPenzien: text = "Clough-Penzien"; break;
+    case SpectralModel::kBandPass: text = "band-pass (Gavin)"; break;
   }
   text += " filter wg " + num(kt.omega_g_rad_per_s) + " rad/s zg " + num(kt.zeta_g);
-  if (o.model == SpectralModel::clough_penzien) {
+  if (o.model == SpectralModel::kCloughPenzien) {
     text += ", wf " + num(o.clough_penzien.omega_f_rad_per_s) + " rad/s zf " +
             num(o.clough_penzien.zeta_f);
   }
   switch (o.envelope) {
-    case EnvelopeKind::stationary: text += "; stationary"; break;
-    case EnvelopeKind::jennings_housner_tsai:
+    case EnvelopeKind::kStationary: text += "; stationary"; break;
+    case EnvelopeKind::kJenningsHousnerTsai:
       text += "; Jennings-Housner-Tsai envelope t1 " + num(o.jennings_housner_tsai.rise_end_s) +
               " s t2 " + num(o.jennings_housner_tsai.strong_end_s) + " s c " +
               num(o.jennings_housner_tsai.decay_rate_per_s) + " 1/s";
       break;
-    case EnvelopeKind::shinozuka_sato:
+    case EnvelopeKind::kShinozukaSato:
       text += "; Shinozuka-Sato envelope a " + num(o.shinozuka_sato.a_per_s) + " 1/s b " +
               num(o.shinozuka_sato.b_per_s) + " 1/s";
       break;
-    case EnvelopeKind::gavin:
+    case EnvelopeKind::kGavin:
       text += "; Gavin envelope t0 " + num(o.gavin.t0_s) + " s aa " + num(o.gavin.aa) + " ta " +
               num(o.gavin.ta_s) + " s";
       break;
@@ -121,10 +121,10 @@ SyntheticGroundMotionOptions gavin_preset(std::uint64_t seed, double pga, double
                                           double zeta_g, double aa, double ta) {
   SyntheticGroundMotionOptions o;
   o.seed = seed;
-  o.model = SpectralModel::band_pass;
+  o.model = SpectralModel::kBandPass;
   o.kanai_tajimi.omega_g_rad_per_s = 2.0 * std::numbers::pi * f_g_hz;
   o.kanai_tajimi.zeta_g = zeta_g;
-  o.envelope = EnvelopeKind::gavin;
+  o.envelope = EnvelopeKind::kGavin;
   o.gavin.aa = aa;
   o.gavin.ta_s = ta;
   o.target_pga_m_per_s2 = pga;
@@ -145,21 +145,21 @@ SyntheticGroundMotionOptions gavin_near_field_pulse(std::uint64_t seed) {
 
 double envelope_value(const SyntheticGroundMotionOptions& o, double t) {
   switch (o.envelope) {
-    case EnvelopeKind::stationary: return 1.0;
-    case EnvelopeKind::jennings_housner_tsai: {
+    case EnvelopeKind::kStationary: return 1.0;
+    case EnvelopeKind::kJenningsHousnerTsai: {
       const auto& e = o.jennings_housner_tsai;
       if (t < e.rise_end_s) return (t / e.rise_end_s) * (t / e.rise_end_s);
       if (t <= e.strong_end_s) return 1.0;
       return deterministic::exp(-e.decay_rate_per_s * (t - e.strong_end_s));
     }
-    case EnvelopeKind::shinozuka_sato: {
+    case EnvelopeKind::kShinozukaSato: {
       const double a = o.shinozuka_sato.a_per_s;
       const double b = o.shinozuka_sato.b_per_s;
       const double t_peak = deterministic::log(b / a) / (b - a);
       const double peak = deterministic::exp(-a * t_peak) - deterministic::exp(-b * t_peak);
       return (deterministic::exp(-a * t) - deterministic::exp(-b * t)) / peak;
     }
-    case EnvelopeKind::gavin: {
+    case EnvelopeKind::kGavin: {
       const auto& e = o.gavin;
       if (t <= e.t0_s) return 0.0;
       const double x = (t - e.t0_s) / (e.aa * e.ta_s);
@@ -175,7 +175,7 @@ GroundMotionRecord generate_synthetic_ground_motion(const SyntheticGroundMotionO
   const double zg = o.kanai_tajimi.zeta_g;
   const double wf = o.clough_penzien.omega_f_rad_per_s;
   const double zf = o.clough_penzien.zeta_f;
-  const bool cp = o.model == SpectralModel::clough_penzien;
+  const bool cp = o.model == SpectralModel::kCloughPenzien;
 
   // State s = (x, x', y, y'); ZOH input w. Augmented [[A dt, B dt], [0, 0]].
   detail::SquareMatrix<5> m{};
@@ -193,7 +193,7 @@ GroundMotionRecord generate_synthetic_ground_motion(const SyntheticGroundMotionO
   }
   const auto e = detail::matrix_exponential(m);
   double c[4] = {wg * wg, 2.0 * zg * wg, 0.0, 0.0};
-  if (o.model == SpectralModel::band_pass) c[0] = 0.0;
+  if (o.model == SpectralModel::kBandPass) c[0] = 0.0;
   if (cp) {
     c[2] = -wf * wf;
     c[3] = -2.0 * zf * wf;
@@ -220,8 +220,8 @@ GroundMotionRecord generate_synthetic_ground_motion(const SyntheticGroundMotionO
   GroundMotionRecord record;
   record.source = "synthetic (seed " + std::to_string(o.seed) + ")";
   record.description = describe(o);
-  record.format = RecordFormat::synthetic;
-  record.original_unit = AccelerationUnit::m_per_s2;
+  record.format = RecordFormat::kSynthetic;
+  record.original_unit = AccelerationUnit::kMPerS2;
   record.dt_s = h;
   record.acceleration_m_per_s2.resize(n);
   for (std::size_t k = 0; k < n; ++k) {

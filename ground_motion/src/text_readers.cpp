@@ -59,7 +59,7 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
   }
   GroundMotionRecord record;
   record.source = source;
-  record.format = RecordFormat::plain_text;
+  record.format = RecordFormat::kPlainText;
   record.original_unit = required_unit(options.unit, source);
   record.dt_s = options.dt_s;
   const double factor = to_m_per_s2(record.original_unit);
@@ -136,7 +136,7 @@ GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_vi
   }
   GroundMotionRecord record;
   record.source = source;
-  record.format = RecordFormat::time_acceleration;
+  record.format = RecordFormat::kTimeAcceleration;
   record.original_unit = required_unit(options.unit, source);
   const double factor = to_m_per_s2(record.original_unit);
   const std::size_t needed = std::max(options.time_column, options.acceleration_column) + 1;

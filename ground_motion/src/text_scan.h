@@ -8,11 +8,11 @@
 
 namespace rpsd::ground_motion::detail {
 
-/// Splits text into lines ('\n', with a trailing '\r' dropped); skips a UTF-8 BOM.
+// Splits text into lines ('\n', with a trailing '\r' dropped); skips a UTF-8 BOM.
 class LineCursor {
  public:
   explicit LineCursor(std::string_view text);
-  /// Next line into `line`; false at the end. Line numbers start at 1.
+  // Next line into `line`; false at the end. Line numbers start at 1.
   bool next(std::string_view& line);
   std::size_t line_number() const { return line_number_; }
 
@@ -22,14 +22,14 @@ class LineCursor {
   std::size_t line_number_ = 0;
 };
 
-/// One token of a line: its text and 1-based column.
+// One token of a line: its text and 1-based column.
 struct Token {
   std::string_view text;
   std::size_t column = 0;
 };
 
-/// Iterates over the tokens of one line, separated by whitespace and by any character
-/// of `extra_separators` (e.g. "," for CSV files).
+// Iterates over the tokens of one line, separated by whitespace and by any character
+// of `extra_separators` (e.g. "," for CSV files).
 class TokenCursor {
  public:
   TokenCursor(std::string_view line, std::string_view extra_separators);
@@ -42,35 +42,35 @@ class TokenCursor {
   std::size_t pos_ = 0;
 };
 
-/// The token quoted for a message, cut at 40 characters, non-printable bytes as \xNN.
+// The token quoted for a message, cut at 40 characters, non-printable bytes as \xNN.
 std::string quoted(std::string_view text);
 
-/// "source:line: " or "source:line:column: " (column 0 leaves it out).
+// "source:line: " or "source:line:column: " (column 0 leaves it out).
 std::string where(std::string_view source, std::size_t line, std::size_t column = 0);
 
-/// Parses a whole token as a finite double: optional sign, Fortran 'D' exponents
-/// accepted. False for anything else (partial number, inf, nan, out of range).
+// Parses a whole token as a finite double: optional sign, Fortran 'D' exponents
+// accepted. False for anything else (partial number, inf, nan, out of range).
 bool parse_finite_double(std::string_view token, double& value);
 
-/// Parses a whole token as an unsigned decimal integer (digits only, no overflow).
+// Parses a whole token as an unsigned decimal integer (digits only, no overflow).
 bool parse_count(std::string_view token, std::size_t& value);
 
-/// Parses `token` as a finite double or throws RecordError
-/// "source:line:column: expected <what>, got "token"".
+// Parses `token` as a finite double or throws RecordError
+// "source:line:column: expected <what>, got "token"".
 double number_or_throw(const Token& token, std::string_view source, std::size_t line,
                        std::string_view what);
 
-/// value * factor (a unit conversion), or RecordError at the token when that overflows.
+// value * factor (a unit conversion), or RecordError at the token when that overflows.
 double converted_or_throw(double value, double factor, const Token& token, std::string_view source,
                           std::size_t line);
 
-/// True when the line holds only separators (no token).
+// True when the line holds only separators (no token).
 bool is_blank(std::string_view line);
 
-/// True when every token of the line is a number (used to recognise a missing header).
+// True when every token of the line is a number (used to recognise a missing header).
 bool is_numeric_line(std::string_view line, std::string_view extra_separators);
 
-/// Reads a whole file; throws RecordError "file: cannot open ..." on failure.
+// Reads a whole file; throws RecordError "file: cannot open ..." on failure.
 std::string read_file_text(const std::string& path);
 
 }  // namespace rpsd::ground_motion::detail

@@ -23,7 +23,7 @@ OperatorSplittingCoefficients os_coefficients(const AlphaOsParams& p) {
 AlphaOs::AlphaOs(const AlphaOsParams& p) : OperatorSplittingEngine(os_coefficients(p)) {}
 
 SchemeInfo AlphaOs::info() const {
-  return {Scheme::alpha_os, "alpha_os", true, std::numeric_limits<double>::infinity()};
+  return {Scheme::kAlphaOs, "alpha_os", true, std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace rpsd::integrators

@@ -3,7 +3,7 @@
 namespace rpsd::integrators {
 
 SchemeInfo CentralDifference::info() const {
-  return {Scheme::central_difference, "central_difference", true, 2.0};
+  return {Scheme::kCentralDifference, "central_difference", true, 2.0};
 }
 
 }  // namespace rpsd::integrators

@@ -5,7 +5,7 @@
 namespace rpsd::integrators {
 
 SchemeInfo Chang::info() const {
-  return {Scheme::chang, "chang", true, std::numeric_limits<double>::infinity()};
+  return {Scheme::kChang, "chang", true, std::numeric_limits<double>::infinity()};
 }
 
 void Chang::on_configure() {

@@ -5,7 +5,7 @@
 namespace rpsd::integrators {
 
 SchemeInfo ChenRicles::info() const {
-  return {Scheme::chen_ricles, "chen_ricles", true, std::numeric_limits<double>::infinity()};
+  return {Scheme::kChenRicles, "chen_ricles", true, std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace rpsd::integrators

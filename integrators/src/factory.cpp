@@ -15,27 +15,27 @@ template <class... Ts>
 overloaded(Ts...) -> overloaded<Ts...>;
 
 constexpr std::array<std::pair<Scheme, std::string_view>, 8> kNames{{
-    {Scheme::central_difference, "central_difference"},
-    {Scheme::newmark, "newmark"},
-    {Scheme::hht_alpha, "hht_alpha"},
-    {Scheme::generalized_alpha, "generalized_alpha"},
-    {Scheme::alpha_os, "alpha_os"},
-    {Scheme::chang, "chang"},
-    {Scheme::chen_ricles, "chen_ricles"},
-    {Scheme::kolay_ricles_alpha, "kolay_ricles_alpha"},
+    {Scheme::kCentralDifference, "central_difference"},
+    {Scheme::kNewmark, "newmark"},
+    {Scheme::kHhtAlpha, "hht_alpha"},
+    {Scheme::kGeneralizedAlpha, "generalized_alpha"},
+    {Scheme::kAlphaOs, "alpha_os"},
+    {Scheme::kChang, "chang"},
+    {Scheme::kChenRicles, "chen_ricles"},
+    {Scheme::kKolayRiclesAlpha, "kolay_ricles_alpha"},
 }};
 }  // namespace
 
 Scheme scheme_of(const IntegratorConfig& config) {
   return std::visit(overloaded{
-                        [](const CentralDifferenceParams&) { return Scheme::central_difference; },
-                        [](const NewmarkParams&) { return Scheme::newmark; },
-                        [](const HhtAlphaParams&) { return Scheme::hht_alpha; },
-                        [](const GeneralizedAlphaParams&) { return Scheme::generalized_alpha; },
-                        [](const AlphaOsParams&) { return Scheme::alpha_os; },
-                        [](const ChangParams&) { return Scheme::chang; },
-                        [](const ChenRiclesParams&) { return Scheme::chen_ricles; },
-                        [](const KolayRiclesAlphaParams&) { return Scheme::kolay_ricles_alpha; },
+                        [](const CentralDifferenceParams&) { return Scheme::kCentralDifference; },
+                        [](const NewmarkParams&) { return Scheme::kNewmark; },
+                        [](const HhtAlphaParams&) { return Scheme::kHhtAlpha; },
+                        [](const GeneralizedAlphaParams&) { return Scheme::kGeneralizedAlpha; },
+                        [](const AlphaOsParams&) { return Scheme::kAlphaOs; },
+                        [](const ChangParams&) { return Scheme::kChang; },
+                        [](const ChenRiclesParams&) { return Scheme::kChenRicles; },
+                        [](const KolayRiclesAlphaParams&) { return Scheme::kKolayRiclesAlpha; },
                     },
                     config);
 }

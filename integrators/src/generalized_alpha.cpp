@@ -32,7 +32,7 @@ GeneralizedAlpha::GeneralizedAlpha(const GeneralizedAlphaParams& p)
     : FixedIterationImplicitEngine(ga_coefficients(p), p.fixed_iteration) {}
 
 SchemeInfo GeneralizedAlpha::info() const {
-  return {Scheme::generalized_alpha, "generalized_alpha", false,
+  return {Scheme::kGeneralizedAlpha, "generalized_alpha", false,
           std::numeric_limits<double>::infinity()};
 }
 

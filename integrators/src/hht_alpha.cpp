@@ -26,7 +26,7 @@ HhtAlpha::HhtAlpha(const HhtAlphaParams& p)
     : FixedIterationImplicitEngine(hht_coefficients(p), p.fixed_iteration) {}
 
 SchemeInfo HhtAlpha::info() const {
-  return {Scheme::hht_alpha, "hht_alpha", false, std::numeric_limits<double>::infinity()};
+  return {Scheme::kHhtAlpha, "hht_alpha", false, std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace rpsd::integrators

@@ -37,7 +37,7 @@ void check_matrices(const linalg::StructuralMatrix& M, const linalg::StructuralM
 
 void Integrator::configure(const StructuralMatrices& matrices, double dt_s,
                            const ConfigureOptions& options) {
-  phase_ = Phase::unconfigured;
+  phase_ = Phase::kUnconfigured;
   if (!(dt_s > 0.0) || !std::isfinite(dt_s))
     throw std::invalid_argument("time step dt_s must be positive and finite, got " +
                                 std::to_string(dt_s));
@@ -68,7 +68,7 @@ void Integrator::configure(const StructuralMatrices& matrices, double dt_s,
 
   for (auto* v : {&d_, &v_, &a_, &r_, &f_, &f_next_, &command_}) v->setZero(n_);
   on_configure();
-  phase_ = Phase::configured;
+  phase_ = Phase::kConfigured;
 }
 
 void Integrator::check_size(const Eigen::VectorXd& x, const char* what) const {
@@ -80,7 +80,7 @@ void Integrator::check_size(const Eigen::VectorXd& x, const char* what) const {
 
 void Integrator::initialize(const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
                             const Eigen::VectorXd& r0, const Eigen::VectorXd& f0) {
-  if (phase_ == Phase::unconfigured) throw std::logic_error("initialize() before configure()");
+  if (phase_ == Phase::kUnconfigured) throw std::logic_error("initialize() before configure()");
   check_size(d0, "initial displacement");
   check_size(v0, "initial velocity");
   check_size(r0, "initial restoring force");
@@ -95,7 +95,7 @@ void Integrator::initialize(const Eigen::VectorXd& d0, const Eigen::VectorXd& v0
 void Integrator::set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v,
                            const Eigen::VectorXd& a, const Eigen::VectorXd& r,
                            const Eigen::VectorXd& f, double time_s, std::int64_t step) {
-  if (phase_ == Phase::unconfigured) throw std::logic_error("set_state() before configure()");
+  if (phase_ == Phase::kUnconfigured) throw std::logic_error("set_state() before configure()");
   check_size(d, "displacement");
   check_size(v, "velocity");
   check_size(a, "acceleration");
@@ -112,43 +112,43 @@ void Integrator::set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v,
   time0_s_ = time_s;
   step0_ = step;
   on_set_state();
-  phase_ = Phase::idle;
+  phase_ = Phase::kIdle;
 }
 
 StepStatus Integrator::begin_step(const Eigen::VectorXd& f_next) {
-  if (phase_ == Phase::unconfigured || phase_ == Phase::configured)
-    return StepStatus::not_initialized;
-  if (phase_ != Phase::idle) return StepStatus::out_of_sequence;
-  if (f_next.size() != n_) return StepStatus::size_mismatch;
-  if (!f_next.allFinite()) return StepStatus::non_finite_input;
+  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured)
+    return StepStatus::kNotInitialized;
+  if (phase_ != Phase::kIdle) return StepStatus::kOutOfSequence;
+  if (f_next.size() != n_) return StepStatus::kSizeMismatch;
+  if (!f_next.allFinite()) return StepStatus::kNonFiniteInput;
   f_next_ = f_next;
   iteration_ = 0;
   on_begin_step();
-  phase_ = Phase::iterating;
-  return StepStatus::ok;
+  phase_ = Phase::kIterating;
+  return StepStatus::kOk;
 }
 
 StepStatus Integrator::set_measured_restoring_force(const Eigen::VectorXd& r) {
-  if (phase_ == Phase::unconfigured || phase_ == Phase::configured)
-    return StepStatus::not_initialized;
-  if (phase_ != Phase::iterating) return StepStatus::out_of_sequence;
-  if (r.size() != n_) return StepStatus::size_mismatch;
-  if (!r.allFinite()) return StepStatus::non_finite_input;
+  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured)
+    return StepStatus::kNotInitialized;
+  if (phase_ != Phase::kIterating) return StepStatus::kOutOfSequence;
+  if (r.size() != n_) return StepStatus::kSizeMismatch;
+  if (!r.allFinite()) return StepStatus::kNonFiniteInput;
   on_restoring_force(iteration_, r);
-  if (++iteration_ == iterations_) phase_ = Phase::awaiting_end;
-  return StepStatus::ok;
+  if (++iteration_ == iterations_) phase_ = Phase::kAwaitingEnd;
+  return StepStatus::kOk;
 }
 
 StepStatus Integrator::end_step() {
-  if (phase_ == Phase::unconfigured || phase_ == Phase::configured)
-    return StepStatus::not_initialized;
-  if (phase_ != Phase::awaiting_end) return StepStatus::out_of_sequence;
+  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured)
+    return StepStatus::kNotInitialized;
+  if (phase_ != Phase::kAwaitingEnd) return StepStatus::kOutOfSequence;
   on_end_step();
   f_.swap(f_next_);
   ++step_;
   time_s_ = time0_s_ + static_cast<double>(step_ - step0_) * dt_s_;
-  phase_ = Phase::idle;
-  return StepStatus::ok;
+  phase_ = Phase::kIdle;
+  return StepStatus::kOk;
 }
 
 }  // namespace rpsd::integrators

@@ -19,7 +19,7 @@ KolayRiclesAlpha::KolayRiclesAlpha(const KolayRiclesAlphaParams& p)
     : ModelBasedExplicitEngine(kr_coefficients(p)) {}
 
 SchemeInfo KolayRiclesAlpha::info() const {
-  return {Scheme::kolay_ricles_alpha, "kolay_ricles_alpha", true,
+  return {Scheme::kKolayRiclesAlpha, "kolay_ricles_alpha", true,
           std::numeric_limits<double>::infinity()};
 }
 

@@ -34,7 +34,7 @@ Newmark::Newmark(const NewmarkParams& p)
       p_(p) {}
 
 SchemeInfo Newmark::info() const {
-  return {Scheme::newmark, "newmark", false, newmark_stability_limit(p_.beta, p_.gamma)};
+  return {Scheme::kNewmark, "newmark", false, newmark_stability_limit(p_.beta, p_.gamma)};
 }
 
 }  // namespace rpsd::integrators

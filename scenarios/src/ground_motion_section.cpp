@@ -13,9 +13,9 @@ namespace gm = ground_motion;
 
 gm::AccelerationUnit read_unit(MappingReader& r, const std::string& key) {
   const std::string unit = r.string(key);
-  if (unit == "g") return gm::AccelerationUnit::g;
-  if (unit == "m/s2") return gm::AccelerationUnit::m_per_s2;
-  if (unit == "cm/s2") return gm::AccelerationUnit::cm_per_s2;
+  if (unit == "g") return gm::AccelerationUnit::kG;
+  if (unit == "m/s2") return gm::AccelerationUnit::kMPerS2;
+  if (unit == "cm/s2") return gm::AccelerationUnit::kCmPerS2;
   r.fail(key, "expected g, m/s2 or cm/s2, got \"" + unit + "\"");
 }
 
@@ -54,13 +54,13 @@ gm::GroundMotionRecord read_synthetic(MappingReader s) {
   if (options.dt_s < 1e-4 || options.dt_s > 0.1) s.fail("dt_s", "expected a step from 1e-4 to 0.1 s");
   const std::string model = s.has("model") ? s.string("model") : "kanai_tajimi";
   if (model == "kanai_tajimi") {
-    options.model = gm::SpectralModel::kanai_tajimi;
+    options.model = gm::SpectralModel::kKanaiTajimi;
   } else if (model == "clough_penzien") {
-    options.model = gm::SpectralModel::clough_penzien;
+    options.model = gm::SpectralModel::kCloughPenzien;
   } else {
     s.fail("model", "expected kanai_tajimi or clough_penzien, got \"" + model + "\"");
   }
-  if (s.has("target_pga_g")) options.target_pga_m_per_s2 = s.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::g);
+  if (s.has("target_pga_g")) options.target_pga_m_per_s2 = s.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::kG);
   s.finish();
   return gm::generate_synthetic_ground_motion(options);
 }
@@ -88,9 +88,9 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
     const std::string method = r.string("baseline_correction");
     gm::BaselineCorrectionOptions options;
     if (method == "polynomial") {
-      options.method = gm::BaselineMethod::polynomial_displacement;
+      options.method = gm::BaselineMethod::kPolynomialDisplacement;
     } else if (method == "remove_mean") {
-      options.method = gm::BaselineMethod::remove_mean;
+      options.method = gm::BaselineMethod::kRemoveMean;
     } else if (method != "none") {
       r.fail("baseline_correction", "expected none, remove_mean or polynomial, got \"" + method + "\"");
     }
@@ -100,7 +100,7 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
   if (factor && target) r.fail("target_pga_g", "give scale_factor or target_pga_g, not both");
   if (factor) record = gm::scale(record, {r.number("scale_factor"), std::nullopt});
   if (target) {
-    record = gm::scale(record, {std::nullopt, r.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::g)});
+    record = gm::scale(record, {std::nullopt, r.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::kG)});
   }
   const double pad_after = r.non_negative_number_or("pad_after_s", 0.0);
   if (pad_after > 3600.0) r.fail("pad_after_s", "at most 3600 s");

@@ -118,14 +118,14 @@ std::optional<integrators::IntegratorConfig> default_integrator(std::string_view
   const auto scheme = integrators::parse_scheme(name);
   if (!scheme) return std::nullopt;
   switch (*scheme) {
-    case integrators::Scheme::central_difference: return integrators::CentralDifferenceParams{};
-    case integrators::Scheme::newmark: return integrators::NewmarkParams{};
-    case integrators::Scheme::hht_alpha: return integrators::HhtAlphaParams{};
-    case integrators::Scheme::generalized_alpha: return integrators::GeneralizedAlphaParams{};
-    case integrators::Scheme::alpha_os: return integrators::AlphaOsParams{};
-    case integrators::Scheme::chang: return integrators::ChangParams{};
-    case integrators::Scheme::chen_ricles: return integrators::ChenRiclesParams{};
-    case integrators::Scheme::kolay_ricles_alpha: return integrators::KolayRiclesAlphaParams{};
+    case integrators::Scheme::kCentralDifference: return integrators::CentralDifferenceParams{};
+    case integrators::Scheme::kNewmark: return integrators::NewmarkParams{};
+    case integrators::Scheme::kHhtAlpha: return integrators::HhtAlphaParams{};
+    case integrators::Scheme::kGeneralizedAlpha: return integrators::GeneralizedAlphaParams{};
+    case integrators::Scheme::kAlphaOs: return integrators::AlphaOsParams{};
+    case integrators::Scheme::kChang: return integrators::ChangParams{};
+    case integrators::Scheme::kChenRicles: return integrators::ChenRiclesParams{};
+    case integrators::Scheme::kKolayRiclesAlpha: return integrators::KolayRiclesAlphaParams{};
   }
   return std::nullopt;
 }

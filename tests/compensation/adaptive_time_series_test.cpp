@@ -31,8 +31,8 @@ struct DelayLine {
 const testing::MultiSine kTarget{{0.006, 0.003, 0.0015}, {0.7, 1.3, 2.1}, {0.0, 1.0, 2.0}};
 
 struct Trace {
-  std::vector<std::array<double, 3>> coefficients;  ///< after every step
-  double worst_late_error_m = 0.0;                  ///< |x_m - x_t| over the last 2 s
+  std::vector<std::array<double, 3>> coefficients;  // after every step
+  double worst_late_error_m = 0.0;                  // |x_m - x_t| over the last 2 s
 };
 
 Trace run(AdaptiveTimeSeriesCompensator& c, int delay_steps, double seconds, const testing::MultiSine& target) {

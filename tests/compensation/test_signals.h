@@ -15,8 +15,8 @@
 
 namespace rpsd::compensation::testing {
 
-/// The compensator's response to e^{j theta n}, measured by running it on cos and on sin
-/// (it is linear with real coefficients) for `steps` samples and reading the last one.
+// The compensator's response to e^{j theta n}, measured by running it on cos and on sin
+// (it is linear with real coefficients) for `steps` samples and reading the last one.
 inline std::complex<double> simulated_response(CommandCompensator& c, double theta, int steps) {
   double yc = 0.0, ys = 0.0;
   c.reset(1.0);  // cos(0) = 1: starts at rest on the first sample
@@ -26,7 +26,7 @@ inline std::complex<double> simulated_response(CommandCompensator& c, double the
   return std::complex<double>(yc, ys) / std::polar(1.0, theta * (steps - 1));
 }
 
-/// Records a measured figure in the test's XML output (--gtest_output=xml:FILE).
+// Records a measured figure in the test's XML output (--gtest_output=xml:FILE).
 inline void record(const std::string& key, double value) {
   std::ostringstream s;
   s.precision(10);
@@ -34,7 +34,7 @@ inline void record(const std::string& key, double value) {
   ::testing::Test::RecordProperty(key, s.str());
 }
 
-/// sum_i amplitude_i sin(2 pi f_i t + phase_i).
+// sum_i amplitude_i sin(2 pi f_i t + phase_i).
 struct MultiSine {
   std::vector<double> amplitude, frequency_hz, phase_rad;
   double operator()(double t) const {

@@ -34,13 +34,13 @@ struct SharedRecord {
 // (I-ELC180 -0.312881 g at 2.15 s, NIS000 -0.5093 g, STM090 -0.8832 g); the full digits,
 // the index and HCH090's peak were read from the files.
 const SharedRecord shared_records[] = {
-    {"I-ELC180.AT2", RecordFormat::peer_at2_nga_west1, 4000, 0.01, -0.312881, 215,
+    {"I-ELC180.AT2", RecordFormat::kPeerAt2NgaWest1, 4000, 0.01, -0.312881, 215,
      "IMPERIAL VALLEY", -0.640318E-02, 0.945934E-04},
-    {"NIS000.AT2", RecordFormat::peer_at2_old, 4096, 0.01, -0.5093376, 725, "KOBE",
+    {"NIS000.AT2", RecordFormat::kPeerAt2Old, 4096, 0.01, -0.5093376, 725, "KOBE",
      -0.7551815E-06, 0.4017524E-04},
-    {"STM090.AT2", RecordFormat::peer_at2_old, 2000, 0.02, -0.8832189, 490, "NORTHRIDGE",
+    {"STM090.AT2", RecordFormat::kPeerAt2Old, 2000, 0.02, -0.8832189, 490, "NORTHRIDGE",
      0.2289108E-02, -0.3995931E-03},
-    {"HCH090.AT2", RecordFormat::peer_at2_old, 7818, 0.005, 0.2465262, 1690, "LOMA PRIETA",
+    {"HCH090.AT2", RecordFormat::kPeerAt2Old, 7818, 0.005, 0.2465262, 1690, "LOMA PRIETA",
      -0.3956862E-03, 0.2829374E-03},
 };
 
@@ -49,7 +49,7 @@ TEST(GroundMotionAt2, SharedRecordsParseToTheirNptsDtAndPga) {
     SCOPED_TRACE(expected.file);
     const auto record = read_peer_at2(shared_record(expected.file));
     EXPECT_EQ(record.format, expected.format);
-    EXPECT_EQ(record.original_unit, AccelerationUnit::g);
+    EXPECT_EQ(record.original_unit, AccelerationUnit::kG);
     EXPECT_EQ(record.size(), expected.npts);
     EXPECT_EQ(record.dt_s, expected.dt_s);
     ASSERT_EQ(record.header_lines.size(), 4u);
@@ -80,7 +80,7 @@ TEST(GroundMotionAt2, NgaWest2HeaderWithTrailingComma) {
       "  1.0000000E-03  2.0000000E-03 -3.0000000E-03  4.0000000E-03  5.0000000E-03\r\n"
       " -6.0000000E-03  7.0000000E-03\r\n";
   const auto record = parse_peer_at2(text, "west2.AT2");
-  EXPECT_EQ(record.format, RecordFormat::peer_at2_nga_west2);
+  EXPECT_EQ(record.format, RecordFormat::kPeerAt2NgaWest2);
   EXPECT_EQ(record.size(), 7u);
   EXPECT_EQ(record.dt_s, 0.005);
   EXPECT_DOUBLE_EQ(record.acceleration_m_per_s2[6], 7e-3 * standard_gravity_m_per_s2);
@@ -98,8 +98,8 @@ TEST(GroundMotionAt2, PeknoldEightF10Form) {
       "   0.00630   0.00364   0.00099   0.00428   0.00758   0.01087   0.00682   0.00277\n"
       "  -0.00128   0.00368   0.00864\n";
   const auto record = parse_peer_at2(text, "elCentro.AT2");
-  EXPECT_EQ(record.format, RecordFormat::peer_at2_old);
-  EXPECT_EQ(record.original_unit, AccelerationUnit::g);
+  EXPECT_EQ(record.format, RecordFormat::kPeerAt2Old);
+  EXPECT_EQ(record.original_unit, AccelerationUnit::kG);
   ASSERT_EQ(record.size(), 11u);
   EXPECT_EQ(record.dt_s, 0.02);
   EXPECT_DOUBLE_EQ(record.acceleration_m_per_s2[8], -0.00128 * standard_gravity_m_per_s2);
@@ -113,12 +113,12 @@ std::string header_with_units(const std::string& line3) {
 TEST(GroundMotionAt2, UnitsFromLine3) {
   const auto cm = parse_peer_at2(
       header_with_units("ACCELERATION TIME HISTORY IN UNITS OF CM/S/S"), "cm.AT2");
-  EXPECT_EQ(cm.original_unit, AccelerationUnit::cm_per_s2);
+  EXPECT_EQ(cm.original_unit, AccelerationUnit::kCmPerS2);
   EXPECT_DOUBLE_EQ(cm.acceleration_m_per_s2[0], 1.0);
   const auto gal = parse_peer_at2(header_with_units("Acceleration in units of gal"), "gal.AT2");
-  EXPECT_EQ(gal.original_unit, AccelerationUnit::cm_per_s2);
+  EXPECT_EQ(gal.original_unit, AccelerationUnit::kCmPerS2);
   const auto m = parse_peer_at2(header_with_units("ACCELERATION, UNITS: M/S^2"), "m.AT2");
-  EXPECT_EQ(m.original_unit, AccelerationUnit::m_per_s2);
+  EXPECT_EQ(m.original_unit, AccelerationUnit::kMPerS2);
   EXPECT_DOUBLE_EQ(m.acceleration_m_per_s2[1], -50.0);
 }
 
@@ -133,7 +133,7 @@ TEST(GroundMotionAt2, Line3WithoutUnitsNeedsAnExplicitUnit) {
         << e.what();
   }
   At2ReadOptions options;
-  options.unit_if_unstated = AccelerationUnit::cm_per_s2;
+  options.unit_if_unstated = AccelerationUnit::kCmPerS2;
   EXPECT_DOUBLE_EQ(parse_peer_at2(text, "nounits.AT2", options).acceleration_m_per_s2[0], 1.0);
   // A unit stated on line 3 wins over the fallback.
   EXPECT_DOUBLE_EQ(parse_peer_at2(header_with_units("ACCELERATION IN UNITS OF G"), "g.AT2", options)

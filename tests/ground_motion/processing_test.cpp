@@ -209,7 +209,7 @@ TEST(GroundMotionProcessing, MeanRemoval) {
   GroundMotionRecord offset = el_centro();
   for (double& a : offset.acceleration_m_per_s2) a += 0.2;
   BaselineCorrectionOptions o;
-  o.method = BaselineMethod::remove_mean;
+  o.method = BaselineMethod::kRemoveMean;
   const auto a = baseline_correct(offset, o);
   const auto b = baseline_correct(el_centro(), o);
   double sum = 0.0;
@@ -218,7 +218,7 @@ TEST(GroundMotionProcessing, MeanRemoval) {
     sum += a.acceleration_m_per_s2[i];
   }
   EXPECT_NEAR(sum / static_cast<double>(a.size()), 0.0, 1e-15);
-  o.method = BaselineMethod::polynomial_displacement;
+  o.method = BaselineMethod::kPolynomialDisplacement;
   o.polynomial_order = 7;
   EXPECT_THROW(baseline_correct(el_centro(), o), RecordError);
 }

@@ -36,7 +36,7 @@ TEST(GroundMotionSynthetic, SameSeedSameBitsDifferentSeedDifferentRecord) {
   for (std::size_t i = 0; i < a.size(); ++i) same += a.acceleration_m_per_s2[i] == c.acceleration_m_per_s2[i];
   // Only the samples the envelope zeroes (t <= t0 = 2 s: 401 of them) agree.
   EXPECT_EQ(same, 401u);
-  EXPECT_EQ(a.format, RecordFormat::synthetic);
+  EXPECT_EQ(a.format, RecordFormat::kSynthetic);
   EXPECT_EQ(a.source, "synthetic (seed 42)");
 }
 
@@ -88,7 +88,7 @@ TEST(GroundMotionSynthetic, PeakEqualsTheTargetAndTheEnvelopeShapesTheRecord) {
 
 TEST(GroundMotionSynthetic, OtherEnvelopesAndPresets) {
   SyntheticGroundMotionOptions o;
-  o.envelope = EnvelopeKind::jennings_housner_tsai;
+  o.envelope = EnvelopeKind::kJenningsHousnerTsai;
   EXPECT_THROW(generate_synthetic_ground_motion(o), RecordError);  // no default parameters
   o.jennings_housner_tsai = {2.0, 12.0, 0.3};
   EXPECT_DOUBLE_EQ(envelope_value(o, 1.0), 0.25);
@@ -96,7 +96,7 @@ TEST(GroundMotionSynthetic, OtherEnvelopesAndPresets) {
   EXPECT_NEAR(envelope_value(o, 15.0), std::exp(-0.9), 1e-15);
   EXPECT_NO_THROW(generate_synthetic_ground_motion(o));
 
-  o.envelope = EnvelopeKind::shinozuka_sato;
+  o.envelope = EnvelopeKind::kShinozukaSato;
   o.shinozuka_sato = {0.2, 0.6};
   const double t_peak = std::log(3.0) / 0.4;
   EXPECT_NEAR(envelope_value(o, t_peak), 1.0, 1e-15);
@@ -147,7 +147,7 @@ struct Bands {
 Bands averaged_periodogram(SyntheticGroundMotionOptions o, int seeds, std::size_t n,
                            double band_rad_per_s, double max_rad_per_s,
                            const std::function<double(double)>& model) {
-  o.envelope = EnvelopeKind::stationary;
+  o.envelope = EnvelopeKind::kStationary;
   o.target_pga_m_per_s2.reset();
   o.white_noise_psd_m2_per_s3 = 1.0;
   o.duration_s = static_cast<double>(n - 1) * o.dt_s;
@@ -200,7 +200,7 @@ TEST(GroundMotionSynthetic, KanaiTajimiPsdMatchesTheAnalyticShapeAndLevel) {
 
 TEST(GroundMotionSynthetic, CloughPenzienPsdMatchesTheAnalyticShapeAndLevel) {
   SyntheticGroundMotionOptions o;
-  o.model = SpectralModel::clough_penzien;  // wf 1.56 rad/s, zf 0.6
+  o.model = SpectralModel::kCloughPenzien;  // wf 1.56 rad/s, zf 0.6
   const auto model = [](double w) {
     return kanai_tajimi_psd(1.0, 15.6, 0.6, w) * clough_penzien_factor(1.56, 0.6, w);
   };

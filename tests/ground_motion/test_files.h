@@ -18,7 +18,7 @@ inline std::filesystem::path source_dir() {
   return RPSD_TEST_SOURCE_DIR;
 }
 
-/// $RPSD_SOURCE_DIR/data/ground-motions/NAME
+// $RPSD_SOURCE_DIR/data/ground-motions/NAME
 inline std::filesystem::path shared_record(const std::string& name) {
   return source_dir() / "data" / "ground-motions" / name;
 }
@@ -30,7 +30,7 @@ inline std::string read_text(const std::filesystem::path& file) {
   return text.str();
 }
 
-/// A fresh directory per test, removed afterwards.
+// A fresh directory per test, removed afterwards.
 class TempDirTest : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -35,9 +35,9 @@ PlainTextOptions plain(double dt, AccelerationUnit unit) {
 }
 
 TEST(GroundMotionPlainText, OneValuePerLineInG) {
-  const auto r = parse_plain_text("0.1\n-0.2\n0.3\n", "one.txt", plain(0.02, AccelerationUnit::g));
+  const auto r = parse_plain_text("0.1\n-0.2\n0.3\n", "one.txt", plain(0.02, AccelerationUnit::kG));
   ASSERT_EQ(r.size(), 3u);
-  EXPECT_EQ(r.format, RecordFormat::plain_text);
+  EXPECT_EQ(r.format, RecordFormat::kPlainText);
   EXPECT_EQ(r.dt_s, 0.02);
   EXPECT_DOUBLE_EQ(r.acceleration_m_per_s2[1], -0.2 * 9.80665);
   EXPECT_DOUBLE_EQ(r.duration_s(), 0.04);
@@ -50,27 +50,27 @@ TEST(GroundMotionPlainText, ManyValuesPerLineAreReadInOrder) {
       " 7.0000E+00-8.0000E+00\n";
   // "7.0000E+00-8.0000E+00": Fortran fields that touch are not split: an error, on line 2.
   const auto message = message_of(
-      [&] { parse_plain_text(text, "elc.dat", plain(0.02, AccelerationUnit::cm_per_s2)); });
+      [&] { parse_plain_text(text, "elc.dat", plain(0.02, AccelerationUnit::kCmPerS2)); });
   EXPECT_EQ(message.rfind("elc.dat:2:2: expected an acceleration value", 0), 0u) << message;
 
   const auto r = parse_plain_text(
       " 1.0000E+00 2.0000E+00 3.0000E+00 4.0000E+00 5.0000E+00 6.0000E+00\n 7.0000E+00 -8.0D+00\n",
-      "elc.dat", plain(0.02, AccelerationUnit::cm_per_s2));
+      "elc.dat", plain(0.02, AccelerationUnit::kCmPerS2));
   ASSERT_EQ(r.size(), 8u);
   for (int i = 0; i < 7; ++i) EXPECT_DOUBLE_EQ(r.acceleration_m_per_s2[i], (i + 1) * 0.01);
   EXPECT_DOUBLE_EQ(r.acceleration_m_per_s2[7], -0.08);
 }
 
 TEST(GroundMotionPlainText, UnitConversion) {
-  EXPECT_DOUBLE_EQ(to_m_per_s2(AccelerationUnit::g), 9.80665);
-  EXPECT_DOUBLE_EQ(to_m_per_s2(AccelerationUnit::m_per_s2), 1.0);
-  EXPECT_DOUBLE_EQ(to_m_per_s2(AccelerationUnit::cm_per_s2), 0.01);
+  EXPECT_DOUBLE_EQ(to_m_per_s2(AccelerationUnit::kG), 9.80665);
+  EXPECT_DOUBLE_EQ(to_m_per_s2(AccelerationUnit::kMPerS2), 1.0);
+  EXPECT_DOUBLE_EQ(to_m_per_s2(AccelerationUnit::kCmPerS2), 0.01);
   const std::string text = "981.0\n";
-  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::cm_per_s2))
+  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kCmPerS2))
                        .acceleration_m_per_s2[0], 9.81);
-  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::m_per_s2))
+  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kMPerS2))
                        .acceleration_m_per_s2[0], 981.0);
-  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::g))
+  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kG))
                        .acceleration_m_per_s2[0], 981.0 * 9.80665);
 }
 
@@ -83,7 +83,7 @@ TEST(GroundMotionPlainText, CommentsBlankLinesHeaderAndColumn) {
       "0.01; 0.4; 0.5; 0.6\r\n"
       "% trailing comment\n"
       "0.02  0.7  0.8  0.9\n";
-  PlainTextOptions o = plain(0.01, AccelerationUnit::m_per_s2);
+  PlainTextOptions o = plain(0.01, AccelerationUnit::kMPerS2);
   o.skip_lines = 1;
   o.column = 2;
   o.expected_points = 3;
@@ -109,7 +109,7 @@ TEST(GroundMotionPlainText, CommentsBlankLinesHeaderAndColumn) {
 }
 
 TEST(GroundMotionPlainText, OptionErrors) {
-  EXPECT_NE(message_of([] { parse_plain_text("1\n", "x.txt", plain(0.0, AccelerationUnit::g)); })
+  EXPECT_NE(message_of([] { parse_plain_text("1\n", "x.txt", plain(0.0, AccelerationUnit::kG)); })
                 .find("x.txt: expected dt_s"),
             std::string::npos);
   PlainTextOptions no_unit;
@@ -117,14 +117,14 @@ TEST(GroundMotionPlainText, OptionErrors) {
   EXPECT_NE(message_of([&] { parse_plain_text("1\n", "x.txt", no_unit); })
                 .find("x.txt: the acceleration units must be declared"),
             std::string::npos);
-  EXPECT_EQ(message_of([] { parse_plain_text("# nothing\n\n", "x.txt", plain(0.01, AccelerationUnit::g)); })
+  EXPECT_EQ(message_of([] { parse_plain_text("# nothing\n\n", "x.txt", plain(0.01, AccelerationUnit::kG)); })
                 .rfind("x.txt:2: expected acceleration values, got none", 0),
             0u);
   // 1e308 is a double, 1e308 g is not.
-  EXPECT_EQ(message_of([] { parse_plain_text("0\n 1e308\n", "x.txt", plain(0.01, AccelerationUnit::g)); })
+  EXPECT_EQ(message_of([] { parse_plain_text("0\n 1e308\n", "x.txt", plain(0.01, AccelerationUnit::kG)); })
                 .rfind("x.txt:2:2: expected an acceleration value of finite size in m/s^2, got \"1e308\"", 0),
             0u);
-  EXPECT_EQ(message_of([] { parse_plain_text("", "x.txt", plain(0.01, AccelerationUnit::g)); })
+  EXPECT_EQ(message_of([] { parse_plain_text("", "x.txt", plain(0.01, AccelerationUnit::kG)); })
                 .rfind("x.txt:1: expected acceleration values, got none", 0),
             0u);
 }
@@ -137,10 +137,10 @@ TimeAccelerationOptions two_column(AccelerationUnit unit) {
 
 TEST(GroundMotionTimeAcceleration, InfersDtAndConvertsUnits) {
   const std::string text = "time_s,acc_g\n0.000,0.0\n0.005,0.1\n0.010,-0.2\n0.015,0.05\n";
-  auto o = two_column(AccelerationUnit::g);
+  auto o = two_column(AccelerationUnit::kG);
   o.skip_lines = 1;
   const auto r = parse_time_acceleration(text, "tA.csv", o);
-  EXPECT_EQ(r.format, RecordFormat::time_acceleration);
+  EXPECT_EQ(r.format, RecordFormat::kTimeAcceleration);
   ASSERT_EQ(r.size(), 4u);
   EXPECT_DOUBLE_EQ(r.dt_s, 0.005);
   EXPECT_DOUBLE_EQ(r.acceleration_m_per_s2[2], -0.2 * 9.80665);
@@ -149,13 +149,13 @@ TEST(GroundMotionTimeAcceleration, InfersDtAndConvertsUnits) {
 
 TEST(GroundMotionTimeAcceleration, NonZeroStartMovesTheOrigin) {
   const auto r = parse_time_acceleration("10.0 1\n10.5 2\n11.0 3\n", "late.txt",
-                                         two_column(AccelerationUnit::m_per_s2));
+                                         two_column(AccelerationUnit::kMPerS2));
   EXPECT_DOUBLE_EQ(r.dt_s, 0.5);
   EXPECT_EQ(r.description, "time column starts at 10 s");
 }
 
 TEST(GroundMotionTimeAcceleration, ColumnsCanBeChosen) {
-  auto o = two_column(AccelerationUnit::cm_per_s2);
+  auto o = two_column(AccelerationUnit::kCmPerS2);
   o.time_column = 2;
   o.acceleration_column = 0;
   const auto r = parse_time_acceleration("5 9 0.0\n6 9 0.1\n", "c.txt", o);
@@ -164,7 +164,7 @@ TEST(GroundMotionTimeAcceleration, ColumnsCanBeChosen) {
 }
 
 TEST(GroundMotionTimeAcceleration, Errors) {
-  const auto o = two_column(AccelerationUnit::g);
+  const auto o = two_column(AccelerationUnit::kG);
   // Off the uniform grid by 0.3 dt on line 3 (dt inferred from first and last: 0.01).
   auto message = message_of([&] {
     parse_time_acceleration("0.00 1\n0.01 1\n0.023 1\n0.03 1\n0.04 1\n", "uneven.txt", o);
@@ -212,10 +212,10 @@ TEST_F(GroundMotionTextFiles, ElCentroRoundTripsThroughBothTextFormats) {
     std::snprintf(line, sizeof line, "%.6E\n", g);
     one_per_line += line;
   }
-  auto o = two_column(AccelerationUnit::g);
+  auto o = two_column(AccelerationUnit::kG);
   o.skip_lines = 1;
   const auto from_csv = read_time_acceleration(write("elc.csv", csv), o);
-  const auto from_txt = read_plain_text(write("elc.txt", one_per_line), plain(0.01, AccelerationUnit::g));
+  const auto from_txt = read_plain_text(write("elc.txt", one_per_line), plain(0.01, AccelerationUnit::kG));
   ASSERT_EQ(from_csv.size(), 4000u);
   ASSERT_EQ(from_txt.size(), 4000u);
   EXPECT_NEAR(from_csv.dt_s, 0.01, 1e-15);

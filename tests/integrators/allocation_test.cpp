@@ -32,12 +32,12 @@ long allocations_over_steps(Integrator& integrator, const StructuralMatrices& mo
   bool ok = true;
   for (int s = 0; s < steps; ++s) {
     f(0) = std::sin(1e-3 * s);
-    ok &= integrator.begin_step(f) == StepStatus::ok;
+    ok &= integrator.begin_step(f) == StepStatus::kOk;
     for (int i = 0; i < integrator.iterations_per_step(); ++i) {
       r.noalias() = k * integrator.target_displacement();
-      ok &= integrator.set_measured_restoring_force(r) == StepStatus::ok;
+      ok &= integrator.set_measured_restoring_force(r) == StepStatus::kOk;
     }
-    ok &= integrator.end_step() == StepStatus::ok;
+    ok &= integrator.end_step() == StepStatus::kOk;
   }
   const long allocations = rpsd::testing::end_counting_allocations().total();
   EXPECT_TRUE(ok);

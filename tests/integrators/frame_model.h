@@ -15,8 +15,8 @@ struct FrameModel {
   Eigen::SparseMatrix<double> mass, damping, stiffness;
 };
 
-/// n DOF; the stiffness is scaled so that the largest natural frequency is at most
-/// omega_max_rad_s (bounded by Gershgorin's theorem on M^-1/2 K M^-1/2).
+// n DOF; the stiffness is scaled so that the largest natural frequency is at most
+// omega_max_rad_s (bounded by Gershgorin's theorem on M^-1/2 K M^-1/2).
 inline FrameModel make_frame_model(int n, double omega_max_rad_s, bool consistent_mass = false) {
   std::vector<Eigen::Triplet<double>> k_trip, m_trip;
   auto spring = [&](int i, int j, double k) {
@@ -65,8 +65,8 @@ inline FrameModel make_frame_model(int n, double omega_max_rad_s, bool consisten
   return f;
 }
 
-/// The same model with its DOFs renumbered by a fixed pseudo-random permutation, so that
-/// the natural order is no longer banded and the solvers must reorder (AMD).
+// The same model with its DOFs renumbered by a fixed pseudo-random permutation, so that
+// the natural order is no longer banded and the solvers must reorder (AMD).
 inline FrameModel permuted(const FrameModel& f) {
   const int n = static_cast<int>(f.mass.rows());
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p(n);

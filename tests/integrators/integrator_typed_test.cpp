@@ -27,7 +27,7 @@ class EveryScheme : public ::testing::Test {};
 
 TYPED_TEST_SUITE(EveryScheme, Schemes, SchemeNames);
 
-/// Max |x_n - x(t_n)| over [0, duration] for an SDOF with omega = 2 pi (T = 1 s).
+// Max |x_n - x(t_n)| over [0, duration] for an SDOF with omega = 2 pi (T = 1 s).
 double sdof_max_error(const IntegratorConfig& config, const SdofExact& exact, double dt,
                       double duration, double* peak = nullptr) {
   auto integrator = make_integrator(config);
@@ -264,20 +264,20 @@ TEST(SchemeParameters, RejectsOutOfRangeValues) {
 TEST(StepSequence, MisuseIsReportedNotThrown) {
   auto integrator = make_integrator(KolayRiclesAlphaParams{});
   const Eigen::VectorXd one = Eigen::VectorXd::Ones(1);
-  EXPECT_EQ(integrator->begin_step(one), StepStatus::not_initialized);
+  EXPECT_EQ(integrator->begin_step(one), StepStatus::kNotInitialized);
   integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd::Ones(1, 1),
                                                 Eigen::MatrixXd::Zero(1, 1),
                                                 Eigen::MatrixXd::Ones(1, 1)),
                         0.01);
   integrator->initialize(one, one * 0, one, one * 0);
-  EXPECT_EQ(integrator->end_step(), StepStatus::out_of_sequence);
-  EXPECT_EQ(integrator->begin_step(Eigen::VectorXd::Ones(2)), StepStatus::size_mismatch);
-  EXPECT_EQ(integrator->begin_step(one * NAN), StepStatus::non_finite_input);
-  EXPECT_EQ(integrator->begin_step(one), StepStatus::ok);
-  EXPECT_EQ(integrator->begin_step(one), StepStatus::out_of_sequence);
-  EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::ok);
-  EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::out_of_sequence);
-  EXPECT_EQ(integrator->end_step(), StepStatus::ok);
+  EXPECT_EQ(integrator->end_step(), StepStatus::kOutOfSequence);
+  EXPECT_EQ(integrator->begin_step(Eigen::VectorXd::Ones(2)), StepStatus::kSizeMismatch);
+  EXPECT_EQ(integrator->begin_step(one * NAN), StepStatus::kNonFiniteInput);
+  EXPECT_EQ(integrator->begin_step(one), StepStatus::kOk);
+  EXPECT_EQ(integrator->begin_step(one), StepStatus::kOutOfSequence);
+  EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::kOk);
+  EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::kOutOfSequence);
+  EXPECT_EQ(integrator->end_step(), StepStatus::kOk);
   EXPECT_EQ(integrator->step(), 1);
   EXPECT_DOUBLE_EQ(integrator->time_s(), 0.01);
 }
@@ -310,7 +310,7 @@ TEST(FixedIterations, CommandsAreInterpolatedTowardsTheImplicitSolution) {
     for (int step = 0; step < 5; ++step) {
       const double u_t = integrator->displacement()(0);
       std::vector<double> commands;
-      ASSERT_EQ(integrator->begin_step(zero), StepStatus::ok);
+      ASSERT_EQ(integrator->begin_step(zero), StepStatus::kOk);
       for (int i = 0; i < N; ++i) {
         commands.push_back(integrator->target_displacement()(0));
         r = K * integrator->target_displacement();

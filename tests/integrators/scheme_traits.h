@@ -64,7 +64,7 @@ struct KolayRiclesAlphaScheme {
   static constexpr double stability_limit = std::numeric_limits<double>::infinity();
 };
 
-/// Every scheme configuration the typed suites run, and readable test names for them.
+// Every scheme configuration the typed suites run, and readable test names for them.
 using Schemes = ::testing::Types<CentralDifferenceScheme, NewmarkAverageScheme, NewmarkLinearScheme,
                                  HhtScheme, GeneralizedAlphaScheme, AlphaOsScheme, ChangScheme,
                                  ChenRiclesScheme, KolayRiclesAlphaScheme>;

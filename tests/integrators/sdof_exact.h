@@ -8,7 +8,7 @@ namespace rpsd::integrators::test {
 struct SdofExact {
   double omega, xi, x0, v0, p0 = 0.0, omega_f = 0.0;
 
-  /// Free response of the homogeneous equation from (xh0, vh0).
+  // Free response of the homogeneous equation from (xh0, vh0).
   double free(double xh0, double vh0, double t) const {
     const double wd = omega * std::sqrt(1.0 - xi * xi);
     return std::exp(-xi * omega * t) *

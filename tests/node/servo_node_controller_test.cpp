@@ -49,7 +49,7 @@ class IdealActuator final : public servo::Actuator {
   std::vector<double> started_at;
   std::vector<std::vector<double>> commands;
   std::vector<double> periods;
-  std::deque<servo::ActuatorStatus> script;  ///< statuses to return, then kOk
+  std::deque<servo::ActuatorStatus> script;  // statuses to return, then kOk
 
  private:
   int channels_;

@@ -8,18 +8,18 @@ namespace rpsd::testing {
 
 struct AllocationCounts {
   long operator_new = 0;
-  long c_allocations = 0;  ///< malloc, calloc, realloc and the aligned variants
+  long c_allocations = 0;  // malloc, calloc, realloc and the aligned variants
   long total() const { return operator_new + c_allocations; }
 };
 
-/// Opens the counting window on the calling thread (counts restart at zero); allocations
-/// by other threads are not counted.
+// Opens the counting window on the calling thread (counts restart at zero); allocations
+// by other threads are not counted.
 void begin_counting_allocations();
-/// Closes the window and returns what was counted while it was open.
+// Closes the window and returns what was counted while it was open.
 AllocationCounts end_counting_allocations();
 
-/// Keeps a pointer observable so that the compiler cannot elide a new/delete or
-/// malloc/free pair in a test that checks the counter itself.
+// Keeps a pointer observable so that the compiler cannot elide a new/delete or
+// malloc/free pair in a test that checks the counter itself.
 void keep(void* pointer);
 
 }  // namespace rpsd::testing

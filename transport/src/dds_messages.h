@@ -13,7 +13,7 @@ namespace rpsd::transport {
 
 static_assert(rpsd_dds_MAX_CHANNELS == kMaxChannels, "the IDL and messages.h disagree on the channel count");
 
-/// The fields every command and feedback sample starts with.
+// The fields every command and feedback sample starts with.
 template <class In, class Out>
 void copy_header(const In& in, Out& out) {
   out.test_id = in.test_id;
@@ -23,14 +23,14 @@ void copy_header(const In& in, Out& out) {
   out.channels = in.channels;
 }
 
-/// CommandSample <-> rpsd_dds_Command.
+// CommandSample <-> rpsd_dds_Command.
 template <class In, class Out>
 void copy_command(const In& in, Out& out) {
   copy_header(in, out);
   std::ranges::copy(in.displacement_m, std::begin(out.displacement_m));
 }
 
-/// FeedbackSample <-> rpsd_dds_Feedback (round_trip_ns is local and not on the wire).
+// FeedbackSample <-> rpsd_dds_Feedback (round_trip_ns is local and not on the wire).
 template <class In, class Out>
 void copy_feedback(const In& in, Out& out) {
   copy_header(in, out);
@@ -40,7 +40,7 @@ void copy_feedback(const In& in, Out& out) {
   out.limit_flags = in.limit_flags;
 }
 
-/// NodeHeartbeat -> rpsd_dds_NodeHeartbeat.
+// NodeHeartbeat -> rpsd_dds_NodeHeartbeat.
 inline void copy_heartbeat(const NodeHeartbeat& in, rpsd_dds_NodeHeartbeat& out) {
   out.test_id = in.test_id;
   out.site_id = in.site_id;

@@ -23,12 +23,12 @@ using CompensatorKinds =
                      InverseCompensationParameters, AdaptiveInverseCompensationParameters, AdaptiveTimeSeriesParameters>;
 using CompensatorConfig = CompensatorKinds::Variant;
 
-/// The compensator for config, configured for control step dt_s and at rest at zero
-/// displacement (call reset() for another start). Throws std::invalid_argument with the
-/// scheme's precise message. Not real-time safe.
+// The compensator for config, configured for control step dt_s and at rest at zero
+// displacement (call reset() for another start). Throws std::invalid_argument with the
+// scheme's precise message. Not real-time safe.
 std::unique_ptr<CommandCompensator> make_compensator(const CompensatorConfig& config, double dt_s);
 
-/// The name() the compensator made from config will report. Real-time safe.
+// The name() the compensator made from config will report. Real-time safe.
 inline std::string_view compensator_name(const CompensatorConfig& config) noexcept { return config::kind_name(config); }
 
 }  // namespace rpsd::compensation

@@ -33,33 +33,33 @@ struct DiscretePhaseLeadParameters {
   using Compensator = DiscretePhaseLeadCompensator;
   static DiscretePhaseLeadParameters read(config::Source& section);
 
-  PhaseLeadParameters network;        ///< (a, T); see phase_lead_for_delay() for the design
-  double prewarp_frequency_hz = 0.0;  ///< 0: plain Tustin; > 0: exact at this frequency
+  PhaseLeadParameters network;        // (a, T); see phase_lead_for_delay() for the design
+  double prewarp_frequency_hz = 0.0;  // 0: plain Tustin; > 0: exact at this frequency
 
-  /// Designed from the delay to compensate with the chosen ratio a: (a - 1) T = delay_s.
+  // Designed from the delay to compensate with the chosen ratio a: (a - 1) T = delay_s.
   static DiscretePhaseLeadParameters for_delay(double delay_s, double ratio_a,
                                                double prewarp_frequency_hz = 0.0);
 
-  /// Throws std::invalid_argument unless the network is valid and 0 <= prewarp < Nyquist
-  /// of dt_s. Not real-time safe.
+  // Throws std::invalid_argument unless the network is valid and 0 <= prewarp < Nyquist
+  // of dt_s. Not real-time safe.
   void validate(double dt_s) const;
 };
 
-/// One first-order section y[n] = b0 x[n] + b1 x[n-1] - a1 y[n-1].
+// One first-order section y[n] = b0 x[n] + b1 x[n-1] - a1 y[n-1].
 struct FirstOrderSection {
   double b0 = 1.0;
   double b1 = 0.0;
   double a1 = 0.0;
 };
 
-/// The Tustin coefficients of the network at step dt_s (validates). Not real-time safe.
+// The Tustin coefficients of the network at step dt_s (validates). Not real-time safe.
 FirstOrderSection tustin_phase_lead(const DiscretePhaseLeadParameters& parameters, double dt_s);
 
-/// The bilinear frequency-warping constant K (2 / dt_s, or pre-warped). Real-time safe.
+// The bilinear frequency-warping constant K (2 / dt_s, or pre-warped). Real-time safe.
 double tustin_warping_constant(const DiscretePhaseLeadParameters& parameters, double dt_s);
 
-/// The discrete network's exact frequency response at w = omega_rad_s:
-/// G_c(j K tan(w dt / 2)) (the bilinear map), for 0 <= w dt < pi. Real-time safe.
+// The discrete network's exact frequency response at w = omega_rad_s:
+// G_c(j K tan(w dt / 2)) (the bilinear map), for 0 <= w dt < pi. Real-time safe.
 std::complex<double> discrete_phase_lead_response(const DiscretePhaseLeadParameters& parameters,
                                                   double dt_s, double omega_rad_s);
 
@@ -71,7 +71,7 @@ class DiscretePhaseLeadCompensator final : public CommandCompensator {
   void reset(double initial_displacement_m) noexcept override;
   double command(double target_m) noexcept override;
   void observe(double, double) noexcept override {}
-  /// The discrete filter's low-frequency lead: (a - 1) T K dt / 2 ((a - 1) T unless pre-warped).
+  // The discrete filter's low-frequency lead: (a - 1) T K dt / 2 ((a - 1) T unless pre-warped).
   double compensated_delay_s() const noexcept override { return low_frequency_lead_s_; }
   std::string_view name() const noexcept override { return DiscretePhaseLeadParameters::kName; }
 

@@ -22,44 +22,44 @@
 namespace rpsd::compensation {
 
 struct FrequencyEvaluationIndex {
-  bool valid = false;  ///< false when the input has no energy (outside DC with mean removal)
+  bool valid = false;  // false when the input has no energy (outside DC with mean removal)
   std::complex<double> index{0.0, 0.0};
   double amplitude = 0.0;
   double phase_rad = 0.0;
   double equivalent_frequency_hz = 0.0;
-  double delay_s = 0.0;  ///< -phi / (2 pi f_eq); positive when the output lags
+  double delay_s = 0.0;  // -phi / (2 pi f_eq); positive when the output lags
 };
 
-/// Offline over whole records of equal length N >= 2. Throws std::invalid_argument on bad
-/// lengths or dt_s. Not real-time safe.
+// Offline over whole records of equal length N >= 2. Throws std::invalid_argument on bad
+// lengths or dt_s. Not real-time safe.
 FrequencyEvaluationIndex frequency_evaluation_index(std::span<const double> input, std::span<const double> output,
                                                     double dt_s, bool remove_mean = false);
 
 struct FrequencyEvaluationIndexParameters {
   double dt_s = 0.0;
-  int window_samples = 4096;               ///< N of the FFT (any N >= 4; powers of 2 are fastest)
-  int evaluation_interval_samples = 256;   ///< recompute every this many samples
+  int window_samples = 4096;               // N of the FFT (any N >= 4; powers of 2 are fastest)
+  int evaluation_interval_samples = 256;   // recompute every this many samples
   bool remove_mean = false;
 
-  /// Throws std::invalid_argument with the offending value. Not real-time safe.
+  // Throws std::invalid_argument with the offending value. Not real-time safe.
   void validate() const;
 };
 
-/// Online over a sliding window of N samples: update() stores the sample (O(1)); every
-/// evaluation_interval_samples-th update, once the window is full, it also evaluates FEI on the
-/// window (two real FFTs, O(N log N), on that step only). Buffers and the FFT plan are made in
-/// configure(), so update() does not allocate.
+// Online over a sliding window of N samples: update() stores the sample (O(1)); every
+// evaluation_interval_samples-th update, once the window is full, it also evaluates FEI on the
+// window (two real FFTs, O(N log N), on that step only). Buffers and the FFT plan are made in
+// configure(), so update() does not allocate.
 class FrequencyEvaluationIndexEstimator {
  public:
-  /// Sizes the buffers and plans the FFT. Throws std::invalid_argument. Not real-time safe.
+  // Sizes the buffers and plans the FFT. Throws std::invalid_argument. Not real-time safe.
   void configure(const FrequencyEvaluationIndexParameters& parameters);
-  /// Empties the window and forgets the last result. Real-time safe.
+  // Empties the window and forgets the last result. Real-time safe.
   void reset() noexcept;
-  /// Adds one sample of input and output. Real-time safe.
+  // Adds one sample of input and output. Real-time safe.
   void update(double input, double output) noexcept;
-  /// The latest evaluation (invalid before the first). Real-time safe.
+  // The latest evaluation (invalid before the first). Real-time safe.
   const FrequencyEvaluationIndex& latest() const noexcept { return latest_; }
-  /// Samples seen since reset. Real-time safe.
+  // Samples seen since reset. Real-time safe.
   long samples() const noexcept { return count_; }
 
  private:

@@ -25,9 +25,9 @@ struct InverseCompensationParameters {
   using Compensator = InverseCompensator;
   static InverseCompensationParameters read(config::Source& section);
 
-  double delay_s = 0.0;  ///< lag to compensate; alpha = 1 + delay_s / dt_s
+  double delay_s = 0.0;  // lag to compensate; alpha = 1 + delay_s / dt_s
 
-  /// Throws std::invalid_argument unless delay_s >= 0 and finite. Not real-time safe.
+  // Throws std::invalid_argument unless delay_s >= 0 and finite. Not real-time safe.
   void validate() const;
 };
 
@@ -42,7 +42,7 @@ class InverseCompensator final : public CommandCompensator {
   double compensated_delay_s() const noexcept override { return parameters_.delay_s; }
   std::string_view name() const noexcept override { return InverseCompensationParameters::kName; }
 
-  /// Chen & Ricles' alpha = 1 + delay_s / dt_s.
+  // Chen & Ricles' alpha = 1 + delay_s / dt_s.
   double alpha() const { return alpha_; }
 
  private:

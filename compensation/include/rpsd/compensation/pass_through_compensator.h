@@ -11,7 +11,7 @@ namespace rpsd::compensation {
 
 class PassThroughCompensator;
 
-/// No parameters; present so that "none" is a typed configuration like the others.
+// No parameters; present so that "none" is a typed configuration like the others.
 
 struct PassThroughParameters {
   static constexpr std::string_view kName = "none";
@@ -25,7 +25,7 @@ class PassThroughCompensator final : public CommandCompensator {
   PassThroughCompensator() = default;
   explicit PassThroughCompensator(const PassThroughParameters&) {}
 
-  /// Throws std::invalid_argument unless dt_s is positive and finite. Not real-time safe.
+  // Throws std::invalid_argument unless dt_s is positive and finite. Not real-time safe.
   void configure(double dt_s) override;
   void reset(double) noexcept override {}
   double command(double target_m) noexcept override { return target_m; }

@@ -17,12 +17,12 @@ namespace rpsd::compensation {
 
 inline constexpr int kMaxExtrapolationOrder = 3;
 
-/// c_0..c_order for order 0..3 and alpha >= 0 (unused entries are zero). Real-time safe;
-/// the order must be in range (checked by the caller's validation).
+// c_0..c_order for order 0..3 and alpha >= 0 (unused entries are zero). Real-time safe;
+// the order must be in range (checked by the caller's validation).
 std::array<double, kMaxExtrapolationOrder + 1> extrapolation_coefficients(int order, double alpha);
 
-/// The extrapolator's frequency response at w dt = omega_dt_rad: sum_j c_j e^{-j j w dt}
-/// (the ideal is e^{j alpha w dt}). Real-time safe.
+// The extrapolator's frequency response at w dt = omega_dt_rad: sum_j c_j e^{-j j w dt}
+// (the ideal is e^{j alpha w dt}). Real-time safe.
 std::complex<double> extrapolation_response(int order, double alpha, double omega_dt_rad);
 
 class PolynomialExtrapolationCompensator;
@@ -33,10 +33,10 @@ struct PolynomialExtrapolationParameters {
   using Compensator = PolynomialExtrapolationCompensator;
   static PolynomialExtrapolationParameters read(config::Source& section);
 
-  int order = 2;         ///< p in 0..3 (0 holds the target: no compensation)
-  double delay_s = 0.0;  ///< tau; alpha = tau / dt may be any non-negative ratio
+  int order = 2;         // p in 0..3 (0 holds the target: no compensation)
+  double delay_s = 0.0;  // tau; alpha = tau / dt may be any non-negative ratio
 
-  /// Throws std::invalid_argument unless 0 <= order <= 3 and delay_s >= 0. Not real-time safe.
+  // Throws std::invalid_argument unless 0 <= order <= 3 and delay_s >= 0. Not real-time safe.
   void validate() const;
 };
 
@@ -48,7 +48,7 @@ class PolynomialExtrapolationCompensator final : public CommandCompensator {
   void reset(double initial_displacement_m) noexcept override;
   double command(double target_m) noexcept override;
   void observe(double, double) noexcept override {}
-  /// delay_s, or 0 for order 0 (which holds the target and so advances nothing).
+  // delay_s, or 0 for order 0 (which holds the target and so advances nothing).
   double compensated_delay_s() const noexcept override { return parameters_.order == 0 ? 0.0 : parameters_.delay_s; }
   std::string_view name() const noexcept override { return PolynomialExtrapolationParameters::kName; }
 
@@ -59,7 +59,7 @@ class PolynomialExtrapolationCompensator final : public CommandCompensator {
   PolynomialExtrapolationParameters parameters_;
   double alpha_ = 0.0;
   std::array<double, kMaxExtrapolationOrder + 1> coefficients_{};
-  std::array<double, kMaxExtrapolationOrder + 1> history_m_{};  ///< x_t[n], x_t[n-1], ...
+  std::array<double, kMaxExtrapolationOrder + 1> history_m_{};  // x_t[n], x_t[n-1], ...
 };
 
 }  // namespace rpsd::compensation

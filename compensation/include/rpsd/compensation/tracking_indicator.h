@@ -12,19 +12,19 @@
 
 namespace rpsd::compensation {
 
-/// The online indicator: O(1) per sample, no buffers.
+// The online indicator: O(1) per sample, no buffers.
 class TrackingIndicator {
  public:
-  /// Forgets everything; the next update() only records its sample. Real-time safe.
+  // Forgets everything; the next update() only records its sample. Real-time safe.
   void reset() noexcept;
-  /// Starts from a known previous sample (areas zero). Real-time safe.
+  // Starts from a known previous sample (areas zero). Real-time safe.
   void reset(double command_m, double measured_m) noexcept;
-  /// Adds one sample of commanded (or target) and measured displacement. Real-time safe.
+  // Adds one sample of commanded (or target) and measured displacement. Real-time safe.
   void update(double command_m, double measured_m) noexcept;
 
   double area_a_m2() const noexcept { return area_a_m2_; }
   double area_ta_m2() const noexcept { return area_ta_m2_; }
-  /// TI = 1/2 (A - TA), m^2. Real-time safe.
+  // TI = 1/2 (A - TA), m^2. Real-time safe.
   double value_m2() const noexcept { return 0.5 * (area_a_m2_ - area_ta_m2_); }
 
  private:
@@ -35,12 +35,12 @@ class TrackingIndicator {
   double area_ta_m2_ = 0.0;
 };
 
-/// TI after the whole record. Throws std::invalid_argument unless the spans have equal
-/// lengths. Not real-time safe (it may throw).
+// TI after the whole record. Throws std::invalid_argument unless the spans have equal
+// lengths. Not real-time safe (it may throw).
 double tracking_indicator(std::span<const double> command_m, std::span<const double> measured_m);
 
-/// TI after each sample into history_m2 (same length as the inputs; TI[0] = 0). Throws
-/// std::invalid_argument on unequal lengths. Not real-time safe (it may throw).
+// TI after each sample into history_m2 (same length as the inputs; TI[0] = 0). Throws
+// std::invalid_argument on unequal lengths. Not real-time safe (it may throw).
 void tracking_indicator_history(std::span<const double> command_m, std::span<const double> measured_m,
                                 std::span<double> history_m2);
 

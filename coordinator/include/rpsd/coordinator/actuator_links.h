@@ -18,30 +18,30 @@ namespace rpsd::coordinator {
 
 struct SiteSummary {
   std::uint32_t site_id = 1;
-  std::vector<int> channels;  ///< the test's channels this site owns
+  std::vector<int> channels;  // the test's channels this site owns
 };
 
 class ActuatorLinks {
  public:
-  /// Builds the sites' links and puts every actuator at rest at hold_m (one value per
-  /// channel, in channel order). With perfect_actuator, in-process plants follow their
-  /// command exactly whatever the transport. DDS: waits for every site's node to be
-  /// discovered and throws std::runtime_error naming the missing sites. Not real-time safe.
+  // Builds the sites' links and puts every actuator at rest at hold_m (one value per
+  // channel, in channel order). With perfect_actuator, in-process plants follow their
+  // command exactly whatever the transport. DDS: waits for every site's node to be
+  // discovered and throws std::runtime_error naming the missing sites. Not real-time safe.
   ActuatorLinks(const TestConfig& config, double control_period_s, bool perfect_actuator,
                 std::span<const double> hold_m);
   ~ActuatorLinks();
 
   transport::Link& link() { return *multi_site_; }
-  /// The specimen's force at rest, per channel: the simulated load cell, or (over DDS,
-  /// before any feedback) the specimen stiffness estimate times the hold position.
+  // The specimen's force at rest, per channel: the simulated load cell, or (over DDS,
+  // before any feedback) the specimen stiffness estimate times the hold position.
   double initial_force_n(int channel) const { return initial_force_n_[static_cast<std::size_t>(channel)]; }
   const std::vector<SiteSummary>& sites() const { return sites_; }
-  /// Real time: the receive deadline for every DDS site this cycle (0: none).
+  // Real time: the receive deadline for every DDS site this cycle (0: none).
   void set_receive_deadline_ns(std::int64_t deadline_ns);
   bool over_dds() const { return !dds_links_.empty(); }
-  /// The simulated plant of a channel in this process (nullptr over DDS).
+  // The simulated plant of a channel in this process (nullptr over DDS).
   const servo::Plant* simulated_plant(int channel) const { return plant_of_channel_[static_cast<std::size_t>(channel)]; }
-  /// Over DDS: messages each site's link refused or found late.
+  // Over DDS: messages each site's link refused or found late.
   std::vector<transport::DdsLinkCounters> dds_counters() const;
 
  private:

@@ -35,30 +35,30 @@
 namespace rpsd::coordinator {
 
 struct LoopParts {
-  integrators::Integrator* integrator = nullptr;          ///< configured with M, C, K0 and dt
-  substructure::NumericalModel* numerical = nullptr;       ///< M, C and R_num(d)
+  integrators::Integrator* integrator = nullptr;          // configured with M, C, K0 and dt
+  substructure::NumericalModel* numerical = nullptr;       // M, C and R_num(d)
   const substructure::Partition* partition = nullptr;
   transport::Link* link = nullptr;
-  std::vector<compensation::CommandCompensator*> compensators;  ///< one per channel, configured
-  std::vector<RestoringForcePath> force_paths;                  ///< one per channel
-  std::vector<Eigen::Index> recorded_dofs;                      ///< at most kMaxRecordedDofs
-  std::span<const double> ground_acceleration_m_per_s2;  ///< at t = n dt (borrowed); empty: free vibration
-  const substructure::GroundMotionLoad* ground_load = nullptr;  ///< F = -M iota a_g; needed with a record
+  std::vector<compensation::CommandCompensator*> compensators;  // one per channel, configured
+  std::vector<RestoringForcePath> force_paths;                  // one per channel
+  std::vector<Eigen::Index> recorded_dofs;                      // at most kMaxRecordedDofs
+  std::span<const double> ground_acceleration_m_per_s2;  // at t = n dt (borrowed); empty: free vibration
+  const substructure::GroundMotionLoad* ground_load = nullptr;  // F = -M iota a_g; needed with a record
   std::uint32_t test_id = 1;
-  /// As fast as possible, a full recorder queue makes the loop wait (nothing is lost); in
-  /// real time it drops and counts the record instead, so the loop never blocks.
+  // As fast as possible, a full recorder queue makes the loop wait (nothing is lost); in
+  // real time it drops and counts the record instead, so the loop never blocks.
   bool wait_for_recorder = true;
-  /// Lock-step (0): every step needs the feedback of its own command. Real time (> 0): a
-  /// feedback that misses its deadline is replaced by the newest measurement, counted and
-  /// flagged, as long as that measurement answers a command at most this many control
-  /// periods old; an older one (a silent node) stops the test.
+  // Lock-step (0): every step needs the feedback of its own command. Real time (> 0): a
+  // feedback that misses its deadline is replaced by the newest measurement, counted and
+  // flagged, as long as that measurement answers a command at most this many control
+  // periods old; an older one (a silent node) stops the test.
   int max_feedback_age_periods = 0;
-  /// The coordinator's limits per channel (empty: none). A command beyond its stroke or
-  /// increment is never sent; a measured force beyond its bound stops the test at once.
+  // The coordinator's limits per channel (empty: none). A command beyond its stroke or
+  // increment is never sent; a measured force beyond its bound stops the test at once.
   std::vector<CoordinatorLimits> limits;
 };
 
-/// Which coordinator limit stopped the test, on which channel, at what value.
+// Which coordinator limit stopped the test, on which channel, at what value.
 struct LimitStop {
   enum class Kind : std::uint8_t { kNone, kStroke, kIncrement, kForce };
   Kind kind = Kind::kNone;
@@ -71,38 +71,38 @@ enum class StepOutcome : std::uint8_t { kOk, kRecordEnded, kLinkFailure, kIntegr
 
 class RpsdLoop {
  public:
-  /// Checks the parts fit together and sizes every buffer. Throws std::invalid_argument
-  /// naming the mismatch. Not real-time safe.
+  // Checks the parts fit together and sizes every buffer. Throws std::invalid_argument
+  // naming the mismatch. Not real-time safe.
   explicit RpsdLoop(LoopParts parts);
 
-  /// Starts at rest at displacement d0 (model scale) with the specimens' forces at d0
-  /// (specimen scale, one per channel). Resets compensators and indicators. Not real-time safe.
+  // Starts at rest at displacement d0 (model scale) with the specimens' forces at d0
+  // (specimen scale, one per channel). Resets compensators and indicators. Not real-time safe.
   void start(const Eigen::VectorXd& d0, std::span<const double> specimen_force0_n);
 
-  /// Advances the test by one integration step and records it. Real-time safe.
+  // Advances the test by one integration step and records it. Real-time safe.
   StepOutcome step(Recorder& recorder);
 
-  /// The record of the last step taken (what step() handed to the recorder). Real-time safe.
+  // The record of the last step taken (what step() handed to the recorder). Real-time safe.
   const StepRecord& last_record() const { return record_; }
 
-  /// Whether a full recorder queue makes step() wait (LoopParts::wait_for_recorder).
+  // Whether a full recorder queue makes step() wait (LoopParts::wait_for_recorder).
   void set_wait_for_recorder(bool wait) { parts_.wait_for_recorder = wait; }
-  /// Real time: how late the current cycle woke (recorded with the step). Real-time safe.
+  // Real time: how late the current cycle woke (recorded with the step). Real-time safe.
   void set_cycle_lateness_ns(std::int64_t ns) { cycle_lateness_ns_ = ns; }
   std::int64_t late_feedback_total() const { return late_total_; }
-  /// Control periods between the newest feedback and the last command sent, as of the last
-  /// exchange (0: on time).
+  // Control periods between the newest feedback and the last command sent, as of the last
+  // exchange (0: on time).
   std::int64_t feedback_age_periods() const { return feedback_age_; }
-  /// The coordinator limit that stopped the loop (kind kNone if none did).
+  // The coordinator limit that stopped the loop (kind kNone if none did).
   const LimitStop& limit_stop() const { return limit_stop_; }
 
   std::int64_t step_index() const { return step_; }
-  std::int64_t steps_available() const;  ///< ground-motion steps, or unlimited (-1)
+  std::int64_t steps_available() const;  // ground-motion steps, or unlimited (-1)
   double dt_s() const { return parts_.integrator->dt_s(); }
 
  private:
   void experimental_forces(const transport::FeedbackSample& feedback);
-  bool commands_within_limits();  ///< fills limit_stop_ when not
+  bool commands_within_limits();  // fills limit_stop_ when not
   void fill_record(StepRecord& r) const;
 
   LoopParts parts_;

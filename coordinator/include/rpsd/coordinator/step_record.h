@@ -22,7 +22,7 @@ struct StepRecord {
   std::array<double, transport::kMaxChannels> command_m{};
   std::array<double, transport::kMaxChannels> measured_m{};
   std::array<double, transport::kMaxChannels> measured_force_n{};
-  /// The specimen's restoring force the test used (the measured force, or k x measured).
+  // The specimen's restoring force the test used (the measured force, or k x measured).
   std::array<double, transport::kMaxChannels> specimen_restoring_force_n{};
   std::array<double, transport::kMaxChannels> tracking_indicator_m2{};
   // Per recorded model DOF, model scale.
@@ -38,15 +38,15 @@ struct StepRecord {
   std::uint32_t node_status = 0;
   std::uint32_t limit_flags = 0;
   // Timing (zero as fast as possible in process).
-  /// Command-to-feedback time of each channel's site this step, s.
+  // Command-to-feedback time of each channel's site this step, s.
   std::array<double, transport::kMaxChannels> round_trip_s{};
-  double cycle_lateness_s = 0.0;  ///< how late the paced cycle woke after its deadline
-  std::uint8_t feedback_age_periods = 0; ///< periods the feedback used was behind its command (0: on time; real time)
+  double cycle_lateness_s = 0.0;  // how late the paced cycle woke after its deadline
+  std::uint8_t feedback_age_periods = 0; // periods the feedback used was behind its command (0: on time; real time)
 };
 
-/// Copies what `from` uses (its channels and recorded DOFs) into `to`; the entries beyond
-/// stay as they were. Cheaper than copying the whole fixed-size record, which is mostly
-/// room for channels and DOFs a test does not have. Real-time safe.
+// Copies what `from` uses (its channels and recorded DOFs) into `to`; the entries beyond
+// stay as they were. Cheaper than copying the whole fixed-size record, which is mostly
+// room for channels and DOFs a test does not have. Real-time safe.
 inline void copy_used(const StepRecord& from, StepRecord& to) {
   to.step = from.step;
   to.time_s = from.time_s;

@@ -26,39 +26,39 @@
 namespace rpsd::coordinator {
 
 struct ExperimentalChannel {
-  substructure::ExperimentalDof dof;  ///< DOF, channel, scales, specimen stiffness estimate
+  substructure::ExperimentalDof dof;  // DOF, channel, scales, specimen stiffness estimate
   RestoringForceSource restoring_force = RestoringForceSource::kMeasuredForce;
-  std::uint32_t site_id = 1;          ///< the servo node (site) that owns the actuator
-  CoordinatorLimits limits;           ///< experimental[i].limits
+  std::uint32_t site_id = 1;          // the servo node (site) that owns the actuator
+  CoordinatorLimits limits;           // experimental[i].limits
 };
 
-/// How the loop is paced.
+// How the loop is paced.
 struct ClockConfig {
   enum class Mode { kAsFastAsPossible, kRealTime };
   Mode mode = Mode::kAsFastAsPossible;
-  /// Real time: late feedback is replaced by the newest measurement (counted and flagged)
-  /// while that answers a command at most this many control periods old; beyond, the node
-  /// is taken for silent and the test stops (a dead node: on the 5th period with 4).
+  // Real time: late feedback is replaced by the newest measurement (counted and flagged)
+  // while that answers a command at most this many control periods old; beyond, the node
+  // is taken for silent and the test stops (a dead node: on the 5th period with 4).
   int max_feedback_age_periods = 4;
   realtime::RealTimeRequest realtime;
 };
 
-/// Where the actuators are: simulated in this process, or servo nodes reached over DDS.
+// Where the actuators are: simulated in this process, or servo nodes reached over DDS.
 struct TransportConfig {
   enum class Kind { kInProcess, kDds };
   Kind kind = Kind::kInProcess;
-  std::uint32_t test_id = 1;          ///< DDS partition: two tests on one network never cross
+  std::uint32_t test_id = 1;          // DDS partition: two tests on one network never cross
   std::uint32_t domain_id = 0;
-  std::filesystem::path dds_config;   ///< Cyclone XML; empty: CYCLONEDDS_URI or defaults
-  double feedback_timeout_s = 1.0;    ///< lock-step: longest wait for one step's feedback
-  /// Lock-step: poll for the feedback this long before sleeping until it comes (0: never).
+  std::filesystem::path dds_config;   // Cyclone XML; empty: CYCLONEDDS_URI or defaults
+  double feedback_timeout_s = 1.0;    // lock-step: longest wait for one step's feedback
+  // Lock-step: poll for the feedback this long before sleeping until it comes (0: never).
   double busy_wait_s = 0.0;
-  double discovery_timeout_s = 10.0;  ///< longest wait for every site's node at start
+  double discovery_timeout_s = 10.0;  // longest wait for every site's node at start
 };
 
-/// A ground-acceleration record already read and processed to the integration step.
+// A ground-acceleration record already read and processed to the integration step.
 struct GroundMotion {
-  std::string name;                        ///< file or generator, for titles
+  std::string name;                        // file or generator, for titles
   double dt_s = 0.0;
   std::vector<double> acceleration_m_per_s2;
 };
@@ -68,25 +68,25 @@ struct TestConfig {
   std::string description;
   std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> structure;
   std::vector<ExperimentalChannel> experimental;
-  Eigen::VectorXd influence;        ///< ground-motion influence vector (default: all ones)
-  servo::PlantConfig plant;         ///< every channel's actuator (each channel gets its own)
+  Eigen::VectorXd influence;        // ground-motion influence vector (default: all ones)
+  servo::PlantConfig plant;         // every channel's actuator (each channel gets its own)
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
   compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
-  double control_rate_hz = 1024.0;  ///< integration step = control period x iterations
+  double control_rate_hz = 1024.0;  // integration step = control period x iterations
   ClockConfig clock;
   TransportConfig transport;
-  /// Either a ground motion or an initial displacement (free vibration) drives the test.
+  // Either a ground motion or an initial displacement (free vibration) drives the test.
   std::optional<GroundMotion> ground_motion;
   Eigen::VectorXd initial_displacement_m;
-  double duration_s = 0.0;          ///< free vibration length, or the record's length
+  double duration_s = 0.0;          // free vibration length, or the record's length
   std::vector<Eigen::Index> record_dofs;
-  /// In process: the servo node of a site, by site id (its limits, limit actions and
-  /// watchdog; identity, channels and period come from the test). A site without one runs
-  /// a node with ServoNodeConfig's defaults.
+  // In process: the servo node of a site, by site id (its limits, limit actions and
+  // watchdog; identity, channels and period come from the test). A site without one runs
+  // a node with ServoNodeConfig's defaults.
   std::map<std::uint32_t, node::ServoNodeConfig> site_nodes;
 };
 
-/// DOFs of the scenario's structure.
+// DOFs of the scenario's structure.
 Eigen::Index structure_dofs(const TestConfig& config);
 
 }  // namespace rpsd::coordinator

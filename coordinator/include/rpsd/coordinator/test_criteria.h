@@ -15,7 +15,7 @@
 namespace rpsd::coordinator {
 
 struct ChannelCriteria {
-  double j1_tracking_delay_ms = 0.0;   ///< cross-correlation lag of measured behind target
+  double j1_tracking_delay_ms = 0.0;   // cross-correlation lag of measured behind target
   double j2_rms_tracking_error_percent = 0.0;
   double j3_peak_tracking_error_percent = 0.0;
   double final_tracking_indicator_m2 = 0.0;
@@ -24,28 +24,28 @@ struct ChannelCriteria {
 struct DofCriteria {
   double peak_displacement_m = 0.0;
   double reference_peak_displacement_m = 0.0;
-  double rms_error_percent = 0.0;   ///< J4-J6 for floors 1-3
-  double peak_error_percent = 0.0;  ///< J7-J9 for floors 1-3
+  double rms_error_percent = 0.0;   // J4-J6 for floors 1-3
+  double peak_error_percent = 0.0;  // J7-J9 for floors 1-3
 };
 
 struct Criteria {
   std::vector<ChannelCriteria> channels;
   std::vector<DofCriteria> dofs;
-  double energy_error_j = 0.0;  ///< input - (kinetic + damping + restoring) at the end
+  double energy_error_j = 0.0;  // input - (kinetic + damping + restoring) at the end
 };
 
 class CriteriaAccumulator {
  public:
-  /// J1 searches lags up to 200 ms and is NaN for a record not longer than twice that.
-  /// Not real-time safe.
+  // J1 searches lags up to 200 ms and is NaN for a record not longer than twice that.
+  // Not real-time safe.
   CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz);
 
-  /// A step of the test: J1-J3, the tracking indicator and the energy. Real-time safe.
+  // A step of the test: J1-J3, the tracking indicator and the energy. Real-time safe.
   void add_test(const StepRecord& test);
-  /// The same step of the test and of its reference, for J4-J9; pairs run from the first
-  /// step while both runs have one. Real-time safe.
+  // The same step of the test and of its reference, for J4-J9; pairs run from the first
+  // step while both runs have one. Real-time safe.
   void add_pair(const StepRecord& test, const StepRecord& reference);
-  /// The same with the test's recorded-DOF displacements kept apart. Real-time safe.
+  // The same with the test's recorded-DOF displacements kept apart. Real-time safe.
   void add_pair(std::span<const double> test_displacement_m, const StepRecord& reference);
 
   std::int64_t test_steps() const { return test_steps_; }
@@ -69,8 +69,8 @@ class CriteriaAccumulator {
   double energy_error_j_ = 0.0;
 };
 
-/// J1-J3 and the final tracking indicator of one channel from kept records (target vs
-/// measured); the same numbers CriteriaAccumulator gives.
+// J1-J3 and the final tracking indicator of one channel from kept records (target vs
+// measured); the same numbers CriteriaAccumulator gives.
 ChannelCriteria channel_criteria(const std::vector<StepRecord>& records, int channel, double control_rate_hz);
 
 }  // namespace rpsd::coordinator

@@ -21,17 +21,17 @@
 namespace rpsd::ground_motion {
 
 struct At2ReadOptions {
-  /// Unit to assume when line 3 names none (some hand-made files); a unit that line 3
-  /// does name always wins. Unset: a line 3 without units is an error.
+  // Unit to assume when line 3 names none (some hand-made files); a unit that line 3
+  // does name always wins. Unset: a line 3 without units is an error.
   std::optional<AccelerationUnit> unit_if_unstated;
 };
 
-/// Reads an AT2 file. Not real-time safe.
+// Reads an AT2 file. Not real-time safe.
 GroundMotionRecord read_peer_at2(const std::filesystem::path& file,
                                  const At2ReadOptions& options = {});
 
-/// Parses AT2 text held in memory; `source_name` is used as the file name in messages
-/// and as GroundMotionRecord::source. Not real-time safe.
+// Parses AT2 text held in memory; `source_name` is used as the file name in messages
+// and as GroundMotionRecord::source. Not real-time safe.
 GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source_name,
                                   const At2ReadOptions& options = {});
 

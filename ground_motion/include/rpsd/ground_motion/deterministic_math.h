@@ -6,13 +6,13 @@
 
 namespace rpsd::ground_motion::deterministic {
 
-/// e^x; +inf above 709.78, 0 below -745.13. Real-time safe.
+// e^x; +inf above 709.78, 0 below -745.13. Real-time safe.
 double exp(double x) noexcept;
 
-/// Natural logarithm for finite x > 0 (returns -inf for 0, NaN for negative). Real-time safe.
+// Natural logarithm for finite x > 0 (returns -inf for 0, NaN for negative). Real-time safe.
 double log(double x) noexcept;
 
-/// sin(2 pi u) and cos(2 pi u) for u in [0, 1]. Real-time safe.
+// sin(2 pi u) and cos(2 pi u) for u in [0, 1]. Real-time safe.
 void sincos_2pi(double u, double& sine, double& cosine) noexcept;
 
 }  // namespace rpsd::ground_motion::deterministic

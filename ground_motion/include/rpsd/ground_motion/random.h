@@ -9,7 +9,7 @@
 
 namespace rpsd::ground_motion {
 
-/// SplitMix64 (Steele, Lea, Flood 2014). Real-time safe.
+// SplitMix64 (Steele, Lea, Flood 2014). Real-time safe.
 class SplitMix64 {
  public:
   explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
@@ -19,23 +19,23 @@ class SplitMix64 {
   std::uint64_t state_;
 };
 
-/// xoshiro256** 1.0; seeded from four SplitMix64 outputs as its authors recommend.
-/// Real-time safe.
+// xoshiro256** 1.0; seeded from four SplitMix64 outputs as its authors recommend.
+// Real-time safe.
 class Xoshiro256StarStar {
  public:
   explicit Xoshiro256StarStar(std::uint64_t seed);
-  /// Direct state (for the published test vectors); must not be all zero.
+  // Direct state (for the published test vectors); must not be all zero.
   explicit Xoshiro256StarStar(const std::array<std::uint64_t, 4>& state) : s_(state) {}
   std::uint64_t next() noexcept;
-  /// Uniform in [0, 1): the top 53 bits times 2^-53.
+  // Uniform in [0, 1): the top 53 bits times 2^-53.
   double uniform() noexcept;
 
  private:
   std::array<std::uint64_t, 4> s_;
 };
 
-/// Standard normal numbers by the Box-Muller transform, both outputs of each pair used.
-/// Real-time safe.
+// Standard normal numbers by the Box-Muller transform, both outputs of each pair used.
+// Real-time safe.
 class StandardNormal {
  public:
   explicit StandardNormal(std::uint64_t seed) : uniform_(seed) {}

@@ -23,14 +23,14 @@ using IntegratorConfig =
                  AlphaOsParams, ChangParams, ChenRiclesParams, KolayRiclesAlphaParams>;
 
 Scheme scheme_of(const IntegratorConfig& config);
-/// Stable lower-case name: central_difference, newmark, hht_alpha, ...
+// Stable lower-case name: central_difference, newmark, hht_alpha, ...
 std::string_view scheme_name(Scheme scheme);
 std::optional<Scheme> parse_scheme(std::string_view name);
 
-/// Not real-time safe. Validates the parameters (throws std::invalid_argument).
+// Not real-time safe. Validates the parameters (throws std::invalid_argument).
 std::unique_ptr<Integrator> make_integrator(const IntegratorConfig& config);
 
-/// Human-readable parameter summary, e.g. "rho_inf=0.8".
+// Human-readable parameter summary, e.g. "rho_inf=0.8".
 std::string describe(const IntegratorConfig& config);
 
 }  // namespace rpsd::integrators

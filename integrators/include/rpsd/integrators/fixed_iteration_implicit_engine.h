@@ -16,7 +16,7 @@
 
 namespace rpsd::integrators {
 
-/// How many commands per step and the interpolation order (1, 2 or 3).
+// How many commands per step and the interpolation order (1, 2 or 3).
 struct FixedIterationOptions {
   int iterations = 2;
   int poly_order = 1;
@@ -29,7 +29,7 @@ struct ImplicitCoefficients {
   double gamma = 0.5;
 };
 
-/// Throws std::invalid_argument unless 1 <= iterations <= 100 and poly_order in {1, 2, 3}.
+// Throws std::invalid_argument unless 1 <= iterations <= 100 and poly_order in {1, 2, 3}.
 void validate(const FixedIterationOptions& options);
 
 class FixedIterationImplicitEngine : public Integrator {
@@ -43,9 +43,9 @@ class FixedIterationImplicitEngine : public Integrator {
   void on_end_step() override;
 
  private:
-  /// command_ = interpolated command of iteration `i` (1-based) towards `target`.
+  // command_ = interpolated command of iteration `i` (1-based) towards `target`.
   void interpolate(int i, const Eigen::VectorXd& target);
-  /// Residual at the current command with restoring force r, then command of iteration i.
+  // Residual at the current command with restoring force r, then command of iteration i.
   void iterate(int i, const Eigen::VectorXd& r);
 
   ImplicitCoefficients c_;

@@ -12,11 +12,11 @@ struct GeneralizedAlphaParams {
   FixedIterationOptions fixed_iteration{};
 };
 
-/// The Chung-Hulbert parameter set for a spectral radius at infinity rho_inf.
+// The Chung-Hulbert parameter set for a spectral radius at infinity rho_inf.
 struct AlphaParameters {
   double alpha_m, alpha_f, gamma, beta;
 };
-/// Throws std::invalid_argument unless rho_inf in [0, 1].
+// Throws std::invalid_argument unless rho_inf in [0, 1].
 AlphaParameters chung_hulbert_parameters(double rho_inf);
 
 void validate(const GeneralizedAlphaParams& p);

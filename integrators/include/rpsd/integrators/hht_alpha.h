@@ -12,7 +12,7 @@ struct HhtAlphaParams {
   FixedIterationOptions fixed_iteration{};
 };
 
-/// Throws std::invalid_argument unless alpha in [-1/3, 0] and the options are valid.
+// Throws std::invalid_argument unless alpha in [-1/3, 0] and the options are valid.
 void validate(const HhtAlphaParams& p);
 
 class HhtAlpha final : public FixedIterationImplicitEngine {

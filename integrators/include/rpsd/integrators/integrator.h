@@ -26,37 +26,37 @@
 namespace rpsd::integrators {
 
 enum class Scheme {
-  central_difference,
-  newmark,
-  hht_alpha,
-  generalized_alpha,
-  alpha_os,
-  chang,
-  chen_ricles,
-  kolay_ricles_alpha,
+  kCentralDifference,
+  kNewmark,
+  kHhtAlpha,
+  kGeneralizedAlpha,
+  kAlphaOs,
+  kChang,
+  kChenRicles,
+  kKolayRiclesAlpha,
 };
 
 struct SchemeInfo {
   Scheme scheme;
   std::string_view name;
-  /// The first command of a step depends only on the state at t (no force of the step).
+  // The first command of a step depends only on the state at t (no force of the step).
   bool explicit_in_displacement;
-  /// Omega = omega*dt above which the scheme is unstable on a linear undamped system;
-  /// +infinity for unconditionally stable schemes.
+  // Omega = omega*dt above which the scheme is unstable on a linear undamped system;
+  // +infinity for unconditionally stable schemes.
   double stability_limit_omega_dt;
 };
 
 enum class StepStatus : std::uint8_t {
-  ok,
-  not_initialized,   ///< configure() and initialize() (or set_state()) first
-  out_of_sequence,   ///< begin_step / set_measured_restoring_force / end_step order violated
-  size_mismatch,     ///< vector length differs from the model size
-  non_finite_input,  ///< NaN or infinity in a force
+  kOk,
+  kNotInitialized,   // configure() and initialize() (or set_state()) first
+  kOutOfSequence,   // begin_step / set_measured_restoring_force / end_step order violated
+  kSizeMismatch,     // vector length differs from the model size
+  kNonFiniteInput,  // NaN or infinity in a force
 };
 
 struct ConfigureOptions {
-  /// Reject a dt beyond the scheme's stability limit (omega_max dt > limit). Amplification
-  /// analysis turns this off to study unstable steps on purpose.
+  // Reject a dt beyond the scheme's stability limit (omega_max dt > limit). Amplification
+  // analysis turns this off to study unstable steps on purpose.
   bool reject_unstable_time_step = true;
 };
 
@@ -66,44 +66,44 @@ class Integrator {
   Integrator(const Integrator&) = delete;
   Integrator& operator=(const Integrator&) = delete;
 
-  /// Not real-time safe. Checks the matrices (square, same size, finite, symmetric, mass
-  /// positive definite), dt > 0, and dt against the stability limit; factorises once.
-  /// Throws std::invalid_argument with a message naming the problem.
+  // Not real-time safe. Checks the matrices (square, same size, finite, symmetric, mass
+  // positive definite), dt > 0, and dt against the stability limit; factorises once.
+  // Throws std::invalid_argument with a message naming the problem.
   void configure(const StructuralMatrices& matrices, double dt_s,
                  const ConfigureOptions& options = {});
 
-  /// Not real-time safe (throws on bad sizes). a0 = M^-1 (f0 - C v0 - r0).
+  // Not real-time safe (throws on bad sizes). a0 = M^-1 (f0 - C v0 - r0).
   void initialize(const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
                   const Eigen::VectorXd& r0, const Eigen::VectorXd& f0);
-  /// Not real-time safe. Sets an arbitrary state (restart, amplification analysis):
-  /// displacement, velocity, acceleration, restoring force R(d) and external force at t.
+  // Not real-time safe. Sets an arbitrary state (restart, amplification analysis):
+  // displacement, velocity, acceleration, restoring force R(d) and external force at t.
   void set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                  const Eigen::VectorXd& r, const Eigen::VectorXd& f, double time_s = 0.0,
                  std::int64_t step = 0);
 
-  /// Real-time safe. External force at t + dt; computes the first command.
+  // Real-time safe. External force at t + dt; computes the first command.
   StepStatus begin_step(const Eigen::VectorXd& f_next);
-  /// Commands (and force measurements) per step: 1 for explicit schemes.
+  // Commands (and force measurements) per step: 1 for explicit schemes.
   int iterations_per_step() const { return iterations_; }
-  /// Real-time safe. The displacement command of the current iteration.
+  // Real-time safe. The displacement command of the current iteration.
   const Eigen::VectorXd& target_displacement() const { return command_; }
-  /// Real-time safe. Total restoring force R measured/computed at target_displacement().
+  // Real-time safe. Total restoring force R measured/computed at target_displacement().
   StepStatus set_measured_restoring_force(const Eigen::VectorXd& r);
-  /// Real-time safe. Completes the step: displacement, velocity, acceleration at t + dt.
+  // Real-time safe. Completes the step: displacement, velocity, acceleration at t + dt.
   StepStatus end_step();
 
   const Eigen::VectorXd& displacement() const { return d_; }
   const Eigen::VectorXd& velocity() const { return v_; }
   const Eigen::VectorXd& acceleration() const { return a_; }
-  /// Restoring force at displacement() (for alpha-OS: corrected with K_I).
+  // Restoring force at displacement() (for alpha-OS: corrected with K_I).
   const Eigen::VectorXd& restoring_force() const { return r_; }
   double time_s() const { return time_s_; }
   std::int64_t step() const { return step_; }
   double dt_s() const { return dt_s_; }
   Eigen::Index size() const { return n_; }
-  /// omega_max of (K0, M) used by the stability check (conditionally stable schemes only,
-  /// else NaN): a Gershgorin upper bound for a lumped mass when that already proves the
-  /// step stable, otherwise the exact value or a Lanczos estimate.
+  // omega_max of (K0, M) used by the stability check (conditionally stable schemes only,
+  // else NaN): a Gershgorin upper bound for a lumped mass when that already proves the
+  // step stable, otherwise the exact value or a Lanczos estimate.
   double max_natural_frequency_rad_s() const { return omega_max_; }
 
   virtual SchemeInfo info() const = 0;
@@ -112,11 +112,11 @@ class Integrator {
   explicit Integrator(int iterations_per_step = 1) : iterations_(iterations_per_step) {}
 
   // Scheme hooks. The base checks sizes and sequence before calling them.
-  virtual void on_configure() = 0;       ///< factorise scheme matrices (may throw)
-  virtual void on_set_state() = 0;       ///< derive scheme state from d_, v_, a_, r_, f_
-  virtual void on_begin_step() = 0;      ///< f_next_ is set: write the first command_
+  virtual void on_configure() = 0;       // factorise scheme matrices (may throw)
+  virtual void on_set_state() = 0;       // derive scheme state from d_, v_, a_, r_, f_
+  virtual void on_begin_step() = 0;      // f_next_ is set: write the first command_
   virtual void on_restoring_force(int iteration, const Eigen::VectorXd& r) = 0;
-  virtual void on_end_step() = 0;        ///< set d_, v_, a_, r_ at t + dt
+  virtual void on_end_step() = 0;        // set d_, v_, a_, r_ at t + dt
 
   void set_iterations_per_step(int n) { iterations_ = n; }
 
@@ -131,12 +131,12 @@ class Integrator {
   std::int64_t step_ = 0;
 
  private:
-  enum class Phase : std::uint8_t { unconfigured, configured, idle, iterating, awaiting_end };
+  enum class Phase : std::uint8_t { kUnconfigured, kConfigured, kIdle, kIterating, kAwaitingEnd };
   void check_size(const Eigen::VectorXd& x, const char* what) const;
 
   int iterations_ = 1;
   int iteration_ = 0;
-  Phase phase_ = Phase::unconfigured;
+  Phase phase_ = Phase::kUnconfigured;
   double omega_max_ = std::numeric_limits<double>::quiet_NaN();
   // time = time0 + (step - step0) dt, so that time does not accumulate round-off.
   double time0_s_ = 0.0;

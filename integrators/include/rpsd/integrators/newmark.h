@@ -15,9 +15,9 @@ struct NewmarkParams {
   static NewmarkParams linear_acceleration() { return {1.0 / 6.0, 0.5, {}}; }
 };
 
-/// Throws std::invalid_argument unless beta > 0, gamma >= 1/2 and the options are valid.
+// Throws std::invalid_argument unless beta > 0, gamma >= 1/2 and the options are valid.
 void validate(const NewmarkParams& p);
-/// (gamma/2 - beta)^(-1/2) when 2 beta < gamma, +infinity otherwise.
+// (gamma/2 - beta)^(-1/2) when 2 beta < gamma, +infinity otherwise.
 double newmark_stability_limit(double beta, double gamma);
 
 class Newmark final : public FixedIterationImplicitEngine {

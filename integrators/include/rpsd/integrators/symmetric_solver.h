@@ -19,13 +19,13 @@ class SymmetricSolver {
   SymmetricSolver(SymmetricSolver&&) noexcept;
   SymmetricSolver& operator=(SymmetricSolver&&) noexcept;
 
-  /// Not real-time safe. Throws std::invalid_argument naming `what` if A is singular.
+  // Not real-time safe. Throws std::invalid_argument naming `what` if A is singular.
   void factorize(const linalg::StructuralMatrix& A, std::string_view what);
-  /// x = A^-1 b. Real-time safe; x must already have the right size and not alias b.
-  /// Uses an internal work vector: one solver must not be used by two threads at once.
+  // x = A^-1 b. Real-time safe; x must already have the right size and not alias b.
+  // Uses an internal work vector: one solver must not be used by two threads at once.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   linalg::MatrixStorage storage() const { return storage_; }
-  /// Non-zeros of the triangular factor (the per-solve cost); n for a diagonal matrix.
+  // Non-zeros of the triangular factor (the per-solve cost); n for a diagonal matrix.
   Eigen::Index factor_nonzeros() const;
 
  private:
@@ -45,17 +45,17 @@ class SymmetricSolver {
   void solve_band(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
 };
 
-/// True if A is positive definite (Cholesky succeeds). Not real-time safe.
+// True if A is positive definite (Cholesky succeeds). Not real-time safe.
 bool is_positive_definite(const linalg::StructuralMatrix& A);
 
-/// Largest natural circular frequency sqrt(max eig(K, M)) in rad/s. Exact for dense
-/// models up to 400 DOF; otherwise an 80-step Lanczos estimate (top Ritz value plus its
-/// residual estimate). Not real-time safe.
+// Largest natural circular frequency sqrt(max eig(K, M)) in rad/s. Exact for dense
+// models up to 400 DOF; otherwise an 80-step Lanczos estimate (top Ritz value plus its
+// residual estimate). Not real-time safe.
 double max_natural_frequency_rad_s(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness,
                                    const SymmetricSolver& mass_solver);
 
-/// Gershgorin upper bound of omega_max for a lumped (diagonal) mass; +infinity otherwise.
-/// Not real-time safe.
+// Gershgorin upper bound of omega_max for a lumped (diagonal) mass; +infinity otherwise.
+// Not real-time safe.
 double frequency_upper_bound_rad_s(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness);
 
 }  // namespace rpsd::integrators

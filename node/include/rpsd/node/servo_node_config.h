@@ -13,17 +13,17 @@ namespace rpsd::node {
 
 static_assert(servo::kMaxChannels == transport::kMaxChannels, "a node's actuator has as many channels as its messages");
 
-/// What a limit does when a command or a measurement exceeds it.
+// What a limit does when a command or a measurement exceeds it.
 enum class LimitAction : std::uint8_t {
-  kClamp,  ///< saturate the command at the bound (per channel) and keep following
-  kHold,   ///< freeze every channel's command where it is until the command is back within limits
-  kAbort,  ///< latch a fault: commands frozen, status kNodeFault, until the node is restarted
+  kClamp,  // saturate the command at the bound (per channel) and keep following
+  kHold,   // freeze every channel's command where it is until the command is back within limits
+  kAbort,  // latch a fault: commands frozen, status kNodeFault, until the node is restarted
 };
 
-/// What the node does when commands stop arriving (the watchdog).
+// What the node does when commands stop arriving (the watchdog).
 enum class LossAction : std::uint8_t {
-  kHold,        ///< keep commanding the last applied position; resume on the next command
-  kRampToSafe,  ///< move the command to safe_position_m at safe_ramp_velocity_m_per_s and stay
+  kHold,        // keep commanding the last applied position; resume on the next command
+  kRampToSafe,  // move the command to safe_position_m at safe_ramp_velocity_m_per_s and stay
 };
 
 enum class LimitKind : std::uint8_t { kStroke, kVelocity, kForce, kIncrement };
@@ -31,16 +31,16 @@ inline constexpr int kLimitKinds = 4;
 
 const char* limit_kind_name(LimitKind kind);
 const char* limit_action_name(LimitAction action);
-/// The FeedbackSample::limit_flags bit of a limit kind.
+// The FeedbackSample::limit_flags bit of a limit kind.
 std::uint32_t limit_flag(LimitKind kind);
 
-/// One channel's bounds; infinity means no limit.
+// One channel's bounds; infinity means no limit.
 struct ChannelLimits {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  double max_stroke_m = kNone;          ///< |command| bound
-  double max_velocity_m_per_s = kNone;  ///< |command change| / control period
-  double max_force_n = kNone;           ///< |measured force|
-  double max_increment_m = kNone;       ///< |command change| from one applied command to the next
+  double max_stroke_m = kNone;          // |command| bound
+  double max_velocity_m_per_s = kNone;  // |command change| / control period
+  double max_force_n = kNone;           // |measured force|
+  double max_increment_m = kNone;       // |command change| from one applied command to the next
 };
 
 struct LimitActions {
@@ -56,17 +56,17 @@ struct ServoNodeConfig {
   std::uint32_t site_id = 0;
   int channels = 1;
   double control_period_s = 1.0 / 1024.0;
-  std::array<ChannelLimits, transport::kMaxChannels> limits{};  ///< per channel
+  std::array<ChannelLimits, transport::kMaxChannels> limits{};  // per channel
   LimitActions actions;
-  /// Consecutive control periods without a new command after which the node holds.
+  // Consecutive control periods without a new command after which the node holds.
   int command_timeout_periods = 10;
   LossAction on_command_loss = LossAction::kHold;
-  std::array<double, transport::kMaxChannels> safe_position_m{};  ///< per channel, within the stroke
-  double safe_ramp_velocity_m_per_s = 0.005;  ///< at most each channel's max_velocity_m_per_s
-  int event_log_capacity = 256;               ///< limit activations kept for after the run
+  std::array<double, transport::kMaxChannels> safe_position_m{};  // per channel, within the stroke
+  double safe_ramp_velocity_m_per_s = 0.005;  // at most each channel's max_velocity_m_per_s
+  int event_log_capacity = 256;               // limit activations kept for after the run
 
-  /// Throws std::invalid_argument naming the field ("limits[1].max_stroke_m: ..."). Not
-  /// real-time safe.
+  // Throws std::invalid_argument naming the field ("limits[1].max_stroke_m: ..."). Not
+  // real-time safe.
   void validate() const;
 };
 

@@ -25,23 +25,23 @@ struct ServoNodeLoopOptions {
   bool real_time = true;
   double heartbeat_rate_hz = 10.0;
   realtime::RealTimeRequest realtime;
-  /// Stop after this long (0: until `stop` is set).
+  // Stop after this long (0: until `stop` is set).
   double duration_s = 0.0;
 };
 
 struct ServoNodeLoopReport {
   realtime::RealTimeSetupReport granted;
   std::int64_t cycles = 0, overruns = 0;
-  realtime::LatencySummary jitter;  ///< wake-up lateness of the ticks made without a command
-  std::int64_t first_command_tick = -1; ///< tick on which the first command was applied
-  std::int64_t last_command_tick = -1;  ///< tick on which the last command was applied
-  std::int64_t hold_tick = -1;          ///< first tick the watchdog held after it (-1: never)
-  std::int64_t faulted_tick = -1;       ///< first tick with a latched fault (-1: never)
+  realtime::LatencySummary jitter;  // wake-up lateness of the ticks made without a command
+  std::int64_t first_command_tick = -1; // tick on which the first command was applied
+  std::int64_t last_command_tick = -1;  // tick on which the last command was applied
+  std::int64_t hold_tick = -1;          // first tick the watchdog held after it (-1: never)
+  std::int64_t faulted_tick = -1;       // first tick with a latched fault (-1: never)
   std::int64_t feedback_published = 0, publish_failures = 0;
 };
 
-/// Runs until `stop` becomes true or the duration ends. The controller must be started.
-/// Not real-time safe to call; the loop inside is.
+// Runs until `stop` becomes true or the duration ends. The controller must be started.
+// Not real-time safe to call; the loop inside is.
 ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transport::DdsNodeEndpoint& endpoint,
                                         const ServoNodeLoopOptions& options, const std::atomic<bool>& stop);
 

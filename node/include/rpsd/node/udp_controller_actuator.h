@@ -27,53 +27,53 @@ struct UdpControllerConfig {
   static UdpControllerConfig read(config::Source& section, int channels);
   static OwnedActuator make(const UdpControllerConfig& config, int channels);
 
-  int channels = 1;                           ///< must equal the controller's
-  std::string controller_host = "127.0.0.1";  ///< dotted IPv4
-  std::uint16_t controller_port = 0;          ///< required
-  std::string local_host = "0.0.0.0";         ///< address to bind (dotted IPv4)
-  std::uint16_t local_port = 0;               ///< 0: any free port
-  /// How long past the control period to wait for a reply: the controller answers at the end
-  /// of the period over which it applied the command, so the wait is period_s + this.
+  int channels = 1;                           // must equal the controller's
+  std::string controller_host = "127.0.0.1";  // dotted IPv4
+  std::uint16_t controller_port = 0;          // required
+  std::string local_host = "0.0.0.0";         // address to bind (dotted IPv4)
+  std::uint16_t local_port = 0;               // 0: any free port
+  // How long past the control period to wait for a reply: the controller answers at the end
+  // of the period over which it applied the command, so the wait is period_s + this.
   double reply_timeout_s = 0.001;
-  /// More consecutive missing replies than this make exchange() report a latched kFault.
+  // More consecutive missing replies than this make exchange() report a latched kFault.
   int max_missed_replies = 3;
-  double start_timeout_s = 1.0;     ///< start(): how long to try to reach the controller
-  double start_tolerance_m = 1e-3;  ///< start(): largest |measured - initial| displacement accepted
+  double start_timeout_s = 1.0;     // start(): how long to try to reach the controller
+  double start_tolerance_m = 1e-3;  // start(): largest |measured - initial| displacement accepted
 
-  /// Throws std::invalid_argument naming the field. Not real-time safe.
+  // Throws std::invalid_argument naming the field. Not real-time safe.
   void validate() const;
 };
 
 struct UdpControllerCounters {
   std::uint64_t commands_sent = 0;
-  std::uint64_t replies = 0;            ///< matching replies taken
-  std::uint64_t missed_replies = 0;     ///< periods without a matching reply in time
-  std::uint64_t stale_replies = 0;      ///< replies to an older command, drained
-  std::uint64_t bad_replies = 0;        ///< undecodable, or a sequence never sent, or wrong channels
-  std::uint64_t foreign_datagrams = 0;  ///< datagrams from another address than the controller's
+  std::uint64_t replies = 0;            // matching replies taken
+  std::uint64_t missed_replies = 0;     // periods without a matching reply in time
+  std::uint64_t stale_replies = 0;      // replies to an older command, drained
+  std::uint64_t bad_replies = 0;        // undecodable, or a sequence never sent, or wrong channels
+  std::uint64_t foreign_datagrams = 0;  // datagrams from another address than the controller's
   std::uint64_t send_errors = 0;
   std::uint64_t receive_errors = 0;
-  std::uint64_t controller_faults = 0;  ///< replies with status kFault
+  std::uint64_t controller_faults = 0;  // replies with status kFault
 };
 
 class UdpControllerActuator final : public servo::Actuator {
  public:
-  /// Validates the config and binds the local socket (throws std::invalid_argument or
-  /// std::runtime_error). Not real-time safe.
+  // Validates the config and binds the local socket (throws std::invalid_argument or
+  // std::runtime_error). Not real-time safe.
   explicit UdpControllerActuator(const UdpControllerConfig& config);
 
   int channels() const override { return config_.channels; }
 
-  /// Queries the controller (kFlagQuery: it applies nothing and starts a session), retrying
-  /// until start_timeout_s; throws std::runtime_error when it does not answer, reports a
-  /// fault, has another channel count, or measures farther than start_tolerance_m from
-  /// initial_displacement_m. Clears a latched fault. Not real-time safe.
+  // Queries the controller (kFlagQuery: it applies nothing and starts a session), retrying
+  // until start_timeout_s; throws std::runtime_error when it does not answer, reports a
+  // fault, has another channel count, or measures farther than start_tolerance_m from
+  // initial_displacement_m. Clears a latched fault. Not real-time safe.
   void start(std::span<const double> initial_displacement_m) override;
 
-  /// Sends the command and waits up to period_s + reply_timeout_s for its reply, draining
-  /// and counting stale ones. kNoReply on a missing reply; kFault, latched until start(),
-  /// after more than max_missed_replies in a row; kFault (not latched) when the controller
-  /// reports one. Real-time safe: no allocation.
+  // Sends the command and waits up to period_s + reply_timeout_s for its reply, draining
+  // and counting stale ones. kNoReply on a missing reply; kFault, latched until start(),
+  // after more than max_missed_replies in a row; kFault (not latched) when the controller
+  // reports one. Real-time safe: no allocation.
   servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s, servo::ActuatorReading& reading) override;
 
   const UdpControllerCounters& counters() const { return counters_; }
@@ -81,11 +81,11 @@ class UdpControllerActuator final : public servo::Actuator {
   const Ipv4Endpoint& controller() const { return controller_; }
 
  private:
-  /// Takes every queued datagram; true (and `reply`) when one answers `sequence`.
+  // Takes every queued datagram; true (and `reply`) when one answers `sequence`.
   bool take_queued(std::uint64_t sequence, udp_protocol::ControllerReply& reply) noexcept;
-  /// take_queued, waiting until the monotonic deadline.
+  // take_queued, waiting until the monotonic deadline.
   bool await(std::uint64_t sequence, double deadline_s, udp_protocol::ControllerReply& reply) noexcept;
-  /// Sends command_packet_; counts it or the error.
+  // Sends command_packet_; counts it or the error.
   bool send_packet() noexcept;
 
   UdpControllerConfig config_;

@@ -16,11 +16,11 @@ inline constexpr const char* kPmQosDevice = "/dev/cpu_dma_latency";
 
 class CpuWakeLatencyHold {
  public:
-  /// Holds nothing.
+  // Holds nothing.
   CpuWakeLatencyHold() = default;
-  /// Requests a wake-up latency of at most `max_latency_us` for every CPU through `device`.
-  /// Never throws on a refusal (no such device, no permission): held() is then false and
-  /// refused() says why.
+  // Requests a wake-up latency of at most `max_latency_us` for every CPU through `device`.
+  // Never throws on a refusal (no such device, no permission): held() is then false and
+  // refused() says why.
   explicit CpuWakeLatencyHold(int max_latency_us, const char* device = kPmQosDevice);
   ~CpuWakeLatencyHold();
   CpuWakeLatencyHold(CpuWakeLatencyHold&& other) noexcept;
@@ -36,8 +36,8 @@ class CpuWakeLatencyHold {
   std::string refused_;
 };
 
-/// The system-wide limit now in force, in microseconds (the smallest of all requests, or the
-/// kernel's default when there is none); -1 when it cannot be read.
+// The system-wide limit now in force, in microseconds (the smallest of all requests, or the
+// kernel's default when there is none); -1 when it cannot be read.
 int current_cpu_wake_latency_limit_us();
 
 }  // namespace rpsd::realtime

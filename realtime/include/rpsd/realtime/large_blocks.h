@@ -13,9 +13,9 @@
 
 namespace rpsd::realtime {
 
-/// Blocks of `threshold_bytes` or more get a mapping of their own from now on, returned to
-/// the system when freed, and the threshold no longer moves. Process-wide; not real-time safe.
-/// Returns false if glibc refused the setting.
+// Blocks of `threshold_bytes` or more get a mapping of their own from now on, returned to
+// the system when freed, and the threshold no longer moves. Process-wide; not real-time safe.
+// Returns false if glibc refused the setting.
 bool map_large_blocks_separately(std::size_t threshold_bytes = 64 * 1024);
 
 }  // namespace rpsd::realtime

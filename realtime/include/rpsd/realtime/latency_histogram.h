@@ -15,9 +15,9 @@ struct LatencySummary {
 
 class LatencyHistogram {
  public:
-  /// Real-time safe. Negative samples count as zero.
+  // Real-time safe. Negative samples count as zero.
   void add(std::int64_t ns);
-  /// Upper edge of the bin holding quantile q in [0, 1] (0 when empty). Real-time safe.
+  // Upper edge of the bin holding quantile q in [0, 1] (0 when empty). Real-time safe.
   std::int64_t quantile_ns(double q) const;
   LatencySummary summary() const;
   std::int64_t count() const { return count_; }

@@ -13,8 +13,8 @@ namespace rpsd::realtime {
 
 struct RealTimeRequest {
   bool lock_memory = true;
-  int fifo_priority = 80;  ///< 1..99; 0 keeps the default scheduler
-  /// Keep every CPU out of idle states that take time to wake (cpu_wake_latency.h).
+  int fifo_priority = 80;  // 1..99; 0 keeps the default scheduler
+  // Keep every CPU out of idle states that take time to wake (cpu_wake_latency.h).
   bool keep_cpus_awake = true;
 };
 
@@ -22,15 +22,15 @@ struct RealTimeSetupReport {
   bool memory_locked = false;
   bool fifo_granted = false;
   bool cpus_kept_awake = false;
-  std::string refused;  ///< one line per refusal with the OS's reason; empty when all granted
+  std::string refused;  // one line per refusal with the OS's reason; empty when all granted
 };
 
-/// Applies the request to the calling process/thread. Not real-time safe.
+// Applies the request to the calling process/thread. Not real-time safe.
 RealTimeSetupReport apply_realtime(const RealTimeRequest& request);
 
-/// The request's keep_cpus_awake, for as long as the returned hold lives (keep it for the
-/// loop's run); its outcome goes into `report` (cpus_kept_awake, or a line in refused).
-/// Not real-time safe.
+// The request's keep_cpus_awake, for as long as the returned hold lives (keep it for the
+// loop's run); its outcome goes into `report` (cpus_kept_awake, or a line in refused).
+// Not real-time safe.
 CpuWakeLatencyHold hold_cpus_awake(const RealTimeRequest& request, RealTimeSetupReport& report);
 
 }  // namespace rpsd::realtime

@@ -14,11 +14,11 @@ namespace rpsd::realtime {
 template <typename T>
 class SpscQueue {
  public:
-  /// Not real-time safe (allocates the ring).
+  // Not real-time safe (allocates the ring).
   explicit SpscQueue(std::size_t capacity) : slots_(capacity + 1) {}
 
-  /// Producer side: write(slot) fills the next free slot in place. False when full (the
-  /// caller counts the drop). Real-time safe when write is.
+  // Producer side: write(slot) fills the next free slot in place. False when full (the
+  // caller counts the drop). Real-time safe when write is.
   template <typename Write>
   bool try_push_with(Write&& write) {
     const std::size_t tail = tail_.load(std::memory_order_relaxed);
@@ -32,12 +32,12 @@ class SpscQueue {
     return true;
   }
 
-  /// Producer side, by copy. Real-time safe.
+  // Producer side, by copy. Real-time safe.
   bool try_push(const T& value) {
     return try_push_with([&](T& slot) { slot = value; });
   }
 
-  /// Consumer side: read(slot) sees the oldest element in place. False when empty.
+  // Consumer side: read(slot) sees the oldest element in place. False when empty.
   template <typename Read>
   bool try_pop_with(Read&& read) {
     const std::size_t head = head_.load(std::memory_order_relaxed);
@@ -50,7 +50,7 @@ class SpscQueue {
     return true;
   }
 
-  /// Consumer side, by copy.
+  // Consumer side, by copy.
   bool try_pop(T& out) {
     return try_pop_with([&](const T& slot) { out = slot; });
   }

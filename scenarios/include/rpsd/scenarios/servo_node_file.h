@@ -14,7 +14,7 @@
 
 namespace rpsd::scenarios {
 
-/// Throws ConfigError naming file:line:column and the key path.
+// Throws ConfigError naming file:line:column and the key path.
 node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
 
 

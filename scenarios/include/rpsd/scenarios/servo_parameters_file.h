@@ -7,8 +7,8 @@
 
 namespace rpsd::scenarios {
 
-/// Throws ConfigError naming file, line, column and key path for any missing, unknown or
-/// out-of-range key. Not real-time safe.
+// Throws ConfigError naming file, line, column and key path for any missing, unknown or
+// out-of-range key. Not real-time safe.
 servo::ServoSystemParameters load_servo_parameters(const std::filesystem::path& file);
 
 }  // namespace rpsd::scenarios

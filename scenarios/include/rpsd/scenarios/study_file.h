@@ -16,31 +16,31 @@
 
 namespace rpsd::scenarios {
 
-/// A `--set key.path=value` override; the value is read as YAML (a number, a word, a list).
+// A `--set key.path=value` override; the value is read as YAML (a number, a word, a list).
 struct Override {
   std::string key_path;
   std::string value;
 };
 
-/// Parses "key.path=value"; throws ConfigError naming the text when there is no '='.
+// Parses "key.path=value"; throws ConfigError naming the text when there is no '='.
 Override parse_override(const std::string& text);
-/// A configuration file's text (ConfigError naming the file if it cannot be read).
+// A configuration file's text (ConfigError naming the file if it cannot be read).
 std::string read_config_text(const std::filesystem::path& file);
-/// A configuration file parsed, with the overrides applied (ConfigError with file and line).
+// A configuration file parsed, with the overrides applied (ConfigError with file and line).
 YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vector<Override>& overrides);
 
-/// The default-parameter integrator for a scheme name (central_difference, newmark, hht_alpha,
-/// generalized_alpha, alpha_os, chang, chen_ricles, kolay_ricles_alpha); nullopt if unknown.
+// The default-parameter integrator for a scheme name (central_difference, newmark, hht_alpha,
+// generalized_alpha, alpha_os, chang, chen_ricles, kolay_ricles_alpha); nullopt if unknown.
 std::optional<integrators::IntegratorConfig> default_integrator(std::string_view name);
 
-/// Reads a study file; every error names file, line, column and key path. Not real-time safe.
+// Reads a study file; every error names file, line, column and key path. Not real-time safe.
 studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
 
-/// The same from YAML text; `as_file` names it in messages and anchors relative paths.
+// The same from YAML text; `as_file` names it in messages and anchors relative paths.
 studies::StudyDocument parse_study(const std::string& yaml_text, const std::filesystem::path& as_file,
                       const std::vector<Override>& overrides = {});
 
-/// `points` values from start to stop, equally spaced in log10. Both must be positive.
+// `points` values from start to stop, equally spaced in log10. Both must be positive.
 std::vector<double> log_spaced(double start, double stop, int points);
 
 }  // namespace rpsd::scenarios

@@ -8,8 +8,8 @@
 
 namespace rpsd::scenarios {
 
-/// Reads the scenario from the document `root` of `file` (paths inside are relative to it).
-/// Not real-time safe.
+// Reads the scenario from the document `root` of `file` (paths inside are relative to it).
+// Not real-time safe.
 coordinator::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file);
 
 }  // namespace rpsd::scenarios

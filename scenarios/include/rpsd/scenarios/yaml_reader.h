@@ -17,15 +17,15 @@
 
 namespace rpsd::scenarios {
 
-/// Parses a YAML file; syntax errors become ConfigError with the file's line and column.
+// Parses a YAML file; syntax errors become ConfigError with the file's line and column.
 YAML::Node load_yaml_file(const std::filesystem::path& file);
 
-/// Parses YAML text; `name` stands for the file in messages.
+// Parses YAML text; `name` stands for the file in messages.
 YAML::Node parse_yaml_text(const std::string& text, const std::string& name);
 
 class MappingReader final : public config::Source {
  public:
-  /// `node` must be a mapping; `key_path` is its dotted path ("" for the document root).
+  // `node` must be a mapping; `key_path` is its dotted path ("" for the document root).
   MappingReader(YAML::Node node, std::string file, std::string key_path);
 
   double number(std::string_view key);
@@ -38,19 +38,19 @@ class MappingReader final : public config::Source {
   std::string string(std::string_view key);
   std::optional<std::string> optional_string(std::string_view key);
   std::vector<double> positive_numbers(std::string_view key);
-  /// A non-empty list of finite numbers.
+  // A non-empty list of finite numbers.
   std::vector<double> numbers(std::string_view key);
-  /// A non-empty list of equally long, non-empty lists of finite numbers (matrix rows).
+  // A non-empty list of equally long, non-empty lists of finite numbers (matrix rows).
   std::vector<std::vector<double>> number_rows(std::string_view key);
-  /// A whole number in [minimum, maximum].
+  // A whole number in [minimum, maximum].
   long whole_number(std::string_view key, long minimum, long maximum);
   long whole_number_or(std::string_view key, long minimum, long maximum, long fallback);
-  /// A non-empty list of mappings, each read with its own path `key[i]`.
+  // A non-empty list of mappings, each read with its own path `key[i]`.
   std::vector<MappingReader> mappings(std::string_view key);
   MappingReader mapping(std::string_view key);
   std::optional<MappingReader> optional_mapping(std::string_view key);
 
-  /// Rejects every key that was not read. Call after reading all known keys.
+  // Rejects every key that was not read. Call after reading all known keys.
   void finish() const;
 
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;

@@ -11,39 +11,39 @@
 
 namespace rpsd::servo {
 
-/// Channels an actuator may have (the node's messages carry as many).
+// Channels an actuator may have (the node's messages carry as many).
 inline constexpr int kMaxChannels = 8;
 
 enum class ActuatorStatus : std::uint8_t {
-  kOk,       ///< the command was applied and `reading` holds the new measurement
-  kNoReply,  ///< the hardware did not answer in time: reading.fresh = false, values kept
-  kFault,    ///< the actuator cannot follow commands (interlock, lost link, bad command)
+  kOk,       // the command was applied and `reading` holds the new measurement
+  kNoReply,  // the hardware did not answer in time: reading.fresh = false, values kept
+  kFault,    // the actuator cannot follow commands (interlock, lost link, bad command)
 };
 
 const char* actuator_status_name(ActuatorStatus status);
 
-/// The sensors of every channel at the end of one control period.
+// The sensors of every channel at the end of one control period.
 struct ActuatorReading {
   std::array<double, kMaxChannels> displacement_m{};
   std::array<double, kMaxChannels> force_n{};
-  bool fresh = true;  ///< false when this period brought no new measurement
+  bool fresh = true;  // false when this period brought no new measurement
 };
 
 class Actuator {
  public:
   virtual ~Actuator() = default;
 
-  /// Number of channels, fixed at construction (1..kMaxChannels).
+  // Number of channels, fixed at construction (1..kMaxChannels).
   virtual int channels() const = 0;
 
-  /// Connects, homes or resets the actuator so that it holds initial_displacement_m (one
-  /// value per channel). Throws with a message naming what failed. Not real-time safe.
+  // Connects, homes or resets the actuator so that it holds initial_displacement_m (one
+  // value per channel). Throws with a message naming what failed. Not real-time safe.
   virtual void start(std::span<const double> initial_displacement_m) = 0;
 
-  /// Applies command_m (one value per channel) over the coming control period of period_s,
-  /// the command ramping from the previous one, and returns the measurement at the end of
-  /// that period in `reading`. On kNoReply the values in `reading` are left untouched and
-  /// reading.fresh is false. Real-time safe: no allocation, no locks, no exceptions.
+  // Applies command_m (one value per channel) over the coming control period of period_s,
+  // the command ramping from the previous one, and returns the measurement at the end of
+  // that period in `reading`. On kNoReply the values in `reading` are left untouched and
+  // reading.fresh is false. Real-time safe: no allocation, no locks, no exceptions.
   virtual ActuatorStatus exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) = 0;
 };
 

@@ -6,8 +6,8 @@
 
 namespace rpsd::servo {
 
-/// y(t_i) ~ a sin(phi_i) + b cos(phi_i) + offset; returns amplitude sqrt(a^2 + b^2) and the
-/// phase atan2(b, a) (radians, positive = y leads the reference sin(phi)). Not real-time safe.
+// y(t_i) ~ a sin(phi_i) + b cos(phi_i) + offset; returns amplitude sqrt(a^2 + b^2) and the
+// phase atan2(b, a) (radians, positive = y leads the reference sin(phi)). Not real-time safe.
 struct HarmonicFit {
   double amplitude = 0.0;
   double phase_rad = 0.0;

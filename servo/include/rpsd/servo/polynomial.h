@@ -11,7 +11,7 @@ namespace rpsd::servo {
 class Polynomial {
  public:
   Polynomial() : coefficients_(Eigen::VectorXd::Zero(1)) {}
-  /// Coefficients in ascending powers: {c0, c1, c2} is c0 + c1 s + c2 s^2.
+  // Coefficients in ascending powers: {c0, c1, c2} is c0 + c1 s + c2 s^2.
   Polynomial(std::initializer_list<double> ascending);
   explicit Polynomial(Eigen::VectorXd ascending);
 
@@ -24,7 +24,7 @@ class Polynomial {
   Polynomial operator*(const Polynomial& other) const;
   Polynomial operator*(double factor) const;
 
-  /// All roots, from the eigenvalues of the companion matrix.
+  // All roots, from the eigenvalues of the companion matrix.
   Eigen::VectorXcd roots() const;
 
  private:
@@ -32,12 +32,12 @@ class Polynomial {
   Eigen::VectorXd coefficients_;
 };
 
-/// Eigenvalues of a general real matrix after diagonal balancing (Parlett-Reinsch, powers
-/// of two). Hydraulic models mix entries from 1e-16 to 1e10; without balancing the QR
-/// iteration loses several digits.
+// Eigenvalues of a general real matrix after diagonal balancing (Parlett-Reinsch, powers
+// of two). Hydraulic models mix entries from 1e-16 to 1e10; without balancing the QR
+// iteration loses several digits.
 Eigen::VectorXcd balanced_eigenvalues(Eigen::MatrixXd matrix);
 
-/// G(s) = numerator(s) / denominator(s).
+// G(s) = numerator(s) / denominator(s).
 struct TransferFunction {
   Polynomial numerator;
   Polynomial denominator;

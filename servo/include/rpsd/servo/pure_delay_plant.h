@@ -22,22 +22,22 @@ struct PureDelayParameters {
   static PureDelayParameters read(config::Source& section, double specimen_stiffness_n_per_m);
 
   double delay_s = 0.0;
-  double specimen_stiffness_n_per_m = 0.0;  ///< the load cell reads k x_m (an elastic specimen)
-  double sample_rate_hz = 8192.0;           ///< command history resolution; advances split to <= 1/rate
+  double specimen_stiffness_n_per_m = 0.0;  // the load cell reads k x_m (an elastic specimen)
+  double sample_rate_hz = 8192.0;           // command history resolution; advances split to <= 1/rate
 
-  /// Throws std::invalid_argument naming the bad field. Not real-time safe.
+  // Throws std::invalid_argument naming the bad field. Not real-time safe.
   void validate() const;
 };
 
 class PureDelayPlant final : public Plant {
  public:
-  /// Sizes the command history for the delay. Not real-time safe.
+  // Sizes the command history for the delay. Not real-time safe.
   explicit PureDelayPlant(const PureDelayParameters& parameters);
 
   void reset(double displacement_m) override;
-  /// The command is linear over the interval; the history keeps one point per sub-interval.
-  /// Sub-intervals shorter than 1/sample_rate_hz use more history than sized: keep the
-  /// advance durations at or above it. Real-time safe.
+  // The command is linear over the interval; the history keeps one point per sub-interval.
+  // Sub-intervals shorter than 1/sample_rate_hz use more history than sized: keep the
+  // advance durations at or above it. Real-time safe.
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   PlantMeasurement measure() const override;
 

@@ -8,10 +8,10 @@
 
 namespace rpsd::servo {
 
-/// tanh(x): exactly +-1 where tanh rounds to +-1 in double precision (|x| > 19.07),
-/// 1 - 2 / (e^{2|x|} + 1) from 0.55 on, and below that, where the exponential form would
-/// cancel, Cody and Waite's rational form x + x g P(g) / Q(g), g = x^2 (Software Manual for
-/// the Elementary Functions, 1980, for 53-bit precision). About half the latency of std::tanh.
+// tanh(x): exactly +-1 where tanh rounds to +-1 in double precision (|x| > 19.07),
+// 1 - 2 / (e^{2|x|} + 1) from 0.55 on, and below that, where the exponential form would
+// cancel, Cody and Waite's rational form x + x g P(g) / Q(g), g = x^2 (Software Manual for
+// the Elementary Functions, 1980, for 53-bit precision). About half the latency of std::tanh.
 inline double regularised_tanh(double x) {
   const double a = std::abs(x);
   if (a > 19.1) return std::copysign(1.0, x);

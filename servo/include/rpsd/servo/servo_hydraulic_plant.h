@@ -30,15 +30,15 @@ class ServoHydraulicPlant final : public Plant {
   using State = Eigen::Matrix<double, 5, 1>;
   enum StateIndex { kSpoolOpening = 0, kPilotFlow, kLoadPressure, kDisplacement, kVelocity };
 
-  /// Validates the parameters (throws std::invalid_argument). Not real-time safe.
+  // Validates the parameters (throws std::invalid_argument). Not real-time safe.
   explicit ServoHydraulicPlant(const ServoSystemParameters& parameters);
 
   void reset(double displacement_m) override;
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   PlantMeasurement measure() const override;
 
-  /// Time derivative of the state for command u and command rate udot; the model's whole
-  /// physics in one pure function (used by the integrator and the linearisation). Real-time safe.
+  // Time derivative of the state for command u and command rate udot; the model's whole
+  // physics in one pure function (used by the integrator and the linearisation). Real-time safe.
   State derivative(const State& state, double command_m, double command_rate_m_per_s) const;
 
   const State& state() const { return state_; }
@@ -50,31 +50,31 @@ class ServoHydraulicPlant final : public Plant {
   const ServoSystemParameters& parameters() const { return parameters_; }
 
  private:
-  /// The parameters as the derivative uses them (SI units, products and reciprocals).
+  // The parameters as the derivative uses them (SI units, products and reciprocals).
   struct Coefficients {
-    double position_gain_v_per_m = 0.0;        ///< G_p C_F
-    double rate_gain_v_s_per_m = 0.0;          ///< G_d C_F
-    double pilot_gain_m3_per_s2_per_v = 0.0;   ///< K_vp / tau
-    double spool_feedback_v = 0.0;             ///< K_3 x_vmax: volts per unit opening
-    double pilot_rate_per_s = 0.0;             ///< 1 / tau
-    double opening_per_m3 = 0.0;               ///< 1 / (A_v x_vmax)
-    double rolloff_squared = 0.0;              ///< r^2, or 0 with the flow gain held constant
-    double load_pressure_per_pa = 0.0;         ///< 1 / P_s, or 0 without the load-pressure term
-    double flow_gain_per_compressibility = 0.0;  ///< K_v0 / K_a
-    double area_per_compressibility = 0.0;       ///< A / K_a
-    double leakage_per_compressibility = 0.0;    ///< C_l / K_a
+    double position_gain_v_per_m = 0.0;        // G_p C_F
+    double rate_gain_v_s_per_m = 0.0;          // G_d C_F
+    double pilot_gain_m3_per_s2_per_v = 0.0;   // K_vp / tau
+    double spool_feedback_v = 0.0;             // K_3 x_vmax: volts per unit opening
+    double pilot_rate_per_s = 0.0;             // 1 / tau
+    double opening_per_m3 = 0.0;               // 1 / (A_v x_vmax)
+    double rolloff_squared = 0.0;              // r^2, or 0 with the flow gain held constant
+    double load_pressure_per_pa = 0.0;         // 1 / P_s, or 0 without the load-pressure term
+    double flow_gain_per_compressibility = 0.0;  // K_v0 / K_a
+    double area_per_compressibility = 0.0;       // A / K_a
+    double leakage_per_compressibility = 0.0;    // C_l / K_a
     SpecimenStiffness stiffness;
     double damping_n_s_per_m = 0.0;
     double inverse_mass_per_kg = 0.0;
-    double area_per_mass = 0.0;                  ///< A / m
-    double friction_per_mass = 0.0;              ///< F_c / m
-    double friction_per_velocity_s_per_m = 0.0;  ///< 1 / v_reg
+    double area_per_mass = 0.0;                  // A / m
+    double friction_per_mass = 0.0;              // F_c / m
+    double friction_per_velocity_s_per_m = 0.0;  // 1 / v_reg
   };
 
-  using Rates = std::array<double, 5>;  ///< a state or its derivative, in the State order
-  /// The derivative, and the parts of the pressure and velocity rates that follow the slow
-  /// links: pressure rate = root_coefficient root - other_flows, acceleration = other_forces -
-  /// (F_c / m) friction_tanh.
+  using Rates = std::array<double, 5>;  // a state or its derivative, in the State order
+  // The derivative, and the parts of the pressure and velocity rates that follow the slow
+  // links: pressure rate = root_coefficient root - other_flows, acceleration = other_forces -
+  // (F_c / m) friction_tanh.
   struct Terms {
     Rates rate;
     double root = 0.0, root_coefficient = 0.0, other_flows = 0.0;

@@ -14,25 +14,25 @@ namespace rpsd::servo {
 
 class SimulatedActuator final : public Actuator {
  public:
-  /// `plants` are not owned and must outlive the actuator; 1..kMaxChannels, none
-  /// null. Throws std::invalid_argument. Not real-time safe.
+  // `plants` are not owned and must outlive the actuator; 1..kMaxChannels, none
+  // null. Throws std::invalid_argument. Not real-time safe.
   explicit SimulatedActuator(std::span<Plant* const> plants);
 
   int channels() const override { return channels_; }
 
-  /// Requires one value per channel (throws std::invalid_argument), then reset(). Not
-  /// real-time safe.
+  // Requires one value per channel (throws std::invalid_argument), then reset(). Not
+  // real-time safe.
   void start(std::span<const double> initial_displacement_m) override;
 
-  /// Puts every plant at rest at its initial displacement (missing values: 0) and makes
-  /// that the previous command. Real-time safe.
+  // Puts every plant at rest at its initial displacement (missing values: 0) and makes
+  // that the previous command. Real-time safe.
   void reset(std::span<const double> displacement_m);
 
-  /// kFault (nothing advanced) when the command has the wrong channel count, a non-finite
-  /// value, or the period is not positive and finite. Real-time safe.
+  // kFault (nothing advanced) when the command has the wrong channel count, a non-finite
+  // value, or the period is not positive and finite. Real-time safe.
   ActuatorStatus exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) override;
 
-  /// The plants' current sensor readings, without advancing. Real-time safe.
+  // The plants' current sensor readings, without advancing. Real-time safe.
   ActuatorReading measure() const;
 
  private:

@@ -12,13 +12,13 @@ namespace rpsd::servo {
 struct SineTest {
   double amplitude_m = 1e-3;
   double frequency_hz = 1.0;
-  double control_rate_hz = 4096.0;  ///< command samples per second (linear between samples)
-  double settling_time_s = 2.0;     ///< discarded before fitting
+  double control_rate_hz = 4096.0;  // command samples per second (linear between samples)
+  double settling_time_s = 2.0;     // discarded before fitting
   int fitted_cycles = 4;
 };
 
-/// Displacement response / command as a complex ratio (phase negative for a lag).
-/// Resets the plant to rest at zero first. Not real-time safe.
+// Displacement response / command as a complex ratio (phase negative for a lag).
+// Resets the plant to rest at zero first. Not real-time safe.
 std::complex<double> simulated_frequency_response(Plant& plant, const SineTest& test);
 
 }  // namespace rpsd::servo

@@ -10,8 +10,8 @@
 
 namespace rpsd::servo {
 
-/// Elastic spring force at displacement x; bilinear springs soften beyond the change
-/// displacement symmetrically. Real-time safe.
+// Elastic spring force at displacement x; bilinear springs soften beyond the change
+// displacement symmetrically. Real-time safe.
 inline double spring_force_n(const SpecimenStiffness& stiffness, double displacement_m) {
   const double magnitude = std::abs(displacement_m);
   if (!stiffness.is_bilinear() || magnitude <= stiffness.change_displacement_m) {
@@ -22,9 +22,9 @@ inline double spring_force_n(const SpecimenStiffness& stiffness, double displace
   return std::copysign(force, displacement_m);
 }
 
-/// Coulomb friction F_c, regularised as F_c tanh(v / v_reg) so that a fixed-step integrator
-/// can pass through zero velocity; takes 1 / v_reg, which the plant computes once.
-/// Real-time safe.
+// Coulomb friction F_c, regularised as F_c tanh(v / v_reg) so that a fixed-step integrator
+// can pass through zero velocity; takes 1 / v_reg, which the plant computes once.
+// Real-time safe.
 inline double friction_force_n(double friction_force_n, double inverse_regularisation_velocity_s_per_m,
                                double velocity_m_per_s) {
   if (friction_force_n == 0.0) return 0.0;

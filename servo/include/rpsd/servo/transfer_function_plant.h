@@ -24,21 +24,21 @@ struct TransferFunctionPlantParameters {
       "a linear plant from command to displacement, given by its numerator and denominator in descending powers of s";
   static TransferFunctionPlantParameters read(config::Source& section, double specimen_stiffness_n_per_m);
 
-  TransferFunction transfer_function;       ///< strictly proper or proper
-  double specimen_stiffness_n_per_m = 0.0;  ///< the load cell reads k x_m
+  TransferFunction transfer_function;       // strictly proper or proper
+  double specimen_stiffness_n_per_m = 0.0;  // the load cell reads k x_m
   double plant_rate_hz = 8192.0;
 
-  /// Throws std::invalid_argument when improper, unstable, or too fast for the rate.
+  // Throws std::invalid_argument when improper, unstable, or too fast for the rate.
   void validate() const;
 };
 
 class TransferFunctionPlant final : public Plant {
  public:
-  /// Builds the state-space realisation. Not real-time safe.
+  // Builds the state-space realisation. Not real-time safe.
   explicit TransferFunctionPlant(const TransferFunctionPlantParameters& parameters);
 
-  /// At rest, holding displacement_m: the equilibrium for the constant command
-  /// displacement_m / G(0). Real-time safe.
+  // At rest, holding displacement_m: the equilibrium for the constant command
+  // displacement_m / G(0). Real-time safe.
   void reset(double displacement_m) override;
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   PlantMeasurement measure() const override;

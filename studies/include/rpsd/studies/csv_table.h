@@ -10,9 +10,9 @@ namespace rpsd::studies {
 
 class CsvTable {
  public:
-  /// Adds a column; every column must end up with the same number of rows.
+  // Adds a column; every column must end up with the same number of rows.
   CsvTable& column(std::string name, std::vector<double> values);
-  /// Writes the table; throws std::runtime_error naming the file on I/O failure.
+  // Writes the table; throws std::runtime_error naming the file on I/O failure.
   void write(const std::filesystem::path& file) const;
 
  private:

@@ -14,9 +14,9 @@ struct IdentifiedDamping {
   int peaks_used = 0;
 };
 
-/// Uses the peaks of |x| after skip_s seconds (to let a start-up transient pass) while
-/// they stay above floor_fraction of the first used one. Throws std::invalid_argument when
-/// fewer than three peaks remain.
+// Uses the peaks of |x| after skip_s seconds (to let a start-up transient pass) while
+// they stay above floor_fraction of the first used one. Throws std::invalid_argument when
+// fewer than three peaks remain.
 IdentifiedDamping identify_damping(std::span<const double> response, double dt_s, double skip_s = 0.0,
                                    double floor_fraction = 1e-3);
 

@@ -12,30 +12,30 @@
 namespace rpsd::studies {
 
 struct DelayCompensationCase {
-  double compensated_delay_s = 0.0;  ///< design value: (a - 1) T of the phase lead
-  double actuator_delay_s = 0.0;     ///< phase delay of the actuator at omega_n
-  double compensator_lead_s = 0.0;   ///< phase lead of the discrete network at omega_n
-  double residual_delay_s = 0.0;     ///< actuator delay - compensator lead (negative: over)
+  double compensated_delay_s = 0.0;  // design value: (a - 1) T of the phase lead
+  double actuator_delay_s = 0.0;     // phase delay of the actuator at omega_n
+  double compensator_lead_s = 0.0;   // phase lead of the discrete network at omega_n
+  double residual_delay_s = 0.0;     // actuator delay - compensator lead (negative: over)
   double identified_damping_ratio = 0.0;
   double identified_frequency_hz = 0.0;
-  double predicted_damping_ratio = 0.0;       ///< exact root of m s^2 + c s + k e^{-s tau}
-  double approximate_damping_ratio = 0.0;     ///< zeta - omega_n tau / 2
-  double predicted_damping_ratio_loop = 0.0;  ///< root of m s^2 + c s + k G_c(s) G_a(s)
+  double predicted_damping_ratio = 0.0;       // exact root of m s^2 + c s + k e^{-s tau}
+  double approximate_damping_ratio = 0.0;     // zeta - omega_n tau / 2
+  double predicted_damping_ratio_loop = 0.0;  // root of m s^2 + c s + k G_c(s) G_a(s)
   bool stable = false;
   bool aborted_on_amplitude = false;
-  double tracking_rms_error_percent = 0.0;    ///< J2 between target and measured
-  double tracking_peak_error_percent = 0.0;   ///< J3
-  double tracking_delay_s = 0.0;              ///< J1: cross-correlation of measured against target
-  double energy_balance_error_j = 0.0;        ///< input - (kinetic + damping + restoring) at the end
+  double tracking_rms_error_percent = 0.0;    // J2 between target and measured
+  double tracking_peak_error_percent = 0.0;   // J3
+  double tracking_delay_s = 0.0;              // J1: cross-correlation of measured against target
+  double energy_balance_error_j = 0.0;        // input - (kinetic + damping + restoring) at the end
   double final_tracking_indicator_m2 = 0.0;
-  std::int64_t steps = 0;                     ///< steps taken (fewer when aborted on amplitude)
+  std::int64_t steps = 0;                     // steps taken (fewer when aborted on amplitude)
 };
 
-/// Runs every case; `dir` (optional) receives one CSV per case.
+// Runs every case; `dir` (optional) receives one CSV per case.
 std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensationStudy& study,
                                                           const std::filesystem::path& dir = {});
 
-/// The CSV name of case i.
+// The CSV name of case i.
 std::string delay_case_csv_name(std::size_t index, double compensated_delay_s);
 
 void write_delay_compensation(const std::filesystem::path& dir, const StudyDocument& file,

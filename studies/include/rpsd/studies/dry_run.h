@@ -21,21 +21,21 @@
 
 namespace rpsd::studies {
 
-/// The limits one servo node enforces on its site (from its file, as `rpsd servo-node` reads it).
+// The limits one servo node enforces on its site (from its file, as `rpsd servo-node` reads it).
 struct NodeLimits {
-  std::string name;  ///< the node file, for messages
+  std::string name;  // the node file, for messages
   std::uint32_t test_id = 0, site_id = 0;
   double control_period_s = 1.0 / 1024.0;
-  /// The site's channels, in the test's channel order (how the coordinator addresses them).
+  // The site's channels, in the test's channel order (how the coordinator addresses them).
   std::vector<node::ChannelLimits> channels;
 };
 
-/// One channel's peaks against its node's limits.
+// One channel's peaks against its node's limits.
 struct NodeCheck {
   std::string node;
   node::ChannelLimits limits;
-  double control_period_s = 1.0 / 1024.0;      ///< the node's
-  double peak_command_velocity_m_per_s = 0.0;  ///< |command change| / the node's control period
+  double control_period_s = 1.0 / 1024.0;      // the node's
+  double peak_command_velocity_m_per_s = 0.0;  // |command change| / the node's control period
   bool within_limits = true;
 };
 
@@ -44,21 +44,21 @@ struct ChannelPrediction {
   std::uint32_t site_id = 1;
   double peak_command_m = 0.0, peak_displacement_m = 0.0, peak_velocity_m_per_s = 0.0, peak_increment_m = 0.0;
   double peak_force_n = 0.0;
-  std::optional<NodeCheck> node;             ///< when the site's node file was given
-  std::optional<double> peak_valve_opening;  ///< |x_v| of the servovalve, 0..1 (servo model only)
-  std::optional<double> tracking_delay_ms;   ///< measured lags target by this (negative: leads)
+  std::optional<NodeCheck> node;             // when the site's node file was given
+  std::optional<double> peak_valve_opening;  // |x_v| of the servovalve, 0..1 (servo model only)
+  std::optional<double> tracking_delay_ms;   // measured lags target by this (negative: leads)
   coordinator::CoordinatorLimits limits;
-  bool within_limits = true;  ///< within the coordinator's limits (and the node's, when given)
+  bool within_limits = true;  // within the coordinator's limits (and the node's, when given)
 };
 
 struct ModePrediction {
   double frequency_hz = 0.0;
-  double damping_ratio = 0.0;            ///< of the structure alone (no delay)
-  double experimental_share = 0.0;       ///< k_e / k of the mode
-  double loop_gain = 1.0;                ///< compensator and plant, measured/target at the mode's frequency
-  double loop_delay_ms = 0.0;            ///< their equivalent delay there (negative: a lead)
-  double predicted_damping_ratio = 0.0;  ///< with that gain and delay
-  double critical_delay_ms = 0.0;        ///< +inf: stable for every delay
+  double damping_ratio = 0.0;            // of the structure alone (no delay)
+  double experimental_share = 0.0;       // k_e / k of the mode
+  double loop_gain = 1.0;                // compensator and plant, measured/target at the mode's frequency
+  double loop_delay_ms = 0.0;            // their equivalent delay there (negative: a lead)
+  double predicted_damping_ratio = 0.0;  // with that gain and delay
+  double critical_delay_ms = 0.0;        // +inf: stable for every delay
 };
 
 struct DryRunReport {
@@ -66,18 +66,18 @@ struct DryRunReport {
   coordinator::LimitStop limit_stop;
   std::int64_t steps = 0, steps_planned = 0;
   std::vector<ChannelPrediction> channels;
-  double residual_delay_ms = 0.0;  ///< the channels' mean tracking delay
+  double residual_delay_ms = 0.0;  // the channels' mean tracking delay
   std::vector<ModePrediction> modes;
-  /// Servo model only: its proportional gain and the largest stable one (eigenvalues of the
-  /// full linear model with the specimen).
+  // Servo model only: its proportional gain and the largest stable one (eigenvalues of the
+  // full linear model with the specimen).
   std::optional<double> p_gain, max_stable_p_gain;
-  bool within_limits = true;  ///< completed, every peak within its limit, every mode damped
+  bool within_limits = true;  // completed, every peak within its limit, every mode damped
 };
 
-/// Runs the scenario's test (not the reference) with its simulated plant, whatever its transport
-/// and clock say. Throws what building the test throws, and std::invalid_argument naming the
-/// node file when a node serves another test, an unknown or repeated site, or another number
-/// of channels than the scenario gives its site.
+// Runs the scenario's test (not the reference) with its simulated plant, whatever its transport
+// and clock say. Throws what building the test throws, and std::invalid_argument naming the
+// node file when a node serves another test, an unknown or repeated site, or another number
+// of channels than the scenario gives its site.
 DryRunReport dry_run(const coordinator::TestConfig& scenario, const std::vector<NodeLimits>& nodes = {});
 
 }  // namespace rpsd::studies

@@ -15,43 +15,43 @@
 
 namespace rpsd::studies {
 
-/// Figure 5: a predetermined linear sine sweep through the nonlinear plant.
+// Figure 5: a predetermined linear sine sweep through the nonlinear plant.
 struct SineSweepStudy {
   servo::ServoSystemParameters servo;
   double amplitude_m = 0.0127;
   double start_frequency_hz = 0.0;
   double end_frequency_hz = 10.0;
   double duration_s = 60.0;
-  double command_rate_hz = 1024.0;               ///< command samples per second
+  double command_rate_hz = 1024.0;               // command samples per second
   std::vector<double> report_frequencies_hz{1.0, 2.0, 5.0};
 };
 
-/// Figure 6: frequency responses of Eq. 8, Eq. 9 and the phase-lead compensated system.
+// Figure 6: frequency responses of Eq. 8, Eq. 9 and the phase-lead compensated system.
 struct FrequencyResponseStudy {
   servo::ServoSystemParameters servo;
-  std::vector<double> frequencies_hz;            ///< log-spaced from the file's range
+  std::vector<double> frequencies_hz;            // log-spaced from the file's range
   compensation::PhaseLeadParameters phase_lead;
 };
 
-/// Figure 7: largest stable P gain against the attached mass.
+// Figure 7: largest stable P gain against the attached mass.
 struct MaxGainStudy {
   servo::ServoSystemParameters servo;
-  std::vector<double> masses_kg;                 ///< log-spaced from the file's range
+  std::vector<double> masses_kg;                 // log-spaced from the file's range
 };
 
-/// Figure 8: an elastic SDOF released from an initial displacement in RPsD, its whole
-/// stiffness the specimen's (restoring force = k x measured), with a phase-lead compensator
-/// swept over compensated delays below, at and above the actuator's response delay.
+// Figure 8: an elastic SDOF released from an initial displacement in RPsD, its whole
+// stiffness the specimen's (restoring force = k x measured), with a phase-lead compensator
+// swept over compensated delays below, at and above the actuator's response delay.
 struct DelayCompensationStudy {
   double mass_kg = 7080.0;
   double stiffness_n_per_m = 700.8e3;
   double damping_ratio = 0.011;
   double initial_displacement_m = 0.01;
-  double control_rate_hz = 1024.0;  ///< integration step = control period
+  double control_rate_hz = 1024.0;  // integration step = control period
   double duration_s = 8.0;
   double abort_amplitude_factor = 10.0;
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
-  /// The actuator: the seed paper's servo-hydraulic model, or an ideal pure delay.
+  // The actuator: the seed paper's servo-hydraulic model, or an ideal pure delay.
   std::variant<servo::ServoSystemParameters, servo::PureDelayParameters> plant;
   double phase_lead_ratio_a = 5.0;
   std::vector<double> compensated_delays_s;
@@ -59,22 +59,22 @@ struct DelayCompensationStudy {
 
 using Study = std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, coordinator::TestConfig>;
 
-/// One swept key of an `rpsd_test` scenario and the values it takes (as YAML scalars).
+// One swept key of an `rpsd_test` scenario and the values it takes (as YAML scalars).
 struct SweepAxis {
   std::string key_path;
   std::vector<double> values;
 };
 
 struct StudyDocument {
-  std::string name;            ///< the file's stem, for titles
-  std::string description;     ///< optional `description:` text
-  Study study;                 ///< for a sweep: the first case
-  std::string effective_yaml;  ///< the document as read, with --set overrides applied
-  /// `sweep:` of an rpsd_test scenario (one or two axes; empty when there is none). Every
-  /// case has been read and checked before anything runs.
+  std::string name;            // the file's stem, for titles
+  std::string description;     // optional `description:` text
+  Study study;                 // for a sweep: the first case
+  std::string effective_yaml;  // the document as read, with --set overrides applied
+  // `sweep:` of an rpsd_test scenario (one or two axes; empty when there is none). Every
+  // case has been read and checked before anything runs.
   std::vector<SweepAxis> sweep;
-  std::vector<coordinator::TestConfig> sweep_cases;           ///< the first axis varies fastest
-  std::vector<std::vector<double>> sweep_values;   ///< the axis values of each case
+  std::vector<coordinator::TestConfig> sweep_cases;           // the first axis varies fastest
+  std::vector<std::vector<double>> sweep_values;   // the axis values of each case
 };
 
 }  // namespace rpsd::studies

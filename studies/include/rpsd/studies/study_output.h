@@ -22,9 +22,9 @@ void write_frequency_response(const std::filesystem::path& dir, const StudyDocum
 void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
                     const MaxGainStudy& study, const std::vector<MaxGainRow>& rows);
 
-/// Runs whichever study the file holds and writes it into dir (created if missing). False
-/// when an `rpsd_test` run aborted (its files are still complete for every step it took);
-/// `abort_reason` (optional) then receives why.
+// Runs whichever study the file holds and writes it into dir (created if missing). False
+// when an `rpsd_test` run aborted (its files are still complete for every step it took);
+// `abort_reason` (optional) then receives why.
 bool run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
                    const std::function<void(std::int64_t, std::int64_t)>& progress = {},
                    std::string* abort_reason = nullptr);

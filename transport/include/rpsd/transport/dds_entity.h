@@ -15,15 +15,15 @@ class DdsError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Throws DdsError("<what>: <dds_strretcode>") when rc is negative; returns rc otherwise.
-/// Not real-time safe.
+// Throws DdsError("<what>: <dds_strretcode>") when rc is negative; returns rc otherwise.
+// Not real-time safe.
 dds_return_t dds_check(dds_return_t rc, const std::string& what);
 
-/// Owns one DDS entity (participant, topic, reader, writer, waitset, condition, domain).
+// Owns one DDS entity (participant, topic, reader, writer, waitset, condition, domain).
 class DdsEntity {
  public:
   DdsEntity() = default;
-  /// Takes ownership; throws DdsError naming `what` if the handle is an error code.
+  // Takes ownership; throws DdsError naming `what` if the handle is an error code.
   DdsEntity(dds_entity_t handle, const std::string& what) : handle_(dds_check(handle, what)) {}
   ~DdsEntity() { reset(); }
   DdsEntity(DdsEntity&& other) noexcept : handle_(std::exchange(other.handle_, 0)) {}
@@ -48,7 +48,7 @@ class DdsEntity {
   dds_entity_t handle_ = 0;
 };
 
-/// Owns a dds_qos_t.
+// Owns a dds_qos_t.
 class DdsQos {
  public:
   DdsQos() : qos_(dds_create_qos()) {}

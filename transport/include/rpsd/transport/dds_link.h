@@ -22,48 +22,48 @@ struct DdsLinkConfig {
   std::uint32_t site_id = 1;
   int channels = 1;
   DdsQosSettings qos;
-  double feedback_timeout_s = 1.0;  ///< longest wait for one step's feedback
-  /// Lock-step only: poll the reader this long before sleeping on the waitset. The feedback
-  /// is then picked up without this thread being woken (on loopback, p50 round trip 118 ->
-  /// 89 us), at the cost of a busy core while the node works. 0: never.
+  double feedback_timeout_s = 1.0;  // longest wait for one step's feedback
+  // Lock-step only: poll the reader this long before sleeping on the waitset. The feedback
+  // is then picked up without this thread being woken (on loopback, p50 round trip 118 ->
+  // 89 us), at the cost of a busy core while the node works. 0: never.
   double busy_wait_s = 0.0;
 };
 
-/// Messages the link refused to use, by reason.
+// Messages the link refused to use, by reason.
 struct DdsLinkCounters {
   std::int64_t sent = 0, received = 0;
   std::int64_t wrong_test_or_site = 0, wrong_channels = 0, older_step = 0;
   std::int64_t late = 0;
-  std::int64_t waits = 0;  ///< receives that slept on the waitset (the feedback was not in yet)
+  std::int64_t waits = 0;  // receives that slept on the waitset (the feedback was not in yet)
 };
 
 class DdsLink final : public Link {
  public:
-  /// Not real-time safe; throws DdsError or std::invalid_argument.
+  // Not real-time safe; throws DdsError or std::invalid_argument.
   DdsLink(const DdsParticipant& participant, const DdsLinkConfig& config);
 
-  /// Waits until the site's node is discovered both ways on this side and its heartbeat says
-  /// it has discovered this coordinator too; only then does the first command reach it.
-  /// Not real-time safe.
+  // Waits until the site's node is discovered both ways on this side and its heartbeat says
+  // it has discovered this coordinator too; only then does the first command reach it.
+  // Not real-time safe.
   bool wait_for_node(double timeout_s);
 
-  /// Real-time safe (no allocation in rpsd's code; Cyclone serialises the sample).
+  // Real-time safe (no allocation in rpsd's code; Cyclone serialises the sample).
   LinkStatus send(const CommandSample& command) override;
-  /// Real-time safe.
+  // Real-time safe.
   LinkStatus receive(FeedbackSample& feedback) override;
 
-  /// Real time: absolute CLOCK_MONOTONIC time by which receive() gives up (0: none).
+  // Real time: absolute CLOCK_MONOTONIC time by which receive() gives up (0: none).
   void set_receive_deadline_ns(std::int64_t deadline_ns) { receive_deadline_ns_ = deadline_ns; }
 
   const DdsLinkCounters& counters() const { return counters_; }
 
  private:
-  /// Takes every sample waiting; keeps the newest valid one in newest_, except that a sample
-  /// reporting a node fault or a non-finite measurement stays there once taken, so the loop
-  /// stops on it even when newer answers came before it looked. Real-time safe.
+  // Takes every sample waiting; keeps the newest valid one in newest_, except that a sample
+  // reporting a node fault or a non-finite measurement stays there once taken, so the loop
+  // stops on it even when newer answers came before it looked. Real-time safe.
   void drain();
 
-  /// Takes the heartbeats waiting; true when the newest says the node has matched us.
+  // Takes the heartbeats waiting; true when the newest says the node has matched us.
   bool node_reports_matched();
 
   DdsLinkConfig config_;

@@ -19,25 +19,25 @@ struct DdsNodeEndpointConfig {
 
 class DdsNodeEndpoint {
  public:
-  /// Not real-time safe; throws DdsError.
+  // Not real-time safe; throws DdsError.
   DdsNodeEndpoint(const DdsParticipant& participant, const DdsNodeEndpointConfig& config);
 
-  /// Blocks until a command is waiting or the absolute CLOCK_MONOTONIC deadline passes.
-  /// Real-time safe.
+  // Blocks until a command is waiting or the absolute CLOCK_MONOTONIC deadline passes.
+  // Real-time safe.
   bool wait_for_command_until(std::int64_t deadline_ns) const { return ports_.wait_for_data_until(deadline_ns); }
-  /// Takes the oldest waiting command; false when there is none. Real-time safe.
+  // Takes the oldest waiting command; false when there is none. Real-time safe.
   bool take_command(CommandSample& command);
-  /// Real-time safe (Cyclone serialises the sample).
+  // Real-time safe (Cyclone serialises the sample).
   bool publish(const FeedbackSample& feedback);
-  /// Not on the fast path; a few times a second. coordinator_matched is this endpoint's own
-  /// (the coordinator waits for it before its first command), whatever `heartbeat` says.
+  // Not on the fast path; a few times a second. coordinator_matched is this endpoint's own
+  // (the coordinator waits for it before its first command), whatever `heartbeat` says.
   bool publish_heartbeat(const NodeHeartbeat& heartbeat);
-  /// Calls on_arrival(context) on Cyclone's receive thread whenever commands arrive (a
-  /// data-available listener), so that a lock-step node answers a command without waking
-  /// another thread: one thread hand-off less per exchange. nullptr stops the calls, after
-  /// waiting for one in progress. Not real-time safe; not from inside on_arrival.
+  // Calls on_arrival(context) on Cyclone's receive thread whenever commands arrive (a
+  // data-available listener), so that a lock-step node answers a command without waking
+  // another thread: one thread hand-off less per exchange. nullptr stops the calls, after
+  // waiting for one in progress. Not real-time safe; not from inside on_arrival.
   void call_on_command_arrival(void (*on_arrival)(void*), void* context);
-  /// True while a coordinator of this test and site is discovered.
+  // True while a coordinator of this test and site is discovered.
   bool coordinator_matched() const { return ports_.peer_matched(); }
 
  private:

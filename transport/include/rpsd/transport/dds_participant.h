@@ -12,13 +12,13 @@ namespace rpsd::transport {
 
 struct DdsDomainConfig {
   std::uint32_t domain_id = 0;
-  std::string config_file;  ///< Cyclone XML; empty: CYCLONEDDS_URI or the defaults
+  std::string config_file;  // Cyclone XML; empty: CYCLONEDDS_URI or the defaults
 };
 
 class DdsParticipant {
  public:
-  /// Not real-time safe; throws DdsError naming the failing call, or std::runtime_error
-  /// naming an unreadable configuration file.
+  // Not real-time safe; throws DdsError naming the failing call, or std::runtime_error
+  // naming an unreadable configuration file.
   explicit DdsParticipant(const DdsDomainConfig& config);
 
   dds_entity_t get() const { return participant_.get(); }
@@ -27,7 +27,7 @@ class DdsParticipant {
   dds_entity_t heartbeat_topic() const { return heartbeat_topic_.get(); }
 
  private:
-  DdsEntity domain_;  ///< only when created here with an explicit configuration
+  DdsEntity domain_;  // only when created here with an explicit configuration
   DdsEntity participant_;
   DdsEntity command_topic_, feedback_topic_, heartbeat_topic_;
 };

@@ -10,7 +10,7 @@ namespace rpsd::transport {
 
 inline constexpr int kMaxChannels = 8;
 
-/// Displacement commands for one control step.
+// Displacement commands for one control step.
 struct CommandSample {
   std::uint32_t test_id = 0;
   std::uint32_t site_id = 0;
@@ -20,16 +20,16 @@ struct CommandSample {
   std::array<double, kMaxChannels> displacement_m{};
 };
 
-/// Node status bits reported with every feedback sample.
+// Node status bits reported with every feedback sample.
 enum NodeStatus : std::uint32_t {
   kNodeOk = 0,
-  kNodeLimitActive = 1u << 0,  ///< a limit changed the command or the state this period
-  kNodeFault = 1u << 1,        ///< the node cannot follow commands (bad command, aborted, hardware)
-  kNodeHolding = 1u << 2,      ///< commands stopped arriving: the node holds (or ramps to safe)
+  kNodeLimitActive = 1u << 0,  // a limit changed the command or the state this period
+  kNodeFault = 1u << 1,        // the node cannot follow commands (bad command, aborted, hardware)
+  kNodeHolding = 1u << 2,      // commands stopped arriving: the node holds (or ramps to safe)
 };
 
-/// Which limit acted (FeedbackSample::limit_flags); the node's limits are its own, whatever
-/// the coordinator sends.
+// Which limit acted (FeedbackSample::limit_flags); the node's limits are its own, whatever
+// the coordinator sends.
 enum LimitFlag : std::uint32_t {
   kLimitNone = 0,
   kLimitStroke = 1u << 0,
@@ -38,7 +38,7 @@ enum LimitFlag : std::uint32_t {
   kLimitIncrement = 1u << 3,
 };
 
-/// What the node measured at the end of the control step the command belongs to.
+// What the node measured at the end of the control step the command belongs to.
 struct FeedbackSample {
   std::uint32_t test_id = 0;
   std::uint32_t site_id = 0;
@@ -49,13 +49,13 @@ struct FeedbackSample {
   std::array<double, kMaxChannels> force_n{};
   std::uint32_t status = kNodeOk;
   std::uint32_t limit_flags = kLimitNone;
-  /// Filled by the coordinator's link, never sent: command-to-feedback time of the channel's
-  /// site for this step (0 in process).
+  // Filled by the coordinator's link, never sent: command-to-feedback time of the channel's
+  // site for this step (0 in process).
   std::array<std::int64_t, kMaxChannels> round_trip_ns{};
 };
 
-/// True when the measured displacement or force of one of the first `channels` channels is
-/// not a finite number: a failed transducer, which must stop a test.
+// True when the measured displacement or force of one of the first `channels` channels is
+// not a finite number: a failed transducer, which must stop a test.
 inline bool has_non_finite_measurement(const FeedbackSample& sample, int channels) {
   for (int c = 0; c < channels; ++c) {
     if (!std::isfinite(sample.displacement_m[c]) || !std::isfinite(sample.force_n[c])) return true;
@@ -63,7 +63,7 @@ inline bool has_non_finite_measurement(const FeedbackSample& sample, int channel
   return false;
 }
 
-/// A node's periodic announcement: lets the coordinator discover the sites of its test.
+// A node's periodic announcement: lets the coordinator discover the sites of its test.
 struct NodeHeartbeat {
   enum State : std::uint32_t { kWaiting = 0, kRunning = 1, kHolding = 2, kFaulted = 3 };
   std::uint32_t test_id = 0;
@@ -74,8 +74,8 @@ struct NodeHeartbeat {
   std::int64_t overruns = 0;
   std::int64_t dropped_messages = 0;
   double control_period_s = 0.0;
-  /// The node's command reader and feedback writer have both matched a coordinator's (DDS
-  /// discovery done on the node's side too). Filled in by DdsNodeEndpoint::publish_heartbeat.
+  // The node's command reader and feedback writer have both matched a coordinator's (DDS
+  // discovery done on the node's side too). Filled in by DdsNodeEndpoint::publish_heartbeat.
   bool coordinator_matched = false;
 };
 

@@ -14,20 +14,20 @@ namespace rpsd::transport {
 
 struct SiteRoute {
   std::uint32_t site_id = 1;
-  Link* link = nullptr;       ///< not owned
-  std::vector<int> channels;  ///< the test's channel of each of the site's channels
+  Link* link = nullptr;       // not owned
+  std::vector<int> channels;  // the test's channel of each of the site's channels
 };
 
 class MultiSiteLink final : public Link {
  public:
-  /// Checks that every channel 0..n-1 belongs to exactly one site. Not real-time safe;
-  /// throws std::invalid_argument.
+  // Checks that every channel 0..n-1 belongs to exactly one site. Not real-time safe;
+  // throws std::invalid_argument.
   explicit MultiSiteLink(std::vector<SiteRoute> sites);
 
   int channels() const { return channels_; }
-  /// Real-time safe.
+  // Real-time safe.
   LinkStatus send(const CommandSample& command) override;
-  /// Worst status over the sites; the feedback holds every site's newest sample. Real-time safe.
+  // Worst status over the sites; the feedback holds every site's newest sample. Real-time safe.
   LinkStatus receive(FeedbackSample& feedback) override;
 
  private:
