@@ -61,10 +61,10 @@ int main(int argc, char** argv) try {
   double sink = 0.0;
   const auto integrator_s = bench::time_trials(options.repetitions, 1, [&] {
     auto integrator = integrators::make_integrator(setup.integrator);
-    integrator->configure(integrators::StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, m),
-                                                               Eigen::MatrixXd::Constant(1, 1, c),
-                                                               Eigen::MatrixXd::Constant(1, 1, k)),
-                          dt_s);
+    integrator->configure(
+        integrators::StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, c),
+                                               Eigen::MatrixXd::Constant(1, 1, k)),
+        dt_s);
     Eigen::VectorXd force = Eigen::VectorXd::Constant(1, -m * ground[0]);
     Eigen::VectorXd restoring = Eigen::VectorXd::Zero(1);
     integrator->initialize(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), restoring, force);
@@ -82,7 +82,9 @@ int main(int argc, char** argv) try {
   if (!(sink == sink)) std::puts("");
 
   const auto per_step_us = [&](double s) { return 1e6 * s / static_cast<double>(steps); };
-  const auto summary = [&](const std::vector<double>& seconds) { return bench::map_summary(bench::summarize(seconds), per_step_us); };
+  const auto summary = [&](const std::vector<double>& seconds) {
+    return bench::map_summary(bench::summarize(seconds), per_step_us);
+  };
   // The spread of a difference: each quantile of one less the median of the other.
   const auto less = [](bench::Summary a, const bench::Summary& b) {
     a.median -= b.median;
@@ -96,24 +98,24 @@ int main(int argc, char** argv) try {
   const bench::Summary integrator = summary(integrator_s.wall_s), integrator_cpu = summary(integrator_s.cpu_s);
   const bench::Summary overhead = less(loop, integrator);
 
-  fragment.add(bench::figure("coordinator_overhead_us",
-                             "Coordinator overhead per step (all but integrator and plant), SDOF",
-                             "us", overhead, less(loop_cpu, integrator_cpu))
-      .against("integrator_alone_sdof_us", "overhead / integrator step", overhead.median / integrator.median)
-      .aiming_for("< 5", overhead.median < 5.0));
+  fragment.add(
+      bench::figure("coordinator_overhead_us", "Coordinator overhead per step (all but integrator and plant), SDOF",
+                    "us", overhead, less(loop_cpu, integrator_cpu))
+          .against("integrator_alone_sdof_us", "overhead / integrator step", overhead.median / integrator.median)
+          .aiming_for("< 5", overhead.median < 5.0));
 
   fragment.add(bench::figure("loop_following_plant_sdof_us",
-                             "  loop step with a plant that follows exactly (no physics)",
-                             "us", loop, loop_cpu));
+                             "  loop step with a plant that follows exactly (no physics)", "us", loop, loop_cpu));
 
-  fragment.add(bench::figure("integrator_alone_sdof_us", "  central difference step alone, same SDOF",
-                             "us", integrator, integrator_cpu));
+  fragment.add(bench::figure("integrator_alone_sdof_us", "  central difference step alone, same SDOF", "us", integrator,
+                             integrator_cpu));
 
   char text[300];
-  std::snprintf(text, sizeof text,
-                "Overhead = loop step with a no-physics plant - integrator step alone (medians of %d trials of %lld steps "
-                "each; the spread shown is the loop's, less the integrator's median).",
-                options.repetitions, static_cast<long long>(steps));
+  std::snprintf(
+      text, sizeof text,
+      "Overhead = loop step with a no-physics plant - integrator step alone (medians of %d trials of %lld steps "
+      "each; the spread shown is the loop's, less the integrator's median).",
+      options.repetitions, static_cast<long long>(steps));
   fragment.note(text);
   fragment.write(options.out);
   return 0;

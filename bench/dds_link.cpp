@@ -58,11 +58,16 @@ int main(int argc, char** argv) try {
   int domain = 201 + static_cast<int>(getpid() % 32);
   int ddsperf_seconds = 10;
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
-    if (options.rest[i] == "--rpsd") rpsd = options.rest[i + 1];
-    else if (options.rest[i] == "--ddsperf") ddsperf = options.rest[i + 1];
-    else if (options.rest[i] == "--domain") domain = std::stoi(options.rest[i + 1]);
-    else if (options.rest[i] == "--ddsperf-seconds") ddsperf_seconds = std::stoi(options.rest[i + 1]);
-    else throw std::invalid_argument("unknown option " + options.rest[i]);
+    if (options.rest[i] == "--rpsd")
+      rpsd = options.rest[i + 1];
+    else if (options.rest[i] == "--ddsperf")
+      ddsperf = options.rest[i + 1];
+    else if (options.rest[i] == "--domain")
+      domain = std::stoi(options.rest[i + 1]);
+    else if (options.rest[i] == "--ddsperf-seconds")
+      ddsperf_seconds = std::stoi(options.rest[i + 1]);
+    else
+      throw std::invalid_argument("unknown option " + options.rest[i]);
   }
   if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
   // ddsperf prints once a second and the first line (discovery) is left out.
@@ -79,8 +84,9 @@ int main(int argc, char** argv) try {
     return scenarios::load_study(
         options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
         {scenarios::parse_override("ground_motion.pad_after_s=20"),
-         scenarios::parse_override("transport={kind: " + transport + ", test_id: 7, domain_id: " + std::to_string(domain) +
-                                   ", dds_config: ../transport/config/loopback.xml, discovery_timeout_s: 20" + more + "}")});
+         scenarios::parse_override(
+             "transport={kind: " + transport + ", test_id: 7, domain_id: " + std::to_string(domain) +
+             ", dds_config: ../transport/config/loopback.xml, discovery_timeout_s: 20" + more + "}")});
   };
   const auto dds_file = sdof("dds");
   // The same with the coordinator polling for its feedback for up to 1 ms before sleeping.
@@ -103,14 +109,16 @@ int main(int argc, char** argv) try {
     const double cpu_start = bench::thread_cpu_s();
     const auto loop_start = bench::Clock::now();
     coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
-    for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n) outcome = test.step();
+    for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n)
+      outcome = test.step();
     r.wall_s = bench::seconds_since(loop_start);
     r.cpu_s = bench::thread_cpu_s() - cpu_start;
     const coordinator::TestRun done = test.finish(outcome);
     node.stop(SIGTERM, 10.0);
     if (done.steps != done.steps_planned || done.timing.sites.size() != 1) {
       throw std::runtime_error("the lock-step run stopped at step " + std::to_string(done.steps) + " of " +
-                               std::to_string(done.steps_planned) + "; node log:\n" + bench::read_text(work / "node.log"));
+                               std::to_string(done.steps_planned) + "; node log:\n" +
+                               bench::read_text(work / "node.log"));
     }
     r.round_trip = done.timing.sites[0].round_trip;
     r.steps = done.steps;
@@ -121,8 +129,10 @@ int main(int argc, char** argv) try {
   const auto local = bench::time_trials(options.repetitions, 1, [&] {
     coordinator::TestAssembly test(local_scenario, {});
     coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
-    for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n) outcome = test.step();
-    if (test.finish(outcome).steps != test.steps_planned()) throw std::runtime_error("the in-process run stopped early");
+    for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n)
+      outcome = test.step();
+    if (test.finish(outcome).steps != test.steps_planned())
+      throw std::runtime_error("the in-process run stopped early");
   });
 
   std::vector<LockStepRun> runs, busy_runs;
@@ -197,8 +207,8 @@ int main(int argc, char** argv) try {
   const bench::Summary perf99 = bench::summarize(perf_p99);
   const bench::Summary rpsd50 = bench::summarize(rt_p50);
   const double ratio50 = rpsd50.median / perf50.median;
-  fragment.add(bench::figure("dds_round_trip_us", "DDS round trip, rpsd lock-step command to feedback, median (p50)", "us",
-                             rpsd50)
+  fragment.add(bench::figure("dds_round_trip_us", "DDS round trip, rpsd lock-step command to feedback, median (p50)",
+                             "us", rpsd50)
                    .against("ddsperf_round_trip_us", "rpsd / ddsperf at the median", ratio50)
                    .aiming_for("<= 1.5 x ddsperf at the median", ratio50 <= 1.5));
   const bench::Summary rpsd99 = bench::summarize(rt_p99);
@@ -207,33 +217,35 @@ int main(int argc, char** argv) try {
   fragment.add(bench::figure("dds_round_trip_max_us", "  the same, max", "us", bench::summarize(rt_max)));
   const bench::Summary busy50 = bench::summarize(busy.rt_p50);
   const double busy_ratio50 = busy50.median / perf50.median;
-  fragment.add(bench::figure("dds_round_trip_busy_wait_us", "DDS round trip, rpsd lock-step with transport.busy_wait_s = 0.001, p50",
-                             "us", busy50)
+  fragment.add(bench::figure("dds_round_trip_busy_wait_us",
+                             "DDS round trip, rpsd lock-step with transport.busy_wait_s = 0.001, p50", "us", busy50)
                    .against("ddsperf_round_trip_us", "rpsd / ddsperf at the median", busy_ratio50)
                    .aiming_for("<= 1.5 x ddsperf at the median", busy_ratio50 <= 1.5));
   const bench::Summary busy99 = bench::summarize(busy.rt_p99);
   fragment.add(bench::figure("dds_round_trip_busy_wait_p99_us", "  the same, p99", "us", busy99)
                    .against("ddsperf_round_trip_p99_us", "rpsd / ddsperf at p99", busy99.median / perf99.median));
-  fragment.add(bench::figure("ddsperf_round_trip_us", "DDS round trip, ddsperf closed-loop ping/pong, same config, median (p50)",
-                             "us", perf50));
+  fragment.add(bench::figure("ddsperf_round_trip_us",
+                             "DDS round trip, ddsperf closed-loop ping/pong, same config, median (p50)", "us", perf50));
   fragment.add(bench::figure("ddsperf_round_trip_p99_us", "  the same, p99", "us", perf99));
-  fragment.add(bench::figure("ddsperf_1024hz_round_trip_us", "DDS round trip, ddsperf ping paced at 1024 Hz, median (p50)",
-                             "us", bench::summarize(paced_p50)));
+  fragment.add(bench::figure("ddsperf_1024hz_round_trip_us",
+                             "DDS round trip, ddsperf ping paced at 1024 Hz, median (p50)", "us",
+                             bench::summarize(paced_p50)));
   fragment.add(bench::figure("ddsperf_1024hz_round_trip_p99_us", "  the same, p99", "us", bench::summarize(paced_p99)));
 
   char text[1600];
-  std::snprintf(text, sizeof text,
-                "rpsd: %lld lock-step steps per run, %d runs of each variant (default; transport.busy_wait_s = 0.001), "
-                "alternating, each against a fresh `%s servo-node %s --set node.mode=lock_step` "
-                "(domain %d, transport/config/loopback.xml); the coordinator is this process (coordinator::TestAssembly, "
-                "as `rpsd run` builds it). The rpsd round trip is the coordinator's command-to-feedback time and includes "
-                "the node's plant step (the servo model over one period, RK4 at 8192 Hz: 8 substeps, about 0.7 us) and "
-                "both sides' copies; its histogram has 1 us bins (upper edges). Each rpsd figure is the median over runs "
-                "of that run's p50/p99/max; throughput is simulated seconds (%.2f) over the loop's wall time, discovery "
-                "excluded. ddsperf: `%s`, CYCLONEDDS_URI=file://.../transport/config/loopback.xml, %d s a run; a sample is "
-                "one per-second line (the first left out). Paced: `%s`.",
-                static_cast<long long>(runs.front().steps), options.repetitions, rpsd.c_str(), node_yaml.c_str(), domain,
-                simulated_s, perf_command.c_str(), ddsperf_seconds, paced_command.c_str());
+  std::snprintf(
+      text, sizeof text,
+      "rpsd: %lld lock-step steps per run, %d runs of each variant (default; transport.busy_wait_s = 0.001), "
+      "alternating, each against a fresh `%s servo-node %s --set node.mode=lock_step` "
+      "(domain %d, transport/config/loopback.xml); the coordinator is this process (coordinator::TestAssembly, "
+      "as `rpsd run` builds it). The rpsd round trip is the coordinator's command-to-feedback time and includes "
+      "the node's plant step (the servo model over one period, RK4 at 8192 Hz: 8 substeps, about 0.7 us) and "
+      "both sides' copies; its histogram has 1 us bins (upper edges). Each rpsd figure is the median over runs "
+      "of that run's p50/p99/max; throughput is simulated seconds (%.2f) over the loop's wall time, discovery "
+      "excluded. ddsperf: `%s`, CYCLONEDDS_URI=file://.../transport/config/loopback.xml, %d s a run; a sample is "
+      "one per-second line (the first left out). Paced: `%s`.",
+      static_cast<long long>(runs.front().steps), options.repetitions, rpsd.c_str(), node_yaml.c_str(), domain,
+      simulated_s, perf_command.c_str(), ddsperf_seconds, paced_command.c_str());
   fragment.note(text);
   fragment.write(options.out);
   return 0;

@@ -10,8 +10,8 @@
 #include <stdexcept>
 
 #include "bench_report.h"
-#include "rpsd/studies/delay_compensation_study.h"
 #include "rpsd/scenarios/study_file.h"
+#include "rpsd/studies/delay_compensation_study.h"
 
 namespace {
 
@@ -42,8 +42,10 @@ Sweep time_sweep(const std::filesystem::path& file, int repetitions) {
 int main(int argc, char** argv) try {
   const bench::Options options = bench::parse_options(argc, argv, 7);
   bench::Fragment fragment("fig8_sweep", argc, argv);
-  const Sweep servo = time_sweep(options.source_dir / "examples/scenarios/paper-fig8-delay-compensation.yaml", options.repetitions);
-  const Sweep ideal = time_sweep(options.source_dir / "examples/scenarios/paper-fig8-ideal-delay.yaml", options.repetitions);
+  const Sweep servo =
+      time_sweep(options.source_dir / "examples/scenarios/paper-fig8-delay-compensation.yaml", options.repetitions);
+  const Sweep ideal =
+      time_sweep(options.source_dir / "examples/scenarios/paper-fig8-ideal-delay.yaml", options.repetitions);
 
   const auto cases = static_cast<double>(servo.study.compensated_delays_s.size());
   const auto per_second = [&](const bench::Trials& t, double count) {
@@ -51,20 +53,21 @@ int main(int argc, char** argv) try {
                      bench::map_summary(bench::summarize(t.cpu_s), [=](double s) { return count / s; })};
   };
   const auto [servo_cases, servo_cases_cpu] = per_second(servo.seconds, cases);
-  const auto [ideal_cases, ideal_cases_cpu] = per_second(ideal.seconds, static_cast<double>(ideal.study.compensated_delays_s.size()));
+  const auto [ideal_cases, ideal_cases_cpu] =
+      per_second(ideal.seconds, static_cast<double>(ideal.study.compensated_delays_s.size()));
   const auto [servo_realtime, servo_realtime_cpu] = per_second(servo.seconds, servo.simulated_s);
 
   fragment.add(bench::figure("fig8_sweep_cases_per_s", "Figure 8 sweep (10 cases, servo model), cases per second",
                              "cases/s", servo_cases, servo_cases_cpu)
-      .against("fig8_ideal_delay_cases_per_s", "servo model / ideal delay (speed)",
-                servo_cases.median / ideal_cases.median));
+                   .against("fig8_ideal_delay_cases_per_s", "servo model / ideal delay (speed)",
+                            servo_cases.median / ideal_cases.median));
 
-  fragment.add(bench::figure("fig8_sweep_x_realtime", "  the same, simulated time per wall time",
-                             "x real time", servo_realtime, servo_realtime_cpu));
+  fragment.add(bench::figure("fig8_sweep_x_realtime", "  the same, simulated time per wall time", "x real time",
+                             servo_realtime, servo_realtime_cpu));
 
   fragment.add(bench::figure("fig8_ideal_delay_cases_per_s",
-                             "Baseline: the same sweep on the ideal 75 ms delay actuator",
-                             "cases/s", ideal_cases, ideal_cases_cpu));
+                             "Baseline: the same sweep on the ideal 75 ms delay actuator", "cases/s", ideal_cases,
+                             ideal_cases_cpu));
 
   char text[300];
   std::snprintf(text, sizeof text,

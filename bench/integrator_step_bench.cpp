@@ -26,20 +26,17 @@ struct Case {
 };
 
 template <class Matrix>
-void run_steps(benchmark::State& state, const IntegratorConfig& config, bool dense,
-               bool consistent_mass) {
+void run_steps(benchmark::State& state, const IntegratorConfig& config, bool dense, bool consistent_mass) {
   const int n = static_cast<int>(state.range(0));
   const auto frame = test::make_frame_model(n, 4096.0, consistent_mass);
   const Matrix K = frame.stiffness;
   auto integrator = make_integrator(config);
   if (dense)
-    integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd(frame.mass),
-                                                  Eigen::MatrixXd(frame.damping),
-                                                  Eigen::MatrixXd(frame.stiffness)),
+    integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd(frame.mass), Eigen::MatrixXd(frame.damping),
+                                                    Eigen::MatrixXd(frame.stiffness)),
                           1.0 / 4096.0);
   else
-    integrator->configure(StructuralMatrices::sparse(frame.mass, frame.damping, frame.stiffness),
-                          1.0 / 4096.0);
+    integrator->configure(StructuralMatrices::sparse(frame.mass, frame.damping, frame.stiffness), 1.0 / 4096.0);
   Eigen::VectorXd d0 = Eigen::VectorXd::LinSpaced(n, 0.0, 1e-3);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd r = K * d0;
@@ -65,13 +62,12 @@ void run_steps(benchmark::State& state, const IntegratorConfig& config, bool den
 int main(int argc, char** argv) {
   const std::vector<Case> main_cases{{"kr_alpha", KolayRiclesAlphaParams{0.8}},
                                      {"central_difference", CentralDifferenceParams{}}};
-  const std::vector<Case> other_cases{
-      {"chen_ricles", ChenRiclesParams{}},
-      {"chang", ChangParams{}},
-      {"alpha_os", AlphaOsParams{}},
-      {"hht_alpha_2iter", HhtAlphaParams{-0.1, {2, 1}}},
-      {"generalized_alpha_2iter", GeneralizedAlphaParams{0.8, {2, 1}}},
-      {"newmark_average_2iter", NewmarkParams{0.25, 0.5, {2, 1}}}};
+  const std::vector<Case> other_cases{{"chen_ricles", ChenRiclesParams{}},
+                                      {"chang", ChangParams{}},
+                                      {"alpha_os", AlphaOsParams{}},
+                                      {"hht_alpha_2iter", HhtAlphaParams{-0.1, {2, 1}}},
+                                      {"generalized_alpha_2iter", GeneralizedAlphaParams{0.8, {2, 1}}},
+                                      {"newmark_average_2iter", NewmarkParams{0.25, 0.5, {2, 1}}}};
   const std::vector<int> sparse_sizes{10, 100, 1000, 2000, 10000};
   const std::vector<int> dense_sizes{10, 100, 1000, 2000};
 

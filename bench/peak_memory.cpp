@@ -123,10 +123,14 @@ int main(int argc, char** argv) try {
   std::filesystem::path rpsd = std::filesystem::path(RPSD_BENCH_RPSD);
   double long_minutes = 30.0, baseline_minutes = 5.0;
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
-    if (options.rest[i] == "--rpsd") rpsd = options.rest[i + 1];
-    else if (options.rest[i] == "--long-minutes") long_minutes = std::stod(options.rest[i + 1]);
-    else if (options.rest[i] == "--baseline-minutes") baseline_minutes = std::stod(options.rest[i + 1]);
-    else throw std::invalid_argument("unknown option " + options.rest[i]);
+    if (options.rest[i] == "--rpsd")
+      rpsd = options.rest[i + 1];
+    else if (options.rest[i] == "--long-minutes")
+      long_minutes = std::stod(options.rest[i + 1]);
+    else if (options.rest[i] == "--baseline-minutes")
+      baseline_minutes = std::stod(options.rest[i + 1]);
+    else
+      throw std::invalid_argument("unknown option " + options.rest[i]);
   }
   bench::Fragment fragment("peak_memory", argc, argv);
   const auto work = std::filesystem::temp_directory_path() / ("rpsd-bench-memory-" + std::to_string(getpid()));
@@ -138,13 +142,15 @@ int main(int argc, char** argv) try {
   // (1) rpsd run end to end.
   std::vector<double> short_peaks, short_children, short_walls;
   for (int i = 0; i < options.repetitions; ++i) {
-    const Measured m = measure_rpsd_run(rpsd, {"run", elcentro, "--set", "ground_motion.pad_after_s=20", "--out", (work / "60s").string()});
+    const Measured m = measure_rpsd_run(
+        rpsd, {"run", elcentro, "--set", "ground_motion.pad_after_s=20", "--out", (work / "60s").string()});
     short_peaks.push_back(m.peak_mb);
     short_children.push_back(m.with_children_mb);
     short_walls.push_back(m.wall_s);
   }
-  const Measured long_run = measure_rpsd_run(
-      rpsd, {"run", synthetic, "--set", "ground_motion.synthetic.duration_s=" + long_seconds, "--out", (work / "long").string()});
+  const Measured long_run =
+      measure_rpsd_run(rpsd, {"run", synthetic, "--set", "ground_motion.synthetic.duration_s=" + long_seconds, "--out",
+                              (work / "long").string()});
   std::filesystem::remove_all(work);
 
   // (2) growth per simulated minute, in fresh child processes: the difference between a
@@ -163,41 +169,44 @@ int main(int argc, char** argv) try {
           }
         },
         [&] {
-          file = scenarios::load_study(
-              synthetic, {scenarios::parse_override("ground_motion.synthetic.duration_s=" + std::to_string(minutes * 60.0))});
+          file = scenarios::load_study(synthetic, {scenarios::parse_override("ground_motion.synthetic.duration_s=" +
+                                                                             std::to_string(minutes * 60.0))});
         });
   };
   constexpr double kShortMinutes = 1.0;
-  const double streamed_per_min = (growth(long_minutes, false) - growth(kShortMinutes, false)) / (long_minutes - kShortMinutes);
-  const double kept_per_min = (growth(baseline_minutes, true) - growth(kShortMinutes, true)) / (baseline_minutes - kShortMinutes);
+  const double streamed_per_min =
+      (growth(long_minutes, false) - growth(kShortMinutes, false)) / (long_minutes - kShortMinutes);
+  const double kept_per_min =
+      (growth(baseline_minutes, true) - growth(kShortMinutes, true)) / (baseline_minutes - kShortMinutes);
 
-  const bench::Figure a = bench::figure("peak_rss_60s_mb",
-                                        "Peak memory, `rpsd run` of 60 s (El Centro + 20 s), rpsd process",
-                                        "MB", bench::summarize(short_peaks));
+  const bench::Figure a =
+      bench::figure("peak_rss_60s_mb", "Peak memory, `rpsd run` of 60 s (El Centro + 20 s), rpsd process", "MB",
+                    bench::summarize(short_peaks));
   fragment.add(a);
 
   fragment.add(bench::figure("peak_rss_30min_mb",
-                             "Peak memory, `rpsd run` of " + long_seconds + " s (synthetic record), rpsd process",
-                             "MB", bench::single(long_run.peak_mb))
-      .against("peak_rss_60s_mb", "long run / 60 s run", long_run.peak_mb / a.value.median));
+                             "Peak memory, `rpsd run` of " + long_seconds + " s (synthetic record), rpsd process", "MB",
+                             bench::single(long_run.peak_mb))
+                   .against("peak_rss_60s_mb", "long run / 60 s run", long_run.peak_mb / a.value.median));
 
   // Flat: what a step leaves behind is below a byte (a kept record is about 860 bytes).
-  fragment.add(bench::figure("rss_growth_mb_per_min",
-                             "Memory growth per simulated minute, as `rpsd run` runs (test + reference)",
-                             "MB/min", bench::single(streamed_per_min))
-      .against("rss_growth_kept_records_mb_per_min", "streamed / records kept", streamed_per_min / kept_per_min)
-      .aiming_for("flat (< 0.01 MB/min)", streamed_per_min < 0.01));
+  fragment.add(
+      bench::figure("rss_growth_mb_per_min",
+                    "Memory growth per simulated minute, as `rpsd run` runs (test + reference)", "MB/min",
+                    bench::single(streamed_per_min))
+          .against("rss_growth_kept_records_mb_per_min", "streamed / records kept", streamed_per_min / kept_per_min)
+          .aiming_for("flat (< 0.01 MB/min)", streamed_per_min < 0.01));
 
   fragment.add(bench::figure("rss_growth_kept_records_mb_per_min",
-                             "Baseline: the same keeping every step record (rpsd run before this change)",
-                             "MB/min", bench::single(kept_per_min)));
+                             "Baseline: the same keeping every step record (rpsd run before this change)", "MB/min",
+                             bench::single(kept_per_min)));
 
   fragment.add(bench::figure("rpsd_run_60s_wall_s",
-                             "Wall time, `rpsd run` of 60 s end to end (test, reference, CSVs, plots)",
-                             "s", bench::summarize(short_walls)));
+                             "Wall time, `rpsd run` of 60 s end to end (test, reference, CSVs, plots)", "s",
+                             bench::summarize(short_walls)));
 
-  fragment.add(bench::figure("rpsd_run_30min_wall_s", "Wall time, `rpsd run` of " + long_seconds + " s end to end",
-                             "s", bench::single(long_run.wall_s)));
+  fragment.add(bench::figure("rpsd_run_30min_wall_s", "Wall time, `rpsd run` of " + long_seconds + " s end to end", "s",
+                             bench::single(long_run.wall_s)));
 
   char text[1000];
   std::snprintf(text, sizeof text,

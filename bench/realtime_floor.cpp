@@ -61,23 +61,26 @@ void measure_empty_loop(int rate, double seconds, bool awake, bench::Fragment& f
   pacer.start();
   while (pacer.cycles() < cycles) lateness.add(pacer.wait_next());
   const CpuTimes after = read_cpu_times();
-  const double steal_pct = after.total > before.total
-                               ? 100.0 * static_cast<double>(after.steal - before.steal) / static_cast<double>(after.total - before.total)
-                               : 0.0;
+  const double steal_pct = after.total > before.total ? 100.0 * static_cast<double>(after.steal - before.steal) /
+                                                            static_cast<double>(after.total - before.total)
+                                                      : 0.0;
   const double overruns_pct = 100.0 * static_cast<double>(pacer.overruns()) / static_cast<double>(pacer.cycles());
   const realtime::LatencySummary late = lateness.summary();
   const std::string id = "realtime_floor_" + r + "hz" + (awake ? "_awake" : "");
-  bench::Figure f = bench::figure(id, "Empty paced loop (no work, no DDS), SCHED_FIFO, " + how + ": overruns at " + r + " Hz",
-                                  "% of cycles", bench::single(overruns_pct));
+  bench::Figure f =
+      bench::figure(id, "Empty paced loop (no work, no DDS), SCHED_FIFO, " + how + ": overruns at " + r + " Hz",
+                    "% of cycles", bench::single(overruns_pct));
   if (rate == 4096) f.aiming_for("< 0.1 % (else the DDS target cannot be met on this host)", overruns_pct < 0.1);
   fragment.add(f);
   fragment.add(bench::figure(id + "_wakeup_p999", "  wake-up lateness p99.9", "us", bench::single(late.p999_s * 1e6)));
   fragment.add(bench::figure(id + "_wakeup_max", "  wake-up lateness max", "us", bench::single(late.max_s * 1e6)));
-  fragment.add(bench::figure(id + "_steal", "  host steal time during the run", "% of CPU time", bench::single(steal_pct)));
-  fragment.note(how + ", " + r + " Hz: " + std::to_string(pacer.cycles()) + " cycles, " + std::to_string(pacer.overruns()) +
-                " overruns (" + percent(overruns_pct) + " %), " + std::to_string(pacer.skipped_deadlines()) +
-                " deadlines skipped; wake-up p50 " + percent(late.p50_s * 1e6) + " us, p99 " + percent(late.p99_s * 1e6) +
-                " us; steal " + percent(steal_pct) + " %");
+  fragment.add(
+      bench::figure(id + "_steal", "  host steal time during the run", "% of CPU time", bench::single(steal_pct)));
+  fragment.note(how + ", " + r + " Hz: " + std::to_string(pacer.cycles()) + " cycles, " +
+                std::to_string(pacer.overruns()) + " overruns (" + percent(overruns_pct) + " %), " +
+                std::to_string(pacer.skipped_deadlines()) + " deadlines skipped; wake-up p50 " +
+                percent(late.p50_s * 1e6) + " us, p99 " + percent(late.p99_s * 1e6) + " us; steal " +
+                percent(steal_pct) + " %");
 }
 
 }  // namespace
@@ -89,16 +92,20 @@ int main(int argc, char** argv) try {
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
     const std::string& key = options.rest[i];
     const std::string& value = options.rest[i + 1];
-    if (key == "--seconds") seconds = std::stod(value);
-    else if (key == "--rates") rates = bench::parse_rates(value);
-    else throw std::invalid_argument("unknown option " + key);
+    if (key == "--seconds")
+      seconds = std::stod(value);
+    else if (key == "--rates")
+      rates = bench::parse_rates(value);
+    else
+      throw std::invalid_argument("unknown option " + key);
   }
   if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
   if (!(seconds > 0.0)) throw std::invalid_argument("--seconds: positive");
   bench::Fragment fragment("realtime_floor", argc, argv);
 
   const realtime::RealTimeSetupReport granted = realtime::apply_realtime({});
-  if (!granted.refused.empty()) fragment.note("real-time request refused, figures are for the default scheduler: " + granted.refused);
+  if (!granted.refused.empty())
+    fragment.note("real-time request refused, figures are for the default scheduler: " + granted.refused);
 
   for (const bool awake : {false, true}) {
     const realtime::CpuWakeLatencyHold hold = awake ? realtime::CpuWakeLatencyHold(0) : realtime::CpuWakeLatencyHold();

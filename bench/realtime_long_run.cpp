@@ -3,17 +3,18 @@
 //
 // `rpsd servo-node examples/nodes/bridge-pier-site-1.yaml` (real time, its paper servo model)
 // and `rpsd run examples/scenarios/synthetic-sdof.yaml` over DDS in real time with the synthetic record
-// lengthened to `--minutes` (and any `--set KEY=VALUE` given, passed on to rpsd run). Every second: VmRSS of the coordinator and of the node, and the
-// size of time_history.csv (the test is running while it grows). Afterwards: the run's
-// summary.json, every row of time_history.csv (one per planned step, steps in order, none
-// missing) and the node's --summary.
+// lengthened to `--minutes` (and any `--set KEY=VALUE` given, passed on to rpsd run). Every second: VmRSS of the
+// coordinator and of the node, and the size of time_history.csv (the test is running while it grows). Afterwards: the
+// run's summary.json, every row of time_history.csv (one per planned step, steps in order, none missing) and the node's
+// --summary.
 //
 // Memory is "flat" when the least-squares slope of each process's resident set over the run,
 // from its second minute on (the first holds Cyclone's discovery and the histograms' first
 // touch), is below one 4 KiB page per minute (a fall, memory handed back, is not growth). The run's own stop rule is
 // clock.max_feedback_age_periods: its default (4 periods) is the safety setting for hardware;
 // this VM stalls for up to 0.4 s (cyclictest), so the long run takes --max-feedback-age
-// (default 1000 periods, 0.98 s at 1024 Hz; the most the key allows) and reports how many steps ran on old feedback and how old.
+// (default 1000 periods, 0.98 s at 1024 Hz; the most the key allows) and reports how many steps ran on old feedback and
+// how old.
 #include <unistd.h>
 
 #include <algorithm>
@@ -139,14 +140,22 @@ int main(int argc, char** argv) try {
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
     const std::string& key = options.rest[i];
     const std::string& value = options.rest[i + 1];
-    if (key == "--rpsd") rpsd = value;
-    else if (key == "--minutes") minutes = std::stod(value);
-    else if (key == "--rate") rate = std::stoi(value);
-    else if (key == "--domain") domain = std::stoi(value);
-    else if (key == "--max-feedback-age") max_age = std::stoi(value);
-    else if (key == "--keep") keep = value == "1";
-    else if (key == "--set") extra_settings.push_back(value);
-    else throw std::invalid_argument("unknown option " + key);
+    if (key == "--rpsd")
+      rpsd = value;
+    else if (key == "--minutes")
+      minutes = std::stod(value);
+    else if (key == "--rate")
+      rate = std::stoi(value);
+    else if (key == "--domain")
+      domain = std::stoi(value);
+    else if (key == "--max-feedback-age")
+      max_age = std::stoi(value);
+    else if (key == "--keep")
+      keep = value == "1";
+    else if (key == "--set")
+      extra_settings.push_back(value);
+    else
+      throw std::invalid_argument("unknown option " + key);
   }
   if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
   if (minutes < 2.0) throw std::invalid_argument("--minutes: at least 2 (the first minute is not part of the slope)");
@@ -164,14 +173,23 @@ int main(int argc, char** argv) try {
 
   bench::ChildProcess node({rpsd, "servo-node", (src / "examples/nodes/bridge-pier-site-1.yaml").string(), "--set",
                             "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set", "dds.domain_id=" + d,
-                            "--set", "node.test_id=" + test_id,
-                            "--summary", (work / "node.json").string()},
+                            "--set", "node.test_id=" + test_id, "--summary", (work / "node.json").string()},
                            {}, work / "node.log");
-  std::vector<std::string> run_argv{rpsd, "run", (src / "examples/scenarios/synthetic-sdof.yaml").string(), "--out", out.string(), "--set",
+  std::vector<std::string> run_argv{rpsd,
+                                    "run",
+                                    (src / "examples/scenarios/synthetic-sdof.yaml").string(),
+                                    "--out",
+                                    out.string(),
+                                    "--set",
                                     "transport={kind: dds, test_id: " + test_id + ", domain_id: " + d +
                                         ", dds_config: ../transport/config/loopback.xml}",
-                                    "--set", "clock.mode=real_time", "--set", "clock.control_rate_hz=" + r, "--set",
-                                    "clock.max_feedback_age_periods=" + std::to_string(max_age), "--set",
+                                    "--set",
+                                    "clock.mode=real_time",
+                                    "--set",
+                                    "clock.control_rate_hz=" + r,
+                                    "--set",
+                                    "clock.max_feedback_age_periods=" + std::to_string(max_age),
+                                    "--set",
                                     "ground_motion.synthetic.duration_s=" + format("%g", seconds)};
   std::string extra_note;
   for (const std::string& setting : extra_settings) {
@@ -190,7 +208,8 @@ int main(int argc, char** argv) try {
       break;
     }
     samples.push_back({bench::seconds_since(start), status_of(run.pid(), "VmRSS"), status_of(node.pid(), "VmRSS"),
-                       status_of(run.pid(), "Threads"), status_of(node.pid(), "Threads"), size_or_zero(out / "time_history.csv")});
+                       status_of(run.pid(), "Threads"), status_of(node.pid(), "Threads"),
+                       size_or_zero(out / "time_history.csv")});
   }
   node.stop(SIGTERM, 10.0);
   const std::string run_log = bench::read_text(work / "run.log");
@@ -205,7 +224,9 @@ int main(int argc, char** argv) try {
   double threads_first = -1, threads_max = 0;
   for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
     const Sample& s = samples[i];
-    if (samples[i + 1].history_bytes <= s.history_bytes || s.history_bytes == 0 || s.coordinator_kib < 0 || s.node_kib < 0) continue;
+    if (samples[i + 1].history_bytes <= s.history_bytes || s.history_bytes == 0 || s.coordinator_kib < 0 ||
+        s.node_kib < 0)
+      continue;
     if (test_start < 0) test_start = s.t_s;
     if (s.t_s - test_start < 60.0) continue;
     const double at_min = (s.t_s - test_start) / 60.0;
@@ -228,8 +249,8 @@ int main(int argc, char** argv) try {
     std::ofstream rss(work / "rss.txt");
     rss << "t_s coordinator_kib node_kib coordinator_threads node_threads time_history_bytes\n";
     for (const auto& s : samples) {
-      rss << s.t_s << ' ' << s.coordinator_kib << ' ' << s.node_kib << ' ' << s.coordinator_threads << ' ' << s.node_threads
-          << ' ' << s.history_bytes << '\n';
+      rss << s.t_s << ' ' << s.coordinator_kib << ' ' << s.node_kib << ' ' << s.coordinator_threads << ' '
+          << s.node_threads << ' ' << s.history_bytes << '\n';
     }
   }
 
@@ -237,33 +258,42 @@ int main(int argc, char** argv) try {
   json summary = have_summary ? json::parse(std::ifstream(out / "summary.json")) : json::object();
   const bool completed = summary.value("completed", false);
   const auto planned = summary.value("steps_planned", std::int64_t{0});
-  const History history = std::filesystem::exists(out / "time_history.csv") ? read_history(out / "time_history.csv") : History{};
+  const History history =
+      std::filesystem::exists(out / "time_history.csv") ? read_history(out / "time_history.csv") : History{};
   const bool every_step = completed && history.rows == planned && history.steps_in_order &&
                           summary.value("dropped_records", std::uint64_t{1}) == 0;
   constexpr double kPageKiB = 4.0;
   const double coord_slope = studies::least_squares_slope(t_min, coord),
                node_slope = studies::least_squares_slope(t_min, nodes);
-  const std::string status = completed ? "completed" : "DID NOT COMPLETE: " + summary.value("outcome", std::string("exit " + std::to_string(code)));
+  const std::string status =
+      completed ? "completed"
+                : "DID NOT COMPLETE: " + summary.value("outcome", std::string("exit " + std::to_string(code)));
 
-  bench::Figure runs = bench::figure("long_run_completed", format("%g-minute real-time run at ", minutes) + r + " Hz over DDS (" + status + ")",
-                                     "steps recorded", bench::single(static_cast<double>(history.rows)));
+  bench::Figure runs = bench::figure(
+      "long_run_completed", format("%g-minute real-time run at ", minutes) + r + " Hz over DDS (" + status + ")",
+      "steps recorded", bench::single(static_cast<double>(history.rows)));
   runs.aiming_for("every planned step (" + std::to_string(planned) + ") recorded, in order", every_step);
   fragment.add(runs);
   if (!t_min.empty()) {
-    fragment.add(bench::figure("long_run_rss_slope_coordinator_kib_per_min", "  coordinator resident set growth (least squares, minute 2 on)",
-                               "KiB/min", bench::single(coord_slope))
+    fragment.add(bench::figure("long_run_rss_slope_coordinator_kib_per_min",
+                               "  coordinator resident set growth (least squares, minute 2 on)", "KiB/min",
+                               bench::single(coord_slope))
                      .aiming_for("< 4 KiB/min (flat)", coord_slope < kPageKiB));
-    fragment.add(bench::figure("long_run_rss_slope_node_kib_per_min", "  servo node resident set growth (least squares, minute 2 on)",
-                               "KiB/min", bench::single(node_slope))
+    fragment.add(bench::figure("long_run_rss_slope_node_kib_per_min",
+                               "  servo node resident set growth (least squares, minute 2 on)", "KiB/min",
+                               bench::single(node_slope))
                      .aiming_for("< 4 KiB/min (flat)", node_slope < kPageKiB));
-    fragment.add(bench::figure("long_run_rss_coordinator_mib", "  coordinator resident set, peak during the test", "MiB",
-                               bench::single(coord_peak / 1024.0)));
-    fragment.add(bench::figure("long_run_rss_node_mib", "  servo node resident set, peak during the test", "MiB", bench::single(node_peak / 1024.0)));
-    fragment.add(bench::figure("long_run_rss_change_coordinator_kib", "  coordinator resident set, end of the test less minute 1", "KiB",
+    fragment.add(bench::figure("long_run_rss_coordinator_mib", "  coordinator resident set, peak during the test",
+                               "MiB", bench::single(coord_peak / 1024.0)));
+    fragment.add(bench::figure("long_run_rss_node_mib", "  servo node resident set, peak during the test", "MiB",
+                               bench::single(node_peak / 1024.0)));
+    fragment.add(bench::figure("long_run_rss_change_coordinator_kib",
+                               "  coordinator resident set, end of the test less minute 1", "KiB",
                                bench::single(coord.back() - coord_first)));
     fragment.note(format("Resident sets at minute 1 and at the end of the test: coordinator %.0f", coord_first) +
-                  format(" -> %.0f KiB, ", coord.back()) + format("node %.0f", node_first) + format(" -> %.0f KiB; ", nodes.back()) +
-                  std::to_string(t_min.size()) + " one-second samples. Rises: coordinator " + std::to_string(coord_rises.count) +
+                  format(" -> %.0f KiB, ", coord.back()) + format("node %.0f", node_first) +
+                  format(" -> %.0f KiB; ", nodes.back()) + std::to_string(t_min.size()) +
+                  " one-second samples. Rises: coordinator " + std::to_string(coord_rises.count) +
                   format(" (%.0f KiB in all, the largest %.0f KiB", coord_rises.total_kib, coord_rises.largest_kib) +
                   format(" at minute %.1f), node ", coord_rises.largest_at_min) + std::to_string(node_rises.count) +
                   format(" (%.0f KiB in all); coordinator threads %.0f", node_rises.total_kib, threads_first) +
@@ -272,31 +302,45 @@ int main(int argc, char** argv) try {
   if (have_summary) {
     const json& t = summary["timing"];
     const auto cycles = t.value("cycles", std::int64_t{0});
-    fragment.add(bench::figure("long_run_late_feedback_pct", "  steps run on old feedback (late feedback)", "% of cycles",
-                               bench::single(cycles > 0 ? 100.0 * static_cast<double>(t.value("late_feedback", std::int64_t{0})) / static_cast<double>(cycles) : 0.0)));
-    fragment.add(bench::figure("long_run_max_feedback_age_periods", "  oldest feedback a step ran on", "control periods",
-                               bench::single(history.max_feedback_age)));
+    fragment.add(bench::figure(
+        "long_run_late_feedback_pct", "  steps run on old feedback (late feedback)", "% of cycles",
+        bench::single(cycles > 0 ? 100.0 * static_cast<double>(t.value("late_feedback", std::int64_t{0})) /
+                                       static_cast<double>(cycles)
+                                 : 0.0)));
+    fragment.add(bench::figure("long_run_max_feedback_age_periods", "  oldest feedback a step ran on",
+                               "control periods", bench::single(history.max_feedback_age)));
     fragment.note(std::to_string(history.rows) + " rows of " + std::to_string(planned) + " planned steps" +
-                  (history.steps_in_order ? ", steps in order without a gap" : ", first gap at row " + std::to_string(history.first_gap_at)) +
+                  (history.steps_in_order ? ", steps in order without a gap"
+                                          : ", first gap at row " + std::to_string(history.first_gap_at)) +
                   "; " + std::to_string(history.rows_on_old_feedback) + " rows on old feedback, oldest " +
-                  std::to_string(history.max_feedback_age) + " periods; coordinator " + std::to_string(t.value("overruns", 0)) +
-                  " overruns of " + std::to_string(cycles) + " cycles, jitter p99 " + format("%.1f us", 1e6 * t["jitter"].value("p99_s", 0.0)) +
-                  ", max " + format("%.1f ms", 1e3 * t["jitter"].value("max_s", 0.0)) + (t.value("sched_fifo", false) ? "" : ", no SCHED_FIFO") + ".");
+                  std::to_string(history.max_feedback_age) + " periods; coordinator " +
+                  std::to_string(t.value("overruns", 0)) + " overruns of " + std::to_string(cycles) +
+                  " cycles, jitter p99 " + format("%.1f us", 1e6 * t["jitter"].value("p99_s", 0.0)) + ", max " +
+                  format("%.1f ms", 1e3 * t["jitter"].value("max_s", 0.0)) +
+                  (t.value("sched_fifo", false) ? "" : ", no SCHED_FIFO") + ".");
   }
   if (std::filesystem::exists(work / "node.json")) {
     const json n = json::parse(std::ifstream(work / "node.json"));
-    fragment.note("Node: " + std::to_string(n.value("cycles", std::int64_t{0})) + " cycles, " + std::to_string(n.value("overruns", std::int64_t{0})) +
-                  " overruns, " + std::to_string(n.value("missed_periods", std::int64_t{0})) + " missed periods, " +
-                  std::to_string(n.value("holds", std::int64_t{0})) + " holds" + (n.value("faulted", false) ? ", FAULTED" : "") + ".");
+    fragment.note("Node: " + std::to_string(n.value("cycles", std::int64_t{0})) + " cycles, " +
+                  std::to_string(n.value("overruns", std::int64_t{0})) + " overruns, " +
+                  std::to_string(n.value("missed_periods", std::int64_t{0})) + " missed periods, " +
+                  std::to_string(n.value("holds", std::int64_t{0})) + " holds" +
+                  (n.value("faulted", false) ? ", FAULTED" : "") + ".");
   }
-  fragment.note("rpsd servo-node examples/nodes/bridge-pier-site-1.yaml (real time at " + r + " Hz, the paper's servo model at its own "
-                "rate) and rpsd run examples/scenarios/synthetic-sdof.yaml over DDS on loopback (transport/config/loopback.xml) in real time at " +
-                r + " Hz, " + format("%g", minutes) + " minutes of the synthetic record, clock.max_feedback_age_periods = " +
-                std::to_string(max_age) + " (the default 4 is the hardware safety setting; this VM stalls for up to 0.4 s)" +
-                (extra_note.empty() ? "" : "; also" + extra_note) + ". "
-                "Memory: VmRSS every second while time_history.csv grew; the slope is fitted from the test's second minute on.");
-  if (keep) std::fprintf(stderr, "realtime_long_run: kept %s\n", work.c_str());
-  else std::filesystem::remove_all(work);
+  fragment.note(
+      "rpsd servo-node examples/nodes/bridge-pier-site-1.yaml (real time at " + r +
+      " Hz, the paper's servo model at its own "
+      "rate) and rpsd run examples/scenarios/synthetic-sdof.yaml over DDS on loopback (transport/config/loopback.xml) "
+      "in real time at " +
+      r + " Hz, " + format("%g", minutes) + " minutes of the synthetic record, clock.max_feedback_age_periods = " +
+      std::to_string(max_age) + " (the default 4 is the hardware safety setting; this VM stalls for up to 0.4 s)" +
+      (extra_note.empty() ? "" : "; also" + extra_note) +
+      ". "
+      "Memory: VmRSS every second while time_history.csv grew; the slope is fitted from the test's second minute on.");
+  if (keep)
+    std::fprintf(stderr, "realtime_long_run: kept %s\n", work.c_str());
+  else
+    std::filesystem::remove_all(work);
   fragment.write(options.out);
   return 0;
 } catch (const std::exception& e) {

@@ -68,21 +68,33 @@ int main(int argc, char** argv) try {
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
     const std::string& key = options.rest[i];
     const std::string& value = options.rest[i + 1];
-    if (key == "--rpsd") rpsd = value;
-    else if (key == "--coordinator-netns") coord_ns = value;
-    else if (key == "--node-netns") node_ns = value;
-    else if (key == "--seconds") seconds = std::stod(value);
-    else if (key == "--domain") domain = std::stoi(value);
-    else if (key == "--keep") keep = value == "1";
-    else if (key == "--max-feedback-age") max_age = std::stoi(value);
-    else if (key == "--ddsperf") ddsperf = value;
-    else if (key == "--ddsperf-seconds") ddsperf_seconds = std::stoi(value);
-    else if (key == "--rates") rates = bench::parse_rates(value);
-    else throw std::invalid_argument("unknown option " + key);
+    if (key == "--rpsd")
+      rpsd = value;
+    else if (key == "--coordinator-netns")
+      coord_ns = value;
+    else if (key == "--node-netns")
+      node_ns = value;
+    else if (key == "--seconds")
+      seconds = std::stod(value);
+    else if (key == "--domain")
+      domain = std::stoi(value);
+    else if (key == "--keep")
+      keep = value == "1";
+    else if (key == "--max-feedback-age")
+      max_age = std::stoi(value);
+    else if (key == "--ddsperf")
+      ddsperf = value;
+    else if (key == "--ddsperf-seconds")
+      ddsperf_seconds = std::stoi(value);
+    else if (key == "--rates")
+      rates = bench::parse_rates(value);
+    else
+      throw std::invalid_argument("unknown option " + key);
   }
   if (options.rest.size() % 2 != 0) throw std::invalid_argument("unknown option " + options.rest.back());
   if (coord_ns.empty() || node_ns.empty()) {
-    throw std::invalid_argument("--coordinator-netns and --node-netns are required (bench/realtime-overruns sets them up)");
+    throw std::invalid_argument(
+        "--coordinator-netns and --node-netns are required (bench/realtime-overruns sets them up)");
   }
   if (seconds <= 0.0) throw std::invalid_argument("--seconds: positive");
   if (ddsperf_seconds < 3) throw std::invalid_argument("--ddsperf-seconds: at least 3");
@@ -92,11 +104,12 @@ int main(int argc, char** argv) try {
   std::filesystem::create_directories(work);
   const auto src = std::filesystem::absolute(options.source_dir);
   // The lab-LAN profile: eth0, the two hosts' addresses as unicast discovery peers.
-  const std::vector<std::string> env{"RPSD_DDS_INTERFACE=eth0", "RPSD_DDS_PEER_1=198.18.0.1", "RPSD_DDS_PEER_2=198.18.0.2",
-                                     "RPSD_DDS_PEER_3=198.18.0.2"};
+  const std::vector<std::string> env{"RPSD_DDS_INTERFACE=eth0", "RPSD_DDS_PEER_1=198.18.0.1",
+                                     "RPSD_DDS_PEER_2=198.18.0.2", "RPSD_DDS_PEER_3=198.18.0.2"};
   // El Centro is 40 s long: the whole record, then free vibration up to `seconds`.
   constexpr double kRecordSeconds = 40.0;
-  const std::string trim = seconds >= kRecordSeconds ? "{start_s: 0}" : "{start_s: 0, end_s: " + format("%g", seconds) + "}";
+  const std::string trim =
+      seconds >= kRecordSeconds ? "{start_s: 0}" : "{start_s: 0, end_s: " + format("%g", seconds) + "}";
   const std::string pad = format("%g", std::max(0.0, seconds - kRecordSeconds));
   const std::string load_before = loadavg();
   std::string ddsperf_command;
@@ -136,22 +149,40 @@ int main(int argc, char** argv) try {
     std::vector<std::unique_ptr<bench::ChildProcess>> nodes;
     for (int site = 1; site <= 2; ++site) {
       nodes.push_back(std::make_unique<bench::ChildProcess>(
-          std::vector<std::string>{"ip", "netns", "exec", node_ns, rpsd, "servo-node",
-                                   (src / ("examples/nodes/bridge-pier-site-" + std::to_string(site) + ".yaml")).string(),
-                                   "--set", "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set",
-                                   "dds.config=../../transport/config/lab-lan.xml", "--set",
-                                   "dds.domain_id=" + std::to_string(domain), "--summary",
-                                   (work / (r + "-node" + std::to_string(site) + ".json")).string()},
+          std::vector<std::string>{
+              "ip", "netns", "exec", node_ns, rpsd, "servo-node",
+              (src / ("examples/nodes/bridge-pier-site-" + std::to_string(site) + ".yaml")).string(), "--set",
+              "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set",
+              "dds.config=../../transport/config/lab-lan.xml", "--set", "dds.domain_id=" + std::to_string(domain),
+              "--summary", (work / (r + "-node" + std::to_string(site) + ".json")).string()},
           env, work / (r + "-node" + std::to_string(site) + ".log")));
     }
     const std::string load_start = loadavg();
-    std::vector<std::string> run_argv{"ip", "netns", "exec", coord_ns, rpsd, "run", (src / "examples/scenarios/two-site-bridge.yaml").string(),
-                                      "--out", dir.string(), "--set", "transport.kind=dds", "--set",
-                                      "transport.dds_config=../../transport/config/lab-lan.xml", "--set",
-                                      "transport.domain_id=" + std::to_string(domain), "--set", "clock.mode=real_time", "--set",
-                                      "clock.control_rate_hz=" + r, "--set", "ground_motion.trim=" + trim, "--set",
+    std::vector<std::string> run_argv{"ip",
+                                      "netns",
+                                      "exec",
+                                      coord_ns,
+                                      rpsd,
+                                      "run",
+                                      (src / "examples/scenarios/two-site-bridge.yaml").string(),
+                                      "--out",
+                                      dir.string(),
+                                      "--set",
+                                      "transport.kind=dds",
+                                      "--set",
+                                      "transport.dds_config=../../transport/config/lab-lan.xml",
+                                      "--set",
+                                      "transport.domain_id=" + std::to_string(domain),
+                                      "--set",
+                                      "clock.mode=real_time",
+                                      "--set",
+                                      "clock.control_rate_hz=" + r,
+                                      "--set",
+                                      "ground_motion.trim=" + trim,
+                                      "--set",
                                       "ground_motion.pad_after_s=" + pad};
-    if (max_age > 0) run_argv.insert(run_argv.end(), {"--set", "clock.max_feedback_age_periods=" + std::to_string(max_age)});
+    if (max_age > 0)
+      run_argv.insert(run_argv.end(), {"--set", "clock.max_feedback_age_periods=" + std::to_string(max_age)});
     bench::ChildProcess run(run_argv, env, work / (r + "-run.log"));
     // The paced test, then the reference and the plots; discovery may take 20 s.
     const int code = run.wait_for(3.0 * seconds + 180.0);
@@ -165,9 +196,10 @@ int main(int argc, char** argv) try {
       // figure's outcome, not hidden.
       std::string tail = run_log.substr(run_log.size() > 400 ? run_log.size() - 400 : 0);
       std::replace(tail.begin(), tail.end(), '\n', ' ');
-      bench::Figure f = bench::figure("realtime_overruns_" + r + "hz",
-                                      "Real-time overruns at " + r + " Hz: DID NOT RUN (exit " + std::to_string(code) + ": " + tail + ")",
-                                      "% of cycles", bench::Summary{});
+      bench::Figure f = bench::figure(
+          "realtime_overruns_" + r + "hz",
+          "Real-time overruns at " + r + " Hz: DID NOT RUN (exit " + std::to_string(code) + ": " + tail + ")",
+          "% of cycles", bench::Summary{});
       f.aiming_for(rate == 4096 ? "< 0.1 %" : "runs to completion", false);
       fragment.add(f);
       continue;
@@ -185,11 +217,14 @@ int main(int argc, char** argv) try {
     bench::Figure f = bench::figure("realtime_overruns_" + r + "hz",
                                     "Real-time overruns at " + r + " Hz, coordinator, 2 netns (" + status + ")",
                                     "% of cycles", bench::single(overruns_pct));
-    if (rate == 4096) f.aiming_for("< 0.1 %", completed && overruns_pct < 0.1);
-    else if (!completed) f.aiming_for("runs to completion", false);
+    if (rate == 4096)
+      f.aiming_for("< 0.1 %", completed && overruns_pct < 0.1);
+    else if (!completed)
+      f.aiming_for("runs to completion", false);
     fragment.add(f);
-    fragment.add(bench::figure("realtime_late_feedback_" + r + "hz", "  late feedback (cycles without this step's feedback)",
-                               "% of cycles", bench::single(late_pct)));
+    fragment.add(bench::figure("realtime_late_feedback_" + r + "hz",
+                               "  late feedback (cycles without this step's feedback)", "% of cycles",
+                               bench::single(late_pct)));
 
     double node_overruns = 0.0, node_missed = 0.0;
     std::string node_text;
@@ -201,13 +236,17 @@ int main(int argc, char** argv) try {
       }
       const json n = read_json(file);
       const auto ncycles = n.value("cycles", std::int64_t{0});
-      const double pct = ncycles > 0 ? 100.0 * static_cast<double>(n.value("overruns", std::int64_t{0})) / static_cast<double>(ncycles) : 0.0;
+      const double pct =
+          ncycles > 0 ? 100.0 * static_cast<double>(n.value("overruns", std::int64_t{0})) / static_cast<double>(ncycles)
+                      : 0.0;
       node_overruns = std::max(node_overruns, pct);
       node_missed = std::max(node_missed, static_cast<double>(n.value("missed_periods", std::int64_t{0})));
-      node_text += " node " + std::to_string(site) + ": " + std::to_string(n.value("overruns", std::int64_t{0})) + " overruns of " +
-                   std::to_string(ncycles) + " cycles, " + std::to_string(n.value("missed_periods", std::int64_t{0})) +
-                   " missed periods, " + std::to_string(n.value("holds", std::int64_t{0})) + " holds, jitter p99 " +
-                   format("%.1f us", 1e6 * n["jitter"].value("p99_s", 0.0)) + (n.value("faulted", false) ? ", FAULTED" : "") +
+      node_text += " node " + std::to_string(site) + ": " + std::to_string(n.value("overruns", std::int64_t{0})) +
+                   " overruns of " + std::to_string(ncycles) + " cycles, " +
+                   std::to_string(n.value("missed_periods", std::int64_t{0})) + " missed periods, " +
+                   std::to_string(n.value("holds", std::int64_t{0})) + " holds, jitter p99 " +
+                   format("%.1f us", 1e6 * n["jitter"].value("p99_s", 0.0)) +
+                   (n.value("faulted", false) ? ", FAULTED" : "") +
                    (n.value("sched_fifo", false) ? "" : ", no SCHED_FIFO") +
                    (n.value("cpus_kept_awake", false) ? "" : ", CPUs free to idle") + ";";
     }
@@ -235,36 +274,48 @@ int main(int argc, char** argv) try {
     }
     if (!perf_p50.empty()) {
       fragment.add(bench::figure("realtime_ddsperf_round_trip_" + r + "hz_us",
-                                 "  ddsperf on the same link, ping at " + r + " Hz, p50 (median of per-second values)", "us",
-                                 bench::summarize(perf_p50)));
+                                 "  ddsperf on the same link, ping at " + r + " Hz, p50 (median of per-second values)",
+                                 "us", bench::summarize(perf_p50)));
       fragment.add(bench::figure("realtime_ddsperf_round_trip_p99_" + r + "hz_us", "  the same, p99", "us",
                                  bench::summarize(perf_p99)));
-      fragment.add(bench::figure("realtime_ddsperf_round_trip_max_" + r + "hz_us", "  the same, max (largest second)", "us",
-                                 bench::summarize(perf_max)));
+      fragment.add(bench::figure("realtime_ddsperf_round_trip_max_" + r + "hz_us", "  the same, max (largest second)",
+                                 "us", bench::summarize(perf_max)));
     }
     fragment.note(r + " Hz: " + status + ", " + std::to_string(s.value("steps", 0)) + " of " +
-                  std::to_string(s.value("steps_planned", 0)) + " steps; coordinator " + std::to_string(t.value("overruns", 0)) +
-                  " overruns, " + std::to_string(t.value("skipped_deadlines", 0)) + " skipped deadlines, " +
+                  std::to_string(s.value("steps_planned", 0)) + " steps; coordinator " +
+                  std::to_string(t.value("overruns", 0)) + " overruns, " +
+                  std::to_string(t.value("skipped_deadlines", 0)) + " skipped deadlines, " +
                   std::to_string(t.value("late_feedback", 0)) + " late feedback of " + std::to_string(cycles) +
                   " cycles, wake-up jitter p99 " + format("%.1f us", 1e6 * t["jitter"].value("p99_s", 0.0)) + ", max " +
                   format("%.1f us", 1e6 * t["jitter"].value("max_s", 0.0)) +
                   (t.value("sched_fifo", false) ? "" : ", no SCHED_FIFO (" + t.value("refused", std::string()) + ")") +
-                  (t.value("cpus_kept_awake", false) ? ", CPUs kept awake" : ", CPUs free to idle") + ";" +
-                  node_text + " load average at start " + load_start + ", at end " + load_end + ".");
+                  (t.value("cpus_kept_awake", false) ? ", CPUs kept awake" : ", CPUs free to idle") + ";" + node_text +
+                  " load average at start " + load_start + ", at end " + load_end + ".");
   }
-  if (keep) std::fprintf(stderr, "realtime_overruns: kept %s\n", work.c_str());
-  else std::filesystem::remove_all(work);
-  fragment.note("Coordinator (198.18.0.1) and both servo nodes (198.18.0.2) in two network namespaces joined by veth; "
-                "transport/config/lab-lan.xml on eth0 with unicast discovery; examples/scenarios/two-site-bridge.yaml in real "
-                "time over DDS at the rate, " + format("%g", seconds) + " s of record (El Centro x 0.1 untrimmed, then free "
-                "vibration); nodes examples/nodes/bridge-pier-site-{1,2}.yaml with node.control_rate_hz = the rate "
-                "(their servo model at its own 8192 Hz), clock.max_feedback_age_periods " +
-                (max_age > 0 ? std::to_string(max_age) + " (the default 4 is the hardware safety setting)" : std::string("as the scenario sets it (4)")) +
-                ". Overruns are cycles whose work ended past the next deadline, "
-                "from summary.json (timing.overruns / timing.cycles) and the nodes' --summary. One run per rate; "
-                "load average before " + load_before + ", after " + loadavg() + " (2 cores shared with other jobs). Before each rate, "
-                "ddsperf on the same link and configuration (" + std::to_string(ddsperf_seconds) + " s, pong in the nodes' "
-                "namespace, ping paced at the rate in the coordinator's, 168 bytes): `" + ddsperf_command + "`.");
+  if (keep)
+    std::fprintf(stderr, "realtime_overruns: kept %s\n", work.c_str());
+  else
+    std::filesystem::remove_all(work);
+  fragment.note(
+      "Coordinator (198.18.0.1) and both servo nodes (198.18.0.2) in two network namespaces joined by veth; "
+      "transport/config/lab-lan.xml on eth0 with unicast discovery; examples/scenarios/two-site-bridge.yaml in real "
+      "time over DDS at the rate, " +
+      format("%g", seconds) +
+      " s of record (El Centro x 0.1 untrimmed, then free "
+      "vibration); nodes examples/nodes/bridge-pier-site-{1,2}.yaml with node.control_rate_hz = the rate "
+      "(their servo model at its own 8192 Hz), clock.max_feedback_age_periods " +
+      (max_age > 0 ? std::to_string(max_age) + " (the default 4 is the hardware safety setting)"
+                   : std::string("as the scenario sets it (4)")) +
+      ". Overruns are cycles whose work ended past the next deadline, "
+      "from summary.json (timing.overruns / timing.cycles) and the nodes' --summary. One run per rate; "
+      "load average before " +
+      load_before + ", after " + loadavg() +
+      " (2 cores shared with other jobs). Before each rate, "
+      "ddsperf on the same link and configuration (" +
+      std::to_string(ddsperf_seconds) +
+      " s, pong in the nodes' "
+      "namespace, ping paced at the rate in the coordinator's, 168 bytes): `" +
+      ddsperf_command + "`.");
   fragment.write(options.out);
   return 0;
 } catch (const std::exception& e) {

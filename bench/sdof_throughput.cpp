@@ -37,8 +37,9 @@ int main(int argc, char** argv) try {
   const bench::Options options = bench::parse_options(argc, argv, 15);
   bench::Fragment fragment("sdof_throughput", argc, argv);
 
-  const auto file = scenarios::load_study(options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
-                                          {scenarios::parse_override("ground_motion.pad_after_s=" + std::to_string(kPadSeconds))});
+  const auto file =
+      scenarios::load_study(options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
+                            {scenarios::parse_override("ground_motion.pad_after_s=" + std::to_string(kPadSeconds))});
   const auto& scenario = std::get<coordinator::TestConfig>(file.study);
   const double simulated_s = scenario.duration_s;
   const auto& servo = std::get<servo::ServoSystemParameters>(scenario.plant);
@@ -59,7 +60,8 @@ int main(int argc, char** argv) try {
   const auto run = [&](const std::filesystem::path& csv) {
     coordinator::TestAssembly test(scenario, {csv, false, false, {}});
     coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
-    for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n) outcome = test.step();
+    for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n)
+      outcome = test.step();
     const coordinator::TestRun done = test.finish(outcome);
     if (done.steps != first.steps_planned) throw std::runtime_error("a trial stopped early");
   };
@@ -86,7 +88,9 @@ int main(int argc, char** argv) try {
   if (!(sink == sink)) std::puts("");  // keeps the plant's work observable
 
   const auto x_realtime = [&](double s) { return simulated_s / s; };
-  const auto summary = [&](const std::vector<double>& seconds) { return bench::map_summary(bench::summarize(seconds), x_realtime); };
+  const auto summary = [&](const std::vector<double>& seconds) {
+    return bench::map_summary(bench::summarize(seconds), x_realtime);
+  };
   const bench::Summary loop_no_csv = summary(loop_no_csv_s.wall_s);
   const bench::Summary plant_alone = summary(plant_s.wall_s);
   const int substeps = static_cast<int>(std::ceil(servo.plant_rate_hz / scenario.control_rate_hz - 1e-9));
@@ -118,8 +122,10 @@ int main(int argc, char** argv) try {
   wall.meets_target = wall.value.median < 60.0;
   fragment.add(wall);
 
-  fragment.add(bench::figure("sdof_afap_step_us", "  the same: one control step (8 plant RK4 substeps)",
-                             "us", bench::map_summary(bench::summarize(loop_no_csv_s.wall_s), [&](double s) { return 1e6 * s / steps; }), bench::map_summary(bench::summarize(loop_no_csv_s.cpu_s), [&](double s) { return 1e6 * s / steps; })));
+  fragment.add(bench::figure(
+      "sdof_afap_step_us", "  the same: one control step (8 plant RK4 substeps)", "us",
+      bench::map_summary(bench::summarize(loop_no_csv_s.wall_s), [&](double s) { return 1e6 * s / steps; }),
+      bench::map_summary(bench::summarize(loop_no_csv_s.cpu_s), [&](double s) { return 1e6 * s / steps; })));
 
   bench::Figure devnull;
   devnull.id = "sdof_afap_csv_devnull_x_realtime";
@@ -132,8 +138,8 @@ int main(int argc, char** argv) try {
   loop_figure(file_figure, loop_file_s, "sdof_afap_x_realtime", "with CSV file / without (speed)", loop_no_csv.median);
 
   fragment.add(bench::figure("servo_plant_alone_x_realtime",
-                             "Baseline: servo plant alone, RK4 at 8192 Hz, same commands",
-                             "x real time", plant_alone, summary(plant_s.cpu_s)));
+                             "Baseline: servo plant alone, RK4 at 8192 Hz, same commands", "x real time", plant_alone,
+                             summary(plant_s.cpu_s)));
 
   char text[400];
   std::snprintf(text, sizeof text,
@@ -143,10 +149,12 @@ int main(int argc, char** argv) try {
                 kPadSeconds, simulated_s, static_cast<long long>(first.steps_planned), scenario.control_rate_hz,
                 servo.plant_rate_hz, substeps, static_cast<double>(csv_bytes) / 1e6);
   fragment.note(text);
-  fragment.note("Timed per trial: building the parts, every loop step, and draining the recorder (coordinator::TestAssembly, "
-                "as `rpsd run` runs the test, no records kept in memory); not the reference run, criteria or plots of `rpsd run`. "
-                "Headline: the writer thread drains the queue and writes nothing; the CSV figures format every row "
-                "(27 numbers, printf %.10g) and write it to /dev/null or to a temporary file.");
+  fragment.note(
+      "Timed per trial: building the parts, every loop step, and draining the recorder (coordinator::TestAssembly, "
+      "as `rpsd run` runs the test, no records kept in memory); not the reference run, criteria or plots of `rpsd "
+      "run`. "
+      "Headline: the writer thread drains the queue and writes nothing; the CSV figures format every row "
+      "(27 numbers, printf %.10g) and write it to /dev/null or to a temporary file.");
   fragment.write(options.out);
   return 0;
 } catch (const std::exception& e) {

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "rpsd/ground_motion/record_error.h"
 #include "rpsd/ground_motion/at2_reader.h"
+#include "rpsd/ground_motion/record_error.h"
 
 namespace gm = rpsd::ground_motion;
 
@@ -15,8 +15,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     const gm::GroundMotionRecord record = gm::parse_peer_at2(text, "fuzz.AT2");
-    if (record.acceleration_m_per_s2.empty() || !(record.dt_s > 0.0) ||
-        !std::isfinite(record.dt_s) || record.header_lines.size() != 4) {
+    if (record.acceleration_m_per_s2.empty() || !(record.dt_s > 0.0) || !std::isfinite(record.dt_s) ||
+        record.header_lines.size() != 4) {
       __builtin_trap();
     }
     for (const double a : record.acceleration_m_per_s2) {

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <cstring>
 
-#include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/node/servo_node_controller.h"
+#include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 
 namespace servo = rpsd::servo;

@@ -21,7 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     udp::CommandPacket again;
     udp::ControllerCommand back;
     if (udp::encode_command(command, again) != udp::PacketStatus::kOk) __builtin_trap();
-    if (udp::decode_command(again, back) != udp::PacketStatus::kOk || back.sequence != command.sequence) __builtin_trap();
+    if (udp::decode_command(again, back) != udp::PacketStatus::kOk || back.sequence != command.sequence)
+      __builtin_trap();
   }
   udp::ControllerReply reply;
   if (udp::decode_reply(bytes, reply) == udp::PacketStatus::kOk) {

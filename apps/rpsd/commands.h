@@ -39,7 +39,8 @@ struct DryRunNotReady : std::runtime_error {
 // A test that stopped before its end; its files are complete for every step it took.
 struct TestAborted : std::runtime_error {
   explicit TestAborted(const std::string& summary, const std::string& reason = {})
-      : std::runtime_error("test " + (reason.empty() ? std::string("aborted") : reason) + "; every recorded step is in " + summary) {}
+      : std::runtime_error("test " + (reason.empty() ? std::string("aborted") : reason) +
+                           "; every recorded step is in " + summary) {}
 };
 
 }  // namespace rpsd::cli

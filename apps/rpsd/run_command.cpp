@@ -67,7 +67,8 @@ studies::NodeLimits node_limits(const std::string& file) {
 }
 
 // The pre-test check: its table on stdout, its numbers in OUT/dry-run.json; true when ready.
-bool check_before_running(const coordinator::TestConfig& test, const std::string& out, const std::vector<std::string>& node_files) {
+bool check_before_running(const coordinator::TestConfig& test, const std::string& out,
+                          const std::vector<std::string>& node_files) {
   std::vector<studies::NodeLimits> nodes;
   for (const auto& f : node_files) nodes.push_back(node_limits(f));
   const studies::DryRunReport report = studies::dry_run(test, nodes);
@@ -92,11 +93,13 @@ void add_run(CLI::App& app) {
   auto* run = app.add_subcommand("run", "Run a scenario and write its results (CSV, summary.json, PNG plots)");
   run->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
   run->add_option("--out", options->out, "Output folder (created if missing; optional with --dry-run)");
-  run->add_flag("--dry-run", options->dry_run,
-                "Run against the simulated plant in this process first and report predicted peaks against the limits and "
-                "the stability margin; exit 4 when not ready");
-  run->add_option("--node", options->node_files,
-                  "With --dry-run: a servo node's file (rpsd servo-node); its limits are checked too (repeatable, one per site)")
+  run->add_flag(
+      "--dry-run", options->dry_run,
+      "Run against the simulated plant in this process first and report predicted peaks against the limits and "
+      "the stability margin; exit 4 when not ready");
+  run->add_option(
+         "--node", options->node_files,
+         "With --dry-run: a servo node's file (rpsd servo-node); its limits are checked too (repeatable, one per site)")
       ->check(CLI::ExistingFile);
   run->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
   run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's")
@@ -105,7 +108,8 @@ void add_run(CLI::App& app) {
     // --record replaces the whole ground_motion section first; --set may then refine it.
     std::vector<scenarios::Override> overrides;
     if (!options->record.empty()) {
-      overrides.push_back({"ground_motion", "{file: \"" + std::filesystem::absolute(options->record).string() + "\", format: peer_at2}"});
+      overrides.push_back({"ground_motion", "{file: \"" + std::filesystem::absolute(options->record).string() +
+                                                "\", format: peer_at2}"});
     }
     for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
     const auto file = scenarios::load_study(options->scenario, overrides);
@@ -123,7 +127,8 @@ void add_run(CLI::App& app) {
     std::string reason;
     {
       ProgressBar bar(rate_hz);
-      completed = studies::run_and_write(file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); }, &reason);
+      completed = studies::run_and_write(
+          file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); }, &reason);
     }
     std::cout << "rpsd run: " << file.name << " -> " << options->out << "/summary.json\n";
     if (!completed) throw TestAborted(options->out + "/time_history.csv", reason);

@@ -18,7 +18,7 @@ std::atomic<bool> g_stop{false};
 void request_stop(int) { g_stop.store(true); }
 
 void install_stop_handlers() {
-  struct sigaction action{};
+  struct sigaction action {};
   action.sa_handler = request_stop;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
@@ -48,7 +48,8 @@ void add_node_options(CLI::App& command, const std::shared_ptr<NodeOptions>& o) 
 
 void add_servo_node(CLI::App& app) {
   auto options = std::make_shared<NodeOptions>();
-  auto* node = app.add_subcommand("servo-node", "Serve one site's actuators over DDS, with the node's own limits and watchdog");
+  auto* node =
+      app.add_subcommand("servo-node", "Serve one site's actuators over DDS, with the node's own limits and watchdog");
   add_node_options(*node, options);
   node->callback([options] {
     const auto setup = scenarios::load_servo_node(options->config, parse_overrides(options->overrides));
@@ -60,9 +61,11 @@ void add_servo_node(CLI::App& app) {
                                       "Stand in for a hardware controller on UDP (docs/udp-controller-protocol.md)");
   add_node_options(*emulator, emulator_options);
   emulator->callback([emulator_options] {
-    const auto setup = scenarios::load_controller_emulator(emulator_options->config, parse_overrides(emulator_options->overrides));
+    const auto setup =
+        scenarios::load_controller_emulator(emulator_options->config, parse_overrides(emulator_options->overrides));
     install_stop_handlers();
-    write_summary(emulator_options->summary, node::emulate_controller(setup, {emulator_options->duration_s}, g_stop, std::cout));
+    write_summary(emulator_options->summary,
+                  node::emulate_controller(setup, {emulator_options->duration_s}, g_stop, std::cout));
   });
 }
 

@@ -48,7 +48,7 @@ double quantile(std::vector<double> v, double q) {
 }
 
 json summary_of(const std::vector<double>& v) {
-  return {{"median", quantile(v, 0.5)}, {"min", quantile(v, 0.0)}, {"max", quantile(v, 1.0)},
+  return {{"median", quantile(v, 0.5)}, {"min", quantile(v, 0.0)},  {"max", quantile(v, 1.0)},
           {"p25", quantile(v, 0.25)},   {"p75", quantile(v, 0.75)}, {"samples", v.size()}};
 }
 
@@ -89,12 +89,9 @@ int convert_gbench(const std::map<std::string, std::string>& flags) {
   json figures = json::array();
   const std::string command = required(flags, "--command");
   for (const auto& name : order) {
-    json f = {{"id", "integrator_step_us/" + name},
-              {"title", "Integrator step, " + name + " DOF"},
-              {"unit", unit[name]},
-              {"value", summary_of(wall[name])},
-              {"cpu_value", summary_of(cpu[name])},
-              {"command", command}};
+    json f = {
+        {"id", "integrator_step_us/" + name}, {"title", "Integrator step, " + name + " DOF"}, {"unit", unit[name]},
+        {"value", summary_of(wall[name])},    {"cpu_value", summary_of(cpu[name])},           {"command", command}};
     // KR-alpha against central difference at the same size and storage.
     const auto kr = name.find("/kr_alpha/");
     if (kr != std::string::npos) {
@@ -135,8 +132,10 @@ std::string number(double v) {
 std::string escape(std::string text) {
   std::string out;
   for (char c : text) {
-    if (c == '|') out += "\\|";
-    else out += c;
+    if (c == '|')
+      out += "\\|";
+    else
+      out += c;
   }
   return out;
 }
@@ -179,20 +178,24 @@ int merge(const std::map<std::string, std::string>& flags, const std::vector<std
 
   std::ostringstream md;
   md << "# rpsd benchmark report\n\n";
-  md << "Date: " << flag("--date") << ". Machine: " << flag("--machine") << ". Load average (1 min) before: "
-     << flag("--load-before") << ", after: " << flag("--load-after") << ".\n\n";
-  md << "Medians over repetitions; spread is min - max. \"CPU\" is the same figure from the measuring thread's CPU time: "
+  md << "Date: " << flag("--date") << ". Machine: " << flag("--machine")
+     << ". Load average (1 min) before: " << flag("--load-before") << ", after: " << flag("--load-after") << ".\n\n";
+  md << "Medians over repetitions; spread is min - max. \"CPU\" is the same figure from the measuring thread's CPU "
+        "time: "
         "on a shared machine the wall-clock figure also counts time spent waiting for a core. Ratios are to a baseline "
         "measured in the same run. No absolute time is a pass/fail criterion of the test suite.\n\n";
   md << "| figure | median | spread | unit | CPU | ratio to baseline | target |\n|---|---|---|---|---|---|---|\n";
   for (const auto& f : figures) {
     const auto& v = f.at("value");
     md << "| " << escape(f.at("title")) << " | ";
-    if (v.is_null()) md << "not measured | | ";  // the title says why
-    else md << number(v.at("median")) << " | " << number(v.at("min")) << " - " << number(v.at("max")) << " | ";
+    if (v.is_null())
+      md << "not measured | | ";  // the title says why
+    else
+      md << number(v.at("median")) << " | " << number(v.at("min")) << " - " << number(v.at("max")) << " | ";
     md << escape(f.at("unit")) << " | "
        << (f.contains("cpu_value") ? number(f.at("cpu_value").at("median")) : std::string("")) << " | ";
-    if (f.contains("ratio_to_baseline")) md << number(f.at("ratio_to_baseline")) << " (" << escape(f.at("ratio_label")) << ")";
+    if (f.contains("ratio_to_baseline"))
+      md << number(f.at("ratio_to_baseline")) << " (" << escape(f.at("ratio_label")) << ")";
     md << " | ";
     if (f.contains("target")) {
       md << escape(f.at("target")) << (f.value("meets_target", true) ? " (met)" : " (**not met**)");
@@ -201,13 +204,16 @@ int merge(const std::map<std::string, std::string>& flags, const std::vector<std
   }
   if (!missing.empty()) {
     md << "\n## Missing figures\n\nNo step of this run measured these (their bench steps do not exist yet):\n\n";
-    for (const auto& e : missing) md << "- " << e.at("title").get<std::string>() << " (`" << e.at("id").get<std::string>() << "`)\n";
+    for (const auto& e : missing)
+      md << "- " << e.at("title").get<std::string>() << " (`" << e.at("id").get<std::string>() << "`)\n";
   }
   md << "\n## Commands\n\n";
-  for (const auto& s : steps) md << "- " << s.at("step").get<std::string>() << ": `" << s.at("command").get<std::string>() << "`\n";
+  for (const auto& s : steps)
+    md << "- " << s.at("step").get<std::string>() << ": `" << s.at("command").get<std::string>() << "`\n";
   md << "\n## Notes\n\n";
   for (const auto& s : steps) {
-    for (const auto& n : s.at("notes")) md << "- " << s.at("step").get<std::string>() << ": " << n.get<std::string>() << "\n";
+    for (const auto& n : s.at("notes"))
+      md << "- " << s.at("step").get<std::string>() << ": " << n.get<std::string>() << "\n";
   }
   write_text(required(flags, "--md"), md.str());
   std::cout << md.str();

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <ctime>
 
 namespace rpsd::bench {
 namespace {
@@ -76,7 +76,8 @@ Fragment::Fragment(std::string step, int argc, char** argv) : step_(std::move(st
     if (i == 0) {
       // Relative to the working directory run-all uses (the source tree), when it is below it.
       std::error_code ec;
-      const auto relative = std::filesystem::relative(std::filesystem::absolute(word), std::filesystem::current_path(), ec);
+      const auto relative =
+          std::filesystem::relative(std::filesystem::absolute(word), std::filesystem::current_path(), ec);
       if (!ec && !relative.empty() && relative.native().rfind("..", 0) != 0) word = "./" + relative.string();
     }
     command_ += (i ? " " : "") + word;
@@ -85,7 +86,9 @@ Fragment::Fragment(std::string step, int argc, char** argv) : step_(std::move(st
 
 void Fragment::add(const Figure& f) {
   // No samples: the figure could not be measured (its title says why); its value is null.
-  nlohmann::json j = {{"id", f.id}, {"title", f.title}, {"unit", f.unit},
+  nlohmann::json j = {{"id", f.id},
+                      {"title", f.title},
+                      {"unit", f.unit},
                       {"value", f.value.samples > 0 ? to_json(f.value) : nlohmann::json(nullptr)}};
   if (f.cpu_value.samples > 0) j["cpu_value"] = to_json(f.cpu_value);
   if (!f.target.empty()) {

@@ -53,14 +53,14 @@ inline double seconds_since(Clock::time_point start) {
 // One reported figure. `baseline` (optional) is a figure measured in the same run;
 // `ratio_to_baseline` is this figure's median over the baseline's.
 struct Figure {
-  std::string id;        // stable key, e.g. "sdof_afap_x_realtime"
-  std::string title;     // what the row says in the table
+  std::string id;     // stable key, e.g. "sdof_afap_x_realtime"
+  std::string title;  // what the row says in the table
   std::string unit;
   Summary value;  // samples == 0: not measured (the title says why; the report shows "-")
   // The same figure from the measuring thread's CPU time instead of the wall clock, where
   // that is meaningful (samples == 0: not reported).
   Summary cpu_value;
-  std::string target;    // the target, or empty
+  std::string target;  // the target, or empty
   bool meets_target = true;
   std::string baseline_id;
   std::string ratio_label;  // how to read the ratio, e.g. "loop / plant alone"

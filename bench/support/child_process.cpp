@@ -43,7 +43,8 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::vect
   for (char** e = environ; *e; ++e) {
     const std::string v = *e;
     bool replaced = false;
-    for (const auto& mine : env) replaced = replaced || v.substr(0, v.find('=') + 1) == mine.substr(0, mine.find('=') + 1);
+    for (const auto& mine : env)
+      replaced = replaced || v.substr(0, v.find('=') + 1) == mine.substr(0, mine.find('=') + 1);
     if (!replaced) variables.push_back(v);
   }
   variables.insert(variables.end(), env.begin(), env.end());

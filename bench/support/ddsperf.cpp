@@ -43,7 +43,8 @@ DdsperfRun run_ddsperf(const DdsperfOptions& o, const std::filesystem::path& wor
   pong_argv.insert(pong_argv.end(), {o.program, "-i", std::to_string(o.domain), "pong", "waitset"});
   ChildProcess pong(pong_argv, o.env, pong_log);
   std::vector<std::string> ping_argv = o.ping_prefix;
-  ping_argv.insert(ping_argv.end(), {o.program, "-i", std::to_string(o.domain), "-D", std::to_string(o.seconds), "ping"});
+  ping_argv.insert(ping_argv.end(),
+                   {o.program, "-i", std::to_string(o.domain), "-D", std::to_string(o.seconds), "ping"});
   if (!o.rate.empty()) ping_argv.push_back(o.rate);
   ping_argv.insert(ping_argv.end(), {"size", std::to_string(o.size_bytes), "waitset"});
   ChildProcess ping(ping_argv, o.env, ping_log);

@@ -22,9 +22,9 @@ std::vector<DdsperfLine> parse_ddsperf(const std::string& text);
 struct DdsperfOptions {
   std::string program = "ddsperf";
   int domain = 0;
-  int seconds = 10;       // how long ping runs (-D)
-  std::string rate;       // e.g. "1024Hz"; empty: closed loop (a ping as soon as the pong is in)
-  int size_bytes = 168;   // payload
+  int seconds = 10;              // how long ping runs (-D)
+  std::string rate;              // e.g. "1024Hz"; empty: closed loop (a ping as soon as the pong is in)
+  int size_bytes = 168;          // payload
   std::vector<std::string> env;  // e.g. CYCLONEDDS_URI=file://...
   std::vector<std::string> pong_prefix, ping_prefix;  // e.g. {"ip", "netns", "exec", NS}
 };

@@ -37,8 +37,7 @@ void AdaptiveTimeSeriesParameters::validate() const {
     detail::require_positive(w + "max rate of " + c + " per second", max_rate_per_s[i]);
   }
   if (!(lower_bounds[0] > 0.0)) {
-    detail::fail(w + "lower bound of a0", "must be positive (a0 is the static gain of the command)",
-                 lower_bounds[0]);
+    detail::fail(w + "lower bound of a0", "must be positive (a0 is the static gain of the command)", lower_bounds[0]);
   }
   detail::require_positive(w + "window_s", window_s);
   if (skip_samples < 1) detail::fail(w + "skip_samples", "must be >= 1", skip_samples);

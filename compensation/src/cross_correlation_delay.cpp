@@ -125,7 +125,8 @@ DelayEstimate CrossCorrelationAccumulator::estimate() const noexcept {
 
 void CrossCorrelationDelayParameters::validate() const {
   validate_options(options, "cross-correlation delay estimator");
-  if (window_samples < 3) detail::fail("cross-correlation delay estimator: window_samples", "must be >= 3", window_samples);
+  if (window_samples < 3)
+    detail::fail("cross-correlation delay estimator: window_samples", "must be >= 3", window_samples);
 }
 
 void CrossCorrelationDelayEstimator::configure(const CrossCorrelationDelayParameters& parameters) {

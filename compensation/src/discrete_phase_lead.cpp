@@ -44,8 +44,8 @@ FirstOrderSection tustin_phase_lead(const DiscretePhaseLeadParameters& parameter
   return FirstOrderSection{(1.0 + a * T * K) / den, (1.0 - a * T * K) / den, (1.0 - T * K) / den};
 }
 
-std::complex<double> discrete_phase_lead_response(const DiscretePhaseLeadParameters& parameters,
-                                                  double dt_s, double omega_rad_s) {
+std::complex<double> discrete_phase_lead_response(const DiscretePhaseLeadParameters& parameters, double dt_s,
+                                                  double omega_rad_s) {
   const double K = tustin_warping_constant(parameters, dt_s);
   return phase_lead_response(parameters.network, K * std::tan(0.5 * omega_rad_s * dt_s));
 }
@@ -58,9 +58,9 @@ DiscretePhaseLeadCompensator::DiscretePhaseLeadCompensator(const DiscretePhaseLe
 void DiscretePhaseLeadCompensator::configure(double dt_s) {
   section_ = tustin_phase_lead(parameters_, dt_s);
   const bool identity = parameters_.network.time_constant_s == 0.0 || parameters_.network.ratio_a == 1.0;
-  low_frequency_lead_s_ = identity ? 0.0
-                                   : parameters_.network.low_frequency_lead_s() *
-                                         tustin_warping_constant(parameters_, dt_s) * dt_s / 2.0;
+  low_frequency_lead_s_ =
+      identity ? 0.0
+               : parameters_.network.low_frequency_lead_s() * tustin_warping_constant(parameters_, dt_s) * dt_s / 2.0;
   reset(0.0);
 }
 
@@ -77,12 +77,13 @@ double DiscretePhaseLeadCompensator::command(double target_m) noexcept {
   return y;
 }
 
-
 DiscretePhaseLeadParameters DiscretePhaseLeadParameters::read(config::Source& section) {
   const double delay_s = section.number("delay_s", config::Number::positive("s", "the delay to compensate: (a - 1) T"));
-  const double ratio_a = section.number("ratio_a", config::Number::positive("", "a, the network's high-frequency gain"));
-  const double prewarp_hz = section.number_or(
-      "prewarp_frequency_hz", 0.0, config::Number::non_negative("Hz", "Tustin exact at this frequency (0: plain Tustin)"));
+  const double ratio_a =
+      section.number("ratio_a", config::Number::positive("", "a, the network's high-frequency gain"));
+  const double prewarp_hz =
+      section.number_or("prewarp_frequency_hz", 0.0,
+                        config::Number::non_negative("Hz", "Tustin exact at this frequency (0: plain Tustin)"));
   return for_delay(delay_s, ratio_a, prewarp_hz);
 }
 

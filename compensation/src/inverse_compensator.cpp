@@ -24,7 +24,6 @@ double InverseCompensator::command(double target_m) noexcept {
   return u;
 }
 
-
 InverseCompensationParameters InverseCompensationParameters::read(config::Source& section) {
   InverseCompensationParameters p;
   p.delay_s = section.number("delay_s", config::Number::non_negative("s", "the lag to compensate"));

@@ -57,11 +57,12 @@ double PolynomialExtrapolationCompensator::command(double target_m) noexcept {
   return u;
 }
 
-
 PolynomialExtrapolationParameters PolynomialExtrapolationParameters::read(config::Source& section) {
   PolynomialExtrapolationParameters p;
-  p.order = static_cast<int>(section.whole_number("order", 0, kMaxExtrapolationOrder, "p: the polynomial's order (0 holds the target)"));
-  p.delay_s = section.number("delay_s", config::Number::non_negative("s", "tau: how far ahead the target is extrapolated"));
+  p.order = static_cast<int>(
+      section.whole_number("order", 0, kMaxExtrapolationOrder, "p: the polynomial's order (0 holds the target)"));
+  p.delay_s =
+      section.number("delay_s", config::Number::non_negative("s", "tau: how far ahead the target is extrapolated"));
   return p;
 }
 

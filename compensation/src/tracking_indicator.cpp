@@ -27,8 +27,8 @@ void TrackingIndicator::update(double command_m, double measured_m) noexcept {
 namespace {
 void require_equal_lengths(std::size_t a, std::size_t b, const char* what) {
   if (a != b) {
-    throw std::invalid_argument(std::string("tracking indicator: ") + what + " lengths differ (" +
-                                std::to_string(a) + " vs " + std::to_string(b) + ")");
+    throw std::invalid_argument(std::string("tracking indicator: ") + what + " lengths differ (" + std::to_string(a) +
+                                " vs " + std::to_string(b) + ")");
   }
 }
 }  // namespace

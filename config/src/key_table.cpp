@@ -43,9 +43,10 @@ std::string KeyTable::path_of(std::string_view key) const {
   return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
 }
 
-void KeyTable::add(std::string_view key, std::string type, std::string_view unit, std::string fallback, std::string range,
-                   std::string_view meaning) {
-  rows_->push_back({path_of(key), std::move(type), std::string(unit), std::move(fallback), std::move(range), std::string(meaning)});
+void KeyTable::add(std::string_view key, std::string type, std::string_view unit, std::string fallback,
+                   std::string range, std::string_view meaning) {
+  rows_->push_back(
+      {path_of(key), std::move(type), std::string(unit), std::move(fallback), std::move(range), std::string(meaning)});
 }
 
 double KeyTable::number(std::string_view key, const Number& spec) {
@@ -78,7 +79,8 @@ bool KeyTable::boolean_or(std::string_view key, bool fallback, std::string_view 
   return fallback;
 }
 
-std::string KeyTable::choice(std::string_view key, const std::vector<std::string_view>& choices, std::string_view meaning) {
+std::string KeyTable::choice(std::string_view key, const std::vector<std::string_view>& choices,
+                             std::string_view meaning) {
   std::string listed;
   for (const auto& c : choices) listed += (listed.empty() ? "" : ", ") + std::string(c);
   add(key, "one of", "", "", listed, meaning);
@@ -107,8 +109,8 @@ void KeyTable::fail(std::string_view key, const std::string& message) {
 }
 
 void KeyTable::fail_section(const std::string& message) {
-  throw std::logic_error("a reader failed while its keys were being listed: " + (path_.empty() ? std::string("(document)") : path_) +
-                         ": " + message);
+  throw std::logic_error("a reader failed while its keys were being listed: " +
+                         (path_.empty() ? std::string("(document)") : path_) + ": " + message);
 }
 
 }  // namespace rpsd::config

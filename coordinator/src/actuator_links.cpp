@@ -49,7 +49,8 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
       site_links_.push_back(std::move(link));
       for (int ch : site.channels) {
         const auto& e = *by_channel[static_cast<std::size_t>(ch)];
-        initial_force_n_[static_cast<std::size_t>(ch)] = e.dof.specimen_stiffness_estimate_n_per_m * hold_m[static_cast<std::size_t>(ch)];
+        initial_force_n_[static_cast<std::size_t>(ch)] =
+            e.dof.specimen_stiffness_estimate_n_per_m * hold_m[static_cast<std::size_t>(ch)];
       }
     } else {
       // The site's node as `rpsd servo-node` runs it, answered in lock-step in this process.
@@ -93,10 +94,11 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
     }
   }
   if (!missing.empty()) {
-    throw std::runtime_error("no servo node answered for site(s) " + missing + " of test " + std::to_string(s.transport.test_id) +
-                             " within " + std::to_string(s.transport.discovery_timeout_s) +
-                             " s (is `rpsd servo-node` running with the same test_id, site_id and domain, and in mode " +
-                             (s.clock.mode == ClockConfig::Mode::kRealTime ? "real_time" : "lock_step") + "?)");
+    throw std::runtime_error(
+        "no servo node answered for site(s) " + missing + " of test " + std::to_string(s.transport.test_id) +
+        " within " + std::to_string(s.transport.discovery_timeout_s) +
+        " s (is `rpsd servo-node` running with the same test_id, site_id and domain, and in mode " +
+        (s.clock.mode == ClockConfig::Mode::kRealTime ? "real_time" : "lock_step") + "?)");
   }
 }
 

@@ -19,8 +19,8 @@ constexpr std::array<Uint128, 23> kPowersOfTen = [] {
   return p;
 }();
 
-constexpr std::uint64_t kTenDigitsLow = 1000000000;     // 10^9
-constexpr std::uint64_t kTenDigitsHigh = 10000000000;   // 10^10
+constexpr std::uint64_t kTenDigitsLow = 1000000000;    // 10^9
+constexpr std::uint64_t kTenDigitsHigh = 10000000000;  // 10^10
 
 char* fallback(char* out, double v) {
   return std::to_chars(out, out + kG10MaxChars, v, std::chars_format::general, 10).ptr;

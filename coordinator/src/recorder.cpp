@@ -30,7 +30,8 @@ Recorder::~Recorder() {
 }
 
 void Recorder::record(const StepRecord& r) {
-  if (!queue_.try_push_with([&](StepRecord& slot) { copy_used(r, slot); })) dropped_.fetch_add(1, std::memory_order_relaxed);
+  if (!queue_.try_push_with([&](StepRecord& slot) { copy_used(r, slot); }))
+    dropped_.fetch_add(1, std::memory_order_relaxed);
 }
 
 void Recorder::record_or_wait(const StepRecord& r) {

@@ -17,9 +17,11 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)) {
     throw std::invalid_argument("RpsdLoop: the integrator, numerical model and partition have different DOF counts");
   }
   if (channels_ < 1 || channels_ > transport::kMaxChannels) {
-    throw std::invalid_argument("RpsdLoop: between 1 and " + std::to_string(transport::kMaxChannels) + " actuator channels");
+    throw std::invalid_argument("RpsdLoop: between 1 and " + std::to_string(transport::kMaxChannels) +
+                                " actuator channels");
   }
-  if (static_cast<int>(parts_.compensators.size()) != channels_ || static_cast<int>(parts_.force_paths.size()) != channels_) {
+  if (static_cast<int>(parts_.compensators.size()) != channels_ ||
+      static_cast<int>(parts_.force_paths.size()) != channels_) {
     throw std::invalid_argument("RpsdLoop: one compensator and one restoring-force path per actuator channel");
   }
   for (auto* c : parts_.compensators) {
@@ -29,7 +31,8 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)) {
     throw std::invalid_argument("RpsdLoop: at most " + std::to_string(kMaxRecordedDofs) + " recorded DOFs");
   }
   for (Eigen::Index dof : parts_.recorded_dofs) {
-    if (dof < 0 || dof >= dofs_) throw std::invalid_argument("RpsdLoop: recorded DOF " + std::to_string(dof) + " out of range");
+    if (dof < 0 || dof >= dofs_)
+      throw std::invalid_argument("RpsdLoop: recorded DOF " + std::to_string(dof) + " out of range");
   }
   if (!parts_.limits.empty() && static_cast<int>(parts_.limits.size()) != channels_) {
     throw std::invalid_argument("RpsdLoop: limits for every actuator channel or for none");
@@ -37,8 +40,7 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)) {
   if (!parts_.ground_acceleration_m_per_s2.empty() && parts_.ground_load == nullptr) {
     throw std::invalid_argument("RpsdLoop: a ground-motion record needs the ground-motion load (M iota)");
   }
-  for (auto* v : {&force_, &restoring_, &previous_d_, &previous_v_, &previous_r_, &previous_f_, &work_a_,
-                  &work_b_}) {
+  for (auto* v : {&force_, &restoring_, &previous_d_, &previous_v_, &previous_r_, &previous_f_, &work_a_, &work_b_}) {
     *v = Eigen::VectorXd::Zero(dofs_);
   }
   targets_ = Eigen::VectorXd::Zero(channels_);
@@ -50,10 +52,14 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)) {
 
 const char* limit_stop_name(LimitStop::Kind kind) {
   switch (kind) {
-    case LimitStop::Kind::kNone: return "none";
-    case LimitStop::Kind::kStroke: return "max_stroke_m";
-    case LimitStop::Kind::kIncrement: return "max_increment_m";
-    case LimitStop::Kind::kForce: return "max_force_n";
+    case LimitStop::Kind::kNone:
+      return "none";
+    case LimitStop::Kind::kStroke:
+      return "max_stroke_m";
+    case LimitStop::Kind::kIncrement:
+      return "max_increment_m";
+    case LimitStop::Kind::kForce:
+      return "max_force_n";
   }
   return "unknown";
 }

@@ -78,8 +78,9 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
 
   p.integrator = integrators::make_integrator(s.integrator);
   const double dt_s = 1.0 / s.control_rate_hz;
-  p.integrator->configure(
-      {p.numerical->mass(), p.numerical->damping(), p.partition.with_specimen_stiffness(p.numerical->initial_stiffness())}, dt_s);
+  p.integrator->configure({p.numerical->mass(), p.numerical->damping(),
+                           p.partition.with_specimen_stiffness(p.numerical->initial_stiffness())},
+                          dt_s);
   const double control_period_s = dt_s / p.integrator->iterations_per_step();
 
   LoopParts parts;
@@ -103,8 +104,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   // Start at rest at the initial displacement, the specimens holding it.
   Eigen::VectorXd hold(channels);
   p.partition.extract_commands(s.initial_displacement_m, hold);
-  p.actuators = std::make_unique<ActuatorLinks>(s, control_period_s, perfect_actuator,
-                                                std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
+  p.actuators = std::make_unique<ActuatorLinks>(
+      s, control_period_s, perfect_actuator, std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
 
   parts.integrator = p.integrator.get();
   parts.numerical = p.numerical.get();

@@ -19,7 +19,8 @@ CriteriaAccumulator::CriteriaAccumulator(int channels, int recorded_dofs, double
       control_rate_hz_(control_rate_hz),
       dofs_(static_cast<std::size_t>(recorded_dofs)) {
   channels_.reserve(static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c) channels_.push_back({compensation::CrossCorrelationAccumulator(delay_options(max_lag_samples_))});
+  for (int c = 0; c < channels; ++c)
+    channels_.push_back({compensation::CrossCorrelationAccumulator(delay_options(max_lag_samples_))});
 }
 
 void CriteriaAccumulator::add_test(const StepRecord& r) {
@@ -74,7 +75,8 @@ Criteria CriteriaAccumulator::criteria() const {
   for (const DofSums& s : dofs_) {
     DofCriteria dc = s.peaks;
     dc.rms_error_percent = s.reference2 > 0.0 ? 100.0 * std::sqrt(s.error2 / s.reference2) : 0.0;
-    dc.peak_error_percent = dc.reference_peak_displacement_m > 0.0 ? 100.0 * s.peak_error / dc.reference_peak_displacement_m : 0.0;
+    dc.peak_error_percent =
+        dc.reference_peak_displacement_m > 0.0 ? 100.0 * s.peak_error / dc.reference_peak_displacement_m : 0.0;
     criteria.dofs.push_back(dc);
   }
   criteria.energy_error_j = energy_error_j_;

@@ -13,8 +13,7 @@ TestRun run_test(const TestConfig& s, const std::filesystem::path& csv, bool per
 }
 
 EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem::path& test_csv,
-                                     const std::filesystem::path& reference_csv,
-                                     const Progress& progress) {
+                                     const std::filesystem::path& reference_csv, const Progress& progress) {
   const auto channels = static_cast<int>(s.experimental.size());
   const auto dofs = static_cast<std::size_t>(s.record_dofs.size());
   CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz);
@@ -43,7 +42,8 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
     test_outcome = test.run(
         [&](const StepRecord& r) {
           sums.add_test(r);
-          std::copy_n(r.displacement_m.begin(), dofs, displacements.begin() + static_cast<std::ptrdiff_t>(taken * dofs));
+          std::copy_n(r.displacement_m.begin(), dofs,
+                      displacements.begin() + static_cast<std::ptrdiff_t>(taken * dofs));
           ++taken;
         },
         progress);

@@ -37,11 +37,11 @@ std::optional<AccelerationUnit> units_of_line3(std::string_view line, std::strin
                                                std::size_t line_number) {
   const std::string text = upper(line);
   const bool acceleration = text.find("ACCEL") != std::string::npos;
-  if (!acceleration && (text.find("VELOC") != std::string::npos ||
-                        text.find("DISPL") != std::string::npos)) {
+  if (!acceleration && (text.find("VELOC") != std::string::npos || text.find("DISPL") != std::string::npos)) {
     throw RecordError(where(source, line_number) +
                       "expected an acceleration time history, got a velocity or displacement "
-                      "header " + detail::quoted(line));
+                      "header " +
+                      detail::quoted(line));
   }
   const auto at = text.find("UNITS");
   if (at == std::string::npos) return std::nullopt;
@@ -50,8 +50,8 @@ std::optional<AccelerationUnit> units_of_line3(std::string_view line, std::strin
     bool moved = true;
     while (moved) {
       moved = false;
-      while (p < text.size() && (text[p] == ' ' || text[p] == '\t' || text[p] == '(' ||
-                                 text[p] == ':' || text[p] == '=')) {
+      while (p < text.size() &&
+             (text[p] == ' ' || text[p] == '\t' || text[p] == '(' || text[p] == ':' || text[p] == '=')) {
         ++p;
         moved = true;
       }
@@ -65,25 +65,21 @@ std::optional<AccelerationUnit> units_of_line3(std::string_view line, std::strin
   };
   skip_filler();
   std::size_t end = p;
-  while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) ||
-                               text[end] == '/' || text[end] == '^' || text[end] == '*')) {
+  while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '/' ||
+                               text[end] == '^' || text[end] == '*')) {
     ++end;
   }
   const std::string unit = text.substr(p, end - p);
   static constexpr std::array<std::string_view, 1> g_names = {"G"};
   static constexpr std::array<std::string_view, 10> cm_names = {
-      "CM/S/S", "CM/S^2", "CM/S2", "CM/S**2", "CM/SEC/SEC",
-      "CM/SEC^2", "CM/SEC2", "CM/SEC**2", "GAL", "GALS"};
-  static constexpr std::array<std::string_view, 8> m_names = {
-      "M/S/S", "M/S^2", "M/S2", "M/S**2", "M/SEC/SEC", "M/SEC^2", "M/SEC2", "M/SEC**2"};
-  const auto in = [&](const auto& names) {
-    return std::find(names.begin(), names.end(), unit) != names.end();
-  };
+      "CM/S/S", "CM/S^2", "CM/S2", "CM/S**2", "CM/SEC/SEC", "CM/SEC^2", "CM/SEC2", "CM/SEC**2", "GAL", "GALS"};
+  static constexpr std::array<std::string_view, 8> m_names = {"M/S/S",     "M/S^2",   "M/S2",   "M/S**2",
+                                                              "M/SEC/SEC", "M/SEC^2", "M/SEC2", "M/SEC**2"};
+  const auto in = [&](const auto& names) { return std::find(names.begin(), names.end(), unit) != names.end(); };
   if (in(g_names)) return AccelerationUnit::kG;
   if (in(cm_names)) return AccelerationUnit::kCmPerS2;
   if (in(m_names)) return AccelerationUnit::kMPerS2;
-  throw RecordError(where(source, line_number, p + 1) +
-                    "expected the units after UNITS (G, CM/S/S or M/S/S), got " +
+  throw RecordError(where(source, line_number, p + 1) + "expected the units after UNITS (G, CM/S/S or M/S/S), got " +
                     detail::quoted(line.substr(std::min(p, line.size()))));
 }
 
@@ -138,12 +134,12 @@ class Line4Parser {
     if (p_ != text_.size()) fail("the end of the line");
 
     if (!detail::parse_count(npts_token, out.npts) || out.npts == 0) {
-      throw RecordError(where(source_, line_, npts_column) +
-                        "expected NPTS as a positive whole number, got " + detail::quoted(npts_token));
+      throw RecordError(where(source_, line_, npts_column) + "expected NPTS as a positive whole number, got " +
+                        detail::quoted(npts_token));
     }
     if (!detail::parse_finite_double(dt_token, out.dt_s) || !(out.dt_s > 0.0)) {
-      throw RecordError(where(source_, line_, dt_column) +
-                        "expected DT as a positive number of seconds, got " + detail::quoted(dt_token));
+      throw RecordError(where(source_, line_, dt_column) + "expected DT as a positive number of seconds, got " +
+                        detail::quoted(dt_token));
     }
     return out;
   }
@@ -188,13 +184,12 @@ class Line4Parser {
     const std::size_t start = p_;
     while (p_ < text_.size()) {
       const char c = text_[p_];
-      const bool exponent_sign = (c == '+' || c == '-') && p_ > start &&
-                                 (text_[p_ - 1] == 'E' || text_[p_ - 1] == 'D');
-      const bool ok = std::isdigit(static_cast<unsigned char>(c)) || c == '.' ||
-                      ((c == '+' || c == '-') && p_ == start) || exponent_sign ||
-                      ((c == 'E' || c == 'D') && p_ > start && p_ + 1 < text_.size() &&
-                       (std::isdigit(static_cast<unsigned char>(text_[p_ + 1])) ||
-                        text_[p_ + 1] == '+' || text_[p_ + 1] == '-'));
+      const bool exponent_sign = (c == '+' || c == '-') && p_ > start && (text_[p_ - 1] == 'E' || text_[p_ - 1] == 'D');
+      const bool ok =
+          std::isdigit(static_cast<unsigned char>(c)) || c == '.' || ((c == '+' || c == '-') && p_ == start) ||
+          exponent_sign ||
+          ((c == 'E' || c == 'D') && p_ > start && p_ + 1 < text_.size() &&
+           (std::isdigit(static_cast<unsigned char>(text_[p_ + 1])) || text_[p_ + 1] == '+' || text_[p_ + 1] == '-'));
       if (!ok) break;
       ++p_;
     }
@@ -211,8 +206,7 @@ class Line4Parser {
 
 }  // namespace
 
-GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source_name,
-                                  const At2ReadOptions& options) {
+GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source_name, const At2ReadOptions& options) {
   const std::string source(source_name);
   detail::LineCursor lines(text);
   std::array<std::string_view, 4> header{};
@@ -231,8 +225,7 @@ GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source
                       "got numbers: the header is missing");
   }
   if (header_count < header.size()) {
-    throw RecordError(where(source, header_count) + "the file ends after " +
-                      std::to_string(header_count) +
+    throw RecordError(where(source, header_count) + "the file ends after " + std::to_string(header_count) +
                       " header lines; expected 4 (banner, event, units, NPTS/DT) and the values");
   }
 
@@ -249,7 +242,8 @@ GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source
   if (!declared && !options.unit_if_unstated) {
     throw RecordError(where(source, 3) +
                       "expected the units on line 3 (e.g. \"ACCELERATION TIME HISTORY IN UNITS "
-                      "OF G\"), got " + detail::quoted(header[2]));
+                      "OF G\"), got " +
+                      detail::quoted(header[2]));
   }
   record.original_unit = declared ? *declared : *options.unit_if_unstated;
 
@@ -267,15 +261,13 @@ GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source
     while (tokens.next(token)) {
       if (record.acceleration_m_per_s2.size() == line4.npts) {
         throw RecordError(where(source, lines.line_number(), token.column) +
-                          "expected the end of the data after NPTS=" +
-                          std::to_string(line4.npts) + " values (line 4), got one more value " +
-                          detail::quoted(token.text));
+                          "expected the end of the data after NPTS=" + std::to_string(line4.npts) +
+                          " values (line 4), got one more value " + detail::quoted(token.text));
       }
-      const double value = detail::number_or_throw(
-          token, source, lines.line_number(),
-          "an acceleration value (value " +
-              std::to_string(record.acceleration_m_per_s2.size() + 1) + " of NPTS=" +
-              std::to_string(line4.npts) + ")");
+      const double value = detail::number_or_throw(token, source, lines.line_number(),
+                                                   "an acceleration value (value " +
+                                                       std::to_string(record.acceleration_m_per_s2.size() + 1) +
+                                                       " of NPTS=" + std::to_string(line4.npts) + ")");
       record.acceleration_m_per_s2.push_back(
           detail::converted_or_throw(value, factor, token, source, lines.line_number()));
       last_line_with_values = lines.line_number();
@@ -283,10 +275,8 @@ GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source
   }
   if (record.acceleration_m_per_s2.size() != line4.npts) {
     throw RecordError(where(source, std::max(lines.line_number(), last_line_with_values)) +
-                      "expected NPTS=" + std::to_string(line4.npts) +
-                      " values (line 4), got only " +
-                      std::to_string(record.acceleration_m_per_s2.size()) +
-                      " before the end of the file (truncated?)");
+                      "expected NPTS=" + std::to_string(line4.npts) + " values (line 4), got only " +
+                      std::to_string(record.acceleration_m_per_s2.size()) + " before the end of the file (truncated?)");
   }
   return record;
 }

@@ -5,7 +5,6 @@
 
 #include "no_fp_contract.h"
 
-
 namespace rpsd::ground_motion::deterministic {
 namespace {
 
@@ -64,10 +63,22 @@ void sincos_2pi(double u, double& sine, double& cosine) noexcept {
   double c = 1.0;
   for (int j = 16; j >= 2; j -= 2) c = 1.0 - c * x2 / static_cast<double>(j * (j - 1));
   switch (static_cast<long long>(q) & 3) {
-    case 0: sine = s; cosine = c; break;
-    case 1: sine = c; cosine = -s; break;
-    case 2: sine = -s; cosine = -c; break;
-    default: sine = -c; cosine = s; break;
+    case 0:
+      sine = s;
+      cosine = c;
+      break;
+    case 1:
+      sine = c;
+      cosine = -s;
+      break;
+    case 2:
+      sine = -s;
+      cosine = -c;
+      break;
+    default:
+      sine = -c;
+      cosine = s;
+      break;
   }
 }
 

@@ -52,8 +52,7 @@ GroundMotionRecord scale(const GroundMotionRecord& record, const ScaleOptions& o
     const double pga = std::abs(peak_ground_acceleration(record).value_m_per_s2);
     if (!(pga > 0.0)) fail(record, "scale.target_pga_m_per_s2: the record is all zeros");
     factor = target / pga;
-    out.processing_steps.push_back("scaled by " + num(factor) + " to PGA " + num(target) +
-                                   " m/s^2");
+    out.processing_steps.push_back("scaled by " + num(factor) + " to PGA " + num(target) + " m/s^2");
   }
   for (double& a : out.acceleration_m_per_s2) a *= factor;
   return out;
@@ -67,8 +66,7 @@ GroundMotionRecord trim(const GroundMotionRecord& record, const TrimOptions& opt
   }
   const double end_s = options.end_s.value_or(last_time);
   if (!std::isfinite(end_s) || end_s > last_time + grid_tolerance * record.dt_s) {
-    fail(record, "trim.end_s: " + num(end_s) + " s is after the record's last sample at " +
-                     num(last_time) + " s");
+    fail(record, "trim.end_s: " + num(end_s) + " s is after the record's last sample at " + num(last_time) + " s");
   }
   const double first_index = std::ceil(options.start_s / record.dt_s - grid_tolerance);
   const double last_index = std::floor(end_s / record.dt_s + grid_tolerance);
@@ -80,8 +78,8 @@ GroundMotionRecord trim(const GroundMotionRecord& record, const TrimOptions& opt
   GroundMotionRecord out = record;
   out.acceleration_m_per_s2.assign(record.acceleration_m_per_s2.begin() + static_cast<long>(i0),
                                    record.acceleration_m_per_s2.begin() + static_cast<long>(i1) + 1);
-  out.processing_steps.push_back("trimmed to [" + num(static_cast<double>(i0) * record.dt_s) +
-                                 ", " + num(static_cast<double>(i1) * record.dt_s) + "] s");
+  out.processing_steps.push_back("trimmed to [" + num(static_cast<double>(i0) * record.dt_s) + ", " +
+                                 num(static_cast<double>(i1) * record.dt_s) + "] s");
   return out;
 }
 
@@ -89,8 +87,7 @@ GroundMotionRecord pad(const GroundMotionRecord& record, const PadOptions& optio
   require_samples(record, "pad");
   const auto samples = [&](double seconds, const char* name) {
     if (!(seconds >= 0.0) || !std::isfinite(seconds) || seconds / record.dt_s > 1e9) {
-      fail(record, std::string("pad.") + name + ": expected a time >= 0 s (at most 1e9 steps), got " +
-                       num(seconds));
+      fail(record, std::string("pad.") + name + ": expected a time >= 0 s (at most 1e9 steps), got " + num(seconds));
     }
     return static_cast<std::size_t>(std::llround(seconds / record.dt_s));
   };
@@ -98,8 +95,7 @@ GroundMotionRecord pad(const GroundMotionRecord& record, const PadOptions& optio
   const std::size_t after = samples(options.after_s, "after_s");
   GroundMotionRecord out = record;
   out.acceleration_m_per_s2.assign(before, 0.0);
-  out.acceleration_m_per_s2.insert(out.acceleration_m_per_s2.end(),
-                                   record.acceleration_m_per_s2.begin(),
+  out.acceleration_m_per_s2.insert(out.acceleration_m_per_s2.end(), record.acceleration_m_per_s2.begin(),
                                    record.acceleration_m_per_s2.end());
   out.acceleration_m_per_s2.insert(out.acceleration_m_per_s2.end(), after, 0.0);
   out.processing_steps.push_back("padded with " + std::to_string(before) + " zeros before and " +
@@ -115,8 +111,8 @@ GroundMotionRecord resample(const GroundMotionRecord& record, const ResampleOpti
   }
   const double ratio = record.dt_s / dt_new;  // new samples per old step
   if (ratio < 1.0 - grid_tolerance && !options.allow_downsampling) {
-    fail(record, "resample.dt_s: " + num(dt_new) + " s is coarser than the record's " +
-                     num(record.dt_s) + " s; linear interpolation would alias (low-pass the "
+    fail(record, "resample.dt_s: " + num(dt_new) + " s is coarser than the record's " + num(record.dt_s) +
+                     " s; linear interpolation would alias (low-pass the "
                      "record first and set allow_downsampling)");
   }
   const auto& a = record.acceleration_m_per_s2;
@@ -168,8 +164,7 @@ GroundMotionIntegrals velocity_and_displacement(const GroundMotionRecord& record
   return out;
 }
 
-GroundMotionRecord baseline_correct(const GroundMotionRecord& record,
-                                    const BaselineCorrectionOptions& options) {
+GroundMotionRecord baseline_correct(const GroundMotionRecord& record, const BaselineCorrectionOptions& options) {
   require_samples(record, "baseline_correct");
   GroundMotionRecord out = record;
   auto& a = out.acceleration_m_per_s2;
@@ -179,14 +174,12 @@ GroundMotionRecord baseline_correct(const GroundMotionRecord& record,
     for (double value : a) sum += value;
     const double mean = sum / static_cast<double>(n);
     for (double& value : a) value -= mean;
-    out.processing_steps.push_back("baseline: removed the mean acceleration " + num(mean) +
-                                   " m/s^2");
+    out.processing_steps.push_back("baseline: removed the mean acceleration " + num(mean) + " m/s^2");
     return out;
   }
   const int order = options.polynomial_order;
   if (order < 2 || order > 6) {
-    fail(record, "baseline_correction.polynomial_order: expected 2..6, got " +
-                     std::to_string(order));
+    fail(record, "baseline_correction.polynomial_order: expected 2..6, got " + std::to_string(order));
   }
   const auto terms = static_cast<std::size_t>(order - 1);  // t^2 .. t^order
   if (n <= terms) fail(record, "baseline_correction: too few samples for the polynomial fit");
@@ -242,8 +235,7 @@ GroundMotionRecord baseline_correct(const GroundMotionRecord& record,
     }
     a[i] -= fit / (duration * duration);
   }
-  out.processing_steps.push_back("baseline: removed the second derivative of a degree-" +
-                                 std::to_string(order) +
+  out.processing_steps.push_back("baseline: removed the second derivative of a degree-" + std::to_string(order) +
                                  " polynomial fitted to the displacement");
   return out;
 }

@@ -5,7 +5,6 @@
 #include "no_fp_contract.h"
 #include "rpsd/ground_motion/deterministic_math.h"
 
-
 namespace rpsd::ground_motion {
 namespace {
 
@@ -37,9 +36,7 @@ std::uint64_t Xoshiro256StarStar::next() noexcept {
   return result;
 }
 
-double Xoshiro256StarStar::uniform() noexcept {
-  return static_cast<double>(next() >> 11) * 0x1.0p-53;
-}
+double Xoshiro256StarStar::uniform() noexcept { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
 double StandardNormal::next() noexcept {
   if (has_spare_) {

@@ -7,38 +7,48 @@ namespace rpsd::ground_motion {
 
 double to_m_per_s2(AccelerationUnit unit) {
   switch (unit) {
-    case AccelerationUnit::kG: return standard_gravity_m_per_s2;
-    case AccelerationUnit::kMPerS2: return 1.0;
-    case AccelerationUnit::kCmPerS2: return 0.01;
+    case AccelerationUnit::kG:
+      return standard_gravity_m_per_s2;
+    case AccelerationUnit::kMPerS2:
+      return 1.0;
+    case AccelerationUnit::kCmPerS2:
+      return 0.01;
   }
   throw std::invalid_argument("unknown acceleration unit");
 }
 
 std::string_view unit_name(AccelerationUnit unit) {
   switch (unit) {
-    case AccelerationUnit::kG: return "g";
-    case AccelerationUnit::kMPerS2: return "m/s^2";
-    case AccelerationUnit::kCmPerS2: return "cm/s^2";
+    case AccelerationUnit::kG:
+      return "g";
+    case AccelerationUnit::kMPerS2:
+      return "m/s^2";
+    case AccelerationUnit::kCmPerS2:
+      return "cm/s^2";
   }
   return "?";
 }
 
 std::string_view format_name(RecordFormat format) {
   switch (format) {
-    case RecordFormat::kPeerAt2Old: return "PEER AT2 (old PEER header)";
-    case RecordFormat::kPeerAt2NgaWest1: return "PEER AT2 (NGA-West1 header)";
-    case RecordFormat::kPeerAt2NgaWest2: return "PEER AT2 (NGA-West2 header)";
-    case RecordFormat::kPlainText: return "plain text";
-    case RecordFormat::kTimeAcceleration: return "time/acceleration columns";
-    case RecordFormat::kSynthetic: return "synthetic";
+    case RecordFormat::kPeerAt2Old:
+      return "PEER AT2 (old PEER header)";
+    case RecordFormat::kPeerAt2NgaWest1:
+      return "PEER AT2 (NGA-West1 header)";
+    case RecordFormat::kPeerAt2NgaWest2:
+      return "PEER AT2 (NGA-West2 header)";
+    case RecordFormat::kPlainText:
+      return "plain text";
+    case RecordFormat::kTimeAcceleration:
+      return "time/acceleration columns";
+    case RecordFormat::kSynthetic:
+      return "synthetic";
   }
   return "?";
 }
 
 double GroundMotionRecord::duration_s() const {
-  return acceleration_m_per_s2.size() < 2
-             ? 0.0
-             : static_cast<double>(acceleration_m_per_s2.size() - 1) * dt_s;
+  return acceleration_m_per_s2.size() < 2 ? 0.0 : static_cast<double>(acceleration_m_per_s2.size() - 1) * dt_s;
 }
 
 PeakGroundAcceleration peak_ground_acceleration(const GroundMotionRecord& record) {

@@ -10,11 +10,10 @@
 namespace rpsd::ground_motion {
 
 PiecewiseLinearSdof::PiecewiseLinearSdof(double omega, double zeta, double h) {
-  if (!(omega > 0.0) || !std::isfinite(omega) || !(zeta >= 0.0) || !std::isfinite(zeta) ||
-      !(h > 0.0) || !std::isfinite(h)) {
+  if (!(omega > 0.0) || !std::isfinite(omega) || !(zeta >= 0.0) || !std::isfinite(zeta) || !(h > 0.0) ||
+      !std::isfinite(h)) {
     throw std::invalid_argument("PiecewiseLinearSdof: expected omega > 0, zeta >= 0, h > 0, got " +
-                                std::to_string(omega) + ", " + std::to_string(zeta) + ", " +
-                                std::to_string(h));
+                                std::to_string(omega) + ", " + std::to_string(zeta) + ", " + std::to_string(h));
   }
   // Balanced state z = (omega u, v): z' = omega [[0, 1], [-1, -2 zeta]] z + (0, -1) a_g.
   // Augmented with the load p = a_g and its increment q over the step (p' = q / h), in
@@ -46,8 +45,8 @@ PiecewiseLinearSdof::PiecewiseLinearSdof(double omega, double zeta, double h) {
   c_.b_v1 = g1_v;
 }
 
-std::vector<double> sdof_response_piecewise_linear(const GroundMotionRecord& record,
-                                                   double omega_rad_per_s, double zeta) {
+std::vector<double> sdof_response_piecewise_linear(const GroundMotionRecord& record, double omega_rad_per_s,
+                                                   double zeta) {
   const auto& a = record.acceleration_m_per_s2;
   std::vector<double> u(a.size(), 0.0);
   if (a.size() < 2) return u;
@@ -61,15 +60,12 @@ std::vector<double> sdof_response_piecewise_linear(const GroundMotionRecord& rec
   return u;
 }
 
-ResponseSpectrum response_spectrum(const GroundMotionRecord& record,
-                                   const ResponseSpectrumOptions& options) {
+ResponseSpectrum response_spectrum(const GroundMotionRecord& record, const ResponseSpectrumOptions& options) {
   if (!(options.damping_ratio >= 0.0) || !std::isfinite(options.damping_ratio)) {
     throw std::invalid_argument(record.source + ": response spectrum damping ratio must be >= 0");
   }
-  if (!(options.max_substep_fraction_of_period > 0.0) ||
-      !(options.max_substep_fraction_of_period <= 1.0)) {
-    throw std::invalid_argument(record.source +
-                                ": max_substep_fraction_of_period must be in (0, 1]");
+  if (!(options.max_substep_fraction_of_period > 0.0) || !(options.max_substep_fraction_of_period <= 1.0)) {
+    throw std::invalid_argument(record.source + ": max_substep_fraction_of_period must be in (0, 1]");
   }
   if (!(record.dt_s > 0.0)) throw std::invalid_argument(record.source + ": dt must be > 0");
   const auto& a = record.acceleration_m_per_s2;
@@ -82,8 +78,7 @@ ResponseSpectrum response_spectrum(const GroundMotionRecord& record,
                                   std::to_string(period));
     }
     const double omega = 2.0 * std::numbers::pi / period;
-    const double substeps_real =
-        std::ceil(record.dt_s / (options.max_substep_fraction_of_period * period));
+    const double substeps_real = std::ceil(record.dt_s / (options.max_substep_fraction_of_period * period));
     const auto substeps = static_cast<std::size_t>(std::max(1.0, substeps_real));
     const double h = record.dt_s / static_cast<double>(substeps);
     const PiecewiseLinearSdof sdof(omega, options.damping_ratio, h);

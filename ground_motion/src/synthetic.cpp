@@ -6,12 +6,11 @@
 #include <sstream>
 #include <string>
 
-#include "rpsd/ground_motion/record_error.h"
+#include "no_fp_contract.h"  // before small_matrix.h, whose loops it must cover
 #include "rpsd/ground_motion/deterministic_math.h"
 #include "rpsd/ground_motion/random.h"
-#include "no_fp_contract.h"  // before small_matrix.h, whose loops it must cover
+#include "rpsd/ground_motion/record_error.h"
 #include "small_matrix.h"
-
 
 namespace rpsd::ground_motion {
 namespace {
@@ -37,30 +36,27 @@ void validate(const SyntheticGroundMotionOptions& o) {
           "duration_s: expected a positive duration of at most 1e8 steps, got " + num(o.duration_s));
   require(positive(o.kanai_tajimi.omega_g_rad_per_s),
           "kanai_tajimi.omega_g_rad_per_s: expected > 0, got " + num(o.kanai_tajimi.omega_g_rad_per_s));
-  require(positive(o.kanai_tajimi.zeta_g),
-          "kanai_tajimi.zeta_g: expected > 0, got " + num(o.kanai_tajimi.zeta_g));
+  require(positive(o.kanai_tajimi.zeta_g), "kanai_tajimi.zeta_g: expected > 0, got " + num(o.kanai_tajimi.zeta_g));
   if (o.model == SpectralModel::kCloughPenzien) {
     require(positive(o.clough_penzien.omega_f_rad_per_s),
-            "clough_penzien.omega_f_rad_per_s: expected > 0, got " +
-                num(o.clough_penzien.omega_f_rad_per_s));
+            "clough_penzien.omega_f_rad_per_s: expected > 0, got " + num(o.clough_penzien.omega_f_rad_per_s));
     require(positive(o.clough_penzien.zeta_f),
             "clough_penzien.zeta_f: expected > 0, got " + num(o.clough_penzien.zeta_f));
   }
   require(positive(o.white_noise_psd_m2_per_s3),
           "white_noise_psd_m2_per_s3: expected > 0, got " + num(o.white_noise_psd_m2_per_s3));
   if (o.target_pga_m_per_s2) {
-    require(positive(*o.target_pga_m_per_s2),
-            "target_pga_m_per_s2: expected > 0, got " + num(*o.target_pga_m_per_s2));
+    require(positive(*o.target_pga_m_per_s2), "target_pga_m_per_s2: expected > 0, got " + num(*o.target_pga_m_per_s2));
   }
   switch (o.envelope) {
-    case EnvelopeKind::kStationary: break;
+    case EnvelopeKind::kStationary:
+      break;
     case EnvelopeKind::kJenningsHousnerTsai: {
       const auto& e = o.jennings_housner_tsai;
       require(positive(e.rise_end_s), "jennings_housner_tsai.rise_end_s: expected > 0 (no default)");
       require(std::isfinite(e.strong_end_s) && e.strong_end_s >= e.rise_end_s,
               "jennings_housner_tsai.strong_end_s: expected >= rise_end_s (no default)");
-      require(positive(e.decay_rate_per_s),
-              "jennings_housner_tsai.decay_rate_per_s: expected > 0 (no default)");
+      require(positive(e.decay_rate_per_s), "jennings_housner_tsai.decay_rate_per_s: expected > 0 (no default)");
       break;
     }
     case EnvelopeKind::kShinozukaSato: {
@@ -88,37 +84,44 @@ std::string describe(const SyntheticGroundMotionOptions& o) {
   std::string text;
   const auto& kt = o.kanai_tajimi;
   switch (o.model) {
-    case SpectralModel::kKanaiTajimi: text = "Kanai-Tajimi"; break;
-    case SpectralModel::kCloughPenzien: text = "Clough-Penzien"; break;
-    case SpectralModel::kBandPass: text = "band-pass (Gavin)"; break;
+    case SpectralModel::kKanaiTajimi:
+      text = "Kanai-Tajimi";
+      break;
+    case SpectralModel::kCloughPenzien:
+      text = "Clough-Penzien";
+      break;
+    case SpectralModel::kBandPass:
+      text = "band-pass (Gavin)";
+      break;
   }
   text += " filter wg " + num(kt.omega_g_rad_per_s) + " rad/s zg " + num(kt.zeta_g);
   if (o.model == SpectralModel::kCloughPenzien) {
-    text += ", wf " + num(o.clough_penzien.omega_f_rad_per_s) + " rad/s zf " +
-            num(o.clough_penzien.zeta_f);
+    text += ", wf " + num(o.clough_penzien.omega_f_rad_per_s) + " rad/s zf " + num(o.clough_penzien.zeta_f);
   }
   switch (o.envelope) {
-    case EnvelopeKind::kStationary: text += "; stationary"; break;
+    case EnvelopeKind::kStationary:
+      text += "; stationary";
+      break;
     case EnvelopeKind::kJenningsHousnerTsai:
-      text += "; Jennings-Housner-Tsai envelope t1 " + num(o.jennings_housner_tsai.rise_end_s) +
-              " s t2 " + num(o.jennings_housner_tsai.strong_end_s) + " s c " +
-              num(o.jennings_housner_tsai.decay_rate_per_s) + " 1/s";
+      text += "; Jennings-Housner-Tsai envelope t1 " + num(o.jennings_housner_tsai.rise_end_s) + " s t2 " +
+              num(o.jennings_housner_tsai.strong_end_s) + " s c " + num(o.jennings_housner_tsai.decay_rate_per_s) +
+              " 1/s";
       break;
     case EnvelopeKind::kShinozukaSato:
       text += "; Shinozuka-Sato envelope a " + num(o.shinozuka_sato.a_per_s) + " 1/s b " +
               num(o.shinozuka_sato.b_per_s) + " 1/s";
       break;
     case EnvelopeKind::kGavin:
-      text += "; Gavin envelope t0 " + num(o.gavin.t0_s) + " s aa " + num(o.gavin.aa) + " ta " +
-              num(o.gavin.ta_s) + " s";
+      text +=
+          "; Gavin envelope t0 " + num(o.gavin.t0_s) + " s aa " + num(o.gavin.aa) + " ta " + num(o.gavin.ta_s) + " s";
       break;
   }
   text += "; seed " + std::to_string(o.seed);
   return text;
 }
 
-SyntheticGroundMotionOptions gavin_preset(std::uint64_t seed, double pga, double f_g_hz,
-                                          double zeta_g, double aa, double ta) {
+SyntheticGroundMotionOptions gavin_preset(std::uint64_t seed, double pga, double f_g_hz, double zeta_g, double aa,
+                                          double ta) {
   SyntheticGroundMotionOptions o;
   o.seed = seed;
   o.model = SpectralModel::kBandPass;
@@ -133,9 +136,7 @@ SyntheticGroundMotionOptions gavin_preset(std::uint64_t seed, double pga, double
 
 }  // namespace
 
-SyntheticGroundMotionOptions gavin_far_field(std::uint64_t seed) {
-  return gavin_preset(seed, 3.5, 1.5, 0.9, 4.0, 2.0);
-}
+SyntheticGroundMotionOptions gavin_far_field(std::uint64_t seed) { return gavin_preset(seed, 3.5, 1.5, 0.9, 4.0, 2.0); }
 SyntheticGroundMotionOptions gavin_near_field_no_pulse(std::uint64_t seed) {
   return gavin_preset(seed, 5.0, 1.3, 1.1, 3.0, 2.0);
 }
@@ -145,7 +146,8 @@ SyntheticGroundMotionOptions gavin_near_field_pulse(std::uint64_t seed) {
 
 double envelope_value(const SyntheticGroundMotionOptions& o, double t) {
   switch (o.envelope) {
-    case EnvelopeKind::kStationary: return 1.0;
+    case EnvelopeKind::kStationary:
+      return 1.0;
     case EnvelopeKind::kJenningsHousnerTsai: {
       const auto& e = o.jennings_housner_tsai;
       if (t < e.rise_end_s) return (t / e.rise_end_s) * (t / e.rise_end_s);

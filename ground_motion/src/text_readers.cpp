@@ -20,11 +20,11 @@ bool is_comment_or_blank(std::string_view line) {
   return first == std::string_view::npos || line[first] == '#' || line[first] == '%';
 }
 
-AccelerationUnit required_unit(const std::optional<AccelerationUnit>& unit,
-                               const std::string& source) {
+AccelerationUnit required_unit(const std::optional<AccelerationUnit>& unit, const std::string& source) {
   if (!unit) {
-    throw RecordError(source + ": the acceleration units must be declared (g, m/s^2 or cm/s^2): "
-                               "a plain-text record does not state them");
+    throw RecordError(source +
+                      ": the acceleration units must be declared (g, m/s^2 or cm/s^2): "
+                      "a plain-text record does not state them");
   }
   return *unit;
 }
@@ -34,9 +34,8 @@ void skip_header(detail::LineCursor& lines, std::size_t count, const std::string
   std::string_view line;
   for (std::size_t i = 0; i < count; ++i) {
     if (!lines.next(line)) {
-      throw RecordError(where(source, lines.line_number() + 1) + "expected " +
-                        std::to_string(count) + " header lines (skip_lines), the file has " +
-                        std::to_string(lines.line_number()));
+      throw RecordError(where(source, lines.line_number() + 1) + "expected " + std::to_string(count) +
+                        " header lines (skip_lines), the file has " + std::to_string(lines.line_number()));
     }
   }
 }
@@ -54,8 +53,10 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
                                     const PlainTextOptions& options) {
   const std::string source(source_name);
   if (!(options.dt_s > 0.0) || !std::isfinite(options.dt_s)) {
-    throw RecordError(source + ": expected dt_s, a positive number of seconds, for a plain-text "
-                               "record, got " + format_seconds(options.dt_s));
+    throw RecordError(source +
+                      ": expected dt_s, a positive number of seconds, for a plain-text "
+                      "record, got " +
+                      format_seconds(options.dt_s));
   }
   GroundMotionRecord record;
   record.source = source;
@@ -76,9 +77,8 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
     detail::Token token;
     if (!options.column) {
       while (tokens.next(token)) {
-        const double value = detail::number_or_throw(
-            token, source, lines.line_number(),
-            "an acceleration value (set skip_lines to skip header lines)");
+        const double value = detail::number_or_throw(token, source, lines.line_number(),
+                                                     "an acceleration value (set skip_lines to skip header lines)");
         record.acceleration_m_per_s2.push_back(
             detail::converted_or_throw(value, factor, token, source, lines.line_number()));
       }
@@ -91,33 +91,28 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
       columns_line = lines.line_number();
       if (columns <= *options.column) {
         throw RecordError(where(source, lines.line_number()) + "expected at least " +
-                          std::to_string(*options.column + 1) + " columns (column " +
-                          std::to_string(*options.column) + ", 0-based, was asked for), got " +
-                          std::to_string(columns));
+                          std::to_string(*options.column + 1) + " columns (column " + std::to_string(*options.column) +
+                          ", 0-based, was asked for), got " + std::to_string(columns));
       }
     } else if (row.size() != columns) {
-      throw RecordError(where(source, lines.line_number()) + "expected " +
-                        std::to_string(columns) + " columns like line " +
-                        std::to_string(columns_line) + ", got " + std::to_string(row.size()));
+      throw RecordError(where(source, lines.line_number()) + "expected " + std::to_string(columns) +
+                        " columns like line " + std::to_string(columns_line) + ", got " + std::to_string(row.size()));
     }
     for (const auto& t : row) {  // every cell must be a number, not only the chosen one
-      detail::number_or_throw(t, source, lines.line_number(),
-                              "a number (set skip_lines to skip header lines)");
+      detail::number_or_throw(t, source, lines.line_number(), "a number (set skip_lines to skip header lines)");
     }
     const auto& cell = row[*options.column];
-    record.acceleration_m_per_s2.push_back(detail::converted_or_throw(
-        detail::number_or_throw(cell, source, lines.line_number(), "a number"), factor, cell,
-        source, lines.line_number()));
+    record.acceleration_m_per_s2.push_back(
+        detail::converted_or_throw(detail::number_or_throw(cell, source, lines.line_number(), "a number"), factor, cell,
+                                   source, lines.line_number()));
   }
   const std::size_t last_line = std::max<std::size_t>(lines.line_number(), 1);
   if (record.acceleration_m_per_s2.empty()) {
-    throw RecordError(where(source, last_line) +
-                      "expected acceleration values, got none (empty file?)");
+    throw RecordError(where(source, last_line) + "expected acceleration values, got none (empty file?)");
   }
   if (options.expected_points && record.acceleration_m_per_s2.size() != *options.expected_points) {
-    throw RecordError(where(source, last_line) + "expected " +
-                      std::to_string(*options.expected_points) + " values, got " +
-                      std::to_string(record.acceleration_m_per_s2.size()) +
+    throw RecordError(where(source, last_line) + "expected " + std::to_string(*options.expected_points) +
+                      " values, got " + std::to_string(record.acceleration_m_per_s2.size()) +
                       " by the end of the file");
   }
   return record;
@@ -154,31 +149,29 @@ GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_vi
     row.clear();
     while (tokens.next(token)) row.push_back(token);
     if (row.size() < needed) {
-      throw RecordError(where(source, lines.line_number()) + "expected at least " +
-                        std::to_string(needed) + " columns (time in column " +
-                        std::to_string(options.time_column) + ", acceleration in column " +
-                        std::to_string(options.acceleration_column) + "), got " +
+      throw RecordError(where(source, lines.line_number()) + "expected at least " + std::to_string(needed) +
+                        " columns (time in column " + std::to_string(options.time_column) +
+                        ", acceleration in column " + std::to_string(options.acceleration_column) + "), got " +
                         std::to_string(row.size()));
     }
     const double t = detail::number_or_throw(row[options.time_column], source, lines.line_number(),
                                              "a time in s (set skip_lines to skip header lines)");
-    const double a = detail::number_or_throw(row[options.acceleration_column], source,
-                                             lines.line_number(), "an acceleration value");
+    const double a =
+        detail::number_or_throw(row[options.acceleration_column], source, lines.line_number(), "an acceleration value");
     if (!times.empty() && !(t > times.back())) {
       throw RecordError(where(source, lines.line_number(), row[options.time_column].column) +
-                        "expected a time greater than " + format_seconds(times.back()) +
-                        " s (line " + std::to_string(line_numbers.back()) + "), got " +
+                        "expected a time greater than " + format_seconds(times.back()) + " s (line " +
+                        std::to_string(line_numbers.back()) + "), got " +
                         detail::quoted(row[options.time_column].text));
     }
     times.push_back(t);
     line_numbers.push_back(lines.line_number());
-    record.acceleration_m_per_s2.push_back(detail::converted_or_throw(
-        a, factor, row[options.acceleration_column], source, lines.line_number()));
+    record.acceleration_m_per_s2.push_back(
+        detail::converted_or_throw(a, factor, row[options.acceleration_column], source, lines.line_number()));
   }
   if (times.size() < 2) {
     throw RecordError(where(source, std::max<std::size_t>(lines.line_number(), 1)) +
-                      "expected at least two time/acceleration rows to infer dt, got " +
-                      std::to_string(times.size()));
+                      "expected at least two time/acceleration rows to infer dt, got " + std::to_string(times.size()));
   }
   const std::size_t n = times.size();
   const double t0 = times.front();
@@ -190,11 +183,10 @@ GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_vi
     const double expected = t0 + static_cast<double>(i) * dt;
     const double off = std::abs(times[i] - expected);
     if (off > options.spacing_tolerance * dt) {
-      throw RecordError(where(source, line_numbers[i]) + "expected the uniform time " +
-                        format_seconds(expected) + " s (dt = " + format_seconds(dt) +
-                        " s inferred from the first and last rows) within " +
-                        format_seconds(options.spacing_tolerance) + " dt, got " +
-                        format_seconds(times[i]) + " s; resample the file or raise "
+      throw RecordError(where(source, line_numbers[i]) + "expected the uniform time " + format_seconds(expected) +
+                        " s (dt = " + format_seconds(dt) + " s inferred from the first and last rows) within " +
+                        format_seconds(options.spacing_tolerance) + " dt, got " + format_seconds(times[i]) +
+                        " s; resample the file or raise "
                         "spacing_tolerance");
     }
   }
@@ -203,14 +195,12 @@ GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_vi
   return record;
 }
 
-GroundMotionRecord read_plain_text(const std::filesystem::path& file,
-                                   const PlainTextOptions& options) {
+GroundMotionRecord read_plain_text(const std::filesystem::path& file, const PlainTextOptions& options) {
   const std::string name = file.string();
   return parse_plain_text(detail::read_file_text(name), name, options);
 }
 
-GroundMotionRecord read_time_acceleration(const std::filesystem::path& file,
-                                          const TimeAccelerationOptions& options) {
+GroundMotionRecord read_time_acceleration(const std::filesystem::path& file, const TimeAccelerationOptions& options) {
   const std::string name = file.string();
   return parse_time_acceleration(detail::read_file_text(name), name, options);
 }

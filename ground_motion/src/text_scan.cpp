@@ -41,8 +41,7 @@ TokenCursor::TokenCursor(std::string_view line, std::string_view extra_separator
     : line_(line), extra_(extra_separators) {}
 
 bool TokenCursor::is_separator(char c) const {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' ||
-         extra_.find(c) != std::string_view::npos;
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || extra_.find(c) != std::string_view::npos;
 }
 
 bool TokenCursor::next(Token& token) {
@@ -125,23 +124,20 @@ bool parse_count(std::string_view token, std::size_t& value) {
   return true;
 }
 
-double number_or_throw(const Token& token, std::string_view source, std::size_t line,
-                       std::string_view what) {
+double number_or_throw(const Token& token, std::string_view source, std::size_t line, std::string_view what) {
   double value = 0.0;
   if (!parse_finite_double(token.text, value)) {
-    throw RecordError(where(source, line, token.column) + "expected " + std::string(what) +
-                      ", got " + quoted(token.text));
+    throw RecordError(where(source, line, token.column) + "expected " + std::string(what) + ", got " +
+                      quoted(token.text));
   }
   return value;
 }
 
-double converted_or_throw(double value, double factor, const Token& token, std::string_view source,
-                          std::size_t line) {
+double converted_or_throw(double value, double factor, const Token& token, std::string_view source, std::size_t line) {
   const double converted = value * factor;
   if (!std::isfinite(converted)) {
     throw RecordError(where(source, line, token.column) +
-                      "expected an acceleration value of finite size in m/s^2, got " +
-                      quoted(token.text));
+                      "expected an acceleration value of finite size in m/s^2, got " + quoted(token.text));
   }
   return converted;
 }

@@ -57,12 +57,10 @@ bool parse_count(std::string_view token, std::size_t& value);
 
 // Parses `token` as a finite double or throws RecordError
 // "source:line:column: expected <what>, got "token"".
-double number_or_throw(const Token& token, std::string_view source, std::size_t line,
-                       std::string_view what);
+double number_or_throw(const Token& token, std::string_view source, std::size_t line, std::string_view what);
 
 // value * factor (a unit conversion), or RecordError at the token when that overflows.
-double converted_or_throw(double value, double factor, const Token& token, std::string_view source,
-                          std::size_t line);
+double converted_or_throw(double value, double factor, const Token& token, std::string_view source, std::size_t line);
 
 // True when the line holds only separators (no token).
 bool is_blank(std::string_view line);

@@ -8,8 +8,7 @@ namespace rpsd::integrators {
 
 void validate(const AlphaOsParams& p) {
   if (!(p.alpha >= -1.0 / 3.0 - 1e-12 && p.alpha <= 0.0))
-    throw std::invalid_argument("alpha_os.alpha must be in [-1/3, 0], got " +
-                                std::to_string(p.alpha));
+    throw std::invalid_argument("alpha_os.alpha must be in [-1/3, 0], got " + std::to_string(p.alpha));
 }
 
 namespace {

@@ -9,8 +9,7 @@
 
 namespace rpsd::integrators {
 
-Eigen::Matrix3d amplification_matrix(const IntegratorConfig& config, double omega_dt,
-                                     double damping_ratio) {
+Eigen::Matrix3d amplification_matrix(const IntegratorConfig& config, double omega_dt, double damping_ratio) {
   if (!(omega_dt > 0.0)) throw std::invalid_argument("omega_dt must be > 0");
   if (!(damping_ratio >= 0.0)) throw std::invalid_argument("damping ratio must be >= 0");
   auto integrator = make_integrator(config);
@@ -28,8 +27,7 @@ Eigen::Matrix3d amplification_matrix(const IntegratorConfig& config, double omeg
   for (int j = 0; j < 3; ++j) {
     const Eigen::Vector3d e = scale(j) * Eigen::Vector3d::Unit(j);
     const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, e(0));
-    integrator->set_state(x, Eigen::VectorXd::Constant(1, e(1)),
-                          Eigen::VectorXd::Constant(1, e(2)), k * x, zero);
+    integrator->set_state(x, Eigen::VectorXd::Constant(1, e(1)), Eigen::VectorXd::Constant(1, e(2)), k * x, zero);
     integrator->begin_step(zero);
     for (int i = 0; i < integrator->iterations_per_step(); ++i) {
       r = k * integrator->target_displacement();
@@ -43,8 +41,7 @@ Eigen::Matrix3d amplification_matrix(const IntegratorConfig& config, double omeg
   return A;
 }
 
-AmplificationPoint analyze_amplification(const IntegratorConfig& config, double omega_dt,
-                                         double damping_ratio) {
+AmplificationPoint analyze_amplification(const IntegratorConfig& config, double omega_dt, double damping_ratio) {
   const Eigen::Matrix3d A = amplification_matrix(config, omega_dt, damping_ratio);
   Eigen::EigenSolver<Eigen::Matrix3d> es(A, false);
   AmplificationPoint p;
@@ -58,8 +55,7 @@ AmplificationPoint analyze_amplification(const IntegratorConfig& config, double 
     const double mod = std::abs(es.eigenvalues()(i));
     p.spectral_radius = std::max(p.spectral_radius, mod);
     // The principal pair is the complex one (imaginary part beyond round-off).
-    if (std::abs(es.eigenvalues()(i).imag()) > 1e-12 * std::max(1.0, mod) &&
-        es.eigenvalues()(i).imag() > 0.0)
+    if (std::abs(es.eigenvalues()(i).imag()) > 1e-12 * std::max(1.0, mod) && es.eigenvalues()(i).imag() > 0.0)
       principal = i;
   }
   if (principal >= 0) {
@@ -76,14 +72,11 @@ AmplificationPoint analyze_amplification(const IntegratorConfig& config, double 
   return p;
 }
 
-double numerical_stability_limit(const IntegratorConfig& config, double damping_ratio,
-                                 double omega_dt_max) {
+double numerical_stability_limit(const IntegratorConfig& config, double damping_ratio, double omega_dt_max) {
   // Near Omega_cr the principal pair is almost a double root, whose computed modulus
   // carries an error of order sqrt(machine epsilon).
   constexpr double tol = 1e-7;
-  auto stable = [&](double w) {
-    return analyze_amplification(config, w, damping_ratio).spectral_radius <= 1.0 + tol;
-  };
+  auto stable = [&](double w) { return analyze_amplification(config, w, damping_ratio).spectral_radius <= 1.0 + tol; };
   double lo = 0.0;
   double hi = std::numeric_limits<double>::infinity();
   // Geometric scan from 0.01: fine enough to find the first unstable Omega.

@@ -4,14 +4,13 @@
 
 namespace rpsd::integrators {
 
-SchemeInfo Chang::info() const {
-  return {Scheme::kChang, "chang", true, std::numeric_limits<double>::infinity()};
-}
+SchemeInfo Chang::info() const { return {Scheme::kChang, "chang", true, std::numeric_limits<double>::infinity()}; }
 
 void Chang::on_configure() {
   const double dt = dt_s_;
   const linalg::StructuralMatrix b =
-      linalg::StructuralMatrix::linear_combination(1.0, mass_, 0.5 * dt, damping_, 0.25 * dt * dt, stiffness_).compacted();
+      linalg::StructuralMatrix::linear_combination(1.0, mass_, 0.5 * dt, damping_, 0.25 * dt * dt, stiffness_)
+          .compacted();
   b_solver_.factorize(b, "Chang matrix B = M + dt/2 C + dt^2/4 K0");
   p_matrix_ = linalg::StructuralMatrix::linear_combination(1.0, mass_, 0.5 * dt, damping_, 0.0, stiffness_).compacted();
   p_solver_.factorize(p_matrix_, "matrix M + dt/2 C");

@@ -7,11 +7,9 @@ namespace rpsd::integrators {
 
 void validate(const FixedIterationOptions& o) {
   if (o.iterations < 1 || o.iterations > 100)
-    throw std::invalid_argument("fixed_iteration.iterations must be in [1, 100], got " +
-                                std::to_string(o.iterations));
+    throw std::invalid_argument("fixed_iteration.iterations must be in [1, 100], got " + std::to_string(o.iterations));
   if (o.poly_order < 1 || o.poly_order > 3)
-    throw std::invalid_argument("fixed_iteration.poly_order must be 1, 2 or 3, got " +
-                                std::to_string(o.poly_order));
+    throw std::invalid_argument("fixed_iteration.poly_order must be 1, 2 or 3, got " + std::to_string(o.poly_order));
 }
 
 FixedIterationImplicitEngine::FixedIterationImplicitEngine(const ImplicitCoefficients& c,
@@ -19,8 +17,7 @@ FixedIterationImplicitEngine::FixedIterationImplicitEngine(const ImplicitCoeffic
     : Integrator(o.iterations), c_(c), o_(o) {
   validate(o);
   if (!(c.beta > 0.0))
-    throw std::invalid_argument("implicit Newmark-family scheme needs beta > 0, got " +
-                                std::to_string(c.beta));
+    throw std::invalid_argument("implicit Newmark-family scheme needs beta > 0, got " + std::to_string(c.beta));
   // Lagrange weights at x = i/N for nodes x_j = j - p + 1, j = 0..p.
   const int p = o.poly_order;
   const int n_it = o.iterations;
@@ -45,12 +42,13 @@ void FixedIterationImplicitEngine::on_configure() {
   const double sf = 1.0 - c_.alpha_f;
   const linalg::StructuralMatrix k_hat =
       linalg::StructuralMatrix::linear_combination(sm * c0, mass_, sf * c1, damping_, sf, stiffness_).compacted();
-  k_hat_solver_.factorize(k_hat, "effective stiffness (1-alpha_m)/(beta dt^2) M + "
-                                 "(1-alpha_f) gamma/(beta dt) C + (1-alpha_f) K0");
-  k_dynamic_ = linalg::StructuralMatrix::linear_combination(sm * c0, mass_, sf * c1, damping_, 0.0, stiffness_).compacted();
+  k_hat_solver_.factorize(k_hat,
+                          "effective stiffness (1-alpha_m)/(beta dt^2) M + "
+                          "(1-alpha_f) gamma/(beta dt) C + (1-alpha_f) K0");
+  k_dynamic_ =
+      linalg::StructuralMatrix::linear_combination(sm * c0, mass_, sf * c1, damping_, 0.0, stiffness_).compacted();
   history_.assign(static_cast<std::size_t>(o_.poly_order - 1), Eigen::VectorXd::Zero(n_));
-  for (auto* v : {&a_pred_, &v_pred_, &r_const_, &residual_, &delta_, &target_, &tmp_, &r_meas_})
-    v->setZero(n_);
+  for (auto* v : {&a_pred_, &v_pred_, &r_const_, &residual_, &delta_, &target_, &tmp_, &r_meas_}) v->setZero(n_);
 }
 
 void FixedIterationImplicitEngine::on_set_state() {

@@ -32,8 +32,7 @@ GeneralizedAlpha::GeneralizedAlpha(const GeneralizedAlphaParams& p)
     : FixedIterationImplicitEngine(ga_coefficients(p), p.fixed_iteration) {}
 
 SchemeInfo GeneralizedAlpha::info() const {
-  return {Scheme::kGeneralizedAlpha, "generalized_alpha", false,
-          std::numeric_limits<double>::infinity()};
+  return {Scheme::kGeneralizedAlpha, "generalized_alpha", false, std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace rpsd::integrators

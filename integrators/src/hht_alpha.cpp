@@ -9,8 +9,7 @@ namespace rpsd::integrators {
 
 void validate(const HhtAlphaParams& p) {
   if (!(p.alpha >= -1.0 / 3.0 - 1e-12 && p.alpha <= 0.0))
-    throw std::invalid_argument("hht_alpha.alpha must be in [-1/3, 0], got " +
-                                std::to_string(p.alpha));
+    throw std::invalid_argument("hht_alpha.alpha must be in [-1/3, 0], got " + std::to_string(p.alpha));
   validate(p.fixed_iteration);
 }
 
@@ -22,8 +21,7 @@ ImplicitCoefficients hht_coefficients(const HhtAlphaParams& p) {
 }
 }  // namespace
 
-HhtAlpha::HhtAlpha(const HhtAlphaParams& p)
-    : FixedIterationImplicitEngine(hht_coefficients(p), p.fixed_iteration) {}
+HhtAlpha::HhtAlpha(const HhtAlphaParams& p) : FixedIterationImplicitEngine(hht_coefficients(p), p.fixed_iteration) {}
 
 SchemeInfo HhtAlpha::info() const {
   return {Scheme::kHhtAlpha, "hht_alpha", false, std::numeric_limits<double>::infinity()};

@@ -12,35 +12,31 @@ std::string dims(const linalg::StructuralMatrix& m) {
   return std::to_string(m.rows()) + "x" + std::to_string(m.cols());
 }
 
-void check_matrices(const linalg::StructuralMatrix& M, const linalg::StructuralMatrix& C, const linalg::StructuralMatrix& K) {
+void check_matrices(const linalg::StructuralMatrix& M, const linalg::StructuralMatrix& C,
+                    const linalg::StructuralMatrix& K) {
   if (M.rows() == 0 || M.rows() != M.cols())
     throw std::invalid_argument("mass matrix must be square and non-empty, got " + dims(M));
   const auto n = M.rows();
   if (C.rows() != n || C.cols() != n)
-    throw std::invalid_argument("damping matrix is " + dims(C) + ", expected " + dims(M) +
-                                " like the mass matrix");
+    throw std::invalid_argument("damping matrix is " + dims(C) + ", expected " + dims(M) + " like the mass matrix");
   if (K.rows() != n || K.cols() != n)
-    throw std::invalid_argument("initial stiffness matrix is " + dims(K) + ", expected " +
-                                dims(M) + " like the mass matrix");
+    throw std::invalid_argument("initial stiffness matrix is " + dims(K) + ", expected " + dims(M) +
+                                " like the mass matrix");
   if (!M.all_finite()) throw std::invalid_argument("mass matrix has a NaN or infinite entry");
   if (!C.all_finite()) throw std::invalid_argument("damping matrix has a NaN or infinite entry");
-  if (!K.all_finite())
-    throw std::invalid_argument("initial stiffness matrix has a NaN or infinite entry");
+  if (!K.all_finite()) throw std::invalid_argument("initial stiffness matrix has a NaN or infinite entry");
   if (!M.is_symmetric()) throw std::invalid_argument("mass matrix is not symmetric");
   if (!C.is_symmetric()) throw std::invalid_argument("damping matrix is not symmetric");
   if (!K.is_symmetric()) throw std::invalid_argument("initial stiffness matrix is not symmetric");
-  if (!is_positive_definite(M))
-    throw std::invalid_argument("mass matrix is not positive definite");
+  if (!is_positive_definite(M)) throw std::invalid_argument("mass matrix is not positive definite");
 }
 
 }  // namespace
 
-void Integrator::configure(const StructuralMatrices& matrices, double dt_s,
-                           const ConfigureOptions& options) {
+void Integrator::configure(const StructuralMatrices& matrices, double dt_s, const ConfigureOptions& options) {
   phase_ = Phase::kUnconfigured;
   if (!(dt_s > 0.0) || !std::isfinite(dt_s))
-    throw std::invalid_argument("time step dt_s must be positive and finite, got " +
-                                std::to_string(dt_s));
+    throw std::invalid_argument("time step dt_s must be positive and finite, got " + std::to_string(dt_s));
   mass_ = matrices.mass_kg.compacted();
   damping_ = matrices.damping_n_s_per_m.compacted();
   stiffness_ = matrices.initial_stiffness_n_per_m.compacted();
@@ -60,8 +56,8 @@ void Integrator::configure(const StructuralMatrices& matrices, double dt_s,
     if (options.reject_unstable_time_step && omega_dt > limit) {
       std::ostringstream msg;
       msg << "unstable time step for " << info().name << ": omega_max*dt = " << omega_dt
-          << " exceeds the stability limit " << limit << " (omega_max = " << omega_max_
-          << " rad/s, dt = " << dt_s << " s); use dt <= " << limit / omega_max_ << " s";
+          << " exceeds the stability limit " << limit << " (omega_max = " << omega_max_ << " rad/s, dt = " << dt_s
+          << " s); use dt <= " << limit / omega_max_ << " s";
       throw std::invalid_argument(msg.str());
     }
   }
@@ -73,13 +69,13 @@ void Integrator::configure(const StructuralMatrices& matrices, double dt_s,
 
 void Integrator::check_size(const Eigen::VectorXd& x, const char* what) const {
   if (x.size() != n_)
-    throw std::invalid_argument(std::string(what) + " has " + std::to_string(x.size()) +
-                                " entries, expected " + std::to_string(n_));
+    throw std::invalid_argument(std::string(what) + " has " + std::to_string(x.size()) + " entries, expected " +
+                                std::to_string(n_));
   if (!x.allFinite()) throw std::invalid_argument(std::string(what) + " has a NaN or infinite entry");
 }
 
-void Integrator::initialize(const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
-                            const Eigen::VectorXd& r0, const Eigen::VectorXd& f0) {
+void Integrator::initialize(const Eigen::VectorXd& d0, const Eigen::VectorXd& v0, const Eigen::VectorXd& r0,
+                            const Eigen::VectorXd& f0) {
   if (phase_ == Phase::kUnconfigured) throw std::logic_error("initialize() before configure()");
   check_size(d0, "initial displacement");
   check_size(v0, "initial velocity");
@@ -92,9 +88,8 @@ void Integrator::initialize(const Eigen::VectorXd& d0, const Eigen::VectorXd& v0
   set_state(d0, v0, a0, r0, f0);
 }
 
-void Integrator::set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v,
-                           const Eigen::VectorXd& a, const Eigen::VectorXd& r,
-                           const Eigen::VectorXd& f, double time_s, std::int64_t step) {
+void Integrator::set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                           const Eigen::VectorXd& r, const Eigen::VectorXd& f, double time_s, std::int64_t step) {
   if (phase_ == Phase::kUnconfigured) throw std::logic_error("set_state() before configure()");
   check_size(d, "displacement");
   check_size(v, "velocity");
@@ -116,8 +111,7 @@ void Integrator::set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v,
 }
 
 StepStatus Integrator::begin_step(const Eigen::VectorXd& f_next) {
-  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured)
-    return StepStatus::kNotInitialized;
+  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured) return StepStatus::kNotInitialized;
   if (phase_ != Phase::kIdle) return StepStatus::kOutOfSequence;
   if (f_next.size() != n_) return StepStatus::kSizeMismatch;
   if (!f_next.allFinite()) return StepStatus::kNonFiniteInput;
@@ -129,8 +123,7 @@ StepStatus Integrator::begin_step(const Eigen::VectorXd& f_next) {
 }
 
 StepStatus Integrator::set_measured_restoring_force(const Eigen::VectorXd& r) {
-  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured)
-    return StepStatus::kNotInitialized;
+  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured) return StepStatus::kNotInitialized;
   if (phase_ != Phase::kIterating) return StepStatus::kOutOfSequence;
   if (r.size() != n_) return StepStatus::kSizeMismatch;
   if (!r.allFinite()) return StepStatus::kNonFiniteInput;
@@ -140,8 +133,7 @@ StepStatus Integrator::set_measured_restoring_force(const Eigen::VectorXd& r) {
 }
 
 StepStatus Integrator::end_step() {
-  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured)
-    return StepStatus::kNotInitialized;
+  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured) return StepStatus::kNotInitialized;
   if (phase_ != Phase::kAwaitingEnd) return StepStatus::kOutOfSequence;
   on_end_step();
   f_.swap(f_next_);

@@ -15,12 +15,10 @@ ModelBasedCoefficients kr_coefficients(const KolayRiclesAlphaParams& p) {
 }
 }  // namespace
 
-KolayRiclesAlpha::KolayRiclesAlpha(const KolayRiclesAlphaParams& p)
-    : ModelBasedExplicitEngine(kr_coefficients(p)) {}
+KolayRiclesAlpha::KolayRiclesAlpha(const KolayRiclesAlphaParams& p) : ModelBasedExplicitEngine(kr_coefficients(p)) {}
 
 SchemeInfo KolayRiclesAlpha::info() const {
-  return {Scheme::kKolayRiclesAlpha, "kolay_ricles_alpha", true,
-          std::numeric_limits<double>::infinity()};
+  return {Scheme::kKolayRiclesAlpha, "kolay_ricles_alpha", true, std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace rpsd::integrators

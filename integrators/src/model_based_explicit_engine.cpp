@@ -9,10 +9,12 @@ void ModelBasedExplicitEngine::on_configure() {
   d_matrix_ = linalg::StructuralMatrix::linear_combination(1.0, mass_, gdt, damping_, bdt2, stiffness_).compacted();
   d_solver_.factorize(d_matrix_, "model-based matrix D = M + gamma dt C + beta dt^2 K0");
   const double sf = 1.0 - c_.alpha_f;
-  const linalg::StructuralMatrix e = linalg::StructuralMatrix::linear_combination(1.0 - c_.alpha_m, mass_, sf * gdt, damping_,
-                                               sf * bdt2, stiffness_).compacted();
-  e_solver_.factorize(e, "equilibrium matrix (1-alpha_m) M + (1-alpha_f)(gamma dt C + "
-                         "beta dt^2 K0)");
+  const linalg::StructuralMatrix e =
+      linalg::StructuralMatrix::linear_combination(1.0 - c_.alpha_m, mass_, sf * gdt, damping_, sf * bdt2, stiffness_)
+          .compacted();
+  e_solver_.factorize(e,
+                      "equilibrium matrix (1-alpha_m) M + (1-alpha_f)(gamma dt C + "
+                      "beta dt^2 K0)");
   for (auto* v : {&w_, &ma_, &v_next_, &r_meas_, &rhs_, &tmp_, &w_next_}) v->setZero(n_);
 }
 
@@ -27,9 +29,7 @@ void ModelBasedExplicitEngine::on_begin_step() {
   command_ = d_ + dt * v_ + (dt * dt * (0.5 + c_.gamma)) * w_;
 }
 
-void ModelBasedExplicitEngine::on_restoring_force(int /*iteration*/, const Eigen::VectorXd& r) {
-  r_meas_ = r;
-}
+void ModelBasedExplicitEngine::on_restoring_force(int /*iteration*/, const Eigen::VectorXd& r) { r_meas_ = r; }
 
 void ModelBasedExplicitEngine::on_end_step() {
   const double af = c_.alpha_f;

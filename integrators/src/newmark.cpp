@@ -30,8 +30,7 @@ const NewmarkParams& checked(const NewmarkParams& p) {
 }  // namespace
 
 Newmark::Newmark(const NewmarkParams& p)
-    : FixedIterationImplicitEngine({0.0, 0.0, checked(p).beta, p.gamma}, p.fixed_iteration),
-      p_(p) {}
+    : FixedIterationImplicitEngine({0.0, 0.0, checked(p).beta, p.gamma}, p.fixed_iteration), p_(p) {}
 
 SchemeInfo Newmark::info() const {
   return {Scheme::kNewmark, "newmark", false, newmark_stability_limit(p_.beta, p_.gamma)};

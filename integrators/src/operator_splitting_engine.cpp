@@ -4,10 +4,13 @@ namespace rpsd::integrators {
 
 void OperatorSplittingEngine::on_configure() {
   const double s = 1.0 + c_.alpha;
-  const linalg::StructuralMatrix m_hat = linalg::StructuralMatrix::linear_combination(1.0, mass_, s * c_.gamma * dt_s_, damping_,
-                                                   s * c_.beta * dt_s_ * dt_s_, stiffness_).compacted();
-  effective_mass_solver_.factorize(m_hat, "effective mass matrix M + (1+alpha) gamma dt C + "
-                                          "(1+alpha) beta dt^2 K0");
+  const linalg::StructuralMatrix m_hat =
+      linalg::StructuralMatrix::linear_combination(1.0, mass_, s * c_.gamma * dt_s_, damping_,
+                                                   s * c_.beta * dt_s_ * dt_s_, stiffness_)
+          .compacted();
+  effective_mass_solver_.factorize(m_hat,
+                                   "effective mass matrix M + (1+alpha) gamma dt C + "
+                                   "(1+alpha) beta dt^2 K0");
   for (auto* v : {&v_pred_, &r_meas_, &rhs_, &a_next_}) v->setZero(n_);
 }
 
@@ -17,9 +20,7 @@ void OperatorSplittingEngine::on_begin_step() {
   v_pred_ = v_ + (dt * (1.0 - c_.gamma)) * a_;
 }
 
-void OperatorSplittingEngine::on_restoring_force(int /*iteration*/, const Eigen::VectorXd& r) {
-  r_meas_ = r;
-}
+void OperatorSplittingEngine::on_restoring_force(int /*iteration*/, const Eigen::VectorXd& r) { r_meas_ = r; }
 
 void OperatorSplittingEngine::on_end_step() {
   const double a = c_.alpha;

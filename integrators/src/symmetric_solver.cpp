@@ -27,8 +27,8 @@ void check_pivots(const Vec& d, std::string_view what) {
   const double largest = d.cwiseAbs().maxCoeff();
   const double smallest = d.cwiseAbs().minCoeff();
   if (!(largest > 0.0) || !std::isfinite(largest) || smallest <= 1e-14 * largest)
-    singular(what, "a pivot of its LDL^T factorisation is zero or " +
-                       std::to_string(smallest) + " against a largest of " + std::to_string(largest));
+    singular(what, "a pivot of its LDL^T factorisation is zero or " + std::to_string(smallest) +
+                       " against a largest of " + std::to_string(largest));
 }
 }  // namespace
 
@@ -77,8 +77,7 @@ void SymmetricSolver::factorize(const linalg::StructuralMatrix& A, std::string_v
   }
 }
 
-void SymmetricSolver::factorize_band(const Eigen::SparseMatrix<double>& a, Eigen::Index b,
-                                     std::string_view what) {
+void SymmetricSolver::factorize_band(const Eigen::SparseMatrix<double>& a, Eigen::Index b, std::string_view what) {
   const Eigen::Index n = a.rows();
   band_ = b;
   band_l_.setZero(n, std::max<Eigen::Index>(b, 1));
@@ -97,8 +96,7 @@ void SymmetricSolver::factorize_band(const Eigen::SparseMatrix<double>& a, Eigen
     for (Eigen::Index j = j0; j < i; ++j) {
       double sum = band_l_(i, j - i + b);
       const Eigen::Index k0 = std::max(j0, j - b);
-      for (Eigen::Index k = k0; k < j; ++k)
-        sum -= band_l_(i, k - i + b) * d(k) * band_l_(j, k - j + b);
+      for (Eigen::Index k = k0; k < j; ++k) sum -= band_l_(i, k - i + b) * d(k) * band_l_(j, k - j + b);
       band_l_(i, j - i + b) = sum / d(j);
     }
     double di = d(i);
@@ -129,8 +127,12 @@ void SymmetricSolver::solve_band(const Eigen::VectorXd& rhs, Eigen::VectorXd& x)
 
 void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   switch (storage_) {
-    case linalg::MatrixStorage::kDiagonal: x.array() = inverse_diagonal_.array() * b.array(); break;
-    case linalg::MatrixStorage::kDense: x = dense_->solve(b); break;
+    case linalg::MatrixStorage::kDiagonal:
+      x.array() = inverse_diagonal_.array() * b.array();
+      break;
+    case linalg::MatrixStorage::kDense:
+      x = dense_->solve(b);
+      break;
     case linalg::MatrixStorage::kSparse:
       if (band_ >= 0) {
         solve_band(b, x);
@@ -148,8 +150,10 @@ void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const 
 
 Eigen::Index SymmetricSolver::factor_nonzeros() const {
   switch (storage_) {
-    case linalg::MatrixStorage::kDiagonal: return inverse_diagonal_.size();
-    case linalg::MatrixStorage::kDense: return dense_->matrixLDLT().rows() * (dense_->matrixLDLT().rows() + 1) / 2;
+    case linalg::MatrixStorage::kDiagonal:
+      return inverse_diagonal_.size();
+    case linalg::MatrixStorage::kDense:
+      return dense_->matrixLDLT().rows() * (dense_->matrixLDLT().rows() + 1) / 2;
     case linalg::MatrixStorage::kSparse:
       if (band_ >= 0) return band_l_.rows() * (band_ + 1);
       return sparse_amd_->matrixL().nestedExpression().nonZeros() + sparse_amd_->rows();
@@ -181,8 +185,7 @@ double frequency_upper_bound_rad_s(const linalg::StructuralMatrix& mass, const l
     case linalg::MatrixStorage::kDiagonal:
       return std::sqrt((stiffness.diagonal_values().cwiseAbs().array() * s.array().square()).maxCoeff());
     case linalg::MatrixStorage::kDense:
-      return std::sqrt(
-          (s.asDiagonal() * stiffness.dense().cwiseAbs() * s).maxCoeff());
+      return std::sqrt((s.asDiagonal() * stiffness.dense().cwiseAbs() * s).maxCoeff());
     case linalg::MatrixStorage::kSparse: {
       Eigen::VectorXd row = Eigen::VectorXd::Zero(mass.rows());
       const auto& k = stiffness.sparse();
@@ -199,9 +202,10 @@ double max_natural_frequency_rad_s(const linalg::StructuralMatrix& mass, const l
                                    const SymmetricSolver& mass_solver) {
   const Eigen::Index n = mass.rows();
   if (stiffness.max_abs() == 0.0) return 0.0;
-  if (n <= 400 && mass.storage() != linalg::MatrixStorage::kSparse && stiffness.storage() != linalg::MatrixStorage::kSparse) {
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
-        stiffness.to_dense(), mass.to_dense(), Eigen::EigenvaluesOnly);
+  if (n <= 400 && mass.storage() != linalg::MatrixStorage::kSparse &&
+      stiffness.storage() != linalg::MatrixStorage::kSparse) {
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(stiffness.to_dense(), mass.to_dense(),
+                                                                 Eigen::EigenvaluesOnly);
     if (es.info() == Eigen::Success) return std::sqrt(std::max(0.0, es.eigenvalues().maxCoeff()));
   }
   // Lanczos on M^-1 K in the M inner product with full reorthogonalisation. The extreme

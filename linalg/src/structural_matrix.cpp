@@ -47,7 +47,8 @@ StructuralMatrix::StructuralMatrix(SparseMatrix sparse)
       const Eigen::Index i = sparse_.innerIndexPtr()[k];
       const auto* first = sparse_rows_.innerIndexPtr() + sparse_rows_.outerIndexPtr()[i];
       const auto* last = sparse_rows_.innerIndexPtr() + sparse_rows_.outerIndexPtr()[i + 1];
-      row_major_position_[static_cast<std::size_t>(k)] = std::lower_bound(first, last, j) - sparse_rows_.innerIndexPtr();
+      row_major_position_[static_cast<std::size_t>(k)] =
+          std::lower_bound(first, last, j) - sparse_rows_.innerIndexPtr();
     }
   }
 }
@@ -70,7 +71,8 @@ void StructuralMatrix::values_changed() noexcept {
 StructuralMatrix StructuralMatrix::compacted() const {
   const bool square = rows_ == cols_;
   switch (storage_) {
-    case MatrixStorage::kDiagonal: return *this;
+    case MatrixStorage::kDiagonal:
+      return *this;
     case MatrixStorage::kDense:
       if (square && !has_off_diagonal(dense_)) return diagonal(dense_.diagonal());
       return *this;
@@ -92,8 +94,10 @@ StructuralMatrix StructuralMatrix::compacted() const {
 
 StructuralMatrix StructuralMatrix::converted(MatrixStorage storage) const {
   switch (storage) {
-    case MatrixStorage::kDense: return StructuralMatrix(to_dense());
-    case MatrixStorage::kSparse: return StructuralMatrix(to_sparse());
+    case MatrixStorage::kDense:
+      return StructuralMatrix(to_dense());
+    case MatrixStorage::kSparse:
+      return StructuralMatrix(to_sparse());
     case MatrixStorage::kDiagonal: {
       const StructuralMatrix c = compacted();
       if (!c.is_diagonal()) throw std::invalid_argument("StructuralMatrix::converted: the matrix is not diagonal");
@@ -107,20 +111,23 @@ StructuralMatrix StructuralMatrix::linear_combination(double a, const Structural
                                                       const StructuralMatrix& B) {
   require_same_size(A, B);
   switch (most_general(A.storage_, B.storage_)) {
-    case MatrixStorage::kDiagonal: return diagonal(a * A.diagonal_ + b * B.diagonal_);
-    case MatrixStorage::kDense: return StructuralMatrix(Eigen::MatrixXd(a * A.to_dense() + b * B.to_dense()));
-    case MatrixStorage::kSparse: return StructuralMatrix(SparseMatrix(a * A.to_sparse() + b * B.to_sparse()));
+    case MatrixStorage::kDiagonal:
+      return diagonal(a * A.diagonal_ + b * B.diagonal_);
+    case MatrixStorage::kDense:
+      return StructuralMatrix(Eigen::MatrixXd(a * A.to_dense() + b * B.to_dense()));
+    case MatrixStorage::kSparse:
+      return StructuralMatrix(SparseMatrix(a * A.to_sparse() + b * B.to_sparse()));
   }
   return {};
 }
 
 StructuralMatrix StructuralMatrix::linear_combination(double a, const StructuralMatrix& A, double b,
-                                                      const StructuralMatrix& B, double c,
-                                                      const StructuralMatrix& C) {
+                                                      const StructuralMatrix& B, double c, const StructuralMatrix& C) {
   require_same_size(A, B);
   require_same_size(A, C);
   switch (most_general(most_general(A.storage_, B.storage_), C.storage_)) {
-    case MatrixStorage::kDiagonal: return diagonal(a * A.diagonal_ + b * B.diagonal_ + c * C.diagonal_);
+    case MatrixStorage::kDiagonal:
+      return diagonal(a * A.diagonal_ + b * B.diagonal_ + c * C.diagonal_);
     case MatrixStorage::kDense:
       return StructuralMatrix(Eigen::MatrixXd(a * A.to_dense() + b * B.to_dense() + c * C.to_dense()));
     case MatrixStorage::kSparse:
@@ -130,7 +137,8 @@ StructuralMatrix StructuralMatrix::linear_combination(double a, const Structural
 }
 
 const Eigen::VectorXd& StructuralMatrix::diagonal_values() const {
-  if (storage_ != MatrixStorage::kDiagonal) throw std::logic_error("StructuralMatrix::diagonal_values(): not stored diagonal");
+  if (storage_ != MatrixStorage::kDiagonal)
+    throw std::logic_error("StructuralMatrix::diagonal_values(): not stored diagonal");
   return diagonal_;
 }
 
@@ -156,9 +164,12 @@ SparseMatrix& StructuralMatrix::sparse_mut() {
 
 Eigen::MatrixXd StructuralMatrix::to_dense() const {
   switch (storage_) {
-    case MatrixStorage::kDiagonal: return diagonal_.asDiagonal();
-    case MatrixStorage::kDense: return dense_;
-    case MatrixStorage::kSparse: return Eigen::MatrixXd(sparse_);
+    case MatrixStorage::kDiagonal:
+      return diagonal_.asDiagonal();
+    case MatrixStorage::kDense:
+      return dense_;
+    case MatrixStorage::kSparse:
+      return Eigen::MatrixXd(sparse_);
   }
   return {};
 }
@@ -179,26 +190,37 @@ SparseMatrix StructuralMatrix::to_sparse() const {
       s.makeCompressed();
       return s;
     }
-    case MatrixStorage::kSparse: return sparse_;
+    case MatrixStorage::kSparse:
+      return sparse_;
   }
   return {};
 }
 
 double StructuralMatrix::coeff(Eigen::Index i, Eigen::Index j) const noexcept {
   switch (storage_) {
-    case MatrixStorage::kDiagonal: return i == j ? diagonal_[i] : 0.0;
-    case MatrixStorage::kDense: return dense_(i, j);
-    case MatrixStorage::kSparse: return sparse_.coeff(i, j);
+    case MatrixStorage::kDiagonal:
+      return i == j ? diagonal_[i] : 0.0;
+    case MatrixStorage::kDense:
+      return dense_(i, j);
+    case MatrixStorage::kSparse:
+      return sparse_.coeff(i, j);
   }
   return 0.0;
 }
 
-void StructuralMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+void StructuralMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                Eigen::Ref<Eigen::VectorXd> y) const noexcept {
   assert(x.size() == cols_ && y.size() == rows_);
   switch (storage_) {
-    case MatrixStorage::kDiagonal: y.array() = diagonal_.array() * x.array(); break;
-    case MatrixStorage::kDense: y.noalias() = dense_ * x; break;
-    case MatrixStorage::kSparse: y.noalias() = sparse_rows_ * x; break;
+    case MatrixStorage::kDiagonal:
+      y.array() = diagonal_.array() * x.array();
+      break;
+    case MatrixStorage::kDense:
+      y.noalias() = dense_ * x;
+      break;
+    case MatrixStorage::kSparse:
+      y.noalias() = sparse_rows_ * x;
+      break;
   }
 }
 
@@ -206,9 +228,15 @@ void StructuralMatrix::multiply_add(double s, const Eigen::Ref<const Eigen::Vect
                                     Eigen::Ref<Eigen::VectorXd> y) const noexcept {
   assert(x.size() == cols_ && y.size() == rows_);
   switch (storage_) {
-    case MatrixStorage::kDiagonal: y.array() += s * diagonal_.array() * x.array(); break;
-    case MatrixStorage::kDense: y.noalias() += s * (dense_ * x); break;
-    case MatrixStorage::kSparse: y.noalias() += s * (sparse_rows_ * x); break;
+    case MatrixStorage::kDiagonal:
+      y.array() += s * diagonal_.array() * x.array();
+      break;
+    case MatrixStorage::kDense:
+      y.noalias() += s * (dense_ * x);
+      break;
+    case MatrixStorage::kSparse:
+      y.noalias() += s * (sparse_rows_ * x);
+      break;
   }
 }
 
@@ -222,8 +250,10 @@ bool StructuralMatrix::is_symmetric(double rel_tol) const {
   if (rows_ != cols_) return false;
   const double tol = rel_tol * max_abs();
   switch (storage_) {
-    case MatrixStorage::kDiagonal: return true;
-    case MatrixStorage::kDense: return dense_.size() == 0 || (dense_ - dense_.transpose()).cwiseAbs().maxCoeff() <= tol;
+    case MatrixStorage::kDiagonal:
+      return true;
+    case MatrixStorage::kDense:
+      return dense_.size() == 0 || (dense_ - dense_.transpose()).cwiseAbs().maxCoeff() <= tol;
     case MatrixStorage::kSparse: {
       const SparseMatrix d = sparse_ - SparseMatrix(sparse_.transpose());
       for (Eigen::Index k = 0; k < d.outerSize(); ++k)
@@ -237,8 +267,10 @@ bool StructuralMatrix::is_symmetric(double rel_tol) const {
 
 bool StructuralMatrix::all_finite() const {
   switch (storage_) {
-    case MatrixStorage::kDiagonal: return diagonal_.allFinite();
-    case MatrixStorage::kDense: return dense_.allFinite();
+    case MatrixStorage::kDiagonal:
+      return diagonal_.allFinite();
+    case MatrixStorage::kDense:
+      return dense_.allFinite();
     case MatrixStorage::kSparse:
       return Eigen::Map<const Eigen::VectorXd>(sparse_.valuePtr(), sparse_.nonZeros()).allFinite();
   }

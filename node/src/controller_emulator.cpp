@@ -46,7 +46,8 @@ ControllerEmulator::Served ControllerEmulator::serve(double timeout_s) {
     socket_.wait_readable(std::min(remaining_s, 0.05));  // short slices: a stop request is seen soon
   }
   ControllerCommand command;
-  const auto bytes = std::span<const std::byte>(receive_buffer_.data(), std::min<std::size_t>(static_cast<std::size_t>(size), receive_buffer_.size()));
+  const auto bytes = std::span<const std::byte>(
+      receive_buffer_.data(), std::min<std::size_t>(static_cast<std::size_t>(size), receive_buffer_.size()));
   if (udp_protocol::decode_command(bytes, command) != PacketStatus::kOk) {
     ++counters_.bad_packets;
     return Served::kIgnored;
@@ -73,7 +74,8 @@ ControllerEmulator::Served ControllerEmulator::serve(double timeout_s) {
     reply(command.sequence, status, from);
     return Served::kQueried;
   }
-  const auto displacement = std::span<const double>(command.displacement_m.data(), static_cast<std::size_t>(command.channels));
+  const auto displacement =
+      std::span<const double>(command.displacement_m.data(), static_cast<std::size_t>(command.channels));
   actuator_.exchange(displacement, command.period_s, reading_);
   ++counters_.commands_applied;
   reply(command.sequence, status, from);

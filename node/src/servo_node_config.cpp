@@ -9,39 +9,54 @@ namespace rpsd::node {
 
 const char* limit_kind_name(LimitKind kind) {
   switch (kind) {
-    case LimitKind::kStroke: return "stroke";
-    case LimitKind::kVelocity: return "velocity";
-    case LimitKind::kForce: return "force";
-    case LimitKind::kIncrement: return "increment";
+    case LimitKind::kStroke:
+      return "stroke";
+    case LimitKind::kVelocity:
+      return "velocity";
+    case LimitKind::kForce:
+      return "force";
+    case LimitKind::kIncrement:
+      return "increment";
   }
   return "unknown";
 }
 
 const char* limit_action_name(LimitAction action) {
   switch (action) {
-    case LimitAction::kClamp: return "clamp";
-    case LimitAction::kHold: return "hold";
-    case LimitAction::kAbort: return "abort";
+    case LimitAction::kClamp:
+      return "clamp";
+    case LimitAction::kHold:
+      return "hold";
+    case LimitAction::kAbort:
+      return "abort";
   }
   return "unknown";
 }
 
 std::uint32_t limit_flag(LimitKind kind) {
   switch (kind) {
-    case LimitKind::kStroke: return transport::kLimitStroke;
-    case LimitKind::kVelocity: return transport::kLimitVelocity;
-    case LimitKind::kForce: return transport::kLimitForce;
-    case LimitKind::kIncrement: return transport::kLimitIncrement;
+    case LimitKind::kStroke:
+      return transport::kLimitStroke;
+    case LimitKind::kVelocity:
+      return transport::kLimitVelocity;
+    case LimitKind::kForce:
+      return transport::kLimitForce;
+    case LimitKind::kIncrement:
+      return transport::kLimitIncrement;
   }
   return transport::kLimitNone;
 }
 
 LimitAction LimitActions::of(LimitKind kind) const {
   switch (kind) {
-    case LimitKind::kStroke: return stroke;
-    case LimitKind::kVelocity: return velocity;
-    case LimitKind::kForce: return force;
-    case LimitKind::kIncrement: return increment;
+    case LimitKind::kStroke:
+      return stroke;
+    case LimitKind::kVelocity:
+      return velocity;
+    case LimitKind::kForce:
+      return force;
+    case LimitKind::kIncrement:
+      return increment;
   }
   return LimitAction::kAbort;
 }
@@ -67,15 +82,18 @@ void ServoNodeConfig::validate() const {
   if (channels < 1 || channels > transport::kMaxChannels) {
     fail("channels", "must be between 1 and " + std::to_string(transport::kMaxChannels), channels);
   }
-  if (!(control_period_s > 0.0) || !std::isfinite(control_period_s)) fail("control_period_s", "must be positive", control_period_s);
+  if (!(control_period_s > 0.0) || !std::isfinite(control_period_s))
+    fail("control_period_s", "must be positive", control_period_s);
   for (int c = 0; c < channels; ++c) {
     const ChannelLimits& l = limits[c];
     const std::string at = indexed("limits", c) + ".";
     // Infinity is allowed (no limit); zero, negative and NaN are not.
     if (!(l.max_stroke_m > 0.0)) fail(at + "max_stroke_m", "must be positive (infinity: no limit)", l.max_stroke_m);
-    if (!(l.max_velocity_m_per_s > 0.0)) fail(at + "max_velocity_m_per_s", "must be positive (infinity: no limit)", l.max_velocity_m_per_s);
+    if (!(l.max_velocity_m_per_s > 0.0))
+      fail(at + "max_velocity_m_per_s", "must be positive (infinity: no limit)", l.max_velocity_m_per_s);
     if (!(l.max_force_n > 0.0)) fail(at + "max_force_n", "must be positive (infinity: no limit)", l.max_force_n);
-    if (!(l.max_increment_m > 0.0)) fail(at + "max_increment_m", "must be positive (infinity: no limit)", l.max_increment_m);
+    if (!(l.max_increment_m > 0.0))
+      fail(at + "max_increment_m", "must be positive (infinity: no limit)", l.max_increment_m);
   }
   if (command_timeout_periods < 1) fail("command_timeout_periods", "must be at least 1", command_timeout_periods);
   if (on_command_loss == LossAction::kRampToSafe) {
@@ -88,7 +106,8 @@ void ServoNodeConfig::validate() const {
         fail(indexed("safe_position_m", c), "must lie within " + limits_at + ".max_stroke_m", safe_position_m[c]);
       }
       if (safe_ramp_velocity_m_per_s > limits[c].max_velocity_m_per_s) {
-        fail("safe_ramp_velocity_m_per_s", "must not exceed " + limits_at + ".max_velocity_m_per_s", safe_ramp_velocity_m_per_s);
+        fail("safe_ramp_velocity_m_per_s", "must not exceed " + limits_at + ".max_velocity_m_per_s",
+             safe_ramp_velocity_m_per_s);
       }
       if (safe_ramp_velocity_m_per_s * control_period_s > limits[c].max_increment_m) {
         fail("safe_ramp_velocity_m_per_s", "times control_period_s must not exceed " + limits_at + ".max_increment_m",

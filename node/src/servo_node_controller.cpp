@@ -9,14 +9,22 @@ namespace rpsd::node {
 
 const char* command_verdict_name(CommandVerdict verdict) {
   switch (verdict) {
-    case CommandVerdict::kAccepted: return "accepted";
-    case CommandVerdict::kWrongTestId: return "wrong test id";
-    case CommandVerdict::kWrongSiteId: return "wrong site id";
-    case CommandVerdict::kWrongChannelCount: return "wrong channel count";
-    case CommandVerdict::kNonFinite: return "non-finite value";
-    case CommandVerdict::kNotNewer: return "step not newer";
-    case CommandVerdict::kNotFollowing: return "node not following";
-    case CommandVerdict::kJoinedMidTest: return "joined mid-test";
+    case CommandVerdict::kAccepted:
+      return "accepted";
+    case CommandVerdict::kWrongTestId:
+      return "wrong test id";
+    case CommandVerdict::kWrongSiteId:
+      return "wrong site id";
+    case CommandVerdict::kWrongChannelCount:
+      return "wrong channel count";
+    case CommandVerdict::kNonFinite:
+      return "non-finite value";
+    case CommandVerdict::kNotNewer:
+      return "step not newer";
+    case CommandVerdict::kNotFollowing:
+      return "node not following";
+    case CommandVerdict::kJoinedMidTest:
+      return "joined mid-test";
   }
   return "unknown";
 }
@@ -29,7 +37,8 @@ std::uint64_t ServoNodeCounters::dropped_total() const {
   return total;
 }
 
-ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::Actuator& actuator) : config_(config), actuator_(actuator) {
+ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::Actuator& actuator)
+    : config_(config), actuator_(actuator) {
   config_.validate();
   if (actuator.channels() != config_.channels) {
     throw std::invalid_argument("channels: the config has " + std::to_string(config_.channels) + ", the actuator " +
@@ -41,14 +50,16 @@ ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::A
 void ServoNodeController::start(std::span<const double> initial_displacement_m) {
   const int channels = config_.channels;
   if (static_cast<int>(initial_displacement_m.size()) != channels) {
-    throw std::invalid_argument("ServoNodeController::start: " + std::to_string(channels) + " initial displacements expected, got " +
+    throw std::invalid_argument("ServoNodeController::start: " + std::to_string(channels) +
+                                " initial displacements expected, got " +
                                 std::to_string(initial_displacement_m.size()));
   }
   for (int c = 0; c < channels; ++c) {
     const double x0 = initial_displacement_m[c];
     if (!std::isfinite(x0) || std::abs(x0) > config_.limits[c].max_stroke_m) {
-      throw std::invalid_argument("ServoNodeController::start: initial displacement of channel " + std::to_string(c) + " (" +
-                                  std::to_string(x0) + " m) is not within limits[" + std::to_string(c) + "].max_stroke_m");
+      throw std::invalid_argument("ServoNodeController::start: initial displacement of channel " + std::to_string(c) +
+                                  " (" + std::to_string(x0) + " m) is not within limits[" + std::to_string(c) +
+                                  "].max_stroke_m");
     }
   }
   started_ = false;
@@ -80,7 +91,8 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
   } else if (command.channels != channels) {
     verdict = CommandVerdict::kWrongChannelCount;
   } else if (!std::isfinite(command.time_s) ||
-             !std::all_of(command.displacement_m.begin(), command.displacement_m.begin() + channels, [](double x) { return std::isfinite(x); })) {
+             !std::all_of(command.displacement_m.begin(), command.displacement_m.begin() + channels,
+                          [](double x) { return std::isfinite(x); })) {
     verdict = CommandVerdict::kNonFinite;
   } else if (command.step <= newest_accepted_step_) {
     verdict = CommandVerdict::kNotNewer;
@@ -131,7 +143,8 @@ void ServoNodeController::choose_target() {
     const double step_m = config_.safe_ramp_velocity_m_per_s * config_.control_period_s;
     for (int c = 0; c < channels; ++c) {
       const double to_go = config_.safe_position_m[c] - command_m_[c];
-      target_m_[c] = std::abs(to_go) <= step_m ? config_.safe_position_m[c] : command_m_[c] + std::copysign(step_m, to_go);
+      target_m_[c] =
+          std::abs(to_go) <= step_m ? config_.safe_position_m[c] : command_m_[c] + std::copysign(step_m, to_go);
     }
   }
 }
@@ -203,8 +216,8 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
     flags |= limit_flag(v.kind);
     if (!limit_was_active_[v.channel][k]) {
       ++counters_.limit_activations[k];
-      log({counters_.ticks, followed_step_, v.channel, v.kind, config_.actions.of(v.kind), target_m_[v.channel], applied[v.channel],
-           v.observed, v.bound});
+      log({counters_.ticks, followed_step_, v.channel, v.kind, config_.actions.of(v.kind), target_m_[v.channel],
+           applied[v.channel], v.observed, v.bound});
     }
   }
   for (int k = 0; k < kLimitKinds; ++k) counters_.limit_active_ticks[k] += kind_acted[k] ? 1 : 0;
@@ -229,8 +242,8 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
   Values applied = command_m_;
   const std::uint32_t flags = apply_limits(applied);
 
-  const servo::ActuatorStatus status =
-      actuator_.exchange(std::span<const double>(applied.data(), static_cast<std::size_t>(channels)), config_.control_period_s, reading_);
+  const servo::ActuatorStatus status = actuator_.exchange(
+      std::span<const double>(applied.data(), static_cast<std::size_t>(channels)), config_.control_period_s, reading_);
   command_m_ = applied;
   if (status == servo::ActuatorStatus::kNoReply) ++counters_.actuator_no_replies;
   if (status == servo::ActuatorStatus::kFault) {

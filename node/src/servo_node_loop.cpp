@@ -32,13 +32,14 @@ struct TickWatch {
   }
 };
 
-transport::NodeHeartbeat heartbeat(const ServoNodeController& controller, const ServoNodeLoopReport& report, std::int64_t ticks) {
+transport::NodeHeartbeat heartbeat(const ServoNodeController& controller, const ServoNodeLoopReport& report,
+                                   std::int64_t ticks) {
   transport::NodeHeartbeat h;
   h.test_id = controller.config().test_id;
   h.site_id = controller.config().site_id;
   h.channels = static_cast<std::uint8_t>(controller.config().channels);
-  h.state = controller.faulted()   ? transport::NodeHeartbeat::kFaulted
-            : controller.holding() ? transport::NodeHeartbeat::kHolding
+  h.state = controller.faulted()            ? transport::NodeHeartbeat::kFaulted
+            : controller.holding()          ? transport::NodeHeartbeat::kHolding
             : report.last_command_tick >= 0 ? transport::NodeHeartbeat::kRunning
                                             : transport::NodeHeartbeat::kWaiting;
   h.ticks = ticks;
@@ -60,7 +61,8 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   const double period_s = controller.config().control_period_s;
   const auto period_ns = static_cast<std::int64_t>(std::llround(period_s * 1e9));
   const std::int64_t start_ns = realtime::monotonic_now_ns();
-  const std::int64_t end_ns = options.duration_s > 0.0 ? start_ns + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
+  const std::int64_t end_ns =
+      options.duration_s > 0.0 ? start_ns + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
   realtime::LatencyHistogram jitter;
   TickWatch watch{controller, report};
   transport::CommandSample command;
@@ -68,8 +70,10 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   std::int64_t next_heartbeat_ns = start_ns;
 
   const auto publish = [&] {
-    if (endpoint.publish(feedback)) ++report.feedback_published;
-    else ++report.publish_failures;
+    if (endpoint.publish(feedback))
+      ++report.feedback_published;
+    else
+      ++report.publish_failures;
   };
   const auto maybe_heartbeat = [&](std::int64_t now_ns) {
     if (now_ns < next_heartbeat_ns) return;
@@ -79,14 +83,12 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
 
   if (options.real_time) {
     // Ticks are triggered by the commands: a command is applied the moment it arrives and
-    // the next tick is due two periods after it (one period plus one of grace). When none comes, the node ticks on that deadline
-    // anyway, one period apart, and after command_timeout_periods such ticks it holds. So
-    // the node follows the coordinator's clock without a phase offset adding latency, and
-    // its watchdog runs on its own clock.
-    // A command may come up to one period late before the node ticks without it (the
-    // coordinator's jitter on a loaded machine must not advance the plant on its own), and
-    // ticks stay at least 3/4 of a period apart, so a command that arrives just after a
-    // deadline tick waits instead of advancing the plant a second period.
+    // the next tick is due two periods after it (one period plus one of grace). When none comes, the node ticks on that
+    // deadline anyway, one period apart, and after command_timeout_periods such ticks it holds. So the node follows the
+    // coordinator's clock without a phase offset adding latency, and its watchdog runs on its own clock. A command may
+    // come up to one period late before the node ticks without it (the coordinator's jitter on a loaded machine must
+    // not advance the plant on its own), and ticks stay at least 3/4 of a period apart, so a command that arrives just
+    // after a deadline tick waits instead of advancing the plant a second period.
     const std::int64_t grace_ns = period_ns;
     const std::int64_t min_spacing_ns = period_ns * 3 / 4;
     std::int64_t deadline = realtime::monotonic_now_ns() + period_ns + grace_ns;

@@ -26,9 +26,15 @@ nlohmann::json node_summary(const ServoNodeSetup& setup, const ServoNodeControll
   }
   json events = json::array();
   for (const auto& e : controller.events()) {
-    events.push_back({{"tick", e.tick}, {"step", e.step}, {"channel", e.channel},
-                      {"limit", limit_kind_name(e.kind)}, {"action", limit_action_name(e.action)},
-                      {"commanded_m", e.commanded_m}, {"applied_m", e.applied_m}, {"observed", e.observed}, {"bound", e.bound}});
+    events.push_back({{"tick", e.tick},
+                      {"step", e.step},
+                      {"channel", e.channel},
+                      {"limit", limit_kind_name(e.kind)},
+                      {"action", limit_action_name(e.action)},
+                      {"commanded_m", e.commanded_m},
+                      {"applied_m", e.applied_m},
+                      {"observed", e.observed},
+                      {"bound", e.bound}});
   }
   json hold = nullptr;
   if (report.hold_tick >= 0) {
@@ -94,8 +100,8 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   if (!report.granted.refused.empty()) log << "rpsd servo-node: " << report.granted.refused;
   const auto& c = controller.counters();
   log << "rpsd servo-node: stopped after " << c.ticks << " ticks, " << c.applied << " commands applied, "
-      << c.dropped_total() << " dropped, " << report.overruns << " overruns" << (controller.faulted() ? ", FAULTED" : "")
-      << std::endl;
+      << c.dropped_total() << " dropped, " << report.overruns << " overruns"
+      << (controller.faulted() ? ", FAULTED" : "") << std::endl;
   return node_summary(setup, controller, report);
 }
 
@@ -107,8 +113,8 @@ nlohmann::json emulate_controller(const ControllerEmulatorSetup& setup, const Se
   config.port = setup.port;
   ControllerEmulator emulator(plants.pointers, config);
   emulator.start(setup.initial_displacement_m);
-  log << "rpsd controller-emulator: " << setup.channels << " channel(s) on udp " << setup.bind_host << ":" << emulator.port()
-      << std::endl;
+  log << "rpsd controller-emulator: " << setup.channels << " channel(s) on udp " << setup.bind_host << ":"
+      << emulator.port() << std::endl;
   const std::int64_t end_ns =
       options.duration_s > 0.0 ? realtime::monotonic_now_ns() + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
   while (!stop.load() && (end_ns == 0 || realtime::monotonic_now_ns() < end_ns)) emulator.serve(0.05);

@@ -16,15 +16,17 @@ using udp_protocol::PacketStatus;
 
 void UdpControllerConfig::validate() const {
   if (channels < 1 || channels > transport::kMaxChannels) {
-    throw std::invalid_argument("channels: must be between 1 and " + std::to_string(transport::kMaxChannels) + ", got " +
-                                std::to_string(channels));
+    throw std::invalid_argument("channels: must be between 1 and " + std::to_string(transport::kMaxChannels) +
+                                ", got " + std::to_string(channels));
   }
   Ipv4Endpoint::parse(controller_host, controller_port, "controller_host");
   Ipv4Endpoint::parse(local_host, local_port, "local_host");
   if (controller_port == 0) throw std::invalid_argument("controller_port: required (1-65535)");
-  if (!(reply_timeout_s > 0.0) || !std::isfinite(reply_timeout_s)) throw std::invalid_argument("reply_timeout_s: must be positive");
+  if (!(reply_timeout_s > 0.0) || !std::isfinite(reply_timeout_s))
+    throw std::invalid_argument("reply_timeout_s: must be positive");
   if (max_missed_replies < 0) throw std::invalid_argument("max_missed_replies: must be zero or positive");
-  if (!(start_timeout_s > 0.0) || !std::isfinite(start_timeout_s)) throw std::invalid_argument("start_timeout_s: must be positive");
+  if (!(start_timeout_s > 0.0) || !std::isfinite(start_timeout_s))
+    throw std::invalid_argument("start_timeout_s: must be positive");
   if (!(start_tolerance_m >= 0.0)) throw std::invalid_argument("start_tolerance_m: must be zero or positive");
 }
 
@@ -62,7 +64,8 @@ bool UdpControllerActuator::take_queued(std::uint64_t sequence, ControllerReply&
       ++counters_.foreign_datagrams;
       continue;
     }
-    const auto bytes = std::span<const std::byte>(receive_buffer_.data(), std::min<std::size_t>(static_cast<std::size_t>(size), receive_buffer_.size()));
+    const auto bytes = std::span<const std::byte>(
+        receive_buffer_.data(), std::min<std::size_t>(static_cast<std::size_t>(size), receive_buffer_.size()));
     ControllerReply decoded;
     if (udp_protocol::decode_reply(bytes, decoded) != PacketStatus::kOk) {
       ++counters_.bad_replies;
@@ -92,7 +95,8 @@ bool UdpControllerActuator::await(std::uint64_t sequence, double deadline_s, Con
 void UdpControllerActuator::start(std::span<const double> initial_displacement_m) {
   const int channels = config_.channels;
   if (static_cast<int>(initial_displacement_m.size()) != channels) {
-    throw std::invalid_argument("UdpControllerActuator::start: " + std::to_string(channels) + " initial displacements expected, got " +
+    throw std::invalid_argument("UdpControllerActuator::start: " + std::to_string(channels) +
+                                " initial displacements expected, got " +
                                 std::to_string(initial_displacement_m.size()));
   }
   ControllerCommand query;
@@ -119,14 +123,16 @@ void UdpControllerActuator::start(std::span<const double> initial_displacement_m
     throw std::runtime_error(message.str());
   }
   if (reply.channels != channels) {
-    throw std::runtime_error(who + " has " + std::to_string(reply.channels) + " channels, the config " + std::to_string(channels));
+    throw std::runtime_error(who + " has " + std::to_string(reply.channels) + " channels, the config " +
+                             std::to_string(channels));
   }
   if (reply.status != ControllerStatus::kOk) throw std::runtime_error(who + " reports a fault");
   for (int c = 0; c < channels; ++c) {
     if (std::abs(reply.displacement_m[c] - initial_displacement_m[c]) > config_.start_tolerance_m) {
       std::ostringstream message;
-      message << who << ": channel " << c << " measures " << reply.displacement_m[c] << " m, the initial displacement is "
-              << initial_displacement_m[c] << " m (start_tolerance_m " << config_.start_tolerance_m << ")";
+      message << who << ": channel " << c << " measures " << reply.displacement_m[c]
+              << " m, the initial displacement is " << initial_displacement_m[c] << " m (start_tolerance_m "
+              << config_.start_tolerance_m << ")";
       throw std::runtime_error(message.str());
     }
   }
@@ -134,7 +140,8 @@ void UdpControllerActuator::start(std::span<const double> initial_displacement_m
   link_fault_ = false;
 }
 
-servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> command_m, double period_s, servo::ActuatorReading& reading) {
+servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> command_m, double period_s,
+                                                      servo::ActuatorReading& reading) {
   reading.fresh = false;
   if (link_fault_) return servo::ActuatorStatus::kFault;
   const int channels = config_.channels;
@@ -176,16 +183,17 @@ servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> co
   return servo::ActuatorStatus::kOk;
 }
 
-
 UdpControllerConfig UdpControllerConfig::read(config::Source& section, int channels) {
   UdpControllerConfig u;
   u.channels = channels;
   u.controller_host = section.text("host", "the controller's address (dotted IPv4)");
   u.controller_port = static_cast<std::uint16_t>(section.whole_number("port", 1, 65535, "the controller's UDP port"));
   u.local_host = section.has("local_host") ? section.text("local_host", "address to bind (dotted IPv4)") : u.local_host;
-  u.local_port = static_cast<std::uint16_t>(section.whole_number_or("local_port", 0, 65535, 0, "port to bind (0: any free one)"));
-  u.reply_timeout_s = section.number_or("reply_timeout_s", u.reply_timeout_s,
-                                        config::Number::positive("s", "how long past the control period to wait for a reply"));
+  u.local_port =
+      static_cast<std::uint16_t>(section.whole_number_or("local_port", 0, 65535, 0, "port to bind (0: any free one)"));
+  u.reply_timeout_s =
+      section.number_or("reply_timeout_s", u.reply_timeout_s,
+                        config::Number::positive("s", "how long past the control period to wait for a reply"));
   u.max_missed_replies = static_cast<int>(section.whole_number_or(
       "max_missed_replies", 0, 1000, u.max_missed_replies, "consecutive missing replies before the actuator faults"));
   return u;

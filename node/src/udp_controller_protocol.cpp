@@ -20,11 +20,16 @@ std::uint64_t load(std::span<const std::byte> bytes, std::size_t at, int size) {
   for (int i = 0; i < size; ++i) value |= static_cast<std::uint64_t>(bytes[at + i]) << (8 * i);
   return value;
 }
-void store_double(std::span<std::byte> bytes, std::size_t at, double value) { store(bytes, at, std::bit_cast<std::uint64_t>(value), 8); }
-double load_double(std::span<const std::byte> bytes, std::size_t at) { return std::bit_cast<double>(load(bytes, at, 8)); }
+void store_double(std::span<std::byte> bytes, std::size_t at, double value) {
+  store(bytes, at, std::bit_cast<std::uint64_t>(value), 8);
+}
+double load_double(std::span<const std::byte> bytes, std::size_t at) {
+  return std::bit_cast<double>(load(bytes, at, 8));
+}
 
 // The 16 bytes both packets start with.
-void store_header(std::span<std::byte> bytes, std::uint32_t magic, std::uint8_t channels, std::uint8_t flags_or_status, std::uint64_t sequence) {
+void store_header(std::span<std::byte> bytes, std::uint32_t magic, std::uint8_t channels, std::uint8_t flags_or_status,
+                  std::uint64_t sequence) {
   store(bytes, kMagicAt, magic, 4);
   store(bytes, kVersionAt, kVersion, 2);
   store(bytes, kChannelsAt, channels, 1);
@@ -43,7 +48,8 @@ bool all_finite(const std::array<double, kMaxChannels>& values, int channels) {
 
 PacketStatus check_period(bool query, double period_s) {
   if (query) return period_s == 0.0 ? PacketStatus::kOk : PacketStatus::kBadPeriod;
-  return period_s >= kMinPeriodS && period_s <= kMaxPeriodS ? PacketStatus::kOk : PacketStatus::kBadPeriod;  // NaN fails both
+  return period_s >= kMinPeriodS && period_s <= kMaxPeriodS ? PacketStatus::kOk
+                                                            : PacketStatus::kBadPeriod;  // NaN fails both
 }
 
 PacketStatus check(const ControllerCommand& command) {
@@ -55,8 +61,10 @@ PacketStatus check(const ControllerCommand& command) {
 
 PacketStatus check(const ControllerReply& reply) {
   if (!valid_channels(reply.channels)) return PacketStatus::kBadChannels;
-  if (reply.status != ControllerStatus::kOk && reply.status != ControllerStatus::kFault) return PacketStatus::kBadStatus;
-  if (!all_finite(reply.displacement_m, reply.channels) || !all_finite(reply.force_n, reply.channels)) return PacketStatus::kNonFinite;
+  if (reply.status != ControllerStatus::kOk && reply.status != ControllerStatus::kFault)
+    return PacketStatus::kBadStatus;
+  if (!all_finite(reply.displacement_m, reply.channels) || !all_finite(reply.force_n, reply.channels))
+    return PacketStatus::kNonFinite;
   return PacketStatus::kOk;
 }
 
@@ -71,15 +79,24 @@ PacketStatus check_header(std::span<const std::byte> bytes, std::size_t size, st
 
 const char* packet_status_name(PacketStatus status) {
   switch (status) {
-    case PacketStatus::kOk: return "ok";
-    case PacketStatus::kWrongSize: return "wrong size";
-    case PacketStatus::kWrongMagic: return "wrong magic";
-    case PacketStatus::kWrongVersion: return "wrong version";
-    case PacketStatus::kBadChannels: return "bad channel count";
-    case PacketStatus::kBadFlags: return "unknown flags";
-    case PacketStatus::kBadPeriod: return "bad period";
-    case PacketStatus::kNonFinite: return "non-finite value";
-    case PacketStatus::kBadStatus: return "unknown controller status";
+    case PacketStatus::kOk:
+      return "ok";
+    case PacketStatus::kWrongSize:
+      return "wrong size";
+    case PacketStatus::kWrongMagic:
+      return "wrong magic";
+    case PacketStatus::kWrongVersion:
+      return "wrong version";
+    case PacketStatus::kBadChannels:
+      return "bad channel count";
+    case PacketStatus::kBadFlags:
+      return "unknown flags";
+    case PacketStatus::kBadPeriod:
+      return "bad period";
+    case PacketStatus::kNonFinite:
+      return "non-finite value";
+    case PacketStatus::kBadStatus:
+      return "unknown controller status";
   }
   return "unknown";
 }
@@ -104,7 +121,8 @@ PacketStatus decode_command(std::span<const std::byte> bytes, ControllerCommand&
   command.sequence = load(bytes, kSequenceAt, 8);
   command.period_s = load_double(bytes, kPeriodAt);
   if (valid_channels(command.channels)) {
-    for (int c = 0; c < command.channels; ++c) command.displacement_m[c] = load_double(bytes, kCommandDisplacementAt + 8 * c);
+    for (int c = 0; c < command.channels; ++c)
+      command.displacement_m[c] = load_double(bytes, kCommandDisplacementAt + 8 * c);
   }
   if (const PacketStatus s = check(command); s != PacketStatus::kOk) return s;
   out = command;

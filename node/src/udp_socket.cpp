@@ -36,7 +36,8 @@ Ipv4Endpoint from_sockaddr(const sockaddr_in& address) {
 Ipv4Endpoint Ipv4Endpoint::parse(const std::string& address, std::uint16_t port, const std::string& what) {
   in_addr parsed{};
   if (inet_pton(AF_INET, address.c_str(), &parsed) != 1) {
-    throw std::invalid_argument(what + ": expected a dotted IPv4 address such as 192.168.1.20, got \"" + address + "\"");
+    throw std::invalid_argument(what + ": expected a dotted IPv4 address such as 192.168.1.20, got \"" + address +
+                                "\"");
   }
   Ipv4Endpoint endpoint;
   std::memcpy(endpoint.address.data(), &parsed.s_addr, 4);

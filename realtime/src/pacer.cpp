@@ -9,7 +9,9 @@ namespace rpsd::realtime {
 namespace {
 constexpr std::int64_t kNsPerS = 1'000'000'000;
 
-timespec to_timespec(std::int64_t ns) { return timespec{static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)}; }
+timespec to_timespec(std::int64_t ns) {
+  return timespec{static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)};
+}
 }  // namespace
 
 std::int64_t monotonic_now_ns() {

@@ -33,8 +33,8 @@ RealTimeSetupReport apply_realtime(const RealTimeRequest& request) {
     if (rc == 0) {
       report.fifo_granted = true;
     } else {
-      report.refused += "SCHED_FIFO priority " + std::to_string(request.fifo_priority) +
-                        " refused: " + std::strerror(rc) + "\n";
+      report.refused +=
+          "SCHED_FIFO priority " + std::to_string(request.fifo_priority) + " refused: " + std::strerror(rc) + "\n";
     }
   }
   return report;

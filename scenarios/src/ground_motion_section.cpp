@@ -60,7 +60,8 @@ gm::GroundMotionRecord read_synthetic(MappingReader s) {
   } else {
     s.fail("model", "expected kanai_tajimi or clough_penzien, got \"" + model + "\"");
   }
-  if (s.has("target_pga_g")) options.target_pga_m_per_s2 = s.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::kG);
+  if (s.has("target_pga_g"))
+    options.target_pga_m_per_s2 = s.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::kG);
   s.finish();
   return gm::generate_synthetic_ground_motion(options);
 }
@@ -100,7 +101,8 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
   if (factor && target) r.fail("target_pga_g", "give scale_factor or target_pga_g, not both");
   if (factor) record = gm::scale(record, {r.number("scale_factor"), std::nullopt});
   if (target) {
-    record = gm::scale(record, {std::nullopt, r.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::kG)});
+    record = gm::scale(record,
+                       {std::nullopt, r.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::kG)});
   }
   const double pad_after = r.non_negative_number_or("pad_after_s", 0.0);
   if (pad_after > 3600.0) r.fail("pad_after_s", "at most 3600 s");
@@ -109,12 +111,13 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
   // step divides the record's); coarser steps than the record's are refused.
   if (std::abs(record.dt_s - step_s) > 1e-12 * step_s) {
     if (step_s > record.dt_s) {
-      r.fail(r.has("synthetic") ? "synthetic" : "file",
-             "the record's step " + std::to_string(record.dt_s) + " s is finer than the integration step " +
-                 std::to_string(step_s) + " s; raise clock.control_rate_hz");
+      r.fail(r.has("synthetic") ? "synthetic" : "file", "the record's step " + std::to_string(record.dt_s) +
+                                                            " s is finer than the integration step " +
+                                                            std::to_string(step_s) + " s; raise clock.control_rate_hz");
     }
     // Bound the memory a scenario can ask for (2e7 samples = 160 MB).
-    if (record.duration_s() / step_s > 2e7) r.fail("file", "the record at the integration step would exceed 2e7 samples");
+    if (record.duration_s() / step_s > 2e7)
+      r.fail("file", "the record at the integration step would exceed 2e7 samples");
     record = gm::resample(record, {step_s, false});
   }
   r.finish();
@@ -123,7 +126,8 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
 
 }  // namespace
 
-coordinator::GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
+coordinator::GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::path& scenario_file,
+                                                     double step_s) {
   try {
     return read_section(std::move(r), scenario_file, step_s);
   } catch (const gm::RecordError& e) {

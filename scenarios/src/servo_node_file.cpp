@@ -20,7 +20,8 @@ node::LimitAction limit_action(MappingReader& r, const std::string& key, node::L
 std::vector<double> per_channel(MappingReader& r, const std::string& key, int channels, double fallback) {
   if (!r.has(key)) return std::vector<double>(static_cast<std::size_t>(channels), fallback);
   auto values = r.numbers(key);
-  if (static_cast<int>(values.size()) != channels) r.fail(key, "needs one value per channel (" + std::to_string(channels) + ")");
+  if (static_cast<int>(values.size()) != channels)
+    r.fail(key, "needs one value per channel (" + std::to_string(channels) + ")");
   return values;
 }
 
@@ -44,7 +45,8 @@ void read_limits(MappingReader r, node::ServoNodeSetup& f) {
 }
 
 void read_watchdog(MappingReader r, node::ServoNodeSetup& f) {
-  f.node.command_timeout_periods = static_cast<int>(r.whole_number_or("command_timeout_periods", 1, 1'000'000, f.node.command_timeout_periods));
+  f.node.command_timeout_periods =
+      static_cast<int>(r.whole_number_or("command_timeout_periods", 1, 1'000'000, f.node.command_timeout_periods));
   const std::string loss = r.optional_string("on_command_loss").value_or("hold");
   if (loss == "hold") {
     f.node.on_command_loss = node::LossAction::kHold;
@@ -55,7 +57,8 @@ void read_watchdog(MappingReader r, node::ServoNodeSetup& f) {
   }
   const auto safe = per_channel(r, "safe_position_m", f.node.channels, 0.0);
   for (int c = 0; c < f.node.channels; ++c) f.node.safe_position_m[c] = safe[c];
-  f.node.safe_ramp_velocity_m_per_s = r.positive_number_or("safe_ramp_velocity_m_per_s", f.node.safe_ramp_velocity_m_per_s);
+  f.node.safe_ramp_velocity_m_per_s =
+      r.positive_number_or("safe_ramp_velocity_m_per_s", f.node.safe_ramp_velocity_m_per_s);
   r.finish();
 }
 
@@ -116,7 +119,8 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
   return f;
 }
 
-node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::path& file,
+                                                       const std::vector<Override>& overrides) {
   YAML::Node document = load_yaml_document(file, overrides);
   MappingReader root(document, file.string(), "");
   node::ControllerEmulatorSetup f;

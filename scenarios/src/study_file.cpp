@@ -93,7 +93,8 @@ studies::DelayCompensationStudy read_delay_compensation(MappingReader& root, con
   const std::string kind = plant.string("kind");
   if (kind == "servo_model") {
     const std::filesystem::path parameters = file.parent_path() / plant.string("parameters");
-    if (!std::filesystem::exists(parameters)) plant.fail("parameters", "no such parameter file: " + parameters.string());
+    if (!std::filesystem::exists(parameters))
+      plant.fail("parameters", "no such parameter file: " + parameters.string());
     s.plant = load_servo_parameters(parameters);
   } else if (kind == "ideal_delay") {
     servo::PureDelayParameters delay;
@@ -118,14 +119,22 @@ std::optional<integrators::IntegratorConfig> default_integrator(std::string_view
   const auto scheme = integrators::parse_scheme(name);
   if (!scheme) return std::nullopt;
   switch (*scheme) {
-    case integrators::Scheme::kCentralDifference: return integrators::CentralDifferenceParams{};
-    case integrators::Scheme::kNewmark: return integrators::NewmarkParams{};
-    case integrators::Scheme::kHhtAlpha: return integrators::HhtAlphaParams{};
-    case integrators::Scheme::kGeneralizedAlpha: return integrators::GeneralizedAlphaParams{};
-    case integrators::Scheme::kAlphaOs: return integrators::AlphaOsParams{};
-    case integrators::Scheme::kChang: return integrators::ChangParams{};
-    case integrators::Scheme::kChenRicles: return integrators::ChenRiclesParams{};
-    case integrators::Scheme::kKolayRiclesAlpha: return integrators::KolayRiclesAlphaParams{};
+    case integrators::Scheme::kCentralDifference:
+      return integrators::CentralDifferenceParams{};
+    case integrators::Scheme::kNewmark:
+      return integrators::NewmarkParams{};
+    case integrators::Scheme::kHhtAlpha:
+      return integrators::HhtAlphaParams{};
+    case integrators::Scheme::kGeneralizedAlpha:
+      return integrators::GeneralizedAlphaParams{};
+    case integrators::Scheme::kAlphaOs:
+      return integrators::AlphaOsParams{};
+    case integrators::Scheme::kChang:
+      return integrators::ChangParams{};
+    case integrators::Scheme::kChenRicles:
+      return integrators::ChenRiclesParams{};
+    case integrators::Scheme::kKolayRiclesAlpha:
+      return integrators::KolayRiclesAlphaParams{};
   }
   return std::nullopt;
 }
@@ -198,7 +207,7 @@ void apply_override(YAML::Node root, const Override& o) {
 namespace {
 
 studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
-                        const std::vector<Override>& command_line, bool sweep_allowed = true);
+                                     const std::vector<Override>& command_line, bool sweep_allowed = true);
 
 // Shortest text that reads back as the same double.
 std::string number_text(double v) {
@@ -210,8 +219,9 @@ std::string number_text(double v) {
 // `sweep:` is a list of one or two axes, each `key` with `values: [...]` or
 // `range: {start, stop, count}`. Each case is the document with the axis values set as
 // overrides, read in full, so that every case is checked before the batch runs.
-studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line, MappingReader& root,
-                     const std::filesystem::path& file, studies::StudyDocument result) {
+studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line,
+                                  MappingReader& root, const std::filesystem::path& file,
+                                  studies::StudyDocument result) {
   auto axes = root.mappings("sweep");
   if (axes.size() > 2) root.fail("sweep", "at most two swept keys");
   for (auto& axis : axes) {
@@ -285,7 +295,7 @@ studies::StudyDocument load_study(const std::filesystem::path& file, const std::
 }
 
 studies::StudyDocument parse_study(const std::string& yaml_text, const std::filesystem::path& file,
-                      const std::vector<Override>& overrides) {
+                                   const std::vector<Override>& overrides) {
   YAML::Node document = parse_yaml_text(yaml_text, file.string());
   for (const Override& o : overrides) apply_override(document, o);
   // Sweep cases re-parse the text and re-apply these overrides, keeping every line number.
@@ -295,7 +305,7 @@ studies::StudyDocument parse_study(const std::string& yaml_text, const std::file
 namespace {
 
 studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
-                        const std::vector<Override>& command_line, bool sweep_allowed) {
+                                     const std::vector<Override>& command_line, bool sweep_allowed) {
   MappingReader root(document, file.string(), "");
   studies::StudyDocument result;
   result.name = file.stem().string();
@@ -333,7 +343,9 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
   } else if (kind == "servo_max_gain") {
     result.study = read_max_gain(root, std::move(servo));
   } else {
-    root.fail("study", "unknown study \"" + kind + "\" (expected rpsd_test, rpsd_delay_compensation, servo_sine_sweep, servo_frequency_response or servo_max_gain)");
+    root.fail("study", "unknown study \"" + kind +
+                           "\" (expected rpsd_test, rpsd_delay_compensation, servo_sine_sweep, "
+                           "servo_frequency_response or servo_max_gain)");
   }
   root.finish();
   return result;

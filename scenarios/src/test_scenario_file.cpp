@@ -17,7 +17,8 @@ namespace {
 Eigen::MatrixXd matrix_from_rows(const std::vector<std::vector<double>>& rows) {
   Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.front().size()));
   for (std::size_t r = 0; r < rows.size(); ++r)
-    for (std::size_t c = 0; c < rows[r].size(); ++c) m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c];
+    for (std::size_t c = 0; c < rows[r].size(); ++c)
+      m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c];
   return m;
 }
 
@@ -57,7 +58,8 @@ substructure::DampingConfig read_damping(MappingReader d, const Eigen::MatrixXd*
     ++forms;
     const double zeta = d.non_negative_number("damping_ratio");
     const double k = d.positive_number("of_stiffness_n_per_m");
-    if (!mass || mass->rows() != 1) d.fail("damping_ratio", "a single damping ratio needs a one-DOF structure; use rayleigh");
+    if (!mass || mass->rows() != 1)
+      d.fail("damping_ratio", "a single damping ratio needs a one-DOF structure; use rayleigh");
     damping = substructure::DampingMatrix{
         linalg::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, 2.0 * zeta * std::sqrt(k * (*mass)(0, 0))))};
   }
@@ -143,8 +145,10 @@ integrators::IntegratorConfig read_integrator(MappingReader r) {
   const std::string scheme = r.string("scheme");
   auto config = default_integrator(scheme);
   if (!config) r.fail("scheme", "unknown integrator \"" + scheme + "\"");
-  if (auto* kr = std::get_if<integrators::KolayRiclesAlphaParams>(&*config)) kr->rho_inf = r.non_negative_number_or("rho_inf", kr->rho_inf);
-  if (auto* ga = std::get_if<integrators::GeneralizedAlphaParams>(&*config)) ga->rho_inf = r.non_negative_number_or("rho_inf", ga->rho_inf);
+  if (auto* kr = std::get_if<integrators::KolayRiclesAlphaParams>(&*config))
+    kr->rho_inf = r.non_negative_number_or("rho_inf", kr->rho_inf);
+  if (auto* ga = std::get_if<integrators::GeneralizedAlphaParams>(&*config))
+    ga->rho_inf = r.non_negative_number_or("rho_inf", ga->rho_inf);
   if (auto* hht = std::get_if<integrators::HhtAlphaParams>(&*config)) hht->alpha = r.number_or("alpha", hht->alpha);
   if (auto* os = std::get_if<integrators::AlphaOsParams>(&*config)) os->alpha = r.number_or("alpha", os->alpha);
   r.finish();
@@ -184,7 +188,8 @@ void read_clock(MappingReader clock, coordinator::TestConfig& t) {
   t.clock.max_feedback_age_periods =
       static_cast<int>(clock.whole_number_or("max_feedback_age_periods", 1, 1000, t.clock.max_feedback_age_periods));
   t.clock.realtime.lock_memory = clock.boolean_or("lock_memory", t.clock.realtime.lock_memory);
-  t.clock.realtime.fifo_priority = static_cast<int>(clock.whole_number_or("fifo_priority", 0, 99, t.clock.realtime.fifo_priority));
+  t.clock.realtime.fifo_priority =
+      static_cast<int>(clock.whole_number_or("fifo_priority", 0, 99, t.clock.realtime.fifo_priority));
   t.clock.realtime.keep_cpus_awake = clock.boolean_or("keep_cpus_awake", t.clock.realtime.keep_cpus_awake);
   clock.finish();
 }
@@ -198,7 +203,8 @@ void read_transport(MappingReader r, const std::filesystem::path& file, coordina
   } else {
     r.fail("kind", "expected in_process or dds, got \"" + kind + "\"");
   }
-  t.transport.test_id = static_cast<std::uint32_t>(r.whole_number_or("test_id", 1, 4'000'000'000L, t.transport.test_id));
+  t.transport.test_id =
+      static_cast<std::uint32_t>(r.whole_number_or("test_id", 1, 4'000'000'000L, t.transport.test_id));
   t.transport.domain_id = static_cast<std::uint32_t>(r.whole_number_or("domain_id", 0, 232, t.transport.domain_id));
   if (auto config = r.optional_string("dds_config")) {
     t.transport.dds_config = file.parent_path() / *config;
@@ -210,15 +216,15 @@ void read_transport(MappingReader r, const std::filesystem::path& file, coordina
   t.transport.discovery_timeout_s = r.positive_number_or("discovery_timeout_s", t.transport.discovery_timeout_s);
   t.transport.busy_wait_s = r.non_negative_number_or("busy_wait_s", t.transport.busy_wait_s);
   if (t.transport.busy_wait_s > 0.0 && t.clock.mode == coordinator::ClockConfig::Mode::kRealTime) {
-    r.fail("busy_wait_s", "lock-step only (clock.mode as_fast_as_possible): a real-time loop must not spin on a core its "
-                          "own receive thread may need");
+    r.fail("busy_wait_s",
+           "lock-step only (clock.mode as_fast_as_possible): a real-time loop must not spin on a core its "
+           "own receive thread may need");
   }
   if (t.transport.busy_wait_s > 0.01) r.fail("busy_wait_s", "at most 0.01 s");
   r.finish();
 }
 
 }  // namespace
-
 
 coordinator::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file) {
   coordinator::TestConfig t;
@@ -231,8 +237,8 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
   for (auto& e : root.mappings("experimental")) {
     coordinator::ExperimentalChannel channel;
     channel.dof.dof = e.whole_number("dof", 0, dofs - 1);
-    channel.dof.actuator_channel = e.whole_number_or("channel", 0, transport::kMaxChannels - 1,
-                                                     static_cast<long>(t.experimental.size()));
+    channel.dof.actuator_channel =
+        e.whole_number_or("channel", 0, transport::kMaxChannels - 1, static_cast<long>(t.experimental.size()));
     channel.dof.displacement_scale = e.positive_number_or("displacement_scale", 1.0);
     channel.dof.force_scale = e.positive_number_or("force_scale", 1.0);
     channel.dof.specimen_stiffness_estimate_n_per_m = e.non_negative_number("specimen_stiffness_n_per_m");
@@ -278,7 +284,8 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
 
   const bool has_record = root.has("ground_motion");
   const bool has_free = root.has("free_vibration");
-  if (has_record == has_free) root.fail(has_record ? "free_vibration" : "ground_motion", "give exactly one of ground_motion or free_vibration");
+  if (has_record == has_free)
+    root.fail(has_record ? "free_vibration" : "ground_motion", "give exactly one of ground_motion or free_vibration");
   t.initial_displacement_m = Eigen::VectorXd::Zero(dofs);
   if (has_record) {
     t.ground_motion = read_ground_motion_section(root.mapping("ground_motion"), file, dt_s);
@@ -294,7 +301,8 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
   }
   if (auto output = root.optional_mapping("output")) {
     for (double d : output->numbers("record_dofs")) {
-      if (d != std::floor(d) || d < 0 || d >= static_cast<double>(dofs)) output->fail("record_dofs", "DOF out of range");
+      if (d != std::floor(d) || d < 0 || d >= static_cast<double>(dofs))
+        output->fail("record_dofs", "DOF out of range");
       t.record_dofs.push_back(static_cast<Eigen::Index>(d));
     }
     output->finish();

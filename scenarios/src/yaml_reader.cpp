@@ -3,9 +3,9 @@
 #include <cmath>
 #include <memory>
 
-#include "rpsd/config/key_table.h"
 #include <fstream>
 #include <sstream>
+#include "rpsd/config/key_table.h"
 
 namespace rpsd::scenarios {
 namespace {
@@ -51,7 +51,8 @@ MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_
   std::set<std::string> seen;
   for (const auto& entry : node_) {
     if (!entry.first.IsScalar()) fail_at(entry.first, key_path_, "keys must be plain words");
-    if (!seen.insert(entry.first.Scalar()).second) fail_at(entry.first, path_of(entry.first.Scalar()), "given more than once");
+    if (!seen.insert(entry.first.Scalar()).second)
+      fail_at(entry.first, path_of(entry.first.Scalar()), "given more than once");
   }
 }
 
@@ -105,9 +106,7 @@ double MappingReader::non_negative_number(std::string_view key) {
   return v;
 }
 
-double MappingReader::number_or(std::string_view key, double fallback) {
-  return has(key) ? number(key) : fallback;
-}
+double MappingReader::number_or(std::string_view key, double fallback) { return has(key) ? number(key) : fallback; }
 double MappingReader::positive_number_or(std::string_view key, double fallback) {
   return has(key) ? positive_number(key) : fallback;
 }
@@ -179,9 +178,11 @@ std::vector<std::vector<double>> MappingReader::number_rows(std::string_view key
   for (std::size_t r = 0; r < value.size(); ++r) {
     const YAML::Node row = value[r];
     const std::string row_path = path_of(key) + '[' + std::to_string(r) + ']';
-    if (!row.IsSequence() || row.size() == 0) fail_at(row, row_path, "expected a list of numbers, got " + describe(row));
+    if (!row.IsSequence() || row.size() == 0)
+      fail_at(row, row_path, "expected a list of numbers, got " + describe(row));
     if (!rows.empty() && row.size() != rows.front().size()) {
-      fail_at(row, row_path, "has " + std::to_string(row.size()) + " entries, row 0 has " + std::to_string(rows.front().size()));
+      fail_at(row, row_path,
+              "has " + std::to_string(row.size()) + " entries, row 0 has " + std::to_string(rows.front().size()));
     }
     std::vector<double> numbers;
     for (std::size_t c = 0; c < row.size(); ++c) {
@@ -201,7 +202,8 @@ long MappingReader::whole_number(std::string_view key, long minimum, long maximu
   const double v = parse_number(value, key);
   if (v != std::floor(v) || v < static_cast<double>(minimum) || v > static_cast<double>(maximum)) {
     fail_at(value, path_of(key),
-            "expected a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum) + ", got " + describe(value));
+            "expected a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum) + ", got " +
+                describe(value));
   }
   return static_cast<long>(v);
 }
@@ -212,9 +214,11 @@ long MappingReader::whole_number_or(std::string_view key, long minimum, long max
 
 std::vector<MappingReader> MappingReader::mappings(std::string_view key) {
   const YAML::Node value = required(key);
-  if (!value.IsSequence() || value.size() == 0) fail_at(value, path_of(key), "expected a non-empty list, got " + describe(value));
+  if (!value.IsSequence() || value.size() == 0)
+    fail_at(value, path_of(key), "expected a non-empty list, got " + describe(value));
   std::vector<MappingReader> result;
-  for (std::size_t i = 0; i < value.size(); ++i) result.emplace_back(value[i], file_, path_of(key) + '[' + std::to_string(i) + ']');
+  for (std::size_t i = 0; i < value.size(); ++i)
+    result.emplace_back(value[i], file_, path_of(key) + '[' + std::to_string(i) + ']');
   return result;
 }
 
@@ -235,11 +239,11 @@ void MappingReader::finish() const {
   }
 }
 
-
 double MappingReader::checked(double value, std::string_view key, const config::Number& spec) const {
   if (!spec.admits(value)) {
     const YAML::Node node = node_[std::string(key)];
-    fail_at(node ? node : node_, path_of(key), "expected a number " + config::range_text(spec) + ", got " + describe(node));
+    fail_at(node ? node : node_, path_of(key),
+            "expected a number " + config::range_text(spec) + ", got " + describe(node));
   }
   return value;
 }
@@ -283,9 +287,12 @@ long MappingReader::whole_number_or(std::string_view key, long minimum, long max
   return whole_number_or(key, minimum, maximum, fallback);
 }
 
-bool MappingReader::boolean_or(std::string_view key, bool fallback, std::string_view) { return boolean_or(key, fallback); }
+bool MappingReader::boolean_or(std::string_view key, bool fallback, std::string_view) {
+  return boolean_or(key, fallback);
+}
 
-std::string MappingReader::choice(std::string_view key, const std::vector<std::string_view>& choices, std::string_view) {
+std::string MappingReader::choice(std::string_view key, const std::vector<std::string_view>& choices,
+                                  std::string_view) {
   const std::string value = string(key);
   for (const auto& c : choices) {
     if (value == c) return value;

@@ -94,7 +94,9 @@ double gain_search_bound(const ServoSystemParameters& p) { return 1e4 * p.contro
 
 double max_stable_p_gain(const ServoSystemParameters& p, LinearModel model) {
   return largest_stable_gain(
-      [&](double gain) { return routh_hurwitz_stable(command_to_displacement(with_p_gain(p, gain), model).denominator); },
+      [&](double gain) {
+        return routh_hurwitz_stable(command_to_displacement(with_p_gain(p, gain), model).denominator);
+      },
       gain_search_bound(p));
 }
 

@@ -6,7 +6,9 @@ namespace rpsd::servo {
 
 std::unique_ptr<Plant> make_plant(const PlantConfig& config) {
   return std::visit(
-      [](const auto& p) -> std::unique_ptr<Plant> { return std::make_unique<typename std::decay_t<decltype(p)>::Model>(p); },
+      [](const auto& p) -> std::unique_ptr<Plant> {
+        return std::make_unique<typename std::decay_t<decltype(p)>::Model>(p);
+      },
       config);
 }
 

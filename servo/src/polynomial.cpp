@@ -45,7 +45,8 @@ Polynomial Polynomial::operator+(const Polynomial& other) const {
 Polynomial Polynomial::operator*(const Polynomial& other) const {
   Eigen::VectorXd product = Eigen::VectorXd::Zero(coefficients_.size() + other.coefficients_.size() - 1);
   for (Eigen::Index i = 0; i < coefficients_.size(); ++i)
-    for (Eigen::Index j = 0; j < other.coefficients_.size(); ++j) product[i + j] += coefficients_[i] * other.coefficients_[j];
+    for (Eigen::Index j = 0; j < other.coefficients_.size(); ++j)
+      product[i + j] += coefficients_[i] * other.coefficients_[j];
   return Polynomial(product);
 }
 

@@ -8,7 +8,8 @@ namespace rpsd::servo {
 
 void PureDelayParameters::validate() const {
   if (!(delay_s >= 0.0) || !std::isfinite(delay_s)) throw std::invalid_argument("delay_s: must be zero or positive");
-  if (!(specimen_stiffness_n_per_m >= 0.0)) throw std::invalid_argument("specimen_stiffness_n_per_m: must be zero or positive");
+  if (!(specimen_stiffness_n_per_m >= 0.0))
+    throw std::invalid_argument("specimen_stiffness_n_per_m: must be zero or positive");
   if (!(sample_rate_hz > 0.0)) throw std::invalid_argument("sample_rate_hz: must be positive");
 }
 
@@ -69,10 +70,10 @@ PlantMeasurement PureDelayPlant::measure() const {
   return {x, parameters_.specimen_stiffness_n_per_m * x};
 }
 
-
 PureDelayParameters PureDelayParameters::read(config::Source& section, double specimen_stiffness_n_per_m) {
   PureDelayParameters d;
-  d.delay_s = section.number("delay_s", config::Number::non_negative("s", "how long after its command the actuator is there"));
+  d.delay_s =
+      section.number("delay_s", config::Number::non_negative("s", "how long after its command the actuator is there"));
   d.specimen_stiffness_n_per_m = specimen_stiffness_n_per_m;
   return d;
 }

@@ -27,8 +27,7 @@ bool routh_hurwitz_stable(const Polynomial& characteristic) {
   return true;
 }
 
-double largest_stable_gain(const std::function<bool(double)>& stable, double upper_bound,
-                           double relative_tolerance) {
+double largest_stable_gain(const std::function<bool(double)>& stable, double upper_bound, double relative_tolerance) {
   double low = upper_bound * 1e-9;
   if (!stable(low)) throw std::domain_error("largest_stable_gain: unstable even at a vanishing gain");
   double high = upper_bound;

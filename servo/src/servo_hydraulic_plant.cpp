@@ -66,8 +66,8 @@ inline ServoHydraulicPlant::Terms ServoHydraulicPlant::terms(const Rates& s, dou
 
   const double valve_command_v =
       k_.position_gain_v_per_m * (command_m - x) + k_.rate_gain_v_s_per_m * (command_rate_m_per_s - xdot);
-  const double pilot_flow_rate =
-      k_.pilot_gain_m3_per_s2_per_v * (valve_command_v - k_.spool_feedback_v * opening) - k_.pilot_rate_per_s * pilot_flow;
+  const double pilot_flow_rate = k_.pilot_gain_m3_per_s2_per_v * (valve_command_v - k_.spool_feedback_v * opening) -
+                                 k_.pilot_rate_per_s * pilot_flow;
   double opening_rate = k_.opening_per_m3 * pilot_flow;
   if ((opening >= 1.0 && opening_rate > 0.0) || (opening <= -1.0 && opening_rate < 0.0)) opening_rate = 0.0;
 
@@ -100,7 +100,8 @@ inline ServoHydraulicPlant::Terms ServoHydraulicPlant::terms(const Rates& s, dou
 // product and a sum follow the root and the tanh (equal to y + c k up to round-off).
 inline ServoHydraulicPlant::Rates ServoHydraulicPlant::stage_state(const Rates& y, double c, const Terms& t) const {
   return {y[kSpoolOpening] + c * t.rate[kSpoolOpening], y[kPilotFlow] + c * t.rate[kPilotFlow],
-          (y[kLoadPressure] - c * t.other_flows) + (c * t.root_coefficient) * t.root, y[kDisplacement] + c * t.rate[kDisplacement],
+          (y[kLoadPressure] - c * t.other_flows) + (c * t.root_coefficient) * t.root,
+          y[kDisplacement] + c * t.rate[kDisplacement],
           (y[kVelocity] + c * t.other_forces) - (c * k_.friction_per_mass) * t.friction_tanh};
 }
 

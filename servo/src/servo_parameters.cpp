@@ -27,16 +27,18 @@ double SpecimenParameters::damping_n_s_per_m() const {
   return 2.0 * damping_ratio * std::sqrt(stiffness.initial_n_per_m * mass_kg);
 }
 
-double SpecimenParameters::natural_frequency_rad_s() const {
-  return std::sqrt(stiffness.initial_n_per_m / mass_kg);
-}
+double SpecimenParameters::natural_frequency_rad_s() const { return std::sqrt(stiffness.initial_n_per_m / mass_kg); }
 
 namespace {
 void require(bool ok, const char* field, const char* what) {
   if (!ok) throw std::invalid_argument(std::string(field) + ": " + what);
 }
-void require_positive(double v, const char* field) { require(std::isfinite(v) && v > 0.0, field, "must be a positive number"); }
-void require_non_negative(double v, const char* field) { require(std::isfinite(v) && v >= 0.0, field, "must be zero or positive"); }
+void require_positive(double v, const char* field) {
+  require(std::isfinite(v) && v > 0.0, field, "must be a positive number");
+}
+void require_non_negative(double v, const char* field) {
+  require(std::isfinite(v) && v >= 0.0, field, "must be zero or positive");
+}
 }  // namespace
 
 void ServoSystemParameters::validate() const {

@@ -9,7 +9,8 @@ using config::Number;
 
 ControllerParameters read_controller(config::Source& r) {
   ControllerParameters c;
-  c.proportional_gain = r.number("proportional_gain", Number::positive("V/V", "G_p, valve command volts per error volt"));
+  c.proportional_gain =
+      r.number("proportional_gain", Number::positive("V/V", "G_p, valve command volts per error volt"));
   c.derivative_gain_s = r.number_or("derivative_gain_s", 0.0, Number::non_negative("s", "G_d"));
   r.finish();
   return c;
@@ -17,11 +18,13 @@ ControllerParameters read_controller(config::Source& r) {
 
 ServovalveParameters read_servovalve(config::Source& r) {
   ServovalveParameters v;
-  v.pilot_time_constant_s = r.number("pilot_time_constant_s", Number::positive("s", "tau, the pilot stage's time constant"));
+  v.pilot_time_constant_s =
+      r.number("pilot_time_constant_s", Number::positive("s", "tau, the pilot stage's time constant"));
   v.pilot_flow_gain_m3_per_s_per_v =
       r.number("pilot_flow_gain_m3_per_s_per_v", Number::positive("m^3/(s V)", "K_vp, pilot flow per volt"));
   v.main_spool_area_m2 = r.number("main_spool_area_m2", Number::positive("m^2", "A_v, the main spool's end area"));
-  v.spool_lvdt_gain_v_per_m = r.number("spool_lvdt_gain_v_per_m", Number::positive("V/m", "K_3, the spool LVDT's gain"));
+  v.spool_lvdt_gain_v_per_m =
+      r.number("spool_lvdt_gain_v_per_m", Number::positive("V/m", "K_3, the spool LVDT's gain"));
   v.max_spool_stroke_m = r.number("max_spool_stroke_m", Number::positive("m", "x_vmax, the spool's full opening"));
   r.finish();
   return v;
@@ -31,7 +34,8 @@ ValveFlowParameters read_flow(config::Source& r) {
   ValveFlowParameters f;
   f.no_load_flow_gain_m3_per_s =
       r.number("no_load_flow_gain_m3_per_s", Number::positive("m^3/s", "K_v0, flow at full opening without load"));
-  f.flow_gain_rolloff = r.number("flow_gain_rolloff", Number::non_negative("", "r in K_v = K_v0 / sqrt(1 + (r x_v)^2)"));
+  f.flow_gain_rolloff =
+      r.number("flow_gain_rolloff", Number::non_negative("", "r in K_v = K_v0 / sqrt(1 + (r x_v)^2)"));
   f.supply_pressure_pa = r.number("supply_pressure_pa", Number::positive("Pa", "P_s, the supply pressure"));
   f.nonlinear_flow_gain = r.boolean_or("nonlinear_flow_gain", true, "the flow gain falls as the opening grows");
   f.load_pressure_effect = r.boolean_or("load_pressure_effect", true, "the square-root load-pressure term of the flow");
@@ -45,7 +49,8 @@ ActuatorParameters read_actuator(config::Source& r) {
   a.stroke_m = r.number("stroke_m", Number::positive("m", "half the stroke (the piston moves +/- this)"));
   a.oil_volume_m3 = r.number("oil_volume_m3", Number::positive("m^3", "V_t, both chambers and their passages"));
   a.bulk_modulus_pa = r.number("bulk_modulus_pa", Number::positive("Pa", "beta_e, the oil's effective bulk modulus"));
-  a.leakage_m3_per_s_per_pa = r.number("leakage_m3_per_s_per_pa", Number::non_negative("m^3/(s Pa)", "C_l, total leakage"));
+  a.leakage_m3_per_s_per_pa =
+      r.number("leakage_m3_per_s_per_pa", Number::non_negative("m^3/(s Pa)", "C_l, total leakage"));
   r.finish();
   return a;
 }
@@ -53,10 +58,11 @@ ActuatorParameters read_actuator(config::Source& r) {
 SpecimenStiffness read_stiffness(config::Source& r) {
   SpecimenStiffness s;
   s.initial_n_per_m = r.number("initial_n_per_m", Number::non_negative("N/m", "the specimen's initial stiffness"));
-  s.change_displacement_m = r.number_or("change_displacement_m", 0.0,
-                                        Number::non_negative("m", "where the stiffness changes (0: linear)"));
+  s.change_displacement_m =
+      r.number_or("change_displacement_m", 0.0, Number::non_negative("m", "where the stiffness changes (0: linear)"));
   if (s.change_displacement_m > 0.0) {
-    s.secondary_n_per_m = r.number("secondary_n_per_m", Number::non_negative("N/m", "the stiffness beyond change_displacement_m"));
+    s.secondary_n_per_m =
+        r.number("secondary_n_per_m", Number::non_negative("N/m", "the stiffness beyond change_displacement_m"));
   } else if (r.has("secondary_n_per_m")) {
     r.fail("secondary_n_per_m", "needs change_displacement_m > 0 (the displacement where the stiffness changes)");
   }
@@ -68,7 +74,8 @@ SpecimenParameters read_specimen(config::Source& r) {
   SpecimenParameters s;
   s.mass_kg = r.number("mass_kg", Number::positive("kg", "the moving mass, the piston's included"));
   s.stiffness = read_stiffness(*r.section("stiffness", "elastic, linear or bilinear"));
-  s.damping_ratio = r.number_or("damping_ratio", 0.0, Number::non_negative("", "viscous, of the initial stiffness and mass"));
+  s.damping_ratio =
+      r.number_or("damping_ratio", 0.0, Number::non_negative("", "viscous, of the initial stiffness and mass"));
   s.friction_force_n = r.number_or("friction_force_n", 0.0, Number::non_negative("N", "Coulomb friction"));
   s.friction_regularisation_velocity_m_per_s =
       r.number_or("friction_regularisation_velocity_m_per_s", s.friction_regularisation_velocity_m_per_s,
@@ -106,7 +113,6 @@ ServoSystemParameters read_servo_parameters(config::Source& file) {
   }
   return p;
 }
-
 
 ServoSystemParameters ServoSystemParameters::read(config::Source& section, double) {
   const auto file = section.file("parameters", "the servo-system parameter file (examples/servo/paper-mts-244.yaml)");

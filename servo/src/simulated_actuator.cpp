@@ -12,14 +12,16 @@ SimulatedActuator::SimulatedActuator(std::span<Plant* const> plants) : channels_
                                 " plants (one per channel), got " + std::to_string(plants.size()));
   }
   for (int c = 0; c < channels_; ++c) {
-    if (plants[c] == nullptr) throw std::invalid_argument("SimulatedActuator: plant of channel " + std::to_string(c) + " is null");
+    if (plants[c] == nullptr)
+      throw std::invalid_argument("SimulatedActuator: plant of channel " + std::to_string(c) + " is null");
     plants_[c] = plants[c];
   }
 }
 
 void SimulatedActuator::start(std::span<const double> initial_displacement_m) {
   if (static_cast<int>(initial_displacement_m.size()) != channels_) {
-    throw std::invalid_argument("SimulatedActuator::start: " + std::to_string(channels_) + " initial displacements expected, got " +
+    throw std::invalid_argument("SimulatedActuator::start: " + std::to_string(channels_) +
+                                " initial displacements expected, got " +
                                 std::to_string(initial_displacement_m.size()));
   }
   for (double x : initial_displacement_m) {
@@ -36,8 +38,10 @@ void SimulatedActuator::reset(std::span<const double> displacement_m) {
   }
 }
 
-ActuatorStatus SimulatedActuator::exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) {
-  if (static_cast<int>(command_m.size()) != channels_ || !(period_s > 0.0) || !std::isfinite(period_s)) return ActuatorStatus::kFault;
+ActuatorStatus SimulatedActuator::exchange(std::span<const double> command_m, double period_s,
+                                           ActuatorReading& reading) {
+  if (static_cast<int>(command_m.size()) != channels_ || !(period_s > 0.0) || !std::isfinite(period_s))
+    return ActuatorStatus::kFault;
   for (int c = 0; c < channels_; ++c) {
     if (!std::isfinite(command_m[c])) return ActuatorStatus::kFault;
   }

@@ -10,7 +10,8 @@ namespace rpsd::servo {
 void TransferFunctionPlantParameters::validate() const {
   const auto& tf = transfer_function;
   if (tf.denominator.degree() < 1) throw std::invalid_argument("transfer function: denominator must have degree >= 1");
-  if (tf.numerator.degree() > tf.denominator.degree()) throw std::invalid_argument("transfer function: improper (numerator degree > denominator degree)");
+  if (tf.numerator.degree() > tf.denominator.degree())
+    throw std::invalid_argument("transfer function: improper (numerator degree > denominator degree)");
   const Eigen::VectorXcd poles = tf.denominator.roots();
   if (poles.real().maxCoeff() >= 0.0) throw std::invalid_argument("transfer function: unstable or marginal pole");
   if (!(plant_rate_hz > 0.0)) throw std::invalid_argument("plant_rate_hz: must be positive");
@@ -18,7 +19,8 @@ void TransferFunctionPlantParameters::validate() const {
   if (poles.cwiseAbs().maxCoeff() / plant_rate_hz > 1.0) {
     throw std::invalid_argument("plant_rate_hz: too low for the fastest pole of the transfer function");
   }
-  if (!(specimen_stiffness_n_per_m >= 0.0)) throw std::invalid_argument("specimen_stiffness_n_per_m: must be zero or positive");
+  if (!(specimen_stiffness_n_per_m >= 0.0))
+    throw std::invalid_argument("specimen_stiffness_n_per_m: must be zero or positive");
 }
 
 TransferFunctionPlant::TransferFunctionPlant(const TransferFunctionPlantParameters& parameters)
@@ -86,18 +88,21 @@ PlantMeasurement TransferFunctionPlant::measure() const {
   return {x, parameters_.specimen_stiffness_n_per_m * x};
 }
 
-
-TransferFunctionPlantParameters TransferFunctionPlantParameters::read(config::Source& section, double specimen_stiffness_n_per_m) {
+TransferFunctionPlantParameters TransferFunctionPlantParameters::read(config::Source& section,
+                                                                      double specimen_stiffness_n_per_m) {
   // Coefficients in descending powers of s, as transfer functions are usually published.
   auto numerator = section.numbers("numerator_descending", config::Number::any("", "b_m ... b_0 of the numerator"));
-  auto denominator = section.numbers("denominator_descending", config::Number::any("", "a_n ... a_0 of the denominator"));
+  auto denominator =
+      section.numbers("denominator_descending", config::Number::any("", "a_n ... a_0 of the denominator"));
   std::reverse(numerator.begin(), numerator.end());
   std::reverse(denominator.begin(), denominator.end());
   TransferFunctionPlantParameters t;
-  t.transfer_function = {Polynomial(Eigen::Map<Eigen::VectorXd>(numerator.data(), static_cast<Eigen::Index>(numerator.size()))),
-                         Polynomial(Eigen::Map<Eigen::VectorXd>(denominator.data(), static_cast<Eigen::Index>(denominator.size())))};
+  t.transfer_function = {
+      Polynomial(Eigen::Map<Eigen::VectorXd>(numerator.data(), static_cast<Eigen::Index>(numerator.size()))),
+      Polynomial(Eigen::Map<Eigen::VectorXd>(denominator.data(), static_cast<Eigen::Index>(denominator.size())))};
   t.specimen_stiffness_n_per_m = specimen_stiffness_n_per_m;
-  t.plant_rate_hz = section.number_or("plant_rate_hz", t.plant_rate_hz, config::Number::positive("Hz", "fixed-step integration rate"));
+  t.plant_rate_hz = section.number_or("plant_rate_hz", t.plant_rate_hz,
+                                      config::Number::positive("Hz", "fixed-step integration rate"));
   try {
     t.validate();
   } catch (const std::invalid_argument& e) {

@@ -11,13 +11,13 @@
 
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/compensation/discrete_phase_lead.h"
-#include "rpsd/studies/damping_identification.h"
-#include "rpsd/studies/gnuplot.h"
 #include "rpsd/coordinator/specimen_sdof.h"
 #include "rpsd/coordinator/test_assembly.h"
 #include "rpsd/coordinator/test_criteria.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
+#include "rpsd/studies/damping_identification.h"
+#include "rpsd/studies/gnuplot.h"
 
 namespace rpsd::studies {
 namespace {
@@ -32,8 +32,8 @@ Complex actuator_response(const DelayCompensationStudy& study, Complex s) {
 }
 
 // Root of m s^2 + c s + k G_c(s) G_a(s) = 0 near `start`, by Newton with a numerical derivative.
-Complex loop_root(const DelayCompensationStudy& study, const compensation::PhaseLeadParameters& lead,
-                  double c, Complex start) {
+Complex loop_root(const DelayCompensationStudy& study, const compensation::PhaseLeadParameters& lead, double c,
+                  Complex start) {
   const auto f = [&](Complex s) {
     const Complex gc = (1.0 + lead.ratio_a * lead.time_constant_s * s) / (1.0 + lead.time_constant_s * s);
     return study.mass_kg * s * s + c * s + study.stiffness_n_per_m * gc * actuator_response(study, s);
@@ -68,7 +68,8 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
   for (std::size_t i = 0; i < study.compensated_delays_s.size(); ++i) {
     DelayCompensationCase k;
     k.compensated_delay_s = study.compensated_delays_s[i];
-    const auto lead = compensation::DiscretePhaseLeadParameters::for_delay(k.compensated_delay_s, study.phase_lead_ratio_a);
+    const auto lead =
+        compensation::DiscretePhaseLeadParameters::for_delay(k.compensated_delay_s, study.phase_lead_ratio_a);
     k.actuator_delay_s = actuator_delay;
     k.compensator_lead_s = std::arg(compensation::discrete_phase_lead_response(lead, dt, omega_n)) / omega_n;
     k.residual_delay_s = k.actuator_delay_s - k.compensator_lead_s;
@@ -89,14 +90,16 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
     sdof.plant = std::visit([](const auto& plant) { return servo::PlantConfig{plant}; }, study.plant);
     const coordinator::TestConfig config = coordinator::specimen_sdof_test(sdof);
     // The case is evaluated as it runs; nothing is kept but the response.
-    coordinator::TestAssembly test(config, {dir.empty() ? dir : dir / delay_case_csv_name(i, k.compensated_delay_s), false, false, {}});
+    coordinator::TestAssembly test(
+        config, {dir.empty() ? dir : dir / delay_case_csv_name(i, k.compensated_delay_s), false, false, {}});
     coordinator::CriteriaAccumulator sums(1, 0, study.control_rate_hz);
     std::vector<double> x;
     const std::int64_t steps = test.steps_planned();
     x.reserve(static_cast<std::size_t>(steps));
     const double abort_level = study.abort_amplitude_factor * std::abs(study.initial_displacement_m);
     for (std::int64_t n = 0; n < steps; ++n) {
-      if (test.step() != coordinator::StepOutcome::kOk) throw std::runtime_error("delay-compensation case stopped: loop failure");
+      if (test.step() != coordinator::StepOutcome::kOk)
+        throw std::runtime_error("delay-compensation case stopped: loop failure");
       sums.add_test(test.last_record());
       x.push_back(test.last_record().displacement_m[0]);
       if (abort_level > 0.0 && std::abs(x.back()) > abort_level) {
@@ -123,8 +126,7 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
 }
 
 void write_delay_compensation(const std::filesystem::path& dir, const StudyDocument& file,
-                              const DelayCompensationStudy& study,
-                              const std::vector<DelayCompensationCase>& cases) {
+                              const DelayCompensationStudy& study, const std::vector<DelayCompensationCase>& cases) {
   using nlohmann::json;
   json entries = json::array();
   for (std::size_t i = 0; i < cases.size(); ++i) {
@@ -152,11 +154,15 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
       {"study", "rpsd_delay_compensation"},
       {"scenario", file.name},
       {"plant", ideal ? "ideal_delay" : "servo_model"},
-      {"structure", {{"mass_kg", study.mass_kg}, {"stiffness_n_per_m", study.stiffness_n_per_m}, {"damping_ratio", study.damping_ratio},
-                     {"natural_frequency_hz", std::sqrt(study.stiffness_n_per_m / study.mass_kg) / (2.0 * std::numbers::pi)}}},
+      {"structure",
+       {{"mass_kg", study.mass_kg},
+        {"stiffness_n_per_m", study.stiffness_n_per_m},
+        {"damping_ratio", study.damping_ratio},
+        {"natural_frequency_hz", std::sqrt(study.stiffness_n_per_m / study.mass_kg) / (2.0 * std::numbers::pi)}}},
       {"initial_displacement_m", study.initial_displacement_m},
       {"control_rate_hz", study.control_rate_hz},
-      {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(study.integrator))) + " " + integrators::describe(study.integrator)},
+      {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(study.integrator))) + " " +
+                         integrators::describe(study.integrator)},
       {"phase_lead_ratio_a", study.phase_lead_ratio_a},
       {"cases", entries}};
   std::ofstream(dir / "summary.json") << summary.dump(2) << '\n';
@@ -167,8 +173,9 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
     table << "residual_delay_ms,compensated_delay_ms,identified_damping_ratio,predicted_damping_ratio,"
              "approximate_damping_ratio,predicted_damping_ratio_loop\n";
     for (const auto& k : cases) {
-      table << 1e3 * k.residual_delay_s << ',' << 1e3 * k.compensated_delay_s << ',' << k.identified_damping_ratio << ','
-            << k.predicted_damping_ratio << ',' << k.approximate_damping_ratio << ',' << k.predicted_damping_ratio_loop << '\n';
+      table << 1e3 * k.residual_delay_s << ',' << 1e3 * k.compensated_delay_s << ',' << k.identified_damping_ratio
+            << ',' << k.predicted_damping_ratio << ',' << k.approximate_damping_ratio << ','
+            << k.predicted_damping_ratio_loop << '\n';
     }
   }
   // Panels (a) under- and (b) over-compensation: every case of each kind, displacement / d0.
@@ -178,8 +185,9 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
       if ((cases[i].residual_delay_s > 0.0) != under) continue;
       char line[256];
       std::snprintf(line, sizeof line, "%s'%s' using 2:($10/%g) with lines lw 1.5 title '%.0f ms (residual %+.0f ms)'",
-                    plots.empty() ? "plot " : ", \\\n     ", delay_case_csv_name(i, cases[i].compensated_delay_s).c_str(),
-                    study.initial_displacement_m, 1e3 * cases[i].compensated_delay_s, 1e3 * cases[i].residual_delay_s);
+                    plots.empty() ? "plot " : ", \\\n     ",
+                    delay_case_csv_name(i, cases[i].compensated_delay_s).c_str(), study.initial_displacement_m,
+                    1e3 * cases[i].compensated_delay_s, 1e3 * cases[i].residual_delay_s);
       plots += line;
     }
     return plots.empty() ? std::string("plot 0 notitle\n") : plots + "\n";
@@ -191,7 +199,8 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
                  "set ylabel 'x / x_0'\nset yrange [-5:5]\n"
                  "set title '(a) under-compensated: compensated delay < actuator delay'\n" +
                  panel(true) +
-                 "set title '(b) over-compensated: compensated delay > actuator delay'\nset yrange [-1.2:1.2]\n" + panel(false) +
+                 "set title '(b) over-compensated: compensated delay > actuator delay'\nset yrange [-1.2:1.2]\n" +
+                 panel(false) +
                  "set title '(c) effective damping ratio against residual delay'\nset autoscale y\n"
                  "set xlabel 'residual delay (ms)'\nset ylabel 'damping ratio'\n"
                  "plot 'damping.csv' using 1:3 with points pt 7 ps 1.2 title 'identified from RPsD response', \\\n"

@@ -9,9 +9,9 @@
 #include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/coordinator/actuator_links.h"
-#include "rpsd/servo/plant_factory.h"
 #include "rpsd/coordinator/test_runs.h"
 #include "rpsd/servo/linear_analysis.h"
+#include "rpsd/servo/plant_factory.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_frequency_response.h"
 #include "rpsd/substructure/modal.h"
@@ -20,7 +20,8 @@ namespace rpsd::studies {
 namespace {
 
 // Signed delay of measured behind target (negative: ahead), by cross-correlation both ways.
-std::optional<double> signed_delay_ms(const std::vector<double>& target, const std::vector<double>& measured, double rate_hz) {
+std::optional<double> signed_delay_ms(const std::vector<double>& target, const std::vector<double>& measured,
+                                      double rate_hz) {
   compensation::CrossCorrelationOptions options;
   options.max_lag_samples = static_cast<int>(0.2 * rate_hz);
   options.measure = compensation::CorrelationMeasure::kPearson;
@@ -37,7 +38,8 @@ std::optional<double> signed_delay_ms(const std::vector<double>& target, const s
 class CompensatedPlant final : public servo::Plant {
  public:
   CompensatedPlant(const coordinator::TestConfig& s)
-      : plant_(servo::make_plant(s.plant)), compensator_(compensation::make_compensator(s.compensation, 1.0 / s.control_rate_hz)) {}
+      : plant_(servo::make_plant(s.plant)),
+        compensator_(compensation::make_compensator(s.compensation, 1.0 / s.control_rate_hz)) {}
   void reset(double displacement_m) override {
     plant_->reset(displacement_m);
     compensator_->reset(displacement_m);
@@ -83,7 +85,8 @@ std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& t
     const Eigen::VectorXd phi = modal.modes.col(i);
     const double w = modal.omega_rad_s[i];
     double k_e = 0.0;
-    for (const auto& e : s.experimental) k_e += phi[e.dof.dof] * phi[e.dof.dof] * e.dof.specimen_stiffness_estimate_n_per_m;
+    for (const auto& e : s.experimental)
+      k_e += phi[e.dof.dof] * phi[e.dof.dof] * e.dof.specimen_stiffness_estimate_n_per_m;
     // The specimen's share acts through the loop's gain and delay at the mode's frequency.
     const LoopResponse loop = compensated_plant_response(s, w);
     const compensation::DelayedOscillator mode{1.0, phi.dot(c * phi), w * w - k_e, k_e * loop.gain};
@@ -104,22 +107,26 @@ std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& t
 void attach_nodes(DryRunReport& report, const coordinator::TestConfig& s, const std::vector<NodeLimits>& nodes) {
   for (const NodeLimits& node : nodes) {
     if (node.test_id != s.transport.test_id) {
-      throw std::invalid_argument(node.name + ": node.test_id is " + std::to_string(node.test_id) + ", the scenario's transport.test_id " +
-                                  std::to_string(s.transport.test_id));
+      throw std::invalid_argument(node.name + ": node.test_id is " + std::to_string(node.test_id) +
+                                  ", the scenario's transport.test_id " + std::to_string(s.transport.test_id));
     }
     std::vector<ChannelPrediction*> site;
     for (auto& c : report.channels) {
       if (c.site_id == node.site_id) site.push_back(&c);
     }
     if (site.empty()) {
-      throw std::invalid_argument(node.name + ": node.site_id " + std::to_string(node.site_id) + " is not a site of the scenario's experimental channels");
+      throw std::invalid_argument(node.name + ": node.site_id " + std::to_string(node.site_id) +
+                                  " is not a site of the scenario's experimental channels");
     }
-    if (site.front()->node) throw std::invalid_argument(node.name + ": a second node file for site " + std::to_string(node.site_id));
+    if (site.front()->node)
+      throw std::invalid_argument(node.name + ": a second node file for site " + std::to_string(node.site_id));
     if (site.size() != node.channels.size()) {
-      throw std::invalid_argument(node.name + ": " + std::to_string(node.channels.size()) + " channel(s), the scenario gives site " +
-                                  std::to_string(node.site_id) + " " + std::to_string(site.size()));
+      throw std::invalid_argument(node.name + ": " + std::to_string(node.channels.size()) +
+                                  " channel(s), the scenario gives site " + std::to_string(node.site_id) + " " +
+                                  std::to_string(site.size()));
     }
-    for (std::size_t i = 0; i < site.size(); ++i) site[i]->node = NodeCheck{node.name, node.channels[i], node.control_period_s};
+    for (std::size_t i = 0; i < site.size(); ++i)
+      site[i]->node = NodeCheck{node.name, node.channels[i], node.control_period_s};
   }
 }
 
@@ -129,7 +136,8 @@ void check_against_node(ChannelPrediction& p) {
   NodeCheck& n = *p.node;
   n.peak_command_velocity_m_per_s = p.peak_increment_m / n.control_period_s;
   n.within_limits = p.peak_command_m <= n.limits.max_stroke_m && p.peak_increment_m <= n.limits.max_increment_m &&
-                    n.peak_command_velocity_m_per_s <= n.limits.max_velocity_m_per_s && p.peak_force_n <= n.limits.max_force_n;
+                    n.peak_command_velocity_m_per_s <= n.limits.max_velocity_m_per_s &&
+                    p.peak_force_n <= n.limits.max_force_n;
 }
 
 }  // namespace
@@ -206,11 +214,14 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
     report.p_gain = a.p_gain;
     report.max_stable_p_gain = a.max_stable_p_gain_full_model;
   }
-  const bool completed = report.outcome == coordinator::StepOutcome::kOk || report.outcome == coordinator::StepOutcome::kRecordEnded;
-  report.within_limits = completed &&
-                         std::all_of(report.channels.begin(), report.channels.end(), [](const auto& p) { return p.within_limits; }) &&
-                         std::all_of(report.modes.begin(), report.modes.end(), [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
-                         (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
+  const bool completed =
+      report.outcome == coordinator::StepOutcome::kOk || report.outcome == coordinator::StepOutcome::kRecordEnded;
+  report.within_limits =
+      completed &&
+      std::all_of(report.channels.begin(), report.channels.end(), [](const auto& p) { return p.within_limits; }) &&
+      std::all_of(report.modes.begin(), report.modes.end(),
+                  [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
+      (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
   return report;
 }
 

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <ostream>
 #include <nlohmann/json.hpp>
+#include <ostream>
 
 #include "rpsd/studies/dry_run_report.h"
 
@@ -21,7 +21,8 @@ nlohmann::json maybe(const std::optional<T>& v) {
 std::string versus(double value, double limit, double scale, const char* unit) {
   char text[64];
   if (std::isfinite(limit)) {
-    std::snprintf(text, sizeof text, "%.3g / %.3g %s%s", value * scale, limit * scale, unit, value > limit ? "  EXCEEDED" : "");
+    std::snprintf(text, sizeof text, "%.3g / %.3g %s%s", value * scale, limit * scale, unit,
+                  value > limit ? "  EXCEEDED" : "");
   } else {
     std::snprintf(text, sizeof text, "%.3g %s (no limit)", value * scale, unit);
   }
@@ -42,31 +43,31 @@ nlohmann::json node_json(const NodeCheck& n) {
 
 nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_name, std::ostream& out) {
   out << "rpsd run --dry-run: " << test_name << ", simulated plant in this process, " << r.steps << " of "
-            << r.steps_planned << " steps\n";
+      << r.steps_planned << " steps\n";
   if (r.outcome != coordinator::StepOutcome::kOk && r.outcome != coordinator::StepOutcome::kRecordEnded) {
     out << "  the simulated test stopped early"
-              << (r.outcome == coordinator::StepOutcome::kLimit
-                      ? std::string(" at the coordinator limit ") + coordinator::limit_stop_name(r.limit_stop.kind) + " of channel " +
-                            std::to_string(r.limit_stop.channel)
-                      : std::string())
-              << "\n";
+        << (r.outcome == coordinator::StepOutcome::kLimit
+                ? std::string(" at the coordinator limit ") + coordinator::limit_stop_name(r.limit_stop.kind) +
+                      " of channel " + std::to_string(r.limit_stop.channel)
+                : std::string())
+        << "\n";
   }
   nlohmann::json channels = nlohmann::json::array();
   for (const auto& c : r.channels) {
     out << "  channel " << c.channel << " (site " << c.site_id << "): stroke "
-              << versus(std::max(c.peak_command_m, c.peak_displacement_m), c.limits.max_stroke_m, 1e3, "mm") << ", increment "
-              << versus(c.peak_increment_m, c.limits.max_increment_m, 1e3, "mm") << ", force "
-              << versus(c.peak_force_n, c.limits.max_force_n, 1e-3, "kN") << ", velocity " << c.peak_velocity_m_per_s * 1e3
-              << " mm/s";
+        << versus(std::max(c.peak_command_m, c.peak_displacement_m), c.limits.max_stroke_m, 1e3, "mm") << ", increment "
+        << versus(c.peak_increment_m, c.limits.max_increment_m, 1e3, "mm") << ", force "
+        << versus(c.peak_force_n, c.limits.max_force_n, 1e-3, "kN") << ", velocity " << c.peak_velocity_m_per_s * 1e3
+        << " mm/s";
     if (c.peak_valve_opening) out << ", servovalve opening " << std::lround(100.0 * *c.peak_valve_opening) << " %";
     if (c.tracking_delay_ms) out << ", tracking delay " << *c.tracking_delay_ms << " ms";
     out << "\n";
     if (c.node) {
       const auto& n = *c.node;
       out << "    its node (" << n.node << "): stroke " << versus(c.peak_command_m, n.limits.max_stroke_m, 1e3, "mm")
-                << ", increment " << versus(c.peak_increment_m, n.limits.max_increment_m, 1e3, "mm") << ", velocity "
-                << versus(n.peak_command_velocity_m_per_s, n.limits.max_velocity_m_per_s, 1e3, "mm/s") << ", force "
-                << versus(c.peak_force_n, n.limits.max_force_n, 1e-3, "kN") << "\n";
+          << ", increment " << versus(c.peak_increment_m, n.limits.max_increment_m, 1e3, "mm") << ", velocity "
+          << versus(n.peak_command_velocity_m_per_s, n.limits.max_velocity_m_per_s, 1e3, "mm/s") << ", force "
+          << versus(c.peak_force_n, n.limits.max_force_n, 1e-3, "kN") << "\n";
     }
     channels.push_back({{"channel", c.channel},
                         {"site_id", c.site_id},
@@ -77,9 +78,10 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
                         {"peak_force_n", c.peak_force_n},
                         {"peak_valve_opening", maybe(c.peak_valve_opening)},
                         {"tracking_delay_ms", maybe(c.tracking_delay_ms)},
-                        {"limits", {{"max_stroke_m", bound(c.limits.max_stroke_m)},
-                                    {"max_increment_m", bound(c.limits.max_increment_m)},
-                                    {"max_force_n", bound(c.limits.max_force_n)}}},
+                        {"limits",
+                         {{"max_stroke_m", bound(c.limits.max_stroke_m)},
+                          {"max_increment_m", bound(c.limits.max_increment_m)},
+                          {"max_force_n", bound(c.limits.max_force_n)}}},
                         {"node_limits", c.node ? node_json(*c.node) : nlohmann::json(nullptr)},
                         {"within_limits", c.within_limits}});
   }
@@ -88,10 +90,11 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
   for (const auto& m : r.modes) {
     char line[256];
     std::snprintf(line, sizeof line,
-                "    %.3g Hz: damping %.2f %% -> %.2f %% (loop gain %.3f, delay %+.2f ms), experimental share %.0f %%, critical delay %s\n",
-                m.frequency_hz, 100.0 * m.damping_ratio, 100.0 * m.predicted_damping_ratio, m.loop_gain, m.loop_delay_ms,
-                100.0 * m.experimental_share,
-                std::isfinite(m.critical_delay_ms) ? (std::to_string(m.critical_delay_ms) + " ms").c_str() : "none");
+                  "    %.3g Hz: damping %.2f %% -> %.2f %% (loop gain %.3f, delay %+.2f ms), experimental share %.0f "
+                  "%%, critical delay %s\n",
+                  m.frequency_hz, 100.0 * m.damping_ratio, 100.0 * m.predicted_damping_ratio, m.loop_gain,
+                  m.loop_delay_ms, 100.0 * m.experimental_share,
+                  std::isfinite(m.critical_delay_ms) ? (std::to_string(m.critical_delay_ms) + " ms").c_str() : "none");
     out << line;
     modes.push_back({{"frequency_hz", m.frequency_hz},
                      {"damping_ratio", m.damping_ratio},
@@ -103,10 +106,11 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
   }
   if (r.p_gain) {
     out << "  servo loop: proportional gain " << *r.p_gain << " of at most " << *r.max_stable_p_gain
-              << " (Routh, full linear model): margin x" << *r.max_stable_p_gain / *r.p_gain << "\n";
+        << " (Routh, full linear model): margin x" << *r.max_stable_p_gain / *r.p_gain << "\n";
   }
-  out << (r.within_limits ? "  ready: every peak within its limit and every mode damped\n"
-                                : "  NOT READY: a limit would be exceeded, a mode would lose its damping, or the test stopped\n");
+  out << (r.within_limits
+              ? "  ready: every peak within its limit and every mode damped\n"
+              : "  NOT READY: a limit would be exceeded, a mode would lose its damping, or the test stopped\n");
   return {{"scenario", test_name},
           {"steps", r.steps},
           {"steps_planned", r.steps_planned},

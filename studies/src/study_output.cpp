@@ -1,16 +1,16 @@
 #include "rpsd/studies/study_output.h"
 
 #include <cmath>
-#include <numbers>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <stdexcept>
 
+#include "rpsd/servo/linear_analysis.h"
 #include "rpsd/studies/csv_table.h"
 #include "rpsd/studies/delay_compensation_study.h"
-#include "rpsd/studies/test_output.h"
 #include "rpsd/studies/gnuplot.h"
-#include "rpsd/servo/linear_analysis.h"
+#include "rpsd/studies/test_output.h"
 
 namespace rpsd::studies {
 namespace {
@@ -53,8 +53,8 @@ std::vector<double> scaled(const std::vector<double>& values, double factor) {
 
 }  // namespace
 
-void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& file,
-                      const SineSweepStudy& study, const SineSweepResult& r) {
+void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& file, const SineSweepStudy& study,
+                      const SineSweepResult& r) {
   CsvTable()
       .column("time_s", r.time_s)
       .column("sweep_frequency_hz", r.frequency_hz)
@@ -95,14 +95,16 @@ void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& fil
                                     {"peak_force_kn", 1e-3 * r.peak_force_n},
                                     {"comparison", report}});
   render_png(dir / "sine_sweep.png",
-             "set multiplot layout 2,1 title '" + file.name + ": " + std::to_string(1e3 * study.amplitude_m).substr(0, 4) +
+             "set multiplot layout 2,1 title '" + file.name + ": " +
+                 std::to_string(1e3 * study.amplitude_m).substr(0, 4) +
                  " mm sine sweep through the nonlinear servo model (cf. paper Figure 5)'\n"
                  "set datafile separator ','\nset grid\nset key top right\n"
                  "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\n"
                  "plot 'time_history.csv' using 1:3 with lines lw 1 lc rgb '#999999' title 'command', \\\n"
                  "     '' using 1:4 with lines lw 1 lc rgb '#c0392b' title 'measured (simulated)'\n"
                  "set xlabel 'frequency (Hz)'\nset ylabel 'amplitude ratio'\nset yrange [0:1.1]\n"
-                 "plot 'sweep_response.csv' using 1:2 with points pt 7 ps 0.6 lc rgb '#c0392b' title 'simulated sweep (3-cycle fit)', \\\n"
+                 "plot 'sweep_response.csv' using 1:2 with points pt 7 ps 0.6 lc rgb '#c0392b' title 'simulated sweep "
+                 "(3-cycle fit)', \\\n"
                  "     '' using 1:4 with lines lw 2 lc rgb '#2c3e50' title 'Eq. 8', \\\n"
                  "     '' using 1:6 with lines lw 1 dt 2 lc rgb '#27ae60' title 'Eq. 8 with servovalve (Eq. 2)', \\\n"
                  "     '' using 1:8 with lines lw 1 dt 3 lc rgb '#8e44ad' title 'first order (Eq. 9)'\n"
@@ -110,8 +112,7 @@ void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& fil
 }
 
 void write_frequency_response(const std::filesystem::path& dir, const StudyDocument& file,
-                              const FrequencyResponseStudy& study,
-                              const std::vector<FrequencyResponseRow>& rows) {
+                              const FrequencyResponseStudy& study, const std::vector<FrequencyResponseRow>& rows) {
   CsvTable table;
   table.column("frequency_hz", pick(rows, [](auto& r) { return r.frequency_hz; }));
   const auto add = [&](const std::string& name, auto member) {
@@ -136,38 +137,39 @@ void write_frequency_response(const std::filesystem::path& dir, const StudyDocum
                       {"compensated_eq8", to_json(r.compensated)},
                       {"full_linear", to_json(r.full_linear)}});
   }
-  const auto peak = std::max_element(rows.begin(), rows.end(), [](auto& a, auto& b) {
-    return a.eq8.amplitude_ratio < b.eq8.amplitude_ratio;
-  });
+  const auto peak = std::max_element(rows.begin(), rows.end(),
+                                     [](auto& a, auto& b) { return a.eq8.amplitude_ratio < b.eq8.amplitude_ratio; });
   write_json(dir / "summary.json",
              {{"study", "servo_frequency_response"},
               {"scenario", file.name},
               {"servo", servo_json(study.servo)},
-              {"phase_lead", {{"ratio_a", study.phase_lead.ratio_a},
-                              {"time_constant_s", study.phase_lead.time_constant_s},
-                              {"zero_time_constant_s", study.phase_lead.ratio_a * study.phase_lead.time_constant_s},
-                              {"max_phase_lead_deg", study.phase_lead.max_phase_lead_rad() * 180.0 / std::numbers::pi}}},
+              {"phase_lead",
+               {{"ratio_a", study.phase_lead.ratio_a},
+                {"time_constant_s", study.phase_lead.time_constant_s},
+                {"zero_time_constant_s", study.phase_lead.ratio_a * study.phase_lead.time_constant_s},
+                {"max_phase_lead_deg", study.phase_lead.max_phase_lead_rad() * 180.0 / std::numbers::pi}}},
               {"eq8_peak", {{"frequency_hz", peak->frequency_hz}, {"amplitude_ratio", peak->eq8.amplitude_ratio}}},
               {"at", points}});
-  render_png(dir / "frequency_response.png",
-             "set multiplot layout 2,1 title '" + file.name +
-                 ": frequency response with amplitude compensation (cf. paper Figure 6)'\n"
-                 "set datafile separator ','\nset grid\nset logscale x\nset key bottom left\n"
-                 "set xlabel 'frequency (Hz)'\nset ylabel 'amplitude ratio'\nset logscale y\n"
-                 "plot 'frequency_response.csv' using 1:2 with lines lw 2 lc rgb '#2c3e50' title 'system (Eq. 8)', \\\n"
-                 "     '' using 1:4 with lines lw 2 dt 2 lc rgb '#8e44ad' title 'first-order approximation (Eq. 9)', \\\n"
-                 "     '' using 1:6 with lines lw 2 lc rgb '#c0392b' title 'with phase-lead compensation', \\\n"
-                 "     '' using 1:8 with lines lw 1 dt 3 lc rgb '#27ae60' title 'Eq. 8 with servovalve dynamics'\n"
-                 "unset logscale y\nset ylabel 'phase (deg)'\nset yrange [-270:90]\nset ytics 45\n"
-                 "plot 'frequency_response.csv' using 1:3 with lines lw 2 lc rgb '#2c3e50' title 'system (Eq. 8)', \\\n"
-                 "     '' using 1:5 with lines lw 2 dt 2 lc rgb '#8e44ad' title 'first order (Eq. 9)', \\\n"
-                 "     '' using 1:7 with lines lw 2 lc rgb '#c0392b' title 'compensated', \\\n"
-                 "     '' using 1:9 with lines lw 1 dt 3 lc rgb '#27ae60' title 'with servovalve'\n"
-                 "unset multiplot\n");
+  render_png(
+      dir / "frequency_response.png",
+      "set multiplot layout 2,1 title '" + file.name +
+          ": frequency response with amplitude compensation (cf. paper Figure 6)'\n"
+          "set datafile separator ','\nset grid\nset logscale x\nset key bottom left\n"
+          "set xlabel 'frequency (Hz)'\nset ylabel 'amplitude ratio'\nset logscale y\n"
+          "plot 'frequency_response.csv' using 1:2 with lines lw 2 lc rgb '#2c3e50' title 'system (Eq. 8)', \\\n"
+          "     '' using 1:4 with lines lw 2 dt 2 lc rgb '#8e44ad' title 'first-order approximation (Eq. 9)', \\\n"
+          "     '' using 1:6 with lines lw 2 lc rgb '#c0392b' title 'with phase-lead compensation', \\\n"
+          "     '' using 1:8 with lines lw 1 dt 3 lc rgb '#27ae60' title 'Eq. 8 with servovalve dynamics'\n"
+          "unset logscale y\nset ylabel 'phase (deg)'\nset yrange [-270:90]\nset ytics 45\n"
+          "plot 'frequency_response.csv' using 1:3 with lines lw 2 lc rgb '#2c3e50' title 'system (Eq. 8)', \\\n"
+          "     '' using 1:5 with lines lw 2 dt 2 lc rgb '#8e44ad' title 'first order (Eq. 9)', \\\n"
+          "     '' using 1:7 with lines lw 2 lc rgb '#c0392b' title 'compensated', \\\n"
+          "     '' using 1:9 with lines lw 1 dt 3 lc rgb '#27ae60' title 'with servovalve'\n"
+          "unset multiplot\n");
 }
 
-void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
-                    const MaxGainStudy& study, const std::vector<MaxGainRow>& rows) {
+void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file, const MaxGainStudy& study,
+                    const std::vector<MaxGainRow>& rows) {
   CsvTable()
       .column("attached_mass_kg", pick(rows, [](auto& r) { return r.mass_kg; }))
       .column("max_p_gain_routh_eq8", pick(rows, [](auto& r) { return r.max_p_gain_routh; }))
@@ -182,21 +184,25 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
               {"rig_mass_kg", p.specimen.mass_kg},
               {"rig_max_p_gain_routh_eq8", servo::max_stable_p_gain(p, servo::LinearModel::kPaperEq8)},
               {"rig_max_p_gain_full_model", servo::max_stable_p_gain_from_eigenvalues(p)},
-              {"held_constant", {{"stiffness_n_per_m", p.specimen.stiffness.initial_n_per_m},
-                                 {"damping_n_s_per_m", p.specimen.damping_n_s_per_m()}}},
+              {"held_constant",
+               {{"stiffness_n_per_m", p.specimen.stiffness.initial_n_per_m},
+                {"damping_n_s_per_m", p.specimen.damping_n_s_per_m()}}},
               {"mass_range_kg", {rows.front().mass_kg, rows.back().mass_kg}},
               {"max_p_gain_range", {rows.front().max_p_gain_routh, rows.back().max_p_gain_routh}}});
   char point[160];
-  std::snprintf(point, sizeof point, "set label 1 'operating gain %.3f' at first %g, first %g point pt 7 ps 1.2 offset 1,1\n",
+  std::snprintf(point, sizeof point,
+                "set label 1 'operating gain %.3f' at first %g, first %g point pt 7 ps 1.2 offset 1,1\n",
                 p.controller.proportional_gain, p.specimen.mass_kg, p.controller.proportional_gain);
-  render_png(dir / "max_gain.png",
-             "set title '" + file.name + ": largest stable P gain vs attached mass (cf. paper Figure 7)'\n"
-                 "set datafile separator ','\nset grid\nset logscale xy\nset key top right\n"
-                 "set xlabel 'attached mass (kg)'\nset ylabel 'maximum P gain (V/V)'\nset yrange [0.3:*]\n" +
-                 std::string(point) +
-                 "plot 'max_gain.csv' using 1:2 with lines lw 2 lc rgb '#2c3e50' title 'Routh criterion on Eq. 8', \\\n"
-                 "     '' using 1:3 with points pt 6 ps 0.8 lc rgb '#c0392b' title 'eigenvalues of the full linear model'\n",
-             900, 600);
+  render_png(
+      dir / "max_gain.png",
+      "set title '" + file.name +
+          ": largest stable P gain vs attached mass (cf. paper Figure 7)'\n"
+          "set datafile separator ','\nset grid\nset logscale xy\nset key top right\n"
+          "set xlabel 'attached mass (kg)'\nset ylabel 'maximum P gain (V/V)'\nset yrange [0.3:*]\n" +
+          std::string(point) +
+          "plot 'max_gain.csv' using 1:2 with lines lw 2 lc rgb '#2c3e50' title 'Routh criterion on Eq. 8', \\\n"
+          "     '' using 1:3 with points pt 6 ps 0.8 lc rgb '#c0392b' title 'eigenvalues of the full linear model'\n",
+      900, 600);
 }
 
 bool run_and_write(const StudyDocument& file, const std::filesystem::path& dir,

@@ -6,23 +6,30 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "rpsd/studies/gnuplot.h"
-#include "rpsd/realtime/latency_json.h"
 #include "rpsd/coordinator/test_runs.h"
 #include "rpsd/ground_motion/response_spectrum.h"
+#include "rpsd/realtime/latency_json.h"
+#include "rpsd/studies/gnuplot.h"
 
 namespace rpsd::studies {
 namespace {
 
 const char* outcome_text(coordinator::StepOutcome o) {
   switch (o) {
-    case coordinator::StepOutcome::kOk: return "completed";
-    case coordinator::StepOutcome::kRecordEnded: return "completed";
-    case coordinator::StepOutcome::kLinkFailure: return "aborted: the servo node stopped answering";
-    case coordinator::StepOutcome::kIntegratorError: return "aborted: the integrator rejected a step";
-    case coordinator::StepOutcome::kNodeFault: return "aborted: the servo node reported a fault";
-    case coordinator::StepOutcome::kNonFinite: return "aborted: a non-finite measurement arrived";
-    case coordinator::StepOutcome::kLimit: return "aborted: a coordinator limit was reached";
+    case coordinator::StepOutcome::kOk:
+      return "completed";
+    case coordinator::StepOutcome::kRecordEnded:
+      return "completed";
+    case coordinator::StepOutcome::kLinkFailure:
+      return "aborted: the servo node stopped answering";
+    case coordinator::StepOutcome::kIntegratorError:
+      return "aborted: the integrator rejected a step";
+    case coordinator::StepOutcome::kNodeFault:
+      return "aborted: the servo node reported a fault";
+    case coordinator::StepOutcome::kNonFinite:
+      return "aborted: a non-finite measurement arrived";
+    case coordinator::StepOutcome::kLimit:
+      return "aborted: a coordinator limit was reached";
   }
   return "aborted";
 }
@@ -37,12 +44,16 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   std::string script = "set datafile separator ','\nset grid\nset key outside right\n";
   script += "set multiplot layout " + std::to_string(has_record ? 4 : 3) + ",1 title '" + title + "'\n";
   script += "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\nset title 'experimental channel 0'\n";
-  script += "plot 'time_history.csv' using 2:($4*1e3) with lines lw 1.5 title 'target', "
-            "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) with lines lw 1 title 'measured'\n";
+  script +=
+      "plot 'time_history.csv' using 2:($4*1e3) with lines lw 1.5 title 'target', "
+      "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) with lines lw 1 title "
+      "'measured'\n";
   script += "set ylabel 'tracking error (mm)'\nset title 'measured - target'\n";
   script += "plot 'time_history.csv' using 2:(($6-$4)*1e3) with lines lw 1 notitle\n";
   const int first_dof_column = 4 + 6 * channels;
-  script += "set xlabel 'measured displacement (mm)'\nset ylabel 'specimen restoring force (kN)'\nset title 'hysteresis, channel 0'\n";
+  script +=
+      "set xlabel 'measured displacement (mm)'\nset ylabel 'specimen restoring force (kN)'\nset title 'hysteresis, "
+      "channel 0'\n";
   script += "plot 'time_history.csv' using ($6*1e3):($8*1e-3) with lines lw 1 notitle\n";
   if (has_record) {
     script += "set xlabel 'time (s)'\nset ylabel 'ground acceleration (m/s^2)'\nset title 'record'\n";
@@ -51,8 +62,10 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   script += "unset multiplot\n";
   render_png(dir / "test.png", script, 1100, has_record ? 1300 : 1000);
 
-  std::string floors = "set datafile separator ','\nset grid\nset key outside right\nset xlabel 'time (s)'\n"
-                       "set ylabel 'displacement (mm)'\nset title '" + title + ": recorded DOFs, test and perfect-actuator reference'\nplot ";
+  std::string floors =
+      "set datafile separator ','\nset grid\nset key outside right\nset xlabel 'time (s)'\n"
+      "set ylabel 'displacement (mm)'\nset title '" +
+      title + ": recorded DOFs, test and perfect-actuator reference'\nplot ";
   for (int d = 0; d < dofs; ++d) {
     const int column = first_dof_column + 4 * d;
     if (d > 0) floors += ", ";
@@ -90,7 +103,8 @@ void write_spectrum(const std::filesystem::path& dir, const coordinator::GroundM
   std::ofstream out(dir / "spectrum.csv");
   out << "period_s,pseudo_acceleration_m_per_s2,displacement_m\n";
   for (std::size_t i = 0; i < spectrum.periods_s.size(); ++i) {
-    out << spectrum.periods_s[i] << ',' << spectrum.pseudo_acceleration_m_per_s2[i] << ',' << spectrum.displacement_m[i] << '\n';
+    out << spectrum.periods_s[i] << ',' << spectrum.pseudo_acceleration_m_per_s2[i] << ',' << spectrum.displacement_m[i]
+        << '\n';
   }
 }
 
@@ -110,10 +124,12 @@ std::string describe_outcome(const coordinator::TestConfig& s, const coordinator
     char detail[200];
     if (test.timing.real_time) {
       std::snprintf(detail, sizeof detail, " (newest feedback %lld control periods old; step %zu, t = %.4f s)",
-                    static_cast<long long>(test.feedback_age_periods), static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
+                    static_cast<long long>(test.feedback_age_periods), static_cast<std::size_t>(test.steps + 1),
+                    static_cast<double>(test.steps + 1) / s.control_rate_hz);
     } else {
-      std::snprintf(detail, sizeof detail, " (none within %g s at step %zu, t = %.4f s)", s.transport.feedback_timeout_s,
-                    static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
+      std::snprintf(detail, sizeof detail, " (none within %g s at step %zu, t = %.4f s)",
+                    s.transport.feedback_timeout_s, static_cast<std::size_t>(test.steps + 1),
+                    static_cast<double>(test.steps + 1) / s.control_rate_hz);
     }
     text += detail;
   } else if (test.outcome != coordinator::StepOutcome::kOk && test.outcome != coordinator::StepOutcome::kRecordEnded) {
@@ -126,9 +142,13 @@ std::string describe_outcome(const coordinator::TestConfig& s, const coordinator
     const coordinator::LimitStop& l = test.limit_stop;
     const bool force = l.kind == coordinator::LimitStop::Kind::kForce;
     char detail[240];
-    std::snprintf(detail, sizeof detail, " (channel %d: %s %.6g %s beyond limits.%s %.6g; %s; step %zu, t = %.4f s)", l.channel,
-                  force ? "measured force" : l.kind == coordinator::LimitStop::Kind::kIncrement ? "command change" : "command", l.value,
-                  force ? "N" : "m", coordinator::limit_stop_name(l.kind), l.bound, force ? "no further command was sent" : "the command was not sent",
+    std::snprintf(detail, sizeof detail, " (channel %d: %s %.6g %s beyond limits.%s %.6g; %s; step %zu, t = %.4f s)",
+                  l.channel,
+                  force                                                ? "measured force"
+                  : l.kind == coordinator::LimitStop::Kind::kIncrement ? "command change"
+                                                                       : "command",
+                  l.value, force ? "N" : "m", coordinator::limit_stop_name(l.kind), l.bound,
+                  force ? "no further command was sent" : "the command was not sent",
                   static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
     text += detail;
   }
@@ -142,9 +162,12 @@ nlohmann::json timing_json(const coordinator::TimingReport& t) {
     json site = {{"site_id", t.sites[i].site_id}, {"round_trip", realtime::latency_json(t.sites[i].round_trip)}};
     if (i < t.dds_counters.size()) {
       const auto& c = t.dds_counters[i];
-      site["messages"] = {{"sent", c.sent}, {"received", c.received}, {"late", c.late},
+      site["messages"] = {{"sent", c.sent},
+                          {"received", c.received},
+                          {"late", c.late},
                           {"dropped_wrong_test_or_site", c.wrong_test_or_site},
-                          {"dropped_wrong_channels", c.wrong_channels}, {"dropped_older_step", c.older_step}};
+                          {"dropped_wrong_channels", c.wrong_channels},
+                          {"dropped_older_step", c.older_step}};
     }
     sites.push_back(site);
   }
@@ -168,17 +191,19 @@ nlohmann::json timing_json(const coordinator::TimingReport& t) {
 }  // namespace
 
 TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
-                        const coordinator::TestConfig& scenario,
-                        const std::function<void(std::int64_t, std::int64_t)>& progress) {
+                           const coordinator::TestConfig& scenario,
+                           const std::function<void(std::int64_t, std::int64_t)>& progress) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
-  const coordinator::EvaluatedTest run = coordinator::run_test_and_reference(scenario, dir / "time_history.csv", dir / "reference_history.csv", progress);
+  const coordinator::EvaluatedTest run =
+      coordinator::run_test_and_reference(scenario, dir / "time_history.csv", dir / "reference_history.csv", progress);
   const coordinator::TestRun& test = run.test;
   const coordinator::Criteria& criteria = run.criteria;
-  const bool completed = test.outcome == coordinator::StepOutcome::kOk || test.outcome == coordinator::StepOutcome::kRecordEnded;
+  const bool completed =
+      test.outcome == coordinator::StepOutcome::kOk || test.outcome == coordinator::StepOutcome::kRecordEnded;
   const std::string outcome = describe_outcome(scenario, test);
 
   using nlohmann::json;
@@ -186,7 +211,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
   for (std::size_t c = 0; c < criteria.channels.size(); ++c) {
     const auto& cc = criteria.channels[c];
     channels.push_back({{"channel", c},
-                        {"J1_tracking_delay_ms", std::isfinite(cc.j1_tracking_delay_ms) ? json(cc.j1_tracking_delay_ms) : json(nullptr)},
+                        {"J1_tracking_delay_ms",
+                         std::isfinite(cc.j1_tracking_delay_ms) ? json(cc.j1_tracking_delay_ms) : json(nullptr)},
                         {"J2_rms_tracking_error_percent", cc.j2_rms_tracking_error_percent},
                         {"J3_peak_tracking_error_percent", cc.j3_peak_tracking_error_percent},
                         {"final_tracking_indicator_m2", cc.final_tracking_indicator_m2}});
@@ -222,7 +248,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"steps", test.steps},
       {"steps_planned", test.steps_planned},
       {"control_rate_hz", scenario.control_rate_hz},
-      {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(scenario.integrator))) + " " + integrators::describe(scenario.integrator)},
+      {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(scenario.integrator))) + " " +
+                         integrators::describe(scenario.integrator)},
       {"compensation", std::string(compensation::compensator_name(scenario.compensation))},
       {"ground_motion", scenario.ground_motion ? ground_motion_json(*scenario.ground_motion) : json(nullptr)},
       {"channels", channels},
@@ -302,8 +329,8 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
   table.close();
   json axes = json::array();
   for (const auto& axis : file.sweep) axes.push_back({{"key", axis.key_path}, {"values", axis.values}});
-  std::ofstream(dir / "summary.json") << json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"axes", axes}, {"cases", cases}}.dump(2)
-                                      << '\n';
+  std::ofstream(dir / "summary.json")
+      << json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"axes", axes}, {"cases", cases}}.dump(2) << '\n';
   // One line per value of the second axis (or one line), J2 and J4 against the first axis.
   const std::size_t lines = file.sweep.size() > 1 ? file.sweep[1].values.size() : 1;
   const std::size_t per_line = file.sweep[0].values.size();
@@ -314,17 +341,19 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
     plots += std::string("set ylabel '") + metric + "'\nplot ";
     for (std::size_t l = 0; l < lines; ++l) {
       char piece[256];
-      std::snprintf(piece, sizeof piece, "%s'sweep.csv' skip 1 every ::%zu::%zu using 1:%d with linespoints lw 2 title '%s'",
-                    l ? ", " : "", l * per_line, (l + 1) * per_line - 1, column,
+      std::snprintf(piece, sizeof piece,
+                    "%s'sweep.csv' skip 1 every ::%zu::%zu using 1:%d with linespoints lw 2 title '%s'", l ? ", " : "",
+                    l * per_line, (l + 1) * per_line - 1, column,
                     lines > 1 ? legend_entry(file.sweep[1].key_path, file.sweep[1].values[l]).c_str() : "");
       plots += piece;
     }
     plots += "\n";
   }
   render_png(dir / "sweep.png",
-             "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot layout 2,1 title '" + file.name +
-                 ": sweep of " + file.sweep[0].key_path + "'\nset xlabel '" + file.sweep[0].key_path + "'\n" + plots +
-                 "unset multiplot\n",
+             "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot "
+             "layout 2,1 title '" +
+                 file.name + ": sweep of " + file.sweep[0].key_path + "'\nset xlabel '" + file.sweep[0].key_path +
+                 "'\n" + plots + "unset multiplot\n",
              1000, 800);
   return all_completed ? RunResult::kCompleted : RunResult::kAborted;
 }

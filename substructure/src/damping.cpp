@@ -39,9 +39,8 @@ BuiltDamping build_damping(const DampingConfig& config, const linalg::Structural
         } else if constexpr (std::is_same_v<T, RayleighFromModes>) {
           for (int mode : {cfg.mode_a, cfg.mode_b}) {
             if (mode < 1 || mode > n) {
-              throw std::invalid_argument(context + "Rayleigh damping: mode number " +
-                                          std::to_string(mode) + " is out of range 1.." +
-                                          std::to_string(n) + " (1 = fundamental mode)");
+              throw std::invalid_argument(context + "Rayleigh damping: mode number " + std::to_string(mode) +
+                                          " is out of range 1.." + std::to_string(n) + " (1 = fundamental mode)");
             }
           }
           if (cfg.mode_a == cfg.mode_b) {
@@ -50,8 +49,8 @@ BuiltDamping build_damping(const DampingConfig& config, const linalg::Structural
           }
           const Eigen::VectorXd w = natural_frequencies_rad_s(M, K);
           try {
-            return rayleigh(rayleigh_from_frequencies(w[cfg.mode_a - 1], w[cfg.mode_b - 1],
-                                                      cfg.damping_ratio_a, cfg.damping_ratio_b),
+            return rayleigh(rayleigh_from_frequencies(w[cfg.mode_a - 1], w[cfg.mode_b - 1], cfg.damping_ratio_a,
+                                                      cfg.damping_ratio_b),
                             M, K);
           } catch (const std::invalid_argument& e) {
             throw std::invalid_argument(context + "modes " + std::to_string(cfg.mode_a) + " and " +
@@ -59,19 +58,19 @@ BuiltDamping build_damping(const DampingConfig& config, const linalg::Structural
           }
         } else if constexpr (std::is_same_v<T, RayleighFromFrequencies>) {
           try {
-            return rayleigh(rayleigh_from_frequencies(cfg.omega_a_rad_s, cfg.omega_b_rad_s,
-                                                      cfg.damping_ratio_a, cfg.damping_ratio_b),
+            return rayleigh(rayleigh_from_frequencies(cfg.omega_a_rad_s, cfg.omega_b_rad_s, cfg.damping_ratio_a,
+                                                      cfg.damping_ratio_b),
                             M, K);
           } catch (const std::invalid_argument& e) {
             throw std::invalid_argument(context + e.what());
           }
         } else {
           static_assert(std::is_same_v<T, RayleighCoefficients>);
-          if (!(std::isfinite(cfg.a0_per_s) && cfg.a0_per_s >= 0.0) ||
-              !(std::isfinite(cfg.a1_s) && cfg.a1_s >= 0.0)) {
-            throw std::invalid_argument(context + "Rayleigh coefficients must be non-negative and "
-                                        "finite, got a0 = " + detail::fmt(cfg.a0_per_s) +
-                                        " 1/s, a1 = " + detail::fmt(cfg.a1_s) + " s");
+          if (!(std::isfinite(cfg.a0_per_s) && cfg.a0_per_s >= 0.0) || !(std::isfinite(cfg.a1_s) && cfg.a1_s >= 0.0)) {
+            throw std::invalid_argument(context +
+                                        "Rayleigh coefficients must be non-negative and "
+                                        "finite, got a0 = " +
+                                        detail::fmt(cfg.a0_per_s) + " 1/s, a1 = " + detail::fmt(cfg.a1_s) + " s");
           }
           return rayleigh(cfg, M, K);
         }

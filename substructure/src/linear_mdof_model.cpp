@@ -18,11 +18,10 @@ void LinearMdofModel::configure(const LinearMdofConfig& config) {
   detail::require_square(config.mass_kg, m);
   detail::require_square(config.stiffness_n_per_m, k);
   if (config.stiffness_n_per_m.rows() != config.mass_kg.rows()) {
-    throw std::invalid_argument(k + " is " + std::to_string(config.stiffness_n_per_m.rows()) +
-                                "x" + std::to_string(config.stiffness_n_per_m.cols()) + " but " +
+    throw std::invalid_argument(k + " is " + std::to_string(config.stiffness_n_per_m.rows()) + "x" +
+                                std::to_string(config.stiffness_n_per_m.cols()) + " but " +
                                 label("mass matrix M", config.mass_source) + " is " +
-                                std::to_string(config.mass_kg.rows()) + "x" +
-                                std::to_string(config.mass_kg.cols()));
+                                std::to_string(config.mass_kg.rows()) + "x" + std::to_string(config.mass_kg.cols()));
   }
   detail::require_finite(config.mass_kg, m);
   detail::require_finite(config.stiffness_n_per_m, k);
@@ -31,8 +30,7 @@ void LinearMdofModel::configure(const LinearMdofConfig& config) {
   detail::require_positive_definite(config.mass_kg, m);
   detail::require_nonnegative_diagonal(config.stiffness_n_per_m, k);
 
-  const std::string c_ctx =
-      config.damping_source.empty() ? ctx : ctx + "(damping from " + config.damping_source + ") ";
+  const std::string c_ctx = config.damping_source.empty() ? ctx : ctx + "(damping from " + config.damping_source + ") ";
   BuiltDamping built = build_damping(config.damping, config.mass_kg, config.stiffness_n_per_m, c_ctx);
 
   // Commit only after every check has passed, so a failed configure leaves no half state.

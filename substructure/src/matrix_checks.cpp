@@ -34,9 +34,8 @@ void require_square(const linalg::StructuralMatrix& A, const std::string& what) 
 
 void require_size(const linalg::StructuralMatrix& A, Eigen::Index n, const std::string& what) {
   if (A.rows() != n || A.cols() != n) {
-    throw std::invalid_argument(what + " is " + std::to_string(A.rows()) + "x" +
-                                std::to_string(A.cols()) + " but the model has " +
-                                std::to_string(n) + " DOFs");
+    throw std::invalid_argument(what + " is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) +
+                                " but the model has " + std::to_string(n) + " DOFs");
   }
 }
 
@@ -73,9 +72,8 @@ void require_symmetric(const linalg::StructuralMatrix& A, const std::string& wha
         }
   }
   if (worst > rel_tol * max_abs) {
-    throw std::invalid_argument(what + " is not symmetric: " + entry(wi, wj) + " = " +
-                                fmt(A.coeff(wi, wj)) + " but " + entry(wj, wi) + " = " +
-                                fmt(A.coeff(wj, wi)));
+    throw std::invalid_argument(what + " is not symmetric: " + entry(wi, wj) + " = " + fmt(A.coeff(wi, wj)) + " but " +
+                                entry(wj, wi) + " = " + fmt(A.coeff(wj, wi)));
   }
 }
 
@@ -84,8 +82,7 @@ void require_nonnegative_diagonal(const linalg::StructuralMatrix& A, const std::
   for (Eigen::Index i = 0; i < n; ++i) {
     const double v = A.coeff(i, i);
     if (v < 0.0) {
-      throw std::invalid_argument(what + " has a negative diagonal entry " + entry(i, i) + " = " +
-                                  fmt(v));
+      throw std::invalid_argument(what + " has a negative diagonal entry " + entry(i, i) + " = " + fmt(v));
     }
   }
 }
@@ -95,8 +92,7 @@ void require_positive_definite(const linalg::StructuralMatrix& A, const std::str
   for (Eigen::Index i = 0; i < n; ++i) {
     const double v = A.coeff(i, i);
     if (!(v > 0.0)) {
-      throw std::invalid_argument(what + " is not positive definite: diagonal entry " +
-                                  entry(i, i) + " = " + fmt(v) +
+      throw std::invalid_argument(what + " is not positive definite: diagonal entry " + entry(i, i) + " = " + fmt(v) +
                                   (v == 0.0 ? " (a DOF without mass or stiffness)" : ""));
     }
   }
@@ -111,8 +107,7 @@ void require_positive_definite(const linalg::StructuralMatrix& A, const std::str
     ok = llt.info() == Eigen::Success;
   }
   if (!ok) {
-    throw std::invalid_argument(what +
-                                " is not positive definite: its Cholesky factorisation failed");
+    throw std::invalid_argument(what + " is not positive definite: its Cholesky factorisation failed");
   }
 }
 

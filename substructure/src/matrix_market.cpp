@@ -76,7 +76,8 @@ Header prescan(const std::filesystem::path& file) {
     throw std::invalid_argument(at(1) + "object '" + object + "' is not 'matrix'");
   }
   if (lower(format) == "array") {
-    throw std::invalid_argument(at(1) + "the dense 'array' format is not supported; write the "
+    throw std::invalid_argument(at(1) +
+                                "the dense 'array' format is not supported; write the "
                                 "matrix in 'coordinate' format");
   }
   if (lower(format) != "coordinate") {
@@ -86,8 +87,7 @@ Header prescan(const std::filesystem::path& file) {
     throw std::invalid_argument(at(1) + "field '" + field + "' is not supported (only 'real' or 'integer')");
   }
   if (lower(symmetry) != "general" && lower(symmetry) != "symmetric") {
-    throw std::invalid_argument(at(1) + "symmetry '" + symmetry +
-                                "' is not supported (only 'general' or 'symmetric')");
+    throw std::invalid_argument(at(1) + "symmetry '" + symmetry + "' is not supported (only 'general' or 'symmetric')");
   }
   Header h;
   h.symmetric = lower(symmetry) == "symmetric";
@@ -98,8 +98,7 @@ Header prescan(const std::filesystem::path& file) {
   while (std::getline(in, line)) {
     ++line_no;
     if (line.size() > kEigenMaxLine) {
-      throw std::invalid_argument(at(line_no) + "line is longer than " +
-                                  std::to_string(kEigenMaxLine) + " characters");
+      throw std::invalid_argument(at(line_no) + "line is longer than " + std::to_string(kEigenMaxLine) + " characters");
     }
     if (!line.empty() && line[0] == '%') continue;
     if (blank(line)) continue;
@@ -108,16 +107,15 @@ Header prescan(const std::filesystem::path& file) {
       long long r = 0, c = 0;
       std::string extra;
       if (!(ls >> r >> c >> nnz) || (ls >> extra)) {
-        throw std::invalid_argument(at(line_no) + "expected the size line 'rows columns entries', got '" +
-                                    line + "'");
+        throw std::invalid_argument(at(line_no) + "expected the size line 'rows columns entries', got '" + line + "'");
       }
       if (r <= 0 || c <= 0 || nnz < 0) {
-        throw std::invalid_argument(at(line_no) + "invalid size " + std::to_string(r) + "x" +
-                                    std::to_string(c) + " with " + std::to_string(nnz) + " entries");
+        throw std::invalid_argument(at(line_no) + "invalid size " + std::to_string(r) + "x" + std::to_string(c) +
+                                    " with " + std::to_string(nnz) + " entries");
       }
       if (h.symmetric && r != c) {
-        throw std::invalid_argument(at(line_no) + "a symmetric matrix must be square, got " +
-                                    std::to_string(r) + "x" + std::to_string(c));
+        throw std::invalid_argument(at(line_no) + "a symmetric matrix must be square, got " + std::to_string(r) + "x" +
+                                    std::to_string(c));
       }
       h.rows = r;
       h.cols = c;
@@ -131,13 +129,13 @@ Header prescan(const std::filesystem::path& file) {
       throw std::invalid_argument(at(line_no) + "expected an entry 'row column value', got '" + line + "'");
     }
     if (i < 1 || i > h.rows || j < 1 || j > h.cols) {
-      throw std::invalid_argument(at(line_no) + "entry (" + std::to_string(i) + ", " +
-                                  std::to_string(j) + ") is outside the " + std::to_string(h.rows) +
-                                  "x" + std::to_string(h.cols) + " matrix (indices are 1-based)");
+      throw std::invalid_argument(at(line_no) + "entry (" + std::to_string(i) + ", " + std::to_string(j) +
+                                  ") is outside the " + std::to_string(h.rows) + "x" + std::to_string(h.cols) +
+                                  " matrix (indices are 1-based)");
     }
     if (h.symmetric && i < j) {
-      throw std::invalid_argument(at(line_no) + "entry (" + std::to_string(i) + ", " +
-                                  std::to_string(j) + ") is above the diagonal; a symmetric file "
+      throw std::invalid_argument(at(line_no) + "entry (" + std::to_string(i) + ", " + std::to_string(j) +
+                                  ") is above the diagonal; a symmetric file "
                                   "stores the lower triangle only");
     }
     if (!std::isfinite(v)) {
@@ -154,9 +152,7 @@ Header prescan(const std::filesystem::path& file) {
   return h;
 }
 
-std::string shape(const linalg::SparseMatrix& A) {
-  return std::to_string(A.rows()) + "x" + std::to_string(A.cols());
-}
+std::string shape(const linalg::SparseMatrix& A) { return std::to_string(A.rows()) + "x" + std::to_string(A.cols()); }
 
 }  // namespace
 
@@ -167,9 +163,9 @@ linalg::SparseMatrix load_matrix_market(const std::filesystem::path& file) {
     throw std::invalid_argument(mm_file(file) + " cannot be opened for reading");
   }
   if (A.rows() != h.rows || A.cols() != h.cols) {
-    throw std::invalid_argument(mm_file(file) + ": Eigen's loadMarket read a " +
-                                shape(A) + " matrix where the size line says " + std::to_string(h.rows) +
-                                "x" + std::to_string(h.cols));
+    throw std::invalid_argument(mm_file(file) + ": Eigen's loadMarket read a " + shape(A) +
+                                " matrix where the size line says " + std::to_string(h.rows) + "x" +
+                                std::to_string(h.cols));
   }
   if (h.symmetric) {
     // The file holds the lower triangle (checked above). Rebuild the full matrix from the
@@ -184,30 +180,27 @@ linalg::SparseMatrix load_matrix_market(const std::filesystem::path& file) {
 }
 
 linalg::SparseMatrix load_square_matrix_market(const std::filesystem::path& file,
-                                       std::optional<Eigen::Index> expected_dofs) {
+                                               std::optional<Eigen::Index> expected_dofs) {
   linalg::SparseMatrix A = load_matrix_market(file);
   if (A.rows() != A.cols()) {
-    throw std::invalid_argument(mm_file(file) + " holds a " + shape(A) +
-                                " matrix; a structural matrix must be square");
+    throw std::invalid_argument(mm_file(file) + " holds a " + shape(A) + " matrix; a structural matrix must be square");
   }
   if (expected_dofs && A.rows() != *expected_dofs) {
-    throw std::invalid_argument(mm_file(file) + " holds a " + shape(A) +
-                                " matrix but the model has " + std::to_string(*expected_dofs) + " DOFs");
+    throw std::invalid_argument(mm_file(file) + " holds a " + shape(A) + " matrix but the model has " +
+                                std::to_string(*expected_dofs) + " DOFs");
   }
   return A;
 }
 
-LinearMdofConfig linear_config_from_matrix_market(const MatrixMarketModelFiles& files,
-                                                  DampingConfig damping) {
+LinearMdofConfig linear_config_from_matrix_market(const MatrixMarketModelFiles& files, DampingConfig damping) {
   LinearMdofConfig cfg;
   linalg::SparseMatrix M = load_square_matrix_market(files.mass_file, std::nullopt);
   const Eigen::Index n = M.rows();
   auto sized = [&](const std::filesystem::path& p) {
     linalg::SparseMatrix A = load_square_matrix_market(p, std::nullopt);
     if (A.rows() != n) {
-      throw std::invalid_argument(mm_file(p) + " holds a " + shape(A) +
-                                  " matrix but the mass file " + quoted(files.mass_file) +
-                                  " holds a " + shape(M) + " one");
+      throw std::invalid_argument(mm_file(p) + " holds a " + shape(A) + " matrix but the mass file " +
+                                  quoted(files.mass_file) + " holds a " + shape(M) + " one");
     }
     return A;
   };

@@ -12,16 +12,14 @@ namespace rpsd::substructure {
 namespace {
 
 Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solve(const linalg::StructuralMatrix& M,
-                                                                 const linalg::StructuralMatrix& K,
-                                                                 bool vectors) {
+                                                                const linalg::StructuralMatrix& K, bool vectors) {
   const std::string ctx = "modal analysis: ";
   detail::require_square(M, ctx + "mass matrix M");
   detail::require_size(K, M.rows(), ctx + "stiffness matrix K");
   if (M.rows() > kMaxDenseEigenDofs) {
-    throw std::invalid_argument(ctx + "the model has " + std::to_string(M.rows()) +
-                                " DOFs, more than the dense eigen-solver limit of " +
-                                std::to_string(kMaxDenseEigenDofs) +
-                                "; give the two frequencies directly (RayleighFromFrequencies)");
+    throw std::invalid_argument(
+        ctx + "the model has " + std::to_string(M.rows()) + " DOFs, more than the dense eigen-solver limit of " +
+        std::to_string(kMaxDenseEigenDofs) + "; give the two frequencies directly (RayleighFromFrequencies)");
   }
   detail::require_finite(M, ctx + "mass matrix M");
   detail::require_finite(K, ctx + "stiffness matrix K");
@@ -30,8 +28,7 @@ Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solve(const linalg::St
   detail::require_positive_definite(M, ctx + "mass matrix M");
 
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
-      K.to_dense(), M.to_dense(),
-      (vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly) | Eigen::Ax_lBx);
+      K.to_dense(), M.to_dense(), (vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly) | Eigen::Ax_lBx);
   if (es.info() != Eigen::Success) {
     throw std::invalid_argument(ctx + "the eigen-solver did not converge");
   }
@@ -39,8 +36,10 @@ Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solve(const linalg::St
   const Eigen::VectorXd& lambda = es.eigenvalues();
   const double scale = lambda.cwiseAbs().maxCoeff();
   if (lambda[0] < -1e-10 * scale) {
-    throw std::invalid_argument(ctx + "stiffness matrix K is not positive semi-definite: mode 1 has "
-                                "omega^2 = " + detail::fmt(lambda[0]) + " (rad/s)^2");
+    throw std::invalid_argument(ctx +
+                                "stiffness matrix K is not positive semi-definite: mode 1 has "
+                                "omega^2 = " +
+                                detail::fmt(lambda[0]) + " (rad/s)^2");
   }
   return es;
 }

@@ -29,8 +29,7 @@ void Partition::configure(const PartitionConfig& config) {
   }
   const auto n_exp = static_cast<Eigen::Index>(config.experimental.size());
   if (n_exp > n) {
-    throw std::invalid_argument(ctx + num(n_exp) + " experimental DOFs but the model has only " +
-                                num(n) + " DOFs");
+    throw std::invalid_argument(ctx + num(n_exp) + " experimental DOFs but the model has only " + num(n) + " DOFs");
   }
   std::vector<Eigen::Index> channel_of_dof(static_cast<std::size_t>(n), -1);
   std::vector<Eigen::Index> entry_of_dof(static_cast<std::size_t>(n), -1);
@@ -48,24 +47,20 @@ void Partition::configure(const PartitionConfig& config) {
                                   "); each DOF can be driven by one actuator only");
     }
     if (x.actuator_channel < 0 || x.actuator_channel >= n_exp) {
-      throw std::invalid_argument(at + "actuator channel " + num(x.actuator_channel) +
-                                  " is out of range 0.." + num(n_exp - 1) +
-                                  " (one channel per experimental DOF)");
+      throw std::invalid_argument(at + "actuator channel " + num(x.actuator_channel) + " is out of range 0.." +
+                                  num(n_exp - 1) + " (one channel per experimental DOF)");
     }
     if (entry_of_channel[static_cast<std::size_t>(x.actuator_channel)] >= 0) {
-      throw std::invalid_argument(at + "actuator channel " + num(x.actuator_channel) +
-                                  " is already used by entry " +
+      throw std::invalid_argument(at + "actuator channel " + num(x.actuator_channel) + " is already used by entry " +
                                   num(entry_of_channel[static_cast<std::size_t>(x.actuator_channel)]));
     }
     if (!(std::isfinite(x.displacement_scale) && x.displacement_scale > 0.0)) {
-      throw std::invalid_argument(at + "displacement_scale must be positive, got " +
-                                  detail::fmt(x.displacement_scale));
+      throw std::invalid_argument(at + "displacement_scale must be positive, got " + detail::fmt(x.displacement_scale));
     }
     if (!(std::isfinite(x.force_scale) && x.force_scale > 0.0)) {
       throw std::invalid_argument(at + "force_scale must be positive, got " + detail::fmt(x.force_scale));
     }
-    if (!(std::isfinite(x.specimen_stiffness_estimate_n_per_m) &&
-          x.specimen_stiffness_estimate_n_per_m >= 0.0)) {
+    if (!(std::isfinite(x.specimen_stiffness_estimate_n_per_m) && x.specimen_stiffness_estimate_n_per_m >= 0.0)) {
       throw std::invalid_argument(at + "specimen_stiffness_estimate_n_per_m must be non-negative, got " +
                                   detail::fmt(x.specimen_stiffness_estimate_n_per_m));
     }
@@ -125,13 +120,12 @@ void Partition::add_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured,
 linalg::StructuralMatrix Partition::with_specimen_stiffness(const linalg::StructuralMatrix& K_num) const {
   if (K_num.rows() != n_ || K_num.cols() != n_) {
     const std::string ctx = "partition: stiffness matrix is ";
-    throw std::invalid_argument(ctx + num(K_num.rows()) + "x" +
-                                num(K_num.cols()) + " but the partition has " + num(n_) + " DOFs");
+    throw std::invalid_argument(ctx + num(K_num.rows()) + "x" + num(K_num.cols()) + " but the partition has " +
+                                num(n_) + " DOFs");
   }
   std::vector<Eigen::Triplet<double>> diag;
   for (const ExperimentalDof& x : by_channel_) {
-    diag.emplace_back(x.dof, x.dof,
-                      x.force_scale * x.displacement_scale * x.specimen_stiffness_estimate_n_per_m);
+    diag.emplace_back(x.dof, x.dof, x.force_scale * x.displacement_scale * x.specimen_stiffness_estimate_n_per_m);
   }
   linalg::SparseMatrix D(n_, n_);
   D.setFromTriplets(diag.begin(), diag.end());
@@ -144,8 +138,7 @@ void GroundMotionLoad::configure(const linalg::StructuralMatrix& mass, const Eig
   detail::require_square(mass, ctx + "mass matrix M");
   if (influence.size() != mass.rows()) {
     throw std::invalid_argument(ctx + "influence vector has " + num(influence.size()) +
-                                " entries but the mass matrix is " + num(mass.rows()) + "x" +
-                                num(mass.cols()));
+                                " entries but the mass matrix is " + num(mass.rows()) + "x" + num(mass.cols()));
   }
   if (!influence.allFinite()) throw std::invalid_argument(ctx + "influence vector is not finite");
   Eigen::VectorXd m_iota(mass.rows());

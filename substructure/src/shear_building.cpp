@@ -12,9 +12,12 @@ StorySpring::StorySpring(const StorySpringConfig& config)
     : law_(std::visit(
           [](const auto& c) -> std::variant<LinearSpring, BilinearSpring, BoucWenSpring> {
             using C = std::decay_t<decltype(c)>;
-            if constexpr (std::is_same_v<C, LinearSpringConfig>) return LinearSpring(c);
-            else if constexpr (std::is_same_v<C, BilinearSpringConfig>) return BilinearSpring(c);
-            else return BoucWenSpring(c);
+            if constexpr (std::is_same_v<C, LinearSpringConfig>)
+              return LinearSpring(c);
+            else if constexpr (std::is_same_v<C, BilinearSpringConfig>)
+              return BilinearSpring(c);
+            else
+              return BoucWenSpring(c);
           },
           config)) {}
 
@@ -30,8 +33,8 @@ void ShearBuilding::configure(const ShearBuildingConfig& config) {
   for (std::size_t i = 0; i < n; ++i) {
     const double m = config.floor_masses_kg[i];
     if (!(std::isfinite(m) && m > 0.0)) {
-      throw std::invalid_argument(ctx + "floor " + std::to_string(i + 1) +
-                                  ": mass must be positive, got " + detail::fmt(m) + " kg");
+      throw std::invalid_argument(ctx + "floor " + std::to_string(i + 1) + ": mass must be positive, got " +
+                                  detail::fmt(m) + " kg");
     }
   }
   std::vector<StorySpring> springs;

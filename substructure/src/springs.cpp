@@ -33,8 +33,7 @@ BilinearSpring::BilinearSpring(const BilinearSpringConfig& c)
   const std::string s = "bilinear spring";
   require(std::isfinite(k0_) && k0_ > 0.0, s, "stiffness_n_per_m must be positive", k0_);
   require(std::isfinite(fy_) && fy_ > 0.0, s, "yield_force_n must be positive", fy_);
-  require(std::isfinite(alpha_) && alpha_ >= 0.0 && alpha_ < 1.0, s,
-          "post_yield_ratio must be in [0, 1)", alpha_);
+  require(std::isfinite(alpha_) && alpha_ >= 0.0 && alpha_ < 1.0, s, "post_yield_ratio must be in [0, 1)", alpha_);
   // Series combination of k0 and H gives the post-yield slope α k0.
   H_ = alpha_ * k0_ / (1.0 - alpha_);
   committed_.tangent = k0_;
@@ -78,8 +77,7 @@ BoucWenSpring::BoucWenSpring(const BoucWenSpringConfig& c)
       max_substeps_(c.max_substeps) {
   const std::string s = "Bouc-Wen spring";
   require(std::isfinite(k0_) && k0_ > 0.0, s, "stiffness_n_per_m must be positive", k0_);
-  require(std::isfinite(alpha_) && alpha_ >= 0.0 && alpha_ < 1.0, s,
-          "post_yield_ratio must be in [0, 1)", alpha_);
+  require(std::isfinite(alpha_) && alpha_ >= 0.0 && alpha_ < 1.0, s, "post_yield_ratio must be in [0, 1)", alpha_);
   require(std::isfinite(A_) && A_ > 0.0, s, "A must be positive", A_);
   require(std::isfinite(beta_) && beta_ >= 0.0, s, "beta must be non-negative", beta_);
   require(std::isfinite(gamma_) && beta_ + gamma_ > 0.0, s,
@@ -95,9 +93,7 @@ BoucWenSpring::BoucWenSpring(const BoucWenSpringConfig& c)
   trial_ = committed_;
 }
 
-double BoucWenSpring::initial_stiffness() const noexcept {
-  return k0_ * (alpha_ + (1.0 - alpha_) * A_);
-}
+double BoucWenSpring::initial_stiffness() const noexcept { return k0_ * (alpha_ + (1.0 - alpha_) * A_); }
 
 double BoucWenSpring::dz_du(double z, double s) const noexcept {
   const double az = std::abs(z);
@@ -112,9 +108,8 @@ double BoucWenSpring::trial(double u) noexcept {
   int steps = 0;
   if (du != 0.0) {
     const double ratio = std::abs(du) / h_max_;
-    steps = ratio >= static_cast<double>(max_substeps_)
-                ? max_substeps_
-                : std::max(1, static_cast<int>(std::ceil(ratio)));
+    steps =
+        ratio >= static_cast<double>(max_substeps_) ? max_substeps_ : std::max(1, static_cast<int>(std::ceil(ratio)));
     const double h = du / steps;  // signed: dz = g(z; s) du
     for (int i = 0; i < steps; ++i) {
       const double k1 = dz_du(z, s);

@@ -109,10 +109,11 @@ TEST(FrequencyEvaluationIndex, OnlineWindowMatchesOfflineOnTheSameSamples) {
   EXPECT_NEAR(std::abs(online.latest().index - offline.index), 0.0, 1e-12);
   EXPECT_NEAR(online.latest().delay_s, offline.delay_s, 1e-12);
   // Both tones are on bins of the 2 s window: a two-tone closed form again.
-  EXPECT_NEAR(offline.amplitude, std::abs(1e-4 * std::polar(1.0, -2.0 * kPi * 1.5 * tau) +
-                                          9e-6 * std::polar(1.0, -2.0 * kPi * 6.0 * tau)) /
-                                     (1e-4 + 9e-6),
-              1e-9);
+  EXPECT_NEAR(
+      offline.amplitude,
+      std::abs(1e-4 * std::polar(1.0, -2.0 * kPi * 1.5 * tau) + 9e-6 * std::polar(1.0, -2.0 * kPi * 6.0 * tau)) /
+          (1e-4 + 9e-6),
+      1e-9);
 }
 
 TEST(FrequencyEvaluationIndex, RejectsBadInput) {
@@ -121,7 +122,7 @@ TEST(FrequencyEvaluationIndex, RejectsBadInput) {
   EXPECT_THROW(frequency_evaluation_index(a, a, 0.0), std::invalid_argument);
   FrequencyEvaluationIndexParameters p;
   FrequencyEvaluationIndexEstimator e;
-  EXPECT_THROW(e.configure(p), std::invalid_argument);  // dt_s unset
+  EXPECT_THROW(e.configure(p), std::invalid_argument);        // dt_s unset
   EXPECT_FALSE(frequency_evaluation_index(a, a, kDt).valid);  // no energy
 }
 

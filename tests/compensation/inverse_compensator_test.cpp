@@ -36,7 +36,8 @@ TEST(InverseCompensator, CompensatedModelLoopIsExactlyOneStepDelay) {
     ChenRiclesActuator actuator{alpha};
     // An arbitrary target: x_m[k+1] must equal x_d[k] at every step, from rest.
     for (int k = 0; k < 2000; ++k) {
-      const double target = 0.01 * std::sin(0.013 * k) + 0.004 * std::cos(0.31 * k * k * 1e-3) + (k > 700 ? 0.002 : 0.0);
+      const double target =
+          0.01 * std::sin(0.013 * k) + 0.004 * std::cos(0.31 * k * k * 1e-3) + (k > 700 ? 0.002 : 0.0);
       const double measured_next = actuator.step(c.command(target));
       ASSERT_NEAR(measured_next, target, 1e-15) << "alpha " << alpha << " step " << k;
     }

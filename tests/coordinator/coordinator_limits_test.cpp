@@ -5,14 +5,14 @@
 // the first tenth of a second).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
+#include "../servo/paper_rig.h"
 #include "rpsd/coordinator/test_runs.h"
 #include "rpsd/scenarios/study_file.h"
-#include "../servo/paper_rig.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -66,7 +66,8 @@ TEST(CoordinatorLimits, AForceBeyondItsBoundStopsTheTestOnThatFeedback) {
   EXPECT_EQ(run.limit_stop.kind, LimitStop::Kind::kForce);
   EXPECT_NEAR(run.limit_stop.value, 700.8e3 * 0.01, 50.0);
   // Within the bounds nothing stops: the same test with room to spare completes.
-  const TestRun free = run_test(scenario_with_limits("{max_stroke_m: 0.011, max_increment_m: 0.0002, max_force_n: 8000}"), {}, false);
+  const TestRun free =
+      run_test(scenario_with_limits("{max_stroke_m: 0.011, max_increment_m: 0.0002, max_force_n: 8000}"), {}, false);
   EXPECT_EQ(free.outcome, StepOutcome::kOk);
 }
 

@@ -102,9 +102,9 @@ TEST(FeedbackAge, OnePeriodLateFeedbackIsOneMorePeriodOfDelay) {
   EXPECT_EQ(r.records[0].feedback_age_periods, 0);
   for (std::size_t n = 1; n < r.records.size(); ++n) ASSERT_EQ(r.records[n].feedback_age_periods, 1) << n;
 
-  const compensation::DelayedOscillator sdof{setup.mass_kg,
-                                             2.0 * setup.damping_ratio * std::sqrt(setup.stiffness_n_per_m * setup.mass_kg), 0.0,
-                                             setup.stiffness_n_per_m};
+  const compensation::DelayedOscillator sdof{
+      setup.mass_kg, 2.0 * setup.damping_ratio * std::sqrt(setup.stiffness_n_per_m * setup.mass_kg), 0.0,
+      setup.stiffness_n_per_m};
   const double exact = compensation::damping_ratio_of(compensation::dominant_root(sdof, plant_delay_s + dt_s));
   const double without_lag = compensation::damping_ratio_of(compensation::dominant_root(sdof, plant_delay_s));
   const studies::IdentifiedDamping identified = studies::identify_damping(testing::displacements(r), dt_s, 0.0, 1e-6);

@@ -2,8 +2,8 @@
 // in-process link, plant and recorder hand-off, for each plant kind and several compensators.
 #include <gtest/gtest.h>
 
-#include "allocation_counter.h"
 #include "../servo/paper_rig.h"
+#include "allocation_counter.h"
 #include "rpsd/coordinator/specimen_sdof.h"
 #include "rpsd/coordinator/test_assembly.h"
 
@@ -43,20 +43,22 @@ TEST(LoopAllocation, NoAllocationPerStep) {
       compensation::DiscretePhaseLeadParameters::for_delay(0.08, 5.0),
       compensation::AdaptiveTimeSeriesParameters{},
   };
-  const integrators::IntegratorConfig integrators[] = {integrators::CentralDifferenceParams{},
-                                                       integrators::KolayRiclesAlphaParams{},
-                                                       integrators::HhtAlphaParams{}};
+  const integrators::IntegratorConfig integrators[] = {
+      integrators::CentralDifferenceParams{}, integrators::KolayRiclesAlphaParams{}, integrators::HhtAlphaParams{}};
   for (const auto& compensator : compensators) {
     for (const auto& integrator : integrators) {
       setup.compensation = compensator;
       setup.integrator = integrator;
       const servo::PureDelayParameters delay{0.02, setup.stiffness_n_per_m, 8192.0};
       EXPECT_EQ(allocations_over_steps(setup, delay, 4000), 0) << compensation::compensator_name(compensator);
-      EXPECT_EQ(allocations_over_steps(setup, rpsd::testing::paper_rig(), 2000), 0) << compensation::compensator_name(compensator);
+      EXPECT_EQ(allocations_over_steps(setup, rpsd::testing::paper_rig(), 2000), 0)
+          << compensation::compensator_name(compensator);
       // The RTHS benchmark's fifth-order plant.
       const servo::TransferFunctionPlantParameters benchmark{
-          {servo::Polynomial{2.18385e13}, servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
-          setup.stiffness_n_per_m, 8192.0};
+          {servo::Polynomial{2.18385e13},
+           servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
+          setup.stiffness_n_per_m,
+          8192.0};
       EXPECT_EQ(allocations_over_steps(setup, benchmark, 2000), 0) << compensation::compensator_name(compensator);
     }
   }

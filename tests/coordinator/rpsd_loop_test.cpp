@@ -16,8 +16,8 @@
 namespace rpsd::coordinator {
 namespace {
 
-using studies::identify_damping;
 using studies::IdentifiedDamping;
+using studies::identify_damping;
 using testing::displacements;
 using testing::run_sdof;
 
@@ -53,10 +53,10 @@ TEST(RpsdLoop, PerfectCompensationTracksTheTargetToTheExtrapolationError) {
     ASSERT_EQ(r.outcome, StepOutcome::kOk);
     // For a sinusoid of the structure's frequency, measured / target = H(e^{j w dt}) e^{-j w tau}.
     const double omega = std::sqrt(setup.stiffness_n_per_m / setup.mass_kg);
-    const double bound =
-        std::abs(compensation::extrapolation_response(order, delay_s / (1.0 / setup.control_rate_hz), omega * (1.0 / setup.control_rate_hz)) *
-                     std::exp(std::complex<double>(0.0, -omega * delay_s)) -
-                 1.0);
+    const double bound = std::abs(compensation::extrapolation_response(order, delay_s / (1.0 / setup.control_rate_hz),
+                                                                       omega * (1.0 / setup.control_rate_hz)) *
+                                      std::exp(std::complex<double>(0.0, -omega * delay_s)) -
+                                  1.0);
     double worst = 0.0, peak = 0.0;
     // After the delay line has filled with the test's own commands.
     for (const auto& s : r.records) {
@@ -101,7 +101,8 @@ TEST(RpsdLoop, GroundMotionResponseMatchesTheClosedForm) {
   SpecimenSdof setup;
   setup.initial_displacement_m = 0.0;
   const double amplitude = 1.0, omega_g = 2.0 * std::numbers::pi * 1.2, dt = (1.0 / setup.control_rate_hz);
-  for (int n = 0; n <= 4 * 1024; ++n) setup.ground_acceleration_m_per_s2.push_back(amplitude * std::sin(omega_g * n * dt));
+  for (int n = 0; n <= 4 * 1024; ++n)
+    setup.ground_acceleration_m_per_s2.push_back(amplitude * std::sin(omega_g * n * dt));
   const auto r = run_sdof(setup);
   ASSERT_EQ(r.records.size(), 4u * 1024u);  // the test ends with the record
 
@@ -116,7 +117,8 @@ TEST(RpsdLoop, GroundMotionResponseMatchesTheClosedForm) {
   double worst = 0.0, peak = 0.0;
   for (const auto& s : r.records) {
     const double t = s.time_s;
-    const double exact = particular(t) + std::exp(-zeta * omega * t) * (c1 * std::cos(omega_d * t) + c2 * std::sin(omega_d * t));
+    const double exact =
+        particular(t) + std::exp(-zeta * omega * t) * (c1 * std::cos(omega_d * t) + c2 * std::sin(omega_d * t));
     worst = std::max(worst, std::abs(s.displacement_m[0] - exact));
     peak = std::max(peak, std::abs(exact));
   }

@@ -20,7 +20,8 @@ constexpr std::uint32_t kTest = 71;
 
 transport::DdsDomainConfig loopback() {
   // Domains 230..232 for this binary: apart from the transport (40..189) and node (190..229) tests'.
-  return {static_cast<std::uint32_t>(230 + ::getpid() % 3), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+  return {static_cast<std::uint32_t>(230 + ::getpid() % 3),
+          std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
 }
 
 // The paper's SDOF released from 10 mm: its velocity peaks near 0.1 m/s, and the node lets
@@ -42,7 +43,8 @@ TestConfig clamped_sdof() {
 class DdsNode {
  public:
   explicit DdsNode(const TestConfig& config)
-      : plant_(servo::make_plant(config.plant)), participant_(loopback()),
+      : plant_(servo::make_plant(config.plant)),
+        participant_(loopback()),
         endpoint_(participant_, endpoint_config(config)) {
     servo::Plant* plants[] = {plant_.get()};
     actuator_ = std::make_unique<servo::SimulatedActuator>(plants);
@@ -119,7 +121,8 @@ TEST(SiteNode, AVelocityLimitActsIdenticallyInProcessAndOverDds) {
   const testing::SdofRun unlimited = testing::run_steps(free);
   double largest_difference = 0.0;
   for (std::size_t n = 0; n < here.records.size(); ++n) {
-    largest_difference = std::max(largest_difference, std::abs(here.records[n].measured_m[0] - unlimited.records[n].measured_m[0]));
+    largest_difference =
+        std::max(largest_difference, std::abs(here.records[n].measured_m[0] - unlimited.records[n].measured_m[0]));
   }
   EXPECT_GT(largest_difference, 1e-3);
 }

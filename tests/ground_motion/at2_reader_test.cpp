@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "rpsd/ground_motion/record_error.h"
 #include "rpsd/ground_motion/at2_reader.h"
+#include "rpsd/ground_motion/record_error.h"
 #include "test_files.h"
 
 namespace rpsd::ground_motion {
@@ -23,10 +23,10 @@ struct SharedRecord {
   RecordFormat format;
   std::size_t npts;
   double dt_s;
-  double pga_g;            // the sample of largest magnitude, as printed in the file
-  std::size_t pga_index;   // t = index * dt
-  const char* event;       // on line 2
-  double first_g;          // first and last values, as printed
+  double pga_g;           // the sample of largest magnitude, as printed in the file
+  std::size_t pga_index;  // t = index * dt
+  const char* event;      // on line 2
+  double first_g;         // first and last values, as printed
   double last_g;
 };
 
@@ -34,14 +34,12 @@ struct SharedRecord {
 // (I-ELC180 -0.312881 g at 2.15 s, NIS000 -0.5093 g, STM090 -0.8832 g); the full digits,
 // the index and HCH090's peak were read from the files.
 const SharedRecord shared_records[] = {
-    {"I-ELC180.AT2", RecordFormat::kPeerAt2NgaWest1, 4000, 0.01, -0.312881, 215,
-     "IMPERIAL VALLEY", -0.640318E-02, 0.945934E-04},
-    {"NIS000.AT2", RecordFormat::kPeerAt2Old, 4096, 0.01, -0.5093376, 725, "KOBE",
-     -0.7551815E-06, 0.4017524E-04},
-    {"STM090.AT2", RecordFormat::kPeerAt2Old, 2000, 0.02, -0.8832189, 490, "NORTHRIDGE",
-     0.2289108E-02, -0.3995931E-03},
-    {"HCH090.AT2", RecordFormat::kPeerAt2Old, 7818, 0.005, 0.2465262, 1690, "LOMA PRIETA",
-     -0.3956862E-03, 0.2829374E-03},
+    {"I-ELC180.AT2", RecordFormat::kPeerAt2NgaWest1, 4000, 0.01, -0.312881, 215, "IMPERIAL VALLEY", -0.640318E-02,
+     0.945934E-04},
+    {"NIS000.AT2", RecordFormat::kPeerAt2Old, 4096, 0.01, -0.5093376, 725, "KOBE", -0.7551815E-06, 0.4017524E-04},
+    {"STM090.AT2", RecordFormat::kPeerAt2Old, 2000, 0.02, -0.8832189, 490, "NORTHRIDGE", 0.2289108E-02, -0.3995931E-03},
+    {"HCH090.AT2", RecordFormat::kPeerAt2Old, 7818, 0.005, 0.2465262, 1690, "LOMA PRIETA", -0.3956862E-03,
+     0.2829374E-03},
 };
 
 TEST(GroundMotionAt2, SharedRecordsParseToTheirNptsDtAndPga) {
@@ -111,8 +109,7 @@ std::string header_with_units(const std::string& line3) {
 }
 
 TEST(GroundMotionAt2, UnitsFromLine3) {
-  const auto cm = parse_peer_at2(
-      header_with_units("ACCELERATION TIME HISTORY IN UNITS OF CM/S/S"), "cm.AT2");
+  const auto cm = parse_peer_at2(header_with_units("ACCELERATION TIME HISTORY IN UNITS OF CM/S/S"), "cm.AT2");
   EXPECT_EQ(cm.original_unit, AccelerationUnit::kCmPerS2);
   EXPECT_DOUBLE_EQ(cm.acceleration_m_per_s2[0], 1.0);
   const auto gal = parse_peer_at2(header_with_units("Acceleration in units of gal"), "gal.AT2");
@@ -128,22 +125,19 @@ TEST(GroundMotionAt2, Line3WithoutUnitsNeedsAnExplicitUnit) {
     parse_peer_at2(text, "nounits.AT2");
     FAIL() << "no error";
   } catch (const RecordError& e) {
-    EXPECT_NE(std::string(e.what()).find("nounits.AT2:3: expected the units on line 3"),
-              std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("nounits.AT2:3: expected the units on line 3"), std::string::npos) << e.what();
   }
   At2ReadOptions options;
   options.unit_if_unstated = AccelerationUnit::kCmPerS2;
   EXPECT_DOUBLE_EQ(parse_peer_at2(text, "nounits.AT2", options).acceleration_m_per_s2[0], 1.0);
   // A unit stated on line 3 wins over the fallback.
-  EXPECT_DOUBLE_EQ(parse_peer_at2(header_with_units("ACCELERATION IN UNITS OF G"), "g.AT2", options)
-                       .acceleration_m_per_s2[2],
-                   25.0 * standard_gravity_m_per_s2);
+  EXPECT_DOUBLE_EQ(
+      parse_peer_at2(header_with_units("ACCELERATION IN UNITS OF G"), "g.AT2", options).acceleration_m_per_s2[2],
+      25.0 * standard_gravity_m_per_s2);
 }
 
 TEST(GroundMotionAt2, VelocityFileIsRejected) {
-  EXPECT_THROW(parse_peer_at2(header_with_units("VELOCITY TIME HISTORY IN UNITS OF CM/S"), "v.VT2"),
-               RecordError);
+  EXPECT_THROW(parse_peer_at2(header_with_units("VELOCITY TIME HISTORY IN UNITS OF CM/S"), "v.VT2"), RecordError);
 }
 
 // Malformed copies of I-ELC180.AT2 written to a temporary directory.
@@ -191,8 +185,7 @@ TEST_F(GroundMotionAt2Malformed, TruncatedFileNamesItsLastLineAndTheCount) {
   l.resize(801);              // 797 data lines: 3985 values
   const auto message = error_for("truncated.AT2", join(l));
   expect_located(message, 801);
-  EXPECT_NE(message.find("expected NPTS=4000 values (line 4), got only 3985"), std::string::npos)
-      << message;
+  EXPECT_NE(message.find("expected NPTS=4000 values (line 4), got only 3985"), std::string::npos) << message;
 }
 
 TEST_F(GroundMotionAt2Malformed, BadNumberNamesLineColumnAndToken) {
@@ -219,8 +212,7 @@ TEST_F(GroundMotionAt2Malformed, NptsLargerThanTheDataIsTruncation) {
   l[3] = "4001    0.0100    NPTS, DT";
   const auto message = error_for("npts-large.AT2", join(l));
   expect_located(message, 804);
-  EXPECT_NE(message.find("expected NPTS=4001 values (line 4), got only 4000"), std::string::npos)
-      << message;
+  EXPECT_NE(message.find("expected NPTS=4001 values (line 4), got only 4000"), std::string::npos) << message;
 }
 
 TEST_F(GroundMotionAt2Malformed, NptsSmallerThanTheDataNamesTheExtraValue) {
@@ -267,15 +259,12 @@ TEST_F(GroundMotionAt2Malformed, BadNptsDtLine) {
   l[3] = "NPTS=  4000, DT= -.01000 SEC";
   message = error_for("negativedt.AT2", join(l));
   expect_located(message, 4);
-  EXPECT_NE(message.find("expected DT as a positive number of seconds, got \"-.01000\""),
-            std::string::npos)
-      << message;
+  EXPECT_NE(message.find("expected DT as a positive number of seconds, got \"-.01000\""), std::string::npos) << message;
 
   l[3] = "0    0.0100    NPTS, DT";
   message = error_for("zeronpts.AT2", join(l));
   expect_located(message, 4);
-  EXPECT_NE(message.find("expected NPTS as a positive whole number, got \"0\""), std::string::npos)
-      << message;
+  EXPECT_NE(message.find("expected NPTS as a positive whole number, got \"0\""), std::string::npos) << message;
 
   l[3] = "4000    0.0100    NPTS, DT  extra";
   expect_located(error_for("extra.AT2", join(l)), 4);
@@ -287,8 +276,7 @@ TEST_F(GroundMotionAt2Malformed, MissingFileNamesThePath) {
     read_peer_at2(path_);
     FAIL() << "no error";
   } catch (const RecordError& e) {
-    EXPECT_NE(std::string(e.what()).find(path_.string() + ": cannot open"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find(path_.string() + ": cannot open"), std::string::npos) << e.what();
   }
 }
 

@@ -7,9 +7,9 @@
 #include <functional>
 #include <numbers>
 
-#include "rpsd/ground_motion/record_error.h"
 #include "rpsd/ground_motion/at2_reader.h"
 #include "rpsd/ground_motion/processing.h"
+#include "rpsd/ground_motion/record_error.h"
 #include "test_files.h"
 
 namespace rpsd::ground_motion {
@@ -112,8 +112,7 @@ TEST(GroundMotionProcessing, PadAddsZeros) {
 }
 
 TEST(GroundMotionProcessing, IntegerUpsamplingReproducesTheOriginalSamplesExactly) {
-  for (const GroundMotionRecord& record :
-       {el_centro(), read_peer_at2(shared_record("HCH090.AT2"))}) {
+  for (const GroundMotionRecord& record : {el_centro(), read_peer_at2(shared_record("HCH090.AT2"))}) {
     for (const int factor : {2, 4, 5, 10}) {
       SCOPED_TRACE(record.source + " x" + std::to_string(factor));
       ResampleOptions o;
@@ -121,15 +120,13 @@ TEST(GroundMotionProcessing, IntegerUpsamplingReproducesTheOriginalSamplesExactl
       const auto fine = resample(record, o);
       ASSERT_EQ(fine.size(), (record.size() - 1) * static_cast<std::size_t>(factor) + 1);
       for (std::size_t i = 0; i < record.size(); ++i) {
-        ASSERT_EQ(fine.acceleration_m_per_s2[i * static_cast<std::size_t>(factor)],
-                  record.acceleration_m_per_s2[i]);
+        ASSERT_EQ(fine.acceleration_m_per_s2[i * static_cast<std::size_t>(factor)], record.acceleration_m_per_s2[i]);
       }
       if (factor == 2) {  // midpoints are the averages
         for (std::size_t i = 0; i + 1 < record.size(); ++i) {
           const double a = record.acceleration_m_per_s2[i];
           const double b = record.acceleration_m_per_s2[i + 1];
-          ASSERT_NEAR(fine.acceleration_m_per_s2[2 * i + 1], 0.5 * (a + b),
-                      4e-16 * (std::abs(a) + std::abs(b)));
+          ASSERT_NEAR(fine.acceleration_m_per_s2[2 * i + 1], 0.5 * (a + b), 4e-16 * (std::abs(a) + std::abs(b)));
         }
       }
     }
@@ -146,8 +143,7 @@ TEST(GroundMotionProcessing, ResamplingASineIsWithinTheLinearInterpolationBound)
   ASSERT_EQ(fine.size(), 10241u);  // floor(10 s * 1024) + 1
   double worst = 0.0;
   for (std::size_t i = 0; i < fine.size(); ++i) {
-    worst = std::max(worst, std::abs(fine.acceleration_m_per_s2[i] -
-                                     std::sin(w * static_cast<double>(i) * o.dt_s)));
+    worst = std::max(worst, std::abs(fine.acceleration_m_per_s2[i] - std::sin(w * static_cast<double>(i) * o.dt_s)));
   }
   const double bound = (w * 0.01) * (w * 0.01) / 8.0;  // dt^2 / 8 max|a''| = 4.93e-4
   EXPECT_LE(worst, bound);
@@ -226,8 +222,7 @@ TEST(GroundMotionProcessing, MeanRemoval) {
 TEST(GroundMotionProcessing, AccelerationAtInterpolatesLinearly) {
   const auto& r = el_centro();
   EXPECT_NEAR(acceleration_at(r, 2.15), r.acceleration_m_per_s2[215], 1e-14);
-  EXPECT_NEAR(acceleration_at(r, 2.155),
-              0.5 * (r.acceleration_m_per_s2[215] + r.acceleration_m_per_s2[216]), 1e-14);
+  EXPECT_NEAR(acceleration_at(r, 2.155), 0.5 * (r.acceleration_m_per_s2[215] + r.acceleration_m_per_s2[216]), 1e-14);
   EXPECT_EQ(acceleration_at(r, -0.1), 0.0);
   EXPECT_EQ(acceleration_at(r, 40.5), 0.0);
   EXPECT_EQ(acceleration_at(r, r.duration_s()), r.acceleration_m_per_s2.back());

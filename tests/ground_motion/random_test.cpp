@@ -24,8 +24,8 @@ TEST(GroundMotionRandom, SplitMix64PublishedOutputsForSeedZero) {
 
 TEST(GroundMotionRandom, Xoshiro256StarStarPublishedOutputsForState1234) {
   Xoshiro256StarStar g(std::array<std::uint64_t, 4>{1, 2, 3, 4});
-  for (const std::uint64_t expected : {11520ULL, 0ULL, 1509978240ULL, 1215971899390074240ULL,
-                                       1216172134540287360ULL, 607988272756665600ULL}) {
+  for (const std::uint64_t expected :
+       {11520ULL, 0ULL, 1509978240ULL, 1215971899390074240ULL, 1216172134540287360ULL, 607988272756665600ULL}) {
     EXPECT_EQ(g.next(), expected);
   }
 }
@@ -41,8 +41,8 @@ TEST(GroundMotionRandom, DeterministicMathAgreesWithTheCLibrary) {
     const double small = -2.0 + 4.0 * g.uniform();
     worst_exp = std::max(worst_exp, std::abs(deterministic::exp(small) / std::exp(small) - 1.0));
     const double y = std::exp(-700.0 + 1400.0 * g.uniform());
-    worst_log = std::max(worst_log, std::abs(deterministic::log(y) - std::log(y)) /
-                                        std::max(1.0, std::abs(std::log(y))));
+    worst_log =
+        std::max(worst_log, std::abs(deterministic::log(y) - std::log(y)) / std::max(1.0, std::abs(std::log(y))));
     const double near_one = 0.5 + g.uniform();
     worst_log = std::max(worst_log, std::abs(deterministic::log(near_one) - std::log(near_one)));
     const double u = g.uniform();

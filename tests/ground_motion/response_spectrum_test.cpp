@@ -138,8 +138,7 @@ TEST(GroundMotionResponseSpectrum, SineMatchesTheSteadyStateAmplitude) {
   double worst = 0.0;
   for (std::size_t i = 0; i < o.periods_s.size(); ++i) {
     const double w = 2.0 * pi / o.periods_s[i];
-    const double theory =
-        1.0 / std::sqrt(std::pow(w * w - big_w * big_w, 2) + std::pow(2.0 * 0.05 * w * big_w, 2));
+    const double theory = 1.0 / std::sqrt(std::pow(w * w - big_w * big_w, 2) + std::pow(2.0 * 0.05 * w * big_w, 2));
     const double error = spectrum.displacement_m[i] / theory - 1.0;
     worst = std::max(worst, std::abs(error));
     EXPECT_NEAR(error, 0.0, 3e-4) << "T " << o.periods_s[i];  // measured: at most 1.3e-4

@@ -128,8 +128,7 @@ TEST(GroundMotionSynthetic, BaselineCorrectionThenScaling) {
 double kanai_tajimi_psd(double s0, double wg, double zg, double w) {
   const double w2 = w * w;
   const double wg2 = wg * wg;
-  return s0 * (wg2 * wg2 + 4.0 * zg * zg * wg2 * w2) /
-         ((wg2 - w2) * (wg2 - w2) + 4.0 * zg * zg * wg2 * w2);
+  return s0 * (wg2 * wg2 + 4.0 * zg * zg * wg2 * w2) / ((wg2 - w2) * (wg2 - w2) + 4.0 * zg * zg * wg2 * w2);
 }
 double clough_penzien_factor(double wf, double zf, double w) {
   const double w2 = w * w;
@@ -144,9 +143,8 @@ struct Bands {
   std::vector<double> psd;       // periodogram averaged over the band's bins and the seeds
   std::vector<double> analytic;  // `model` averaged over the same bins
 };
-Bands averaged_periodogram(SyntheticGroundMotionOptions o, int seeds, std::size_t n,
-                           double band_rad_per_s, double max_rad_per_s,
-                           const std::function<double(double)>& model) {
+Bands averaged_periodogram(SyntheticGroundMotionOptions o, int seeds, std::size_t n, double band_rad_per_s,
+                           double max_rad_per_s, const std::function<double(double)>& model) {
   o.envelope = EnvelopeKind::kStationary;
   o.target_pga_m_per_s2.reset();
   o.white_noise_psd_m2_per_s3 = 1.0;
@@ -201,9 +199,7 @@ TEST(GroundMotionSynthetic, KanaiTajimiPsdMatchesTheAnalyticShapeAndLevel) {
 TEST(GroundMotionSynthetic, CloughPenzienPsdMatchesTheAnalyticShapeAndLevel) {
   SyntheticGroundMotionOptions o;
   o.model = SpectralModel::kCloughPenzien;  // wf 1.56 rad/s, zf 0.6
-  const auto model = [](double w) {
-    return kanai_tajimi_psd(1.0, 15.6, 0.6, w) * clough_penzien_factor(1.56, 0.6, w);
-  };
+  const auto model = [](double w) { return kanai_tajimi_psd(1.0, 15.6, 0.6, w) * clough_penzien_factor(1.56, 0.6, w); };
   const auto bands = averaged_periodogram(o, 64, 16384, 2.0, 60.0, model);
   double worst = 0.0;
   for (std::size_t b = 0; b < bands.omega.size(); ++b) {
@@ -222,8 +218,8 @@ TEST(GroundMotionSynthetic, SpectralPeakIsNearTheGroundFrequency) {
   // 2.5 % standard deviation, so the largest band is the analytic one or its neighbour.
   SyntheticGroundMotionOptions o;
   o.kanai_tajimi.zeta_g = 0.2;
-  const auto bands = averaged_periodogram(o, 128, 16384, 1.0, 40.0,
-                                         [](double w) { return kanai_tajimi_psd(1.0, 15.6, 0.2, w); });
+  const auto bands =
+      averaged_periodogram(o, 128, 16384, 1.0, 40.0, [](double w) { return kanai_tajimi_psd(1.0, 15.6, 0.2, w); });
   const auto argmax = [](const std::vector<double>& v) {
     return static_cast<std::size_t>(std::max_element(v.begin(), v.end()) - v.begin());
   };

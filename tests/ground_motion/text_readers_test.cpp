@@ -6,8 +6,8 @@
 #include <functional>
 #include <string>
 
-#include "rpsd/ground_motion/record_error.h"
 #include "rpsd/ground_motion/at2_reader.h"
+#include "rpsd/ground_motion/record_error.h"
 #include "rpsd/ground_motion/text_readers.h"
 #include "test_files.h"
 
@@ -49,13 +49,12 @@ TEST(GroundMotionPlainText, ManyValuesPerLineAreReadInOrder) {
       " 1.0000E+00 2.0000E+00 3.0000E+00 4.0000E+00 5.0000E+00 6.0000E+00\n"
       " 7.0000E+00-8.0000E+00\n";
   // "7.0000E+00-8.0000E+00": Fortran fields that touch are not split: an error, on line 2.
-  const auto message = message_of(
-      [&] { parse_plain_text(text, "elc.dat", plain(0.02, AccelerationUnit::kCmPerS2)); });
+  const auto message = message_of([&] { parse_plain_text(text, "elc.dat", plain(0.02, AccelerationUnit::kCmPerS2)); });
   EXPECT_EQ(message.rfind("elc.dat:2:2: expected an acceleration value", 0), 0u) << message;
 
-  const auto r = parse_plain_text(
-      " 1.0000E+00 2.0000E+00 3.0000E+00 4.0000E+00 5.0000E+00 6.0000E+00\n 7.0000E+00 -8.0D+00\n",
-      "elc.dat", plain(0.02, AccelerationUnit::kCmPerS2));
+  const auto r =
+      parse_plain_text(" 1.0000E+00 2.0000E+00 3.0000E+00 4.0000E+00 5.0000E+00 6.0000E+00\n 7.0000E+00 -8.0D+00\n",
+                       "elc.dat", plain(0.02, AccelerationUnit::kCmPerS2));
   ASSERT_EQ(r.size(), 8u);
   for (int i = 0; i < 7; ++i) EXPECT_DOUBLE_EQ(r.acceleration_m_per_s2[i], (i + 1) * 0.01);
   EXPECT_DOUBLE_EQ(r.acceleration_m_per_s2[7], -0.08);
@@ -66,12 +65,10 @@ TEST(GroundMotionPlainText, UnitConversion) {
   EXPECT_DOUBLE_EQ(to_m_per_s2(AccelerationUnit::kMPerS2), 1.0);
   EXPECT_DOUBLE_EQ(to_m_per_s2(AccelerationUnit::kCmPerS2), 0.01);
   const std::string text = "981.0\n";
-  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kCmPerS2))
-                       .acceleration_m_per_s2[0], 9.81);
-  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kMPerS2))
-                       .acceleration_m_per_s2[0], 981.0);
-  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kG))
-                       .acceleration_m_per_s2[0], 981.0 * 9.80665);
+  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kCmPerS2)).acceleration_m_per_s2[0], 9.81);
+  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kMPerS2)).acceleration_m_per_s2[0], 981.0);
+  EXPECT_DOUBLE_EQ(parse_plain_text(text, "a", plain(0.01, AccelerationUnit::kG)).acceleration_m_per_s2[0],
+                   981.0 * 9.80665);
 }
 
 TEST(GroundMotionPlainText, CommentsBlankLinesHeaderAndColumn) {
@@ -94,38 +91,45 @@ TEST(GroundMotionPlainText, CommentsBlankLinesHeaderAndColumn) {
   EXPECT_DOUBLE_EQ(r.acceleration_m_per_s2[2], 0.8);
 
   o.expected_points = 4;
-  EXPECT_EQ(message_of([&] { parse_plain_text(text, "table.txt", o); })
-                .rfind("table.txt:7: expected 4 values, got 3", 0),
-            0u);
+  EXPECT_EQ(
+      message_of([&] { parse_plain_text(text, "table.txt", o); }).rfind("table.txt:7: expected 4 values, got 3", 0),
+      0u);
   o.expected_points.reset();
   o.skip_lines = 0;
-  EXPECT_EQ(message_of([&] { parse_plain_text(text, "table.txt", o); })
-                .rfind("table.txt:1:1: expected a number (set skip_lines", 0),
+  EXPECT_EQ(message_of([&] {
+              parse_plain_text(text, "table.txt", o);
+            }).rfind("table.txt:1:1: expected a number (set skip_lines", 0),
             0u);
   o.skip_lines = 1;
-  EXPECT_EQ(message_of([&] { parse_plain_text(text + "0.03 1.0 1.1\n", "table.txt", o); })
-                .rfind("table.txt:8: expected 4 columns like line 3, got 3", 0),
+  EXPECT_EQ(message_of([&] {
+              parse_plain_text(text + "0.03 1.0 1.1\n", "table.txt", o);
+            }).rfind("table.txt:8: expected 4 columns like line 3, got 3", 0),
             0u);
 }
 
 TEST(GroundMotionPlainText, OptionErrors) {
-  EXPECT_NE(message_of([] { parse_plain_text("1\n", "x.txt", plain(0.0, AccelerationUnit::kG)); })
-                .find("x.txt: expected dt_s"),
+  EXPECT_NE(message_of([] {
+              parse_plain_text("1\n", "x.txt", plain(0.0, AccelerationUnit::kG));
+            }).find("x.txt: expected dt_s"),
             std::string::npos);
   PlainTextOptions no_unit;
   no_unit.dt_s = 0.01;
-  EXPECT_NE(message_of([&] { parse_plain_text("1\n", "x.txt", no_unit); })
-                .find("x.txt: the acceleration units must be declared"),
+  EXPECT_NE(message_of([&] {
+              parse_plain_text("1\n", "x.txt", no_unit);
+            }).find("x.txt: the acceleration units must be declared"),
             std::string::npos);
-  EXPECT_EQ(message_of([] { parse_plain_text("# nothing\n\n", "x.txt", plain(0.01, AccelerationUnit::kG)); })
-                .rfind("x.txt:2: expected acceleration values, got none", 0),
+  EXPECT_EQ(message_of([] {
+              parse_plain_text("# nothing\n\n", "x.txt", plain(0.01, AccelerationUnit::kG));
+            }).rfind("x.txt:2: expected acceleration values, got none", 0),
             0u);
   // 1e308 is a double, 1e308 g is not.
-  EXPECT_EQ(message_of([] { parse_plain_text("0\n 1e308\n", "x.txt", plain(0.01, AccelerationUnit::kG)); })
-                .rfind("x.txt:2:2: expected an acceleration value of finite size in m/s^2, got \"1e308\"", 0),
+  EXPECT_EQ(message_of([] {
+              parse_plain_text("0\n 1e308\n", "x.txt", plain(0.01, AccelerationUnit::kG));
+            }).rfind("x.txt:2:2: expected an acceleration value of finite size in m/s^2, got \"1e308\"", 0),
             0u);
-  EXPECT_EQ(message_of([] { parse_plain_text("", "x.txt", plain(0.01, AccelerationUnit::kG)); })
-                .rfind("x.txt:1: expected acceleration values, got none", 0),
+  EXPECT_EQ(message_of([] {
+              parse_plain_text("", "x.txt", plain(0.01, AccelerationUnit::kG));
+            }).rfind("x.txt:1: expected acceleration values, got none", 0),
             0u);
 }
 
@@ -148,8 +152,7 @@ TEST(GroundMotionTimeAcceleration, InfersDtAndConvertsUnits) {
 }
 
 TEST(GroundMotionTimeAcceleration, NonZeroStartMovesTheOrigin) {
-  const auto r = parse_time_acceleration("10.0 1\n10.5 2\n11.0 3\n", "late.txt",
-                                         two_column(AccelerationUnit::kMPerS2));
+  const auto r = parse_time_acceleration("10.0 1\n10.5 2\n11.0 3\n", "late.txt", two_column(AccelerationUnit::kMPerS2));
   EXPECT_DOUBLE_EQ(r.dt_s, 0.5);
   EXPECT_EQ(r.description, "time column starts at 10 s");
 }
@@ -166,11 +169,9 @@ TEST(GroundMotionTimeAcceleration, ColumnsCanBeChosen) {
 TEST(GroundMotionTimeAcceleration, Errors) {
   const auto o = two_column(AccelerationUnit::kG);
   // Off the uniform grid by 0.3 dt on line 3 (dt inferred from first and last: 0.01).
-  auto message = message_of([&] {
-    parse_time_acceleration("0.00 1\n0.01 1\n0.023 1\n0.03 1\n0.04 1\n", "uneven.txt", o);
-  });
-  EXPECT_EQ(message.rfind("uneven.txt:3: expected the uniform time 0.02 s (dt = 0.01 s", 0), 0u)
-      << message;
+  auto message =
+      message_of([&] { parse_time_acceleration("0.00 1\n0.01 1\n0.023 1\n0.03 1\n0.04 1\n", "uneven.txt", o); });
+  EXPECT_EQ(message.rfind("uneven.txt:3: expected the uniform time 0.02 s (dt = 0.01 s", 0), 0u) << message;
   // Within the tolerance: printed times rounded to 6 decimals, dt = 1/1024 s; the
   // inferred dt is then off by at most the rounding (5e-7 s) over 49 steps, 1e-8 s.
   std::string rounded;
@@ -182,18 +183,15 @@ TEST(GroundMotionTimeAcceleration, Errors) {
   EXPECT_NEAR(parse_time_acceleration(rounded, "rounded.txt", o).dt_s, 1.0 / 1024.0, 1.1e-8);
 
   message = message_of([&] { parse_time_acceleration("0 1\n0.01 1\n0.01 2\n", "dup.txt", o); });
-  EXPECT_EQ(message.rfind("dup.txt:3:1: expected a time greater than 0.01 s (line 2)", 0), 0u)
-      << message;
+  EXPECT_EQ(message.rfind("dup.txt:3:1: expected a time greater than 0.01 s (line 2)", 0), 0u) << message;
   message = message_of([&] { parse_time_acceleration("0 1\n", "one.txt", o); });
-  EXPECT_EQ(message.rfind("one.txt:1: expected at least two time/acceleration rows", 0), 0u)
-      << message;
+  EXPECT_EQ(message.rfind("one.txt:1: expected at least two time/acceleration rows", 0), 0u) << message;
   message = message_of([&] { parse_time_acceleration("0 1\n0.01\n", "narrow.txt", o); });
   EXPECT_EQ(message.rfind("narrow.txt:2: expected at least 2 columns", 0), 0u) << message;
   message = message_of([&] { parse_time_acceleration("t a\n0 1\n", "hdr.txt", o); });
   EXPECT_EQ(message.rfind("hdr.txt:1:1: expected a time in s (set skip_lines", 0), 0u) << message;
   message = message_of([&] { parse_time_acceleration("0 1\n0.01 1e999\n", "big.txt", o); });
-  EXPECT_EQ(message.rfind("big.txt:2:6: expected an acceleration value, got \"1e999\"", 0), 0u)
-      << message;
+  EXPECT_EQ(message.rfind("big.txt:2:6: expected an acceleration value, got \"1e999\"", 0), 0u) << message;
 }
 
 class GroundMotionTextFiles : public TempDirTest {};

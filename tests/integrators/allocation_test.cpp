@@ -60,8 +60,7 @@ TEST(AllocationCounter, SeesEigenAndNewAllocations) {
 TYPED_TEST(ZeroAllocation, SparseLumpedMass500DofTenThousandSteps) {
   const auto model = make_frame_model(500, 2.0 * 2.0 * 3.14159 * 4096.0 / 6.3);  // Omega_max < 1
   auto integrator = make_integrator(TypeParam::config());
-  EXPECT_EQ(allocations_over_steps(*integrator,
-                                   StructuralMatrices::sparse(model.mass, model.damping, model.stiffness),
+  EXPECT_EQ(allocations_over_steps(*integrator, StructuralMatrices::sparse(model.mass, model.damping, model.stiffness),
                                    model.stiffness, 10000),
             0);
 }
@@ -69,8 +68,7 @@ TYPED_TEST(ZeroAllocation, SparseLumpedMass500DofTenThousandSteps) {
 TYPED_TEST(ZeroAllocation, SparseConsistentMass500Dof) {
   const auto model = make_frame_model(500, 4096.0, true);
   auto integrator = make_integrator(TypeParam::config());
-  EXPECT_EQ(allocations_over_steps(*integrator,
-                                   StructuralMatrices::sparse(model.mass, model.damping, model.stiffness),
+  EXPECT_EQ(allocations_over_steps(*integrator, StructuralMatrices::sparse(model.mass, model.damping, model.stiffness),
                                    model.stiffness, 2000),
             0);
 }
@@ -79,8 +77,7 @@ TYPED_TEST(ZeroAllocation, SparseConsistentMass500Dof) {
 TYPED_TEST(ZeroAllocation, SparsePermutedConsistentMass500Dof) {
   const auto model = permuted(make_frame_model(500, 4096.0, true));
   auto integrator = make_integrator(TypeParam::config());
-  EXPECT_EQ(allocations_over_steps(*integrator,
-                                   StructuralMatrices::sparse(model.mass, model.damping, model.stiffness),
+  EXPECT_EQ(allocations_over_steps(*integrator, StructuralMatrices::sparse(model.mass, model.damping, model.stiffness),
                                    model.stiffness, 1000),
             0);
 }
@@ -89,9 +86,7 @@ TYPED_TEST(ZeroAllocation, Dense60Dof) {
   const auto model = make_frame_model(60, 4096.0, true);
   auto integrator = make_integrator(TypeParam::config());
   const Eigen::MatrixXd M = model.mass, C = model.damping, K = model.stiffness;
-  EXPECT_EQ(allocations_over_steps(*integrator, StructuralMatrices::dense(M, C, K), model.stiffness,
-                                   2000),
-            0);
+  EXPECT_EQ(allocations_over_steps(*integrator, StructuralMatrices::dense(M, C, K), model.stiffness, 2000), 0);
 }
 
 }  // namespace

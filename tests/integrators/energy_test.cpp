@@ -10,7 +10,7 @@ namespace {
 
 TEST(AverageAcceleration, ConservesEnergyInUndampedFreeVibration) {
   Eigen::Matrix3d K;
-  K << 26054883.88, -23133938.88, 5937035.46,  //
+  K << 26054883.88, -23133938.88, 5937035.46,   //
       -23133938.88, 32560774.19, -14419970.78,  //
       5937035.46, -14419970.78, 9267275.51;
   const Eigen::Matrix3d M = 1000.0 * Eigen::Matrix3d::Identity();

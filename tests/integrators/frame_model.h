@@ -50,8 +50,7 @@ inline FrameModel make_frame_model(int n, double omega_max_rad_s, bool consisten
   double bound = 0.0;
   for (int k = 0; k < n; ++k) {
     double row = 0.0;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(f.stiffness, k); it; ++it)
-      row += std::abs(it.value());
+    for (Eigen::SparseMatrix<double>::InnerIterator it(f.stiffness, k); it; ++it) row += std::abs(it.value());
     bound = std::max(bound, row / (consistent_mass ? 0.8 : 1.0));
   }
   f.stiffness *= omega_max_rad_s * omega_max_rad_s / bound;

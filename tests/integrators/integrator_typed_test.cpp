@@ -24,23 +24,20 @@ using std::numbers::pi;
 template <class T>
 class EveryScheme : public ::testing::Test {};
 
-
 TYPED_TEST_SUITE(EveryScheme, Schemes, SchemeNames);
 
 // Max |x_n - x(t_n)| over [0, duration] for an SDOF with omega = 2 pi (T = 1 s).
-double sdof_max_error(const IntegratorConfig& config, const SdofExact& exact, double dt,
-                      double duration, double* peak = nullptr) {
+double sdof_max_error(const IntegratorConfig& config, const SdofExact& exact, double dt, double duration,
+                      double* peak = nullptr) {
   auto integrator = make_integrator(config);
   const double m = 2.0;
   const double k = m * exact.omega * exact.omega;
   const double c = 2.0 * exact.xi * m * exact.omega;
-  integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, m),
-                                                Eigen::MatrixXd::Constant(1, 1, c),
-                                                Eigen::MatrixXd::Constant(1, 1, k)),
-                        dt);
-  auto force = [&](double t) {
-    return Eigen::VectorXd::Constant(1, m * exact.p0 * std::sin(exact.omega_f * t));
-  };
+  integrator->configure(
+      StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, c),
+                                Eigen::MatrixXd::Constant(1, 1, k)),
+      dt);
+  auto force = [&](double t) { return Eigen::VectorXd::Constant(1, m * exact.p0 * std::sin(exact.omega_f * t)); };
   const Eigen::VectorXd d0 = Eigen::VectorXd::Constant(1, exact.x0);
   integrator->initialize(d0, Eigen::VectorXd::Constant(1, exact.v0), k * d0, force(0.0));
   const Eigen::MatrixXd kk = Eigen::MatrixXd::Constant(1, 1, k);
@@ -106,8 +103,7 @@ TYPED_TEST(EveryScheme, StabilityLimit) {
     EXPECT_TRUE(std::isinf(info.stability_limit_omega_dt));
   if (std::isfinite(limit)) {
     EXPECT_NEAR(numerical_stability_limit(TypeParam::config(), 0.0, 10.0), limit, 1e-6 * limit);
-    EXPECT_GT(analyze_amplification(TypeParam::config(), limit * 1.01, 0.0).spectral_radius,
-              1.0 + 1e-6);
+    EXPECT_GT(analyze_amplification(TypeParam::config(), limit * 1.01, 0.0).spectral_radius, 1.0 + 1e-6);
   } else {
     EXPECT_TRUE(std::isinf(numerical_stability_limit(TypeParam::config(), 0.0, 100.0)));
   }
@@ -122,8 +118,8 @@ struct Building {
 Building benchmark_building() {
   Building b;
   b.M = 1000.0 * Eigen::Matrix3d::Identity();
-  b.K << 26054883.88, -23133938.88, 5937035.46,   //
-      -23133938.88, 32560774.19, -14419970.78,    //
+  b.K << 26054883.88, -23133938.88, 5937035.46,  //
+      -23133938.88, 32560774.19, -14419970.78,   //
       5937035.46, -14419970.78, 9267275.51;
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> es(b.K, b.M);
   b.omega = es.eigenvalues().cwiseSqrt();
@@ -160,14 +156,12 @@ TYPED_TEST(EveryScheme, BenchmarkBuildingMatchesModalSuperposition) {
     f = -b.M * iota * A * std::sin(wg * t);
     hybrid_step(*integrator, K, f, r);
     Eigen::Vector3d q;
-    for (int i = 0; i < 3; ++i)
-      q(i) = SdofExact{b.omega(i), 0.05, 0.0, 0.0, -gamma(i) * A, wg}(t);
+    for (int i = 0; i < 3; ++i) q(i) = SdofExact{b.omega(i), 0.05, 0.0, 0.0, -gamma(i) * A, wg}(t);
     const Eigen::Vector3d x = b.Phi * q;
     max_err = max_err.cwiseMax((integrator->displacement() - x).cwiseAbs());
     peak = peak.cwiseMax(x.cwiseAbs());
   }
-  for (int i = 0; i < 3; ++i)
-    EXPECT_LT(max_err(i), 1e-3 * peak(i)) << "floor " << i + 1 << " peak " << peak(i);
+  for (int i = 0; i < 3; ++i) EXPECT_LT(max_err(i), 1e-3 * peak(i)) << "floor " << i + 1 << " peak " << peak(i);
 }
 
 // Free vibration of the building at omega_max dt = 100 (unconditional schemes only): no
@@ -213,10 +207,8 @@ TYPED_TEST(EveryScheme, RejectsBadInputAtConfigure) {
   Eigen::Matrix2d nonsym{{1.0, 0.1}, {0.0, 1.0}};
   Eigen::Matrix2d indefinite{{1.0, 2.0}, {2.0, 1.0}};
   expect_error(StructuralMatrices::dense(nonsym, 0 * I, I), 0.01, "mass matrix is not symmetric");
-  expect_error(StructuralMatrices::dense(indefinite, 0 * I, I), 0.01,
-               "mass matrix is not positive definite");
-  expect_error(StructuralMatrices::dense(I, Eigen::Matrix3d::Zero(), I), 0.01,
-               "damping matrix is 3x3, expected 2x2");
+  expect_error(StructuralMatrices::dense(indefinite, 0 * I, I), 0.01, "mass matrix is not positive definite");
+  expect_error(StructuralMatrices::dense(I, Eigen::Matrix3d::Zero(), I), 0.01, "damping matrix is 3x3, expected 2x2");
   expect_error(StructuralMatrices::dense(I, 0 * I, Eigen::MatrixXd::Identity(2, 3)), 0.01,
                "initial stiffness matrix is 2x3");
   expect_error(StructuralMatrices::dense(I, nonsym, I), 0.01, "damping matrix is not symmetric");
@@ -224,10 +216,8 @@ TYPED_TEST(EveryScheme, RejectsBadInputAtConfigure) {
   const Eigen::SparseMatrix<double> s_nonsym = nonsym.sparseView();
   const Eigen::SparseMatrix<double> s_indef = indefinite.sparseView();
   const Eigen::SparseMatrix<double> s_eye = Eigen::MatrixXd(I).sparseView();
-  expect_error(StructuralMatrices::sparse(s_nonsym, s_eye * 0.0, s_eye), 0.01,
-               "mass matrix is not symmetric");
-  expect_error(StructuralMatrices::sparse(s_indef, s_eye * 0.0, s_eye), 0.01,
-               "mass matrix is not positive definite");
+  expect_error(StructuralMatrices::sparse(s_nonsym, s_eye * 0.0, s_eye), 0.01, "mass matrix is not symmetric");
+  expect_error(StructuralMatrices::sparse(s_indef, s_eye * 0.0, s_eye), 0.01, "mass matrix is not positive definite");
   // omega = 100 rad/s: dt beyond the limit must be rejected, dt inside accepted.
   const double limit = TypeParam::stability_limit;
   const Eigen::Matrix2d K = 1e4 * I;
@@ -236,8 +226,8 @@ TYPED_TEST(EveryScheme, RejectsBadInputAtConfigure) {
     expect_error(StructuralMatrices::sparse(s_eye, s_eye * 0.0, Eigen::SparseMatrix<double>(K.sparseView())),
                  1.01 * limit / 100.0, "unstable time step");
   }
-  EXPECT_NO_THROW(integrator->configure(StructuralMatrices::dense(I, 0 * I, K),
-                                        std::isfinite(limit) ? 0.99 * limit / 100.0 : 1.0));
+  EXPECT_NO_THROW(
+      integrator->configure(StructuralMatrices::dense(I, 0 * I, K), std::isfinite(limit) ? 0.99 * limit / 100.0 : 1.0));
 }
 
 TEST(SchemeParameters, RejectsOutOfRangeValues) {
@@ -265,10 +255,9 @@ TEST(StepSequence, MisuseIsReportedNotThrown) {
   auto integrator = make_integrator(KolayRiclesAlphaParams{});
   const Eigen::VectorXd one = Eigen::VectorXd::Ones(1);
   EXPECT_EQ(integrator->begin_step(one), StepStatus::kNotInitialized);
-  integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd::Ones(1, 1),
-                                                Eigen::MatrixXd::Zero(1, 1),
-                                                Eigen::MatrixXd::Ones(1, 1)),
-                        0.01);
+  integrator->configure(
+      StructuralMatrices::dense(Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Zero(1, 1), Eigen::MatrixXd::Ones(1, 1)),
+      0.01);
   integrator->initialize(one, one * 0, one, one * 0);
   EXPECT_EQ(integrator->end_step(), StepStatus::kOutOfSequence);
   EXPECT_EQ(integrator->begin_step(Eigen::VectorXd::Ones(2)), StepStatus::kSizeMismatch);
@@ -297,13 +286,12 @@ TEST(FixedIterations, CommandsAreInterpolatedTowardsTheImplicitSolution) {
     const int N = 4;
     auto integrator = make_integrator(HhtAlphaParams{-0.1, {N, order}});
     const double k = 400.0;
-    integrator->configure(StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, 1.0),
-                                                  Eigen::MatrixXd::Constant(1, 1, 0.5),
-                                                  Eigen::MatrixXd::Constant(1, 1, k)),
-                          0.01);
+    integrator->configure(
+        StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd::Constant(1, 1, 0.5),
+                                  Eigen::MatrixXd::Constant(1, 1, k)),
+        0.01);
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(1);
-    integrator->initialize(Eigen::VectorXd::Constant(1, 0.01), zero,
-                           Eigen::VectorXd::Constant(1, k * 0.01), zero);
+    integrator->initialize(Eigen::VectorXd::Constant(1, 0.01), zero, Eigen::VectorXd::Constant(1, k * 0.01), zero);
     Eigen::VectorXd r(1);
     const Eigen::MatrixXd K = Eigen::MatrixXd::Constant(1, 1, k);
     double u_prev = 0.01;
@@ -321,9 +309,8 @@ TEST(FixedIterations, CommandsAreInterpolatedTowardsTheImplicitSolution) {
       EXPECT_DOUBLE_EQ(commands.back(), u_star);
       for (int i = 1; i <= N; ++i) {
         const double x = static_cast<double>(i) / N;
-        const double expected =
-            order == 1 ? u_t + x * (u_star - u_t)
-                       : u_star * x * (x + 1) / 2 + u_t * (1 - x * x) + u_prev * x * (x - 1) / 2;
+        const double expected = order == 1 ? u_t + x * (u_star - u_t)
+                                           : u_star * x * (x + 1) / 2 + u_t * (1 - x * x) + u_prev * x * (x - 1) / 2;
         EXPECT_NEAR(commands[static_cast<std::size_t>(i - 1)], expected, 1e-12)
             << "order " << order << " step " << step << " iteration " << i;
       }

@@ -12,8 +12,7 @@ namespace rpsd::integrators::test {
 
 // One hybrid step: begin, all iterations with R = K * command, end.
 template <class Stiffness>
-void hybrid_step(Integrator& integrator, const Stiffness& k, const Eigen::VectorXd& f_next,
-                 Eigen::VectorXd& r) {
+void hybrid_step(Integrator& integrator, const Stiffness& k, const Eigen::VectorXd& f_next, Eigen::VectorXd& r) {
   if (integrator.begin_step(f_next) != StepStatus::kOk) throw std::runtime_error("begin_step");
   for (int i = 0; i < integrator.iterations_per_step(); ++i) {
     r.noalias() = k * integrator.target_displacement();

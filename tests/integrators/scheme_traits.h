@@ -65,9 +65,9 @@ struct KolayRiclesAlphaScheme {
 };
 
 // Every scheme configuration the typed suites run, and readable test names for them.
-using Schemes = ::testing::Types<CentralDifferenceScheme, NewmarkAverageScheme, NewmarkLinearScheme,
-                                 HhtScheme, GeneralizedAlphaScheme, AlphaOsScheme, ChangScheme,
-                                 ChenRiclesScheme, KolayRiclesAlphaScheme>;
+using Schemes =
+    ::testing::Types<CentralDifferenceScheme, NewmarkAverageScheme, NewmarkLinearScheme, HhtScheme,
+                     GeneralizedAlphaScheme, AlphaOsScheme, ChangScheme, ChenRiclesScheme, KolayRiclesAlphaScheme>;
 
 class SchemeNames {
  public:

@@ -11,8 +11,7 @@ struct SdofExact {
   // Free response of the homogeneous equation from (xh0, vh0).
   double free(double xh0, double vh0, double t) const {
     const double wd = omega * std::sqrt(1.0 - xi * xi);
-    return std::exp(-xi * omega * t) *
-           (xh0 * std::cos(wd * t) + (vh0 + xi * omega * xh0) / wd * std::sin(wd * t));
+    return std::exp(-xi * omega * t) * (xh0 * std::cos(wd * t) + (vh0 + xi * omega * xh0) / wd * std::sin(wd * t));
   }
   double operator()(double t) const {
     if (p0 == 0.0) return free(x0, v0, t);

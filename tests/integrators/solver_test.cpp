@@ -35,7 +35,8 @@ TEST(SymmetricSolver, SolvesEveryStorage) {
   expect_solves(m);
   expect_solves(p);
   expect_solves(linalg::StructuralMatrix(Eigen::MatrixXd(frame.stiffness)).compacted());
-  expect_solves(linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::VectorXd::LinSpaced(5, 1, 2).asDiagonal())).compacted());
+  expect_solves(
+      linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::VectorXd::LinSpaced(5, 1, 2).asDiagonal())).compacted());
 }
 
 // A banded model uses the band solver (factor = n (b + 1)); a renumbered one is reordered
@@ -64,8 +65,8 @@ TEST(MaxNaturalFrequency, LanczosMatchesDenseEigenvalues) {
   const auto K = linalg::StructuralMatrix(frame.stiffness).compacted();
   SymmetricSolver ms;
   ms.factorize(M, "mass");
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
-      Eigen::MatrixXd(frame.stiffness), Eigen::MatrixXd(frame.mass), Eigen::EigenvaluesOnly);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(frame.stiffness),
+                                                               Eigen::MatrixXd(frame.mass), Eigen::EigenvaluesOnly);
   const double exact = std::sqrt(es.eigenvalues().maxCoeff());
   const double lanczos = max_natural_frequency_rad_s(M, K, ms);
   EXPECT_GE(lanczos, exact * (1.0 - 1e-6));
@@ -73,8 +74,8 @@ TEST(MaxNaturalFrequency, LanczosMatchesDenseEigenvalues) {
   const auto lumped = make_frame_model(500, 3000.0, false);
   const double bound = frequency_upper_bound_rad_s(linalg::StructuralMatrix(lumped.mass).compacted(),
                                                    linalg::StructuralMatrix(lumped.stiffness).compacted());
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> el(
-      Eigen::MatrixXd(lumped.stiffness), Eigen::MatrixXd(lumped.mass), Eigen::EigenvaluesOnly);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> el(Eigen::MatrixXd(lumped.stiffness),
+                                                               Eigen::MatrixXd(lumped.mass), Eigen::EigenvaluesOnly);
   EXPECT_GE(bound, std::sqrt(el.eigenvalues().maxCoeff()));
   EXPECT_LE(bound, 3000.0 * (1.0 + 1e-12));
 }
@@ -96,11 +97,10 @@ TEST(MaxNaturalFrequency, CentralDifferenceCheckOnLargeSparseModel) {
 TEST(DenseAndSparse, GiveTheSameTrajectory) {
   const auto frame = make_frame_model(90, 2000.0, true);
   const Eigen::MatrixXd M = frame.mass, C = frame.damping, K = frame.stiffness;
-  for (const IntegratorConfig& c :
-       {IntegratorConfig{CentralDifferenceParams{}}, IntegratorConfig{NewmarkParams{}},
-        IntegratorConfig{HhtAlphaParams{}}, IntegratorConfig{GeneralizedAlphaParams{}},
-        IntegratorConfig{AlphaOsParams{}}, IntegratorConfig{ChangParams{}},
-        IntegratorConfig{ChenRiclesParams{}}, IntegratorConfig{KolayRiclesAlphaParams{}}}) {
+  for (const IntegratorConfig& c : {IntegratorConfig{CentralDifferenceParams{}}, IntegratorConfig{NewmarkParams{}},
+                                    IntegratorConfig{HhtAlphaParams{}}, IntegratorConfig{GeneralizedAlphaParams{}},
+                                    IntegratorConfig{AlphaOsParams{}}, IntegratorConfig{ChangParams{}},
+                                    IntegratorConfig{ChenRiclesParams{}}, IntegratorConfig{KolayRiclesAlphaParams{}}}) {
     auto dense = make_integrator(c);
     auto sparse = make_integrator(c);
     dense->configure(StructuralMatrices::dense(M, C, K), 1e-3);
@@ -113,8 +113,7 @@ TEST(DenseAndSparse, GiveTheSameTrajectory) {
       hybrid_step(*dense, K, z, r);
       hybrid_step(*sparse, frame.stiffness, z, r);
     }
-    EXPECT_LT((dense->displacement() - sparse->displacement()).norm(),
-              1e-9 * dense->displacement().norm() + 1e-15)
+    EXPECT_LT((dense->displacement() - sparse->displacement()).norm(), 1e-9 * dense->displacement().norm() + 1e-15)
         << scheme_name(scheme_of(c));
   }
 }

@@ -76,8 +76,9 @@ TEST(StructuralMatrix, ALinearCombinationTakesTheMostGeneralStorage) {
   EXPECT_EQ(sparse.storage(), MatrixStorage::kSparse);
   EXPECT_LT((sparse.to_dense() - (2.0 * Eigen::MatrixXd::Identity(6, 6) + 3.0 * k)).cwiseAbs().maxCoeff(), 1e-14);
   EXPECT_EQ(StructuralMatrix::linear_combination(1.0, mass, 1.0, mass).storage(), MatrixStorage::kDiagonal);
-  EXPECT_THROW((void)StructuralMatrix::linear_combination(1.0, mass, 1.0, StructuralMatrix(Eigen::MatrixXd::Ones(2, 2))),
-               std::invalid_argument);
+  EXPECT_THROW(
+      (void)StructuralMatrix::linear_combination(1.0, mass, 1.0, StructuralMatrix(Eigen::MatrixXd::Ones(2, 2))),
+      std::invalid_argument);
 }
 
 TEST(StructuralMatrix, ProductsFollowValuesChangedInPlace) {

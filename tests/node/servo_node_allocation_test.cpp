@@ -9,14 +9,14 @@
 #include <numbers>
 #include <thread>
 
-#include "allocation_counter.h"
 #include "../servo/paper_rig.h"
+#include "allocation_counter.h"
 #include "rpsd/node/controller_emulator.h"
-#include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/node/servo_node_controller.h"
+#include "rpsd/node/udp_controller_actuator.h"
+#include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
-#include "rpsd/node/udp_controller_actuator.h"
 
 namespace rpsd::node {
 namespace {
@@ -94,7 +94,10 @@ TEST(ServoNodeAllocation, CounterSeesAllocations) {
 TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
   servo::ServoHydraulicPlant paper(rpsd::testing::paper_rig());
   servo::TransferFunctionPlant benchmark(
-      {{servo::Polynomial{2.18385e13}, servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}}, 1.19e6, 8192.0});
+      {{servo::Polynomial{2.18385e13},
+        servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
+       1.19e6,
+       8192.0});
   servo::Plant* plants[] = {&paper, &benchmark};
   servo::SimulatedActuator actuator(plants);
   ServoNodeController node(node_config(), actuator);
@@ -102,7 +105,7 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
   EXPECT_EQ(r.allocations, 0);
   EXPECT_GT(r.activations, 16u);  // limits acted and the log overflowed: those paths ran
   EXPECT_GT(r.events_not_logged, 0u);
-  EXPECT_EQ(r.dropped, 3000u / 7 - 2u);  // the duplicates, less the two that fell in the gap (1001, 1008)
+  EXPECT_EQ(r.dropped, 3000u / 7 - 2u);    // the duplicates, less the two that fell in the gap (1001, 1008)
   EXPECT_GE(r.missed_periods, 10u + 20u);  // the gap, then the silence up to the timeout
   EXPECT_TRUE(r.reached_safe_state);
 }

@@ -22,13 +22,15 @@ using transport::FeedbackSample;
 
 class IdealActuator final : public servo::Actuator {
  public:
-  explicit IdealActuator(int channels, double stiffness_n_per_m = 0.0) : channels_(channels), stiffness_(stiffness_n_per_m) {}
+  explicit IdealActuator(int channels, double stiffness_n_per_m = 0.0)
+      : channels_(channels), stiffness_(stiffness_n_per_m) {}
   int channels() const override { return channels_; }
   void start(std::span<const double> x0) override {
     started_at.assign(x0.begin(), x0.end());
     commands.clear();
   }
-  servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s, servo::ActuatorReading& reading) override {
+  servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s,
+                                 servo::ActuatorReading& reading) override {
     commands.emplace_back(command_m.begin(), command_m.end());
     periods.push_back(period_s);
     const servo::ActuatorStatus status = script.empty() ? servo::ActuatorStatus::kOk : script.front();
@@ -91,7 +93,8 @@ FeedbackSample send(ServoNodeController& node, const CommandSample& c) {
 
 // An ideal actuator and a node started at zero.
 struct Rig {
-  explicit Rig(const ServoNodeConfig& c, double stiffness_n_per_m = 0.0) : actuator(c.channels, stiffness_n_per_m), node(c, actuator) {
+  explicit Rig(const ServoNodeConfig& c, double stiffness_n_per_m = 0.0)
+      : actuator(c.channels, stiffness_n_per_m), node(c, actuator) {
     const std::vector<double> x0(static_cast<std::size_t>(c.channels), 0.0);
     node.start(x0);
   }
@@ -141,7 +144,8 @@ TEST(ServoNodeController, ConfigErrorsNameTheField) {
   c.on_command_loss = LossAction::kRampToSafe;
   c.limits[1].max_stroke_m = 0.05;
   c.safe_position_m[1] = 0.06;
-  EXPECT_EQ(config_error(c).rfind("safe_position_m[1]: must lie within limits[1].max_stroke_m", 0), 0u) << config_error(c);
+  EXPECT_EQ(config_error(c).rfind("safe_position_m[1]: must lie within limits[1].max_stroke_m", 0), 0u)
+      << config_error(c);
   c.safe_position_m[1] = 0.0;
   c.limits[0].max_velocity_m_per_s = 0.001;
   EXPECT_EQ(config_error(c).rfind("safe_ramp_velocity_m_per_s: must not exceed limits[0].max_velocity_m_per_s", 0), 0u);
@@ -316,7 +320,7 @@ TEST(ServoNodeController, IncrementClampAndTheTighterOfTheTwoRateLimits) {
   auto c = config(2);
   c.limits[0].max_increment_m = 0.00048828125;  // 2^-11 m
   c.limits[1].max_increment_m = 0.00048828125;
-  c.limits[1].max_velocity_m_per_s = 0.125;     // 2^-13 m per period: tighter on channel 1
+  c.limits[1].max_velocity_m_per_s = 0.125;  // 2^-13 m per period: tighter on channel 1
   Rig rig(c);
   auto& [actuator, node] = rig;
   FeedbackSample out = send(node, command(1, {0.003, 0.003}));
@@ -451,7 +455,7 @@ TEST(ServoNodeController, RampToSafeReachesTheSafePositionAtTheConfiguredRate) {
   auto c = config(2);
   c.command_timeout_periods = 3;
   c.on_command_loss = LossAction::kRampToSafe;
-  c.safe_ramp_velocity_m_per_s = 0.0625;  // 2^-4 m/s: 2^-14 m per period
+  c.safe_ramp_velocity_m_per_s = 0.0625;   // 2^-4 m/s: 2^-14 m per period
   c.safe_position_m = {0.0, 0.001953125};  // channel 1 already there (2^-9 m)
   Rig rig(c);
   auto& [actuator, node] = rig;

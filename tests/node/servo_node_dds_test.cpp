@@ -14,9 +14,9 @@
 #include <thread>
 #include <vector>
 
-#include "rpsd/realtime/pacer.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/servo_node_loop.h"
+#include "rpsd/realtime/pacer.h"
 #include "rpsd/transport/dds_node_endpoint.h"
 #include "rpsd/transport/dds_qos_profile.h"
 #include "rpsd_messages.h"
@@ -31,7 +31,8 @@ constexpr std::uint32_t kTest = 61, kSite = 2;
 
 transport::DdsDomainConfig loopback() {
   // Domains 190..229 for this binary: apart from the other DDS tests' 40..189.
-  return {static_cast<std::uint32_t>(190 + ::getpid() % 40), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+  return {static_cast<std::uint32_t>(190 + ::getpid() % 40),
+          std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
 }
 
 // Moves to every command at once and reads it back.
@@ -98,8 +99,12 @@ class RawCoordinator {
 };
 
 struct NodeOverDds : ::testing::Test {
-  NodeOverDds() : coordinator_side(loopback()), node_side(loopback()), coordinator(coordinator_side, kTest, kSite),
-                  endpoint(node_side, {kTest, kSite, {}}), node(config(), actuator) {
+  NodeOverDds()
+      : coordinator_side(loopback()),
+        node_side(loopback()),
+        coordinator(coordinator_side, kTest, kSite),
+        endpoint(node_side, {kTest, kSite, {}}),
+        node(config(), actuator) {
     const double x0[] = {0.0};
     node.start(x0);
   }

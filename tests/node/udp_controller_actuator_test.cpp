@@ -15,11 +15,11 @@
 
 #include "../servo/paper_rig.h"
 #include "rpsd/node/controller_emulator.h"
+#include "rpsd/node/udp_controller_actuator.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
-#include "rpsd/node/udp_controller_actuator.h"
 
 namespace rpsd::node {
 namespace {
@@ -62,7 +62,10 @@ struct IdealController {
 };
 
 servo::TransferFunctionPlantParameters benchmark() {
-  return {{servo::Polynomial{2.18385e13}, servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}}, 1.19e6, 8192.0};
+  return {{servo::Polynomial{2.18385e13},
+           servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
+          1.19e6,
+          8192.0};
 }
 
 TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {
@@ -84,7 +87,8 @@ TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {
   const int periods = 2000;
   for (int i = 1; i <= periods; ++i) {
     const double t = i * dt;
-    const double u[] = {0.002 + 0.02 * std::sin(2.0 * std::numbers::pi * 1.5 * t), -0.001 + 0.003 * std::sin(2.0 * std::numbers::pi * 4.0 * t)};
+    const double u[] = {0.002 + 0.02 * std::sin(2.0 * std::numbers::pi * 1.5 * t),
+                        -0.001 + 0.003 * std::sin(2.0 * std::numbers::pi * 4.0 * t)};
     ASSERT_EQ(adapter.exchange(u, dt, over_udp), servo::ActuatorStatus::kOk) << i;
     ASSERT_EQ(in_process.exchange(u, dt, direct), servo::ActuatorStatus::kOk);
     ASSERT_TRUE(over_udp.fresh);
@@ -177,7 +181,8 @@ TEST(UdpControllerActuator, ControllerFaultIsReportedWithTheMeasurement) {
   EXPECT_EQ(reading.displacement_m[0], 0.002);  // the interlocked controller did not move
   EXPECT_EQ(reading.force_n[0], 1e5 * 0.002);
   emulator.set_status(ControllerStatus::kOk);
-  EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kOk);  // not latched: the controller's own state
+  EXPECT_EQ(adapter.exchange(u, 0.001, reading),
+            servo::ActuatorStatus::kOk);  // not latched: the controller's own state
   EXPECT_EQ(reading.displacement_m[0], 0.003);
   EXPECT_EQ(adapter.counters().controller_faults, 1u);
 }
@@ -200,13 +205,15 @@ TEST(UdpControllerActuator, StartRefusesAnAbsentMismatchedOrDisplacedController)
   UdpControllerConfig config = adapter_config(emulator, 1);
   config.start_timeout_s = 0.2;
   UdpControllerActuator silent(config);
-  EXPECT_NE(start_error(silent, zero).find("did not answer within 0.2 s"), std::string::npos) << start_error(silent, zero);
+  EXPECT_NE(start_error(silent, zero).find("did not answer within 0.2 s"), std::string::npos)
+      << start_error(silent, zero);
 
   const Serving serving(emulator);
   UdpControllerActuator two(adapter_config(emulator, 2));
   EXPECT_NE(start_error(two, zeros).find("has 1 channels, the config 2"), std::string::npos);
   UdpControllerActuator one(adapter_config(emulator, 1));
-  EXPECT_NE(start_error(one, away).find("channel 0 measures 0 m, the initial displacement is 0.01 m"), std::string::npos)
+  EXPECT_NE(start_error(one, away).find("channel 0 measures 0 m, the initial displacement is 0.01 m"),
+            std::string::npos)
       << start_error(one, away);
   EXPECT_THROW(one.start(zeros), std::invalid_argument);
   EXPECT_EQ(start_error(one, zero), "");

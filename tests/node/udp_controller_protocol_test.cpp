@@ -3,8 +3,8 @@
 // count, flags, period, status, non-finite values) without touching the output.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -46,9 +46,9 @@ TEST(UdpProtocol, CommandLayoutIsTheDocumentedOne) {
   EXPECT_EQ(p.size(), 88u);
   const char magic[] = {'R', 'P', 'S', 'C'};
   EXPECT_EQ(std::memcmp(p.data(), magic, 4), 0);
-  EXPECT_EQ(le(p, 4, 2), 1u);     // version
-  EXPECT_EQ(le(p, 6, 1), 3u);     // channels
-  EXPECT_EQ(le(p, 7, 1), 0u);     // flags
+  EXPECT_EQ(le(p, 4, 2), 1u);               // version
+  EXPECT_EQ(le(p, 6, 1), 3u);               // channels
+  EXPECT_EQ(le(p, 7, 1), 0u);               // flags
   EXPECT_EQ(static_cast<int>(p[8]), 0x08);  // sequence, least significant byte first
   EXPECT_EQ(le(p, 8, 8), 0x0102030405060708ull);
   EXPECT_EQ(std::bit_cast<double>(le(p, 16, 8)), 1.0 / 1024.0);
@@ -177,13 +177,15 @@ TEST(UdpProtocol, DecodersRejectMalformedDatagramsAndLeaveTheOutputAlone) {
   ReplyPacket reply_bytes{};
   ASSERT_EQ(encode_reply(sample_reply(), reply_bytes), PacketStatus::kOk);
   ControllerCommand out;
-  EXPECT_EQ(decode_command(std::span<const std::byte>(reply_bytes.data(), 88), out), PacketStatus::kWrongMagic);  // a reply is not a command
+  EXPECT_EQ(decode_command(std::span<const std::byte>(reply_bytes.data(), 88), out),
+            PacketStatus::kWrongMagic);  // a reply is not a command
   expect_rejected(mutated(4, std::byte{2}), PacketStatus::kWrongVersion, "version");
   expect_rejected(mutated(6, std::byte{0}), PacketStatus::kBadChannels, "no channels");
   expect_rejected(mutated(6, std::byte{9}), PacketStatus::kBadChannels, "nine channels");
   expect_rejected(mutated(7, std::byte{2}), PacketStatus::kBadFlags, "unknown flag");
   expect_rejected(mutated(7, std::byte{1}), PacketStatus::kBadPeriod, "query with a period");
-  expect_rejected(mutated(23, std::byte{0x7F}), PacketStatus::kBadPeriod, "huge period");  // sign/exponent byte of the period
+  expect_rejected(mutated(23, std::byte{0x7F}), PacketStatus::kBadPeriod,
+                  "huge period");  // sign/exponent byte of the period
   expect_rejected(mutated(23, std::byte{0xBF}), PacketStatus::kBadPeriod, "negative period");
   CommandPacket nan_displacement = good;
   for (std::size_t i = 32; i < 40; ++i) nan_displacement[i] = std::byte{0xFF};  // channel 1: a NaN

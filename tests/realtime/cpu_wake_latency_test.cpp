@@ -47,7 +47,8 @@ TEST(CpuWakeLatencyHold, TheLimitIsZeroWhileTheHoldLivesAndReleasedAfter) {
   }
   if (current_cpu_wake_latency_limit_us() == 0) {
     // Either this hold was not released, or another test's loop holds one now.
-    if (another_process_holds_the_device()) GTEST_SKIP() << "another process holds the CPUs awake; the release cannot be seen";
+    if (another_process_holds_the_device())
+      GTEST_SKIP() << "another process holds the CPUs awake; the release cannot be seen";
     EXPECT_GT(current_cpu_wake_latency_limit_us(), 0) << "the request outlived its hold";
   }
 }

@@ -18,9 +18,9 @@ TEST(LatencyHistogram, QuantilesOfAUniformSetAreExactToTheBin) {
 
 TEST(LatencyHistogram, CoarseBinsAndOverflowAreBoundedByTheExactMaximum) {
   LatencyHistogram h;
-  h.add(5'050'000);      // 5.05 ms: coarse bin (5.0, 5.1] ms
+  h.add(5'050'000);                          // 5.05 ms: coarse bin (5.0, 5.1] ms
   EXPECT_EQ(h.quantile_ns(0.5), 5'050'000);  // the bin's edge is above the maximum
-  h.add(250'000'000);    // 250 ms: overflow
+  h.add(250'000'000);                        // 250 ms: overflow
   EXPECT_EQ(h.quantile_ns(0.5), 5'100'000);
   EXPECT_EQ(h.quantile_ns(1.0), 250'000'000);
   EXPECT_DOUBLE_EQ(h.summary().max_s, 0.25);

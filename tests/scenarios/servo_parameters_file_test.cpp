@@ -30,7 +30,8 @@ class BadParameterFile : public ::testing::Test {
     EXPECT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
     path_ = std::filesystem::temp_directory_path() /
-            ("rpsd-bad-" + std::to_string(::getpid()) + "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml");
+            ("rpsd-bad-" + std::to_string(::getpid()) + "-" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml");
     std::ofstream(path_) << text;
     try {
       load_servo_parameters(path_);
@@ -61,13 +62,15 @@ TEST(ServoParametersFile, LoadsThePaperRig) {
 
 TEST_F(BadParameterFile, NegativeMassNamesLineAndKey) {
   const std::string message = error_for("mass_kg: 7080 ", "mass_kg: -7080 ");
-  EXPECT_TRUE(std::regex_search(message, std::regex(R"(\.yaml:\d+:\d+: specimen\.mass_kg: expected a positive number, got "-7080")")))
+  EXPECT_TRUE(std::regex_search(
+      message, std::regex(R"(\.yaml:\d+:\d+: specimen\.mass_kg: expected a positive number, got "-7080")")))
       << message;
 }
 
 TEST_F(BadParameterFile, MissingKeyNamesKeyPath) {
   const std::string message = error_for("  piston_area_m2: 7.536e-3", "");
-  EXPECT_TRUE(std::regex_search(message, std::regex(R"(\.yaml:\d+:\d+: actuator\.piston_area_m2: required key is missing)")))
+  EXPECT_TRUE(
+      std::regex_search(message, std::regex(R"(\.yaml:\d+:\d+: actuator\.piston_area_m2: required key is missing)")))
       << message;
 }
 
@@ -80,7 +83,8 @@ TEST_F(BadParameterFile, UnknownKeyIsRejectedWithItsLine) {
     ++line;
     if (s.find("derivative_gain_s: 2.0e-4") != std::string::npos) break;
   }
-  EXPECT_NE(message.find(".yaml:" + std::to_string(line) + ":3: controller.derivativ_gain_s: unknown key"), std::string::npos)
+  EXPECT_NE(message.find(".yaml:" + std::to_string(line) + ":3: controller.derivativ_gain_s: unknown key"),
+            std::string::npos)
       << message;
 }
 

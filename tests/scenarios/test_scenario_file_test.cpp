@@ -45,7 +45,8 @@ TEST(TestScenarioFile, ReadsTheTypedScenario) {
 }
 
 TEST(TestScenarioFile, OverridesReplaceValuesAndAreSavedInTheEffectiveScenario) {
-  const auto file = load_study(example(), {parse_override("servo.delay_s=0.02"), parse_override("clock.control_rate_hz=2048")});
+  const auto file =
+      load_study(example(), {parse_override("servo.delay_s=0.02"), parse_override("clock.control_rate_hz=2048")});
   const auto& t = std::get<coordinator::TestConfig>(file.study);
   EXPECT_DOUBLE_EQ(std::get<servo::PureDelayParameters>(t.plant).delay_s, 0.02);
   EXPECT_DOUBLE_EQ(t.control_rate_hz, 2048.0);
@@ -55,28 +56,38 @@ TEST(TestScenarioFile, OverridesReplaceValuesAndAreSavedInTheEffectiveScenario) 
 // A real-time run keeps the CPUs out of slow idle states unless the scenario says not to.
 TEST(TestScenarioFile, KeepingTheCpusAwakeIsOnUnlessTurnedOff) {
   EXPECT_TRUE(std::get<coordinator::TestConfig>(load_study(example()).study).clock.realtime.keep_cpus_awake);
-  EXPECT_FALSE(std::get<coordinator::TestConfig>(load_study(example(), {parse_override("clock.keep_cpus_awake=false")}).study)
-                   .clock.realtime.keep_cpus_awake);
-  EXPECT_NE(error_of({parse_override("clock.keep_cpus_awake=sometimes")}).find("clock.keep_cpus_awake"), std::string::npos);
+  EXPECT_FALSE(
+      std::get<coordinator::TestConfig>(load_study(example(), {parse_override("clock.keep_cpus_awake=false")}).study)
+          .clock.realtime.keep_cpus_awake);
+  EXPECT_NE(error_of({parse_override("clock.keep_cpus_awake=sometimes")}).find("clock.keep_cpus_awake"),
+            std::string::npos);
 }
 
 TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
-  EXPECT_NE(error_of({parse_override("experimental.0.dof=3")}).find("experimental[0].dof: expected a whole number from 0 to 0"),
+  EXPECT_NE(error_of({parse_override("experimental.0.dof=3")})
+                .find("experimental[0].dof: expected a whole number from 0 to 0"),
             std::string::npos);
-  EXPECT_NE(error_of({parse_override("servo.kind=hydraulic")}).find("servo.kind: expected servo_model, ideal_delay or transfer_function, got \"hydraulic\""), std::string::npos);
-  EXPECT_NE(error_of({parse_override("clock.mode=sometimes")}).find("clock.mode: expected as_fast_as_possible or real_time"),
+  EXPECT_NE(error_of({parse_override("servo.kind=hydraulic")})
+                .find("servo.kind: expected servo_model, ideal_delay or transfer_function, got \"hydraulic\""),
             std::string::npos);
+  EXPECT_NE(
+      error_of({parse_override("clock.mode=sometimes")}).find("clock.mode: expected as_fast_as_possible or real_time"),
+      std::string::npos);
   EXPECT_NE(error_of({parse_override("clock.fifo_priority=120")}).find("clock.fifo_priority"), std::string::npos);
   EXPECT_NE(error_of({parse_override("experimental.0.site=0")}).find("experimental[0].site"), std::string::npos);
-  EXPECT_NE(error_of({parse_override("integrator.scheme=euler")}).find("integrator.scheme: unknown integrator \"euler\""),
-            std::string::npos);
+  EXPECT_NE(
+      error_of({parse_override("integrator.scheme=euler")}).find("integrator.scheme: unknown integrator \"euler\""),
+      std::string::npos);
   EXPECT_NE(error_of({parse_override("experimental.0.restoring_force=guess")}).find("experimental[0].restoring_force"),
             std::string::npos);
-  EXPECT_NE(error_of({parse_override("structure.colour=red")}).find("structure.colour: unknown key"), std::string::npos);
-  EXPECT_NE(error_of({parse_override("nothing.here=1")}).find("--set nothing.here: no key 'nothing'"), std::string::npos);
+  EXPECT_NE(error_of({parse_override("structure.colour=red")}).find("structure.colour: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of({parse_override("nothing.here=1")}).find("--set nothing.here: no key 'nothing'"),
+            std::string::npos);
   // A located error keeps file:line:column.
-  EXPECT_TRUE(std::regex_search(error_of({parse_override("compensation.order=7")}),
-                                std::regex(R"(sdof-free-vibration\.yaml:\d+:\d+: compensation\.order: expected a whole number from 0 to 3)")));
+  EXPECT_TRUE(std::regex_search(
+      error_of({parse_override("compensation.order=7")}),
+      std::regex(R"(sdof-free-vibration\.yaml:\d+:\d+: compensation\.order: expected a whole number from 0 to 3)")));
 }
 
 // The lock-step busy wait: read as given, refused with a real-time clock (a spinning loop
@@ -85,11 +96,14 @@ TEST(TestScenarioFile, BusyWaitIsForLockStepOnly) {
   const auto file = load_study(example(), {parse_override("transport={kind: dds, busy_wait_s: 0.0002}")});
   EXPECT_DOUBLE_EQ(std::get<coordinator::TestConfig>(file.study).transport.busy_wait_s, 0.0002);
   EXPECT_DOUBLE_EQ(std::get<coordinator::TestConfig>(load_study(example()).study).transport.busy_wait_s, 0.0);
-  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: 0.0002}"), parse_override("clock.mode=real_time")})
-                .find("transport.busy_wait_s: lock-step only"),
+  EXPECT_NE(
+      error_of({parse_override("transport={kind: dds, busy_wait_s: 0.0002}"), parse_override("clock.mode=real_time")})
+          .find("transport.busy_wait_s: lock-step only"),
+      std::string::npos);
+  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: -1}")}).find("transport.busy_wait_s"),
             std::string::npos);
-  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: -1}")}).find("transport.busy_wait_s"), std::string::npos);
-  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: 0.5}")}).find("transport.busy_wait_s: at most 0.01 s"),
+  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: 0.5}")})
+                .find("transport.busy_wait_s: at most 0.01 s"),
             std::string::npos);
 }
 
@@ -124,7 +138,8 @@ TEST(SweepFile, ABadCaseIsNamedBeforeAnythingRuns) {
                {parse_override("sweep.1.values=[10, 0.5]")});
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("(sweep case compensation.delay_s = 0.08, compensation.ratio_a = 0.5)"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("(sweep case compensation.delay_s = 0.08, compensation.ratio_a = 0.5)"),
+              std::string::npos)
         << e.what();
   }
 }
@@ -137,12 +152,15 @@ namespace {
 
 // Found by the scenario fuzz target: a second `sweep:` key made every case sweep again.
 TEST(ScenarioText, RepeatedKeysAreRejectedWithTheirLine) {
-  const std::string text = "study: rpsd_test\nsweep:\n  - {key: servo.delay_s, values: [0.01]}\nsweep:\n  - {key: servo.delay_s, values: [0.02]}\n";
+  const std::string text =
+      "study: rpsd_test\nsweep:\n  - {key: servo.delay_s, values: [0.01]}\nsweep:\n  - {key: servo.delay_s, values: "
+      "[0.02]}\n";
   try {
     parse_study(text, testing::source_dir() / "examples/scenarios/inline.yaml");
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("inline.yaml:4:1: sweep: given more than once"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("inline.yaml:4:1: sweep: given more than once"), std::string::npos)
+        << e.what();
   }
 }
 

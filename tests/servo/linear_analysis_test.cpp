@@ -17,9 +17,9 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 TEST(PaperRig, ReproducesThePapersReportedFigures) {
   const auto p = testing::paper_rig();
   const ServoAnalysis a = analyze(p);
-  EXPECT_NEAR(a.cutoff_frequency_hz, 1.96, 0.005);         // Eq. 9, paper: 1.96 Hz
-  EXPECT_NEAR(a.response_delay_ms, 81.0, 0.5);             // Eq. 12, paper: 81 ms
-  EXPECT_NEAR(a.amplitude_reduction_at_2hz, 0.30, 0.005);  // Eq. 10, paper: ~30 % at 2 Hz
+  EXPECT_NEAR(a.cutoff_frequency_hz, 1.96, 0.005);            // Eq. 9, paper: 1.96 Hz
+  EXPECT_NEAR(a.response_delay_ms, 81.0, 0.5);                // Eq. 12, paper: 81 ms
+  EXPECT_NEAR(a.amplitude_reduction_at_2hz, 0.30, 0.005);     // Eq. 10, paper: ~30 % at 2 Hz
   EXPECT_NEAR(a.specimen_natural_frequency_hz, 1.58, 0.005);  // paper: 1.58 Hz
   // The operating gain is stable, as the paper's tests were.
   EXPECT_LT(a.p_gain, a.max_stable_p_gain);
@@ -47,8 +47,8 @@ TEST(PaperRig, Eq8LowFrequencyDelayIsTheFirstOrderDelay) {
 TEST(PaperRig, OilColumnIsTheLightlyDampedRootPairOfEq8) {
   const auto p = testing::paper_rig();
   const Eigen::VectorXcd roots = command_to_displacement(p, LinearModel::kPaperEq8).denominator.roots();
-  const auto oscillatory =
-      *std::max_element(roots.begin(), roots.end(), [](auto a, auto b) { return std::abs(a.imag()) < std::abs(b.imag()); });
+  const auto oscillatory = *std::max_element(roots.begin(), roots.end(),
+                                             [](auto a, auto b) { return std::abs(a.imag()) < std::abs(b.imag()); });
   const double eq11 = oil_column_frequency_rad_s(p);
   EXPECT_NEAR(std::abs(oscillatory), eq11, 0.02 * eq11);
   EXPECT_LT(-oscillatory.real() / std::abs(oscillatory), 0.1);  // "slightly damped"

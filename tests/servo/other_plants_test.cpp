@@ -100,7 +100,8 @@ TEST(TransferFunctionPlant, ResetHoldsTheRequestedDisplacement) {
 
 TEST(TransferFunctionPlant, RejectsUnstableAndImproperModels) {
   EXPECT_THROW(TransferFunctionPlant({{Polynomial{1.0}, Polynomial{-1.0, 1.0}}, 0.0, 8192.0}), std::invalid_argument);
-  EXPECT_THROW(TransferFunctionPlant({{Polynomial{0.0, 0.0, 1.0}, Polynomial{1.0, 1.0}}, 0.0, 8192.0}), std::invalid_argument);
+  EXPECT_THROW(TransferFunctionPlant({{Polynomial{0.0, 0.0, 1.0}, Polynomial{1.0, 1.0}}, 0.0, 8192.0}),
+               std::invalid_argument);
 }
 
 }  // namespace

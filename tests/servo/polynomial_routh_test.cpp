@@ -35,8 +35,8 @@ TEST(Routh, ClassifiesKnownPolynomials) {
   EXPECT_TRUE(routh_hurwitz_stable(Polynomial{6, 11, 6, 1}));
   // s^3 + s^2 + 2 s + 8: a2 a1 = 2 < a3 a0 = 8, two roots in the right half plane.
   EXPECT_FALSE(routh_hurwitz_stable(Polynomial{8, 2, 1, 1}));
-  EXPECT_FALSE(routh_hurwitz_stable(Polynomial{-1, 1}));     // root at +1
-  EXPECT_FALSE(routh_hurwitz_stable(Polynomial{1, 0, 1}));   // marginal: +/- i
+  EXPECT_FALSE(routh_hurwitz_stable(Polynomial{-1, 1}));    // root at +1
+  EXPECT_FALSE(routh_hurwitz_stable(Polynomial{1, 0, 1}));  // marginal: +/- i
   // Fifth order with roots -1, -2, -3, -1 +/- 2i.
   const Polynomial stable5 = Polynomial{1, 1} * Polynomial{2, 1} * Polynomial{3, 1} * Polynomial{5, 2, 1};
   EXPECT_TRUE(routh_hurwitz_stable(stable5));
@@ -48,7 +48,11 @@ TEST(Routh, ClassifiesKnownPolynomials) {
 TEST(Routh, LargestGainOfCubicMatchesClosedForm) {
   // s^3 + a s^2 + b s + K is stable iff a b > K.
   const double a = 3.0, b = 7.0;
-  const double gain = largest_stable_gain([&](double k) { return routh_hurwitz_stable(Polynomial{k, b, a, 1.0}); }, 1e3);
+  const double gain = largest_stable_gain(
+      [&](double k) {
+        return routh_hurwitz_stable(Polynomial{k, b, a, 1.0});
+      },
+      1e3);
   EXPECT_NEAR(gain, a * b, 1e-6);
 }
 

@@ -10,8 +10,8 @@
 #include <random>
 
 #include "paper_rig.h"
-#include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/regularised_tanh.h"
+#include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/specimen_forces.h"
 
 namespace rpsd::servo {
@@ -31,7 +31,8 @@ TEST(RegularisedTanh, WithinTwoUlpsOfStdTanhAndExactlyOneWhereTanhRoundsToOne) {
     worst = std::max(worst, ulps_apart(regularised_tanh(x), std::tanh(x)));
   }
   for (double x = 1e-12; x < 0.6; x *= 1.00001) {  // the rational form near zero, finely
-    worst = std::max({worst, ulps_apart(regularised_tanh(x), std::tanh(x)), ulps_apart(regularised_tanh(-x), std::tanh(-x))});
+    worst = std::max(
+        {worst, ulps_apart(regularised_tanh(x), std::tanh(x)), ulps_apart(regularised_tanh(-x), std::tanh(-x))});
   }
   EXPECT_LE(worst, 2);
   for (double x : {19.1, 19.2, 22.0, 100.0, 1e300}) {
@@ -56,11 +57,12 @@ ServoHydraulicPlant::State plain_derivative(const ServoSystemParameters& p, cons
   const double qdot = (v.pilot_flow_gain_m3_per_s_per_v * (command_v - feedback_v) - q) / v.pilot_time_constant_s;
   double xvdot = q / (v.max_spool_stroke_m * v.main_spool_area_m2);
   if ((xv >= 1.0 && xvdot > 0.0) || (xv <= -1.0 && xvdot < 0.0)) xvdot = 0.0;
-  const double kv = p.flow.nonlinear_flow_gain
-                        ? p.flow.no_load_flow_gain_m3_per_s / std::sqrt(1.0 + std::pow(p.flow.flow_gain_rolloff * xv, 2))
-                        : p.flow.no_load_flow_gain_m3_per_s;
+  const double kv = p.flow.nonlinear_flow_gain ? p.flow.no_load_flow_gain_m3_per_s /
+                                                     std::sqrt(1.0 + std::pow(p.flow.flow_gain_rolloff * xv, 2))
+                                               : p.flow.no_load_flow_gain_m3_per_s;
   const double sign = xv > 0.0 ? 1.0 : -1.0;
-  const double drop = p.flow.load_pressure_effect ? std::clamp(1.0 - sign * pl / p.flow.supply_pressure_pa, 0.0, 2.0) : 1.0;
+  const double drop =
+      p.flow.load_pressure_effect ? std::clamp(1.0 - sign * pl / p.flow.supply_pressure_pa, 0.0, 2.0) : 1.0;
   const double flow = kv * xv * std::sqrt(drop);
   const auto& a = p.actuator;
   const double ka = a.compressibility_m5_per_n();
@@ -72,10 +74,12 @@ ServoHydraulicPlant::State plain_derivative(const ServoSystemParameters& p, cons
   ServoHydraulicPlant::State r;
   r << xvdot, qdot, pdot, xdot, (a.piston_area_m2 * pl - spring - damper - friction) / m;
   scale << std::abs(xvdot),
-      (v.pilot_flow_gain_m3_per_s_per_v * (std::abs(gp * (u - x)) + std::abs(gd * (udot - xdot)) + std::abs(feedback_v)) +
-       std::abs(q)) / v.pilot_time_constant_s,
-      (std::abs(flow) + std::abs(a.piston_area_m2 * xdot) + std::abs(a.leakage_m3_per_s_per_pa * pl)) / ka, std::abs(xdot),
-      (std::abs(a.piston_area_m2 * pl) + std::abs(spring) + std::abs(damper) + std::abs(friction)) / m;
+      (v.pilot_flow_gain_m3_per_s_per_v *
+           (std::abs(gp * (u - x)) + std::abs(gd * (udot - xdot)) + std::abs(feedback_v)) +
+       std::abs(q)) /
+          v.pilot_time_constant_s,
+      (std::abs(flow) + std::abs(a.piston_area_m2 * xdot) + std::abs(a.leakage_m3_per_s_per_pa * pl)) / ka,
+      std::abs(xdot), (std::abs(a.piston_area_m2 * pl) + std::abs(spring) + std::abs(damper) + std::abs(friction)) / m;
   return r;
 }
 

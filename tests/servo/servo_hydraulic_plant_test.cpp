@@ -150,7 +150,7 @@ TEST(ServoHydraulicPlant, EachFlowNonlinearityReducesTheResponseAtLargeOpening) 
 
   double max_opening = 0.0;
   const double r_linear = amplitude_ratio(linear, &max_opening);
-  ASSERT_GT(max_opening, 0.3);  // a large opening, beyond the Figure 8 test's 28 %
+  ASSERT_GT(max_opening, 0.3);                                 // a large opening, beyond the Figure 8 test's 28 %
   EXPECT_LT(amplitude_ratio(gain_only), 0.98 * r_linear);      // K_v falls with opening
   EXPECT_LT(amplitude_ratio(pressure_only), 0.98 * r_linear);  // load pressure limits flow
   EXPECT_LT(amplitude_ratio(base), amplitude_ratio(gain_only));

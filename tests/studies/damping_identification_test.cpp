@@ -19,7 +19,8 @@ TEST(DampingIdentification, RecoversTheDampingOfAClosedFormDecay) {
   EXPECT_NEAR(d.damping_ratio, zeta, 1e-5);
   EXPECT_NEAR(d.damped_frequency_hz, omega_d / (2.0 * std::numbers::pi), 1e-4);
   // A growing response gives a negative ratio.
-  for (int i = 0; i < static_cast<int>(x.size()); ++i) x[i] = std::exp(0.02 * omega * i * dt) * std::cos(omega_d * i * dt);
+  for (int i = 0; i < static_cast<int>(x.size()); ++i)
+    x[i] = std::exp(0.02 * omega * i * dt) * std::cos(omega_d * i * dt);
   EXPECT_NEAR(identify_damping(x, dt).damping_ratio, -0.02, 1e-5);
 }
 

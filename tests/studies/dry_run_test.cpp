@@ -9,14 +9,15 @@
 
 #include "../servo/paper_rig.h"
 #include "rpsd/compensation/delay_theory.h"
-#include "rpsd/studies/dry_run.h"
 #include "rpsd/scenarios/study_file.h"
+#include "rpsd/studies/dry_run.h"
 
 namespace rpsd::studies {
 namespace {
 
 coordinator::TestConfig sdof(std::vector<scenarios::Override> overrides) {
-  const auto file = scenarios::load_study(testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml", overrides);
+  const auto file =
+      scenarios::load_study(testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml", overrides);
   return std::get<coordinator::TestConfig>(file.study);
 }
 
@@ -29,7 +30,8 @@ TEST(DryRun, UncompensatedDelayGivesTheExactDdeRootAndIsNotReady) {
   // The plant's 5 ms, and the half period of the hold between commands at 1024 Hz at most.
   EXPECT_NEAR(mode.loop_delay_ms, 5.0, 0.5);
   const compensation::DelayedOscillator oscillator{7080.0, 2.0 * 0.011 * std::sqrt(700.8e3 * 7080.0), 0.0, 700.8e3};
-  const double exact = compensation::damping_ratio_of(compensation::dominant_root(oscillator, 1e-3 * mode.loop_delay_ms));
+  const double exact =
+      compensation::damping_ratio_of(compensation::dominant_root(oscillator, 1e-3 * mode.loop_delay_ms));
   EXPECT_NEAR(mode.predicted_damping_ratio, exact, 1e-4);
   EXPECT_LT(mode.predicted_damping_ratio, 0.0);
   EXPECT_FALSE(r.within_limits);
@@ -76,7 +78,8 @@ TEST(DryRun, ChecksTheCommandsAgainstTheNodesOwnLimits) {
   // The node's velocity is its command change per its own period (here 1/2048 s).
   EXPECT_DOUBLE_EQ(ok.channels[0].node->peak_command_velocity_m_per_s, ok.channels[0].peak_increment_m * 2048.0);
   // A 10 mm swing at 1.58 Hz: at most 2 pi f x0 = 99 mm/s, in 1/1024 s steps.
-  EXPECT_NEAR(ok.channels[0].peak_increment_m * 1024.0, 2.0 * M_PI * std::sqrt(700.8e3 / 7080.0) / (2.0 * M_PI) * 0.01, 0.01);
+  EXPECT_NEAR(ok.channels[0].peak_increment_m * 1024.0, 2.0 * M_PI * std::sqrt(700.8e3 / 7080.0) / (2.0 * M_PI) * 0.01,
+              0.01);
 
   node::ChannelLimits narrow = wide;
   narrow.max_stroke_m = 0.005;

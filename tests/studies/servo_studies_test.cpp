@@ -4,14 +4,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "../servo/paper_rig.h"
-#include "rpsd/studies/servo_studies.h"
-#include "rpsd/studies/study_output.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/linear_analysis.h"
+#include "rpsd/studies/servo_studies.h"
+#include "rpsd/studies/study_output.h"
 
 namespace rpsd::studies {
 namespace {

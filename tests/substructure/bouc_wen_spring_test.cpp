@@ -53,8 +53,7 @@ TEST(BoucWen, MonotonicLoadingMatchesClosedForms) {
         // Tangent: α k0 + (1 − α) k0 (A − c zⁿ) on the loading branch.
         const double zc = s.committed_z_m();
         EXPECT_NEAR(s.tangent_stiffness(),
-                    p.post_yield_ratio * k0 + (1.0 - p.post_yield_ratio) * k0 * (A - c * std::pow(zc, n)),
-                    1e-6 * k0);
+                    p.post_yield_ratio * k0 + (1.0 - p.post_yield_ratio) * k0 * (A - c * std::pow(zc, n)), 1e-6 * k0);
         ASSERT_LE(s.committed_z_m(), zm * (1.0 + 1e-12)) << "u = " << u;
       }
       EXPECT_LT(max_err, 1e-8 * zm) << "n = " << n << ", A = " << A;

@@ -16,7 +16,8 @@ namespace {
 LinearMdofConfig benchmark_config(linalg::MatrixStorage storage) {
   LinearMdofConfig cfg;
   cfg.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_mass())).converted(storage);
-  cfg.stiffness_n_per_m = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_stiffness())).converted(storage);
+  cfg.stiffness_n_per_m =
+      linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_stiffness())).converted(storage);
   return cfg;
 }
 

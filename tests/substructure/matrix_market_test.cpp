@@ -1,8 +1,8 @@
 // Matrix Market reading: round trips on files written here, and errors that name the file.
 
+#include "rpsd/substructure/matrix_market.h"
 #include "reference_models.h"
 #include "rpsd/substructure/linear_mdof_model.h"
-#include "rpsd/substructure/matrix_market.h"
 #include "rpsd/substructure/modal.h"
 
 #include <unsupported/Eigen/SparseExtra>
@@ -24,8 +24,8 @@ class MatrixMarket : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("rpsd_mm_" + std::string(info->name()) + "_" +
-                                        std::to_string(std::random_device{}()));
+    dir_ = fs::temp_directory_path() /
+           ("rpsd_mm_" + std::string(info->name()) + "_" + std::to_string(std::random_device{}()));
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -78,8 +78,8 @@ TEST_F(MatrixMarket, SymmetricFileIsMirrored) {
 }
 
 TEST_F(MatrixMarket, GeneralFileAndIntegerField) {
-  const linalg::SparseMatrix A = load_matrix_market(write("a.mtx",
-      "%%MatrixMarket matrix coordinate integer general\n%comment\n\n2 3 3\n1 1 4\n2 3 -7\n1 2 5\n"));
+  const linalg::SparseMatrix A = load_matrix_market(
+      write("a.mtx", "%%MatrixMarket matrix coordinate integer general\n%comment\n\n2 3 3\n1 1 4\n2 3 -7\n1 2 5\n"));
   Eigen::MatrixXd expected(2, 3);
   expected << 4, 5, 0, 0, 0, -7;
   EXPECT_EQ(Eigen::MatrixXd(A), expected);
@@ -102,15 +102,13 @@ TEST_F(MatrixMarket, RoundTripThroughEigenSaveMarket) {
 
 TEST_F(MatrixMarket, BenchmarkModelFromFiles) {
   const LinearMdofConfig cfg = linear_config_from_matrix_market(
-      {write("m.mtx", kBenchmarkM), write("k.mtx", kBenchmarkK), std::nullopt},
-      RayleighFromModes{1, 2, 0.05, 0.05});
+      {write("m.mtx", kBenchmarkM), write("k.mtx", kBenchmarkK), std::nullopt}, RayleighFromModes{1, 2, 0.05, 0.05});
   LinearMdofModel model;
   model.configure(cfg);
   EXPECT_TRUE(model.initial_stiffness().is_sparse());
   EXPECT_TRUE(model.damping().is_sparse());
   const Eigen::VectorXd w = natural_frequencies_rad_s(model.mass(), model.initial_stiffness());
-  for (int i = 0; i < 3; ++i)
-    EXPECT_NEAR(w[i] / (2.0 * std::numbers::pi), test::kBenchmarkCase1FrequenciesHz[i], 5e-4);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(w[i] / (2.0 * std::numbers::pi), test::kBenchmarkCase1FrequenciesHz[i], 5e-4);
   // With a damping file instead.
   const LinearMdofConfig with_c = linear_config_from_matrix_market(
       {write("m2.mtx", kBenchmarkM), write("k2.mtx", kBenchmarkK), write("c.mtx", kBenchmarkM)});
@@ -146,12 +144,14 @@ TEST_F(MatrixMarket, MalformedFilesAreNamedWithTheLine) {
       {"%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n", "'array' format is not supported"},
       {"%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n", "field 'complex' is not supported"},
       {"%%MatrixMarket matrix coordinate pattern general\n1 1 1\n1 1\n", "field 'pattern' is not supported"},
-      {"%%MatrixMarket matrix coordinate real skew-symmetric\n2 2 1\n2 1 1\n", "symmetry 'skew-symmetric' is not supported"},
+      {"%%MatrixMarket matrix coordinate real skew-symmetric\n2 2 1\n2 1 1\n",
+       "symmetry 'skew-symmetric' is not supported"},
       {"%%MatrixMarket matrix coordinate real general\n% only comments\n", "has no size line"},
       {"%%MatrixMarket matrix coordinate real general\nthree by three\n", "line 2: expected the size line"},
       {"%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 1\n2 2 1\n", "declares 3 entries but contains 2"},
       {"%%MatrixMarket matrix coordinate real general\n2 2 1\n1 1 1\n2 2 1\n", "declares 1 entries but contains 2"},
-      {"%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n3 1 1\n", "line 4: entry (3, 1) is outside the 2x2 matrix"},
+      {"%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n3 1 1\n",
+       "line 4: entry (3, 1) is outside the 2x2 matrix"},
       {"%%MatrixMarket matrix coordinate real general\n2 2 1\n1 1 abc\n", "line 3: expected an entry"},
       {"%%MatrixMarket matrix coordinate real symmetric\n2 2 1\n1 2 1\n", "line 3: entry (1, 2) is above the diagonal"},
       {"%%MatrixMarket matrix coordinate real symmetric\n2 3 0\n", "a symmetric matrix must be square"},
@@ -164,8 +164,8 @@ TEST_F(MatrixMarket, MalformedFilesAreNamedWithTheLine) {
     EXPECT_CONTAINS(msg, c.expected);
   }
   // A line longer than Eigen's loadMarket buffer would silently truncate the matrix.
-  const fs::path p = write("long.mtx", "%%MatrixMarket matrix coordinate real general\n%" +
-                                           std::string(3000, 'x') + "\n1 1 1\n1 1 1\n");
+  const fs::path p = write(
+      "long.mtx", "%%MatrixMarket matrix coordinate real general\n%" + std::string(3000, 'x') + "\n1 1 1\n1 1 1\n");
   EXPECT_CONTAINS(error_of([&] { (void)load_matrix_market(p); }), "line 2: line is longer than 2047");
 }
 
@@ -189,8 +189,8 @@ TEST_F(MatrixMarket, NonSquareAndMisSizedMatricesAreNamed) {
 
 TEST_F(MatrixMarket, ConfigureErrorsNameTheFile) {
   // A mass file that parses but is not symmetric: the model's message names the file.
-  const fs::path m = write("m_bad.mtx",
-      "%%MatrixMarket matrix coordinate real general\n3 3 4\n1 1 1000\n2 2 1000\n3 3 1000\n1 2 10\n");
+  const fs::path m = write(
+      "m_bad.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 4\n1 1 1000\n2 2 1000\n3 3 1000\n1 2 10\n");
   const LinearMdofConfig cfg = linear_config_from_matrix_market({m, write("k.mtx", kBenchmarkK), std::nullopt});
   LinearMdofModel model;
   const std::string msg = error_of([&] { model.configure(cfg); });

@@ -6,8 +6,8 @@
 #include "rpsd/substructure/modal.h"
 #include "rpsd/substructure/rayleigh.h"
 
-#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
+#include <Eigen/Eigenvalues>
 
 #include <cmath>
 #include <numbers>
@@ -75,8 +75,8 @@ TEST(Modal, UniformShearBuildingClosedForm) {
     K(i, i) = (i + 1 < N) ? 2.0 * k : k;
     if (i + 1 < N) K(i, i + 1) = K(i + 1, i) = -k;
   }
-  const ModalSolution modal = modal_analysis(linalg::StructuralMatrix(Eigen::MatrixXd(m * Eigen::MatrixXd::Identity(N, N))),
-                                             linalg::StructuralMatrix(K));
+  const ModalSolution modal = modal_analysis(
+      linalg::StructuralMatrix(Eigen::MatrixXd(m * Eigen::MatrixXd::Identity(N, N))), linalg::StructuralMatrix(K));
   for (int j = 1; j <= N; ++j) {
     const double exact = 2.0 * std::sqrt(k / m) * std::sin((2 * j - 1) * kPi / (2.0 * (2 * N + 1)));
     EXPECT_NEAR(modal.omega_rad_s[j - 1], exact, 1e-10 * exact) << "mode " << j;
@@ -91,8 +91,9 @@ TEST(Modal, RejectsBadMatrices) {
   Eigen::MatrixXd Kneg(2, 2);
   Kneg << -1.0, 0.0, 0.0, 2.0;  // one negative eigenvalue
   EXPECT_THROW((void)natural_frequencies_rad_s(M, linalg::StructuralMatrix(Kneg)), std::invalid_argument);
-  EXPECT_THROW((void)natural_frequencies_rad_s(M, linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(3, 3)))),
-               std::invalid_argument);
+  EXPECT_THROW(
+      (void)natural_frequencies_rad_s(M, linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(3, 3)))),
+      std::invalid_argument);
 }
 
 // Modal damping ratios of a built C: ζ_k = φ_kᵀ C φ_k / (2 ω_k) for mass-normalised φ_k,
@@ -114,8 +115,8 @@ TEST(Rayleigh, BenchmarkCase1ModalDampingMatchesAnalyticCurve) {
   LinearMdofModel model;
   model.configure(cfg);
 
-  const ModalDamping md = modal_damping(test::benchmark_case1_mass(), test::benchmark_case1_stiffness(),
-                                        model.damping().dense());
+  const ModalDamping md =
+      modal_damping(test::benchmark_case1_mass(), test::benchmark_case1_stiffness(), model.damping().dense());
   const double w1 = md.omega[0], w2 = md.omega[1], w3 = md.omega[2];
   // Closed-form coefficients for equal ratios, from the test's own frequencies.
   const double a0 = 2.0 * 0.05 * w1 * w2 / (w1 + w2), a1 = 2.0 * 0.05 / (w1 + w2);

@@ -1,7 +1,7 @@
 // Numerical/experimental partition: DOF ↔ channel mapping, scale factors, ground-motion load.
 
-#include "rpsd/substructure/ground_motion_load.h"
 #include "rpsd/substructure/partition.h"
+#include "rpsd/substructure/ground_motion_load.h"
 #include "rpsd/substructure/shear_building.h"
 
 #include <gtest/gtest.h>
@@ -65,7 +65,8 @@ TEST(Partition, SpecimenStiffnessSeenFromTheModel) {
   p.extract_commands(d, u);
   f << 1.0e5 * u[0], 2.0e5 * u[1];  // specimen forces, specimen units
   p.scatter_forces(f, r);
-  const linalg::StructuralMatrix K = p.with_specimen_stiffness(linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Zero(5, 5))));
+  const linalg::StructuralMatrix K =
+      p.with_specimen_stiffness(linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Zero(5, 5))));
   EXPECT_LT((r - K.dense() * d).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_DOUBLE_EQ(K.coeff(1, 1), 16.0 * 0.25 * 1.0e5);
   EXPECT_DOUBLE_EQ(K.coeff(3, 3), 4.0 * 0.5 * 2.0e5);
@@ -132,7 +133,8 @@ TEST(GroundMotionLoad, ShearBuildingIsMinusMassTimesAcceleration) {
   // horizontal DOFs of a frame): F = −M ι a_g.
   Eigen::Matrix3d M;
   M << 4, 1, 0, 1, 4, 1, 0, 1, 4;
-  g.configure(linalg::StructuralMatrix(Eigen::MatrixXd(M)).converted(linalg::MatrixStorage::kSparse), Eigen::Vector3d(1, 0, 1));
+  g.configure(linalg::StructuralMatrix(Eigen::MatrixXd(M)).converted(linalg::MatrixStorage::kSparse),
+              Eigen::Vector3d(1, 0, 1));
   g.force(-0.5, F);
   EXPECT_EQ(F, Eigen::Vector3d(2.0, 1.0, 2.0));
   EXPECT_THROW(g.configure(b.mass(), Eigen::VectorXd::Ones(2)), std::invalid_argument);

@@ -9,9 +9,8 @@ namespace rpsd::substructure::test {
 // as published (upper triangle given, symmetric). Frequencies 3.612 / 15.997 / 38.086 Hz.
 inline Eigen::Matrix3d benchmark_case1_stiffness() {
   Eigen::Matrix3d K;
-  K << 26054883.88, -23133938.88, 5937035.46,
-       -23133938.88, 32560774.19, -14419970.78,
-       5937035.46, -14419970.78, 9267275.51;
+  K << 26054883.88, -23133938.88, 5937035.46, -23133938.88, 32560774.19, -14419970.78, 5937035.46, -14419970.78,
+      9267275.51;
   return K;
 }
 inline Eigen::Matrix3d benchmark_case1_mass() { return 1000.0 * Eigen::Matrix3d::Identity(); }

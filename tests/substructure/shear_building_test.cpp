@@ -1,8 +1,8 @@
 // Shear building: assembled stiffness against the hand-assembled tridiagonal matrix,
 // 2-story frequencies against the closed form, nonlinear stories and trial/commit.
 
-#include "rpsd/substructure/modal.h"
 #include "rpsd/substructure/shear_building.h"
+#include "rpsd/substructure/modal.h"
 
 #include <gtest/gtest.h>
 
@@ -24,10 +24,7 @@ ShearBuildingConfig linear_building(std::vector<double> m, std::vector<double> k
 TEST(ShearBuilding, StiffnessMatchesHandAssembledTridiagonal) {
   // Stories k = 4, 3, 2, 1 MN/m (ground to roof), by hand:
   Eigen::Matrix4d K_hand;
-  K_hand << 7, -3, 0, 0,
-           -3, 5, -2, 0,
-            0, -2, 3, -1,
-            0, 0, -1, 1;
+  K_hand << 7, -3, 0, 0, -3, 5, -2, 0, 0, -2, 3, -1, 0, 0, -1, 1;
   K_hand *= 1e6;
   for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
     ShearBuildingConfig c = linear_building({1e3, 2e3, 3e3, 4e3}, {4e6, 3e6, 2e6, 1e6});
@@ -66,7 +63,7 @@ TEST(ShearBuilding, TwoStoryFrequenciesMatchClosedForm) {
 
 TEST(ShearBuilding, RayleighDampingUsesInitialStiffness) {
   ShearBuildingConfig c = linear_building({1e3, 1e3, 1e3}, {3e6, 2e6, 1e6});
-  c.story_springs[0] = BilinearSpringConfig{3e6, 3e4, 0.1};  // initial stiffness still 3e6
+  c.story_springs[0] = BilinearSpringConfig{3e6, 3e4, 0.1};     // initial stiffness still 3e6
   c.damping = RayleighFromFrequencies{10.0, 30.0, 0.05, 0.05};  // a0 = 0.75, a1 = 0.0025
   ShearBuilding b;
   b.configure(c);

@@ -75,14 +75,22 @@ Options parse(int argc, char** argv) {
     const std::string flag = argv[i];
     if (i + 1 >= argc) usage(flag + " needs a value");
     const std::string value = argv[++i];
-    if (flag == "--domain") o.domain_id = static_cast<std::uint32_t>(std::stoul(value));
-    else if (flag == "--dds-config") o.dds_config = value;
-    else if (flag == "--test") o.test_id = static_cast<std::uint32_t>(std::stoul(value));
-    else if (flag == "--faulty-site") o.faulty_site = static_cast<std::uint32_t>(std::stoul(value));
-    else if (flag == "--duration") o.duration_s = std::stod(value);
-    else if (flag == "--summary") o.summary = value;
-    else if (flag == "--real-time") o.real_time = value == "1";
-    else if (flag == "--late-ms") o.late_ms = std::stod(value);
+    if (flag == "--domain")
+      o.domain_id = static_cast<std::uint32_t>(std::stoul(value));
+    else if (flag == "--dds-config")
+      o.dds_config = value;
+    else if (flag == "--test")
+      o.test_id = static_cast<std::uint32_t>(std::stoul(value));
+    else if (flag == "--faulty-site")
+      o.faulty_site = static_cast<std::uint32_t>(std::stoul(value));
+    else if (flag == "--duration")
+      o.duration_s = std::stod(value);
+    else if (flag == "--summary")
+      o.summary = value;
+    else if (flag == "--real-time")
+      o.real_time = value == "1";
+    else if (flag == "--late-ms")
+      o.late_ms = std::stod(value);
     else if (flag == "--wrong-test" || flag == "--wrong-site" || flag == "--wrong-channels" || flag == "--older" ||
              flag == "--duplicate" || flag == "--late" || flag == "--nan") {
       o.fault_step[flag.substr(2)] = std::stoll(value);
@@ -101,7 +109,8 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
   // Once, with the first command at or after the fault's step.
   const auto at = [&](const char* fault, std::int64_t step) {
     const auto it = o.fault_step.find(fault);
-    const bool hit = faulty && it != o.fault_step.end() && step >= it->second && !counts.fault_sent_at_step.contains(fault);
+    const bool hit =
+        faulty && it != o.fault_step.end() && step >= it->second && !counts.fault_sent_at_step.contains(fault);
     if (hit) counts.fault_sent_at_step[fault] = step;
     return hit;
   };
@@ -168,7 +177,7 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  struct sigaction action{};
+  struct sigaction action {};
   action.sa_handler = request_stop;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
@@ -200,7 +209,8 @@ int main(int argc, char** argv) {
     std::ofstream out(o.summary);
     out << "{\"sites\": {";
     for (std::size_t i = 0; i < o.sites.size(); ++i) {
-      out << (i ? ", " : "") << '"' << o.sites[i] << "\": {\"answers\": " << counts[i].answers << ", \"fault_sent_at_step\": {";
+      out << (i ? ", " : "") << '"' << o.sites[i] << "\": {\"answers\": " << counts[i].answers
+          << ", \"fault_sent_at_step\": {";
       bool first = true;
       for (const auto& [name, n] : counts[i].fault_sent_at_step) {
         out << (first ? "" : ", ") << '"' << name << "\": " << n;

@@ -130,7 +130,7 @@ TEST(DdsLink, WaitsForTheNodesWordThatItFoundTheCoordinator) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   ASSERT_TRUE(node.coordinator_matched());
-  EXPECT_FALSE(link.wait_for_node(0.5));  // matched both ways, but no word from the node
+  EXPECT_FALSE(link.wait_for_node(0.5));          // matched both ways, but no word from the node
   EXPECT_FALSE(connect(link, node, 61, 9, 0.5));  // a heartbeat claiming another site
   EXPECT_TRUE(connect(link, node, 61, 1));
 }
@@ -297,7 +297,7 @@ TEST(DdsLink, ARealTimeDeadlineEndsTheWaitAndHandsBackTheNewestSample) {
   f = FeedbackSample{};
   EXPECT_EQ(link.receive(f), LinkStatus::kTimeout);
   EXPECT_GE(realtime::monotonic_now_ns() - t0, 50'000'000);  // waited for the deadline...
-  EXPECT_EQ(f.step, 0);                                       // ...and returned step 0's sample
+  EXPECT_EQ(f.step, 0);                                      // ...and returned step 0's sample
   EXPECT_DOUBLE_EQ(f.displacement_m[0], 0.5);
   stop = true;
   responder.join();

@@ -17,7 +17,8 @@ namespace rpsd::transport::testing {
 
 inline DdsDomainConfig loopback() {
   // A domain of its own per test binary run keeps parallel ctest processes apart.
-  return {static_cast<std::uint32_t>(40 + ::getpid() % 150), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+  return {static_cast<std::uint32_t>(40 + ::getpid() % 150),
+          std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
 }
 
 inline DdsLinkConfig link_config(std::uint32_t test, std::uint32_t site, int channels, double timeout_s = 1.0) {
@@ -38,7 +39,8 @@ inline DdsNodeEndpointConfig node_config(std::uint32_t test, std::uint32_t site)
 
 // The node's side of the start handshake: heartbeats, as a servo node sends them, while the
 // link waits for the node; true once the link has found it.
-inline bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, std::uint32_t site, double timeout_s = 10.0) {
+inline bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, std::uint32_t site,
+                    double timeout_s = 10.0) {
   std::atomic<bool> done{false};
   std::thread announcer([&] {
     NodeHeartbeat h;

@@ -19,10 +19,11 @@ DdsLink::DdsLink(const DdsParticipant& participant, const DdsLinkConfig& config)
   if (!(config.busy_wait_s >= 0.0)) throw std::invalid_argument("DdsLink: busy_wait_s must not be negative");
   newest_.step = -1;
   const DdsQos partition = site_partition_qos(config.test_id, config.site_id);
-  heartbeat_subscriber_ = DdsEntity(dds_create_subscriber(participant.get(), partition.get(), nullptr), "dds_create_subscriber");
-  heartbeat_reader_ = DdsEntity(
-      dds_create_reader(heartbeat_subscriber_.get(), participant.heartbeat_topic(), heartbeat_qos(config.qos).get(), nullptr),
-      "dds_create_reader(heartbeat)");
+  heartbeat_subscriber_ =
+      DdsEntity(dds_create_subscriber(participant.get(), partition.get(), nullptr), "dds_create_subscriber");
+  heartbeat_reader_ = DdsEntity(dds_create_reader(heartbeat_subscriber_.get(), participant.heartbeat_topic(),
+                                                  heartbeat_qos(config.qos).get(), nullptr),
+                                "dds_create_reader(heartbeat)");
 }
 
 bool DdsLink::node_reports_matched() {

@@ -9,10 +9,11 @@ DdsNodeEndpoint::DdsNodeEndpoint(const DdsParticipant& participant, const DdsNod
       ports_(participant, config.test_id, config.site_id, participant.feedback_topic(), stream_writer_qos(config.qos),
              participant.command_topic(), stream_reader_qos(config.qos)) {
   const DdsQos partition = site_partition_qos(config.test_id, config.site_id);
-  heartbeat_publisher_ = DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr), "dds_create_publisher");
-  heartbeat_writer_ = DdsEntity(
-      dds_create_writer(heartbeat_publisher_.get(), participant.heartbeat_topic(), heartbeat_qos(config.qos).get(), nullptr),
-      "dds_create_writer(heartbeat)");
+  heartbeat_publisher_ =
+      DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr), "dds_create_publisher");
+  heartbeat_writer_ = DdsEntity(dds_create_writer(heartbeat_publisher_.get(), participant.heartbeat_topic(),
+                                                  heartbeat_qos(config.qos).get(), nullptr),
+                                "dds_create_writer(heartbeat)");
 }
 
 bool DdsNodeEndpoint::take_command(CommandSample& command) {

@@ -29,10 +29,12 @@ DdsParticipant::DdsParticipant(const DdsDomainConfig& config) {
     }
   }
   participant_ = DdsEntity(dds_create_participant(domain_id, nullptr, nullptr), "dds_create_participant");
-  command_topic_ = DdsEntity(dds_create_topic(participant_.get(), &rpsd_dds_Command_desc, "rpsd_Command", nullptr, nullptr),
-                             "dds_create_topic(rpsd_Command)");
-  feedback_topic_ = DdsEntity(dds_create_topic(participant_.get(), &rpsd_dds_Feedback_desc, "rpsd_Feedback", nullptr, nullptr),
-                              "dds_create_topic(rpsd_Feedback)");
+  command_topic_ =
+      DdsEntity(dds_create_topic(participant_.get(), &rpsd_dds_Command_desc, "rpsd_Command", nullptr, nullptr),
+                "dds_create_topic(rpsd_Command)");
+  feedback_topic_ =
+      DdsEntity(dds_create_topic(participant_.get(), &rpsd_dds_Feedback_desc, "rpsd_Feedback", nullptr, nullptr),
+                "dds_create_topic(rpsd_Feedback)");
   heartbeat_topic_ = DdsEntity(
       dds_create_topic(participant_.get(), &rpsd_dds_NodeHeartbeat_desc, "rpsd_NodeHeartbeat", nullptr, nullptr),
       "dds_create_topic(rpsd_NodeHeartbeat)");

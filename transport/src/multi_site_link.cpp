@@ -17,19 +17,23 @@ MultiSiteLink::MultiSiteLink(std::vector<SiteRoute> sites) : sites_(std::move(si
   if (sites_.empty()) throw std::invalid_argument("MultiSiteLink: at least one site");
   std::array<int, kMaxChannels> owners{};
   for (const SiteRoute& site : sites_) {
-    if (site.link == nullptr) throw std::invalid_argument("MultiSiteLink: site " + std::to_string(site.site_id) + " has no link");
+    if (site.link == nullptr)
+      throw std::invalid_argument("MultiSiteLink: site " + std::to_string(site.site_id) + " has no link");
     if (site.channels.empty() || site.channels.size() > static_cast<std::size_t>(kMaxChannels)) {
       throw std::invalid_argument("MultiSiteLink: site " + std::to_string(site.site_id) + " needs 1 to " +
                                   std::to_string(kMaxChannels) + " channels");
     }
     for (int ch : site.channels) {
-      if (ch < 0 || ch >= kMaxChannels) throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " out of range");
-      if (owners[ch]++ > 0) throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " belongs to two sites");
+      if (ch < 0 || ch >= kMaxChannels)
+        throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " out of range");
+      if (owners[ch]++ > 0)
+        throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " belongs to two sites");
       channels_ = std::max(channels_, ch + 1);
     }
   }
   for (int ch = 0; ch < channels_; ++ch) {
-    if (owners[ch] == 0) throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " belongs to no site");
+    if (owners[ch] == 0)
+      throw std::invalid_argument("MultiSiteLink: channel " + std::to_string(ch) + " belongs to no site");
   }
 }
 
@@ -39,7 +43,8 @@ LinkStatus MultiSiteLink::send(const CommandSample& command) {
     site_command_ = command;
     site_command_.site_id = site.site_id;
     site_command_.channels = static_cast<std::uint8_t>(site.channels.size());
-    for (std::size_t i = 0; i < site.channels.size(); ++i) site_command_.displacement_m[i] = command.displacement_m[site.channels[i]];
+    for (std::size_t i = 0; i < site.channels.size(); ++i)
+      site_command_.displacement_m[i] = command.displacement_m[site.channels[i]];
     status = worse(status, site.link->send(site_command_));
   }
   return status;

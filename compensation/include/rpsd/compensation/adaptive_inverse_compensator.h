@@ -29,16 +29,17 @@ class AdaptiveInverseCompensator;
 
 struct AdaptiveInverseCompensationParameters {
   static constexpr std::string_view kName = "adaptive_inverse";
-  static constexpr std::string_view kSummary = "inverse compensation whose delay adapts to the tracking indicator (Chen and Ricles)";
+  static constexpr std::string_view kSummary =
+      "inverse compensation whose delay adapts to the tracking indicator (Chen and Ricles)";
   using Compensator = AdaptiveInverseCompensator;
   static AdaptiveInverseCompensationParameters read(config::Source& section);
 
-  double initial_delay_s = 0.0;                 // tau_0
-  double min_delay_s = 0.0;                     // tau_min >= 0
-  double max_delay_s = 0.1;                     // tau_max >= tau_min
-  double max_delay_rate = 0.05;                 // r: seconds of delay per second, > 0
-  double proportional_gain_s_per_m2 = 0.0;      // k_p >= 0
-  double integral_gain_per_m2 = 0.0;            // k_i >= 0 (s of delay per m^2 s)
+  double initial_delay_s = 0.0;             // tau_0
+  double min_delay_s = 0.0;                 // tau_min >= 0
+  double max_delay_s = 0.1;                 // tau_max >= tau_min
+  double max_delay_rate = 0.05;             // r: seconds of delay per second, > 0
+  double proportional_gain_s_per_m2 = 0.0;  // k_p >= 0
+  double integral_gain_per_m2 = 0.0;        // k_i >= 0 (s of delay per m^2 s)
 
   // Throws std::invalid_argument with the offending value unless 0 <= tau_min <= tau_0 <=
   // tau_max, r > 0 and the gains are >= 0. Not real-time safe.

@@ -55,9 +55,9 @@ struct AdaptiveTimeSeriesParameters {
   std::array<double, 3> lower_bounds{0.7, 0.0, 0.0};
   std::array<double, 3> upper_bounds{1.3, 0.08, 0.0032};
   std::array<double, 3> max_rate_per_s{2.0, 0.05, 0.001};  // per second of test time
-  double window_s = 1.0;                                    // least-squares window
-  int skip_samples = 16;                                    // update every this many steps
-  double trigger_threshold_m = 0.01 * 0.0254;               // 0.01 in
+  double window_s = 1.0;                                   // least-squares window
+  int skip_samples = 16;                                   // update every this many steps
+  double trigger_threshold_m = 0.01 * 0.0254;              // 0.01 in
 
   // Throws std::invalid_argument with the offending value unless lower <= initial <= upper,
   // the rates are positive, window_s > 0, skip_samples >= 1 and the threshold >= 0.
@@ -95,14 +95,14 @@ class AdaptiveTimeSeriesCompensator final : public CommandCompensator {
   long capacity_ = 1;
   std::vector<double> measured_m_;  // ring buffers, sized in configure()
   std::vector<double> command_m_;
-  long observed_ = 0;               // samples pushed since reset
+  long observed_ = 0;  // samples pushed since reset
   long accepted_updates_ = 0;
   long untriggered_updates_ = 0;
   std::array<double, 3> coefficients_{};  // applied now
   std::array<double, 3> ramp_from_{};     // applied at the last update
   std::array<double, 3> goal_{};          // reached skip_samples steps after it
   int ramp_step_ = 0;
-  double previous_target_m_ = 0.0;  // x_t[n-1]
+  double previous_target_m_ = 0.0;         // x_t[n-1]
   double before_previous_target_m_ = 0.0;  // x_t[n-2]
   double last_command_m_ = 0.0;
 };

@@ -18,9 +18,9 @@
 
 namespace rpsd::compensation {
 
-using CompensatorKinds =
-    config::KindList<PassThroughParameters, DiscretePhaseLeadParameters, PolynomialExtrapolationParameters,
-                     InverseCompensationParameters, AdaptiveInverseCompensationParameters, AdaptiveTimeSeriesParameters>;
+using CompensatorKinds = config::KindList<PassThroughParameters, DiscretePhaseLeadParameters,
+                                          PolynomialExtrapolationParameters, InverseCompensationParameters,
+                                          AdaptiveInverseCompensationParameters, AdaptiveTimeSeriesParameters>;
 using CompensatorConfig = CompensatorKinds::Variant;
 
 // The compensator for config, configured for control step dt_s and at rest at zero

@@ -99,8 +99,8 @@ class CrossCorrelationDelayEstimator {
   long window_ = 1;
   int max_lag_ = 0;
   long target_capacity_ = 1;
-  std::vector<double> target_;    // ring of W + max_lag + 1 targets
-  std::vector<double> measured_;  // ring of W measurements
+  std::vector<double> target_;       // ring of W + max_lag + 1 targets
+  std::vector<double> measured_;     // ring of W measurements
   std::vector<double> product_sum_;  // per lag j: sum x_m(k) x_t(k - j) over the window
   std::vector<double> target_sum_;   // per lag j: sum x_t(k - j)
   std::vector<double> target_square_sum_;

@@ -37,8 +37,7 @@ struct DiscretePhaseLeadParameters {
   double prewarp_frequency_hz = 0.0;  // 0: plain Tustin; > 0: exact at this frequency
 
   // Designed from the delay to compensate with the chosen ratio a: (a - 1) T = delay_s.
-  static DiscretePhaseLeadParameters for_delay(double delay_s, double ratio_a,
-                                               double prewarp_frequency_hz = 0.0);
+  static DiscretePhaseLeadParameters for_delay(double delay_s, double ratio_a, double prewarp_frequency_hz = 0.0);
 
   // Throws std::invalid_argument unless the network is valid and 0 <= prewarp < Nyquist
   // of dt_s. Not real-time safe.
@@ -60,8 +59,8 @@ double tustin_warping_constant(const DiscretePhaseLeadParameters& parameters, do
 
 // The discrete network's exact frequency response at w = omega_rad_s:
 // G_c(j K tan(w dt / 2)) (the bilinear map), for 0 <= w dt < pi. Real-time safe.
-std::complex<double> discrete_phase_lead_response(const DiscretePhaseLeadParameters& parameters,
-                                                  double dt_s, double omega_rad_s);
+std::complex<double> discrete_phase_lead_response(const DiscretePhaseLeadParameters& parameters, double dt_s,
+                                                  double omega_rad_s);
 
 class DiscretePhaseLeadCompensator final : public CommandCompensator {
  public:

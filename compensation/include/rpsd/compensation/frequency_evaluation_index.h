@@ -37,8 +37,8 @@ FrequencyEvaluationIndex frequency_evaluation_index(std::span<const double> inpu
 
 struct FrequencyEvaluationIndexParameters {
   double dt_s = 0.0;
-  int window_samples = 4096;               // N of the FFT (any N >= 4; powers of 2 are fastest)
-  int evaluation_interval_samples = 256;   // recompute every this many samples
+  int window_samples = 4096;              // N of the FFT (any N >= 4; powers of 2 are fastest)
+  int evaluation_interval_samples = 256;  // recompute every this many samples
   bool remove_mean = false;
 
   // Throws std::invalid_argument with the offending value. Not real-time safe.

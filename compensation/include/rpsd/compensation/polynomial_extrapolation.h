@@ -29,7 +29,8 @@ class PolynomialExtrapolationCompensator;
 
 struct PolynomialExtrapolationParameters {
   static constexpr std::string_view kName = "polynomial_extrapolation";
-  static constexpr std::string_view kSummary = "extrapolates the target tau ahead with a polynomial through its last p + 1 samples";
+  static constexpr std::string_view kSummary =
+      "extrapolates the target tau ahead with a polynomial through its last p + 1 samples";
   using Compensator = PolynomialExtrapolationCompensator;
   static PolynomialExtrapolationParameters read(config::Source& section);
 

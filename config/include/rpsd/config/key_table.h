@@ -12,8 +12,8 @@
 namespace rpsd::config {
 
 struct KeyRow {
-  std::string path;     // "compensation.delay_s"
-  std::string type;     // "number", "whole number", "list of numbers", "true or false", "one of ...", "section", "file"
+  std::string path;  // "compensation.delay_s"
+  std::string type;  // "number", "whole number", "list of numbers", "true or false", "one of ...", "section", "file"
   std::string unit;
   std::string fallback;  // the default, empty when the key is required
   std::string range;
@@ -33,7 +33,8 @@ class KeyTable final : public Source {
   long whole_number_or(std::string_view key, long min, long max, long fallback, std::string_view meaning) override;
   bool boolean_or(std::string_view key, bool fallback, std::string_view meaning) override;
   std::string text(std::string_view key, std::string_view meaning) override;
-  std::string choice(std::string_view key, const std::vector<std::string_view>& choices, std::string_view meaning) override;
+  std::string choice(std::string_view key, const std::vector<std::string_view>& choices,
+                     std::string_view meaning) override;
   bool has(std::string_view key) override;
   std::unique_ptr<Source> section(std::string_view key, std::string_view meaning) override;
   std::unique_ptr<Source> file(std::string_view key, std::string_view meaning) override;

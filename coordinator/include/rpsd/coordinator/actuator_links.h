@@ -40,7 +40,9 @@ class ActuatorLinks {
   void set_receive_deadline_ns(std::int64_t deadline_ns);
   bool over_dds() const { return !dds_links_.empty(); }
   // The simulated plant of a channel in this process (nullptr over DDS).
-  const servo::Plant* simulated_plant(int channel) const { return plant_of_channel_[static_cast<std::size_t>(channel)]; }
+  const servo::Plant* simulated_plant(int channel) const {
+    return plant_of_channel_[static_cast<std::size_t>(channel)];
+  }
   // Over DDS: messages each site's link refused or found late.
   std::vector<transport::DdsLinkCounters> dds_counters() const;
 

@@ -11,8 +11,8 @@
 #include <thread>
 #include <vector>
 
-#include "rpsd/realtime/spsc_queue.h"
 #include "rpsd/coordinator/step_record.h"
+#include "rpsd/realtime/spsc_queue.h"
 
 namespace rpsd::coordinator {
 

@@ -35,14 +35,14 @@
 namespace rpsd::coordinator {
 
 struct LoopParts {
-  integrators::Integrator* integrator = nullptr;          // configured with M, C, K0 and dt
-  substructure::NumericalModel* numerical = nullptr;       // M, C and R_num(d)
+  integrators::Integrator* integrator = nullptr;      // configured with M, C, K0 and dt
+  substructure::NumericalModel* numerical = nullptr;  // M, C and R_num(d)
   const substructure::Partition* partition = nullptr;
   transport::Link* link = nullptr;
   std::vector<compensation::CommandCompensator*> compensators;  // one per channel, configured
   std::vector<RestoringForcePath> force_paths;                  // one per channel
   std::vector<Eigen::Index> recorded_dofs;                      // at most kMaxRecordedDofs
-  std::span<const double> ground_acceleration_m_per_s2;  // at t = n dt (borrowed); empty: free vibration
+  std::span<const double> ground_acceleration_m_per_s2;         // at t = n dt (borrowed); empty: free vibration
   const substructure::GroundMotionLoad* ground_load = nullptr;  // F = -M iota a_g; needed with a record
   std::uint32_t test_id = 1;
   // As fast as possible, a full recorder queue makes the loop wait (nothing is lost); in
@@ -67,7 +67,15 @@ struct LimitStop {
 };
 const char* limit_stop_name(LimitStop::Kind kind);
 
-enum class StepOutcome : std::uint8_t { kOk, kRecordEnded, kLinkFailure, kIntegratorError, kNodeFault, kNonFinite, kLimit };
+enum class StepOutcome : std::uint8_t {
+  kOk,
+  kRecordEnded,
+  kLinkFailure,
+  kIntegratorError,
+  kNodeFault,
+  kNonFinite,
+  kLimit
+};
 
 class RpsdLoop {
  public:

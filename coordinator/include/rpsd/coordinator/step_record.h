@@ -40,8 +40,8 @@ struct StepRecord {
   // Timing (zero as fast as possible in process).
   // Command-to-feedback time of each channel's site this step, s.
   std::array<double, transport::kMaxChannels> round_trip_s{};
-  double cycle_lateness_s = 0.0;  // how late the paced cycle woke after its deadline
-  std::uint8_t feedback_age_periods = 0; // periods the feedback used was behind its command (0: on time; real time)
+  double cycle_lateness_s = 0.0;          // how late the paced cycle woke after its deadline
+  std::uint8_t feedback_age_periods = 0;  // periods the feedback used was behind its command (0: on time; real time)
 };
 
 // Copies what `from` uses (its channels and recorded DOFs) into `to`; the entries beyond

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "rpsd/coordinator/rpsd_loop.h"
+#include "rpsd/coordinator/test_config.h"
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/transport/dds_link.h"
-#include "rpsd/coordinator/test_config.h"
 
 namespace rpsd::coordinator {
 

@@ -15,9 +15,9 @@
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/coordinator/coordinator_limits.h"
 #include "rpsd/coordinator/restoring_force.h"
+#include "rpsd/integrators/factory.h"
 #include "rpsd/node/servo_node_config.h"
 #include "rpsd/realtime/realtime_setup.h"
-#include "rpsd/integrators/factory.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/substructure/linear_mdof_model.h"
 #include "rpsd/substructure/partition.h"
@@ -28,8 +28,8 @@ namespace rpsd::coordinator {
 struct ExperimentalChannel {
   substructure::ExperimentalDof dof;  // DOF, channel, scales, specimen stiffness estimate
   RestoringForceSource restoring_force = RestoringForceSource::kMeasuredForce;
-  std::uint32_t site_id = 1;          // the servo node (site) that owns the actuator
-  CoordinatorLimits limits;           // experimental[i].limits
+  std::uint32_t site_id = 1;  // the servo node (site) that owns the actuator
+  CoordinatorLimits limits;   // experimental[i].limits
 };
 
 // How the loop is paced.
@@ -47,10 +47,10 @@ struct ClockConfig {
 struct TransportConfig {
   enum class Kind { kInProcess, kDds };
   Kind kind = Kind::kInProcess;
-  std::uint32_t test_id = 1;          // DDS partition: two tests on one network never cross
+  std::uint32_t test_id = 1;  // DDS partition: two tests on one network never cross
   std::uint32_t domain_id = 0;
-  std::filesystem::path dds_config;   // Cyclone XML; empty: CYCLONEDDS_URI or defaults
-  double feedback_timeout_s = 1.0;    // lock-step: longest wait for one step's feedback
+  std::filesystem::path dds_config;  // Cyclone XML; empty: CYCLONEDDS_URI or defaults
+  double feedback_timeout_s = 1.0;   // lock-step: longest wait for one step's feedback
   // Lock-step: poll for the feedback this long before sleeping until it comes (0: never).
   double busy_wait_s = 0.0;
   double discovery_timeout_s = 10.0;  // longest wait for every site's node at start
@@ -58,7 +58,7 @@ struct TransportConfig {
 
 // A ground-acceleration record already read and processed to the integration step.
 struct GroundMotion {
-  std::string name;                        // file or generator, for titles
+  std::string name;  // file or generator, for titles
   double dt_s = 0.0;
   std::vector<double> acceleration_m_per_s2;
 };
@@ -68,8 +68,8 @@ struct TestConfig {
   std::string description;
   std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> structure;
   std::vector<ExperimentalChannel> experimental;
-  Eigen::VectorXd influence;        // ground-motion influence vector (default: all ones)
-  servo::PlantConfig plant;         // every channel's actuator (each channel gets its own)
+  Eigen::VectorXd influence;  // ground-motion influence vector (default: all ones)
+  servo::PlantConfig plant;   // every channel's actuator (each channel gets its own)
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
   compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
   double control_rate_hz = 1024.0;  // integration step = control period x iterations
@@ -78,7 +78,7 @@ struct TestConfig {
   // Either a ground motion or an initial displacement (free vibration) drives the test.
   std::optional<GroundMotion> ground_motion;
   Eigen::VectorXd initial_displacement_m;
-  double duration_s = 0.0;          // free vibration length, or the record's length
+  double duration_s = 0.0;  // free vibration length, or the record's length
   std::vector<Eigen::Index> record_dofs;
   // In process: the servo node of a site, by site id (its limits, limit actions and
   // watchdog; identity, channels and period come from the test). A site without one runs

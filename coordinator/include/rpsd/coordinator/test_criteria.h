@@ -15,7 +15,7 @@
 namespace rpsd::coordinator {
 
 struct ChannelCriteria {
-  double j1_tracking_delay_ms = 0.0;   // cross-correlation lag of measured behind target
+  double j1_tracking_delay_ms = 0.0;  // cross-correlation lag of measured behind target
   double j2_rms_tracking_error_percent = 0.0;
   double j3_peak_tracking_error_percent = 0.0;
   double final_tracking_indicator_m2 = 0.0;

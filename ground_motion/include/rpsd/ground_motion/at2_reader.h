@@ -27,8 +27,7 @@ struct At2ReadOptions {
 };
 
 // Reads an AT2 file. Not real-time safe.
-GroundMotionRecord read_peer_at2(const std::filesystem::path& file,
-                                 const At2ReadOptions& options = {});
+GroundMotionRecord read_peer_at2(const std::filesystem::path& file, const At2ReadOptions& options = {});
 
 // Parses AT2 text held in memory; `source_name` is used as the file name in messages
 // and as GroundMotionRecord::source. Not real-time safe.

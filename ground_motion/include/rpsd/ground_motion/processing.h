@@ -66,8 +66,7 @@ struct BaselineCorrectionOptions {
   BaselineMethod method = BaselineMethod::kPolynomialDisplacement;
   int polynomial_order = 3;
 };
-GroundMotionRecord baseline_correct(const GroundMotionRecord& record,
-                                    const BaselineCorrectionOptions& options);
+GroundMotionRecord baseline_correct(const GroundMotionRecord& record, const BaselineCorrectionOptions& options);
 
 // Ground velocity and displacement from rest, exact for acceleration linear between
 // samples: v+ = v + h (a0 + a1) / 2, d+ = d + h v + h^2 (2 a0 + a1) / 6.

@@ -23,19 +23,19 @@ std::string_view unit_name(AccelerationUnit unit);
 
 // Where a record came from.
 enum class RecordFormat {
-  kPeerAt2Old,         // PEER AT2, line 4 "NPTS=  4096, DT= .01000 SEC"
+  kPeerAt2Old,        // PEER AT2, line 4 "NPTS=  4096, DT= .01000 SEC"
   kPeerAt2NgaWest1,   // PEER AT2, line 4 "4000    0.0100    NPTS, DT"
   kPeerAt2NgaWest2,   // PEER AT2, line 4 "NPTS=   5590, DT=   .0050 SEC," (trailing comma)
-  kPlainText,           // values only, dt and unit given by the caller
-  kTimeAcceleration,    // two columns t, a (dt inferred)
-  kSynthetic,            // generate_synthetic_ground_motion()
+  kPlainText,         // values only, dt and unit given by the caller
+  kTimeAcceleration,  // two columns t, a (dt inferred)
+  kSynthetic,         // generate_synthetic_ground_motion()
 };
 
 std::string_view format_name(RecordFormat format);
 
 struct GroundMotionRecord {
-  std::string source;       // file path (as given) or a generator name, used in messages
-  std::string description;  // AT2: event, date, station, component (line 2); else free text
+  std::string source;                     // file path (as given) or a generator name, used in messages
+  std::string description;                // AT2: event, date, station, component (line 2); else free text
   std::vector<std::string> header_lines;  // AT2: the four header lines as read
   // Processing applied since reading, in order, e.g. "scaled by 0.4"; the format and
   // original unit keep describing where the samples came from.

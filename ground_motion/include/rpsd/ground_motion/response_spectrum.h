@@ -46,8 +46,8 @@ class PiecewiseLinearSdof {
 
 // Relative displacement u(t_i) at every sample of the record, from rest. Exact for the
 // piecewise-linear record (errors are round-off only). Not real-time safe.
-std::vector<double> sdof_response_piecewise_linear(const GroundMotionRecord& record,
-                                                   double omega_rad_per_s, double zeta);
+std::vector<double> sdof_response_piecewise_linear(const GroundMotionRecord& record, double omega_rad_per_s,
+                                                   double zeta);
 
 struct ResponseSpectrumOptions {
   std::vector<double> periods_s;  // each > 0
@@ -63,14 +63,13 @@ struct ResponseSpectrumOptions {
 struct ResponseSpectrum {
   std::vector<double> periods_s;
   double damping_ratio = 0.05;
-  std::vector<double> displacement_m;                  // Sd = max |u|
-  std::vector<double> pseudo_velocity_m_per_s;         // omega Sd
-  std::vector<double> pseudo_acceleration_m_per_s2;    // omega^2 Sd
+  std::vector<double> displacement_m;                // Sd = max |u|
+  std::vector<double> pseudo_velocity_m_per_s;       // omega Sd
+  std::vector<double> pseudo_acceleration_m_per_s2;  // omega^2 Sd
 };
 
 // Not real-time safe. Throws std::invalid_argument for a bad period or damping.
-ResponseSpectrum response_spectrum(const GroundMotionRecord& record,
-                                   const ResponseSpectrumOptions& options);
+ResponseSpectrum response_spectrum(const GroundMotionRecord& record, const ResponseSpectrumOptions& options);
 
 // `count` periods from first_s to last_s, equally spaced in log(T) (count >= 2, 0 < first < last).
 std::vector<double> log_spaced_periods(double first_s, double last_s, std::size_t count);

@@ -78,7 +78,7 @@ struct SyntheticGroundMotionOptions {
   GavinEnvelope gavin;
   JenningsHousnerTsaiEnvelope jennings_housner_tsai;
   ShinozukaSatoEnvelope shinozuka_sato;
-  double white_noise_psd_m2_per_s3 = 1.0;  // S0; irrelevant when scaling to a target PGA
+  double white_noise_psd_m2_per_s3 = 1.0;                        // S0; irrelevant when scaling to a target PGA
   std::optional<BaselineCorrectionOptions> baseline_correction;  // applied before scaling
   // Scale last so that max |a| equals this (Gavin far-field: 3.5 m/s^2). Unset: keep the
   // level set by S0 (so the output's PSD is the model's, for checks).

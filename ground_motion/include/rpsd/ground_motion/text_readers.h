@@ -16,9 +16,9 @@
 namespace rpsd::ground_motion {
 
 struct PlainTextOptions {
-  double dt_s = 0.0;                        // required, > 0
-  std::optional<AccelerationUnit> unit;     // required: the file does not say
-  std::size_t skip_lines = 0;               // header lines to skip before the data
+  double dt_s = 0.0;                     // required, > 0
+  std::optional<AccelerationUnit> unit;  // required: the file does not say
+  std::size_t skip_lines = 0;            // header lines to skip before the data
   // Unset: every value of every line, in reading order (files written 1, 5, 6 or 8 per
   // line). Set: only this 0-based column of a table; every data line then needs the
   // same number of columns as the first.
@@ -27,9 +27,9 @@ struct PlainTextOptions {
 };
 
 struct TimeAccelerationOptions {
-  std::optional<AccelerationUnit> unit;     // required: the file does not say
+  std::optional<AccelerationUnit> unit;  // required: the file does not say
   std::size_t skip_lines = 0;
-  std::size_t time_column = 0;              // time in s
+  std::size_t time_column = 0;  // time in s
   std::size_t acceleration_column = 1;
   // dt = (t_last - t_first) / (n - 1); every time must lie within
   // spacing_tolerance * dt of t_first + i * dt (default: 0.1 % of a step, looser than
@@ -38,15 +38,13 @@ struct TimeAccelerationOptions {
 };
 
 // Not real-time safe.
-GroundMotionRecord read_plain_text(const std::filesystem::path& file,
-                                   const PlainTextOptions& options);
+GroundMotionRecord read_plain_text(const std::filesystem::path& file, const PlainTextOptions& options);
 GroundMotionRecord parse_plain_text(std::string_view text, std::string_view source_name,
                                     const PlainTextOptions& options);
 
 // The time origin moves to the first sample (sample i at t = i * dt); the file's first
 // time is noted in `description`. Not real-time safe.
-GroundMotionRecord read_time_acceleration(const std::filesystem::path& file,
-                                          const TimeAccelerationOptions& options);
+GroundMotionRecord read_time_acceleration(const std::filesystem::path& file, const TimeAccelerationOptions& options);
 GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_view source_name,
                                            const TimeAccelerationOptions& options);
 

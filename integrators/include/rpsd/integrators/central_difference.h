@@ -11,8 +11,7 @@ struct CentralDifferenceParams {};
 
 class CentralDifference final : public OperatorSplittingEngine {
  public:
-  explicit CentralDifference(const CentralDifferenceParams& = {})
-      : OperatorSplittingEngine({0.0, 0.0, 0.5}) {}
+  explicit CentralDifference(const CentralDifferenceParams& = {}) : OperatorSplittingEngine({0.0, 0.0, 0.5}) {}
   SchemeInfo info() const override;
 };
 

@@ -10,8 +10,7 @@ struct ChenRiclesParams {};
 
 class ChenRicles final : public ModelBasedExplicitEngine {
  public:
-  explicit ChenRicles(const ChenRiclesParams& = {})
-      : ModelBasedExplicitEngine({0.0, 0.0, 0.5, 0.25}) {}
+  explicit ChenRicles(const ChenRiclesParams& = {}) : ModelBasedExplicitEngine({0.0, 0.0, 0.5, 0.25}) {}
   SchemeInfo info() const override;
 };
 

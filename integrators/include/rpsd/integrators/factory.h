@@ -18,9 +18,8 @@
 
 namespace rpsd::integrators {
 
-using IntegratorConfig =
-    std::variant<CentralDifferenceParams, NewmarkParams, HhtAlphaParams, GeneralizedAlphaParams,
-                 AlphaOsParams, ChangParams, ChenRiclesParams, KolayRiclesAlphaParams>;
+using IntegratorConfig = std::variant<CentralDifferenceParams, NewmarkParams, HhtAlphaParams, GeneralizedAlphaParams,
+                                      AlphaOsParams, ChangParams, ChenRiclesParams, KolayRiclesAlphaParams>;
 
 Scheme scheme_of(const IntegratorConfig& config);
 // Stable lower-case name: central_difference, newmark, hht_alpha, ...

@@ -50,9 +50,9 @@ class FixedIterationImplicitEngine : public Integrator {
 
   ImplicitCoefficients c_;
   FixedIterationOptions o_;
-  linalg::StructuralMatrix k_dynamic_;              // K^ - (1-af) K0
+  linalg::StructuralMatrix k_dynamic_;  // K^ - (1-af) K0
   SymmetricSolver k_hat_solver_;
-  std::vector<double> weights_;         // [(i-1)*(p+1) + j], node j at x = j - p + 1
+  std::vector<double> weights_;           // [(i-1)*(p+1) + j], node j at x = j - p + 1
   std::vector<Eigen::VectorXd> history_;  // U_{t-1}, U_{t-2} (poly order 2, 3)
   Eigen::VectorXd a_pred_, v_pred_, r_const_, residual_, delta_, target_, tmp_, r_meas_;
 };

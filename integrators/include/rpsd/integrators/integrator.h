@@ -48,9 +48,9 @@ struct SchemeInfo {
 
 enum class StepStatus : std::uint8_t {
   kOk,
-  kNotInitialized,   // configure() and initialize() (or set_state()) first
+  kNotInitialized,  // configure() and initialize() (or set_state()) first
   kOutOfSequence,   // begin_step / set_measured_restoring_force / end_step order violated
-  kSizeMismatch,     // vector length differs from the model size
+  kSizeMismatch,    // vector length differs from the model size
   kNonFiniteInput,  // NaN or infinity in a force
 };
 
@@ -69,17 +69,15 @@ class Integrator {
   // Not real-time safe. Checks the matrices (square, same size, finite, symmetric, mass
   // positive definite), dt > 0, and dt against the stability limit; factorises once.
   // Throws std::invalid_argument with a message naming the problem.
-  void configure(const StructuralMatrices& matrices, double dt_s,
-                 const ConfigureOptions& options = {});
+  void configure(const StructuralMatrices& matrices, double dt_s, const ConfigureOptions& options = {});
 
   // Not real-time safe (throws on bad sizes). a0 = M^-1 (f0 - C v0 - r0).
-  void initialize(const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
-                  const Eigen::VectorXd& r0, const Eigen::VectorXd& f0);
+  void initialize(const Eigen::VectorXd& d0, const Eigen::VectorXd& v0, const Eigen::VectorXd& r0,
+                  const Eigen::VectorXd& f0);
   // Not real-time safe. Sets an arbitrary state (restart, amplification analysis):
   // displacement, velocity, acceleration, restoring force R(d) and external force at t.
-  void set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
-                 const Eigen::VectorXd& r, const Eigen::VectorXd& f, double time_s = 0.0,
-                 std::int64_t step = 0);
+  void set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v, const Eigen::VectorXd& a, const Eigen::VectorXd& r,
+                 const Eigen::VectorXd& f, double time_s = 0.0, std::int64_t step = 0);
 
   // Real-time safe. External force at t + dt; computes the first command.
   StepStatus begin_step(const Eigen::VectorXd& f_next);
@@ -112,11 +110,11 @@ class Integrator {
   explicit Integrator(int iterations_per_step = 1) : iterations_(iterations_per_step) {}
 
   // Scheme hooks. The base checks sizes and sequence before calling them.
-  virtual void on_configure() = 0;       // factorise scheme matrices (may throw)
-  virtual void on_set_state() = 0;       // derive scheme state from d_, v_, a_, r_, f_
-  virtual void on_begin_step() = 0;      // f_next_ is set: write the first command_
+  virtual void on_configure() = 0;   // factorise scheme matrices (may throw)
+  virtual void on_set_state() = 0;   // derive scheme state from d_, v_, a_, r_, f_
+  virtual void on_begin_step() = 0;  // f_next_ is set: write the first command_
   virtual void on_restoring_force(int iteration, const Eigen::VectorXd& r) = 0;
-  virtual void on_end_step() = 0;        // set d_, v_, a_, r_ at t + dt
+  virtual void on_end_step() = 0;  // set d_, v_, a_, r_ at t + dt
 
   void set_iterations_per_step(int n) { iterations_ = n; }
 

@@ -35,9 +35,9 @@ class ModelBasedExplicitEngine : public Integrator {
 
  private:
   ModelBasedCoefficients c_;
-  linalg::StructuralMatrix d_matrix_;            // D = M + gamma dt C + beta dt^2 K0
-  SymmetricSolver d_solver_;         // only to derive w from a in set_state()
-  SymmetricSolver e_solver_;         // E = (1-am) M + (1-af)(gamma dt C + beta dt^2 K0)
+  linalg::StructuralMatrix d_matrix_;  // D = M + gamma dt C + beta dt^2 K0
+  SymmetricSolver d_solver_;           // only to derive w from a in set_state()
+  SymmetricSolver e_solver_;           // E = (1-am) M + (1-af)(gamma dt C + beta dt^2 K0)
   Eigen::VectorXd w_, ma_, v_next_, r_meas_, rhs_, tmp_, w_next_;
 };
 

@@ -29,8 +29,7 @@ class SymmetricSolver {
   Eigen::Index factor_nonzeros() const;
 
  private:
-  using SparseLdlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower,
-                                           Eigen::AMDOrdering<int>>;
+  using SparseLdlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>;
   linalg::MatrixStorage storage_ = linalg::MatrixStorage::kDiagonal;
   Eigen::VectorXd inverse_diagonal_;  // diagonal matrix, or D^-1 of the sparse AMD LDL^T
   std::unique_ptr<Eigen::LDLT<Eigen::MatrixXd>> dense_;

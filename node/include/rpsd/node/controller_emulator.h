@@ -9,9 +9,9 @@
 #include <span>
 #include <string>
 
-#include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/node/udp_controller_protocol.h"
 #include "rpsd/node/udp_socket.h"
+#include "rpsd/servo/simulated_actuator.h"
 
 namespace rpsd::node {
 
@@ -23,10 +23,10 @@ struct ControllerEmulatorConfig {
 struct ControllerEmulatorCounters {
   std::uint64_t commands_applied = 0;
   std::uint64_t queries = 0;
-  std::uint64_t bad_packets = 0;      // undecodable datagrams, ignored
-  std::uint64_t wrong_channels = 0;   // commands for another channel count, ignored
-  std::uint64_t stale_commands = 0;   // sequence not newer than the last one applied, ignored
-  std::uint64_t refused_commands = 0; // commands answered but not applied while in fault
+  std::uint64_t bad_packets = 0;       // undecodable datagrams, ignored
+  std::uint64_t wrong_channels = 0;    // commands for another channel count, ignored
+  std::uint64_t stale_commands = 0;    // sequence not newer than the last one applied, ignored
+  std::uint64_t refused_commands = 0;  // commands answered but not applied while in fault
   std::uint64_t send_errors = 0;
 };
 

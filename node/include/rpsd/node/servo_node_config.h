@@ -62,8 +62,8 @@ struct ServoNodeConfig {
   int command_timeout_periods = 10;
   LossAction on_command_loss = LossAction::kHold;
   std::array<double, transport::kMaxChannels> safe_position_m{};  // per channel, within the stroke
-  double safe_ramp_velocity_m_per_s = 0.005;  // at most each channel's max_velocity_m_per_s
-  int event_log_capacity = 256;               // limit activations kept for after the run
+  double safe_ramp_velocity_m_per_s = 0.005;                      // at most each channel's max_velocity_m_per_s
+  int event_log_capacity = 256;                                   // limit activations kept for after the run
 
   // Throws std::invalid_argument naming the field ("limits[1].max_stroke_m: ..."). Not
   // real-time safe.

@@ -10,8 +10,8 @@
 #include <span>
 #include <vector>
 
-#include "rpsd/servo/actuator.h"
 #include "rpsd/node/servo_node_config.h"
+#include "rpsd/servo/actuator.h"
 #include "rpsd/transport/messages.h"
 
 namespace rpsd::node {
@@ -35,15 +35,15 @@ const char* command_verdict_name(CommandVerdict verdict);
 
 struct ServoNodeCounters {
   std::uint64_t accepted = 0;
-  std::uint64_t superseded = 0;  // accepted, then replaced by a newer command before a tick
-  std::uint64_t applied = 0;     // commands taken by a tick
+  std::uint64_t superseded = 0;                              // accepted, then replaced by a newer command before a tick
+  std::uint64_t applied = 0;                                 // commands taken by a tick
   std::array<std::uint64_t, kCommandVerdicts> by_verdict{};  // index: CommandVerdict
   std::uint64_t ticks = 0;
-  std::uint64_t missed_periods = 0;  // ticks without a new command, once commands began
-  std::uint64_t holds = 0;           // times the watchdog began holding
+  std::uint64_t missed_periods = 0;                             // ticks without a new command, once commands began
+  std::uint64_t holds = 0;                                      // times the watchdog began holding
   std::array<std::uint64_t, kLimitKinds> limit_activations{};   // per kind: a channel's limit began acting
   std::array<std::uint64_t, kLimitKinds> limit_active_ticks{};  // per kind: ticks it acted on any channel
-  std::uint64_t faults = 0;  // fault latches (limit abort or actuator fault)
+  std::uint64_t faults = 0;                                     // fault latches (limit abort or actuator fault)
   std::uint64_t actuator_no_replies = 0;
   std::uint64_t actuator_faults = 0;
 

@@ -14,9 +14,9 @@
 #include <atomic>
 #include <cstdint>
 
+#include "rpsd/node/servo_node_controller.h"
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/realtime/realtime_setup.h"
-#include "rpsd/node/servo_node_controller.h"
 #include "rpsd/transport/dds_node_endpoint.h"
 
 namespace rpsd::node {
@@ -32,11 +32,11 @@ struct ServoNodeLoopOptions {
 struct ServoNodeLoopReport {
   realtime::RealTimeSetupReport granted;
   std::int64_t cycles = 0, overruns = 0;
-  realtime::LatencySummary jitter;  // wake-up lateness of the ticks made without a command
-  std::int64_t first_command_tick = -1; // tick on which the first command was applied
-  std::int64_t last_command_tick = -1;  // tick on which the last command was applied
-  std::int64_t hold_tick = -1;          // first tick the watchdog held after it (-1: never)
-  std::int64_t faulted_tick = -1;       // first tick with a latched fault (-1: never)
+  realtime::LatencySummary jitter;       // wake-up lateness of the ticks made without a command
+  std::int64_t first_command_tick = -1;  // tick on which the first command was applied
+  std::int64_t last_command_tick = -1;   // tick on which the last command was applied
+  std::int64_t hold_tick = -1;           // first tick the watchdog held after it (-1: never)
+  std::int64_t faulted_tick = -1;        // first tick with a latched fault (-1: never)
   std::int64_t feedback_published = 0, publish_failures = 0;
 };
 

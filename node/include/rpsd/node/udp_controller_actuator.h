@@ -12,9 +12,9 @@
 
 #include "rpsd/config/source.h"
 
-#include "rpsd/servo/actuator.h"
 #include "rpsd/node/udp_controller_protocol.h"
 #include "rpsd/node/udp_socket.h"
+#include "rpsd/servo/actuator.h"
 
 namespace rpsd::node {
 
@@ -74,7 +74,8 @@ class UdpControllerActuator final : public servo::Actuator {
   // and counting stale ones. kNoReply on a missing reply; kFault, latched until start(),
   // after more than max_missed_replies in a row; kFault (not latched) when the controller
   // reports one. Real-time safe: no allocation.
-  servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s, servo::ActuatorReading& reading) override;
+  servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s,
+                                 servo::ActuatorReading& reading) override;
 
   const UdpControllerCounters& counters() const { return counters_; }
   std::uint16_t local_port() const { return socket_.local_port(); }

@@ -17,10 +17,10 @@ namespace rpsd::node::udp_protocol {
 inline constexpr std::uint32_t kCommandMagic = 0x43535052;  // bytes "RPSC" on the wire
 inline constexpr std::uint32_t kReplyMagic = 0x52535052;    // bytes "RPSR" on the wire
 inline constexpr std::uint16_t kVersion = 1;
-inline constexpr int kMaxChannels = transport::kMaxChannels;  // slots in every packet
-inline constexpr std::size_t kCommandBytes = 24 + 8 * kMaxChannels;      // 88
-inline constexpr std::size_t kReplyBytes = 16 + 2 * 8 * kMaxChannels;    // 144
-inline constexpr double kMinPeriodS = 1e-6;  // command periods outside [min, max] are invalid
+inline constexpr int kMaxChannels = transport::kMaxChannels;           // slots in every packet
+inline constexpr std::size_t kCommandBytes = 24 + 8 * kMaxChannels;    // 88
+inline constexpr std::size_t kReplyBytes = 16 + 2 * 8 * kMaxChannels;  // 144
+inline constexpr double kMinPeriodS = 1e-6;                            // command periods outside [min, max] are invalid
 inline constexpr double kMaxPeriodS = 1.0;
 
 using CommandPacket = std::array<std::byte, kCommandBytes>;

@@ -9,15 +9,15 @@
 #include <variant>
 #include <vector>
 
-#include "rpsd/scenarios/study_file.h"
 #include "rpsd/node/servo_node_setup.h"
+#include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::scenarios {
 
 // Throws ConfigError naming file:line:column and the key path.
 node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
 
-
-node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
+node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::path& file,
+                                                       const std::vector<Override>& overrides = {});
 
 }  // namespace rpsd::scenarios

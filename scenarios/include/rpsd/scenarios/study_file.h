@@ -38,7 +38,7 @@ studies::StudyDocument load_study(const std::filesystem::path& file, const std::
 
 // The same from YAML text; `as_file` names it in messages and anchors relative paths.
 studies::StudyDocument parse_study(const std::string& yaml_text, const std::filesystem::path& as_file,
-                      const std::vector<Override>& overrides = {});
+                                   const std::vector<Override>& overrides = {});
 
 // `points` values from start to stop, equally spaced in log10. Both must be positive.
 std::vector<double> log_spaced(double start, double stop, int points);

@@ -60,10 +60,15 @@ class MappingReader final : public config::Source {
   double number_or(std::string_view key, double fallback, const config::Number& spec) override;
   std::vector<double> numbers(std::string_view key, const config::Number& spec) override;
   long whole_number(std::string_view key, long minimum, long maximum, std::string_view meaning) override;
-  long whole_number_or(std::string_view key, long minimum, long maximum, long fallback, std::string_view meaning) override;
+  long whole_number_or(std::string_view key, long minimum, long maximum, long fallback,
+                       std::string_view meaning) override;
   bool boolean_or(std::string_view key, bool fallback, std::string_view meaning) override;
-  std::string text(std::string_view key, std::string_view meaning) override { (void)meaning; return string(key); }
-  std::string choice(std::string_view key, const std::vector<std::string_view>& choices, std::string_view meaning) override;
+  std::string text(std::string_view key, std::string_view meaning) override {
+    (void)meaning;
+    return string(key);
+  }
+  std::string choice(std::string_view key, const std::vector<std::string_view>& choices,
+                     std::string_view meaning) override;
   bool has(std::string_view key) override;
   std::unique_ptr<config::Source> section(std::string_view key, std::string_view meaning) override;
   std::unique_ptr<config::Source> file(std::string_view key, std::string_view meaning) override;

@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <span>
 
-
 namespace rpsd::servo {
 
 // Channels an actuator may have (the node's messages carry as many).

@@ -69,7 +69,7 @@ struct ServoAnalysis {
   double max_stable_p_gain = 0.0;             // Routh, paper's Eq. 8
   double max_stable_p_gain_full_model = 0.0;  // eigenvalues, servovalve dynamics included
   double p_gain = 0.0;
-  double static_gain = 0.0;                   // G_xu(0) of Eq. 8
+  double static_gain = 0.0;  // G_xu(0) of Eq. 8
   double specimen_natural_frequency_hz = 0.0;
   double servovalve_natural_frequency_hz = 0.0;
   double servovalve_damping_ratio = 0.0;

@@ -52,14 +52,14 @@ class ServoHydraulicPlant final : public Plant {
  private:
   // The parameters as the derivative uses them (SI units, products and reciprocals).
   struct Coefficients {
-    double position_gain_v_per_m = 0.0;        // G_p C_F
-    double rate_gain_v_s_per_m = 0.0;          // G_d C_F
-    double pilot_gain_m3_per_s2_per_v = 0.0;   // K_vp / tau
-    double spool_feedback_v = 0.0;             // K_3 x_vmax: volts per unit opening
-    double pilot_rate_per_s = 0.0;             // 1 / tau
-    double opening_per_m3 = 0.0;               // 1 / (A_v x_vmax)
-    double rolloff_squared = 0.0;              // r^2, or 0 with the flow gain held constant
-    double load_pressure_per_pa = 0.0;         // 1 / P_s, or 0 without the load-pressure term
+    double position_gain_v_per_m = 0.0;          // G_p C_F
+    double rate_gain_v_s_per_m = 0.0;            // G_d C_F
+    double pilot_gain_m3_per_s2_per_v = 0.0;     // K_vp / tau
+    double spool_feedback_v = 0.0;               // K_3 x_vmax: volts per unit opening
+    double pilot_rate_per_s = 0.0;               // 1 / tau
+    double opening_per_m3 = 0.0;                 // 1 / (A_v x_vmax)
+    double rolloff_squared = 0.0;                // r^2, or 0 with the flow gain held constant
+    double load_pressure_per_pa = 0.0;           // 1 / P_s, or 0 without the load-pressure term
     double flow_gain_per_compressibility = 0.0;  // K_v0 / K_a
     double area_per_compressibility = 0.0;       // A / K_a
     double leakage_per_compressibility = 0.0;    // C_l / K_a

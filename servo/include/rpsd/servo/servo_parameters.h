@@ -19,11 +19,11 @@ struct ControllerParameters {
 // Three-stage servovalve spool dynamics with the inner spool loop (paper Eq. 2):
 // x_v / v = K_vp / (tau A_v s^2 + A_v s + K_3 K_vp) / x_vmax, with |x_v| <= 1.
 struct ServovalveParameters {
-  double pilot_time_constant_s = 0.0;         // tau
+  double pilot_time_constant_s = 0.0;           // tau
   double pilot_flow_gain_m3_per_s_per_v = 0.0;  // K_vp
-  double main_spool_area_m2 = 0.0;            // A_v
-  double spool_lvdt_gain_v_per_m = 0.0;       // K_3
-  double max_spool_stroke_m = 0.0;            // x_vmax
+  double main_spool_area_m2 = 0.0;              // A_v
+  double spool_lvdt_gain_v_per_m = 0.0;         // K_3
+  double max_spool_stroke_m = 0.0;              // x_vmax
 
   // Static gain K_s = 1 / (K_3 x_vmax): spool opening per volt of valve command (Eq. 6).
   double static_gain_per_v() const { return 1.0 / (spool_lvdt_gain_v_per_m * max_spool_stroke_m); }
@@ -49,11 +49,11 @@ struct ValveFlowParameters {
 
 // Actuator chambers (paper Eq. 4): P_L = (Q_L - A xdot) / (K_a s + C_l); force = P_L A.
 struct ActuatorParameters {
-  double piston_area_m2 = 0.0;               // A
-  double oil_volume_m3 = 0.0;                // V_t, both chambers and passages
-  double bulk_modulus_pa = 0.0;              // beta_e, effective
-  double leakage_m3_per_s_per_pa = 0.0;      // C_l, total servovalve/actuator leakage
-  double stroke_m = 0.0;                     // half stroke (+/-), informational
+  double piston_area_m2 = 0.0;           // A
+  double oil_volume_m3 = 0.0;            // V_t, both chambers and passages
+  double bulk_modulus_pa = 0.0;          // beta_e, effective
+  double leakage_m3_per_s_per_pa = 0.0;  // C_l, total servovalve/actuator leakage
+  double stroke_m = 0.0;                 // half stroke (+/-), informational
 
   // Compressibility coefficient K_a = V_t / (4 beta_e), m^5/N (Merritt).
   double compressibility_m5_per_n() const { return oil_volume_m3 / (4.0 * bulk_modulus_pa); }
@@ -79,7 +79,7 @@ struct SpecimenStiffness {
 struct SpecimenParameters {
   double mass_kg = 0.0;
   SpecimenStiffness stiffness;
-  double damping_ratio = 0.0;                 // of the initial stiffness and mass
+  double damping_ratio = 0.0;  // of the initial stiffness and mass
   double friction_force_n = 0.0;
   double friction_regularisation_velocity_m_per_s = 1.0e-3;
 
@@ -96,7 +96,8 @@ struct ServoSystemParameters {
   using Model = ServoHydraulicPlant;  // the Plant these parameters build
   static constexpr std::string_view kName = "servo_model";
   static constexpr std::string_view kSummary =
-      "the seed paper's servo-hydraulic model (controller, three-stage servovalve, actuator, specimen), from a parameter file";
+      "the seed paper's servo-hydraulic model (controller, three-stage servovalve, actuator, specimen), from a "
+      "parameter file";
   // `parameters`: the parameter file, relative to the file that names it (the specimen is the
   // file's own, so the scenario's specimen stiffness is not used).
   static ServoSystemParameters read(config::Source& section, double specimen_stiffness_n_per_m);

@@ -1,7 +1,7 @@
 // Effective damping of a free-decay (or free-growth) response about zero: the peaks of |x|
-// (one per half cycle) refined by parabolic interpolation, ln(peak) fitted by least squares against time. zeta = sigma / sqrt(sigma^2 +
-// omega_d^2) with the decay rate sigma from the slope and omega_d from the peak spacing.
-// Negative zeta means the response grows. Not real-time safe.
+// (one per half cycle) refined by parabolic interpolation, ln(peak) fitted by least squares against time. zeta = sigma
+// / sqrt(sigma^2 + omega_d^2) with the decay rate sigma from the slope and omega_d from the peak spacing. Negative zeta
+// means the response grows. Not real-time safe.
 #pragma once
 
 #include <span>

@@ -23,12 +23,12 @@ struct DelayCompensationCase {
   double predicted_damping_ratio_loop = 0.0;  // root of m s^2 + c s + k G_c(s) G_a(s)
   bool stable = false;
   bool aborted_on_amplitude = false;
-  double tracking_rms_error_percent = 0.0;    // J2 between target and measured
-  double tracking_peak_error_percent = 0.0;   // J3
-  double tracking_delay_s = 0.0;              // J1: cross-correlation of measured against target
-  double energy_balance_error_j = 0.0;        // input - (kinetic + damping + restoring) at the end
+  double tracking_rms_error_percent = 0.0;   // J2 between target and measured
+  double tracking_peak_error_percent = 0.0;  // J3
+  double tracking_delay_s = 0.0;             // J1: cross-correlation of measured against target
+  double energy_balance_error_j = 0.0;       // input - (kinetic + damping + restoring) at the end
   double final_tracking_indicator_m2 = 0.0;
-  std::int64_t steps = 0;                     // steps taken (fewer when aborted on amplitude)
+  std::int64_t steps = 0;  // steps taken (fewer when aborted on amplitude)
 };
 
 // Runs every case; `dir` (optional) receives one CSV per case.
@@ -39,7 +39,6 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
 std::string delay_case_csv_name(std::size_t index, double compensated_delay_s);
 
 void write_delay_compensation(const std::filesystem::path& dir, const StudyDocument& file,
-                              const DelayCompensationStudy& study,
-                              const std::vector<DelayCompensationCase>& cases);
+                              const DelayCompensationStudy& study, const std::vector<DelayCompensationCase>& cases);
 
 }  // namespace rpsd::studies

@@ -10,7 +10,6 @@ namespace rpsd::studies {
 // Writes `<png without extension>.gp` (terminal and output lines prepended to `script`)
 // and runs gnuplot on it from the PNG's folder. Throws std::runtime_error if gnuplot is
 // missing or fails.
-void render_png(const std::filesystem::path& png, const std::string& script, int width_px = 1000,
-                int height_px = 700);
+void render_png(const std::filesystem::path& png, const std::string& script, int width_px = 1000, int height_px = 700);
 
 }  // namespace rpsd::studies

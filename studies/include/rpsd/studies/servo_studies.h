@@ -42,8 +42,8 @@ std::vector<FrequencyResponseRow> run_frequency_response(const FrequencyResponse
 
 struct MaxGainRow {
   double mass_kg = 0.0;
-  double max_p_gain_routh = 0.0;        // Routh on Eq. 8
-  double max_p_gain_full_model = 0.0;   // eigenvalues, servovalve dynamics included
+  double max_p_gain_routh = 0.0;       // Routh on Eq. 8
+  double max_p_gain_full_model = 0.0;  // eigenvalues, servovalve dynamics included
   double oil_column_frequency_hz = 0.0;
 };
 

@@ -22,21 +22,21 @@ struct SineSweepStudy {
   double start_frequency_hz = 0.0;
   double end_frequency_hz = 10.0;
   double duration_s = 60.0;
-  double command_rate_hz = 1024.0;               // command samples per second
+  double command_rate_hz = 1024.0;  // command samples per second
   std::vector<double> report_frequencies_hz{1.0, 2.0, 5.0};
 };
 
 // Figure 6: frequency responses of Eq. 8, Eq. 9 and the phase-lead compensated system.
 struct FrequencyResponseStudy {
   servo::ServoSystemParameters servo;
-  std::vector<double> frequencies_hz;            // log-spaced from the file's range
+  std::vector<double> frequencies_hz;  // log-spaced from the file's range
   compensation::PhaseLeadParameters phase_lead;
 };
 
 // Figure 7: largest stable P gain against the attached mass.
 struct MaxGainStudy {
   servo::ServoSystemParameters servo;
-  std::vector<double> masses_kg;                 // log-spaced from the file's range
+  std::vector<double> masses_kg;  // log-spaced from the file's range
 };
 
 // Figure 8: an elastic SDOF released from an initial displacement in RPsD, its whole
@@ -57,7 +57,8 @@ struct DelayCompensationStudy {
   std::vector<double> compensated_delays_s;
 };
 
-using Study = std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, coordinator::TestConfig>;
+using Study =
+    std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, coordinator::TestConfig>;
 
 // One swept key of an `rpsd_test` scenario and the values it takes (as YAML scalars).
 struct SweepAxis {
@@ -73,8 +74,8 @@ struct StudyDocument {
   // `sweep:` of an rpsd_test scenario (one or two axes; empty when there is none). Every
   // case has been read and checked before anything runs.
   std::vector<SweepAxis> sweep;
-  std::vector<coordinator::TestConfig> sweep_cases;           // the first axis varies fastest
-  std::vector<std::vector<double>> sweep_values;   // the axis values of each case
+  std::vector<coordinator::TestConfig> sweep_cases;  // the first axis varies fastest
+  std::vector<std::vector<double>> sweep_values;     // the axis values of each case
 };
 
 }  // namespace rpsd::studies

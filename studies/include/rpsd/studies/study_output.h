@@ -12,15 +12,14 @@
 
 namespace rpsd::studies {
 
-void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& file,
-                      const SineSweepStudy& study, const SineSweepResult& result);
+void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& file, const SineSweepStudy& study,
+                      const SineSweepResult& result);
 
 void write_frequency_response(const std::filesystem::path& dir, const StudyDocument& file,
-                              const FrequencyResponseStudy& study,
-                              const std::vector<FrequencyResponseRow>& rows);
+                              const FrequencyResponseStudy& study, const std::vector<FrequencyResponseRow>& rows);
 
-void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
-                    const MaxGainStudy& study, const std::vector<MaxGainRow>& rows);
+void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file, const MaxGainStudy& study,
+                    const std::vector<MaxGainRow>& rows);
 
 // Runs whichever study the file holds and writes it into dir (created if missing). False
 // when an `rpsd_test` run aborted (its files are still complete for every step it took);

@@ -17,17 +17,17 @@ enum class RunResult { kCompleted, kAborted };
 // The headline numbers of one run, for sweep tables.
 struct TestHeadline {
   RunResult result = RunResult::kCompleted;
-  std::string outcome;                   // "completed", or why the test stopped
-  double j2_percent = 0.0;               // channel 0
-  double j4_percent = 0.0;               // first recorded DOF against the reference
-  double peak_displacement_m = 0.0;      // first recorded DOF
+  std::string outcome;               // "completed", or why the test stopped
+  double j2_percent = 0.0;           // channel 0
+  double j4_percent = 0.0;           // first recorded DOF against the reference
+  double peak_displacement_m = 0.0;  // first recorded DOF
   double reference_peak_displacement_m = 0.0;
 };
 
 // `progress` (optional) receives (steps done, steps planned) while the test runs.
 TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
-                        const coordinator::TestConfig& scenario,
-                        const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+                           const coordinator::TestConfig& scenario,
+                           const std::function<void(std::int64_t, std::int64_t)>& progress = {});
 
 // Runs every case of a sweep into dir/case_NN/ and writes the table across the cases
 // (sweep.csv, summary.json, sweep.png). kAborted if any case aborted.

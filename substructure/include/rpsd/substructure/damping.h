@@ -1,8 +1,8 @@
 #pragma once
 // How a model's damping matrix C is specified, and how it is built from M and K0.
 
-#include "rpsd/substructure/rayleigh.h"
 #include "rpsd/linalg/structural_matrix.h"
+#include "rpsd/substructure/rayleigh.h"
 
 #include <optional>
 #include <string>
@@ -36,11 +36,11 @@ struct RayleighFromFrequencies {
   double damping_ratio_b = 0.05;
 };
 
-using DampingConfig = std::variant<Undamped, DampingMatrix, RayleighFromModes,
-                                   RayleighFromFrequencies, RayleighCoefficients>;
+using DampingConfig =
+    std::variant<Undamped, DampingMatrix, RayleighFromModes, RayleighFromFrequencies, RayleighCoefficients>;
 
 struct BuiltDamping {
-  linalg::StructuralMatrix c;                          // same storage as K0
+  linalg::StructuralMatrix c;                    // same storage as K0
   std::optional<RayleighCoefficients> rayleigh;  // set for the three Rayleigh forms
 };
 
@@ -48,7 +48,6 @@ struct BuiltDamping {
 // M positive definite). C = a0 M + a1 K0 for Rayleigh damping, with the storage of K0.
 // Errors are std::invalid_argument prefixed with `context`. Not real-time safe.
 [[nodiscard]] BuiltDamping build_damping(const DampingConfig& config, const linalg::StructuralMatrix& mass,
-                                         const linalg::StructuralMatrix& initial_stiffness,
-                                         const std::string& context);
+                                         const linalg::StructuralMatrix& initial_stiffness, const std::string& context);
 
 }  // namespace rpsd::substructure

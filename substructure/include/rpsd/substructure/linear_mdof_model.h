@@ -11,8 +11,8 @@
 namespace rpsd::substructure {
 
 struct LinearMdofConfig {
-  linalg::StructuralMatrix mass_kg;           // symmetric positive definite
-  linalg::StructuralMatrix stiffness_n_per_m; // symmetric, no negative diagonal entry
+  linalg::StructuralMatrix mass_kg;            // symmetric positive definite
+  linalg::StructuralMatrix stiffness_n_per_m;  // symmetric, no negative diagonal entry
   DampingConfig damping = Undamped{};
   // Where each matrix came from (e.g. "file 'k.mtx'"); added to error messages when set.
   std::string mass_source;
@@ -40,9 +40,7 @@ class LinearMdofModel final : public NumericalModel {
   void commit() noexcept override {}
 
   // The Rayleigh coefficients used, if the damping was Rayleigh.
-  [[nodiscard]] const std::optional<RayleighCoefficients>& rayleigh() const noexcept {
-    return rayleigh_;
-  }
+  [[nodiscard]] const std::optional<RayleighCoefficients>& rayleigh() const noexcept { return rayleigh_; }
 
  private:
   linalg::StructuralMatrix M_, C_, K_;

@@ -18,7 +18,7 @@ namespace rpsd::substructure {
 
 // As load_matrix_market, and also requires a square matrix with expected_dofs rows when given.
 [[nodiscard]] linalg::SparseMatrix load_square_matrix_market(const std::filesystem::path& file,
-                                                     std::optional<Eigen::Index> expected_dofs);
+                                                             std::optional<Eigen::Index> expected_dofs);
 
 struct MatrixMarketModelFiles {
   std::filesystem::path mass_file;

@@ -16,7 +16,7 @@
 namespace rpsd::substructure {
 
 struct ExperimentalDof {
-  Eigen::Index dof = 0;           // 0-based global DOF of the model
+  Eigen::Index dof = 0;               // 0-based global DOF of the model
   Eigen::Index actuator_channel = 0;  // 0-based channel of the servo node
   double displacement_scale = 1.0;    // specimen displacement / model displacement, > 0
   double force_scale = 1.0;           // model force / specimen force, > 0
@@ -44,7 +44,9 @@ class Partition {
   // Channel driving `dof`, or −1 for a numerical DOF. Real-time safe.
   [[nodiscard]] Eigen::Index channel_of(Eigen::Index dof) const noexcept;
   [[nodiscard]] const std::vector<Eigen::Index>& numerical_dofs() const noexcept { return numerical_; }
-  [[nodiscard]] const ExperimentalDof& channel(Eigen::Index ch) const { return by_channel_.at(static_cast<std::size_t>(ch)); }
+  [[nodiscard]] const ExperimentalDof& channel(Eigen::Index ch) const {
+    return by_channel_.at(static_cast<std::size_t>(ch));
+  }
 
   // commands[ch] = displacement_scale · d_global[dof]. Sizes dofs() and channels().
   // Real-time safe.
@@ -60,8 +62,7 @@ class Partition {
   void scatter_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured,
                       Eigen::Ref<Eigen::VectorXd> r_exp) const noexcept;
   // r[dof] += force_scale · f_measured[ch] (adds R_exp to R_num in place). Real-time safe.
-  void add_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured,
-                  Eigen::Ref<Eigen::VectorXd> r) const noexcept;
+  void add_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured, Eigen::Ref<Eigen::VectorXd> r) const noexcept;
 
   // K_num plus the specimens' estimated stiffness in model units
   // (force_scale · displacement_scale · k_specimen on the diagonal of each experimental DOF),

@@ -16,7 +16,7 @@ struct RayleighCoefficients {
 // Throws std::invalid_argument for non-positive or equal frequencies, negative ratios, or
 // ratios that would need a negative coefficient (negative damping in some frequency range).
 // Not real-time safe (throws).
-[[nodiscard]] RayleighCoefficients rayleigh_from_frequencies(double omega_a_rad_s, double omega_b_rad_s,
-                                                             double zeta_a, double zeta_b);
+[[nodiscard]] RayleighCoefficients rayleigh_from_frequencies(double omega_a_rad_s, double omega_b_rad_s, double zeta_a,
+                                                             double zeta_b);
 
 }  // namespace rpsd::substructure

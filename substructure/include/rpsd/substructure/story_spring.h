@@ -37,9 +37,7 @@ class StorySpring {
     return std::visit([](const auto& s) { return s.committed_force(); }, law_);
   }
   // The concrete law, for recording its internal variables.
-  [[nodiscard]] const std::variant<LinearSpring, BilinearSpring, BoucWenSpring>& law() const noexcept {
-    return law_;
-  }
+  [[nodiscard]] const std::variant<LinearSpring, BilinearSpring, BoucWenSpring>& law() const noexcept { return law_; }
 
  private:
   std::variant<LinearSpring, BilinearSpring, BoucWenSpring> law_;

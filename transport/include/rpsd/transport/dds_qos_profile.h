@@ -33,7 +33,7 @@ namespace rpsd::transport {
 
 struct DdsQosSettings {
   double control_period_s = 1.0 / 1024.0;
-  double liveliness_lease_s = 1.0;   // L
+  double liveliness_lease_s = 1.0;  // L
   int history_depth = 8;
   // Real time: readers take what arrives and writers never send repairs (best effort both).
   bool newest_only = false;

@@ -9,8 +9,8 @@ namespace rpsd::transport {
 
 enum class LinkStatus : std::uint8_t {
   kOk,
-  kTimeout,      // no feedback for this step before the deadline
-  kStaleStep,    // feedback arrived for a different step
+  kTimeout,    // no feedback for this step before the deadline
+  kStaleStep,  // feedback arrived for a different step
   kPeerLost,
 };
 
