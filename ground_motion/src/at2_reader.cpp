@@ -28,7 +28,7 @@ std::string trimmed(std::string_view text) {
   return std::string(text.substr(first, last - first + 1));
 }
 
-constexpr std::string_view line4_forms =
+constexpr std::string_view kLine4Forms =
     "\"NPTS=<n>, DT=<dt> SEC\" (old PEER, NGA-West2) or \"<n> <dt> NPTS, DT\" (NGA-West1)";
 
 // Line 3: the quantity must be acceleration; the word after "UNITS" (skipping OF/ARE/IN
@@ -147,7 +147,7 @@ class Line4Parser {
  private:
   [[noreturn]] void fail(std::string_view what) const {
     throw RecordError(where(source_, line_, p_ + 1) + "expected " + std::string(what) +
-                      " in the NPTS/DT line, one of " + std::string(line4_forms) + ", got " +
+                      " in the NPTS/DT line, one of " + std::string(kLine4Forms) + ", got " +
                       detail::quoted(original_));
   }
   void skip_blanks() {

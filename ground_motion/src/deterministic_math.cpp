@@ -8,12 +8,12 @@
 namespace rpsd::ground_motion::deterministic {
 namespace {
 
-// ln 2 split so that k * ln2_hi is exact for |k| < 2^11 (fdlibm's constants).
-constexpr double ln2_hi = 6.93147180369123816490e-01;
-constexpr double ln2_lo = 1.90821492927058770002e-10;
-constexpr double inv_ln2 = 1.44269504088896338700e+00;
-constexpr double sqrt_half = 0.70710678118654752440;
-constexpr double half_pi = 1.57079632679489661923;
+// ln 2 split so that k * kLn2Hi is exact for |k| < 2^11 (fdlibm's constants).
+constexpr double kLn2Hi = 6.93147180369123816490e-01;
+constexpr double kLn2Lo = 1.90821492927058770002e-10;
+constexpr double kInvLn2 = 1.44269504088896338700e+00;
+constexpr double kSqrtHalf = 0.70710678118654752440;
+constexpr double kHalfPi = 1.57079632679489661923;
 
 }  // namespace
 
@@ -22,8 +22,8 @@ double exp(double x) noexcept {
   if (x > 709.782712893384) return std::numeric_limits<double>::infinity();
   if (x < -745.1332191019412) return 0.0;
   // x = k ln2 + r with |r| <= ln2 / 2; e^r by its Taylor series to r^14 / 14!.
-  const double k = std::floor(x * inv_ln2 + 0.5);
-  const double r = (x - k * ln2_hi) - k * ln2_lo;
+  const double k = std::floor(x * kInvLn2 + 0.5);
+  const double r = (x - k * kLn2Hi) - k * kLn2Lo;
   constexpr int terms = 14;
   double p = 1.0;
   for (int j = terms; j >= 1; --j) p = 1.0 + p * r / static_cast<double>(j);
@@ -36,7 +36,7 @@ double log(double x) noexcept {
   if (std::isinf(x)) return x;
   int e = 0;
   double m = std::frexp(x, &e);  // exact: x = m 2^e, m in [0.5, 1)
-  if (m < sqrt_half) {
+  if (m < kSqrtHalf) {
     m *= 2.0;
     --e;
   }
@@ -47,14 +47,14 @@ double log(double x) noexcept {
   double p = 1.0 / (2.0 * terms + 1.0);
   for (int k = terms - 1; k >= 0; --k) p = p * s2 + 1.0 / (2.0 * k + 1.0);
   const double de = static_cast<double>(e);
-  return de * ln2_hi + (de * ln2_lo + 2.0 * s * p);
+  return de * kLn2Hi + (de * kLn2Lo + 2.0 * s * p);
 }
 
 void sincos_2pi(double u, double& sine, double& cosine) noexcept {
   // 2 pi u = q pi/2 + x with q the nearest integer to 4u (4u - q is exact), |x| <= pi/4.
   const double four_u = 4.0 * u;
   const double q = std::floor(four_u + 0.5);
-  const double x = (four_u - q) * half_pi;
+  const double x = (four_u - q) * kHalfPi;
   const double x2 = x * x;
   // Taylor series to x^17 (sin) and x^16 (cos): remainder below 2e-18 for |x| <= pi/4.
   double s = 1.0;

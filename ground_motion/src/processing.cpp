@@ -12,7 +12,7 @@ namespace rpsd::ground_motion {
 namespace {
 
 // Sample-grid comparisons allow this fraction of a step for times typed in decimal.
-constexpr double grid_tolerance = 1e-9;
+constexpr double kGridTolerance = 1e-9;
 
 std::string num(double value) {
   std::ostringstream out;
@@ -65,11 +65,11 @@ GroundMotionRecord trim(const GroundMotionRecord& record, const TrimOptions& opt
     fail(record, "trim.start_s: expected a time >= 0 s, got " + num(options.start_s));
   }
   const double end_s = options.end_s.value_or(last_time);
-  if (!std::isfinite(end_s) || end_s > last_time + grid_tolerance * record.dt_s) {
+  if (!std::isfinite(end_s) || end_s > last_time + kGridTolerance * record.dt_s) {
     fail(record, "trim.end_s: " + num(end_s) + " s is after the record's last sample at " + num(last_time) + " s");
   }
-  const double first_index = std::ceil(options.start_s / record.dt_s - grid_tolerance);
-  const double last_index = std::floor(end_s / record.dt_s + grid_tolerance);
+  const double first_index = std::ceil(options.start_s / record.dt_s - kGridTolerance);
+  const double last_index = std::floor(end_s / record.dt_s + kGridTolerance);
   if (!(first_index <= last_index)) {
     fail(record, "trim: no sample lies in [" + num(options.start_s) + ", " + num(end_s) + "] s");
   }
@@ -110,7 +110,7 @@ GroundMotionRecord resample(const GroundMotionRecord& record, const ResampleOpti
     fail(record, "resample.dt_s: expected a positive time step, got " + num(dt_new));
   }
   const double ratio = record.dt_s / dt_new;  // new samples per old step
-  if (ratio < 1.0 - grid_tolerance && !options.allow_downsampling) {
+  if (ratio < 1.0 - kGridTolerance && !options.allow_downsampling) {
     fail(record, "resample.dt_s: " + num(dt_new) + " s is coarser than the record's " + num(record.dt_s) +
                      " s; linear interpolation would alias (low-pass the "
                      "record first and set allow_downsampling)");
@@ -119,10 +119,10 @@ GroundMotionRecord resample(const GroundMotionRecord& record, const ResampleOpti
   const std::size_t n = a.size();
   const double span = static_cast<double>(n - 1) * ratio;  // last old sample, in new steps
   if (span > 1e9) fail(record, "resample.dt_s: more than 1e9 samples");
-  const auto n_new = static_cast<std::size_t>(std::floor(span + grid_tolerance)) + 1;
+  const auto n_new = static_cast<std::size_t>(std::floor(span + kGridTolerance)) + 1;
 
   const double rounded = std::round(ratio);
-  const bool integer_ratio = rounded >= 1.0 && std::abs(ratio - rounded) <= grid_tolerance * ratio;
+  const bool integer_ratio = rounded >= 1.0 && std::abs(ratio - rounded) <= kGridTolerance * ratio;
   const auto m = static_cast<std::size_t>(rounded);
 
   GroundMotionRecord out = record;

@@ -8,7 +8,7 @@ namespace rpsd::ground_motion {
 double to_m_per_s2(AccelerationUnit unit) {
   switch (unit) {
     case AccelerationUnit::kG:
-      return standard_gravity_m_per_s2;
+      return kStandardGravityMPerS2;
     case AccelerationUnit::kMPerS2:
       return 1.0;
     case AccelerationUnit::kCmPerS2:

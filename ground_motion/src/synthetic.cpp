@@ -15,7 +15,7 @@
 namespace rpsd::ground_motion {
 namespace {
 
-constexpr const char* prefix = "synthetic ground motion: ";
+constexpr const char* kPrefix = "synthetic ground motion: ";
 
 std::string num(double value) {
   std::ostringstream out;
@@ -25,7 +25,7 @@ std::string num(double value) {
 }
 
 void require(bool ok, const std::string& what) {
-  if (!ok) throw RecordError(prefix + what);
+  if (!ok) throw RecordError(kPrefix + what);
 }
 
 bool positive(double x) { return x > 0.0 && std::isfinite(x); }

@@ -13,7 +13,7 @@ namespace {
 
 using detail::where;
 
-constexpr std::string_view separators = ",;";
+constexpr std::string_view kSeparators = ",;";
 
 bool is_comment_or_blank(std::string_view line) {
   const auto first = line.find_first_not_of(" \t\r\v\f");
@@ -73,7 +73,7 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
   std::vector<detail::Token> row;
   while (lines.next(line)) {
     if (is_comment_or_blank(line)) continue;
-    detail::TokenCursor tokens(line, separators);
+    detail::TokenCursor tokens(line, kSeparators);
     detail::Token token;
     if (!options.column) {
       while (tokens.next(token)) {
@@ -144,7 +144,7 @@ GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_vi
   std::string_view line;
   while (lines.next(line)) {
     if (is_comment_or_blank(line)) continue;
-    detail::TokenCursor tokens(line, separators);
+    detail::TokenCursor tokens(line, kSeparators);
     detail::Token token;
     row.clear();
     while (tokens.next(token)) row.push_back(token);

@@ -8,11 +8,11 @@
 namespace rpsd::integrators {
 namespace {
 template <class... Ts>
-struct overloaded : Ts... {
+struct Overloaded : Ts... {
   using Ts::operator()...;
 };
 template <class... Ts>
-overloaded(Ts...) -> overloaded<Ts...>;
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 constexpr std::array<std::pair<Scheme, std::string_view>, 8> kNames{{
     {Scheme::kCentralDifference, "central_difference"},
@@ -27,7 +27,7 @@ constexpr std::array<std::pair<Scheme, std::string_view>, 8> kNames{{
 }  // namespace
 
 Scheme scheme_of(const IntegratorConfig& config) {
-  return std::visit(overloaded{
+  return std::visit(Overloaded{
                         [](const CentralDifferenceParams&) { return Scheme::kCentralDifference; },
                         [](const NewmarkParams&) { return Scheme::kNewmark; },
                         [](const HhtAlphaParams&) { return Scheme::kHhtAlpha; },
@@ -81,7 +81,7 @@ std::string describe(const IntegratorConfig& config) {
   auto iter = [&s](const FixedIterationOptions& o) {
     s << " iterations=" << o.iterations << " poly_order=" << o.poly_order;
   };
-  std::visit(overloaded{
+  std::visit(Overloaded{
                  [&](const CentralDifferenceParams&) { s << "beta=0 gamma=0.5"; },
                  [&](const NewmarkParams& p) {
                    s << "beta=" << p.beta << " gamma=" << p.gamma;

@@ -37,7 +37,8 @@ StructuralMatrix::StructuralMatrix(Eigen::MatrixXd dense)
     : storage_(MatrixStorage::kDense), rows_(dense.rows()), cols_(dense.cols()), dense_(std::move(dense)) {}
 
 StructuralMatrix::StructuralMatrix(SparseMatrix sparse)
-    : storage_(MatrixStorage::kSparse), rows_(sparse.rows()), cols_(sparse.cols()), sparse_(std::move(sparse)) {
+    : storage_(MatrixStorage::kSparse), rows_(sparse.rows()), cols_(sparse.cols()) {
+  sparse_.swap(sparse);  // Eigen 3.4's SparseMatrix has no move constructor
   sparse_.makeCompressed();
   sparse_rows_ = sparse_;
   sparse_rows_.makeCompressed();
@@ -86,7 +87,7 @@ StructuralMatrix StructuralMatrix::compacted() const {
       }
       SparseMatrix pruned = sparse_;
       pruned.prune(0.0);
-      return StructuralMatrix(std::move(pruned));
+      return StructuralMatrix(pruned);
     }
   }
   return *this;

@@ -45,7 +45,7 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
 }
 
 MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_path)
-    : node_(std::move(node)), file_(std::move(file)), key_path_(std::move(key_path)) {
+    : node_(node), file_(std::move(file)), key_path_(std::move(key_path)) {
   if (!node_.IsMap()) fail_at(node_, key_path_, "expected a mapping of keys, got " + describe(node_));
   // YAML keeps both copies of a repeated key and lookups see only one: reject it instead.
   std::set<std::string> seen;

@@ -120,7 +120,7 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
     k.tracking_delay_s = 1e-3 * criteria.j1_tracking_delay_ms;
     k.final_tracking_indicator_m2 = criteria.final_tracking_indicator_m2;
     k.energy_balance_error_j = sums.criteria().energy_error_j;
-    cases.push_back(std::move(k));
+    cases.push_back(k);
   }
   return cases;
 }

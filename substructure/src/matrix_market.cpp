@@ -205,8 +205,8 @@ LinearMdofConfig linear_config_from_matrix_market(const MatrixMarketModelFiles& 
     return A;
   };
   linalg::SparseMatrix K = sized(files.stiffness_file);
-  cfg.mass_kg = linalg::StructuralMatrix(std::move(M));
-  cfg.stiffness_n_per_m = linalg::StructuralMatrix(std::move(K));
+  cfg.mass_kg = linalg::StructuralMatrix(M);
+  cfg.stiffness_n_per_m = linalg::StructuralMatrix(K);
   cfg.mass_source = file_label(files.mass_file);
   cfg.stiffness_source = file_label(files.stiffness_file);
   if (files.damping_file) {

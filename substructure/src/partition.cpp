@@ -129,7 +129,7 @@ linalg::StructuralMatrix Partition::with_specimen_stiffness(const linalg::Struct
   }
   linalg::SparseMatrix D(n_, n_);
   D.setFromTriplets(diag.begin(), diag.end());
-  return linalg::StructuralMatrix::linear_combination(1.0, K_num, 1.0, linalg::StructuralMatrix(std::move(D)))
+  return linalg::StructuralMatrix::linear_combination(1.0, K_num, 1.0, linalg::StructuralMatrix(D))
       .converted(K_num.storage());
 }
 

@@ -69,8 +69,8 @@ void ShearBuilding::configure(const ShearBuildingConfig& config) {
     linalg::SparseMatrix m(N, N), k(N, N);
     m.setFromTriplets(mt.begin(), mt.end());
     k.setFromTriplets(kt.begin(), kt.end());  // explicit zeros fix the tridiagonal pattern
-    M = linalg::StructuralMatrix(std::move(m));
-    K = linalg::StructuralMatrix(std::move(k));
+    M = linalg::StructuralMatrix(m);
+    K = linalg::StructuralMatrix(k);
   }
 
   assemble_tridiagonal(springs, K, false);

@@ -52,7 +52,7 @@ TEST(GroundMotionAt2, SharedRecordsParseToTheirNptsDtAndPga) {
     EXPECT_EQ(record.dt_s, expected.dt_s);
     ASSERT_EQ(record.header_lines.size(), 4u);
     EXPECT_NE(record.description.find(expected.event), std::string::npos) << record.description;
-    const double g = standard_gravity_m_per_s2;
+    const double g = kStandardGravityMPerS2;
     EXPECT_DOUBLE_EQ(record.acceleration_m_per_s2.front(), expected.first_g * g);
     EXPECT_DOUBLE_EQ(record.acceleration_m_per_s2.back(), expected.last_g * g);
     const auto pga = peak_ground_acceleration(record);
@@ -65,7 +65,7 @@ TEST(GroundMotionAt2, SharedRecordsParseToTheirNptsDtAndPga) {
 TEST(GroundMotionAt2, ElCentroPeakIsMinus0312881gAt215s) {
   const auto record = read_peer_at2(shared_record("I-ELC180.AT2"));
   const auto pga = peak_ground_acceleration(record);
-  EXPECT_NEAR(pga.value_m_per_s2 / standard_gravity_m_per_s2, -0.312881, 1e-15);
+  EXPECT_NEAR(pga.value_m_per_s2 / kStandardGravityMPerS2, -0.312881, 1e-15);
   EXPECT_NEAR(pga.time_s, 2.15, 1e-12);
 }
 
@@ -81,7 +81,7 @@ TEST(GroundMotionAt2, NgaWest2HeaderWithTrailingComma) {
   EXPECT_EQ(record.format, RecordFormat::kPeerAt2NgaWest2);
   EXPECT_EQ(record.size(), 7u);
   EXPECT_EQ(record.dt_s, 0.005);
-  EXPECT_DOUBLE_EQ(record.acceleration_m_per_s2[6], 7e-3 * standard_gravity_m_per_s2);
+  EXPECT_DOUBLE_EQ(record.acceleration_m_per_s2[6], 7e-3 * kStandardGravityMPerS2);
   EXPECT_EQ(record.description, "Chi-Chi, Taiwan, 9/20/1999, TCU065, E");
 }
 
@@ -100,7 +100,7 @@ TEST(GroundMotionAt2, PeknoldEightF10Form) {
   EXPECT_EQ(record.original_unit, AccelerationUnit::kG);
   ASSERT_EQ(record.size(), 11u);
   EXPECT_EQ(record.dt_s, 0.02);
-  EXPECT_DOUBLE_EQ(record.acceleration_m_per_s2[8], -0.00128 * standard_gravity_m_per_s2);
+  EXPECT_DOUBLE_EQ(record.acceleration_m_per_s2[8], -0.00128 * kStandardGravityMPerS2);
 }
 
 std::string header_with_units(const std::string& line3) {
@@ -133,7 +133,7 @@ TEST(GroundMotionAt2, Line3WithoutUnitsNeedsAnExplicitUnit) {
   // A unit stated on line 3 wins over the fallback.
   EXPECT_DOUBLE_EQ(
       parse_peer_at2(header_with_units("ACCELERATION IN UNITS OF G"), "g.AT2", options).acceleration_m_per_s2[2],
-      25.0 * standard_gravity_m_per_s2);
+      25.0 * kStandardGravityMPerS2);
 }
 
 TEST(GroundMotionAt2, VelocityFileIsRejected) {

@@ -42,7 +42,7 @@ TEST(GroundMotionProcessing, ScaleByFactor) {
 }
 
 TEST(GroundMotionProcessing, ScaleToTargetPgaIsExact) {
-  for (const double target : {0.4 * standard_gravity_m_per_s2, 1.0, 3.5, 12.345}) {
+  for (const double target : {0.4 * kStandardGravityMPerS2, 1.0, 3.5, 12.345}) {
     ScaleOptions o;
     o.target_pga_m_per_s2 = target;
     const auto scaled = scale(el_centro(), o);

@@ -204,7 +204,7 @@ TEST_F(GroundMotionTextFiles, ElCentroRoundTripsThroughBothTextFormats) {
   std::string one_per_line;
   for (std::size_t i = 0; i < at2.size(); ++i) {
     char line[80];
-    const double g = at2.acceleration_m_per_s2[i] / standard_gravity_m_per_s2;
+    const double g = at2.acceleration_m_per_s2[i] / kStandardGravityMPerS2;
     std::snprintf(line, sizeof line, "%.3f,%.6E\n", static_cast<double>(i) * 0.01, g);
     csv += line;
     std::snprintf(line, sizeof line, "%.6E\n", g);

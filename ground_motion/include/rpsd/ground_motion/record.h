@@ -9,7 +9,7 @@
 namespace rpsd::ground_motion {
 
 // Standard gravity (exact by definition, CGPM 1901); "g" in a record means this.
-inline constexpr double standard_gravity_m_per_s2 = 9.80665;
+inline constexpr double kStandardGravityMPerS2 = 9.80665;
 
 // Units an acceleration record is written in. Records are stored in m/s² whatever they
 // were written in; `original_unit` remembers the file's unit.
