@@ -3,5 +3,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRPSD_WARNINGS_AS_ERRORS=ON "$@" >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRPSD_WARNINGS_AS_ERRORS=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON "$@" >/dev/null
 cmake --build build -j "$jobs"

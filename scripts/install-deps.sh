@@ -1,22 +1,33 @@
 #!/usr/bin/env bash
-# Installs, from Debian 12 packages only, exactly what rpsd needs to build, test and plot.
+# Installs, from Debian 12 packages only, what rpsd needs to build, run and test.
+#   scripts/install-deps.sh          what a user needs: build, run, plot, test
+#   scripts/install-deps.sh --team   also what only the team needs: clang and the fuzzing
+#                                    runtimes, clang-format and clang-tidy, Google Benchmark
 # Idempotent: packages already present are left alone; apt-get update runs only when needed.
 set -euo pipefail
 
 packages=(
   build-essential cmake              # compiler and build system
-  libeigen3-dev                      # linear algebra (integrators, servo linear analysis)
+  libeigen3-dev                      # linear algebra (integrators, substructures, servo analysis)
   libyaml-cpp-dev                    # scenario and parameter files
-  libgtest-dev libgmock-dev          # tests (GoogleTest and its matchers)
-  libbenchmark-dev                   # bench/
   libcli11-dev                       # the rpsd command line
   nlohmann-json3-dev                 # summary.json and --json output
   gnuplot-nox                        # PNG plots (pngcairo terminal)
-  clang libclang-rt-14-dev           # scripts/fuzz.sh: clang, libFuzzer and the sanitizer runtimes
-  cyclonedds-dev cyclonedds-tools    # DDS transport (libddsc, idlc) and ddsperf for bench/
+  cyclonedds-dev cyclonedds-tools    # DDS transport (libddsc; idlc generates the message types)
+  libgtest-dev libgmock-dev          # the tests (GoogleTest and its matchers)
   iproute2 nftables                  # system tests: network namespaces, veth links, packet filters
-  python3 python3-yaml               # system tests: checks on the results (JSON, CSV, YAML)
+  python3 python3-yaml               # test checks on the results (JSON, CSV, YAML)
 )
+if [ "${1:-}" = "--team" ]; then
+  packages+=(
+    clang libclang-rt-14-dev         # scripts/fuzz.sh: clang, libFuzzer and the sanitizer runtimes
+    clang-format clang-tidy          # scripts/lint.sh: the house style
+    libbenchmark-dev                 # bench/ (Google Benchmark)
+  )
+elif [ $# -gt 0 ]; then
+  echo "install-deps: unknown option $1 (only --team)" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The README's test command: installs what is missing, builds with warnings as errors, runs every test.
+# The README's test command: installs what is missing, builds with warnings as errors, runs
+# every test. Extra arguments go to cmake's configure step (scripts/build.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-bash scripts/build.sh
+bash scripts/build.sh "$@"
 cd build
 ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" --timeout 900
