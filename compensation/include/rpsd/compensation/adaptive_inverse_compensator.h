@@ -1,19 +1,8 @@
-// Adaptive inverse compensation: the inverse compensator (inverse_compensator.h) whose alpha
-// follows the tracking indicator TI (tracking_indicator.h) of target against measured
-// displacement. The law implemented, written on the delay tau = (alpha - 1) dt:
-//   tau_law[n] = tau_0 + k_p TI[n] + k_i sum_{i<=n} TI[i] dt
-//   tau[n]     = clamp(tau[n-1] + clamp(tau_law[n] - tau[n-1], -r dt, +r dt), tau_min, tau_max)
-//   alpha[n]   = 1 + tau[n] / dt
-// Source: the proportional-integral adaptation of alpha on TI of Chen & Ricles, "Tracking
-// error-based servohydraulic actuator adaptive compensation for real-time hybrid simulation",
-// J. Struct. Eng. 136(4):432-440, 2010, as summarised in the later literature (alpha_es =
-// alpha_0 + K_p TI + K_i integral TI dt). Their gains on alpha equal these gains divided by dt.
-// The paper's text was not available to check the exact form; the bounds, the rate limit r
-// and the anti-windup below are rpsd's additions. Since TI grows at about X^2 w^2 / 2 times
-// the residual lag per second, k_p alone already integrates the lag: near equilibrium the
-// estimate converges like exp(-k_p X^2 w^2 t / 2) for amplitude X at frequency w. The
-// integral term then also drives TI itself back to zero. Anti-windup: the integral is frozen
-// while tau sits on a bound and TI pushes it further out.
+// Adaptive inverse compensation (after Chen & Ricles, J. Struct. Eng. 2010): the inverse compensator
+// (inverse_compensator.h) whose delay tau = (alpha - 1) dt follows the tracking indicator TI
+// (tracking_indicator.h) of target against measured displacement, tau -> tau_0 + k_p TI + k_i integral TI dt,
+// within [tau_min, tau_max] and at most r per second, so that the compensation follows a changing lag.
+// Derivation and sources: docs/compensation.md
 #pragma once
 
 #include <string_view>

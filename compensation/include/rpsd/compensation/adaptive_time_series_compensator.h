@@ -1,34 +1,8 @@
-// Adaptive time-series compensation (ATS; Chae, Kazemibidokhti & Ricles, EESD 42(11):1697,
-// 2013; settings from OpenFresco's ATS_setup.m).
-//
-// Command law:  u_c[n] = a0 x_t[n] + a1 D x_t[n] + a2 D^2 x_t[n]
-// Identification: every skip_samples steps, once a full window of W = round(window_s / dt)
-// samples is available, least squares over the window of the inverse model
-//   u_c[k] ~ a0 x_m[k] + a1 D x_m[k] + a2 D^2 x_m[k],
-// i.e. the command that produced each measured motion. For a plant x_m[k] = u_c[k - m] this
-// gives a1 ~ m dt (the delay), a0 ~ 1, a2 ~ m (m + 1) dt^2 / 2.
-// Derivatives: first-order backward differences, D x[k] = (x[k] - x[k-1]) / dt and
-// D^2 x[k] = (x[k] - 2 x[k-1] + x[k-2]) / dt^2, the same operator on the target and on the
-// measurement, so that the identified coefficients already account for the operator's own
-// half-step lag and the law stays consistent with what was identified.
-// Safeguards (Chae et al.): each coefficient is clamped to [lower, upper] bounds and may change
-// by at most max_rate_per_s * skip_samples * dt per update. rpsd applies each update as a
-// straight-line ramp over the following skip_samples steps (so by at most max_rate_per_s * dt
-// per step): a coefficient that jumps puts a kink into the command, and the second difference
-// of the measured response to that kink is a spike that swamps the D^2 x_m column of the next
-// windows (with an ideal delay plant, it drove a2 to about 0 and biased a0 by 3 %). An
-// update happens only while the
-// measured displacement spans at least trigger_threshold_m (max - min over the window), so a
-// resting actuator is not identified from noise (this is rpsd's reading of the "threshold for
-// triggering" in ATS_setup.m).
-// Numerics: the normal equations are column-scaled to unit diagonal and solved with a ridge of
-// 1e-9 towards the current coefficients. A window whose motion is one (possibly decaying)
-// sinusoid has rank 2, and the ridge keeps the unidentifiable direction at its current value
-// instead of returning the singular solution; on a well-excited window its effect is below
-// 1e-9 times the condition number. The displacement filters of ATS_setup.m (6th-order
-// Butterworth at 20 Hz) are not part of this class.
-// Cost: O(1) per step, plus O(W) on every skip_samples-th step (the window's normal equations
-// are rebuilt from the ring buffers, so no rounding drift accumulates).
+// Adaptive time-series compensation (ATS; Chae, Kazemibidokhti & Ricles, EESD 42(11):1697, 2013):
+// the command u_c = a0 x_t + a1 D x_t + a2 D^2 x_t, with a0..a2 identified by bounded, rate-limited
+// least squares over a sliding window of the measured response, so that a delay and gain that drift
+// during a test are followed. O(1) per step, plus O(W) on every skip_samples-th step.
+// Derivation and sources: docs/compensation.md
 #pragma once
 
 #include <string_view>

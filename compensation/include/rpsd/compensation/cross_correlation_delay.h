@@ -1,16 +1,8 @@
-// Tracking delay by cross-correlation (RTHS benchmark criterion J1): the shift j in
-// [0, max_lag] samples that maximises the correlation of the measured displacement j samples
-// later with the target, S(j) = sum_k x_m(k + j) x_t(k).
-//
-// Every lag is evaluated over the same W products (x_m over the last W samples, x_t over the
-// W samples j earlier), so no lag is favoured by having more terms; offline, W is the record
-// length minus max_lag. Two measures: the raw product sum S(j) (the definition above), or the
-// Pearson coefficient of the same two W-sample segments (the benchmark script's corr(), which
-// removes the mean and normalises; that script uses overlapping segments of length N - j
-// instead of a common W).
-// Sub-sample refinement (optional, on by default): the vertex of the parabola through the
-// peak and its two neighbours, delta = (S- - S+) / (2 (S- - 2 S0 + S+)), kept only for an
-// interior peak.
+// Tracking delay by cross-correlation (RTHS benchmark criterion J1): the shift j in [0, max_lag]
+// samples that maximises the correlation of the measured displacement j samples later with the
+// target, S(j) = sum_k x_m(k + j) x_t(k) (or the Pearson coefficient), every lag over the same W
+// products, optionally refined to a fraction of a sample. Offline, streaming and sliding-window forms.
+// Derivation and sources: docs/compensation.md
 #pragma once
 
 #include <cstddef>

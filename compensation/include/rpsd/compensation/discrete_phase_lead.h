@@ -1,16 +1,8 @@
-// The phase-lead network G_c(s) = (1 + a T s) / (1 + T s) run at the control rate.
-//
-// Discretisation: bilinear (Tustin), s = K (z - 1) / (z + 1), with K = 2 / dt by default or
-// K = w_p / tan(w_p dt / 2) when pre-warped at w_p = 2 pi prewarp_frequency_hz. Why Tustin:
-// it maps the whole j-axis onto the unit circle, so the discrete response is exactly
-// H(e^{j w dt}) = G_c(j K tan(w dt / 2)): the DC gain stays 1, the gain never exceeds a, the
-// filter is stable for every T >= 0, and without pre-warping the low-frequency lead
-// (a - 1) T (the design rule against a delay) is kept exactly, since K tan(w dt/2) = w + O(w^3).
-// Pre-warping trades that for an exact match of G_c at w_p (for instance the structure's
-// dominant frequency) and scales the low-frequency lead by (w_p dt / 2) / tan(w_p dt / 2).
-// ZOH or matched pole-zero equivalents were not chosen: the ZOH equivalent of the lag part
-// adds about half a step of delay, and matched pole-zero keeps neither the DC slope nor any
-// frequency exactly.
+// The phase-lead network G_c(s) = (1 + a T s) / (1 + T s) run at the control rate, discretised by
+// Tustin, s = K (z - 1) / (z + 1) with K = 2 / dt (or pre-warped at prewarp_frequency_hz), because
+// the bilinear map keeps the DC gain 1, the gain at most a, the filter stable for every T >= 0 and,
+// without pre-warping, the low-frequency lead (a - 1) T exactly.
+// Derivation and the alternatives considered: docs/compensation.md
 #pragma once
 
 #include <string_view>

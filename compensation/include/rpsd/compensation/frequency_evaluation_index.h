@@ -1,16 +1,8 @@
-// Frequency-domain evaluation index (FEI; Guo, Chen, Xu & Sanchez, Smart Mater. Struct. 2014,
-// after the Freq_Resp_Tong.m script of RobustAMBCvRTHS):
-//   FEI  = sum_f [O(f) / I(f)] |I(f)|^2 / sum_f |I(f)|^2 = sum_f O(f) conj(I(f)) / sum_f |I(f)|^2
-//   A    = |FEI|,  phi = arg FEI,  f_eq = sum_f |I(f)|^2 f / sum_f |I(f)|^2,
-//   delay = -phi / (2 pi f_eq)
-// over the one-sided spectra of input I (target or command) and output O (measured) of an
-// N-point FFT without padding or windowing: bins 0..floor(N/2), the interior ones doubled.
-// The second form of FEI is the same sum written without the division, so bins where I = 0
-// simply contribute nothing. Differences from the script: phi uses atan2 (the script's
-// atan(Im/Re) folds leads and lags beyond a quarter period), and for even N the Nyquist bin is
-// kept undoubled and the bin below it doubled (the script drops Nyquist and leaves bin N/2 - 1
-// undoubled). Optional mean removal keeps a static offset (e.g. a free vibration that starts
-// from a held displacement) from weighting the DC bin.
+// Frequency-domain evaluation index (FEI; Guo, Chen, Xu & Sanchez, Smart Mater. Struct. 2014):
+// FEI = sum_f O(f) conj(I(f)) / sum_f |I(f)|^2 over the spectra of input I and output O, whose modulus is
+// the amplitude ratio and whose phase, at the input's energy-weighted frequency f_eq, gives the delay
+// -arg FEI / (2 pi f_eq): how well the measured displacement follows its input, judged in frequency.
+// Derivation, sources and differences from the original script: docs/compensation.md
 #pragma once
 
 #include <complex>

@@ -1,6 +1,6 @@
 // Numbers in the time-history CSVs, as printf("%.10g") writes them, fast enough for the
-// writer thread to keep up with a test running a thousand times faster than real time (one
-// row is about 30 numbers; std::to_chars with a precision takes about 60 ns a number).
+// writer thread to keep up with a test running a thousand times faster than real time
+// (timings: docs/realtime.md).
 #pragma once
 
 namespace rpsd::coordinator {

@@ -1,18 +1,13 @@
 // One step of a real-time pseudodynamic test, the heart of rpsd:
-//
-//   integrator: begin_step(F(t+dt))           F = -M iota a_g, or zero in free vibration
+//   integrator.begin_step(F(t+dt))                  F = -M iota a_g, or zero in free vibration
 //   per iteration (1 for explicit schemes):
-//     d      = integrator.target_displacement()
-//     target = partition.extract_commands(d)          model -> specimen scale
-//     u      = compensator[ch].command(target)         per actuator channel
-//     link.send(u); link.receive(feedback)             in-process or DDS: the loop can't tell
-//     compensator[ch].observe(target, x_measured)
-//     R      = R_num(d) + scatter(R_exp)               R_exp = measured force, or k x_measured
-//     integrator.set_measured_restoring_force(R)
+//     d = integrator.target_displacement(); target = partition.extract_commands(d)  (model -> specimen scale)
+//     u[ch] = compensator[ch].command(target[ch]); link.send(u); link.receive(feedback)  (in-process or DDS alike)
+//     compensator[ch].observe(target[ch], x_measured[ch])
+//     integrator.set_measured_restoring_force(R_num(d) + scatter(R_exp))  R_exp: measured force, or k x_measured
 //   integrator.end_step(); numerical.commit(); energy balance; record
-//
-// The parts are configured by the caller and only borrowed. Everything in step() is
-// real-time safe: no allocation, no locks, no exceptions; problems come back as StepOutcome.
+// The parts are configured by the caller and only borrowed. step() is real-time safe: no allocation, no locks,
+// no exceptions; problems come back as StepOutcome.
 #pragma once
 
 #include <Eigen/Core>

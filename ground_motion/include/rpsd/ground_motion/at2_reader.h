@@ -1,15 +1,7 @@
-// PEER AT2 reader: the three header forms of line 4, any number of values per line.
-//
-//   line 1  banner ("PEER STRONG MOTION DATABASE RECORD ...", or any title)
-//   line 2  event, date, station, component     -> GroundMotionRecord::description
-//   line 3  "... ACCELERATION ... UNITS OF G"    -> original_unit (g, cm/s^2 or m/s^2)
-//   line 4  "NPTS=  4096, DT= .01000 SEC"        old PEER
-//           "4000    0.0100    NPTS, DT"         NGA-West1
-//           "NPTS=   5590, DT=   .0050 SEC,"     NGA-West2 (trailing comma)
-//   line 5+ values separated by blanks (5 x E15.x, or 8F10.5 in the Peknold file)
-//
-// Exactly NPTS values must follow; sample i is at t = i * DT. Values may use a Fortran
-// 'D' exponent. Every error is a RecordError "file:line[:column]: expected ..., got ...".
+// PEER AT2 reader: the three header forms of line 4 (old PEER, NGA-West1, NGA-West2), any number of
+// values per line, Fortran 'D' exponents; exactly NPTS values must follow, sample i at t = i * DT.
+// Every error is a RecordError "file:line[:column]: expected ..., got ...".
+// The format line by line: docs/ground-motions.md
 #pragma once
 
 #include <filesystem>

@@ -1,15 +1,8 @@
-// Linear SDOF response to a ground-acceleration record, exact for acceleration linear
-// between samples (Nigam & Jennings 1969), and response spectra built on it.
-//
-//   u'' + 2 zeta omega u' + omega^2 u = -a_g(t),   u(0) = u'(0) = 0,
-//
-// u is the displacement relative to the ground. Over a step h with a_g going linearly from
-// a0 to a1 the state maps exactly:
-//   u+ = a_uu u + a_uv v + b_u0 a0 + b_u1 a1,   v+ = a_vu u + a_vv v + b_v0 a0 + b_v1 a1.
-// The coefficients are the closed-form Nigam-Jennings ones; here they are evaluated as the
-// exponential of the augmented (state, load, load increment) matrix (first-order hold),
-// which is the same map without the closed form's cancellation at small omega h and valid
-// for every zeta >= 0 (including zeta >= 1).
+// Linear SDOF response to a ground-acceleration record, u'' + 2 zeta omega u' + omega^2 u = -a_g(t)
+// from rest (u relative to the ground), exact for acceleration linear between samples (Nigam & Jennings
+// 1969), and response spectra built on it. The step map is the exponential of the augmented matrix: no
+// cancellation at small omega h, valid for every zeta >= 0.
+// Derivation: docs/ground-motions.md
 #pragma once
 
 #include <cstddef>

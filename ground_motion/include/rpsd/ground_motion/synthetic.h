@@ -1,24 +1,9 @@
-// Synthetic ground-acceleration records: Gaussian white noise through a Kanai-Tajimi or
-// Clough-Penzien filter, times a deterministic envelope, optionally baseline-corrected,
-// scaled to a target PGA. Seeded and bit-reproducible on every IEEE-754 machine (own
-// PRNG, own exp/log/sin/cos, fixed-order loops, no fused multiply-add): checked identical
-// from g++ 12 and clang++ 14 at -O0 to -O3, with and without -march=native.
-//
-// Filters (w = bedrock white noise, two-sided PSD S0: E[w(t) w(t+s)] = 2 pi S0 delta(s)):
-//   kanai_tajimi   x'' + 2 zg wg x' + wg^2 x = w,  a = 2 zg wg x' + wg^2 x
-//                  S(w) = S0 (wg^4 + 4 zg^2 wg^2 w^2) / ((wg^2 - w^2)^2 + 4 zg^2 wg^2 w^2)
-//   clough_penzien the Kanai-Tajimi output a_kt drives y'' + 2 zf wf y' + wf^2 y = a_kt and
-//                  a = y''; S(w) = S_KT(w) w^4 / ((wf^2 - w^2)^2 + 4 zf^2 wf^2 w^2)
-//                  (removes the Kanai-Tajimi process's finite power at w = 0)
-//   band_pass      the Kanai-Tajimi filter with output 2 zg wg x' only, as in H.P. Gavin's
-//                  eqgm_1d: S(w) = S0 4 zg^2 wg^2 w^2 / ((wg^2 - w^2)^2 + 4 zg^2 wg^2 w^2)
-// Time scheme: the noise is held constant over each step (w_k = sqrt(2 pi S0 / dt) N(0,1))
-// and the linear filter is integrated exactly for that input (matrix exponential of the
-// zero-order-hold system), so the only departure from the continuous model is the hold
-// itself: a factor sinc^2(w dt / 2) on the PSD (0.99 at w = 40 rad/s, dt = 0.005 s) plus
-// aliasing of the filter's tail above the Nyquist frequency. The filter is run from rest
-// for eight time constants of its slowest pole before t = 0, so the noise is stationary
-// from the first sample; the envelope then multiplies the output.
+// Synthetic ground-acceleration records: Gaussian white noise through a Kanai-Tajimi, Clough-Penzien or
+// band-pass filter, times a deterministic envelope, optionally baseline-corrected, scaled to a target PGA.
+// The filter is integrated exactly for noise held over each step and starts stationary. Seeded and
+// bit-reproducible on every IEEE-754 machine (own PRNG and elementary functions, fixed-order loops, no
+// fused multiply-add), so that the seed alone reproduces a record.
+// Filter spectra, time scheme and the reproducibility check: docs/ground-motions.md
 #pragma once
 
 #include <cstdint>

@@ -1,14 +1,8 @@
 // The servo node's control loop around its controller and its DDS endpoint (the pattern of
 // ros2_control_node: lock memory, raise priority, absolute deadlines, count overruns).
-//
-// Real time: each command is applied on the tick it triggers; when commands stop, the node
-// keeps ticking on its own deadlines one control period apart and, after
-// command_timeout_periods periods without one, holds. Every tick publishes feedback; a
-// heartbeat goes out a few times a second.
-// Lock-step: one tick per command, as fast as commands come, answered on Cyclone's receive
-// thread as the command arrives (no thread is woken in between); for rehearsals over the real
-// link with simulated actuators, where the plant must not advance while the coordinator
-// computes. Once the loop returns, no command is answered any more.
+// Real time: ticks on its own deadlines, applies each command on the tick it triggers and holds after
+// command_timeout_periods without one. Lock-step: one tick per command, answered on Cyclone's receive
+// thread, so the plant does not advance while the coordinator computes. Details: docs/realtime.md
 #pragma once
 
 #include <atomic>

@@ -1,11 +1,7 @@
-// Keeps the CPUs out of idle states while a real-time loop runs. An idle CPU that halts takes
-// time to wake: on this project's 2-core VM (cpuidle driver haltpoll, no guest polling) an
-// empty loop paced at 4096 Hz with SCHED_FIFO woke a whole period late on 4.4 % of its cycles
-// while the machine was otherwise idle, and on 0.11 % while the CPUs were kept from halting
-// (bench/realtime_floor). The kernel's PM QoS interface does that: a process writes the
-// largest wake-up latency it accepts, in microseconds, to /dev/cpu_dma_latency and keeps the
-// file open; 0 leaves only the polling idle state. The request ends when the file is closed
-// (or the process exits). It costs power and, on a shared host, CPU time: idle CPUs spin.
+// Keeps the CPUs out of idle states while a real-time loop runs, because a CPU that halts wakes too
+// slowly for a paced loop. A PM QoS request (0 us written to /dev/cpu_dma_latency, the file kept open)
+// leaves only the polling idle state until the file is closed or the process exits. It costs power
+// and, on a shared host, CPU time: idle CPUs spin. Measurements: docs/realtime.md
 #pragma once
 
 #include <string>

@@ -1,12 +1,6 @@
-// Keeps large memory blocks out of the heap so that a long real-time run does not grow.
-//
-// glibc serves a block of 128 KiB or more with its own mapping, but after the first such block
-// is freed it raises that threshold to the block's size, and from then on large blocks come
-// from the heap. Cyclone DDS's receive thread replaces its receive buffer whenever the buffer
-// is used up (every 20 minutes or so at 1024 Hz with the default 1 MiB, every 2 minutes with
-// 128 KiB) and frees the old one; from the heap, small allocations took over the freed space
-// and each new buffer extended the heap (with memory locked, resident at once): the
-// coordinator grew by one buffer each time (2026-11-21, bench/realtime_long_run).
+// Keeps large memory blocks out of the heap so that a long real-time run does not grow: otherwise glibc
+// serves them from the heap once the first one is freed, and each receive buffer Cyclone DDS replaces
+// extends the heap. What happened and how it was found: docs/realtime.md
 #pragma once
 
 #include <cstddef>

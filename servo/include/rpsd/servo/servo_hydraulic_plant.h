@@ -1,6 +1,5 @@
 // The seed paper's servo-hydraulic test system (Figure 3, Eqs. 1-4) as a continuous-time
 // plant integrated with classical fixed-step RK4 at ServoSystemParameters::plant_rate_hz.
-//
 // State (5 numbers, contiguous): spool opening x_v (-1..1), pilot-stage flow q, load
 // pressure P_L, piston/specimen displacement x and velocity xdot.
 //   controller   v    = G_p C_F (u - x) + G_d C_F (udot - xdot)             (Eq. 1)
@@ -9,12 +8,7 @@
 //   valve flow   Q_L  = K_v(x_v) x_v sqrt(1 - sgn(x_v) P_L / P_s)            (Eq. 3)
 //   chambers     K_a Pdot_L = Q_L - A xdot - C_l P_L                         (Eq. 4)
 //   specimen     m xddot = A P_L - c xdot - k(x) - F_c tanh(xdot / v_reg)
-//
-// The plant runs 32 derivative evaluations per 1024 Hz control step, so the derivative is
-// written for speed: the parameters are folded once into products and reciprocals
-// (Coefficients), one evaluation costs one division, one square root and, with friction, one
-// tanh, and the terms are ordered to keep the chain of dependent operations from one RK4
-// stage to the next short. It is inlined into the RK4 step; nothing is virtual below advance().
+// At the default rates the derivative runs 32 times per control step, so it is written for speed: docs/servo-model.md
 #pragma once
 
 #include <Eigen/Core>

@@ -1,24 +1,9 @@
 #pragma once
-// Bouc–Wen hysteretic spring.
-//
-//   F = α k0 u + (1 − α) k0 z,     dz/du = A − |z|ⁿ (β sgn(du·z) + γ)
-//
-// z has units of displacement; β and γ are in 1/mⁿ. The initial stiffness is
-// k0 (α + (1 − α) A). Under monotonic loading z tends to z_max = (A/(β + γ))^(1/n) and, with
-// the parameter limits below, |z| never exceeds it on any path.
-//
-// Integration over an increment (u_c → u): along the increment the direction s = sgn(u − u_c)
-// is fixed, so dz/du = g(z; s) is an autonomous ODE in u. It is integrated from the committed
-// z with classical 4th-order Runge–Kutta in N equal sub-steps,
-//   N = clamp(ceil(|u − u_c| / h_max), 1, max_substeps),   h_max = substep_ratio / L,
-// where L = n z_maxⁿ⁻¹ (β + |γ|) bounds |∂g/∂z| for |z| ≤ z_max. With the default ratio 0.05
-// each sub-step is far inside RK4's stability region (|hλ| ≤ 0.05 against 2.78) and,
-// because the degree-4 Taylor polynomial of eˣ has no real root, the linearised distance to
-// z_max never changes sign: z approaches the bound without overshooting it. Measured
-// against 1e-4 sub-steps, one increment of up to 3 z_max is within 2e-8 z_max (n = 1, 2, 5).
-// Test increments (a fraction of z_max per step) usually need one sub-step. The cap
-// max_substeps bounds the work per trial for real-time use; beyond it the sub-steps grow,
-// and stay stable while |Δu| L / max_substeps < 2.78.
+// Bouc–Wen hysteretic spring, F = α k0 u + (1 − α) k0 z with dz/du = A − |z|ⁿ (β sgn(du·z) + γ)
+// (z in units of displacement, β and γ in 1/mⁿ). Each increment is integrated by RK4 in sub-steps small
+// enough that z approaches its bound z_max = (A/(β + γ))^(1/n) without overshooting it; max_substeps caps
+// the work per trial for real-time use.
+// Derivation and accuracy: docs/substructures.md
 
 namespace rpsd::substructure {
 
