@@ -3,13 +3,13 @@
 // (one sparse or dense product per iteration), so the figure is what a coordinator pays
 // per step for the integration and a linear numerical model.
 //
-// Model: make_frame_model (tests/integrators/frame_model.h), banded like a 2-D frame
+// Model: substructure::make_frame_model (substructure/frame_model.h), banded like a 2-D frame
 // (10 nodes per floor, 3 DOF per node, half-bandwidth 32), lumped mass, Rayleigh damping,
 // omega_max = 4096 rad/s so that central difference is stable at dt = 1/4096 s.
 // Dense models stop at 2,000 DOF: a dense 10,000-DOF model needs 800 MB per matrix and
 // minutes to factorise, and no one would store it densely.
-#include "frame_model.h"
 #include "rpsd/integrators/factory.h"
+#include "rpsd/substructure/frame_model.h"
 
 #include <benchmark/benchmark.h>
 
@@ -28,7 +28,7 @@ struct Case {
 template <class Matrix>
 void run_steps(benchmark::State& state, const IntegratorConfig& config, bool dense, bool consistent_mass) {
   const int n = static_cast<int>(state.range(0));
-  const auto frame = test::make_frame_model(n, 4096.0, consistent_mass);
+  const auto frame = rpsd::substructure::make_frame_model(n, 4096.0, consistent_mass);
   const Matrix K = frame.stiffness;
   auto integrator = make_integrator(config);
   if (dense)

@@ -1,8 +1,8 @@
 // Zero heap allocations on the stepping path: this binary replaces the global operator
 // new/delete AND the C allocation functions (Eigen allocates with malloc, not new), counts
 // calls while a flag is set, and runs 10,000 steps of a 500-DOF sparse model per scheme.
-#include "frame_model.h"
 #include "rpsd/integrators/factory.h"
+#include "rpsd/substructure/frame_model.h"
 #include "scheme_traits.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +13,9 @@
 
 namespace rpsd::integrators::test {
 namespace {
+
+using substructure::make_frame_model;
+using substructure::permuted;
 
 template <class T>
 class ZeroAllocation : public ::testing::Test {};

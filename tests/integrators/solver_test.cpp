@@ -1,9 +1,9 @@
 // The linear-solver layer: every storage solves to round-off, a banded model keeps its
 // natural order, a renumbered one is reordered, and each integrator gives the same
 // trajectory for the same model stored densely or sparsely.
-#include "frame_model.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/integrators/symmetric_solver.h"
+#include "rpsd/substructure/frame_model.h"
 #include "run_helpers.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +14,9 @@
 
 namespace rpsd::integrators::test {
 namespace {
+
+using substructure::make_frame_model;
+using substructure::permuted;
 
 void expect_solves(const linalg::StructuralMatrix& a) {
   SymmetricSolver solver;

@@ -1,23 +1,13 @@
-#pragma once
-// A sparse model banded like a 2-D frame: 10 nodes per floor, 3 DOF per node, so each DOF
-// couples to the next 5 DOFs (same floor) and to the DOFs 28-32 away (floor above);
-// half-bandwidth 32. Stiffness is assembled from springs between coupled DOFs plus a
-// spring to ground at every DOF, so it is symmetric positive definite by construction.
-// Lumped (diagonal) mass, Rayleigh damping C = a0 M + a1 K.
-#include <Eigen/Sparse>
+#include "rpsd/substructure/frame_model.h"
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
-namespace rpsd::integrators::test {
+namespace rpsd::substructure {
 
-struct FrameModel {
-  Eigen::SparseMatrix<double> mass, damping, stiffness;
-};
-
-// n DOF; the stiffness is scaled so that the largest natural frequency is at most
-// omega_max_rad_s (bounded by Gershgorin's theorem on M^-1/2 K M^-1/2).
-inline FrameModel make_frame_model(int n, double omega_max_rad_s, bool consistent_mass = false) {
+FrameModel make_frame_model(int n, double omega_max_rad_s, bool consistent_mass) {
   std::vector<Eigen::Triplet<double>> k_trip, m_trip;
   auto spring = [&](int i, int j, double k) {
     k_trip.emplace_back(i, i, k);
@@ -64,9 +54,7 @@ inline FrameModel make_frame_model(int n, double omega_max_rad_s, bool consisten
   return f;
 }
 
-// The same model with its DOFs renumbered by a fixed pseudo-random permutation, so that
-// the natural order is no longer banded and the solvers must reorder (AMD).
-inline FrameModel permuted(const FrameModel& f) {
+FrameModel permuted(const FrameModel& f) {
   const int n = static_cast<int>(f.mass.rows());
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> p(n);
   p.setIdentity();
@@ -82,4 +70,4 @@ inline FrameModel permuted(const FrameModel& f) {
   return g;
 }
 
-}  // namespace rpsd::integrators::test
+}  // namespace rpsd::substructure
