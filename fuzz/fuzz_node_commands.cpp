@@ -40,7 +40,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   config.control_period_s = kPeriod;
   config.command_timeout_periods = 4;
   for (int c = 0; c < kChannels; ++c) config.limits[c] = {kStroke, kVelocity, 1e9, kIncrement};
-  servo::PureDelayPlant a({0.0, 1e5, 8192.0}), b({0.0, 1e5, 8192.0});
+  servo::PureDelayPlant a({0.0, 1e5, 8192.0, {}}), b({0.0, 1e5, 8192.0, {}});
   servo::Plant* plants[] = {&a, &b};
   servo::SimulatedActuator actuator(plants);
   node::ServoNodeController controller(config, actuator);

@@ -59,19 +59,34 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
       for (int ch : site.channels) {
         const double k = by_channel[static_cast<std::size_t>(ch)]->dof.specimen_stiffness_estimate_n_per_m;
         simulated.plants.owned.push_back(servo::make_plant(
-            perfect_actuator ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0}} : s.plant));
+            perfect_actuator ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}}} : s.plant));
         simulated.plants.pointers.push_back(simulated.plants.owned.back().get());
       }
       simulated.actuator = std::make_unique<servo::SimulatedActuator>(simulated.plants.pointers);
       actuators_.push_back(std::move(simulated));
       node::ServoNodeConfig config;
-      if (const auto found = s.site_nodes.find(site.site_id); found != s.site_nodes.end() && !perfect_actuator) {
-        config = found->second;  // its limits, limit actions and watchdog
+      if (!perfect_actuator) {
+        if (const auto found = s.site_nodes.find(site.site_id); found != s.site_nodes.end()) {
+          config = found->second;  // its limits, limit actions and watchdog
+        }
       }
       config.test_id = s.transport.test_id;
       config.site_id = site.site_id;
       config.channels = site_channels;
       config.control_period_s = control_period_s;
+      if (!perfect_actuator) {
+        // The rig's envelope is the node's default limit, and its force guard predicts with the
+        // stiffest of the specimens' estimates.
+        node::limit_to_envelope(config, servo::envelope_of(s.plant));
+        for (int i = 0; i < site_channels; ++i) {
+          double& k = config.limits[static_cast<std::size_t>(i)].force_guard_stiffness_n_per_m;
+          if (k == 0.0) {
+            k = std::max(servo::specimen_stiffness_of(s.plant),
+                         by_channel[static_cast<std::size_t>(site.channels[static_cast<std::size_t>(i)])]
+                             ->dof.specimen_stiffness_estimate_n_per_m);
+          }
+        }
+      }
       controllers_.push_back(std::make_unique<node::ServoNodeController>(config, *actuators_.back().actuator));
       std::vector<double> site_hold;
       for (int ch : site.channels) site_hold.push_back(hold_m[static_cast<std::size_t>(ch)]);

@@ -60,6 +60,14 @@ const char* limit_stop_name(LimitStop::Kind kind) {
       return "max_increment_m";
     case LimitStop::Kind::kForce:
       return "max_force_n";
+    case LimitStop::Kind::kTrackingError:
+      return "max_tracking_error_m";
+    case LimitStop::Kind::kNodeLimit:
+      return "node_limit";
+    case LimitStop::Kind::kEndStop:
+      return "end_stop";
+    case LimitStop::Kind::kValveSaturation:
+      return "valve_saturation";
   }
   return "unknown";
 }
@@ -81,6 +89,7 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
     last_sent_m_[c] = targets_[c];  // the actuator holds the start
   }
   limit_stop_ = LimitStop{};
+  saturated_exchanges_ = 0;
   parts_.numerical->restoring_force(d0, restoring_);
   parts_.partition->add_forces(specimen_forces_, restoring_);
   parts_.numerical->commit();
@@ -118,6 +127,33 @@ bool RpsdLoop::commands_within_limits() {
     }
   }
   return true;
+}
+
+StepOutcome RpsdLoop::run_away() {
+  if (parts_.stop_on_node_limits && feedback_.limit_flags != transport::kLimitNone) {
+    limit_stop_ = {LimitStop::Kind::kNodeLimit, -1, static_cast<double>(feedback_.limit_flags), 0.0};
+    return StepOutcome::kRunAway;
+  }
+  if (feedback_.status & transport::kNodeEndStop) {
+    limit_stop_ = {LimitStop::Kind::kEndStop, -1, 0.0, 0.0};
+    return StepOutcome::kRunAway;
+  }
+  saturated_exchanges_ = feedback_.status & transport::kNodeValveSaturated ? saturated_exchanges_ + 1 : 0;
+  if (parts_.max_valve_saturation_exchanges > 0 && saturated_exchanges_ > parts_.max_valve_saturation_exchanges) {
+    limit_stop_ = {LimitStop::Kind::kValveSaturation, -1, static_cast<double>(saturated_exchanges_),
+                   static_cast<double>(parts_.max_valve_saturation_exchanges)};
+    return StepOutcome::kRunAway;
+  }
+  if (!parts_.limits.empty()) {
+    for (int c = 0; c < channels_; ++c) {
+      const double error = targets_[c] - feedback_.displacement_m[c];
+      if (std::abs(error) > parts_.limits[c].max_tracking_error_m) {
+        limit_stop_ = {LimitStop::Kind::kTrackingError, c, error, parts_.limits[c].max_tracking_error_m};
+        return StepOutcome::kRunAway;
+      }
+    }
+  }
+  return StepOutcome::kOk;
 }
 
 void RpsdLoop::experimental_forces(const transport::FeedbackSample& feedback) {
@@ -172,6 +208,7 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     ++exchange_;
     if (feedback_.status & transport::kNodeFault) return StepOutcome::kNodeFault;
     if (transport::has_non_finite_measurement(feedback_, channels_)) return StepOutcome::kNonFinite;
+    if (const StepOutcome outcome = run_away(); outcome != StepOutcome::kOk) return outcome;
     for (int c = 0; c < channels_; ++c) {
       if (!parts_.limits.empty() && std::abs(feedback_.force_n[c]) > parts_.limits[c].max_force_n) {
         limit_stop_ = {LimitStop::Kind::kForce, c, feedback_.force_n[c], parts_.limits[c].max_force_n};

@@ -93,10 +93,10 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
         perfect_actuator ? compensation::CompensatorConfig{compensation::PassThroughParameters{}} : s.compensation,
         control_period_s));
     parts.compensators[ch] = p.compensators.back().get();
-    // The reference is numerical: no rig, no limits.
+    // The rig's envelope is every limit's default; the reference is numerical: no rig, no limits.
     if (!perfect_actuator) {
       parts.limits.resize(static_cast<std::size_t>(channels));
-      parts.limits[ch] = channel.limits;
+      parts.limits[ch] = within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
     }
     parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};
   }
@@ -116,6 +116,9 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   parts.test_id = s.transport.test_id;
   p.real_time = s.clock.mode == ClockConfig::Mode::kRealTime && !perfect_actuator;
   parts.max_feedback_age_periods = p.real_time ? s.clock.max_feedback_age_periods : 0;
+  parts.stop_on_node_limits = !perfect_actuator;
+  parts.max_valve_saturation_exchanges =
+      perfect_actuator ? 0 : std::max(1, static_cast<int>(std::lround(s.run_away.max_valve_saturation_s / control_period_s)));
   if (s.ground_motion) {
     p.ground_load.configure(p.numerical->mass(), s.influence);
     parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
@@ -167,6 +170,8 @@ StepOutcome TestAssembly::step() {
 }
 
 const StepRecord& TestAssembly::last_record() const { return parts_->loop->last_record(); }
+
+const LimitStop& TestAssembly::limit_stop() const { return parts_->loop->limit_stop(); }
 
 StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& after_step,
                               const std::function<void(std::int64_t, std::int64_t)>& progress) {

@@ -17,6 +17,8 @@ const char* limit_kind_name(LimitKind kind) {
       return "force";
     case LimitKind::kIncrement:
       return "increment";
+    case LimitKind::kAcceleration:
+      return "acceleration";
   }
   return "unknown";
 }
@@ -27,6 +29,8 @@ const char* limit_action_name(LimitAction action) {
       return "clamp";
     case LimitAction::kHold:
       return "hold";
+    case LimitAction::kRampToSafe:
+      return "ramp_to_safe";
     case LimitAction::kAbort:
       return "abort";
   }
@@ -43,6 +47,8 @@ std::uint32_t limit_flag(LimitKind kind) {
       return transport::kLimitForce;
     case LimitKind::kIncrement:
       return transport::kLimitIncrement;
+    case LimitKind::kAcceleration:
+      return transport::kLimitAcceleration;
   }
   return transport::kLimitNone;
 }
@@ -57,6 +63,8 @@ LimitAction LimitActions::of(LimitKind kind) const {
       return force;
     case LimitKind::kIncrement:
       return increment;
+    case LimitKind::kAcceleration:
+      return acceleration;
   }
   return LimitAction::kAbort;
 }
@@ -94,9 +102,18 @@ void ServoNodeConfig::validate() const {
     if (!(l.max_force_n > 0.0)) fail(at + "max_force_n", "must be positive (infinity: no limit)", l.max_force_n);
     if (!(l.max_increment_m > 0.0))
       fail(at + "max_increment_m", "must be positive (infinity: no limit)", l.max_increment_m);
+    if (!(l.max_acceleration_m_per_s2 > 0.0)) {
+      fail(at + "max_acceleration_m_per_s2", "must be positive (infinity: no limit)", l.max_acceleration_m_per_s2);
+    }
+    if (!(l.force_guard_stiffness_n_per_m >= 0.0) || !std::isfinite(l.force_guard_stiffness_n_per_m)) {
+      fail(at + "force_guard_stiffness_n_per_m", "must be zero (no guard) or positive", l.force_guard_stiffness_n_per_m);
+    }
   }
   if (command_timeout_periods < 1) fail("command_timeout_periods", "must be at least 1", command_timeout_periods);
-  if (on_command_loss == LossAction::kRampToSafe) {
+  const bool ramps = on_command_loss == LossAction::kRampToSafe || actions.stroke == LimitAction::kRampToSafe ||
+                     actions.velocity == LimitAction::kRampToSafe || actions.force == LimitAction::kRampToSafe ||
+                     actions.increment == LimitAction::kRampToSafe || actions.acceleration == LimitAction::kRampToSafe;
+  if (ramps) {
     if (!(safe_ramp_velocity_m_per_s > 0.0) || !std::isfinite(safe_ramp_velocity_m_per_s)) {
       fail("safe_ramp_velocity_m_per_s", "must be positive and finite", safe_ramp_velocity_m_per_s);
     }
@@ -116,6 +133,26 @@ void ServoNodeConfig::validate() const {
     }
   }
   if (event_log_capacity < 0) fail("event_log_capacity", "must be zero or positive", event_log_capacity);
+}
+
+void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope) {
+  const auto tighten = [](double& limit, double rig, const std::string& key, const char* what) {
+    if (limit == ChannelLimits::kNone) {
+      limit = rig;
+    } else if (limit > rig) {
+      std::ostringstream message;
+      message << key << ": " << limit << " is beyond the rig's " << what << " of " << rig
+              << " (a limit may only tighten the rig's envelope)";
+      throw std::invalid_argument(message.str());
+    }
+  };
+  for (int c = 0; c < config.channels; ++c) {
+    ChannelLimits& l = config.limits[c];
+    const std::string at = indexed("limits", c) + ".";
+    tighten(l.max_stroke_m, envelope.stroke_m, at + "max_stroke_m", "stroke");
+    tighten(l.max_force_n, envelope.force_n, at + "max_force_n", "force capacity");
+    tighten(l.max_velocity_m_per_s, envelope.velocity_m_per_s, at + "max_velocity_m_per_s", "velocity capacity");
+  }
 }
 
 }  // namespace rpsd::node

@@ -75,6 +75,7 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
   commands_began_ = holding_ = safe_state_ = fault_ = false;
   missed_in_row_ = 0;
   limit_was_active_ = {};
+  change_m_ = {};
   counters_ = ServoNodeCounters{};
   events_.clear();
   events_not_logged_ = 0;
@@ -169,56 +170,84 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
     LimitKind kind;
     double observed, bound;
   };
-  std::array<Violation, transport::kMaxChannels * kLimitKinds> violations{};
+  std::array<Violation, transport::kMaxChannels * kLimitKinds * 2> violations{};
   int count = 0;
   std::array<bool, kLimitKinds> kind_acted{};
-  bool hold = false, abort = false;
+  bool hold = false, ramp = false, abort = false;
   const int channels = config_.channels;
   const double period_s = config_.control_period_s;
 
   for (int c = 0; c < channels; ++c) {
     const ChannelLimits& limits = config_.limits[c];
-    const double previous = command_m_[c], target = target_m_[c], change = std::abs(target - previous);
-    const double force = reading_.force_n[c];
+    const double previous = command_m_[c], target = target_m_[c], change = target - previous;
+    const double x_measured = reading_.displacement_m[c], force = reading_.force_n[c];
     const double velocity_step_m = limits.max_velocity_m_per_s * period_s;
+    const double acceleration_step_m = limits.max_acceleration_m_per_s2 * period_s * period_s;
     const auto check = [&](bool exceeded, LimitKind kind, double observed, double bound) {
       if (!exceeded) return;
       violations[count++] = {c, kind, observed, bound};
       const LimitAction action = config_.actions.of(kind);
       hold = hold || action == LimitAction::kHold;
+      ramp = ramp || action == LimitAction::kRampToSafe;
       abort = abort || action == LimitAction::kAbort;
     };
+    // What is commanded, and what is measured (the interlocks).
     check(std::abs(target) > limits.max_stroke_m, LimitKind::kStroke, std::abs(target), limits.max_stroke_m);
-    check(change > velocity_step_m, LimitKind::kVelocity, change / period_s, limits.max_velocity_m_per_s);
+    check(std::abs(change) > velocity_step_m, LimitKind::kVelocity, std::abs(change) / period_s,
+          limits.max_velocity_m_per_s);
+    check(std::abs(change) > limits.max_increment_m, LimitKind::kIncrement, std::abs(change), limits.max_increment_m);
+    check(std::abs(change - change_m_[c]) > acceleration_step_m, LimitKind::kAcceleration,
+          std::abs(change - change_m_[c]) / (period_s * period_s), limits.max_acceleration_m_per_s2);
+    check(std::abs(x_measured) > limits.max_stroke_m, LimitKind::kStroke, std::abs(x_measured), limits.max_stroke_m);
     check(std::abs(force) > limits.max_force_n, LimitKind::kForce, std::abs(force), limits.max_force_n);
-    check(change > limits.max_increment_m, LimitKind::kIncrement, change, limits.max_increment_m);
 
-    // The clamped command: rate limit, stroke saturation, and no further motion in the
-    // direction of an excessive force (the direction that loads the specimen more).
+    // The clamped command: rate, increment and acceleration bounds, the stroke, and the force
+    // guard, which keeps the command where F_measured + k (x - x_measured) stays within the
+    // force limit: the force limit holds instead of tripping after the fact.
     const double rate_bound_m = std::min(velocity_step_m, limits.max_increment_m);
-    double x = change > rate_bound_m ? previous + std::copysign(rate_bound_m, target - previous) : target;
-    x = std::clamp(x, -limits.max_stroke_m, limits.max_stroke_m);
-    if (force > limits.max_force_n) x = std::min(x, previous);
-    if (force < -limits.max_force_n) x = std::max(x, previous);
+    double step = std::clamp(change, -rate_bound_m, rate_bound_m);
+    step = std::clamp(step, change_m_[c] - acceleration_step_m, change_m_[c] + acceleration_step_m);
+    double x = std::clamp(step == change ? target : previous + step, -limits.max_stroke_m, limits.max_stroke_m);
+    if (limits.force_guard_stiffness_n_per_m > 0.0 && std::isfinite(limits.max_force_n)) {
+      const double k = limits.force_guard_stiffness_n_per_m;
+      const double highest = x_measured + (limits.max_force_n - force) / k;
+      const double lowest = x_measured + (-limits.max_force_n - force) / k;
+      if (x > highest || x < lowest) {
+        const double bounded = std::clamp(x, std::min(lowest, highest), std::max(lowest, highest));
+        check(true, LimitKind::kForce, std::abs(force + k * (x - x_measured)), limits.max_force_n);
+        x = bounded;
+      }
+    }
+    // A measured excursion: no further command in its direction.
+    if (force > limits.max_force_n || x_measured > limits.max_stroke_m) x = std::min(x, x_measured);
+    if (force < -limits.max_force_n || x_measured < -limits.max_stroke_m) x = std::max(x, x_measured);
     applied[c] = x;
   }
 
+  // Hold, ramp and abort act on every channel (one channel frozen alone would load the setup
+  // unevenly), from where the pistons are, not from where their commands were.
   if (abort) latch_fault();
-  if (abort || hold) applied = command_m_;  // every channel: one channel frozen alone would load the setup unevenly
+  if (abort || hold || ramp) {
+    for (int c = 0; c < channels; ++c) applied[c] = reading_.displacement_m[c];
+  }
+  if (ramp && !safe_state_) {
+    safe_state_ = true;
+    target_m_ = applied;
+  }
 
   std::uint32_t flags = transport::kLimitNone;
   std::array<std::array<bool, kLimitKinds>, transport::kMaxChannels> active{};
   for (int i = 0; i < count; ++i) {
     const Violation& v = violations[i];
     const int k = static_cast<int>(v.kind);
-    active[v.channel][k] = true;
     kind_acted[k] = true;
     flags |= limit_flag(v.kind);
-    if (!limit_was_active_[v.channel][k]) {
+    if (!limit_was_active_[v.channel][k] && !active[v.channel][k]) {
       ++counters_.limit_activations[k];
       log({counters_.ticks, followed_step_, v.channel, v.kind, config_.actions.of(v.kind), target_m_[v.channel],
            applied[v.channel], v.observed, v.bound});
     }
+    active[v.channel][k] = true;
   }
   for (int k = 0; k < kLimitKinds; ++k) counters_.limit_active_ticks[k] += kind_acted[k] ? 1 : 0;
   limit_was_active_ = active;
@@ -244,6 +273,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
 
   const servo::ActuatorStatus status = actuator_.exchange(
       std::span<const double>(applied.data(), static_cast<std::size_t>(channels)), config_.control_period_s, reading_);
+  for (int c = 0; c < channels; ++c) change_m_[c] = applied[c] - command_m_[c];
   command_m_ = applied;
   if (status == servo::ActuatorStatus::kNoReply) ++counters_.actuator_no_replies;
   if (status == servo::ActuatorStatus::kFault) {
@@ -263,6 +293,14 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
   if (flags != transport::kLimitNone) out.status |= transport::kNodeLimitActive;
   if (holding_) out.status |= transport::kNodeHolding;
   if (fault_) out.status |= transport::kNodeFault;
+  if (reading_.at_end_stop) {
+    out.status |= transport::kNodeEndStop;
+    ++counters_.end_stop_ticks;
+  }
+  if (reading_.valve_saturated) {
+    out.status |= transport::kNodeValveSaturated;
+    ++counters_.valve_saturated_ticks;
+  }
   out.limit_flags = flags;
 }
 

@@ -72,7 +72,7 @@ studies::MaxGainStudy read_max_gain(MappingReader& root, servo::ServoSystemParam
   return s;
 }
 
-studies::DelayCompensationStudy read_delay_compensation(MappingReader& root, const std::filesystem::path& file) {
+studies::DelayCompensationStudy read_delay_compensation(MappingReader& root) {
   studies::DelayCompensationStudy s;
   MappingReader structure = root.mapping("structure");
   s.mass_kg = structure.positive_number("mass_kg");
@@ -89,22 +89,17 @@ studies::DelayCompensationStudy read_delay_compensation(MappingReader& root, con
     if (!config) root.fail("integrator", "unknown integrator \"" + name + "\"");
     s.integrator = *config;
   }
-  MappingReader plant = root.mapping("plant");
-  const std::string kind = plant.string("kind");
-  if (kind == "servo_model") {
-    const std::filesystem::path parameters = file.parent_path() / plant.string("parameters");
-    if (!std::filesystem::exists(parameters))
-      plant.fail("parameters", "no such parameter file: " + parameters.string());
-    s.plant = load_servo_parameters(parameters);
-  } else if (kind == "ideal_delay") {
-    servo::PureDelayParameters delay;
-    delay.delay_s = plant.non_negative_number("delay_s");
-    delay.specimen_stiffness_n_per_m = s.stiffness_n_per_m;
-    s.plant = delay;
-  } else {
-    plant.fail("kind", "unknown plant \"" + kind + "\" (expected servo_model or ideal_delay)");
+  {
+    MappingReader plant = root.mapping("plant");
+    const servo::PlantConfig config = servo::read_plant_config(plant, s.stiffness_n_per_m);
+    if (const auto* servo = std::get_if<servo::ServoSystemParameters>(&config)) {
+      s.plant = *servo;
+    } else if (const auto* delay = std::get_if<servo::PureDelayParameters>(&config)) {
+      s.plant = *delay;
+    } else {
+      plant.fail("kind", "the Figure 8 study takes servo_model or ideal_delay");
+    }
   }
-  plant.finish();
   MappingReader compensation = root.mapping("compensation");
   s.phase_lead_ratio_a = compensation.positive_number("phase_lead_ratio_a");
   if (s.phase_lead_ratio_a <= 1.0) compensation.fail("phase_lead_ratio_a", "must exceed 1 (a lead network)");
@@ -329,7 +324,7 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
     return result;
   }
   if (kind == "rpsd_delay_compensation") {
-    result.study = read_delay_compensation(root, file);
+    result.study = read_delay_compensation(root);
     root.finish();
     return result;
   }

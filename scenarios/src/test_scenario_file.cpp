@@ -234,6 +234,7 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
 
   // Experimental channels.
   std::set<Eigen::Index> used;
+  std::vector<std::optional<MappingReader>> limit_readers;
   for (auto& e : root.mappings("experimental")) {
     coordinator::ExperimentalChannel channel;
     channel.dof.dof = e.whole_number("dof", 0, dofs - 1);
@@ -253,10 +254,17 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
     channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1));
     if (auto limits = e.optional_mapping("limits")) {
       coordinator::CoordinatorLimits& l = channel.limits;
-      l.max_stroke_m = limits->positive_number_or("max_stroke_m", l.max_stroke_m);
-      l.max_increment_m = limits->positive_number_or("max_increment_m", l.max_increment_m);
-      l.max_force_n = limits->positive_number_or("max_force_n", l.max_force_n);
+      using config::Number;
+      l.max_stroke_m = limits->number_or("max_stroke_m", l.max_stroke_m, Number::positive("m", "|command| (default: the rig's stroke)"));
+      l.max_increment_m = limits->number_or("max_increment_m", l.max_increment_m,
+                                            Number::positive("m", "|command change| per control period (default: the rig's velocity over one period)"));
+      l.max_force_n = limits->number_or("max_force_n", l.max_force_n, Number::positive("N", "|measured force| (default: the rig's force capacity)"));
+      l.max_tracking_error_m = limits->number_or("max_tracking_error_m", l.max_tracking_error_m,
+                                                 Number::positive("m", "|target - measured| before the test counts as run away (default: half the stroke)"));
       limits->finish();
+      limit_readers.emplace_back(*limits);
+    } else {
+      limit_readers.emplace_back(std::nullopt);
     }
     if (!used.insert(channel.dof.dof).second) e.fail("dof", "is experimental twice");
     e.finish();
@@ -277,6 +285,17 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
   }
   if (root.has("integrator")) t.integrator = read_integrator(root.mapping("integrator"));
   read_clock(root.mapping("clock"), t);
+  // A limit may only tighten the rig's envelope.
+  const double period_s = 1.0 / t.control_rate_hz / integrators::make_integrator(t.integrator)->iterations_per_step();
+  for (std::size_t i = 0; i < t.experimental.size(); ++i) {
+    try {
+      (void)coordinator::within_envelope(t.experimental[i].limits, servo::envelope_of(t.plant), period_s);
+    } catch (const std::invalid_argument& e) {
+      const std::string message = e.what();
+      if (limit_readers[i]) limit_readers[i]->fail(message.substr(0, message.find(':')), message.substr(message.find(':') + 2));
+      throw ConfigError(file.string() + ": experimental[" + std::to_string(i) + "].limits." + message);
+    }
+  }
   if (auto transport = root.optional_mapping("transport")) read_transport(*transport, file, t);
   const double dt_s = 1.0 / t.control_rate_hz;
   const double control_period_s = dt_s / integrators::make_integrator(t.integrator)->iterations_per_step();

@@ -19,6 +19,30 @@ PlantConfig read_plant_config(config::Source& section, double specimen_stiffness
   return plant;
 }
 
+Envelope envelope_of(const PlantConfig& config) {
+  return std::visit(
+      [](const auto& p) -> Envelope {
+        if constexpr (std::is_same_v<std::decay_t<decltype(p)>, ServoSystemParameters>) {
+          return p.envelope();
+        } else {
+          return p.rig;
+        }
+      },
+      config);
+}
+
+double specimen_stiffness_of(const PlantConfig& config) {
+  return std::visit(
+      [](const auto& p) -> double {
+        if constexpr (std::is_same_v<std::decay_t<decltype(p)>, ServoSystemParameters>) {
+          return p.specimen.stiffness.initial_n_per_m;
+        } else {
+          return p.specimen_stiffness_n_per_m;
+        }
+      },
+      config);
+}
+
 PlantSet make_plants(const PlantConfig& config, int channels) {
   PlantSet set;
   for (int c = 0; c < channels; ++c) {

@@ -10,7 +10,9 @@ void PureDelayParameters::validate() const {
   if (!(delay_s >= 0.0) || !std::isfinite(delay_s)) throw std::invalid_argument("delay_s: must be zero or positive");
   if (!(specimen_stiffness_n_per_m >= 0.0))
     throw std::invalid_argument("specimen_stiffness_n_per_m: must be zero or positive");
-  if (!(sample_rate_hz > 0.0)) throw std::invalid_argument("sample_rate_hz: must be positive");
+  if (!(sample_rate_hz > 0.0) || sample_rate_hz > 1e6) throw std::invalid_argument("sample_rate_hz: must be positive, at most 1e6 Hz");
+  if (delay_s * sample_rate_hz > 1e7) throw std::invalid_argument("delay_s: longer than 1e7 history points");
+  rig.validate();
 }
 
 PureDelayPlant::PureDelayPlant(const PureDelayParameters& parameters) : parameters_(parameters) {
@@ -66,8 +68,10 @@ double PureDelayPlant::command_at(double t) const {
 }
 
 PlantMeasurement PureDelayPlant::measure() const {
-  const double x = command_at(time_s_ - parameters_.delay_s);
-  return {x, parameters_.specimen_stiffness_n_per_m * x};
+  const double commanded = command_at(time_s_ - parameters_.delay_s);
+  const double stroke = parameters_.rig.stroke_m;
+  const double x = std::clamp(commanded, -stroke, stroke);  // the end stops
+  return {x, parameters_.specimen_stiffness_n_per_m * x, std::abs(commanded) >= stroke, false};
 }
 
 PureDelayParameters PureDelayParameters::read(config::Source& section, double specimen_stiffness_n_per_m) {
@@ -75,6 +79,7 @@ PureDelayParameters PureDelayParameters::read(config::Source& section, double sp
   d.delay_s =
       section.number("delay_s", config::Number::non_negative("s", "how long after its command the actuator is there"));
   d.specimen_stiffness_n_per_m = specimen_stiffness_n_per_m;
+  d.rig = Envelope::read(*section.section("rig", "what the simulated rig can do"));
   return d;
 }
 

@@ -8,7 +8,7 @@
 namespace rpsd::servo {
 
 ServoHydraulicPlant::ServoHydraulicPlant(const ServoSystemParameters& parameters)
-    : parameters_(parameters), max_step_s_(1.0 / parameters.plant_rate_hz) {
+    : parameters_(parameters), max_step_s_(1.0 / parameters.plant_rate_hz), stroke_m_(parameters.actuator.stroke_m) {
   parameters_.validate();
   const auto& p = parameters_;
   const auto& valve = p.servovalve;
@@ -124,6 +124,11 @@ void ServoHydraulicPlant::rk4_step(Rates& y, double h, double u0, double command
     y[i] += sixth * (t1.rate[i] + 2.0 * t2.rate[i] + 2.0 * t3.rate[i] + t4.rate[i]);
   }
   y[kSpoolOpening] = std::clamp(y[kSpoolOpening], -1.0, 1.0);  // the spool's stops
+  // The piston's end stops: it stays at the end cap and stops moving outward there.
+  if (std::abs(y[kDisplacement]) >= stroke_m_) {
+    y[kDisplacement] = std::copysign(stroke_m_, y[kDisplacement]);
+    if (y[kVelocity] * y[kDisplacement] > 0.0) y[kVelocity] = 0.0;
+  }
 }
 
 void ServoHydraulicPlant::advance(double command_start_m, double command_end_m, double duration_s) {
@@ -141,7 +146,9 @@ void ServoHydraulicPlant::advance(double command_start_m, double command_end_m, 
 }
 
 PlantMeasurement ServoHydraulicPlant::measure() const {
-  return {state_[kDisplacement], parameters_.actuator.piston_area_m2 * state_[kLoadPressure]};
+  const double x = state_[kDisplacement];
+  return {x, parameters_.actuator.piston_area_m2 * state_[kLoadPressure], std::abs(x) >= stroke_m_,
+          std::abs(state_[kSpoolOpening]) >= 1.0};
 }
 
 }  // namespace rpsd::servo

@@ -66,10 +66,15 @@ void ServoSystemParameters::validate() const {
   require_non_negative(specimen.friction_force_n, "specimen.friction_force_n");
   require_positive(specimen.friction_regularisation_velocity_m_per_s,
                    "specimen.friction_regularisation_velocity_m_per_s");
-  require_positive(plant_rate_hz, "plant_rate_hz");
+  require(plant_rate_hz >= 1e3 && plant_rate_hz <= 1e6, "plant_rate_hz", "must be from 1e3 to 1e6 Hz");
   // The spool loop must be resolved by the fixed step (RK4 is stable to |lambda dt| ~ 2.8).
   require(servovalve.natural_frequency_rad_s() / plant_rate_hz < 0.5, "plant_rate_hz",
           "too low to resolve the servovalve spool loop (need rate > 2 x spool natural frequency in rad/s)");
+}
+
+Envelope ServoSystemParameters::envelope() const {
+  return {actuator.stroke_m, flow.supply_pressure_pa * actuator.piston_area_m2,
+          flow.flow_gain_at(1.0) / actuator.piston_area_m2};
 }
 
 }  // namespace rpsd::servo

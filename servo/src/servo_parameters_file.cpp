@@ -102,7 +102,7 @@ ServoSystemParameters read_servo_parameters(config::Source& file) {
   if (file.has("simulation")) {
     const auto simulation = file.section("simulation", "how the plant is integrated");
     p.plant_rate_hz = simulation->number_or("plant_rate_hz", p.plant_rate_hz,
-                                            Number::positive("Hz", "fixed-step RK4 rate of the continuous plant"));
+                                            Number::between(1e3, 1e6, "Hz", "fixed-step RK4 rate of the continuous plant"));
     simulation->finish();
   }
   file.finish();

@@ -45,12 +45,15 @@ ActuatorStatus SimulatedActuator::exchange(std::span<const double> command_m, do
   for (int c = 0; c < channels_; ++c) {
     if (!std::isfinite(command_m[c])) return ActuatorStatus::kFault;
   }
+  reading.at_end_stop = reading.valve_saturated = false;
   for (int c = 0; c < channels_; ++c) {
     plants_[c]->advance(last_command_m_[c], command_m[c], period_s);
     last_command_m_[c] = command_m[c];
     const PlantMeasurement m = plants_[c]->measure();
     reading.displacement_m[c] = m.displacement_m;
     reading.force_n[c] = m.force_n;
+    reading.at_end_stop = reading.at_end_stop || m.at_end_stop;
+    reading.valve_saturated = reading.valve_saturated || m.valve_saturated;
   }
   reading.fresh = true;
   return ActuatorStatus::kOk;

@@ -14,7 +14,8 @@ void TransferFunctionPlantParameters::validate() const {
     throw std::invalid_argument("transfer function: improper (numerator degree > denominator degree)");
   const Eigen::VectorXcd poles = tf.denominator.roots();
   if (poles.real().maxCoeff() >= 0.0) throw std::invalid_argument("transfer function: unstable or marginal pole");
-  if (!(plant_rate_hz > 0.0)) throw std::invalid_argument("plant_rate_hz: must be positive");
+  if (!(plant_rate_hz >= 1e3 && plant_rate_hz <= 1e6)) throw std::invalid_argument("plant_rate_hz: must be from 1e3 to 1e6 Hz");
+  rig.validate();
   // RK4's stability region reaches |lambda h| ~ 2.8 on the real axis; keep a margin.
   if (poles.cwiseAbs().maxCoeff() / plant_rate_hz > 1.0) {
     throw std::invalid_argument("plant_rate_hz: too low for the fastest pole of the transfer function");
@@ -84,8 +85,11 @@ void TransferFunctionPlant::advance(double command_start_m, double command_end_m
 }
 
 PlantMeasurement TransferFunctionPlant::measure() const {
-  const double x = c_.dot(x_) + d_ * last_command_m_;
-  return {x, parameters_.specimen_stiffness_n_per_m * x};
+  // A linear model has no end stops of its own: the rig's are applied to its output.
+  const double y = c_.dot(x_) + d_ * last_command_m_;
+  const double stroke = parameters_.rig.stroke_m;
+  const double x = std::clamp(y, -stroke, stroke);
+  return {x, parameters_.specimen_stiffness_n_per_m * x, std::abs(y) >= stroke, false};
 }
 
 TransferFunctionPlantParameters TransferFunctionPlantParameters::read(config::Source& section,
@@ -102,7 +106,8 @@ TransferFunctionPlantParameters TransferFunctionPlantParameters::read(config::So
       Polynomial(Eigen::Map<Eigen::VectorXd>(denominator.data(), static_cast<Eigen::Index>(denominator.size())))};
   t.specimen_stiffness_n_per_m = specimen_stiffness_n_per_m;
   t.plant_rate_hz = section.number_or("plant_rate_hz", t.plant_rate_hz,
-                                      config::Number::positive("Hz", "fixed-step integration rate"));
+                                      config::Number::between(1e3, 1e6, "Hz", "fixed-step integration rate"));
+  t.rig = Envelope::read(*section.section("rig", "what the simulated rig can do"));
   try {
     t.validate();
   } catch (const std::invalid_argument& e) {

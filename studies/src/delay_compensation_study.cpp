@@ -98,8 +98,13 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
     x.reserve(static_cast<std::size_t>(steps));
     const double abort_level = study.abort_amplitude_factor * std::abs(study.initial_displacement_m);
     for (std::int64_t n = 0; n < steps; ++n) {
-      if (test.step() != coordinator::StepOutcome::kOk)
-        throw std::runtime_error("delay-compensation case stopped: loop failure");
+      const coordinator::StepOutcome outcome = test.step();
+      // An unstable case leaves the rig's envelope on purpose: the stop is its expected end.
+      if (outcome == coordinator::StepOutcome::kLimit || outcome == coordinator::StepOutcome::kRunAway) {
+        k.stopped_by = coordinator::limit_stop_name(test.limit_stop().kind);
+        break;
+      }
+      if (outcome != coordinator::StepOutcome::kOk) throw std::runtime_error("delay-compensation case stopped: loop failure");
       sums.add_test(test.last_record());
       x.push_back(test.last_record().displacement_m[0]);
       if (abort_level > 0.0 && std::abs(x.back()) > abort_level) {
@@ -113,7 +118,7 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
     const IdentifiedDamping identified = identify_damping(x, dt, 0.25, 1e-4);
     k.identified_damping_ratio = identified.damping_ratio;
     k.identified_frequency_hz = identified.damped_frequency_hz;
-    k.stable = k.identified_damping_ratio > 0.0 && !k.aborted_on_amplitude;
+    k.stable = k.identified_damping_ratio > 0.0 && !k.aborted_on_amplitude && k.stopped_by.empty();
     const coordinator::ChannelCriteria criteria = sums.channel(0);
     k.tracking_rms_error_percent = criteria.j2_rms_tracking_error_percent;
     k.tracking_peak_error_percent = criteria.j3_peak_tracking_error_percent;
@@ -142,6 +147,7 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
                        {"predicted_damping_ratio_loop", k.predicted_damping_ratio_loop},
                        {"stable", k.stable},
                        {"aborted_on_amplitude", k.aborted_on_amplitude},
+                       {"stopped_by", k.stopped_by.empty() ? nlohmann::json(nullptr) : nlohmann::json(k.stopped_by)},
                        {"tracking_rms_error_percent", k.tracking_rms_error_percent},
                        {"tracking_peak_error_percent", k.tracking_peak_error_percent},
                        {"tracking_delay_ms", 1e3 * k.tracking_delay_s},

@@ -30,6 +30,8 @@ const char* outcome_text(coordinator::StepOutcome o) {
       return "aborted: a non-finite measurement arrived";
     case coordinator::StepOutcome::kLimit:
       return "aborted: a coordinator limit was reached";
+    case coordinator::StepOutcome::kRunAway:
+      return "stopped: the test ran away";
   }
   return "aborted";
 }
@@ -118,6 +120,43 @@ nlohmann::json ground_motion_json(const coordinator::GroundMotion& motion) {
           {"pga_g", pga / 9.80665}};
 }
 
+// What ran away, in words a test engineer reads in the summary.
+std::string describe_run_away(const coordinator::LimitStop& l) {
+  char text[240];
+  using Kind = coordinator::LimitStop::Kind;
+  switch (l.kind) {
+    case Kind::kTrackingError:
+      std::snprintf(text, sizeof text, "channel %d: tracking error %.6g m beyond limits.max_tracking_error_m %.6g", l.channel,
+                    l.value, l.bound);
+      break;
+    case Kind::kNodeLimit: {
+      const auto flags = static_cast<std::uint32_t>(l.value);
+      std::string which;
+      const std::pair<std::uint32_t, const char*> names[] = {{transport::kLimitStroke, "stroke"},
+                                                             {transport::kLimitVelocity, "velocity"},
+                                                             {transport::kLimitForce, "force"},
+                                                             {transport::kLimitIncrement, "increment"},
+                                                             {transport::kLimitAcceleration, "acceleration"}};
+      for (const auto& [flag, name] : names) {
+        if (flags & flag) which += (which.empty() ? "" : ", ") + std::string(name);
+      }
+      std::snprintf(text, sizeof text, "the servo node's %s limit acted: the rig was asked for more than it allows",
+                    which.c_str());
+      break;
+    }
+    case Kind::kEndStop:
+      std::snprintf(text, sizeof text, "a piston reached the end of its stroke");
+      break;
+    case Kind::kValveSaturation:
+      std::snprintf(text, sizeof text, "a servovalve stayed fully open for %.0f control periods (run_away.max_valve_saturation_s)",
+                    l.value);
+      break;
+    default:
+      std::snprintf(text, sizeof text, "%s", coordinator::limit_stop_name(l.kind));
+  }
+  return text;
+}
+
 std::string describe_outcome(const coordinator::TestConfig& s, const coordinator::TestRun& test) {
   std::string text = outcome_text(test.outcome);
   if (test.outcome == coordinator::StepOutcome::kLinkFailure) {
@@ -152,6 +191,7 @@ std::string describe_outcome(const coordinator::TestConfig& s, const coordinator
                   static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
     text += detail;
   }
+  if (test.outcome == coordinator::StepOutcome::kRunAway) text += " (" + describe_run_away(test.limit_stop) + ")";
   return text;
 }
 

@@ -17,12 +17,16 @@ long allocations_over_steps(SpecimenSdof sdof, const servo::PlantConfig& plant, 
   sdof.duration_s = 2.0 * steps / sdof.control_rate_hz;
   const TestConfig config = specimen_sdof_test(sdof);
   TestAssembly test(config, {{}, false, true, {}});
+  int taken = 0;
   rpsd::testing::begin_counting_allocations();
-  for (int i = 0; i < steps; ++i) {
+  for (; taken < steps; ++taken) {
     if (test.step() != StepOutcome::kOk) break;
   }
   const long allocations = rpsd::testing::end_counting_allocations().total();
-  EXPECT_EQ(test.finish(StepOutcome::kOk).records.size(), static_cast<std::size_t>(steps));
+  // A combination that runs away (HHT's two commands a step with adaptive time series grow past
+  // the rig's velocity) stops early: its stop must not allocate either.
+  EXPECT_GE(taken, 500) << "the test stopped: " << limit_stop_name(test.limit_stop().kind);
+  EXPECT_EQ(test.finish(StepOutcome::kOk).records.size(), static_cast<std::size_t>(taken));
   return allocations;
 }
 
@@ -36,7 +40,9 @@ TEST(LoopAllocation, CounterSeesAllocations) {
 
 TEST(LoopAllocation, NoAllocationPerStep) {
   SpecimenSdof setup;
-  setup.initial_displacement_m = 0.005;
+  // Small enough that the combinations that grow (the uncompensated ones) stay within the rig's
+  // envelope for most of the steps counted.
+  setup.initial_displacement_m = 0.0002;
   const compensation::CompensatorConfig compensators[] = {
       compensation::PassThroughParameters{},
       compensation::PolynomialExtrapolationParameters{3, 0.02},
@@ -49,7 +55,7 @@ TEST(LoopAllocation, NoAllocationPerStep) {
     for (const auto& integrator : integrators) {
       setup.compensation = compensator;
       setup.integrator = integrator;
-      const servo::PureDelayParameters delay{0.02, setup.stiffness_n_per_m, 8192.0};
+      const servo::PureDelayParameters delay{0.02, setup.stiffness_n_per_m, 8192.0, {}};
       EXPECT_EQ(allocations_over_steps(setup, delay, 4000), 0) << compensation::compensator_name(compensator);
       EXPECT_EQ(allocations_over_steps(setup, rpsd::testing::paper_rig(), 2000), 0)
           << compensation::compensator_name(compensator);
@@ -58,7 +64,7 @@ TEST(LoopAllocation, NoAllocationPerStep) {
           {servo::Polynomial{2.18385e13},
            servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
           setup.stiffness_n_per_m,
-          8192.0};
+          8192.0, {}};
       EXPECT_EQ(allocations_over_steps(setup, benchmark, 2000), 0) << compensation::compensator_name(compensator);
     }
   }

@@ -12,6 +12,7 @@ namespace rpsd::coordinator::testing {
 struct SdofRun {
   std::vector<StepRecord> records;
   StepOutcome outcome = StepOutcome::kOk;
+  LimitStop limit_stop;  // what stopped it, if a limit or a run-away did
 };
 
 inline SdofRun run_steps(const TestConfig& config, AssemblyOptions options = {}) {
@@ -19,7 +20,8 @@ inline SdofRun run_steps(const TestConfig& config, AssemblyOptions options = {})
   TestAssembly test(config, options);
   StepOutcome outcome = StepOutcome::kOk;
   for (std::int64_t n = 0; n < test.steps_planned() && outcome == StepOutcome::kOk; ++n) outcome = test.step();
-  return {test.finish(outcome).records, outcome};
+  const LimitStop stop = test.limit_stop();
+  return {test.finish(outcome).records, outcome, stop};
 }
 
 inline SdofRun run_sdof(const SpecimenSdof& sdof, AssemblyOptions options = {}) {

@@ -97,7 +97,7 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
       {{servo::Polynomial{2.18385e13},
         servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
        1.19e6,
-       8192.0});
+       8192.0, {}});
   servo::Plant* plants[] = {&paper, &benchmark};
   servo::SimulatedActuator actuator(plants);
   ServoNodeController node(node_config(), actuator);
@@ -111,8 +111,8 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
 }
 
 TEST(ServoNodeAllocation, NoAllocationPerTickOverTheUdpAdapter) {
-  servo::TransferFunctionPlant a({{servo::Polynomial{1.0}, servo::Polynomial{1.0, 0.01}}, 1e5, 8192.0});
-  servo::TransferFunctionPlant b({{servo::Polynomial{1.0}, servo::Polynomial{1.0, 0.02}}, 1e5, 8192.0});
+  servo::TransferFunctionPlant a({{servo::Polynomial{1.0}, servo::Polynomial{1.0, 0.01}}, 1e5, 8192.0, {}});
+  servo::TransferFunctionPlant b({{servo::Polynomial{1.0}, servo::Polynomial{1.0, 0.02}}, 1e5, 8192.0, {}});
   servo::Plant* plants[] = {&a, &b};
   ControllerEmulator emulator(plants, {"127.0.0.1", 0});
   const double x0[] = {0.0, 0.0};

@@ -56,7 +56,7 @@ UdpControllerConfig adapter_config(const ControllerEmulator& emulator, int chann
 // An emulated controller whose actuator is perfect: it measures its command at the end of
 // each period, and the load cell reads 1e5 N/m times that.
 struct IdealController {
-  servo::PureDelayPlant plant{{0.0, 1e5, 8192.0}};
+  servo::PureDelayPlant plant{{0.0, 1e5, 8192.0, {}}};
   std::array<servo::Plant*, 1> plants{&plant};
   ControllerEmulator emulator{plants, {"127.0.0.1", 0}};
 };
@@ -65,7 +65,7 @@ servo::TransferFunctionPlantParameters benchmark() {
   return {{servo::Polynomial{2.18385e13},
            servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
           1.19e6,
-          8192.0};
+          8192.0, {}};
 }
 
 TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {

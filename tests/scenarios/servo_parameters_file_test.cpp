@@ -99,7 +99,7 @@ TEST_F(BadParameterFile, YamlSyntaxErrorNamesLine) {
 }
 
 TEST_F(BadParameterFile, PlantRateTooLowForTheSpoolLoop) {
-  const std::string message = error_for("plant_rate_hz: 8192", "plant_rate_hz: 500");
+  const std::string message = error_for("plant_rate_hz: 8192", "plant_rate_hz: 1000");
   EXPECT_NE(message.find("plant_rate_hz: too low"), std::string::npos) << message;
 }
 

@@ -15,7 +15,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 TEST(PureDelayPlant, ReproducesTheCommandExactlyOneDelayLater) {
-  PureDelayPlant plant({0.0173, 1e5, 8192.0});
+  PureDelayPlant plant({0.0173, 1e5, 8192.0, {}});
   plant.reset(0.002);
   const double dt = 1.0 / 1024.0, omega = 2.0 * kPi * 1.3;
   double command = 0.002;
@@ -39,7 +39,7 @@ TEST(PureDelayPlant, ReproducesTheCommandExactlyOneDelayLater) {
 }
 
 TEST(PureDelayPlant, FrequencyResponseIsUnitGainAndLinearPhase) {
-  PureDelayPlant plant({0.025, 0.0, 8192.0});
+  PureDelayPlant plant({0.025, 0.0, 8192.0, {}});
   for (double f : {0.5, 2.0, 7.0}) {
     const auto g = simulated_frequency_response(plant, SineTest{1e-3, f, 4096.0, 0.5, 4});
     EXPECT_NEAR(std::abs(g), 1.0, 1e-4) << f;
@@ -48,7 +48,7 @@ TEST(PureDelayPlant, FrequencyResponseIsUnitGainAndLinearPhase) {
 }
 
 TEST(PureDelayPlant, StepArrivesAfterTheDelay) {
-  PureDelayPlant plant({0.010, 0.0, 8192.0});
+  PureDelayPlant plant({0.010, 0.0, 8192.0, {}});
   const double dt = 1.0 / 8192.0;
   plant.advance(0.0, 0.0, 0.005);
   plant.advance(0.001, 0.001, 0.0099);  // a jump to 1 mm at t = 5 ms
@@ -59,7 +59,7 @@ TEST(PureDelayPlant, StepArrivesAfterTheDelay) {
 
 TEST(TransferFunctionPlant, FirstOrderStepResponseIsExponential) {
   const double tau = 0.05;
-  TransferFunctionPlant plant({{Polynomial{1.0}, Polynomial{1.0, tau}}, 0.0, 8192.0});
+  TransferFunctionPlant plant({{Polynomial{1.0}, Polynomial{1.0, tau}}, 0.0, 8192.0, {}});
   const double dt = 1.0 / 1024.0;
   for (int i = 1; i <= 256; ++i) {
     plant.advance(i == 1 ? 0.0 : 0.01, 0.01, dt);
@@ -78,7 +78,7 @@ TransferFunction benchmark_plant() {
 }
 
 TEST(TransferFunctionPlant, MatchesTheRthsBenchmarkFrequencyResponseTable) {
-  TransferFunctionPlant plant({benchmark_plant(), 0.0, 8192.0});
+  TransferFunctionPlant plant({benchmark_plant(), 0.0, 8192.0, {}});
   struct Row {
     double f, gain, delay_ms;
   };
@@ -90,7 +90,7 @@ TEST(TransferFunctionPlant, MatchesTheRthsBenchmarkFrequencyResponseTable) {
 }
 
 TEST(TransferFunctionPlant, ResetHoldsTheRequestedDisplacement) {
-  TransferFunctionPlant plant({benchmark_plant(), 1.19e6, 8192.0});
+  TransferFunctionPlant plant({benchmark_plant(), 1.19e6, 8192.0, {}});
   plant.reset(0.003);
   const double command = 0.003 / benchmark_plant().static_gain();
   for (int i = 0; i < 512; ++i) plant.advance(command, command, 1.0 / 4096.0);
@@ -99,8 +99,8 @@ TEST(TransferFunctionPlant, ResetHoldsTheRequestedDisplacement) {
 }
 
 TEST(TransferFunctionPlant, RejectsUnstableAndImproperModels) {
-  EXPECT_THROW(TransferFunctionPlant({{Polynomial{1.0}, Polynomial{-1.0, 1.0}}, 0.0, 8192.0}), std::invalid_argument);
-  EXPECT_THROW(TransferFunctionPlant({{Polynomial{0.0, 0.0, 1.0}, Polynomial{1.0, 1.0}}, 0.0, 8192.0}),
+  EXPECT_THROW(TransferFunctionPlant({{Polynomial{1.0}, Polynomial{-1.0, 1.0}}, 0.0, 8192.0, {}}), std::invalid_argument);
+  EXPECT_THROW(TransferFunctionPlant({{Polynomial{0.0, 0.0, 1.0}, Polynomial{1.0, 1.0}}, 0.0, 8192.0, {}}),
                std::invalid_argument);
 }
 

@@ -19,7 +19,7 @@ namespace {
 TransferFunctionPlantParameters benchmark() {
   return {{Polynomial{2.18385e13}, Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
           1.19e6,
-          8192.0};
+          8192.0, {}};
 }
 
 double sine_command(int channel, int i, double dt) {
@@ -31,7 +31,7 @@ TEST(SimulatedActuator, EqualsEachPlantDrivenDirectlyBitForBit) {
   const auto rig = rpsd::testing::paper_rig();
   ServoHydraulicPlant paper(rig), paper_direct(rig);
   TransferFunctionPlant tf(benchmark()), tf_direct(benchmark());
-  PureDelayPlant delay({0.013, 2e5, 8192.0}), delay_direct({0.013, 2e5, 8192.0});
+  PureDelayPlant delay({0.013, 2e5, 8192.0, {}}), delay_direct({0.013, 2e5, 8192.0, {}});
   Plant* plants[] = {&paper, &tf, &delay};
   Plant* direct[] = {&paper_direct, &tf_direct, &delay_direct};
   SimulatedActuator actuator(plants);
@@ -57,7 +57,7 @@ TEST(SimulatedActuator, EqualsEachPlantDrivenDirectlyBitForBit) {
 }
 
 TEST(SimulatedActuator, RefusesBadCommandsWithoutAdvancing) {
-  PureDelayPlant a({0.0, 1e3, 8192.0}), b({0.0, 1e3, 8192.0});
+  PureDelayPlant a({0.0, 1e3, 8192.0, {}}), b({0.0, 1e3, 8192.0, {}});
   Plant* plants[] = {&a, &b};
   SimulatedActuator actuator(plants);
   const double x0[] = {0.001, -0.002};

@@ -1,17 +1,27 @@
 // The coordinator's own limits for one actuator channel (specimen scale): a second layer
-// beside the servo node's. A command beyond its stroke or increment is never sent; a
-// measured force beyond its bound stops the test at once. Infinity: not checked.
+// beside the servo node's, and the rules that tell a run-away. A command beyond its stroke or
+// increment is never sent; a measured force beyond its bound, or a tracking error beyond its
+// bound, stops the test at once. Every limit defaults to the rig's envelope (within_envelope).
 #pragma once
 
 #include <limits>
+
+#include "rpsd/servo/envelope.h"
 
 namespace rpsd::coordinator {
 
 struct CoordinatorLimits {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  double max_stroke_m = kNone;     // |command|
-  double max_increment_m = kNone;  // |command change| per control period
-  double max_force_n = kNone;      // |measured force|
+  double max_stroke_m = kNone;          // |command|
+  double max_increment_m = kNone;       // |command change| per control period
+  double max_force_n = kNone;           // |measured force|
+  double max_tracking_error_m = kNone;  // |target - measured|: beyond it the test has run away
 };
+
+// The limits of a channel on a rig: a limit left out (infinite) becomes the envelope's (the
+// stroke, the force capacity, the velocity capacity over one control period, and half the
+// stroke of tracking error); a limit beyond the envelope is refused with
+// std::invalid_argument naming the key. Not real-time safe.
+CoordinatorLimits within_envelope(CoordinatorLimits limits, const servo::Envelope& envelope, double control_period_s);
 
 }  // namespace rpsd::coordinator

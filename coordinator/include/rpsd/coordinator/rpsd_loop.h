@@ -49,13 +49,28 @@ struct LoopParts {
   // periods old; an older one (a silent node) stops the test.
   int max_feedback_age_periods = 0;
   // The coordinator's limits per channel (empty: none). A command beyond its stroke or
-  // increment is never sent; a measured force beyond its bound stops the test at once.
+  // increment is never sent; a measured force or tracking error beyond its bound stops the
+  // test at once.
   std::vector<CoordinatorLimits> limits;
+  // A run-away also stops the test: any limit of a node acting, a piston on its end stop, a
+  // servovalve fully open for longer than this many exchanges in a row.
+  bool stop_on_node_limits = false;
+  int max_valve_saturation_exchanges = 0;  // 0: not checked
 };
 
-// Which coordinator limit stopped the test, on which channel, at what value.
+// What stopped the test, on which channel, at what value: one of the coordinator's limits
+// (StepOutcome::kLimit) or a run-away (StepOutcome::kRunAway).
 struct LimitStop {
-  enum class Kind : std::uint8_t { kNone, kStroke, kIncrement, kForce };
+  enum class Kind : std::uint8_t {
+    kNone,
+    kStroke,
+    kIncrement,
+    kForce,
+    kTrackingError,    // |target - measured| beyond max_tracking_error_m
+    kNodeLimit,        // a node's limit acted; value: its limit flags
+    kEndStop,          // a piston reached the end of its stroke
+    kValveSaturation,  // a servovalve stayed fully open; value: exchanges in a row
+  };
   Kind kind = Kind::kNone;
   int channel = -1;
   double value = 0.0, bound = 0.0;
@@ -69,7 +84,8 @@ enum class StepOutcome : std::uint8_t {
   kIntegratorError,
   kNodeFault,
   kNonFinite,
-  kLimit
+  kLimit,    // a coordinator limit (limit_stop() says which)
+  kRunAway,  // the test left the rig's envelope or diverged (limit_stop() says how)
 };
 
 class RpsdLoop {
@@ -106,6 +122,7 @@ class RpsdLoop {
  private:
   void experimental_forces(const transport::FeedbackSample& feedback);
   bool commands_within_limits();  // fills limit_stop_ when not
+  StepOutcome run_away();         // kOk, or kRunAway with limit_stop_ filled
   void fill_record(StepRecord& r) const;
 
   LoopParts parts_;
@@ -125,6 +142,7 @@ class RpsdLoop {
   LimitStop limit_stop_;
   std::array<double, transport::kMaxChannels> last_sent_m_{};
   std::int64_t oldest_age_this_step_ = 0;
+  int saturated_exchanges_ = 0;
   double input_energy_j_ = 0.0, damping_energy_j_ = 0.0, restoring_energy_j_ = 0.0, kinetic_energy_j_ = 0.0;
 };
 

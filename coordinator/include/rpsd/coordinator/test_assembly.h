@@ -75,6 +75,8 @@ class TestAssembly {
   // is lost). Real-time safe except for that wait.
   StepOutcome step();
   const StepRecord& last_record() const;
+  // What stopped the loop when step() or run() returned kLimit or kRunAway.
+  const LimitStop& limit_stop() const;
   // Every planned step: as fast as possible, or paced at the control rate in real time.
   // `after_step` (optional) sees each step's record; in real time it runs inside the cycle
   // and must be real-time safe. `progress` as for run_test (as fast as possible only).

@@ -56,6 +56,12 @@ struct TransportConfig {
   double discovery_timeout_s = 10.0;  // longest wait for every site's node at start
 };
 
+// When a test has run away, beyond the limits of each channel (coordinator_limits.h) and any
+// node limit acting: a servovalve fully open for longer than this.
+struct RunAwayConfig {
+  double max_valve_saturation_s = 0.25;
+};
+
 // A ground-acceleration record already read and processed to the integration step.
 struct GroundMotion {
   std::string name;  // file or generator, for titles
@@ -74,6 +80,7 @@ struct TestConfig {
   compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
   double control_rate_hz = 1024.0;  // integration step = control period x iterations
   ClockConfig clock;
+  RunAwayConfig run_away;
   TransportConfig transport;
   // Either a ground motion or an initial displacement (free vibration) drives the test.
   std::optional<GroundMotion> ground_motion;

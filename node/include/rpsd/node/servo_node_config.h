@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "rpsd/servo/actuator.h"
+#include "rpsd/servo/envelope.h"
 #include "rpsd/transport/messages.h"
 
 namespace rpsd::node {
@@ -15,9 +16,11 @@ static_assert(servo::kMaxChannels == transport::kMaxChannels, "a node's actuator
 
 // What a limit does when a command or a measurement exceeds it.
 enum class LimitAction : std::uint8_t {
-  kClamp,  // saturate the command at the bound (per channel) and keep following
-  kHold,   // freeze every channel's command where it is until the command is back within limits
-  kAbort,  // latch a fault: commands frozen, status kNodeFault, until the node is restarted
+  kClamp,       // saturate the command at the bound (per channel) and keep following
+  kHold,        // hold every channel where its piston is while the limit is exceeded
+  kRampToSafe,  // ramp every channel to its safe position at the safe ramp velocity, and stay
+  kAbort,       // latch a fault: every channel held where its piston is, status kNodeFault,
+                // until the node is restarted
 };
 
 // What the node does when commands stop arriving (the watchdog).
@@ -26,21 +29,26 @@ enum class LossAction : std::uint8_t {
   kRampToSafe,  // move the command to safe_position_m at safe_ramp_velocity_m_per_s and stay
 };
 
-enum class LimitKind : std::uint8_t { kStroke, kVelocity, kForce, kIncrement };
-inline constexpr int kLimitKinds = 4;
+enum class LimitKind : std::uint8_t { kStroke, kVelocity, kForce, kIncrement, kAcceleration };
+inline constexpr int kLimitKinds = 5;
 
 const char* limit_kind_name(LimitKind kind);
 const char* limit_action_name(LimitAction action);
 // The FeedbackSample::limit_flags bit of a limit kind.
 std::uint32_t limit_flag(LimitKind kind);
 
-// One channel's bounds; infinity means no limit.
+// One channel's bounds; infinity means no limit (a node's are the rig's envelope unless
+// tightened: limit_to_envelope).
 struct ChannelLimits {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  double max_stroke_m = kNone;          // |command| bound
-  double max_velocity_m_per_s = kNone;  // |command change| / control period
-  double max_force_n = kNone;           // |measured force|
-  double max_increment_m = kNone;       // |command change| from one applied command to the next
+  double max_stroke_m = kNone;                // |command| and |measured displacement|
+  double max_velocity_m_per_s = kNone;        // |command change| / control period
+  double max_force_n = kNone;                 // |measured force|, and the force a command may ask for
+  double max_increment_m = kNone;             // |command change| from one applied command to the next
+  double max_acceleration_m_per_s2 = kNone;   // |change of command change| / control period^2
+  // The stiffness the force guard predicts with (an upper bound of the specimen's): a command
+  // is kept where F_measured + k (x_command - x_measured) stays within max_force_n. 0: no guard.
+  double force_guard_stiffness_n_per_m = 0.0;
 };
 
 struct LimitActions {
@@ -48,6 +56,7 @@ struct LimitActions {
   LimitAction velocity = LimitAction::kClamp;
   LimitAction force = LimitAction::kAbort;
   LimitAction increment = LimitAction::kClamp;
+  LimitAction acceleration = LimitAction::kClamp;
   LimitAction of(LimitKind kind) const;
 };
 
@@ -69,5 +78,10 @@ struct ServoNodeConfig {
   // real-time safe.
   void validate() const;
 };
+
+// Makes the rig's envelope every channel's limit: a limit left out (infinite) becomes the
+// envelope's, and a limit beyond the envelope is refused (std::invalid_argument naming
+// limits[c].key): a user may only tighten what the rig can do. Not real-time safe.
+void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope);
 
 }  // namespace rpsd::node

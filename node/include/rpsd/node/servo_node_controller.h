@@ -44,6 +44,8 @@ struct ServoNodeCounters {
   std::array<std::uint64_t, kLimitKinds> limit_activations{};   // per kind: a channel's limit began acting
   std::array<std::uint64_t, kLimitKinds> limit_active_ticks{};  // per kind: ticks it acted on any channel
   std::uint64_t faults = 0;                                     // fault latches (limit abort or actuator fault)
+  std::uint64_t end_stop_ticks = 0;                             // ticks with a piston at the end of its stroke
+  std::uint64_t valve_saturated_ticks = 0;                      // ticks with a servovalve fully open
   std::uint64_t actuator_no_replies = 0;
   std::uint64_t actuator_faults = 0;
 
@@ -123,6 +125,7 @@ class ServoNodeController {
 
   Values target_m_{};   // what the node is moving the command toward
   Values command_m_{};  // what it sent to the actuator last
+  Values change_m_{};   // the last applied change of command (for the acceleration limit)
   servo::ActuatorReading reading_;
 
   bool commands_began_ = false;

@@ -5,10 +5,13 @@
 
 namespace rpsd::servo {
 
-// What the rig's sensors report: LVDT displacement and load-cell force.
+// What the rig's sensors report: LVDT displacement and load-cell force; and whether the piston
+// sits on an end stop or the servovalve is fully open.
 struct PlantMeasurement {
   double displacement_m = 0.0;
   double force_n = 0.0;
+  bool at_end_stop = false;
+  bool valve_saturated = false;
 };
 
 class Plant {

@@ -25,6 +25,11 @@ std::unique_ptr<Plant> make_plant(const PlantConfig& config);
 // k for the plants that have no specimen of their own. Not real-time safe.
 PlantConfig read_plant_config(config::Source& section, double specimen_stiffness_n_per_m);
 
+// The rig the configuration describes (infinite when none was stated: a numerical reference).
+Envelope envelope_of(const PlantConfig& config);
+// The stiffness of the specimen the configuration's load cell sees (its initial stiffness).
+double specimen_stiffness_of(const PlantConfig& config);
+
 // One plant per channel, all of one configuration, with the pointers an actuator borrows.
 struct PlantSet {
   std::vector<std::unique_ptr<Plant>> owned;

@@ -81,6 +81,7 @@ class ServoHydraulicPlant final : public Plant {
   ServoSystemParameters parameters_;
   Coefficients k_;
   double max_step_s_;
+  double stroke_m_;  // the piston's end stops: +/- the actuator's stroke
   State state_ = State::Zero();
   double time_s_ = 0.0;
 };

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "rpsd/config/source.h"
+#include "rpsd/servo/envelope.h"
 
 namespace rpsd::servo {
 
@@ -113,6 +114,9 @@ struct ServoSystemParameters {
 
   // Throws std::invalid_argument naming the first inconsistent field. Not real-time safe.
   void validate() const;
+  // The rig's envelope: the actuator's stroke, the supply pressure on the piston area, and the
+  // no-load velocity at full valve opening (the valve's full flow over the piston area).
+  Envelope envelope() const;
 };
 
 // Reads a servo-system parameter file (its root section; examples/servo/paper-mts-244.yaml)

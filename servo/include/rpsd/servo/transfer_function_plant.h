@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "rpsd/config/source.h"
+#include "rpsd/servo/envelope.h"
 
 #include <Eigen/Core>
 
@@ -27,6 +28,7 @@ struct TransferFunctionPlantParameters {
   TransferFunction transfer_function;       // strictly proper or proper
   double specimen_stiffness_n_per_m = 0.0;  // the load cell reads k x_m
   double plant_rate_hz = 8192.0;
+  Envelope rig;  // the measured displacement stops at +/- rig.stroke_m
 
   // Throws std::invalid_argument when improper, unstable, or too fast for the rate.
   void validate() const;

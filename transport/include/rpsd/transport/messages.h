@@ -26,6 +26,8 @@ enum NodeStatus : std::uint32_t {
   kNodeLimitActive = 1u << 0,  // a limit changed the command or the state this period
   kNodeFault = 1u << 1,        // the node cannot follow commands (bad command, aborted, hardware)
   kNodeHolding = 1u << 2,      // commands stopped arriving: the node holds (or ramps to safe)
+  kNodeEndStop = 1u << 3,      // a piston is at the end of its stroke
+  kNodeValveSaturated = 1u << 4,  // a servovalve is fully open: the actuator cannot go faster
 };
 
 // Which limit acted (FeedbackSample::limit_flags); the node's limits are its own, whatever
@@ -36,6 +38,7 @@ enum LimitFlag : std::uint32_t {
   kLimitVelocity = 1u << 1,
   kLimitForce = 1u << 2,
   kLimitIncrement = 1u << 3,
+  kLimitAcceleration = 1u << 4,
 };
 
 // What the node measured at the end of the control step the command belongs to.

@@ -1,0 +1,35 @@
+#include "rpsd/servo/envelope.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace rpsd::servo {
+
+Envelope Envelope::read(config::Source& section) {
+  Envelope e;
+  e.stroke_m = section.number("stroke_m", config::Number::positive("m", "the piston moves +/- this"));
+  e.force_n = section.number("force_n", config::Number::positive("N", "+/- the force the actuator can exert"));
+  e.velocity_m_per_s =
+      section.number("velocity_m_per_s", config::Number::positive("m/s", "the fastest the piston can move"));
+  section.finish();
+  return e;
+}
+
+void Envelope::validate() const {
+  const auto check = [](double v, const char* key) {
+    if (!(v > 0.0)) throw std::invalid_argument(std::string("rig.") + key + ": must be positive");
+  };
+  check(stroke_m, "stroke_m");
+  check(force_n, "force_n");
+  check(velocity_m_per_s, "velocity_m_per_s");
+}
+
+std::string describe(const Envelope& e) {
+  char text[160];
+  std::snprintf(text, sizeof text, "stroke +/-%.4g mm, force +/-%.4g kN, velocity %.3g m/s", 1e3 * e.stroke_m,
+                1e-3 * e.force_n, e.velocity_m_per_s);
+  return text;
+}
+
+}  // namespace rpsd::servo
