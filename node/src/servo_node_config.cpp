@@ -105,6 +105,9 @@ void ServoNodeConfig::validate() const {
     if (!(l.max_acceleration_m_per_s2 > 0.0)) {
       fail(at + "max_acceleration_m_per_s2", "must be positive (infinity: no limit)", l.max_acceleration_m_per_s2);
     }
+    if (!(l.stop_deceleration_m_per_s2 > 0.0)) {
+      fail(at + "stop_deceleration_m_per_s2", "must be positive (infinity: stop at once)", l.stop_deceleration_m_per_s2);
+    }
     if (!(l.force_guard_stiffness_n_per_m >= 0.0) || !std::isfinite(l.force_guard_stiffness_n_per_m)) {
       fail(at + "force_guard_stiffness_n_per_m", "must be zero (no guard) or positive", l.force_guard_stiffness_n_per_m);
     }

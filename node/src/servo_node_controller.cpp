@@ -164,6 +164,19 @@ void ServoNodeController::latch_fault() {
   has_pending_ = false;
 }
 
+namespace {
+
+// The fastest command velocity that can still stop within `distance` at `deceleration`, one
+// control period at a time (at once when the deceleration is infinite).
+double braking_speed(double distance, double deceleration, double period_s) {
+  if (distance <= 0.0) return 0.0;
+  if (!std::isfinite(deceleration)) return distance / period_s;
+  const double step = deceleration * period_s;
+  return std::min(distance / period_s, std::sqrt(step * step / 4.0 + 2.0 * deceleration * distance) - step / 2.0);
+}
+
+}  // namespace
+
 std::uint32_t ServoNodeController::apply_limits(Values& applied) {
   struct Violation {
     int channel;
@@ -176,63 +189,75 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
   bool hold = false, ramp = false, abort = false;
   const int channels = config_.channels;
   const double period_s = config_.control_period_s;
+  const auto check = [&](int c, bool exceeded, LimitKind kind, double observed, double bound) {
+    if (!exceeded) return;
+    violations[count++] = {c, kind, observed, bound};
+    const LimitAction action = config_.actions.of(kind);
+    hold = hold || action == LimitAction::kHold;
+    ramp = ramp || action == LimitAction::kRampToSafe;
+    abort = abort || action == LimitAction::kAbort;
+  };
 
+  // What is asked for, and what is measured (the interlocks).
   for (int c = 0; c < channels; ++c) {
     const ChannelLimits& limits = config_.limits[c];
-    const double previous = command_m_[c], target = target_m_[c], change = target - previous;
+    const double change = target_m_[c] - command_m_[c];
     const double x_measured = reading_.displacement_m[c], force = reading_.force_n[c];
-    const double velocity_step_m = limits.max_velocity_m_per_s * period_s;
-    const double acceleration_step_m = limits.max_acceleration_m_per_s2 * period_s * period_s;
-    const auto check = [&](bool exceeded, LimitKind kind, double observed, double bound) {
-      if (!exceeded) return;
-      violations[count++] = {c, kind, observed, bound};
-      const LimitAction action = config_.actions.of(kind);
-      hold = hold || action == LimitAction::kHold;
-      ramp = ramp || action == LimitAction::kRampToSafe;
-      abort = abort || action == LimitAction::kAbort;
-    };
-    // What is commanded, and what is measured (the interlocks).
-    check(std::abs(target) > limits.max_stroke_m, LimitKind::kStroke, std::abs(target), limits.max_stroke_m);
-    check(std::abs(change) > velocity_step_m, LimitKind::kVelocity, std::abs(change) / period_s,
-          limits.max_velocity_m_per_s);
-    check(std::abs(change) > limits.max_increment_m, LimitKind::kIncrement, std::abs(change), limits.max_increment_m);
-    check(std::abs(change - change_m_[c]) > acceleration_step_m, LimitKind::kAcceleration,
-          std::abs(change - change_m_[c]) / (period_s * period_s), limits.max_acceleration_m_per_s2);
-    check(std::abs(x_measured) > limits.max_stroke_m, LimitKind::kStroke, std::abs(x_measured), limits.max_stroke_m);
-    check(std::abs(force) > limits.max_force_n, LimitKind::kForce, std::abs(force), limits.max_force_n);
+    check(c, std::abs(target_m_[c]) > limits.max_stroke_m, LimitKind::kStroke, std::abs(target_m_[c]),
+          limits.max_stroke_m);
+    check(c, std::abs(change) > limits.max_velocity_m_per_s * period_s, LimitKind::kVelocity,
+          std::abs(change) / period_s, limits.max_velocity_m_per_s);
+    check(c, std::abs(change) > limits.max_increment_m, LimitKind::kIncrement, std::abs(change),
+          limits.max_increment_m);
+    const double acceleration = std::abs(change - change_m_[c]) / (period_s * period_s);
+    check(c, acceleration > limits.max_acceleration_m_per_s2, LimitKind::kAcceleration, acceleration,
+          limits.max_acceleration_m_per_s2);
+    check(c, std::abs(x_measured) > limits.max_stroke_m, LimitKind::kStroke, std::abs(x_measured), limits.max_stroke_m);
+    check(c, std::abs(force) > limits.max_force_n, LimitKind::kForce, std::abs(force), limits.max_force_n);
+  }
+  if (abort) latch_fault();
+  const bool ramp_begins = ramp && !safe_state_;
+  if (ramp_begins) safe_state_ = true;  // choose_target ramps from the next tick on
+  // A hold or an abort brings the command to rest at the stop deceleration; the safe ramp
+  // moves it at the safe velocity.
+  const bool stopping = fault_ || (holding_ && !safe_state_) || hold || ramp_begins;
 
-    // The clamped command: rate, increment and acceleration bounds, the stroke, and the force
-    // guard, which keeps the command where F_measured + k (x - x_measured) stays within the
-    // force limit: the force limit holds instead of tripping after the fact.
-    const double rate_bound_m = std::min(velocity_step_m, limits.max_increment_m);
-    double step = std::clamp(change, -rate_bound_m, rate_bound_m);
-    step = std::clamp(step, change_m_[c] - acceleration_step_m, change_m_[c] + acceleration_step_m);
-    double x = std::clamp(step == change ? target : previous + step, -limits.max_stroke_m, limits.max_stroke_m);
+  // The command each channel gets: the velocity and increment bounds, the acceleration bound,
+  // and position bounds (the stroke, the force guard, no further motion into a measured
+  // excursion) approached no faster than the stop deceleration can brake.
+  for (int c = 0; c < channels; ++c) {
+    const ChannelLimits& limits = config_.limits[c];
+    const double x_command = command_m_[c], v_command = change_m_[c] / period_s;
+    const double x_measured = reading_.displacement_m[c], force = reading_.force_n[c];
+    const double stop = limits.stop_deceleration_m_per_s2;
+    const double wanted = stopping ? x_command : target_m_[c];
+    const double asked = (wanted - x_command) / period_s;
+    double v = asked;
+    const double v_max = std::min(limits.max_velocity_m_per_s, limits.max_increment_m / period_s);
+    v = std::clamp(v, -v_max, v_max);
+    const double a = stopping ? stop : limits.max_acceleration_m_per_s2;
+    if (std::isfinite(a)) v = std::clamp(v, v_command - a * period_s, v_command + a * period_s);
+
+    double high = limits.max_stroke_m, low = -limits.max_stroke_m;
     if (limits.force_guard_stiffness_n_per_m > 0.0 && std::isfinite(limits.max_force_n)) {
       const double k = limits.force_guard_stiffness_n_per_m;
-      const double highest = x_measured + (limits.max_force_n - force) / k;
-      const double lowest = x_measured + (-limits.max_force_n - force) / k;
-      if (x > highest || x < lowest) {
-        const double bounded = std::clamp(x, std::min(lowest, highest), std::max(lowest, highest));
-        check(true, LimitKind::kForce, std::abs(force + k * (x - x_measured)), limits.max_force_n);
-        x = bounded;
-      }
+      const double guard_high = x_measured + (limits.max_force_n - force) / k;
+      const double guard_low = x_measured + (-limits.max_force_n - force) / k;
+      const double next = x_command + v * period_s;
+      check(c, next > guard_high || next < guard_low, LimitKind::kForce, std::abs(force + k * (next - x_measured)),
+            limits.max_force_n);
+      high = std::min(high, guard_high);
+      low = std::max(low, guard_low);
     }
-    // A measured excursion: no further command in its direction.
-    if (force > limits.max_force_n || x_measured > limits.max_stroke_m) x = std::min(x, x_measured);
-    if (force < -limits.max_force_n || x_measured < -limits.max_stroke_m) x = std::max(x, x_measured);
-    applied[c] = x;
-  }
-
-  // Hold, ramp and abort act on every channel (one channel frozen alone would load the setup
-  // unevenly), from where the pistons are, not from where their commands were.
-  if (abort) latch_fault();
-  if (abort || hold || ramp) {
-    for (int c = 0; c < channels; ++c) applied[c] = reading_.displacement_m[c];
-  }
-  if (ramp && !safe_state_) {
-    safe_state_ = true;
-    target_m_ = applied;
+    if (force > limits.max_force_n || x_measured > limits.max_stroke_m) high = std::min(high, x_command);
+    if (force < -limits.max_force_n || x_measured < -limits.max_stroke_m) low = std::max(low, x_command);
+    // Past a bound the command only stops going further (it is not pulled back: a force
+    // guard that chased the measured force would feed the oil column's resonance).
+    const double v_high = braking_speed(high - x_command, stop, period_s);
+    const double v_low = -braking_speed(x_command - low, stop, period_s);
+    v = std::clamp(v, std::min(v_low, v_high), std::max(v_low, v_high));
+    // Unchanged by any bound: exactly the target, as sent.
+    applied[c] = v == asked ? wanted : x_command + v * period_s;
   }
 
   std::uint32_t flags = transport::kLimitNone;

@@ -196,6 +196,11 @@ UdpControllerConfig UdpControllerConfig::read(config::Source& section, int chann
                         config::Number::positive("s", "how long past the control period to wait for a reply"));
   u.max_missed_replies = static_cast<int>(section.whole_number_or(
       "max_missed_replies", 0, 1000, u.max_missed_replies, "consecutive missing replies before the actuator faults"));
+  // Hardware: nothing in the file can say what the rig can do unless the file says it.
+  if (!section.has("rig")) {
+    section.fail("rig", "a hardware node must state its rig's envelope: rig: {stroke_m, force_n, velocity_m_per_s}");
+  }
+  u.rig = servo::Envelope::read(*section.section("rig", "what the rig behind the controller can do"));
   return u;
 }
 

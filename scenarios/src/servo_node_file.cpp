@@ -1,6 +1,7 @@
 #include "rpsd/scenarios/servo_node_file.h"
 
 #include <cmath>
+#include <optional>
 
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
@@ -13,8 +14,9 @@ node::LimitAction limit_action(MappingReader& r, const std::string& key, node::L
   if (!text) return fallback;
   if (*text == "clamp") return node::LimitAction::kClamp;
   if (*text == "hold") return node::LimitAction::kHold;
+  if (*text == "ramp_to_safe") return node::LimitAction::kRampToSafe;
   if (*text == "abort") return node::LimitAction::kAbort;
-  r.fail(key, "expected clamp, hold or abort, got \"" + *text + "\"");
+  r.fail(key, "expected clamp, hold, ramp_to_safe or abort, got \"" + *text + "\"");
 }
 
 std::vector<double> per_channel(MappingReader& r, const std::string& key, int channels, double fallback) {
@@ -31,14 +33,18 @@ void read_limits(MappingReader r, node::ServoNodeSetup& f) {
   const auto velocity = per_channel(r, "max_velocity_m_per_s", n, node::ChannelLimits::kNone);
   const auto force = per_channel(r, "max_force_n", n, node::ChannelLimits::kNone);
   const auto increment = per_channel(r, "max_increment_m", n, node::ChannelLimits::kNone);
+  const auto acceleration = per_channel(r, "max_acceleration_m_per_s2", n, node::ChannelLimits::kNone);
+  const auto guard = per_channel(r, "force_guard_stiffness_n_per_m", n, 0.0);
+  const auto stop = per_channel(r, "stop_deceleration_m_per_s2", n, node::ChannelLimits::kNone);
   for (int c = 0; c < n; ++c) {
-    f.node.limits[c] = {stroke[c], velocity[c], force[c], increment[c]};
+    f.node.limits[c] = {stroke[c], velocity[c], force[c], increment[c], acceleration[c], guard[c], stop[c]};
   }
   if (auto actions = r.optional_mapping("actions")) {
     f.node.actions.stroke = limit_action(*actions, "stroke", f.node.actions.stroke);
     f.node.actions.velocity = limit_action(*actions, "velocity", f.node.actions.velocity);
     f.node.actions.force = limit_action(*actions, "force", f.node.actions.force);
     f.node.actions.increment = limit_action(*actions, "increment", f.node.actions.increment);
+    f.node.actions.acceleration = limit_action(*actions, "acceleration", f.node.actions.acceleration);
     actions->finish();
   }
   r.finish();
@@ -108,9 +114,27 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
     f.actuator = *Kinds::read(kind, actuator, f.node.channels);
     actuator.finish();
   }
-  if (auto limits = root.optional_mapping("limits")) read_limits(*limits, f);
+  std::optional<MappingReader> limits = root.optional_mapping("limits");
+  if (limits) read_limits(*limits, f);
   if (auto watchdog = root.optional_mapping("watchdog")) read_watchdog(*watchdog, f);
   root.finish();
+  // The rig's envelope is every limit's default, and a limit may only tighten it; the force
+  // guard predicts with the simulated specimen's stiffness unless the file gives one.
+  const servo::Envelope envelope = node::envelope_of(f.actuator);
+  try {
+    node::limit_to_envelope(f.node, envelope);
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    const std::string key = message.substr(message.find('.') + 1, message.find(':') - message.find('.') - 1);
+    if (limits) limits->fail(key, message);
+    throw ConfigError(file.string() + ": " + message);
+  }
+  if (const auto* simulated = std::get_if<node::SimulatedActuatorConfig>(&f.actuator)) {
+    for (int c = 0; c < f.node.channels; ++c) {
+      double& k = f.node.limits[c].force_guard_stiffness_n_per_m;
+      if (k == 0.0) k = servo::specimen_stiffness_of(simulated->plant);
+    }
+  }
   try {
     f.node.validate();
   } catch (const std::invalid_argument& e) {

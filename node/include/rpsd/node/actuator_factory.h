@@ -20,4 +20,10 @@ inline OwnedActuator make_actuator(const ActuatorConfig& config, int channels) {
   return std::visit([channels](const auto& c) { return std::decay_t<decltype(c)>::make(c, channels); }, config);
 }
 
+// What the actuator's rig can do: the simulated plant's envelope, or the one a hardware
+// adapter's file states.
+inline servo::Envelope envelope_of(const ActuatorConfig& config) {
+  return std::visit([](const auto& c) { return c.envelope(); }, config);
+}
+
 }  // namespace rpsd::node

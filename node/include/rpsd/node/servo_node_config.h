@@ -49,6 +49,10 @@ struct ChannelLimits {
   // The stiffness the force guard predicts with (an upper bound of the specimen's): a command
   // is kept where F_measured + k (x_command - x_measured) stays within max_force_n. 0: no guard.
   double force_guard_stiffness_n_per_m = 0.0;
+  // How hard the command brakes when it stops (a hold, an abort) and when it approaches the
+  // stroke or the force guard's bound: a moving specimen stopped abruptly loads the rig with
+  // its inertia. Infinity: it stops at once.
+  double stop_deceleration_m_per_s2 = kNone;
 };
 
 struct LimitActions {

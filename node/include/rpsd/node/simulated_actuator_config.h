@@ -17,6 +17,7 @@ struct SimulatedActuatorConfig {
   static SimulatedActuatorConfig read(config::Source& section, int channels);
   // Not real-time safe.
   static OwnedActuator make(const SimulatedActuatorConfig& config, int channels);
+  servo::Envelope envelope() const { return servo::envelope_of(plant); }
 
   servo::PlantConfig plant;
 };

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "rpsd/config/source.h"
+#include "rpsd/servo/envelope.h"
 
 #include "rpsd/node/udp_controller_protocol.h"
 #include "rpsd/node/udp_socket.h"
@@ -26,6 +27,7 @@ struct UdpControllerConfig {
       "a hardware controller that closes the servo loop itself, on UDP (docs/udp-controller-protocol.md)";
   static UdpControllerConfig read(config::Source& section, int channels);
   static OwnedActuator make(const UdpControllerConfig& config, int channels);
+  servo::Envelope envelope() const { return rig; }
 
   int channels = 1;                           // must equal the controller's
   std::string controller_host = "127.0.0.1";  // dotted IPv4
@@ -39,6 +41,8 @@ struct UdpControllerConfig {
   int max_missed_replies = 3;
   double start_timeout_s = 1.0;     // start(): how long to try to reach the controller
   double start_tolerance_m = 1e-3;  // start(): largest |measured - initial| displacement accepted
+  // What the rig behind the controller can do; a hardware node's file must state it.
+  servo::Envelope rig;
 
   // Throws std::invalid_argument naming the field. Not real-time safe.
   void validate() const;
