@@ -118,7 +118,9 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   parts.max_feedback_age_periods = p.real_time ? s.clock.max_feedback_age_periods : 0;
   parts.stop_on_node_limits = !perfect_actuator;
   parts.max_valve_saturation_exchanges =
-      perfect_actuator ? 0 : std::max(1, static_cast<int>(std::lround(s.run_away.max_valve_saturation_s / control_period_s)));
+      perfect_actuator
+          ? 0
+          : std::max(1, static_cast<int>(std::lround(s.run_away.max_valve_saturation_s / control_period_s)));
   if (s.ground_motion) {
     p.ground_load.configure(p.numerical->mass(), s.influence);
     parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
@@ -158,6 +160,10 @@ TestAssembly::~TestAssembly() = default;
 std::int64_t TestAssembly::steps_planned() const { return parts_->steps_planned; }
 
 bool TestAssembly::real_time() const { return parts_->real_time; }
+
+double TestAssembly::control_period_s() const {
+  return 1.0 / parts_->config->control_rate_hz / parts_->integrator->iterations_per_step();
+}
 
 std::int64_t TestAssembly::progress_every_steps() const {
   return std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * parts_->config->control_rate_hz));

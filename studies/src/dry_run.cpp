@@ -159,7 +159,8 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
     auto& p = report.channels[static_cast<std::size_t>(e.dof.actuator_channel)];
     p.channel = e.dof.actuator_channel;
     p.site_id = e.site_id;
-    p.limits = e.limits;
+    // The limits the test runs with: the rig's envelope unless the scenario tightens it.
+    p.limits = coordinator::within_envelope(e.limits, servo::envelope_of(s.plant), test.control_period_s());
   }
   attach_nodes(report, s, nodes);
   Eigen::VectorXd hold(channels);

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/studies/dry_run_report.h"
 
 namespace rpsd::studies {
@@ -45,12 +46,11 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
   out << "rpsd run --dry-run: " << test_name << ", simulated plant in this process, " << r.steps << " of "
       << r.steps_planned << " steps\n";
   if (r.outcome != coordinator::StepOutcome::kOk && r.outcome != coordinator::StepOutcome::kRecordEnded) {
-    out << "  the simulated test stopped early"
-        << (r.outcome == coordinator::StepOutcome::kLimit
-                ? std::string(" at the coordinator limit ") + coordinator::limit_stop_name(r.limit_stop.kind) +
-                      " of channel " + std::to_string(r.limit_stop.channel)
-                : std::string())
-        << "\n";
+    out << "  the simulated test stopped early";
+    if (r.outcome == coordinator::StepOutcome::kLimit || r.outcome == coordinator::StepOutcome::kRunAway) {
+      out << ": " << coordinator::describe_limit_stop(r.limit_stop);
+    }
+    out << "\n";
   }
   nlohmann::json channels = nlohmann::json::array();
   for (const auto& c : r.channels) {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/coordinator/test_runs.h"
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/realtime/latency_json.h"
@@ -120,43 +121,6 @@ nlohmann::json ground_motion_json(const coordinator::GroundMotion& motion) {
           {"pga_g", pga / 9.80665}};
 }
 
-// What ran away, in words a test engineer reads in the summary.
-std::string describe_run_away(const coordinator::LimitStop& l) {
-  char text[240];
-  using Kind = coordinator::LimitStop::Kind;
-  switch (l.kind) {
-    case Kind::kTrackingError:
-      std::snprintf(text, sizeof text, "channel %d: tracking error %.6g m beyond limits.max_tracking_error_m %.6g", l.channel,
-                    l.value, l.bound);
-      break;
-    case Kind::kNodeLimit: {
-      const auto flags = static_cast<std::uint32_t>(l.value);
-      std::string which;
-      const std::pair<std::uint32_t, const char*> names[] = {{transport::kLimitStroke, "stroke"},
-                                                             {transport::kLimitVelocity, "velocity"},
-                                                             {transport::kLimitForce, "force"},
-                                                             {transport::kLimitIncrement, "increment"},
-                                                             {transport::kLimitAcceleration, "acceleration"}};
-      for (const auto& [flag, name] : names) {
-        if (flags & flag) which += (which.empty() ? "" : ", ") + std::string(name);
-      }
-      std::snprintf(text, sizeof text, "the servo node's %s limit acted: the rig was asked for more than it allows",
-                    which.c_str());
-      break;
-    }
-    case Kind::kEndStop:
-      std::snprintf(text, sizeof text, "a piston reached the end of its stroke");
-      break;
-    case Kind::kValveSaturation:
-      std::snprintf(text, sizeof text, "a servovalve stayed fully open for %.0f control periods (run_away.max_valve_saturation_s)",
-                    l.value);
-      break;
-    default:
-      std::snprintf(text, sizeof text, "%s", coordinator::limit_stop_name(l.kind));
-  }
-  return text;
-}
-
 std::string describe_outcome(const coordinator::TestConfig& s, const coordinator::TestRun& test) {
   std::string text = outcome_text(test.outcome);
   if (test.outcome == coordinator::StepOutcome::kLinkFailure) {
@@ -177,21 +141,9 @@ std::string describe_outcome(const coordinator::TestConfig& s, const coordinator
                   static_cast<double>(test.steps + 1) / s.control_rate_hz);
     text += detail;
   }
-  if (test.outcome == coordinator::StepOutcome::kLimit) {
-    const coordinator::LimitStop& l = test.limit_stop;
-    const bool force = l.kind == coordinator::LimitStop::Kind::kForce;
-    char detail[240];
-    std::snprintf(detail, sizeof detail, " (channel %d: %s %.6g %s beyond limits.%s %.6g; %s; step %zu, t = %.4f s)",
-                  l.channel,
-                  force                                                ? "measured force"
-                  : l.kind == coordinator::LimitStop::Kind::kIncrement ? "command change"
-                                                                       : "command",
-                  l.value, force ? "N" : "m", coordinator::limit_stop_name(l.kind), l.bound,
-                  force ? "no further command was sent" : "the command was not sent",
-                  static_cast<std::size_t>(test.steps + 1), static_cast<double>(test.steps + 1) / s.control_rate_hz);
-    text += detail;
+  if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
+    text += " (" + coordinator::describe_limit_stop(test.limit_stop) + ")";
   }
-  if (test.outcome == coordinator::StepOutcome::kRunAway) text += " (" + describe_run_away(test.limit_stop) + ")";
   return text;
 }
 
@@ -279,12 +231,24 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
     benchmark["J2"] = criteria.channels[0].j2_rms_tracking_error_percent;
     benchmark["J3"] = criteria.channels[0].j3_peak_tracking_error_percent;
   }
+  // What stopped a test that did not complete, for scripts: which limit, where, how far.
+  json stopped_by = nullptr;
+  if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
+    const coordinator::LimitStop& l = test.limit_stop;
+    stopped_by = {{"limit", coordinator::limit_stop_name(l.kind)},
+                  {"channel", l.channel},
+                  {"value", l.value},
+                  {"bound", l.bound},
+                  {"step", test.steps + 1},
+                  {"time_s", static_cast<double>(test.steps + 1) / scenario.control_rate_hz}};
+  }
   const json summary = {
       {"study", "rpsd_test"},
       {"scenario", file.name},
       {"description", file.description},
       {"outcome", outcome},
       {"completed", completed},
+      {"stopped_by", stopped_by},
       {"steps", test.steps},
       {"steps_planned", test.steps_planned},
       {"control_rate_hz", scenario.control_rate_hz},

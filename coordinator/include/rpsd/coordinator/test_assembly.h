@@ -69,6 +69,8 @@ class TestAssembly {
   std::int64_t steps_planned() const;
   // The test is paced by the real-time clock (the reference never is).
   bool real_time() const;
+  // The integration step over the integrator's iterations per step.
+  double control_period_s() const;
   // Steps between two progress reports: about 0.5 s of simulated time.
   std::int64_t progress_every_steps() const;
   // One step as fast as possible, recorded (a full recorder queue makes it wait, so nothing

@@ -1,0 +1,65 @@
+#include "rpsd/coordinator/limit_stop_text.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <utility>
+
+#include "rpsd/transport/messages.h"
+
+namespace rpsd::coordinator {
+
+namespace {
+
+std::string node_limits_named(std::uint32_t flags) {
+  const std::pair<std::uint32_t, const char*> names[] = {{transport::kLimitStroke, "stroke"},
+                                                         {transport::kLimitVelocity, "velocity"},
+                                                         {transport::kLimitForce, "force"},
+                                                         {transport::kLimitIncrement, "increment"},
+                                                         {transport::kLimitAcceleration, "acceleration"}};
+  std::string which;
+  for (const auto& [flag, name] : names) {
+    if (flags & flag) which += (which.empty() ? "" : ", ") + std::string(name);
+  }
+  return which;
+}
+
+}  // namespace
+
+std::string describe_limit_stop(const LimitStop& l) {
+  char text[240];
+  using Kind = LimitStop::Kind;
+  switch (l.kind) {
+    case Kind::kStroke:
+    case Kind::kIncrement:
+      std::snprintf(text, sizeof text, "channel %d: %s %.6g m beyond limits.%s %.6g; the command was not sent",
+                    l.channel, l.kind == Kind::kIncrement ? "command change" : "command", l.value,
+                    limit_stop_name(l.kind), l.bound);
+      break;
+    case Kind::kForce:
+      std::snprintf(text, sizeof text,
+                    "channel %d: measured force %.6g N beyond limits.%s %.6g; no further command was sent", l.channel,
+                    l.value, limit_stop_name(l.kind), l.bound);
+      break;
+    case Kind::kTrackingError:
+      std::snprintf(text, sizeof text, "channel %d: tracking error %.6g m beyond limits.max_tracking_error_m %.6g",
+                    l.channel, l.value, l.bound);
+      break;
+    case Kind::kNodeLimit:
+      std::snprintf(text, sizeof text, "the servo node's %s limit acted: the rig was asked for more than it allows",
+                    node_limits_named(static_cast<std::uint32_t>(l.value)).c_str());
+      break;
+    case Kind::kEndStop:
+      std::snprintf(text, sizeof text, "a piston reached the end of its stroke");
+      break;
+    case Kind::kValveSaturation:
+      std::snprintf(text, sizeof text,
+                    "a servovalve stayed fully open for %.0f control periods (run_away.max_valve_saturation_s)",
+                    l.value);
+      break;
+    case Kind::kNone:
+      std::snprintf(text, sizeof text, "%s", limit_stop_name(l.kind));
+  }
+  return text;
+}
+
+}  // namespace rpsd::coordinator
