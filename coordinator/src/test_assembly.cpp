@@ -49,6 +49,7 @@ struct TestAssembly::Parts {
   std::int64_t steps = 0;
   TimingReport timing;
   realtime::CpuWakeLatencyHold cpus_awake;  // from the start to finish(): real time, or over DDS
+  const std::atomic<bool>* stop_request = nullptr;
 
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const StepRecord&)>& after_step) {
@@ -59,6 +60,14 @@ struct TestAssembly::Parts {
       round_trips[i].add(static_cast<std::int64_t>(std::llround(r.round_trip_s[static_cast<std::size_t>(ch)] * 1e9)));
     }
     if (after_step) after_step(r);
+  }
+
+  // Why the run stops although its step succeeded: the records cannot be written, or the
+  // user asked it to stop. Real-time safe.
+  StepOutcome stop_after_step() const {
+    if (recorder->write_failed()) return StepOutcome::kResultsNotWritten;
+    if (stop_request && stop_request->load(std::memory_order_relaxed)) return StepOutcome::kInterrupted;
+    return StepOutcome::kOk;
   }
 };
 
@@ -110,6 +119,7 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   parts.integrator = p.integrator.get();
   parts.numerical = p.numerical.get();
   parts.partition = &p.partition;
+  p.stop_request = options.stop_request;
   if (options.wrap_link) p.wrapped_link = options.wrap_link(p.actuators->link());
   parts.link = p.wrapped_link ? p.wrapped_link.get() : &p.actuators->link();
   parts.recorded_dofs = s.record_dofs;
@@ -170,8 +180,11 @@ std::int64_t TestAssembly::progress_every_steps() const {
 }
 
 StepOutcome TestAssembly::step() {
-  const StepOutcome outcome = parts_->loop->step(*parts_->recorder);
-  if (outcome == StepOutcome::kOk) parts_->took_step({});
+  StepOutcome outcome = parts_->loop->step(*parts_->recorder);
+  if (outcome == StepOutcome::kOk) {
+    parts_->took_step({});
+    outcome = parts_->stop_after_step();
+  }
   return outcome;
 }
 
@@ -190,6 +203,8 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
       outcome = loop.step(*p.recorder);
       if (outcome != StepOutcome::kOk) break;
       p.took_step(after_step);
+      outcome = p.stop_after_step();
+      if (outcome != StepOutcome::kOk) break;
       if (progress && (n + 1) % report_every == 0) progress(n + 1, p.steps_planned);
     }
     return outcome;
@@ -213,6 +228,8 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
     outcome = loop.step(*p.recorder);
     if (outcome != StepOutcome::kOk) return outcome;
     p.took_step(after_step);
+    outcome = p.stop_after_step();
+    if (outcome != StepOutcome::kOk) return outcome;
   }
   pacer.start();
   for (std::int64_t n = 1; n < p.steps_planned; ++n) {
@@ -223,6 +240,8 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
     outcome = loop.step(*p.recorder);
     if (outcome != StepOutcome::kOk) break;
     p.took_step(after_step);
+    outcome = p.stop_after_step();
+    if (outcome != StepOutcome::kOk) break;
   }
   timing.cycles = pacer.cycles();
   timing.overruns = pacer.overruns();
@@ -247,6 +266,13 @@ TestRun TestAssembly::finish(StepOutcome outcome) {
   run.limit_stop = p.loop->limit_stop();
   run.dropped_records = p.recorder->dropped();
   run.records = p.recorder->finish();
+  // The last rows are written when the recorder closes its file: a failure there too means
+  // the results are not whole.
+  if (p.recorder->write_failed()) {
+    run.write_error = p.recorder->write_error();
+    if (outcome == StepOutcome::kOk || outcome == StepOutcome::kRecordEnded)
+      run.outcome = StepOutcome::kResultsNotWritten;
+  }
   run.timing = p.timing;
   // Command-to-feedback latency per site (each site's first channel).
   for (std::size_t i = 0; i < p.round_trips.size(); ++i) {

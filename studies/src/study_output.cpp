@@ -4,13 +4,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/studies/csv_table.h"
 #include "rpsd/studies/delay_compensation_study.h"
 #include "rpsd/studies/gnuplot.h"
-#include "rpsd/studies/test_output.h"
+#include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
 namespace {
@@ -31,11 +32,7 @@ json servo_json(const servo::ServoSystemParameters& p) {
           {"max_stable_p_gain_full_model", a.max_stable_p_gain_full_model}};
 }
 
-void write_json(const std::filesystem::path& file, const json& value) {
-  std::ofstream out(file);
-  out << value.dump(2) << '\n';
-  if (!out) throw std::runtime_error(file.string() + ": cannot write");
-}
+void write_json(const std::filesystem::path& file, const json& value) { write_file_whole(file, value.dump(2) + '\n'); }
 
 template <typename Row, typename Getter>
 std::vector<double> pick(const std::vector<Row>& rows, Getter get) {
@@ -205,10 +202,11 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
       900, 600);
 }
 
-bool run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
-                   const std::function<void(std::int64_t, std::int64_t)>& progress, std::string* abort_reason) {
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
+                       const std::function<void(std::int64_t, std::int64_t)>& progress,
+                       const std::atomic<bool>* stop_request) {
+  StudyRun run;
   std::filesystem::create_directories(dir);
-  bool completed = true;
   std::visit(
       [&](const auto& study) {
         using Study = std::decay_t<decltype(study)>;
@@ -221,15 +219,16 @@ bool run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
         } else if constexpr (std::is_same_v<Study, DelayCompensationStudy>) {
           write_delay_compensation(dir, file, study, run_delay_compensation(study, dir));
         } else if (!file.sweep.empty()) {
-          completed = run_sweep_into(dir, file, progress) == RunResult::kCompleted;
+          run.result = run_sweep_into(dir, file, progress, stop_request);
+          if (run.result != RunResult::kCompleted) run.reason = "see " + (dir / "summary.json").string();
         } else {
-          const TestHeadline headline = run_test_into(dir, file, study, progress);
-          completed = headline.result == RunResult::kCompleted;
-          if (!completed && abort_reason) *abort_reason = headline.outcome;
+          const TestHeadline headline = run_test_into(dir, file, study, progress, stop_request);
+          run.result = headline.result;
+          run.reason = headline.outcome;
         }
       },
       file.study);
-  return completed;
+  return run;
 }
 
 }  // namespace rpsd::studies

@@ -86,6 +86,9 @@ enum class StepOutcome : std::uint8_t {
   kNonFinite,
   kLimit,    // a coordinator limit (limit_stop() says which)
   kRunAway,  // the test left the rig's envelope or diverged (limit_stop() says how)
+  // Set by the test around the loop, never by the loop itself:
+  kResultsNotWritten,  // a write of the step records failed (a full disk)
+  kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)
 };
 
 class RpsdLoop {

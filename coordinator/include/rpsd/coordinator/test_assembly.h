@@ -4,6 +4,7 @@
 // safe; stepping is.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -41,6 +42,7 @@ struct TestRun {
   StepOutcome outcome = StepOutcome::kOk;
   std::int64_t steps_planned = 0;
   std::uint64_t dropped_records = 0;
+  std::string write_error;                // kResultsNotWritten: the file and the system's reason
   std::int64_t feedback_age_periods = 0;  // how old the newest feedback was when it stopped (periods)
   LimitStop limit_stop;                   // the coordinator limit that stopped it, if one did
   TimingReport timing;
@@ -54,6 +56,9 @@ struct AssemblyOptions {
   // Optional: a link placed between the loop and the actuators (a network emulation that
   // delays or loses feedback, for tests).
   std::function<std::unique_ptr<transport::Link>(transport::Link& actuators)> wrap_link;
+  // Set (from a signal handler, another thread) when the user asks the run to stop: the
+  // step under way finishes and is recorded, the next one returns kInterrupted.
+  const std::atomic<bool>* stop_request = nullptr;
 };
 
 // One run of a test with every part built and started at rest.
