@@ -40,8 +40,8 @@ class IdealActuator final : public servo::Actuator {
       return status;
     }
     for (int c = 0; c < channels_; ++c) {
-      reading.displacement_m[c] = command_m[c];
-      reading.force_n[c] = stiffness_ * command_m[c];
+      reading.displacement_m[c] = command_m[c] + measured_offset_m;
+      reading.force_n[c] = stiffness_ * reading.displacement_m[c];
     }
     reading.fresh = true;
     return status;
@@ -52,6 +52,7 @@ class IdealActuator final : public servo::Actuator {
   std::vector<std::vector<double>> commands;
   std::vector<double> periods;
   std::deque<servo::ActuatorStatus> script;  // statuses to return, then kOk
+  double measured_offset_m = 0.0;            // a piston that drifts from its command (a fault)
 
  private:
   int channels_;
@@ -618,6 +619,86 @@ TEST(ServoNodeController, StartRefusesAnInitialPositionBeyondTheStroke) {
   EXPECT_THROW(node.start(beyond), std::invalid_argument);
   EXPECT_THROW(node.start(two), std::invalid_argument);
   EXPECT_TRUE(actuator.started_at.empty());
+}
+
+// The interlocks act on what is measured: a piston that drifts beyond the stroke while its
+// command stays inside (a servovalve fault, a lost LVDT) trips the stroke limit.
+TEST(ServoNodeController, AMeasuredDisplacementBeyondTheStrokeTripsItsLimit) {
+  auto c = config();
+  c.limits[0].max_stroke_m = 0.05;
+  c.actions.stroke = LimitAction::kAbort;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  send(node, command(1, {0.01}));
+  EXPECT_FALSE(node.faulted());
+  actuator.measured_offset_m = 0.045;  // measured 0.055 for a command of 0.01
+  send(node, command(2, {0.01}));      // the exchange that measures it
+  const FeedbackSample out = send(node, command(3, {0.01}));
+  EXPECT_TRUE(node.faulted());
+  EXPECT_NE(out.status & transport::kNodeFault, 0u);
+  EXPECT_NE(out.limit_flags & transport::kLimitStroke, 0u);
+  ASSERT_EQ(node.events().size(), 1u);
+  EXPECT_EQ(node.events()[0].kind, LimitKind::kStroke);
+  EXPECT_DOUBLE_EQ(node.events()[0].observed, 0.055);  // the measurement, not the command
+}
+
+// A limit whose action is ramp_to_safe moves every channel to its safe position at the safe
+// ramp velocity, exactly v T per period, and the node then follows no command.
+TEST(ServoNodeController, RampToSafeOnALimitGoesToTheSafePositionAtTheSafeVelocity) {
+  auto c = config();
+  c.limits[0].max_stroke_m = 0.05;
+  c.actions.stroke = LimitAction::kRampToSafe;
+  c.safe_ramp_velocity_m_per_s = 0.0625;  // 2^-14 m per period
+  c.safe_position_m = {0.0};
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  const double start_m = 0.0078125, step_m = 0.0625 * kPeriod;  // 2^-7 m: 128 periods from safe
+  send(node, command(1, {start_m}));
+  const FeedbackSample tripped = send(node, command(2, {0.06}));
+  EXPECT_NE(tripped.limit_flags & transport::kLimitStroke, 0u);
+  EXPECT_EQ(actuator.last(), start_m);  // the trip stops the command where it is
+  for (int k = 1; k <= 128; ++k) {
+    idle(node);
+    ASSERT_EQ(actuator.last(), start_m - k * step_m) << k;
+  }
+  for (int i = 0; i < 10; ++i) idle(node);
+  EXPECT_EQ(actuator.last(), 0.0);
+  EXPECT_EQ(node.accept(command(3, {0.01})), CommandVerdict::kNotFollowing);
+  EXPECT_FALSE(node.faulted());
+}
+
+// A hold stops a moving command at the stop deceleration instead of freezing it: a stop from
+// v takes v / (a T) periods, and the command comes to rest v^2 / (2 a) further on.
+TEST(ServoNodeController, AHoldBrakesAtTheStopDeceleration) {
+  auto c = config();
+  c.limits[0].max_velocity_m_per_s = 0.1;
+  c.actions.velocity = LimitAction::kHold;
+  const double a = 2.0, v = 0.05;
+  c.limits[0].stop_deceleration_m_per_s2 = a;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  std::int64_t step = 1;
+  double x = 0.0;
+  for (; step <= 100; ++step) send(node, command(step, {x += v * kPeriod}));  // a steady 0.05 m/s
+  const double moving_at_m = actuator.last();
+  std::vector<double> applied{actuator.last()};
+  for (int k = 0; k < 100; ++k) {
+    send(node, command(step++, {x += 0.2 * kPeriod}));  // now twice the velocity limit
+    applied.push_back(actuator.last());
+  }
+  EXPECT_GT(node.counters().activations(LimitKind::kVelocity), 0u);
+  double v_before = v, max_dv = 0.0;
+  int moving = 0;
+  for (std::size_t i = 1; i < applied.size(); ++i) {
+    const double v_now = (applied[i] - applied[i - 1]) / kPeriod;
+    max_dv = std::max(max_dv, std::abs(v_now - v_before));
+    moving += v_now > 0.0 ? 1 : 0;
+    v_before = v_now;
+  }
+  EXPECT_LE(max_dv, a * kPeriod * (1 + 1e-9));             // no period changes the velocity by more than a T
+  EXPECT_NEAR(moving, v / (a * kPeriod), 1.0);             // 25.6 periods to stop
+  EXPECT_EQ(applied.back(), applied[applied.size() - 2]);  // at rest
+  EXPECT_NEAR(applied.back() - moving_at_m, v * v / (2 * a), v * kPeriod);  // 0.625 mm on
 }
 
 }  // namespace
