@@ -130,7 +130,8 @@ bool RpsdLoop::commands_within_limits() {
 }
 
 StepOutcome RpsdLoop::run_away() {
-  if (parts_.stop_on_node_limits && feedback_.limit_flags != transport::kLimitNone) {
+  constexpr std::uint32_t kPositionLimits = transport::kLimitStroke | transport::kLimitForce;
+  if (parts_.stop_on_node_limits && (feedback_.limit_flags & kPositionLimits) != 0) {
     limit_stop_ = {LimitStop::Kind::kNodeLimit, -1, static_cast<double>(feedback_.limit_flags), 0.0};
     return StepOutcome::kRunAway;
   }

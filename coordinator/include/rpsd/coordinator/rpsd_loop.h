@@ -52,8 +52,8 @@ struct LoopParts {
   // increment is never sent; a measured force or tracking error beyond its bound stops the
   // test at once.
   std::vector<CoordinatorLimits> limits;
-  // A run-away also stops the test: any limit of a node acting, a piston on its end stop, a
-  // servovalve fully open for longer than this many exchanges in a row.
+  // A run-away also stops the test: a node's stroke or force limit acting, a piston on its
+  // end stop, a servovalve fully open for longer than this many exchanges in a row.
   bool stop_on_node_limits = false;
   int max_valve_saturation_exchanges = 0;  // 0: not checked
 };

@@ -56,8 +56,12 @@ struct TransportConfig {
   double discovery_timeout_s = 10.0;  // longest wait for every site's node at start
 };
 
-// When a test has run away, beyond the limits of each channel (coordinator_limits.h) and any
-// node limit acting: a servovalve fully open for longer than this.
+// When a test has run away, beyond the limits of each channel (coordinator_limits.h), a
+// node's stroke or force limit acting and a piston on its end stop: a servovalve fully open
+// for longer than this. A node's rate limits (velocity, increment, acceleration) shape the
+// commands it applies, also after a command that came late or was lost in real time; they
+// are recorded per step (limit_flags), and a command faster than the rig is the coordinator's
+// increment limit's to stop.
 struct RunAwayConfig {
   double max_valve_saturation_s = 0.25;
 };
