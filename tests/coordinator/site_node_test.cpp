@@ -1,8 +1,8 @@
 // One node implementation: a site's node runs the same controller in this process (behind the
 // in-process link) as `rpsd servo-node` runs over DDS, so its limits act identically in a
 // rehearsal and on the rig. The same velocity limit, tripped by the paper's SDOF in free
-// vibration, stops the test at the same step with the same flags and the same measurements
-// before it, both ways.
+// vibration, aborts the node and stops the test at the same step with the same flags and the
+// same measurements before it, both ways.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -26,7 +26,7 @@ transport::DdsDomainConfig loopback() {
 }
 
 // The paper's SDOF released from 10 mm: its velocity peaks near 0.1 m/s, and the node lets
-// the command move at most 0.03 m/s (clamped).
+// the command move at most 0.03 m/s (abort).
 TestConfig clamped_sdof() {
   SpecimenSdof sdof;
   sdof.duration_s = 2.0;
@@ -35,6 +35,7 @@ TestConfig clamped_sdof() {
   config.transport.test_id = kTest;
   node::ServoNodeConfig node;
   node.limits[0].max_velocity_m_per_s = 0.03;
+  node.actions.velocity = node::LimitAction::kAbort;
   config.site_nodes[1] = node;
   return config;
 }
@@ -92,10 +93,8 @@ class DdsNode {
 TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
   const TestConfig in_process = clamped_sdof();
   const testing::SdofRun here = testing::run_steps(in_process);
-  // The node clamped a command: the test left what the node allows, and stopped.
-  ASSERT_EQ(here.outcome, StepOutcome::kRunAway);
-  ASSERT_EQ(here.limit_stop.kind, LimitStop::Kind::kNodeLimit);
-  EXPECT_TRUE(static_cast<std::uint32_t>(here.limit_stop.value) & transport::kLimitVelocity);
+  // The node aborted on a command too fast: the test stopped on its fault.
+  ASSERT_EQ(here.outcome, StepOutcome::kNodeFault);
   EXPECT_GT(here.records.size(), 0u);
 
   TestConfig over_dds = in_process;
@@ -110,9 +109,7 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
     there = testing::run_steps(over_dds);
     velocity_activations = node.controller().counters().activations(node::LimitKind::kVelocity);
   }
-  EXPECT_EQ(there.outcome, StepOutcome::kRunAway);
-  EXPECT_EQ(there.limit_stop.kind, here.limit_stop.kind);
-  EXPECT_EQ(there.limit_stop.value, here.limit_stop.value);
+  EXPECT_EQ(there.outcome, StepOutcome::kNodeFault);
   EXPECT_EQ(velocity_activations, 1u);
   ASSERT_EQ(here.records.size(), there.records.size());
   for (std::size_t n = 0; n < here.records.size(); ++n) {
