@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "exit_codes.h"
+#include "rpsd/build_info/build_info.h"
 #include "rpsd/commands.h"
 #include "rpsd/ground_motion/record_error.h"
 #include "rpsd/realtime/large_blocks.h"
@@ -22,6 +23,8 @@ int main(int argc, char** argv) {
   // that kills the run before it can say so.
   std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"rpsd - real-time pseudodynamic (hybrid) testing"};
+  app.set_version_flag(
+      "--version", std::string("rpsd ") + rpsd::build_info::version() + " (commit " + rpsd::build_info::commit() + ")");
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 ok, 1 internal error, 2 bad input, 3 test stopped before its end, 4 dry run not ready, "

@@ -19,6 +19,7 @@
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/studies/damping_identification.h"
 #include "rpsd/studies/gnuplot.h"
+#include "rpsd/studies/provenance.h"
 #include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
@@ -162,6 +163,7 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
   const json summary = {
       {"study", "rpsd_delay_compensation"},
       {"scenario", file.name},
+      {"provenance", provenance_json(file)},
       {"plant", ideal ? "ideal_delay" : "servo_model"},
       {"structure",
        {{"mass_kg", study.mass_kg},

@@ -12,6 +12,7 @@
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/studies/gnuplot.h"
+#include "rpsd/studies/provenance.h"
 #include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
@@ -319,6 +320,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"clock", scenario.clock.mode == coordinator::ClockConfig::Mode::kRealTime ? "real_time" : "as_fast_as_possible"},
       {"transport", scenario.transport.kind == coordinator::TransportConfig::Kind::kDds ? "dds" : "in_process"},
       {"timing", timing_json(test.timing)},
+      {"provenance", provenance_json(file)},
   };
   const json plot_info = {{"title", file.name},
                           {"channels", scenario.experimental.size()},
@@ -400,6 +402,7 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
   for (const auto& axis : file.sweep) axes.push_back({{"key", axis.key_path}, {"values", axis.values}});
   const json summary{{"study", "rpsd_test_sweep"},
                      {"scenario", file.name},
+                     {"provenance", provenance_json(file)},
                      {"result", result_name(result)},
                      {"cases_planned", file.sweep_cases.size()},
                      {"axes", axes},

@@ -6,6 +6,7 @@ that cannot be written ends the run with exit 5, and the exit codes of the READM
   results_test.py CASE RPSD SOURCE_DIR SCRATCH_DIR
 
 Every check that fails is printed; the exit code is 1 if any did."""
+import hashlib
 import json
 import os
 import shutil
@@ -131,6 +132,25 @@ def a_missing_tool_is_exit_1():
     check("gnuplot not found" in text, f"the reason is not printed: {text}")
 
 
+def summary_names_the_code_and_every_input():
+    out = fresh("provenance")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set", "ground_motion.synthetic.duration_s=3")
+    check(code == 0, f"the run failed: {text}")
+    code, version = rpsd("--version")
+    check(code == 0 and version.startswith("rpsd "), f"rpsd --version: exit {code}: {version}")
+    p = summary(out)["provenance"]
+    check(f"rpsd {p['rpsd']['version']} (commit {p['rpsd']['commit']})" == version.strip(),
+          f"summary {p['rpsd']} against --version {version.strip()}")
+    files = {os.path.realpath(i["file"]): i["sha256"] for i in p["inputs"]}
+    for expected in (SYNTHETIC,):
+        path = os.path.realpath(expected)
+        if path not in files:
+            problems.append(f"{expected} is not among the inputs {sorted(files)}")
+            continue
+        with open(path, "rb") as f:
+            check(files[path] == hashlib.sha256(f.read()).hexdigest(), f"{expected}: wrong SHA-256")
+
+
 CASES = {
     "refuse_then_replace_a_sweep_folder": a_folder_that_held_a_sweep_is_refused_then_replaced,
     "replace_only_rpsd_folders": replace_never_clears_a_folder_rpsd_did_not_write,
@@ -138,6 +158,7 @@ CASES = {
     "sigterm_in_real_time": lambda: interrupted(signal.SIGTERM, "--set", "clock.mode=real_time"),
     "file_size_limit_exit_5": a_file_that_cannot_grow_ends_the_run_with_exit_5,
     "missing_tool_exit_1": a_missing_tool_is_exit_1,
+    "summary_provenance": summary_names_the_code_and_every_input,
 }
 
 CASES[CASE]()
