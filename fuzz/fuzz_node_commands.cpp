@@ -12,6 +12,7 @@
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 
+namespace node = rpsd::node;
 namespace servo = rpsd::servo;
 namespace transport = rpsd::transport;
 
