@@ -12,6 +12,7 @@
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/studies/dry_run_report.h"
 #include "rpsd/studies/results_files.h"
+#include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
 #include "rpsd/studies/test_output.h"
 #include "stop_signals.h"
@@ -161,6 +162,12 @@ void add_validate(CLI::App& app) {
   validate->callback([options] {
     const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
     std::cout << options->scenario << ": ok\n";
+    if (const auto* test = std::get_if<coordinator::TestConfig>(&file.study)) {
+      if (!file.sweep.empty()) {
+        std::cout << "  sweep: " << file.sweep_cases.size() << " cases; the first:\n";
+      }
+      studies::print_overview(studies::overview_of(*test), std::cout);
+    }
   });
 }
 

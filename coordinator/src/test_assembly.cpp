@@ -11,26 +11,6 @@
 #include "rpsd/substructure/ground_motion_load.h"
 
 namespace rpsd::coordinator {
-namespace {
-
-std::unique_ptr<substructure::NumericalModel> make_numerical(const TestConfig& s) {
-  return std::visit(
-      [](const auto& config) -> std::unique_ptr<substructure::NumericalModel> {
-        using C = std::decay_t<decltype(config)>;
-        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
-          auto model = std::make_unique<substructure::LinearMdofModel>();
-          model->configure(config);
-          return model;
-        } else {
-          auto model = std::make_unique<substructure::ShearBuilding>();
-          model->configure(config);
-          return model;
-        }
-      },
-      s.structure);
-}
-
-}  // namespace
 
 struct TestAssembly::Parts {
   const TestConfig* config = nullptr;
@@ -75,7 +55,7 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   const bool perfect_actuator = options.perfect_actuator;
   Parts& p = *parts_;
   p.config = &s;
-  p.numerical = make_numerical(s);
+  p.numerical = make_numerical_model(s);
   const Eigen::Index dofs = p.numerical->dofs();
   const int channels = static_cast<int>(s.experimental.size());
 

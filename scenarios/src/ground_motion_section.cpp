@@ -1,5 +1,7 @@
 #include "rpsd/scenarios/ground_motion_section.h"
 
+#include <cstdio>
+
 #include "rpsd/ground_motion/at2_reader.h"
 #include "rpsd/ground_motion/processing.h"
 #include "rpsd/ground_motion/record_error.h"
@@ -10,6 +12,13 @@ namespace rpsd::scenarios {
 namespace {
 
 namespace gm = ground_motion;
+
+// Shortest text that reads back to the same number (for the processing list).
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", value);
+  return text;
+}
 
 gm::AccelerationUnit read_unit(MappingReader& r, const std::string& key) {
   const std::string unit = r.string(key);
@@ -78,12 +87,16 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
     r.fail(r.has("synthetic") ? "synthetic" : "file", e.what());
   }
   // Processing in a fixed order: trim, baseline, scale, pad, resample.
+  const double record_step_s = record.dt_s, record_pga_m_per_s2 = gm::peak_ground_acceleration(record).value_m_per_s2;
+  std::vector<std::string> processing;
   if (auto trim = r.optional_mapping("trim")) {
     gm::TrimOptions options;
     options.start_s = trim->non_negative_number_or("start_s", 0.0);
     if (trim->has("end_s")) options.end_s = trim->positive_number("end_s");
     trim->finish();
     record = gm::trim(record, options);
+    processing.push_back("trimmed to " + number_text(options.start_s) + "-" +
+                         (options.end_s ? number_text(*options.end_s) : std::string("end")) + " s");
   }
   if (r.has("baseline_correction")) {
     const std::string method = r.string("baseline_correction");
@@ -95,18 +108,29 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
     } else if (method != "none") {
       r.fail("baseline_correction", "expected none, remove_mean or polynomial, got \"" + method + "\"");
     }
-    if (method != "none") record = gm::baseline_correct(record, options);
+    if (method != "none") {
+      record = gm::baseline_correct(record, options);
+      processing.push_back("baseline corrected (" + method + ")");
+    }
   }
   const bool factor = r.has("scale_factor"), target = r.has("target_pga_g");
   if (factor && target) r.fail("target_pga_g", "give scale_factor or target_pga_g, not both");
-  if (factor) record = gm::scale(record, {r.number("scale_factor"), std::nullopt});
+  if (factor) {
+    const double scale_factor = r.number("scale_factor");
+    record = gm::scale(record, {scale_factor, std::nullopt});
+    processing.push_back("scaled by " + number_text(scale_factor));
+  }
   if (target) {
-    record = gm::scale(record,
-                       {std::nullopt, r.positive_number("target_pga_g") * gm::to_m_per_s2(gm::AccelerationUnit::kG)});
+    const double target_pga_g = r.positive_number("target_pga_g");
+    record = gm::scale(record, {std::nullopt, target_pga_g * gm::to_m_per_s2(gm::AccelerationUnit::kG)});
+    processing.push_back("scaled to a PGA of " + number_text(target_pga_g) + " g");
   }
   const double pad_after = r.non_negative_number_or("pad_after_s", 0.0);
   if (pad_after > 3600.0) r.fail("pad_after_s", "at most 3600 s");
-  if (pad_after > 0.0) record = gm::pad(record, {0.0, pad_after});
+  if (pad_after > 0.0) {
+    record = gm::pad(record, {0.0, pad_after});
+    processing.push_back("padded with " + number_text(pad_after) + " s of zeros");
+  }
   // Linear interpolation to the integration step (exact at the record's own samples when the
   // step divides the record's); coarser steps than the record's are refused.
   if (std::abs(record.dt_s - step_s) > 1e-12 * step_s) {
@@ -119,9 +143,11 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
     if (record.duration_s() / step_s > 2e7)
       r.fail("file", "the record at the integration step would exceed 2e7 samples");
     record = gm::resample(record, {step_s, false});
+    processing.push_back("resampled linearly to " + number_text(step_s) + " s");
   }
   r.finish();
-  return {record.source, record.dt_s, std::move(record.acceleration_m_per_s2)};
+  return {record.source, record.dt_s,         std::move(record.acceleration_m_per_s2),
+          record_step_s, record_pga_m_per_s2, std::move(processing)};
 }
 
 }  // namespace

@@ -126,7 +126,10 @@ nlohmann::json ground_motion_json(const coordinator::GroundMotion& motion) {
           {"dt_s", motion.dt_s},
           {"points", motion.acceleration_m_per_s2.size()},
           {"pga_m_per_s2", pga},
-          {"pga_g", pga / 9.80665}};
+          {"pga_g", pga / 9.80665},
+          {"record_step_s", motion.record_step_s},
+          {"record_pga_g", std::abs(motion.record_pga_m_per_s2) / 9.80665},
+          {"processing", motion.processing}};
 }
 
 std::string describe_outcome(const coordinator::TestConfig& s, const coordinator::TestRun& test) {

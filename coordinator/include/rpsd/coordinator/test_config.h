@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -71,6 +72,9 @@ struct GroundMotion {
   std::string name;  // file or generator, for titles
   double dt_s = 0.0;
   std::vector<double> acceleration_m_per_s2;
+  double record_step_s = 0.0;           // the record's own step, before resampling
+  double record_pga_m_per_s2 = 0.0;     // the record's own peak, before any processing
+  std::vector<std::string> processing;  // what was done to it, in order ("scaled by 0.15", ...)
 };
 
 struct TestConfig {
@@ -99,5 +103,9 @@ struct TestConfig {
 
 // DOFs of the scenario's structure.
 Eigen::Index structure_dofs(const TestConfig& config);
+
+// The numerical part of the scenario's structure, configured (without the specimens). Throws
+// what configuring it throws. Not real-time safe.
+std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config);
 
 }  // namespace rpsd::coordinator
