@@ -11,6 +11,7 @@
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/studies/gnuplot.h"
+#include "rpsd/transport/messages.h"
 
 namespace rpsd::studies {
 namespace {
@@ -33,6 +34,8 @@ const char* outcome_text(coordinator::StepOutcome o) {
       return "aborted: a coordinator limit was reached";
     case coordinator::StepOutcome::kRunAway:
       return "stopped: the test ran away";
+    case coordinator::StepOutcome::kRefused:
+      return "refused";
   }
   return "aborted";
 }
@@ -123,6 +126,10 @@ nlohmann::json ground_motion_json(const coordinator::GroundMotion& motion) {
 
 std::string describe_outcome(const coordinator::TestConfig& s, const coordinator::TestRun& test) {
   std::string text = outcome_text(test.outcome);
+  if (test.outcome == coordinator::StepOutcome::kRefused) {
+    // Refused by a site's node: its reason, not a step (the run never had the site).
+    return text + ": " + (test.refusal.empty() ? std::string("a site's node refused this run") : test.refusal);
+  }
   if (test.outcome == coordinator::StepOutcome::kLinkFailure) {
     char detail[200];
     if (test.timing.real_time) {
@@ -159,7 +166,10 @@ nlohmann::json timing_json(const coordinator::TimingReport& t) {
                           {"late", c.late},
                           {"dropped_wrong_test_or_site", c.wrong_test_or_site},
                           {"dropped_wrong_channels", c.wrong_channels},
-                          {"dropped_older_step", c.older_step}};
+                          {"dropped_older_step", c.older_step},
+                          {"dropped_other_run", c.other_run},
+                          {"dropped_unknown_writer", c.unknown_writer},
+                          {"dropped_no_run", c.no_run}};
     }
     sites.push_back(site);
   }
@@ -248,6 +258,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"description", file.description},
       {"outcome", outcome},
       {"completed", completed},
+      {"run_id", transport::run_id_text(test.run_id)},
       {"stopped_by", stopped_by},
       {"steps", test.steps},
       {"steps_planned", test.steps_planned},
