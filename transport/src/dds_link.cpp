@@ -106,6 +106,7 @@ std::string DdsLink::refusal_text() const {
 }
 
 void DdsLink::end_run() {
+  if (counters_.sent == 0) return;  // a run refused at the start never reached the node
   rpsd_dds_Command wire{};
   wire.test_id = config_.test_id;
   wire.site_id = config_.site_id;

@@ -79,7 +79,7 @@ class DdsLink final : public Link {
   std::string refusal_text() const;
 
   // Tells the node the run is over, so that it may serve another at once (a node also frees
-  // itself after a silence). Not real-time safe.
+  // itself after a silence); nothing when no command was sent. Not real-time safe.
   void end_run();
 
   // Real-time safe (no allocation in rpsd's code; Cyclone serialises the sample).
