@@ -107,7 +107,7 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
     target_m_[c] = command_m_[c] = reading_.displacement_m[c] = initial_displacement_m[c];
   }
   has_pending_ = false;
-  newest_accepted_step_ = followed_step_ = -1;
+  newest_accepted_step_ = last_accepted_step_ = followed_step_ = -1;
   followed_time_s_ = 0.0;
   run_id_ = run_writer_ = ended_run_ = 0;
   ticks_since_accepted_ = 0;
@@ -203,7 +203,7 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
   if (has_pending_) ++counters_.superseded;
   pending_ = command;
   has_pending_ = true;
-  newest_accepted_step_ = command.step;
+  newest_accepted_step_ = last_accepted_step_ = command.step;
   ticks_since_accepted_ = 0;
   ++counters_.accepted;
   return verdict;

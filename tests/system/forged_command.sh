@@ -36,7 +36,7 @@ node, served, foreign, steps = json.load(open(sys.argv[1])), sys.argv[2], sys.ar
 dropped = node["commands_dropped"]
 assert dropped["another run"] == 1 and dropped["unknown writer"] == 2, dropped
 assert sum(dropped.values()) == 3, dropped
-assert node["commands_accepted"] == steps and node["last_command_step"] == -1, node  # every real command; then freed
+assert node["commands_accepted"] == steps and node["last_command_step"] == steps - 1, node  # every real command
 events = [(e["event"], e["run_id"], e.get("reason")) for e in node["run_events"]]
 assert events == [("took run", served, None), ("refused", foreign, "another run"),
                   ("refused", served, "unknown writer"), ("run ended", served, None)], events

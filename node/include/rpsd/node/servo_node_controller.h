@@ -132,8 +132,9 @@ class ServoNodeController {
   std::span<const LimitEvent> events() const { return events_; }
   std::uint64_t events_not_logged() const { return events_not_logged_; }
 
-  // The step of the newest command accepted (-1 before the first).
-  std::int64_t newest_accepted_step() const { return newest_accepted_step_; }
+  // The step of the newest command accepted (-1 before the first), in the run served or, between
+  // runs, the last run.
+  std::int64_t newest_accepted_step() const { return last_accepted_step_; }
   bool faulted() const { return fault_; }
   bool holding() const { return holding_; }
   bool in_safe_state() const { return safe_state_; }
@@ -166,7 +167,8 @@ class ServoNodeController {
 
   transport::CommandSample pending_;
   bool has_pending_ = false;
-  std::int64_t newest_accepted_step_ = -1;
+  std::int64_t newest_accepted_step_ = -1;  // of the run served (-1: none yet, or no run)
+  std::int64_t last_accepted_step_ = -1;    // what newest_accepted_step() reports
   std::int64_t followed_step_ = -1;
   double followed_time_s_ = 0.0;
 
