@@ -169,7 +169,8 @@ nlohmann::json timing_json(const coordinator::TimingReport& t) {
                           {"dropped_older_step", c.older_step},
                           {"dropped_other_run", c.other_run},
                           {"dropped_unknown_writer", c.unknown_writer},
-                          {"dropped_no_run", c.no_run}};
+                          {"dropped_no_run", c.no_run},
+                          {"dropped_impossible_step", c.impossible_step}};
     }
     sites.push_back(site);
   }

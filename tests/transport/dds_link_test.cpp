@@ -476,5 +476,40 @@ TEST(DdsLink, OnceItsNodeAnsweredTheLinkUsesNoOtherWriter) {
   EXPECT_EQ(link.refusal().kind, NodeRefusal::Kind::kNone);
 }
 
+// No node can answer a step not sent yet: such a sample (step 9 x 10^18) is dropped and
+// counted, and the true answers after it are used, not taken for older ones.
+TEST(DdsLink, FeedbackOfAStepNotSentYetIsDropped) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(88, 1, 1, 5.0));
+  DdsNodeEndpoint node(node_side, node_config(88, 1));
+  ASSERT_TRUE(connect(link, node, 88, 1));
+  FeedbackSample f;
+  f.test_id = 88;
+  f.site_id = 1;
+  f.run_id = link.run_id();
+  f.channels = 1;
+  CommandSample c;
+  c.channels = 1;
+  for (std::int64_t step = 0; step < 3; ++step) {
+    c.step = step;
+    link.send(c);
+    if (step == 1) {
+      FeedbackSample ahead = f;
+      ahead.step = 9'000'000'000'000'000'000;
+      ahead.displacement_m[0] = 1.0;
+      node.publish(ahead);
+    }
+    f.step = step;
+    f.displacement_m[0] = 0.001 * static_cast<double>(step);
+    node.publish(f);
+    FeedbackSample got;
+    ASSERT_EQ(link.receive(got), LinkStatus::kOk) << step;
+    EXPECT_EQ(got.step, step);
+    EXPECT_EQ(got.displacement_m[0], 0.001 * static_cast<double>(step));
+  }
+  EXPECT_EQ(link.counters().impossible_step, 1);
+  EXPECT_EQ(link.counters().older_step, 0);
+}
+
 }  // namespace
 }  // namespace rpsd::transport

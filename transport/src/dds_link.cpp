@@ -159,6 +159,10 @@ void DdsLink::drain() {
       ++counters_.wrong_test_or_site;
     } else if (sample.run_id == 0) {
       ++counters_.no_run;
+    } else if (sample.step > sent_step_) {
+      // Taken, it would make every true answer after it look older (as a forged command with
+      // step 9e18 once did to a node).
+      ++counters_.impossible_step;
     } else if (node_writer_ != 0 && writer != node_writer_) {
       ++counters_.unknown_writer;  // not the node that has been answering this run
     } else if (sample.run_id != config_.run_id) {

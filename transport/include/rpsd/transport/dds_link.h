@@ -41,9 +41,10 @@ struct DdsLinkConfig {
 struct DdsLinkCounters {
   std::int64_t sent = 0, received = 0;
   std::int64_t wrong_test_or_site = 0, wrong_channels = 0, older_step = 0;
-  std::int64_t other_run = 0;       // feedback of another run: the node serves it, not this one
-  std::int64_t unknown_writer = 0;  // feedback of this run from a writer other than its node's
-  std::int64_t no_run = 0;          // feedback of a node serving no run (before it took this one)
+  std::int64_t other_run = 0;        // feedback of another run: the node serves it, not this one
+  std::int64_t unknown_writer = 0;   // feedback of this run from a writer other than its node's
+  std::int64_t no_run = 0;           // feedback of a node serving no run (before it took this one)
+  std::int64_t impossible_step = 0;  // feedback of a step not sent yet: no node can have answered it
   std::int64_t late = 0;
   std::int64_t waits = 0;  // receives that slept on the waitset (the feedback was not in yet)
 };
