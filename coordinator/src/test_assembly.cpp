@@ -90,11 +90,14 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
     parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};
   }
 
-  // Start at rest at the initial displacement, the specimens holding it.
+  // Start at rest at the initial displacement, the specimens holding it. The run's identity
+  // is drawn now: no other run, of this test id or any, carries it.
   Eigen::VectorXd hold(channels);
   p.partition.extract_commands(s.initial_displacement_m, hold);
-  p.actuators = std::make_unique<ActuatorLinks>(
-      s, control_period_s, perfect_actuator, std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
+  const std::uint64_t run_id = transport::draw_run_id();
+  p.actuators =
+      std::make_unique<ActuatorLinks>(s, control_period_s, perfect_actuator,
+                                      std::span<const double>(hold.data(), static_cast<std::size_t>(channels)), run_id);
 
   parts.integrator = p.integrator.get();
   parts.numerical = p.numerical.get();
@@ -104,6 +107,7 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   parts.link = p.wrapped_link ? p.wrapped_link.get() : &p.actuators->link();
   parts.recorded_dofs = s.record_dofs;
   parts.test_id = s.transport.test_id;
+  parts.run_id = run_id;
   p.real_time = s.clock.mode == ClockConfig::Mode::kRealTime && !perfect_actuator;
   parts.max_feedback_age_periods = p.real_time ? s.clock.max_feedback_age_periods : 0;
   parts.stop_on_node_limits = !perfect_actuator;
@@ -147,6 +151,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
 
 TestAssembly::~TestAssembly() = default;
 
+std::uint64_t TestAssembly::run_id() const { return parts_->loop->run_id(); }
+
 std::int64_t TestAssembly::steps_planned() const { return parts_->steps_planned; }
 
 bool TestAssembly::real_time() const { return parts_->real_time; }
@@ -160,6 +166,7 @@ std::int64_t TestAssembly::progress_every_steps() const {
 }
 
 StepOutcome TestAssembly::step() {
+  if (parts_->actuators->refused()) return StepOutcome::kRefused;
   StepOutcome outcome = parts_->loop->step(*parts_->recorder);
   if (outcome == StepOutcome::kOk) {
     parts_->took_step({});
@@ -177,6 +184,7 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
   Parts& p = *parts_;
   RpsdLoop& loop = *p.loop;
   StepOutcome outcome = StepOutcome::kOk;
+  if (p.actuators->refused()) return StepOutcome::kRefused;
   if (!p.real_time) {
     const std::int64_t report_every = progress_every_steps();
     for (std::int64_t n = 0; n < p.steps_planned; ++n) {
@@ -238,8 +246,11 @@ const ActuatorLinks& TestAssembly::actuators() const { return *parts_->actuators
 TestRun TestAssembly::finish(StepOutcome outcome) {
   Parts& p = *parts_;
   p.cpus_awake = {};
+  p.actuators->end_run();
   TestRun run;
   run.outcome = outcome;
+  run.run_id = p.loop->run_id();
+  if (outcome == StepOutcome::kRefused) run.refusal = p.actuators->refusal_text();
   run.steps = p.steps;
   run.steps_planned = p.steps_planned;
   run.feedback_age_periods = p.loop->feedback_age_periods();

@@ -14,6 +14,7 @@
 #include "rpsd/studies/gnuplot.h"
 #include "rpsd/studies/provenance.h"
 #include "rpsd/studies/results_files.h"
+#include "rpsd/transport/messages.h"
 
 namespace rpsd::studies {
 namespace {
@@ -40,6 +41,8 @@ const char* outcome_text(coordinator::StepOutcome o) {
       return "stopped: the results could not be written";
     case coordinator::StepOutcome::kInterrupted:
       return "interrupted: the user stopped the run (SIGINT or SIGTERM); the nodes hold where they are";
+    case coordinator::StepOutcome::kRefused:
+      return "refused";
   }
   return "aborted";
 }
@@ -134,6 +137,10 @@ nlohmann::json ground_motion_json(const coordinator::GroundMotion& motion) {
 
 std::string describe_outcome(const coordinator::TestConfig& s, const coordinator::TestRun& test) {
   std::string text = outcome_text(test.outcome);
+  if (test.outcome == coordinator::StepOutcome::kRefused) {
+    // Refused by a site's node: its reason, not a step (the run never had the site).
+    return text + ": " + (test.refusal.empty() ? std::string("a site's node refused this run") : test.refusal);
+  }
   if (test.outcome == coordinator::StepOutcome::kLinkFailure) {
     char detail[200];
     if (test.timing.real_time) {
@@ -176,7 +183,11 @@ nlohmann::json timing_json(const coordinator::TimingReport& t) {
                           {"late", c.late},
                           {"dropped_wrong_test_or_site", c.wrong_test_or_site},
                           {"dropped_wrong_channels", c.wrong_channels},
-                          {"dropped_older_step", c.older_step}};
+                          {"dropped_older_step", c.older_step},
+                          {"dropped_other_run", c.other_run},
+                          {"dropped_unknown_writer", c.unknown_writer},
+                          {"dropped_no_run", c.no_run},
+                          {"dropped_impossible_step", c.impossible_step}};
     }
     sites.push_back(site);
   }
@@ -306,6 +317,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"result", result_name(result)},
       {"outcome", outcome},
       {"completed", completed},
+      {"run_id", transport::run_id_text(test.run_id)},
       {"stopped_by", stopped_by},
       {"steps", test.steps},
       {"steps_planned", test.steps_planned},

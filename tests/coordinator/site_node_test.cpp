@@ -12,6 +12,7 @@
 
 #include "rpsd/node/servo_node_loop.h"
 #include "rpsd/servo/simulated_actuator.h"
+#include "rpsd/transport/messages.h"
 #include "specimen_runs.h"
 
 namespace rpsd::coordinator {
@@ -121,6 +122,40 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
   TestConfig free = in_process;
   free.site_nodes.clear();
   EXPECT_EQ(testing::run_steps(free).outcome, StepOutcome::kOk);
+}
+
+// One node, two runs of one test id (two coordinators): the node serves the run whose first
+// command it took and says so in its heartbeat; a second run is refused before its first step
+// with its own reason, never taking the first run's measurements for its own; the first goes
+// on to its end, and once it has ended (its end of run) the node serves the next run.
+TEST(SiteNode, ASecondRunOfOneTestIsRefusedWhileTheFirstRunsAndServedAfterIt) {
+  TestConfig config = clamped_sdof();
+  config.site_nodes[1] = node::ServoNodeConfig{};  // no limit acts: the run goes to its end
+  config.transport.kind = TransportConfig::Kind::kDds;
+  config.transport.domain_id = loopback().domain_id;
+  config.transport.dds_config = loopback().config_file;
+  config.clock.realtime.keep_cpus_awake = false;
+  DdsNode node(config);
+  TestAssembly first(config, {});
+  ASSERT_EQ(first.step(), StepOutcome::kOk);
+  {
+    TestAssembly second(config, {});
+    EXPECT_NE(second.run_id(), first.run_id());
+    EXPECT_EQ(second.step(), StepOutcome::kRefused);
+    const TestRun refused = second.finish(StepOutcome::kRefused);
+    EXPECT_EQ(refused.steps, 0);
+    EXPECT_EQ(refused.refusal, "site 1 is serving another run (run " + transport::run_id_text(first.run_id()) +
+                                   "; this run is " + transport::run_id_text(second.run_id()) +
+                                   "): a node serves one run at a time");
+  }
+  for (std::int64_t n = 1; n < first.steps_planned(); ++n) ASSERT_EQ(first.step(), StepOutcome::kOk) << n;
+  const TestRun done = first.finish(StepOutcome::kOk);
+  EXPECT_EQ(done.steps, first.steps_planned());
+  EXPECT_EQ(done.run_id, first.run_id());
+  TestAssembly third(config, {});
+  EXPECT_EQ(third.step(), StepOutcome::kOk);
+  third.finish(StepOutcome::kOk);
+  EXPECT_EQ(node.controller().counters().runs, 2u);
 }
 
 }  // namespace

@@ -40,6 +40,8 @@ struct LoopParts {
   std::span<const double> ground_acceleration_m_per_s2;         // at t = n dt (borrowed); empty: free vibration
   const substructure::GroundMotionLoad* ground_load = nullptr;  // F = -M iota a_g; needed with a record
   std::uint32_t test_id = 1;
+  // This run's identity, on every command (0: the loop draws one): a node serves one run at a time.
+  std::uint64_t run_id = 0;
   // As fast as possible, a full recorder queue makes the loop wait (nothing is lost); in
   // real time it drops and counts the record instead, so the loop never blocks.
   bool wait_for_recorder = true;
@@ -89,6 +91,7 @@ enum class StepOutcome : std::uint8_t {
   // Set by the test around the loop, never by the loop itself:
   kResultsNotWritten,  // a write of the step records failed (a full disk)
   kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)
+  kRefused,           // a site's node serves another run, or runs at another rate (the link says which)
 };
 
 class RpsdLoop {
@@ -119,6 +122,7 @@ class RpsdLoop {
   const LimitStop& limit_stop() const { return limit_stop_; }
 
   std::int64_t step_index() const { return step_; }
+  std::uint64_t run_id() const { return command_.run_id; }
   std::int64_t steps_available() const;  // ground-motion steps, or unlimited (-1)
   double dt_s() const { return parts_.integrator->dt_s(); }
 
