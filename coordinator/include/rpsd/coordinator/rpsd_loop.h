@@ -91,7 +91,7 @@ enum class StepOutcome : std::uint8_t {
   // Set by the test around the loop, never by the loop itself:
   kResultsNotWritten,  // a write of the step records failed (a full disk)
   kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)
-  kRefused,           // a site's node serves another run, or runs at another rate (the link says which)
+  kRefused,            // a site's node serves another run, or runs at another rate (the link says which)
 };
 
 class RpsdLoop {
