@@ -106,8 +106,9 @@ void add_run(CLI::App& app) {
          "With --dry-run: a servo node's file (rpsd servo-node); its limits are checked too (repeatable, one per site)")
       ->check(CLI::ExistingFile);
   run->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
-  run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's")
-      ->check(CLI::ExistingFile);
+  // No CLI11 file check: the record reader's own (regular files only, a size cap) names
+  // the problem and exits 2 like every other bad input.
+  run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's");
   run->callback([options] {
     // --record replaces the whole ground_motion section first; --set may then refine it.
     std::vector<scenarios::Override> overrides;

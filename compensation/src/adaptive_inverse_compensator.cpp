@@ -65,19 +65,19 @@ void AdaptiveInverseCompensator::observe(double target_m, double measured_m) noe
 
 AdaptiveInverseCompensationParameters AdaptiveInverseCompensationParameters::read(config::Source& section) {
   AdaptiveInverseCompensationParameters a;
+  // A servo's delay is milliseconds: 1 s bounds every delay; the gains act on m^2.
+  using config::Number;
   a.initial_delay_s =
-      section.number("initial_delay_s", config::Number::non_negative("s", "tau_0, the delay at the start"));
-  a.min_delay_s = section.number_or("min_delay_s", a.min_delay_s, config::Number::non_negative("s", "tau_min"));
-  a.max_delay_s = section.number_or("max_delay_s", a.max_delay_s, config::Number::positive("s", "tau_max"));
-  a.max_delay_rate =
-      section.number_or("max_delay_rate", a.max_delay_rate,
-                        config::Number::positive("", "seconds of delay the estimate may change per second"));
-  a.proportional_gain_s_per_m2 =
-      section.number_or("proportional_gain_s_per_m2", a.proportional_gain_s_per_m2,
-                        config::Number::non_negative("s/m^2", "k_p on the tracking indicator"));
+      section.number("initial_delay_s", Number::between(0.0, 1.0, "s", "tau_0, the delay at the start"));
+  a.min_delay_s = section.number_or("min_delay_s", a.min_delay_s, Number::between(0.0, 1.0, "s", "tau_min"));
+  a.max_delay_s = section.number_or("max_delay_s", a.max_delay_s, {"s", "tau_max", 0.0, 1.0, true});
+  a.max_delay_rate = section.number_or("max_delay_rate", a.max_delay_rate,
+                                       {"", "seconds of delay the estimate may change per second", 0.0, 10.0, true});
+  a.proportional_gain_s_per_m2 = section.number_or("proportional_gain_s_per_m2", a.proportional_gain_s_per_m2,
+                                                   Number::between(0.0, 1e9, "s/m^2", "k_p on the tracking indicator"));
   a.integral_gain_per_m2 =
       section.number_or("integral_gain_per_m2", a.integral_gain_per_m2,
-                        config::Number::non_negative("1/m^2", "k_i on the tracking indicator's integral"));
+                        Number::between(0.0, 1e9, "1/m^2", "k_i on the tracking indicator's integral"));
   return a;
 }
 

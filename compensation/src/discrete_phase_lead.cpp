@@ -78,12 +78,11 @@ double DiscretePhaseLeadCompensator::command(double target_m) noexcept {
 }
 
 DiscretePhaseLeadParameters DiscretePhaseLeadParameters::read(config::Source& section) {
-  const double delay_s = section.number("delay_s", config::Number::positive("s", "the delay to compensate: (a - 1) T"));
-  const double ratio_a =
-      section.number("ratio_a", config::Number::positive("", "a, the network's high-frequency gain"));
+  const double delay_s = section.number("delay_s", {"s", "the delay to compensate: (a - 1) T", 0.0, 1.0, true});
+  const double ratio_a = section.number("ratio_a", {"", "a, the network's high-frequency gain", 0.0, 100.0, true});
   const double prewarp_hz =
       section.number_or("prewarp_frequency_hz", 0.0,
-                        config::Number::non_negative("Hz", "Tustin exact at this frequency (0: plain Tustin)"));
+                        config::Number::between(0.0, 1e4, "Hz", "Tustin exact at this frequency (0: plain Tustin)"));
   return for_delay(delay_s, ratio_a, prewarp_hz);
 }
 

@@ -26,7 +26,7 @@ double InverseCompensator::command(double target_m) noexcept {
 
 InverseCompensationParameters InverseCompensationParameters::read(config::Source& section) {
   InverseCompensationParameters p;
-  p.delay_s = section.number("delay_s", config::Number::non_negative("s", "the lag to compensate"));
+  p.delay_s = section.number("delay_s", config::Number::between(0.0, 1.0, "s", "the lag to compensate"));
   return p;
 }
 

@@ -61,8 +61,8 @@ PolynomialExtrapolationParameters PolynomialExtrapolationParameters::read(config
   PolynomialExtrapolationParameters p;
   p.order = static_cast<int>(
       section.whole_number("order", 0, kMaxExtrapolationOrder, "p: the polynomial's order (0 holds the target)"));
-  p.delay_s =
-      section.number("delay_s", config::Number::non_negative("s", "tau: how far ahead the target is extrapolated"));
+  p.delay_s = section.number("delay_s",
+                             config::Number::between(0.0, 1.0, "s", "tau: how far ahead the target is extrapolated"));
   return p;
 }
 

@@ -16,8 +16,9 @@ std::string number_text(double v) {
 std::string range_text(const Number& spec) {
   const bool low = std::isfinite(spec.min), high = std::isfinite(spec.max);
   if (low && high) {
-    return (spec.min_open ? "> " : "") + number_text(spec.min) + (spec.min_open || spec.max_open ? " and " : " to ") +
-           (spec.max_open ? "< " : "") + number_text(spec.max);
+    if (!spec.min_open && !spec.max_open) return number_text(spec.min) + " to " + number_text(spec.max);
+    return (spec.min_open ? "> " : ">= ") + number_text(spec.min) + " and " + (spec.max_open ? "< " : "<= ") +
+           number_text(spec.max);
   }
   if (low) return (spec.min_open ? "> " : ">= ") + number_text(spec.min);
   if (high) return (spec.max_open ? "< " : "<= ") + number_text(spec.max);
@@ -59,8 +60,8 @@ double KeyTable::number_or(std::string_view key, double fallback, const Number& 
   return fallback;
 }
 
-std::vector<double> KeyTable::numbers(std::string_view key, const Number& spec) {
-  add(key, "list of numbers", spec.unit, "", range_text(spec), spec.meaning);
+std::vector<double> KeyTable::numbers(std::string_view key, const Number& spec, std::size_t max_count) {
+  add(key, "list of 1 to " + std::to_string(max_count) + " numbers", spec.unit, "", range_text(spec), spec.meaning);
   return {inside(spec)};
 }
 

@@ -204,19 +204,19 @@ class Line4Parser {
   std::size_t p_ = 0;
 };
 
-}  // namespace
-
-GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source_name, const At2ReadOptions& options) {
-  const std::string source(source_name);
-  detail::LineCursor lines(text);
-  std::array<std::string_view, 4> header{};
+// The reader proper, over lines from text or from a file as it is read.
+GroundMotionRecord parse_lines(detail::LineCursor& lines, const std::string& source, const At2ReadOptions& options) {
+  // Copies: a line from a file lives only until the next one is read.
+  std::array<std::string, 4> header{};
   std::size_t header_count = 0;
   std::string_view line;
   while (header_count < header.size() && lines.next(line)) header[header_count++] = line;
 
-  if (header_count == 0 || text.find_first_not_of(" \t\r\n\v\f") == std::string_view::npos) {
-    throw RecordError(where(source, 1) +
-                      "empty file; expected a PEER AT2 header (banner, event, units, NPTS/DT) "
+  const bool blank = std::all_of(header.begin(), header.begin() + static_cast<std::ptrdiff_t>(header_count),
+                                 [](const std::string& h) { return detail::is_blank(h); });
+  if (header_count == 0 || blank) {
+    throw RecordError(where(source, 1) + (header_count == 0 ? "empty file" : "blank header lines") +
+                      "; expected a PEER AT2 header (banner, event, units, NPTS/DT) "
                       "followed by the acceleration values");
   }
   if (detail::is_numeric_line(header[0], "")) {
@@ -232,7 +232,7 @@ GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source
   GroundMotionRecord record;
   record.source = source;
   record.description = trimmed(header[1]);
-  for (const auto h : header) {
+  for (const auto& h : header) {
     std::string kept(h);
     kept.erase(kept.find_last_not_of(" \t\r\v\f") + 1);
     record.header_lines.push_back(std::move(kept));
@@ -252,7 +252,7 @@ GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source
   record.dt_s = line4.dt_s;
 
   // Never trust NPTS for the allocation: each value takes at least two bytes.
-  record.acceleration_m_per_s2.reserve(std::min(line4.npts, text.size() / 2 + 1));
+  record.acceleration_m_per_s2.reserve(std::min(line4.npts, lines.size_bytes() / 2 + 1));
   const double factor = to_m_per_s2(record.original_unit);
   std::size_t last_line_with_values = 4;
   while (lines.next(line)) {
@@ -281,9 +281,17 @@ GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source
   return record;
 }
 
+}  // namespace
+
+GroundMotionRecord parse_peer_at2(std::string_view text, std::string_view source_name, const At2ReadOptions& options) {
+  detail::LineCursor lines(text);
+  return parse_lines(lines, std::string(source_name), options);
+}
+
 GroundMotionRecord read_peer_at2(const std::filesystem::path& file, const At2ReadOptions& options) {
-  const std::string name = file.string();
-  return parse_peer_at2(detail::read_file_text(name), name, options);
+  config::InputFile input = detail::open_record_file(file);
+  detail::LineCursor lines(input);
+  return parse_lines(lines, file.string(), options);
 }
 
 }  // namespace rpsd::ground_motion

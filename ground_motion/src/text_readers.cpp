@@ -47,11 +47,8 @@ std::string format_seconds(double t) {
   return out.str();
 }
 
-}  // namespace
-
-GroundMotionRecord parse_plain_text(std::string_view text, std::string_view source_name,
+GroundMotionRecord plain_text_lines(detail::LineCursor& lines, const std::string& source,
                                     const PlainTextOptions& options) {
-  const std::string source(source_name);
   if (!(options.dt_s > 0.0) || !std::isfinite(options.dt_s)) {
     throw RecordError(source +
                       ": expected dt_s, a positive number of seconds, for a plain-text "
@@ -65,7 +62,6 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
   record.dt_s = options.dt_s;
   const double factor = to_m_per_s2(record.original_unit);
 
-  detail::LineCursor lines(text);
   skip_header(lines, options.skip_lines, source);
   std::string_view line;
   std::size_t columns = 0;
@@ -118,9 +114,8 @@ GroundMotionRecord parse_plain_text(std::string_view text, std::string_view sour
   return record;
 }
 
-GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_view source_name,
+GroundMotionRecord time_acceleration_lines(detail::LineCursor& lines, const std::string& source,
                                            const TimeAccelerationOptions& options) {
-  const std::string source(source_name);
   if (!(options.spacing_tolerance >= 0.0 && options.spacing_tolerance < 0.5)) {
     throw RecordError(source + ": expected spacing_tolerance in [0, 0.5) (a fraction of dt), got " +
                       format_seconds(options.spacing_tolerance));
@@ -136,7 +131,6 @@ GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_vi
   const double factor = to_m_per_s2(record.original_unit);
   const std::size_t needed = std::max(options.time_column, options.acceleration_column) + 1;
 
-  detail::LineCursor lines(text);
   skip_header(lines, options.skip_lines, source);
   std::vector<double> times;
   std::vector<std::size_t> line_numbers;
@@ -195,14 +189,30 @@ GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_vi
   return record;
 }
 
+}  // namespace
+
+GroundMotionRecord parse_plain_text(std::string_view text, std::string_view source_name,
+                                    const PlainTextOptions& options) {
+  detail::LineCursor lines(text);
+  return plain_text_lines(lines, std::string(source_name), options);
+}
+
+GroundMotionRecord parse_time_acceleration(std::string_view text, std::string_view source_name,
+                                           const TimeAccelerationOptions& options) {
+  detail::LineCursor lines(text);
+  return time_acceleration_lines(lines, std::string(source_name), options);
+}
+
 GroundMotionRecord read_plain_text(const std::filesystem::path& file, const PlainTextOptions& options) {
-  const std::string name = file.string();
-  return parse_plain_text(detail::read_file_text(name), name, options);
+  config::InputFile input = detail::open_record_file(file);
+  detail::LineCursor lines(input);
+  return plain_text_lines(lines, file.string(), options);
 }
 
 GroundMotionRecord read_time_acceleration(const std::filesystem::path& file, const TimeAccelerationOptions& options) {
-  const std::string name = file.string();
-  return parse_time_acceleration(detail::read_file_text(name), name, options);
+  config::InputFile input = detail::open_record_file(file);
+  detail::LineCursor lines(input);
+  return time_acceleration_lines(lines, file.string(), options);
 }
 
 }  // namespace rpsd::ground_motion

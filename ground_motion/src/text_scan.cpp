@@ -6,21 +6,40 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <system_error>
 
 #include "rpsd/ground_motion/record_error.h"
 
 namespace rpsd::ground_motion::detail {
 
-LineCursor::LineCursor(std::string_view text) : rest_(text) {
-  constexpr std::string_view bom = "\xEF\xBB\xBF";
-  if (rest_.substr(0, bom.size()) == bom) rest_.remove_prefix(bom.size());
+namespace {
+constexpr std::string_view kBom = "\xEF\xBB\xBF";
+}  // namespace
+
+LineCursor::LineCursor(std::string_view text) : rest_(text), size_bytes_(text.size()) {
+  if (rest_.substr(0, kBom.size()) == kBom) rest_.remove_prefix(kBom.size());
 }
+
+LineCursor::LineCursor(config::InputFile& file)
+    : file_(&file), size_bytes_(static_cast<std::size_t>(file.size_bytes())) {}
 
 bool LineCursor::next(std::string_view& line) {
   if (done_) return false;
+  if (file_ != nullptr) {
+    try {
+      if (!file_->next_line(line_)) {
+        done_ = true;
+        return false;
+      }
+    } catch (const config::InputFileError& e) {
+      throw RecordError(e.what());
+    }
+    line = line_;
+    if (line_number_ == 0 && line.substr(0, kBom.size()) == kBom) line.remove_prefix(kBom.size());
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    ++line_number_;
+    return true;
+  }
   const auto end = rest_.find('\n');
   if (end == std::string_view::npos) {
     // The text after the last '\n' is a line only if it is not empty.
@@ -160,15 +179,12 @@ bool is_numeric_line(std::string_view line, std::string_view extra_separators) {
   return any;
 }
 
-std::string read_file_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw RecordError(path + ": cannot open the ground-motion file: " + std::strerror(errno));
+config::InputFile open_record_file(const std::filesystem::path& file) {
+  try {
+    return config::InputFile(file, config::kMaxRecordFileBytes, "ground-motion record");
+  } catch (const config::InputFileError& e) {
+    throw RecordError(e.what());
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw RecordError(path + ": read error");
-  return text.str();
 }
 
 }  // namespace rpsd::ground_motion::detail

@@ -3,23 +3,33 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <string>
 #include <string_view>
 
+#include "rpsd/config/input_file.h"
+
 namespace rpsd::ground_motion::detail {
 
-// Splits text into lines ('\n', with a trailing '\r' dropped); skips a UTF-8 BOM.
+// Splits text, or a file as it is read, into lines ('\n', with a trailing '\r' dropped);
+// skips a UTF-8 BOM. A line taken from a file stays valid until the next call.
 class LineCursor {
  public:
   explicit LineCursor(std::string_view text);
+  explicit LineCursor(config::InputFile& file);
   // Next line into `line`; false at the end. Line numbers start at 1.
   bool next(std::string_view& line);
   std::size_t line_number() const { return line_number_; }
+  // The bytes of the whole text or file (a bound for reserving, never trusted from a header).
+  std::size_t size_bytes() const { return size_bytes_; }
 
  private:
   std::string_view rest_;
+  config::InputFile* file_ = nullptr;
+  std::string line_;
   bool done_ = false;
   std::size_t line_number_ = 0;
+  std::size_t size_bytes_ = 0;
 };
 
 // One token of a line: its text and 1-based column.
@@ -68,7 +78,8 @@ bool is_blank(std::string_view line);
 // True when every token of the line is a number (used to recognise a missing header).
 bool is_numeric_line(std::string_view line, std::string_view extra_separators);
 
-// Reads a whole file; throws RecordError "file: cannot open ..." on failure.
-std::string read_file_text(const std::string& path);
+// Opens a record file: a regular file of at most config::kMaxRecordFileBytes, else a
+// RecordError naming it.
+config::InputFile open_record_file(const std::filesystem::path& file);
 
 }  // namespace rpsd::ground_motion::detail

@@ -5,8 +5,9 @@
 namespace rpsd::node {
 
 SimulatedActuatorConfig SimulatedActuatorConfig::read(config::Source& section, int) {
-  const double k = section.number_or("specimen_stiffness_n_per_m", 0.0,
-                                     config::Number::non_negative("N/m", "the specimen the load cell sees: F = k x"));
+  const double k =
+      section.number_or("specimen_stiffness_n_per_m", 0.0,
+                        config::Number::between(0.0, 1e13, "N/m", "the specimen the load cell sees: F = k x"));
   return {servo::read_plant_config(*section.section("servo", "each channel's plant"), k)};
 }
 

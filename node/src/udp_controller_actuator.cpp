@@ -191,9 +191,8 @@ UdpControllerConfig UdpControllerConfig::read(config::Source& section, int chann
   u.local_host = section.has("local_host") ? section.text("local_host", "address to bind (dotted IPv4)") : u.local_host;
   u.local_port =
       static_cast<std::uint16_t>(section.whole_number_or("local_port", 0, 65535, 0, "port to bind (0: any free one)"));
-  u.reply_timeout_s =
-      section.number_or("reply_timeout_s", u.reply_timeout_s,
-                        config::Number::positive("s", "how long past the control period to wait for a reply"));
+  u.reply_timeout_s = section.number_or("reply_timeout_s", u.reply_timeout_s,
+                                        {"s", "how long past the control period to wait for a reply", 0.0, 1.0, true});
   u.max_missed_replies = static_cast<int>(section.whole_number_or(
       "max_missed_replies", 0, 1000, u.max_missed_replies, "consecutive missing replies before the actuator faults"));
   // Hardware: nothing in the file can say what the rig can do unless the file says it.

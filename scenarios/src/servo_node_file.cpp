@@ -3,39 +3,55 @@
 #include <cmath>
 #include <optional>
 
+#include "physical_ranges.h"
+#include "rpsd/config/input_file.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
 
 namespace rpsd::scenarios {
 namespace {
 
+using config::Number;
+using namespace ranges;
+
 node::LimitAction limit_action(MappingReader& r, const std::string& key, node::LimitAction fallback) {
-  const auto text = r.optional_string(key);
-  if (!text) return fallback;
-  if (*text == "clamp") return node::LimitAction::kClamp;
-  if (*text == "hold") return node::LimitAction::kHold;
-  if (*text == "ramp_to_safe") return node::LimitAction::kRampToSafe;
-  if (*text == "abort") return node::LimitAction::kAbort;
-  r.fail(key, "expected clamp, hold, ramp_to_safe or abort, got \"" + *text + "\"");
+  if (!r.has(key)) return fallback;
+  const std::string text =
+      r.choice(key, {"clamp", "hold", "ramp_to_safe", "abort"}, "what the node does when the limit acts");
+  if (text == "clamp") return node::LimitAction::kClamp;
+  if (text == "hold") return node::LimitAction::kHold;
+  if (text == "ramp_to_safe") return node::LimitAction::kRampToSafe;
+  return node::LimitAction::kAbort;
 }
 
-std::vector<double> per_channel(MappingReader& r, const std::string& key, int channels, double fallback) {
+std::vector<double> per_channel(MappingReader& r, const std::string& key, int channels, double fallback,
+                                const Number& spec) {
   if (!r.has(key)) return std::vector<double>(static_cast<std::size_t>(channels), fallback);
-  auto values = r.numbers(key);
+  auto values = r.numbers(key, spec, static_cast<std::size_t>(channels));
   if (static_cast<int>(values.size()) != channels)
     r.fail(key, "needs one value per channel (" + std::to_string(channels) + ")");
   return values;
 }
 
+// A limit is positive and finite: leaving it out takes the rig's envelope.
+Number limit(std::string_view unit, std::string_view meaning, double max) { return {unit, meaning, 0.0, max, true}; }
+
 void read_limits(MappingReader r, node::ServoNodeSetup& f) {
   const int n = f.node.channels;
-  const auto stroke = per_channel(r, "max_stroke_m", n, node::ChannelLimits::kNone);
-  const auto velocity = per_channel(r, "max_velocity_m_per_s", n, node::ChannelLimits::kNone);
-  const auto force = per_channel(r, "max_force_n", n, node::ChannelLimits::kNone);
-  const auto increment = per_channel(r, "max_increment_m", n, node::ChannelLimits::kNone);
-  const auto acceleration = per_channel(r, "max_acceleration_m_per_s2", n, node::ChannelLimits::kNone);
-  const auto guard = per_channel(r, "force_guard_stiffness_n_per_m", n, 0.0);
-  const auto stop = per_channel(r, "stop_deceleration_m_per_s2", n, node::ChannelLimits::kNone);
+  constexpr double kNone = node::ChannelLimits::kNone;
+  const auto stroke = per_channel(r, "max_stroke_m", n, kNone, limit("m", "|displacement|", kMaxDisplacementM));
+  const auto velocity =
+      per_channel(r, "max_velocity_m_per_s", n, kNone, limit("m/s", "|command velocity|", kMaxVelocityMPerS));
+  const auto force = per_channel(r, "max_force_n", n, kNone, limit("N", "|force|", kMaxForceN));
+  const auto increment =
+      per_channel(r, "max_increment_m", n, kNone, limit("m", "|command change| per period", kMaxDisplacementM));
+  const auto acceleration = per_channel(r, "max_acceleration_m_per_s2", n, kNone,
+                                        limit("m/s^2", "|command acceleration|", kMaxAccelerationMPerS2));
+  const auto guard =
+      per_channel(r, "force_guard_stiffness_n_per_m", n, 0.0,
+                  Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the force guard's stiffness (0: the specimen's)"));
+  const auto stop = per_channel(r, "stop_deceleration_m_per_s2", n, kNone,
+                                limit("m/s^2", "how hard a hold or an abort brakes", kMaxAccelerationMPerS2));
   for (int c = 0; c < n; ++c) {
     f.node.limits[c] = {stroke[c], velocity[c], force[c], increment[c], acceleration[c], guard[c], stop[c]};
   }
@@ -51,20 +67,17 @@ void read_limits(MappingReader r, node::ServoNodeSetup& f) {
 }
 
 void read_watchdog(MappingReader r, node::ServoNodeSetup& f) {
-  f.node.command_timeout_periods =
-      static_cast<int>(r.whole_number_or("command_timeout_periods", 1, 1'000'000, f.node.command_timeout_periods));
-  const std::string loss = r.optional_string("on_command_loss").value_or("hold");
-  if (loss == "hold") {
-    f.node.on_command_loss = node::LossAction::kHold;
-  } else if (loss == "ramp_to_safe") {
-    f.node.on_command_loss = node::LossAction::kRampToSafe;
-  } else {
-    r.fail("on_command_loss", "expected hold or ramp_to_safe, got \"" + loss + "\"");
-  }
-  const auto safe = per_channel(r, "safe_position_m", f.node.channels, 0.0);
+  f.node.command_timeout_periods = static_cast<int>(r.whole_number_or(
+      "command_timeout_periods", 1, 1'000'000, f.node.command_timeout_periods, "periods without a command"));
+  const std::string loss = r.has("on_command_loss") ? r.choice("on_command_loss", {"hold", "ramp_to_safe"},
+                                                               "what the node does when commands stop")
+                                                    : "hold";
+  f.node.on_command_loss = loss == "ramp_to_safe" ? node::LossAction::kRampToSafe : node::LossAction::kHold;
+  const auto safe = per_channel(r, "safe_position_m", f.node.channels, 0.0,
+                                Number::between(-kMaxDisplacementM, kMaxDisplacementM, "m", "where ramp_to_safe goes"));
   for (int c = 0; c < f.node.channels; ++c) f.node.safe_position_m[c] = safe[c];
-  f.node.safe_ramp_velocity_m_per_s =
-      r.positive_number_or("safe_ramp_velocity_m_per_s", f.node.safe_ramp_velocity_m_per_s);
+  f.node.safe_ramp_velocity_m_per_s = r.number_or("safe_ramp_velocity_m_per_s", f.node.safe_ramp_velocity_m_per_s,
+                                                  limit("m/s", "how fast ramp_to_safe moves", kMaxVelocityMPerS));
   r.finish();
 }
 
@@ -78,37 +91,45 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
   root.optional_string("description");
   {
     MappingReader node = root.mapping("node");
-    f.node.test_id = static_cast<std::uint32_t>(node.whole_number("test_id", 1, 4'000'000'000L));
-    f.node.site_id = static_cast<std::uint32_t>(node.whole_number("site_id", 1, 1'000'000));
-    const std::string mode = node.string("mode");
-    if (mode == "real_time") {
-      f.mode = node::ServoNodeSetup::Mode::kRealTime;
-    } else if (mode == "lock_step") {
-      f.mode = node::ServoNodeSetup::Mode::kLockStep;
-    } else {
-      node.fail("mode", "expected real_time or lock_step, got \"" + mode + "\"");
-    }
-    f.node.control_period_s = 1.0 / node.positive_number("control_rate_hz");
-    f.heartbeat_rate_hz = node.positive_number_or("heartbeat_rate_hz", f.heartbeat_rate_hz);
-    f.realtime.lock_memory = node.boolean_or("lock_memory", f.realtime.lock_memory);
-    f.realtime.fifo_priority = static_cast<int>(node.whole_number_or("fifo_priority", 0, 99, f.realtime.fifo_priority));
-    f.realtime.keep_cpus_awake = node.boolean_or("keep_cpus_awake", f.realtime.keep_cpus_awake);
+    f.node.test_id =
+        static_cast<std::uint32_t>(node.whole_number("test_id", 1, 4'000'000'000L, "the test the node serves"));
+    f.node.site_id = static_cast<std::uint32_t>(node.whole_number("site_id", 1, 1'000'000, "the node's site"));
+    const std::string mode =
+        node.choice("mode", {"real_time", "lock_step"}, "paced by its own clock, or one step per command");
+    f.mode = mode == "real_time" ? node::ServoNodeSetup::Mode::kRealTime : node::ServoNodeSetup::Mode::kLockStep;
+    // A servo controller's loop: 1 Hz is a quasi-static test, 100 kHz beyond any controller.
+    f.node.control_period_s =
+        1.0 / node.number("control_rate_hz", Number::between(1.0, kMaxNodeRateHz, "Hz", "the node's control loop"));
+    f.heartbeat_rate_hz = node.number_or("heartbeat_rate_hz", f.heartbeat_rate_hz,
+                                         Number::between(0.1, 1000.0, "Hz", "how often the node says it is alive"));
+    f.realtime.lock_memory = node.boolean_or("lock_memory", f.realtime.lock_memory, "mlockall the process");
+    f.realtime.fifo_priority = static_cast<int>(
+        node.whole_number_or("fifo_priority", 0, 99, f.realtime.fifo_priority, "SCHED_FIFO priority, 0: none"));
+    f.realtime.keep_cpus_awake =
+        node.boolean_or("keep_cpus_awake", f.realtime.keep_cpus_awake, "hold /dev/cpu_dma_latency at 0");
     node.finish();
   }
   {
     MappingReader dds = root.mapping("dds");
-    f.dds.domain_id = static_cast<std::uint32_t>(dds.whole_number_or("domain_id", 0, 232, 0));
+    f.dds.domain_id = static_cast<std::uint32_t>(dds.whole_number_or("domain_id", 0, 232, 0, "the DDS domain"));
     if (auto config = dds.optional_string("config")) {
       const auto path = file.parent_path() / *config;
-      if (!std::filesystem::exists(path)) dds.fail("config", "no such file: " + path.string());
+      try {
+        config::check_input_file(path, config::kMaxYamlFileBytes, "DDS configuration");
+      } catch (const config::InputFileError& e) {
+        dds.fail("config", e.what());
+      }
       f.dds.config_file = path.string();
     }
     dds.finish();
   }
   {
     MappingReader actuator = root.mapping("actuator");
-    f.node.channels = static_cast<int>(actuator.whole_number("channels", 1, transport::kMaxChannels));
-    f.initial_displacement_m = per_channel(actuator, "initial_displacement_m", f.node.channels, 0.0);
+    f.node.channels = static_cast<int>(
+        actuator.whole_number("channels", 1, transport::kMaxChannels, "the actuators the node drives"));
+    f.initial_displacement_m =
+        per_channel(actuator, "initial_displacement_m", f.node.channels, 0.0,
+                    Number::between(-kMaxDisplacementM, kMaxDisplacementM, "m", "each piston's position at start"));
     using Kinds = node::ActuatorKinds;
     const std::string kind = actuator.choice("kind", Kinds::names(), "what the node drives (node/)");
     f.actuator = *Kinds::read(kind, actuator, f.node.channels);
@@ -153,14 +174,18 @@ node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::pa
   {
     MappingReader udp = root.mapping("udp");
     f.bind_host = udp.optional_string("bind_host").value_or(f.bind_host);
-    f.port = static_cast<std::uint16_t>(udp.whole_number("port", 1, 65535));
+    f.port = static_cast<std::uint16_t>(udp.whole_number("port", 1, 65535, "the UDP port it listens on"));
     udp.finish();
   }
   MappingReader actuator = root.mapping("actuator");
-  f.channels = static_cast<int>(actuator.whole_number("channels", 1, transport::kMaxChannels));
-  f.initial_displacement_m = per_channel(actuator, "initial_displacement_m", f.channels, 0.0);
-  const double k = actuator.number_or("specimen_stiffness_n_per_m", 0.0,
-                                      config::Number::non_negative("N/m", "the specimen the load cell sees: F = k x"));
+  f.channels =
+      static_cast<int>(actuator.whole_number("channels", 1, transport::kMaxChannels, "the actuators it emulates"));
+  f.initial_displacement_m =
+      per_channel(actuator, "initial_displacement_m", f.channels, 0.0,
+                  Number::between(-kMaxDisplacementM, kMaxDisplacementM, "m", "each piston's position at start"));
+  const double k =
+      actuator.number_or("specimen_stiffness_n_per_m", 0.0,
+                         Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen the load cell sees: F = k x"));
   f.plant = servo::read_plant_config(*actuator.section("servo", "each channel's plant"), k);
   actuator.finish();
   root.finish();

@@ -2,9 +2,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
+#include "physical_ranges.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/scenarios/test_scenario_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
@@ -13,14 +12,15 @@
 namespace rpsd::scenarios {
 namespace {
 
-std::vector<double> read_log_range(MappingReader range) {
-  const double start = range.positive_number("start");
-  const double stop = range.positive_number("stop");
-  const double points = range.positive_number("points");
+using config::Number;
+using namespace ranges;
+
+// `points` values from start to stop, equally spaced in log10, within `value`.
+std::vector<double> read_log_range(MappingReader range, const Number& value) {
+  const double start = range.number("start", value);
+  const double stop = range.number("stop", value);
+  const long points = range.whole_number("points", 2, 100000, "how many values");
   if (stop <= start) range.fail("stop", "must be greater than start");
-  if (points < 2 || points != std::floor(points) || points > 100000) {
-    range.fail("points", "expected a whole number from 2 to 100000");
-  }
   range.finish();
   return log_spaced(start, stop, static_cast<int>(points));
 }
@@ -28,19 +28,25 @@ std::vector<double> read_log_range(MappingReader range) {
 studies::SineSweepStudy read_sine_sweep(MappingReader& root, servo::ServoSystemParameters servo) {
   studies::SineSweepStudy s;
   s.servo = std::move(servo);
-  s.command_rate_hz = root.positive_number_or("command_rate_hz", s.command_rate_hz);
+  s.command_rate_hz = root.number_or("command_rate_hz", s.command_rate_hz,
+                                     Number::between(kMinControlRateHz, kMaxNodeRateHz, "Hz", "commands per second"));
   MappingReader sweep = root.mapping("sine_sweep");
-  s.amplitude_m = sweep.positive_number("amplitude_m");
-  s.start_frequency_hz = sweep.non_negative_number("start_frequency_hz");
-  s.end_frequency_hz = sweep.positive_number("end_frequency_hz");
-  s.duration_s = sweep.positive_number("duration_s");
+  s.amplitude_m = sweep.number("amplitude_m", Number{"m", "the sine's amplitude", 0.0, kMaxDisplacementM, true});
+  s.start_frequency_hz =
+      sweep.number("start_frequency_hz", Number::between(0.0, kMaxFrequencyHz, "Hz", "the sweep's first frequency"));
+  s.end_frequency_hz =
+      sweep.number("end_frequency_hz", Number{"Hz", "the sweep's last frequency", 0.0, kMaxFrequencyHz, true});
+  s.duration_s = sweep.number("duration_s", Number{"s", "the sweep's length", 0.0, kMaxRecordDurationS, true});
+  if (s.duration_s * s.command_rate_hz > kMaxSteps) sweep.fail("duration_s", "more than 1e9 commands");
   if (s.end_frequency_hz <= s.start_frequency_hz) sweep.fail("end_frequency_hz", "must exceed start_frequency_hz");
   if (s.end_frequency_hz * 8.0 > s.command_rate_hz) {
     sweep.fail("end_frequency_hz", "needs at least 8 command samples per cycle (raise command_rate_hz)");
   }
   sweep.finish();
   if (root.has("report_frequencies_hz")) {
-    s.report_frequencies_hz = root.positive_numbers("report_frequencies_hz");
+    s.report_frequencies_hz =
+        root.numbers("report_frequencies_hz",
+                     Number{"Hz", "frequencies the report gives gain and phase at", 0.0, kMaxFrequencyHz, true}, 1000);
     for (double f : s.report_frequencies_hz) {
       if (f <= s.start_frequency_hz || f >= s.end_frequency_hz) {
         root.fail("report_frequencies_hz", "every report frequency must lie inside the sweep");
@@ -52,14 +58,16 @@ studies::SineSweepStudy read_sine_sweep(MappingReader& root, servo::ServoSystemP
 
 studies::FrequencyResponseStudy read_frequency_response(MappingReader& root, servo::ServoSystemParameters servo) {
   studies::FrequencyResponseStudy s;
-  s.frequencies_hz = read_log_range(root.mapping("frequencies_hz"));
+  s.frequencies_hz = read_log_range(root.mapping("frequencies_hz"),
+                                    Number{"Hz", "the frequencies of the response", 0.0, kMaxFrequencyHz, true});
   MappingReader lead = root.mapping("phase_lead");
-  const double a = lead.positive_number("ratio_a");
-  if (a < 1.0) lead.fail("ratio_a", "must be at least 1 (a lead network)");
+  const double a = lead.number("ratio_a", Number::between(1.0, 100.0, "", "the lead network's a (1: no lead)"));
   // Without an explicit T the network's zero cancels the first-order lag of Eq. 9.
-  s.phase_lead = lead.has("time_constant_s")
-                     ? compensation::PhaseLeadParameters{a, lead.positive_number("time_constant_s")}
-                     : compensation::cancel_first_order_lag(servo::response_delay_s(servo), a);
+  s.phase_lead =
+      lead.has("time_constant_s")
+          ? compensation::PhaseLeadParameters{a, lead.number("time_constant_s",
+                                                             Number{"s", "the lead network's T", 0.0, 10.0, true})}
+          : compensation::cancel_first_order_lag(servo::response_delay_s(servo), a);
   lead.finish();
   s.servo = std::move(servo);
   return s;
@@ -68,21 +76,29 @@ studies::FrequencyResponseStudy read_frequency_response(MappingReader& root, ser
 studies::MaxGainStudy read_max_gain(MappingReader& root, servo::ServoSystemParameters servo) {
   studies::MaxGainStudy s;
   s.servo = std::move(servo);
-  s.masses_kg = read_log_range(root.mapping("attached_mass_kg"));
+  s.masses_kg = read_log_range(root.mapping("attached_mass_kg"),
+                               Number{"kg", "the masses the actuator carries", 0.0, kMaxMassKg, true});
   return s;
 }
 
 studies::DelayCompensationStudy read_delay_compensation(MappingReader& root) {
   studies::DelayCompensationStudy s;
   MappingReader structure = root.mapping("structure");
-  s.mass_kg = structure.positive_number("mass_kg");
-  s.stiffness_n_per_m = structure.positive_number("stiffness_n_per_m");
-  s.damping_ratio = structure.non_negative_number("damping_ratio");
+  s.mass_kg = structure.number("mass_kg", Number{"kg", "the SDOF's mass", 0.0, kMaxMassKg, true});
+  s.stiffness_n_per_m =
+      structure.number("stiffness_n_per_m", Number{"N/m", "the SDOF's stiffness", 0.0, kMaxStiffnessNPerM, true});
+  s.damping_ratio = structure.number("damping_ratio", Number::between(0.0, 1.0, "", "fraction of critical"));
   structure.finish();
-  s.initial_displacement_m = root.positive_number("initial_displacement_m");
-  s.control_rate_hz = root.positive_number_or("control_rate_hz", s.control_rate_hz);
-  s.duration_s = root.positive_number("duration_s");
-  s.abort_amplitude_factor = root.positive_number_or("abort_amplitude_factor", s.abort_amplitude_factor);
+  s.initial_displacement_m =
+      root.number("initial_displacement_m", Number{"m", "the free vibration's start", 0.0, kMaxDisplacementM, true});
+  s.control_rate_hz =
+      root.number_or("control_rate_hz", s.control_rate_hz,
+                     Number::between(kMinControlRateHz, kMaxControlRateHz, "Hz", "integration steps per second"));
+  s.duration_s = root.number("duration_s", Number{"s", "each run's length", 0.0, kMaxDurationS, true});
+  if (s.duration_s * s.control_rate_hz > kMaxSteps) root.fail("duration_s", "more than 1e9 steps");
+  s.abort_amplitude_factor =
+      root.number_or("abort_amplitude_factor", s.abort_amplitude_factor,
+                     Number::between(1.0, 1e3, "", "a run stops once it grows this many times its start"));
   if (root.has("integrator")) {
     const std::string name = root.string("integrator");
     const auto config = default_integrator(name);
@@ -101,9 +117,12 @@ studies::DelayCompensationStudy read_delay_compensation(MappingReader& root) {
     }
   }
   MappingReader compensation = root.mapping("compensation");
-  s.phase_lead_ratio_a = compensation.positive_number("phase_lead_ratio_a");
-  if (s.phase_lead_ratio_a <= 1.0) compensation.fail("phase_lead_ratio_a", "must exceed 1 (a lead network)");
-  for (double ms : compensation.positive_numbers("compensated_delays_ms")) s.compensated_delays_s.push_back(ms * 1e-3);
+  s.phase_lead_ratio_a =
+      compensation.number("phase_lead_ratio_a", Number{"", "the lead network's a", 1.0, 100.0, true});
+  for (double ms : compensation.numbers("compensated_delays_ms",
+                                        Number{"ms", "each run's compensated delay", 0.0, 1000.0, true}, 100)) {
+    s.compensated_delays_s.push_back(ms * 1e-3);
+  }
   compensation.finish();
   return s;
 }
@@ -217,18 +236,19 @@ std::string number_text(double v) {
 studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line,
                                   MappingReader& root, const std::filesystem::path& file,
                                   studies::StudyDocument result) {
-  auto axes = root.mappings("sweep");
-  if (axes.size() > 2) root.fail("sweep", "at most two swept keys");
+  auto axes = root.mappings("sweep", 2);
   for (auto& axis : axes) {
     studies::SweepAxis a;
     a.key_path = axis.string("key");
     if (a.key_path.rfind("sweep", 0) == 0 || a.key_path == "study") axis.fail("key", "cannot sweep this key");
+    // The swept key's own reader checks each value's range, case by case.
+    const Number value = Number::any("", "a value of the swept key");
     if (axis.has("values")) {
-      a.values = axis.numbers("values");
+      a.values = axis.numbers("values", value, 1000);
     } else {
       MappingReader range = axis.mapping("range");
-      const double start = range.number("start"), stop = range.number("stop");
-      const long count = range.whole_number("count", 2, 1000);
+      const double start = range.number("start", value), stop = range.number("stop", value);
+      const long count = range.whole_number("count", 2, 1000, "how many values");
       range.finish();
       for (long i = 0; i < count; ++i) a.values.push_back(start + (stop - start) * i / (count - 1));
     }
@@ -271,13 +291,7 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
 
 }  // namespace
 
-std::string read_config_text(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw ConfigError(file.string() + ": cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string read_config_text(const std::filesystem::path& file) { return read_yaml_file_text(file); }
 
 YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   YAML::Node document = parse_yaml_text(read_config_text(file), file.string());

@@ -2,10 +2,11 @@
 
 #include <cmath>
 #include <memory>
-
-#include <fstream>
 #include <sstream>
+
+#include "rpsd/config/input_file.h"
 #include "rpsd/config/key_table.h"
+#include "rpsd/config/kind_list.h"
 
 namespace rpsd::scenarios {
 namespace {
@@ -24,17 +25,34 @@ std::string describe(const YAML::Node& value) {
   return "nothing";
 }
 
+// The positive and non-negative ranges keep the words they always had.
+std::string expected_number(const config::Number& spec) {
+  const bool unbounded = std::isinf(spec.max);
+  if (spec.min == 0.0 && spec.min_open && unbounded) return "a positive number";
+  if (spec.min == 0.0 && !spec.min_open && unbounded) return "zero or a positive number";
+  return "a number " + config::range_text(spec);
+}
+
 }  // namespace
 
+std::string read_yaml_file_text(const std::filesystem::path& file) {
+  try {
+    config::InputFile in(file, config::kMaxYamlFileBytes, "YAML file");
+    return in.read_all();
+  } catch (const config::InputFileError& e) {
+    throw ConfigError(e.what());
+  }
+}
+
 YAML::Node load_yaml_file(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw ConfigError(file.string() + ": cannot open file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_yaml_text(text.str(), file.string());
+  return parse_yaml_text(read_yaml_file_text(file), file.string());
 }
 
 YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
+  if (text.size() > config::kMaxYamlFileBytes) {
+    throw ConfigError(name + ": has " + std::to_string(text.size()) + " bytes; a YAML file may have at most " +
+                      config::byte_size_text(config::kMaxYamlFileBytes));
+  }
   try {
     YAML::Node root = YAML::Load(text);
     if (!root.IsMap()) throw ConfigError(name + ": expected a mapping of keys at the top level");
@@ -82,39 +100,92 @@ YAML::Node MappingReader::required(std::string_view key) {
   return value;
 }
 
-double MappingReader::parse_number(const YAML::Node& value, std::string_view key) const {
+YAML::Node MappingReader::list(std::string_view key, std::size_t max_count, const std::string& of_what) {
+  const YAML::Node value = required(key);
+  if (!value.IsSequence() || value.size() == 0) {
+    fail_at(value, path_of(key), "expected a non-empty list of " + of_what + ", got " + describe(value));
+  }
+  if (value.size() > max_count) {
+    fail_at(value, path_of(key),
+            "expected at most " + std::to_string(max_count) + " " + of_what + ", got " + std::to_string(value.size()));
+  }
+  return value;
+}
+
+double MappingReader::item(const YAML::Node& value, const std::string& path, const config::Number& spec) const {
   double result = 0.0;
   if (!value.IsScalar() || !YAML::convert<double>::decode(value, result) || !std::isfinite(result)) {
-    fail_at(value, path_of(key), "expected a number, got " + describe(value));
+    fail_at(value, path, "expected a number, got " + describe(value));
+  }
+  if (!spec.admits(result)) fail_at(value, path, "expected " + expected_number(spec) + ", got " + describe(value));
+  return result;
+}
+
+double MappingReader::number(std::string_view key, const config::Number& spec) {
+  return item(required(key), path_of(key), spec);
+}
+
+double MappingReader::number_or(std::string_view key, double fallback, const config::Number& spec) {
+  return has(key) ? number(key, spec) : fallback;
+}
+
+std::vector<double> MappingReader::numbers(std::string_view key, const config::Number& spec, std::size_t max_count) {
+  const YAML::Node value = list(key, max_count, "numbers");
+  std::vector<double> result;
+  result.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    result.push_back(item(value[i], path_of(key) + '[' + std::to_string(i) + ']', spec));
   }
   return result;
 }
 
-double MappingReader::number(std::string_view key) { return parse_number(required(key), key); }
+std::vector<std::vector<double>> MappingReader::number_rows(std::string_view key, const config::Number& spec,
+                                                            std::size_t max_rows) {
+  const YAML::Node value = list(key, max_rows, "rows (lists of numbers)");
+  std::vector<std::vector<double>> rows;
+  for (std::size_t r = 0; r < value.size(); ++r) {
+    const YAML::Node row = value[r];
+    const std::string row_path = path_of(key) + '[' + std::to_string(r) + ']';
+    if (!row.IsSequence() || row.size() == 0)
+      fail_at(row, row_path, "expected a list of numbers, got " + describe(row));
+    if (row.size() > max_rows) {
+      fail_at(row, row_path,
+              "expected at most " + std::to_string(max_rows) + " numbers, got " + std::to_string(row.size()));
+    }
+    if (!rows.empty() && row.size() != rows.front().size()) {
+      fail_at(row, row_path,
+              "has " + std::to_string(row.size()) + " entries, row 0 has " + std::to_string(rows.front().size()));
+    }
+    std::vector<double> numbers;
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      numbers.push_back(item(row[c], row_path + '[' + std::to_string(c) + ']', spec));
+    }
+    rows.push_back(std::move(numbers));
+  }
+  return rows;
+}
 
-double MappingReader::positive_number(std::string_view key) {
+long MappingReader::whole_number(std::string_view key, long minimum, long maximum, std::string_view) {
   const YAML::Node value = required(key);
-  const double v = parse_number(value, key);
-  if (!(v > 0.0)) fail_at(value, path_of(key), "expected a positive number, got " + describe(value));
-  return v;
+  double v = 0.0;
+  if (!value.IsScalar() || !YAML::convert<double>::decode(value, v) || !std::isfinite(v)) {
+    fail_at(value, path_of(key), "expected a number, got " + describe(value));
+  }
+  // The range is checked on the double, before any cast.
+  if (v != std::floor(v) || v < static_cast<double>(minimum) || v > static_cast<double>(maximum)) {
+    fail_at(value, path_of(key),
+            "expected a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum) + ", got " +
+                describe(value));
+  }
+  return static_cast<long>(v);
 }
 
-double MappingReader::non_negative_number(std::string_view key) {
-  const YAML::Node value = required(key);
-  const double v = parse_number(value, key);
-  if (v < 0.0) fail_at(value, path_of(key), "expected zero or a positive number, got " + describe(value));
-  return v;
+long MappingReader::whole_number_or(std::string_view key, long minimum, long maximum, long fallback,
+                                    std::string_view meaning) {
+  return has(key) ? whole_number(key, minimum, maximum, meaning) : fallback;
 }
 
-double MappingReader::number_or(std::string_view key, double fallback) { return has(key) ? number(key) : fallback; }
-double MappingReader::positive_number_or(std::string_view key, double fallback) {
-  return has(key) ? positive_number(key) : fallback;
-}
-double MappingReader::non_negative_number_or(std::string_view key, double fallback) {
-  return has(key) ? non_negative_number(key) : fallback;
-}
-
-bool MappingReader::boolean_or(std::string_view key, bool fallback) {
+bool MappingReader::boolean_or(std::string_view key, bool fallback, std::string_view) {
   read_keys_.insert(std::string(key));
   const YAML::Node value = node_[std::string(key)];
   if (!value) return fallback;
@@ -136,86 +207,14 @@ std::optional<std::string> MappingReader::optional_string(std::string_view key) 
   return string(key);
 }
 
-std::vector<double> MappingReader::positive_numbers(std::string_view key) {
-  const YAML::Node value = required(key);
-  if (!value.IsSequence() || value.size() == 0) {
-    fail_at(value, path_of(key), "expected a non-empty list of numbers, got " + describe(value));
-  }
-  std::vector<double> numbers;
-  for (std::size_t i = 0; i < value.size(); ++i) {
-    const std::string item_path = path_of(key) + '[' + std::to_string(i) + ']';
-    double v = 0.0;
-    if (!value[i].IsScalar() || !YAML::convert<double>::decode(value[i], v) || !std::isfinite(v) || !(v > 0.0)) {
-      fail_at(value[i], item_path, "expected a positive number, got " + describe(value[i]));
-    }
-    numbers.push_back(v);
-  }
-  return numbers;
+int MappingReader::list_depth(std::string_view key) const {
+  const YAML::Node value = node_[std::string(key)];
+  if (!value || !value.IsSequence()) return 0;
+  return value.size() > 0 && value[0].IsSequence() ? 2 : 1;
 }
 
-std::vector<double> MappingReader::numbers(std::string_view key) {
-  const YAML::Node value = required(key);
-  if (!value.IsSequence() || value.size() == 0) {
-    fail_at(value, path_of(key), "expected a non-empty list of numbers, got " + describe(value));
-  }
-  std::vector<double> result;
-  for (std::size_t i = 0; i < value.size(); ++i) {
-    double v = 0.0;
-    if (!value[i].IsScalar() || !YAML::convert<double>::decode(value[i], v) || !std::isfinite(v)) {
-      fail_at(value[i], path_of(key) + '[' + std::to_string(i) + ']', "expected a number, got " + describe(value[i]));
-    }
-    result.push_back(v);
-  }
-  return result;
-}
-
-std::vector<std::vector<double>> MappingReader::number_rows(std::string_view key) {
-  const YAML::Node value = required(key);
-  if (!value.IsSequence() || value.size() == 0) {
-    fail_at(value, path_of(key), "expected a list of rows (lists of numbers), got " + describe(value));
-  }
-  std::vector<std::vector<double>> rows;
-  for (std::size_t r = 0; r < value.size(); ++r) {
-    const YAML::Node row = value[r];
-    const std::string row_path = path_of(key) + '[' + std::to_string(r) + ']';
-    if (!row.IsSequence() || row.size() == 0)
-      fail_at(row, row_path, "expected a list of numbers, got " + describe(row));
-    if (!rows.empty() && row.size() != rows.front().size()) {
-      fail_at(row, row_path,
-              "has " + std::to_string(row.size()) + " entries, row 0 has " + std::to_string(rows.front().size()));
-    }
-    std::vector<double> numbers;
-    for (std::size_t c = 0; c < row.size(); ++c) {
-      double v = 0.0;
-      if (!row[c].IsScalar() || !YAML::convert<double>::decode(row[c], v) || !std::isfinite(v)) {
-        fail_at(row[c], row_path + '[' + std::to_string(c) + ']', "expected a number, got " + describe(row[c]));
-      }
-      numbers.push_back(v);
-    }
-    rows.push_back(std::move(numbers));
-  }
-  return rows;
-}
-
-long MappingReader::whole_number(std::string_view key, long minimum, long maximum) {
-  const YAML::Node value = required(key);
-  const double v = parse_number(value, key);
-  if (v != std::floor(v) || v < static_cast<double>(minimum) || v > static_cast<double>(maximum)) {
-    fail_at(value, path_of(key),
-            "expected a whole number from " + std::to_string(minimum) + " to " + std::to_string(maximum) + ", got " +
-                describe(value));
-  }
-  return static_cast<long>(v);
-}
-
-long MappingReader::whole_number_or(std::string_view key, long minimum, long maximum, long fallback) {
-  return has(key) ? whole_number(key, minimum, maximum) : fallback;
-}
-
-std::vector<MappingReader> MappingReader::mappings(std::string_view key) {
-  const YAML::Node value = required(key);
-  if (!value.IsSequence() || value.size() == 0)
-    fail_at(value, path_of(key), "expected a non-empty list, got " + describe(value));
+std::vector<MappingReader> MappingReader::mappings(std::string_view key, std::size_t max_count) {
+  const YAML::Node value = list(key, max_count, "entries");
   std::vector<MappingReader> result;
   for (std::size_t i = 0; i < value.size(); ++i)
     result.emplace_back(value[i], file_, path_of(key) + '[' + std::to_string(i) + ']');
@@ -239,70 +238,13 @@ void MappingReader::finish() const {
   }
 }
 
-double MappingReader::checked(double value, std::string_view key, const config::Number& spec) const {
-  if (!spec.admits(value)) {
-    const YAML::Node node = node_[std::string(key)];
-    fail_at(node ? node : node_, path_of(key),
-            "expected a number " + config::range_text(spec) + ", got " + describe(node));
-  }
-  return value;
-}
-
-namespace {
-
-// The positive and non-negative ranges read as they always did, with the same messages.
-bool is_positive(const config::Number& spec) { return spec.min == 0.0 && spec.min_open && std::isinf(spec.max); }
-bool is_non_negative(const config::Number& spec) { return spec.min == 0.0 && !spec.min_open && std::isinf(spec.max); }
-
-}  // namespace
-
-double MappingReader::number(std::string_view key, const config::Number& spec) {
-  if (is_positive(spec)) return positive_number(key);
-  if (is_non_negative(spec)) return non_negative_number(key);
-  return checked(number(key), key, spec);
-}
-
-double MappingReader::number_or(std::string_view key, double fallback, const config::Number& spec) {
-  return has(key) ? number(key, spec) : fallback;
-}
-
-std::vector<double> MappingReader::numbers(std::string_view key, const config::Number& spec) {
-  if (is_positive(spec)) return positive_numbers(key);
-  std::vector<double> values = numbers(key);
-  const YAML::Node list = node_[std::string(key)];
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (!spec.admits(values[i])) {
-      fail_at(list[i], path_of(key) + '[' + std::to_string(i) + ']',
-              "expected a number " + config::range_text(spec) + ", got " + describe(list[i]));
-    }
-  }
-  return values;
-}
-
-long MappingReader::whole_number(std::string_view key, long minimum, long maximum, std::string_view) {
-  return whole_number(key, minimum, maximum);
-}
-
-long MappingReader::whole_number_or(std::string_view key, long minimum, long maximum, long fallback, std::string_view) {
-  return whole_number_or(key, minimum, maximum, fallback);
-}
-
-bool MappingReader::boolean_or(std::string_view key, bool fallback, std::string_view) {
-  return boolean_or(key, fallback);
-}
-
 std::string MappingReader::choice(std::string_view key, const std::vector<std::string_view>& choices,
                                   std::string_view) {
   const std::string value = string(key);
   for (const auto& c : choices) {
     if (value == c) return value;
   }
-  std::string listed;
-  for (std::size_t i = 0; i < choices.size(); ++i) {
-    if (i > 0) listed += i + 1 == choices.size() ? " or " : ", ";
-    listed += choices[i];
-  }
-  fail(key, "expected " + listed + ", got \"" + value + "\"");
+  fail(key, "expected " + config::listed(choices) + ", got \"" + value + "\"");
 }
 
 std::unique_ptr<config::Source> MappingReader::section(std::string_view key, std::string_view) {
@@ -311,7 +253,11 @@ std::unique_ptr<config::Source> MappingReader::section(std::string_view key, std
 
 std::unique_ptr<config::Source> MappingReader::file(std::string_view key, std::string_view) {
   const std::filesystem::path path = std::filesystem::path(file_).parent_path() / string(key);
-  if (!std::filesystem::is_regular_file(path)) fail(key, "no such file: " + path.string());
+  try {
+    config::check_input_file(path, config::kMaxYamlFileBytes, "YAML file");
+  } catch (const config::InputFileError& e) {
+    fail(key, e.what());
+  }
   return std::make_unique<MappingReader>(load_yaml_file(path), path.string(), "");
 }
 

@@ -8,10 +8,10 @@ namespace rpsd::servo {
 
 Envelope Envelope::read(config::Source& section) {
   Envelope e;
-  e.stroke_m = section.number("stroke_m", config::Number::positive("m", "the piston moves +/- this"));
-  e.force_n = section.number("force_n", config::Number::positive("N", "+/- the force the actuator can exert"));
-  e.velocity_m_per_s =
-      section.number("velocity_m_per_s", config::Number::positive("m/s", "the fastest the piston can move"));
+  // Bounds beyond any servo-hydraulic rig (10 m of stroke, 1 GN, 100 m/s), for typing errors.
+  e.stroke_m = section.number("stroke_m", {"m", "the piston moves +/- this", 0.0, 10.0, true});
+  e.force_n = section.number("force_n", {"N", "+/- the force the actuator can exert", 0.0, 1e9, true});
+  e.velocity_m_per_s = section.number("velocity_m_per_s", {"m/s", "the fastest the piston can move", 0.0, 100.0, true});
   section.finish();
   return e;
 }

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+
 #include <stdexcept>
+#include "substeps.h"
 
 namespace rpsd::servo {
 
@@ -10,7 +12,8 @@ void PureDelayParameters::validate() const {
   if (!(delay_s >= 0.0) || !std::isfinite(delay_s)) throw std::invalid_argument("delay_s: must be zero or positive");
   if (!(specimen_stiffness_n_per_m >= 0.0))
     throw std::invalid_argument("specimen_stiffness_n_per_m: must be zero or positive");
-  if (!(sample_rate_hz > 0.0) || sample_rate_hz > 1e6) throw std::invalid_argument("sample_rate_hz: must be positive, at most 1e6 Hz");
+  if (!(sample_rate_hz > 0.0) || sample_rate_hz > 1e6)
+    throw std::invalid_argument("sample_rate_hz: must be positive, at most 1e6 Hz");
   if (delay_s * sample_rate_hz > 1e7) throw std::invalid_argument("delay_s: longer than 1e7 history points");
   rig.validate();
 }
@@ -40,7 +43,7 @@ void PureDelayPlant::push(Point point) {
 
 void PureDelayPlant::advance(double command_start_m, double command_end_m, double duration_s) {
   if (!(duration_s > 0.0)) return;
-  const int pieces = std::max(1, static_cast<int>(std::ceil(duration_s * parameters_.sample_rate_hz - 1e-9)));
+  const int pieces = detail::substeps(duration_s * parameters_.sample_rate_hz);
   const double t0 = time_s_;
   // The command may jump at the interval start (a new command); record that start point.
   const Point& newest = history_[(head_ + size_ - 1) % history_.size()];
@@ -76,8 +79,8 @@ PlantMeasurement PureDelayPlant::measure() const {
 
 PureDelayParameters PureDelayParameters::read(config::Source& section, double specimen_stiffness_n_per_m) {
   PureDelayParameters d;
-  d.delay_s =
-      section.number("delay_s", config::Number::non_negative("s", "how long after its command the actuator is there"));
+  d.delay_s = section.number(
+      "delay_s", config::Number::between(0.0, 1.0, "s", "how long after its command the actuator is there"));
   d.specimen_stiffness_n_per_m = specimen_stiffness_n_per_m;
   d.rig = Envelope::read(*section.section("rig", "what the simulated rig can do"));
   return d;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "substeps.h"
+
 #include "rpsd/servo/specimen_forces.h"
 
 namespace rpsd::servo {
@@ -134,7 +136,7 @@ void ServoHydraulicPlant::rk4_step(Rates& y, double h, double u0, double command
 void ServoHydraulicPlant::advance(double command_start_m, double command_end_m, double duration_s) {
   if (!(duration_s > 0.0)) return;
   // Whole substeps no longer than the plant's step, so that the interval is covered exactly.
-  const int substeps = std::max(1, static_cast<int>(std::ceil(duration_s / max_step_s_ - 1e-9)));
+  const int substeps = detail::substeps(duration_s / max_step_s_);
   const double h = duration_s / substeps;
   const double command_rate = (command_end_m - command_start_m) / duration_s;
   Rates y{state_[0], state_[1], state_[2], state_[3], state_[4]};

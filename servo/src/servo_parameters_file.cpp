@@ -5,13 +5,15 @@
 namespace rpsd::servo {
 namespace {
 
+// Every bound lies far beyond any servo-hydraulic rig (1000 bar, 10 m of stroke, a 1 s
+// pilot stage) and is there to catch a typing or unit error.
 using config::Number;
 
 ControllerParameters read_controller(config::Source& r) {
   ControllerParameters c;
   c.proportional_gain =
-      r.number("proportional_gain", Number::positive("V/V", "G_p, valve command volts per error volt"));
-  c.derivative_gain_s = r.number_or("derivative_gain_s", 0.0, Number::non_negative("s", "G_d"));
+      r.number("proportional_gain", Number{"V/V", "G_p, valve command volts per error volt", 0.0, 1e4, true});
+  c.derivative_gain_s = r.number_or("derivative_gain_s", 0.0, Number::between(0.0, 10.0, "s", "G_d"));
   r.finish();
   return c;
 }
@@ -19,24 +21,26 @@ ControllerParameters read_controller(config::Source& r) {
 ServovalveParameters read_servovalve(config::Source& r) {
   ServovalveParameters v;
   v.pilot_time_constant_s =
-      r.number("pilot_time_constant_s", Number::positive("s", "tau, the pilot stage's time constant"));
+      r.number("pilot_time_constant_s", Number{"s", "tau, the pilot stage's time constant", 0.0, 1.0, true});
   v.pilot_flow_gain_m3_per_s_per_v =
-      r.number("pilot_flow_gain_m3_per_s_per_v", Number::positive("m^3/(s V)", "K_vp, pilot flow per volt"));
-  v.main_spool_area_m2 = r.number("main_spool_area_m2", Number::positive("m^2", "A_v, the main spool's end area"));
+      r.number("pilot_flow_gain_m3_per_s_per_v", Number{"m^3/(s V)", "K_vp, pilot flow per volt", 0.0, 1.0, true});
+  v.main_spool_area_m2 =
+      r.number("main_spool_area_m2", Number{"m^2", "A_v, the main spool's end area", 0.0, 1.0, true});
   v.spool_lvdt_gain_v_per_m =
-      r.number("spool_lvdt_gain_v_per_m", Number::positive("V/m", "K_3, the spool LVDT's gain"));
-  v.max_spool_stroke_m = r.number("max_spool_stroke_m", Number::positive("m", "x_vmax, the spool's full opening"));
+      r.number("spool_lvdt_gain_v_per_m", Number{"V/m", "K_3, the spool LVDT's gain", 0.0, 1e6, true});
+  v.max_spool_stroke_m =
+      r.number("max_spool_stroke_m", Number{"m", "x_vmax, the spool's full opening", 0.0, 0.1, true});
   r.finish();
   return v;
 }
 
 ValveFlowParameters read_flow(config::Source& r) {
   ValveFlowParameters f;
-  f.no_load_flow_gain_m3_per_s =
-      r.number("no_load_flow_gain_m3_per_s", Number::positive("m^3/s", "K_v0, flow at full opening without load"));
+  f.no_load_flow_gain_m3_per_s = r.number("no_load_flow_gain_m3_per_s",
+                                          Number{"m^3/s", "K_v0, flow at full opening without load", 0.0, 10.0, true});
   f.flow_gain_rolloff =
-      r.number("flow_gain_rolloff", Number::non_negative("", "r in K_v = K_v0 / sqrt(1 + (r x_v)^2)"));
-  f.supply_pressure_pa = r.number("supply_pressure_pa", Number::positive("Pa", "P_s, the supply pressure"));
+      r.number("flow_gain_rolloff", Number::between(0.0, 1e3, "", "r in K_v = K_v0 / sqrt(1 + (r x_v)^2)"));
+  f.supply_pressure_pa = r.number("supply_pressure_pa", Number{"Pa", "P_s, the supply pressure", 0.0, 1e8, true});
   f.nonlinear_flow_gain = r.boolean_or("nonlinear_flow_gain", true, "the flow gain falls as the opening grows");
   f.load_pressure_effect = r.boolean_or("load_pressure_effect", true, "the square-root load-pressure term of the flow");
   r.finish();
@@ -45,24 +49,26 @@ ValveFlowParameters read_flow(config::Source& r) {
 
 ActuatorParameters read_actuator(config::Source& r) {
   ActuatorParameters a;
-  a.piston_area_m2 = r.number("piston_area_m2", Number::positive("m^2", "A, the piston's area"));
-  a.stroke_m = r.number("stroke_m", Number::positive("m", "half the stroke (the piston moves +/- this)"));
-  a.oil_volume_m3 = r.number("oil_volume_m3", Number::positive("m^3", "V_t, both chambers and their passages"));
-  a.bulk_modulus_pa = r.number("bulk_modulus_pa", Number::positive("Pa", "beta_e, the oil's effective bulk modulus"));
+  a.piston_area_m2 = r.number("piston_area_m2", Number{"m^2", "A, the piston's area", 0.0, 10.0, true});
+  a.stroke_m = r.number("stroke_m", Number{"m", "half the stroke (the piston moves +/- this)", 0.0, 10.0, true});
+  a.oil_volume_m3 = r.number("oil_volume_m3", Number{"m^3", "V_t, both chambers and their passages", 0.0, 10.0, true});
+  a.bulk_modulus_pa =
+      r.number("bulk_modulus_pa", Number{"Pa", "beta_e, the oil's effective bulk modulus", 0.0, 1e10, true});
   a.leakage_m3_per_s_per_pa =
-      r.number("leakage_m3_per_s_per_pa", Number::non_negative("m^3/(s Pa)", "C_l, total leakage"));
+      r.number("leakage_m3_per_s_per_pa", Number::between(0.0, 1e-6, "m^3/(s Pa)", "C_l, total leakage"));
   r.finish();
   return a;
 }
 
 SpecimenStiffness read_stiffness(config::Source& r) {
   SpecimenStiffness s;
-  s.initial_n_per_m = r.number("initial_n_per_m", Number::non_negative("N/m", "the specimen's initial stiffness"));
-  s.change_displacement_m =
-      r.number_or("change_displacement_m", 0.0, Number::non_negative("m", "where the stiffness changes (0: linear)"));
+  s.initial_n_per_m =
+      r.number("initial_n_per_m", Number::between(0.0, 1e13, "N/m", "the specimen's initial stiffness"));
+  s.change_displacement_m = r.number_or("change_displacement_m", 0.0,
+                                        Number::between(0.0, 10.0, "m", "where the stiffness changes (0: linear)"));
   if (s.change_displacement_m > 0.0) {
     s.secondary_n_per_m =
-        r.number("secondary_n_per_m", Number::non_negative("N/m", "the stiffness beyond change_displacement_m"));
+        r.number("secondary_n_per_m", Number::between(0.0, 1e13, "N/m", "the stiffness beyond change_displacement_m"));
   } else if (r.has("secondary_n_per_m")) {
     r.fail("secondary_n_per_m", "needs change_displacement_m > 0 (the displacement where the stiffness changes)");
   }
@@ -72,14 +78,14 @@ SpecimenStiffness read_stiffness(config::Source& r) {
 
 SpecimenParameters read_specimen(config::Source& r) {
   SpecimenParameters s;
-  s.mass_kg = r.number("mass_kg", Number::positive("kg", "the moving mass, the piston's included"));
+  s.mass_kg = r.number("mass_kg", Number{"kg", "the moving mass, the piston's included", 0.0, 1e9, true});
   s.stiffness = read_stiffness(*r.section("stiffness", "elastic, linear or bilinear"));
   s.damping_ratio =
-      r.number_or("damping_ratio", 0.0, Number::non_negative("", "viscous, of the initial stiffness and mass"));
-  s.friction_force_n = r.number_or("friction_force_n", 0.0, Number::non_negative("N", "Coulomb friction"));
-  s.friction_regularisation_velocity_m_per_s =
-      r.number_or("friction_regularisation_velocity_m_per_s", s.friction_regularisation_velocity_m_per_s,
-                  Number::positive("m/s", "v_reg in tanh(v / v_reg), which smooths the friction for integration"));
+      r.number_or("damping_ratio", 0.0, Number::between(0.0, 1.0, "", "viscous, of the initial stiffness and mass"));
+  s.friction_force_n = r.number_or("friction_force_n", 0.0, Number::between(0.0, 1e9, "N", "Coulomb friction"));
+  s.friction_regularisation_velocity_m_per_s = r.number_or(
+      "friction_regularisation_velocity_m_per_s", s.friction_regularisation_velocity_m_per_s,
+      Number{"m/s", "v_reg in tanh(v / v_reg), which smooths the friction for integration", 0.0, 10.0, true});
   r.finish();
   return s;
 }
@@ -95,14 +101,16 @@ ServoSystemParameters read_servo_parameters(config::Source& file) {
   p.actuator = read_actuator(*file.section("actuator", "the actuator's chambers (Eq. 4)"));
   {
     const auto sensors = file.section("sensors", "the displacement transducer");
-    p.sensors.lvdt_gain_v_per_m = sensors->number("lvdt_gain_v_per_m", Number::positive("V/m", "C_F, the LVDT's gain"));
+    p.sensors.lvdt_gain_v_per_m =
+        sensors->number("lvdt_gain_v_per_m", Number{"V/m", "C_F, the LVDT's gain", 0.0, 1e6, true});
     sensors->finish();
   }
   p.specimen = read_specimen(*file.section("specimen", "what the actuator drives"));
   if (file.has("simulation")) {
     const auto simulation = file.section("simulation", "how the plant is integrated");
-    p.plant_rate_hz = simulation->number_or("plant_rate_hz", p.plant_rate_hz,
-                                            Number::between(1e3, 1e6, "Hz", "fixed-step RK4 rate of the continuous plant"));
+    p.plant_rate_hz =
+        simulation->number_or("plant_rate_hz", p.plant_rate_hz,
+                              Number::between(1e3, 1e6, "Hz", "fixed-step RK4 rate of the continuous plant"));
     simulation->finish();
   }
   file.finish();

@@ -3,7 +3,9 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+
 #include <stdexcept>
+#include "substeps.h"
 
 namespace rpsd::servo {
 
@@ -14,7 +16,8 @@ void TransferFunctionPlantParameters::validate() const {
     throw std::invalid_argument("transfer function: improper (numerator degree > denominator degree)");
   const Eigen::VectorXcd poles = tf.denominator.roots();
   if (poles.real().maxCoeff() >= 0.0) throw std::invalid_argument("transfer function: unstable or marginal pole");
-  if (!(plant_rate_hz >= 1e3 && plant_rate_hz <= 1e6)) throw std::invalid_argument("plant_rate_hz: must be from 1e3 to 1e6 Hz");
+  if (!(plant_rate_hz >= 1e3 && plant_rate_hz <= 1e6))
+    throw std::invalid_argument("plant_rate_hz: must be from 1e3 to 1e6 Hz");
   rig.validate();
   // RK4's stability region reaches |lambda h| ~ 2.8 on the real axis; keep a margin.
   if (poles.cwiseAbs().maxCoeff() / plant_rate_hz > 1.0) {
@@ -63,7 +66,7 @@ void TransferFunctionPlant::reset(double displacement_m) {
 
 void TransferFunctionPlant::advance(double command_start_m, double command_end_m, double duration_s) {
   if (!(duration_s > 0.0)) return;
-  const int substeps = std::max(1, static_cast<int>(std::ceil(duration_s / max_step_s_ - 1e-9)));
+  const int substeps = detail::substeps(duration_s / max_step_s_);
   const double h = duration_s / substeps;
   const double slope = (command_end_m - command_start_m) / duration_s;
   for (int i = 0; i < substeps; ++i) {
@@ -94,10 +97,16 @@ PlantMeasurement TransferFunctionPlant::measure() const {
 
 TransferFunctionPlantParameters TransferFunctionPlantParameters::read(config::Source& section,
                                                                       double specimen_stiffness_n_per_m) {
-  // Coefficients in descending powers of s, as transfer functions are usually published.
-  auto numerator = section.numbers("numerator_descending", config::Number::any("", "b_m ... b_0 of the numerator"));
+  // Coefficients in descending powers of s, as transfer functions are usually published; a
+  // servo model needs no more than degree 8, and 1e30 bounds the coefficients of one whose
+  // poles lie below the plant rate.
+  constexpr std::size_t kMaxCoefficients = 9;
+  auto numerator =
+      section.numbers("numerator_descending", config::Number::between(-1e30, 1e30, "", "b_m ... b_0 of the numerator"),
+                      kMaxCoefficients);
   auto denominator =
-      section.numbers("denominator_descending", config::Number::any("", "a_n ... a_0 of the denominator"));
+      section.numbers("denominator_descending",
+                      config::Number::between(-1e30, 1e30, "", "a_n ... a_0 of the denominator"), kMaxCoefficients);
   std::reverse(numerator.begin(), numerator.end());
   std::reverse(denominator.begin(), denominator.end());
   TransferFunctionPlantParameters t;

@@ -1,13 +1,12 @@
 #include "rpsd/substructure/matrix_market.h"
 
 #include "matrix_checks.h"
-
-#include <unsupported/Eigen/SparseExtra>
+#include "rpsd/config/input_file.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -16,8 +15,13 @@
 namespace rpsd::substructure {
 namespace {
 
-// Eigen's loadMarket reads into a 2048-byte buffer and silently stops at a longer line.
-constexpr std::size_t kEigenMaxLine = 2047;
+// No entry of a real coordinate file needs a longer line.
+constexpr std::size_t kMaxLine = 2047;
+// The size line is checked against this before anything is allocated: a structure tested
+// in real time has far fewer DOFs, and 1e5 keeps a sparse matrix's index arrays small.
+constexpr long long kMaxDofs = 100'000;
+// The shortest entry line, "1 1 1\n": the file's size bounds how many entries it can hold.
+constexpr long long kMinEntryBytes = 6;
 
 // Built with += : GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
 std::string quoted(const std::filesystem::path& p) {
@@ -46,25 +50,36 @@ bool blank(const std::string& s) {
   return std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isspace(c); });
 }
 
-struct Header {
+struct Contents {
   bool symmetric = false;
   Eigen::Index rows = 0, cols = 0;
+  std::vector<Eigen::Triplet<double>> entries;
 };
 
-// Checks the whole file; throws with file and line on the first problem.
-Header prescan(const std::filesystem::path& file) {
+// Reads the file line by line, checking each; throws with file and line on the first
+// problem. Nothing is sized from the file before its size line has been checked.
+Contents read_entries(const std::filesystem::path& file) {
   const std::string f = mm_file(file);
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) throw std::invalid_argument(f + " does not exist");
-  if (std::filesystem::is_directory(file, ec)) throw std::invalid_argument(f + " is a directory");
-  std::ifstream in(file);
-  if (!in) throw std::invalid_argument(f + " cannot be opened for reading");
+  std::optional<config::InputFile> opened;
+  try {
+    opened.emplace(file, config::kMaxMatrixMarketFileBytes, "Matrix Market file");
+  } catch (const config::InputFileError& e) {
+    throw std::invalid_argument(e.what());
+  }
+  config::InputFile& in = *opened;
+  const auto getline = [&in, &f](std::string& text) {
+    try {
+      return in.next_line(text);
+    } catch (const config::InputFileError& e) {
+      throw std::invalid_argument(e.what());
+    }
+  };
 
   std::string line;
   std::size_t line_no = 0;
   auto at = [&](std::size_t n) { return f + ", line " + std::to_string(n) + ": "; };
 
-  if (!std::getline(in, line)) throw std::invalid_argument(f + " is empty");
+  if (!getline(line)) throw std::invalid_argument(f + " is empty");
   ++line_no;
   std::istringstream banner(line);
   std::string tag, object, format, field, symmetry;
@@ -89,16 +104,17 @@ Header prescan(const std::filesystem::path& file) {
   if (lower(symmetry) != "general" && lower(symmetry) != "symmetric") {
     throw std::invalid_argument(at(1) + "symmetry '" + symmetry + "' is not supported (only 'general' or 'symmetric')");
   }
-  Header h;
+  Contents h;
   h.symmetric = lower(symmetry) == "symmetric";
 
   // Size line: the first line that is neither a comment nor blank.
   bool have_size = false;
   long long nnz = 0, count = 0;
-  while (std::getline(in, line)) {
+  while (getline(line)) {
     ++line_no;
-    if (line.size() > kEigenMaxLine) {
-      throw std::invalid_argument(at(line_no) + "line is longer than " + std::to_string(kEigenMaxLine) + " characters");
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.size() > kMaxLine) {
+      throw std::invalid_argument(at(line_no) + "line is longer than " + std::to_string(kMaxLine) + " characters");
     }
     if (!line.empty() && line[0] == '%') continue;
     if (blank(line)) continue;
@@ -117,8 +133,20 @@ Header prescan(const std::filesystem::path& file) {
         throw std::invalid_argument(at(line_no) + "a symmetric matrix must be square, got " + std::to_string(r) + "x" +
                                     std::to_string(c));
       }
+      if (r > kMaxDofs || c > kMaxDofs) {
+        throw std::invalid_argument(at(line_no) + "size " + std::to_string(r) + "x" + std::to_string(c) +
+                                    " exceeds the " + std::to_string(kMaxDofs) + " rows and columns rpsd accepts");
+      }
+      const long long room = static_cast<long long>(in.size_bytes()) / kMinEntryBytes;
+      if (nnz > r * c || nnz > room) {
+        throw std::invalid_argument(at(line_no) + "declares " + std::to_string(nnz) + " entries, more than " +
+                                    (nnz > r * c
+                                         ? "a " + std::to_string(r) + "x" + std::to_string(c) + " matrix has"
+                                         : "the file's " + std::to_string(in.size_bytes()) + " bytes can hold"));
+      }
       h.rows = r;
       h.cols = c;
+      h.entries.reserve(static_cast<std::size_t>(nnz));
       have_size = true;
       continue;
     }
@@ -141,9 +169,14 @@ Header prescan(const std::filesystem::path& file) {
     if (!std::isfinite(v)) {
       throw std::invalid_argument(at(line_no) + "entry value '" + line + "' is not finite");
     }
+    if (count == nnz) {
+      // Stops here: a file that holds more entries than it declares is not read to its end.
+      throw std::invalid_argument(at(line_no) + "declares " + std::to_string(nnz) + " entries but contains " +
+                                  std::to_string(nnz + 1) + " or more");
+    }
+    h.entries.emplace_back(static_cast<Eigen::Index>(i - 1), static_cast<Eigen::Index>(j - 1), v);
     ++count;
   }
-  if (in.bad()) throw std::invalid_argument(f + ": read error after line " + std::to_string(line_no));
   if (!have_size) throw std::invalid_argument(f + " has no size line 'rows columns entries'");
   if (count != nnz) {
     throw std::invalid_argument(f + " declares " + std::to_string(nnz) + " entries but contains " +
@@ -157,23 +190,14 @@ std::string shape(const linalg::SparseMatrix& A) { return std::to_string(A.rows(
 }  // namespace
 
 linalg::SparseMatrix load_matrix_market(const std::filesystem::path& file) {
-  const Header h = prescan(file);
-  linalg::SparseMatrix A;
-  if (!Eigen::loadMarket(A, file.string())) {
-    throw std::invalid_argument(mm_file(file) + " cannot be opened for reading");
-  }
-  if (A.rows() != h.rows || A.cols() != h.cols) {
-    throw std::invalid_argument(mm_file(file) + ": Eigen's loadMarket read a " + shape(A) +
-                                " matrix where the size line says " + std::to_string(h.rows) + "x" +
-                                std::to_string(h.cols));
-  }
+  const Contents h = read_entries(file);
+  // Repeated entries add up, as in Eigen's loadMarket.
+  linalg::SparseMatrix A(h.rows, h.cols);
+  A.setFromTriplets(h.entries.begin(), h.entries.end());
   if (h.symmetric) {
-    // The file holds the lower triangle (checked above). Rebuild the full matrix from the
-    // lower triangle, so the result is right whether or not loadMarket mirrored it (Eigen
-    // 3.4.0 does not; later versions may).
-    const linalg::SparseMatrix lower = A.triangularView<Eigen::Lower>();
+    // The file holds the lower triangle (checked above): mirror it.
     const linalg::SparseMatrix strict = A.triangularView<Eigen::StrictlyLower>();
-    A = lower + linalg::SparseMatrix(strict.transpose());
+    A = A + linalg::SparseMatrix(strict.transpose());
   }
   A.makeCompressed();
   return A;

@@ -276,7 +276,7 @@ TEST_F(GroundMotionAt2Malformed, MissingFileNamesThePath) {
     read_peer_at2(path_);
     FAIL() << "no error";
   } catch (const RecordError& e) {
-    EXPECT_NE(std::string(e.what()).find(path_.string() + ": cannot open"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path_.string() + ": does not exist"), std::string::npos) << e.what();
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/simulated_frequency_response.h"
@@ -36,6 +37,12 @@ TEST(PureDelayPlant, ReproducesTheCommandExactlyOneDelayLater) {
     ASSERT_NEAR(plant.measure().displacement_m, expected, 1e-12) << t;
     ASSERT_NEAR(plant.measure().force_n, 1e5 * expected, 1e-6);
   }
+}
+
+TEST(PureDelayPlant, AnIntervalOfTooManyPointsIsRefused) {
+  PureDelayPlant plant({0.005, 0.0, 8192.0, {}});
+  EXPECT_THROW(plant.advance(0.0, 0.0, 1e300), std::invalid_argument);
+  EXPECT_NO_THROW(plant.advance(0.0, 0.0, 1.0 / 1024.0));
 }
 
 TEST(PureDelayPlant, FrequencyResponseIsUnitGainAndLinearPhase) {
@@ -99,7 +106,8 @@ TEST(TransferFunctionPlant, ResetHoldsTheRequestedDisplacement) {
 }
 
 TEST(TransferFunctionPlant, RejectsUnstableAndImproperModels) {
-  EXPECT_THROW(TransferFunctionPlant({{Polynomial{1.0}, Polynomial{-1.0, 1.0}}, 0.0, 8192.0, {}}), std::invalid_argument);
+  EXPECT_THROW(TransferFunctionPlant({{Polynomial{1.0}, Polynomial{-1.0, 1.0}}, 0.0, 8192.0, {}}),
+               std::invalid_argument);
   EXPECT_THROW(TransferFunctionPlant({{Polynomial{0.0, 0.0, 1.0}, Polynomial{1.0, 1.0}}, 0.0, 8192.0, {}}),
                std::invalid_argument);
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "paper_rig.h"
 #include "rpsd/servo/linear_analysis.h"
@@ -24,6 +25,15 @@ std::complex<double> simulate(const ServoSystemParameters& p, double amplitude_m
   test.settling_time_s = 1.5;
   test.fitted_cycles = std::max(2, static_cast<int>(frequency_hz * 2.0));
   return simulated_frequency_response(plant, test);
+}
+
+// An interval no reader lets through (1e300 s, from a rate of 1e-300 Hz) is an error, not a
+// count of substeps cast out of int's range.
+TEST(ServoHydraulicPlant, AnIntervalOfTooManySubstepsIsRefused) {
+  ServoHydraulicPlant plant(testing::paper_rig());
+  EXPECT_THROW(plant.advance(0.0, 0.0, 1e300), std::invalid_argument);
+  EXPECT_THROW(plant.advance(0.0, 0.0, 1e4), std::invalid_argument);  // 8.2e7 substeps at 8192 Hz
+  EXPECT_NO_THROW(plant.advance(0.0, 0.0, 1.0 / 1024.0));
 }
 
 TEST(ServoHydraulicPlant, SmallAmplitudeResponseMatchesEq8) {

@@ -9,8 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <numbers>
 #include <random>
 #include <string>
@@ -195,6 +199,38 @@ TEST_F(MatrixMarket, ConfigureErrorsNameTheFile) {
   LinearMdofModel model;
   const std::string msg = error_of([&] { model.configure(cfg); });
   EXPECT_CONTAINS(msg, "mass matrix M (from file '" + m.string() + "') is not symmetric");
+}
+
+// A size line is checked before anything is sized from it: 1e9 x 1e9 would otherwise ask
+// for gigabytes of index arrays, and a declared entry count the file cannot hold for as much.
+TEST_F(MatrixMarket, AHugeSizeLineIsRefusedBeforeAnythingIsAllocated) {
+  const fs::path huge =
+      write("huge.mtx", "%%MatrixMarket matrix coordinate real general\n1000000000 1000000000 1\n1 1 1\n");
+  std::string msg = error_of([&] { (void)load_matrix_market(huge); });
+  EXPECT_CONTAINS(msg, huge.string());
+  EXPECT_CONTAINS(msg, "line 2: size 1000000000x1000000000 exceeds the 100000 rows and columns rpsd accepts");
+
+  const fs::path many = write("many.mtx", "%%MatrixMarket matrix coordinate real general\n1000 1000 100000\n1 1 1\n");
+  msg = error_of([&] { (void)load_matrix_market(many); });
+  EXPECT_CONTAINS(msg, "line 2: declares 100000 entries, more than the file's 69 bytes can hold");
+
+  const fs::path dense = write("dense.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 5\n1 1 1\n");
+  EXPECT_CONTAINS(error_of([&] { (void)load_matrix_market(dense); }),
+                  "line 2: declares 5 entries, more than a 2x2 matrix has");
+}
+
+TEST_F(MatrixMarket, OnlyRegularFilesAreRead) {
+  EXPECT_CONTAINS(error_of([&] { (void)load_matrix_market("/dev/zero"); }),
+                  "/dev/zero: is a character device; a Matrix Market file must be a regular file");
+  const fs::path fifo = dir_ / "k.mtx";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // From a thread, so that a reader that blocked on the FIFO fails the bound, not the run.
+  auto message = std::async(std::launch::async, [&] { return error_of([&] { (void)load_matrix_market(fifo); }); });
+  if (message.wait_for(std::chrono::seconds(20)) != std::future_status::ready) {
+    ADD_FAILURE() << "the reader blocked on a FIFO";
+    std::abort();
+  }
+  EXPECT_CONTAINS(message.get(), fifo.string() + ": is a FIFO");
 }
 
 }  // namespace

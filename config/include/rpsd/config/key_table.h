@@ -28,7 +28,7 @@ class KeyTable final : public Source {
 
   double number(std::string_view key, const Number& spec) override;
   double number_or(std::string_view key, double fallback, const Number& spec) override;
-  std::vector<double> numbers(std::string_view key, const Number& spec) override;
+  std::vector<double> numbers(std::string_view key, const Number& spec, std::size_t max_count) override;
   long whole_number(std::string_view key, long min, long max, std::string_view meaning) override;
   long whole_number_or(std::string_view key, long min, long max, long fallback, std::string_view meaning) override;
   bool boolean_or(std::string_view key, bool fallback, std::string_view meaning) override;

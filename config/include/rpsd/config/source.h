@@ -5,6 +5,7 @@
 // cannot disagree. Not real-time safe.
 #pragma once
 
+#include <cstddef>
 #include <limits>
 #include <memory>
 #include <string>
@@ -41,8 +42,9 @@ class Source {
 
   virtual double number(std::string_view key, const Number& spec) = 0;
   virtual double number_or(std::string_view key, double fallback, const Number& spec) = 0;
-  // A non-empty list of numbers, each within the spec.
-  virtual std::vector<double> numbers(std::string_view key, const Number& spec) = 0;
+  // A non-empty list of at most max_count numbers, each within the spec; a longer list is
+  // refused before its items are read.
+  virtual std::vector<double> numbers(std::string_view key, const Number& spec, std::size_t max_count) = 0;
   virtual long whole_number(std::string_view key, long min, long max, std::string_view meaning) = 0;
   virtual long whole_number_or(std::string_view key, long min, long max, long fallback, std::string_view meaning) = 0;
   virtual bool boolean_or(std::string_view key, bool fallback, std::string_view meaning) = 0;

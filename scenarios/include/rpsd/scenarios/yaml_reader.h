@@ -17,36 +17,36 @@
 
 namespace rpsd::scenarios {
 
+// The longest list a file may give (a longer one is refused before its items are read).
+inline constexpr std::size_t kMaxListItems = 10'000;
+
+// Reads a YAML file's text: a regular file of at most config::kMaxYamlFileBytes, else a
+// ConfigError naming it.
+std::string read_yaml_file_text(const std::filesystem::path& file);
+
 // Parses a YAML file; syntax errors become ConfigError with the file's line and column.
 YAML::Node load_yaml_file(const std::filesystem::path& file);
 
 // Parses YAML text; `name` stands for the file in messages.
 YAML::Node parse_yaml_text(const std::string& text, const std::string& name);
 
+// Every number is read with its range (config::Number), so that the scenario reference
+// lists it; the reads that config::Source has no word for (matrices, lists of sections,
+// free-form paths) are the extra methods here.
 class MappingReader final : public config::Source {
  public:
   // `node` must be a mapping; `key_path` is its dotted path ("" for the document root).
   MappingReader(YAML::Node node, std::string file, std::string key_path);
 
-  double number(std::string_view key);
-  double positive_number(std::string_view key);
-  double non_negative_number(std::string_view key);
-  double number_or(std::string_view key, double fallback);
-  double positive_number_or(std::string_view key, double fallback);
-  double non_negative_number_or(std::string_view key, double fallback);
-  bool boolean_or(std::string_view key, bool fallback);
   std::string string(std::string_view key);
   std::optional<std::string> optional_string(std::string_view key);
-  std::vector<double> positive_numbers(std::string_view key);
-  // A non-empty list of finite numbers.
-  std::vector<double> numbers(std::string_view key);
-  // A non-empty list of equally long, non-empty lists of finite numbers (matrix rows).
-  std::vector<std::vector<double>> number_rows(std::string_view key);
-  // A whole number in [minimum, maximum].
-  long whole_number(std::string_view key, long minimum, long maximum);
-  long whole_number_or(std::string_view key, long minimum, long maximum, long fallback);
-  // A non-empty list of mappings, each read with its own path `key[i]`.
-  std::vector<MappingReader> mappings(std::string_view key);
+  // A non-empty list of at most max_rows equally long, non-empty lists of at most max_rows
+  // numbers within the spec (matrix rows).
+  std::vector<std::vector<double>> number_rows(std::string_view key, const config::Number& spec, std::size_t max_rows);
+  // 0 when the key holds one value, 1 a list, 2 a list of lists (by its first item).
+  int list_depth(std::string_view key) const;
+  // A non-empty list of at most max_count mappings, each read with its own path `key[i]`.
+  std::vector<MappingReader> mappings(std::string_view key, std::size_t max_count);
   MappingReader mapping(std::string_view key);
   std::optional<MappingReader> optional_mapping(std::string_view key);
 
@@ -55,10 +55,10 @@ class MappingReader final : public config::Source {
 
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
 
-  // config::Source: the same reads, stated with their unit, range and meaning.
+  // config::Source: every read states its unit, range and meaning.
   double number(std::string_view key, const config::Number& spec) override;
   double number_or(std::string_view key, double fallback, const config::Number& spec) override;
-  std::vector<double> numbers(std::string_view key, const config::Number& spec) override;
+  std::vector<double> numbers(std::string_view key, const config::Number& spec, std::size_t max_count) override;
   long whole_number(std::string_view key, long minimum, long maximum, std::string_view meaning) override;
   long whole_number_or(std::string_view key, long minimum, long maximum, long fallback,
                        std::string_view meaning) override;
@@ -82,8 +82,9 @@ class MappingReader final : public config::Source {
 
  private:
   YAML::Node required(std::string_view key);
-  double checked(double value, std::string_view key, const config::Number& spec) const;
-  double parse_number(const YAML::Node& value, std::string_view key) const;
+  // The list at `key`, refused when it is empty, not a list or longer than max_count.
+  YAML::Node list(std::string_view key, std::size_t max_count, const std::string& of_what);
+  double item(const YAML::Node& value, const std::string& path, const config::Number& spec) const;
   [[noreturn]] void fail_at(const YAML::Node& node, const std::string& path, const std::string& message) const;
 
   YAML::Node node_;

@@ -11,7 +11,9 @@ namespace rpsd::substructure {
 // Reads a real (or integer) coordinate Matrix Market file, general or symmetric (the
 // lower triangle is stored; the upper is mirrored). The file is first checked line by line
 // (banner, size line, entry count, index ranges, numbers) so that every problem is reported
-// with the file name and line; the values are then loaded with Eigen's loadMarket.
+// with the file name and line; the size line is checked against a cap (1e5 rows and
+// columns) and against the entries the file can hold before anything is allocated.
+// Regular files of at most 256 MB only.
 // Unsupported: the dense "array" format, complex/pattern fields, skew-symmetric/Hermitian.
 // Throws std::invalid_argument naming the file. Not real-time safe.
 [[nodiscard]] linalg::SparseMatrix load_matrix_market(const std::filesystem::path& file);
