@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "physical_ranges.h"
+#include "rpsd/config/input_log.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/scenarios/test_scenario_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
@@ -300,8 +301,9 @@ YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vect
 }
 
 studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  config::InputLog inputs;  // the scenario first, then every file it names (records, matrices, ...)
   studies::StudyDocument document = parse_study(read_config_text(file), file, overrides);
-  document.input_files.insert(document.input_files.begin(), file);
+  document.input_files = inputs.files();
   return document;
 }
 

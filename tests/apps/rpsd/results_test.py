@@ -133,22 +133,25 @@ def a_missing_tool_is_exit_1():
 
 
 def summary_names_the_code_and_every_input():
+    # The scenario, the servo parameter file it names, and a record given on the command line:
+    # each listed once, in the order read, with the SHA-256 of its bytes (hashlib's, not rpsd's).
     out = fresh("provenance")
-    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set", "ground_motion.synthetic.duration_s=3")
+    record = os.path.join(SOURCE, "data/ground-motions/STM090.AT2")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--record", record, "--set", "ground_motion.scale_factor=0.05",
+                      "--set=ground_motion.trim={end_s: 3}")
     check(code == 0, f"the run failed: {text}")
     code, version = rpsd("--version")
     check(code == 0 and version.startswith("rpsd "), f"rpsd --version: exit {code}: {version}")
     p = summary(out)["provenance"]
     check(f"rpsd {p['rpsd']['version']} (commit {p['rpsd']['commit']})" == version.strip(),
           f"summary {p['rpsd']} against --version {version.strip()}")
-    files = {os.path.realpath(i["file"]): i["sha256"] for i in p["inputs"]}
-    for expected in (SYNTHETIC,):
-        path = os.path.realpath(expected)
-        if path not in files:
-            problems.append(f"{expected} is not among the inputs {sorted(files)}")
-            continue
-        with open(path, "rb") as f:
-            check(files[path] == hashlib.sha256(f.read()).hexdigest(), f"{expected}: wrong SHA-256")
+    listed = [os.path.realpath(i["file"]) for i in p["inputs"]]
+    expected = [os.path.realpath(f) for f in (SYNTHETIC, os.path.join(SOURCE, "examples/servo/paper-mts-244.yaml"),
+                                              record)]
+    check(listed == expected, f"inputs {listed}, expected {expected}")
+    for i in p["inputs"]:
+        with open(i["file"], "rb") as f:
+            check(i["sha256"] == hashlib.sha256(f.read()).hexdigest(), f"{i['file']}: wrong SHA-256")
 
 
 CASES = {
