@@ -33,9 +33,8 @@ gm::AccelerationUnit read_unit(MappingReader& r, const std::string& key) {
   return gm::AccelerationUnit::kCmPerS2;
 }
 
-gm::GroundMotionRecord read_file(MappingReader& r, const std::filesystem::path& scenario_file) {
-  const std::filesystem::path path =
-      scenario_file.parent_path() / r.text("file", "the record file (relative to this file)");
+gm::GroundMotionRecord read_file(MappingReader& r) {
+  const std::filesystem::path path = r.relative_file("file", "the record file (relative to this file)");
   if (!std::filesystem::exists(path)) r.fail("file", "no such record file: " + path.string());
   const std::string format =
       r.choice("format", {"peer_at2", "plain_text", "time_acceleration"}, "the record file's format");
@@ -79,10 +78,10 @@ gm::GroundMotionRecord read_synthetic(MappingReader s) {
   return gm::generate_synthetic_ground_motion(options);
 }
 
-coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::path& scenario_file, double step_s) {
+coordinator::GroundMotion read_section(MappingReader r, double step_s) {
   gm::GroundMotionRecord record;
   try {
-    record = r.has("synthetic") ? read_synthetic(r.mapping("synthetic")) : read_file(r, scenario_file);
+    record = r.has("synthetic") ? read_synthetic(r.mapping("synthetic")) : read_file(r);
   } catch (const ConfigError&) {
     throw;
   } catch (const gm::RecordError& e) {
@@ -164,10 +163,9 @@ coordinator::GroundMotion read_section(MappingReader r, const std::filesystem::p
 
 }  // namespace
 
-coordinator::GroundMotion read_ground_motion_section(MappingReader r, const std::filesystem::path& scenario_file,
-                                                     double step_s) {
+coordinator::GroundMotion read_ground_motion_section(MappingReader r, double step_s) {
   try {
-    return read_section(std::move(r), scenario_file, step_s);
+    return read_section(std::move(r), step_s);
   } catch (const gm::RecordError& e) {
     throw ConfigError(e.what());  // the message names the record's file and line
   }

@@ -224,6 +224,33 @@ namespace {
 studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
                                      const std::vector<Override>& command_line, bool sweep_allowed = true);
 
+std::string emitted(const YAML::Node& document) {
+  YAML::Emitter out;
+  out << document;
+  return std::string(out.c_str()) + "\n";
+}
+
+// A sweep's cases are read from copies: the file paths their readers made absolute are
+// carried back into the sweep's own document (same key, same file name, now absolute).
+void adopt_absolute_paths(YAML::Node sweep, const YAML::Node& one_case) {
+  if (sweep.IsMap() && one_case.IsMap()) {
+    for (auto entry : sweep) {
+      const std::string key = entry.first.Scalar();
+      const YAML::Node theirs = one_case[key];
+      if (!theirs) continue;
+      if (entry.second.IsScalar() && theirs.IsScalar()) {
+        const std::filesystem::path ours(entry.second.Scalar()), absolute(theirs.Scalar());
+        if (ours.is_relative() && absolute.is_absolute() && ours.filename() == absolute.filename())
+          sweep[key] = absolute.string();
+      } else {
+        adopt_absolute_paths(entry.second, theirs);
+      }
+    }
+  } else if (sweep.IsSequence() && one_case.IsSequence()) {
+    for (std::size_t i = 0; i < sweep.size() && i < one_case.size(); ++i) adopt_absolute_paths(sweep[i], one_case[i]);
+  }
+}
+
 // Shortest text that reads back as the same double.
 std::string number_text(double v) {
   char buffer[32];
@@ -235,7 +262,7 @@ std::string number_text(double v) {
 // `range: {start, stop, count}`. Each case is the document with the axis values set as
 // overrides, read in full, so that every case is checked before the batch runs.
 studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line,
-                                  MappingReader& root, const std::filesystem::path& file,
+                                  YAML::Node document, MappingReader& root, const std::filesystem::path& file,
                                   studies::StudyDocument result) {
   auto axes = root.mappings("sweep", 2);
   for (auto& axis : axes) {
@@ -276,6 +303,7 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
         case_document.remove("sweep");
         for (const Override& o : overrides) apply_override(case_document, o);
         one = read_document(case_document, file, text, {}, false);
+        if (result.sweep_cases.empty()) adopt_absolute_paths(document, case_document);
       } catch (const ConfigError& e) {
         std::string where = result.sweep[0].key_path + " = " + number_text(values[0]);
         if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
@@ -286,6 +314,7 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
     }
   }
   result.study = result.sweep_cases.front();
+  result.effective_yaml = emitted(document);
   // The other keys were checked by every case's own reader.
   return result;
 }
@@ -323,30 +352,27 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
   studies::StudyDocument result;
   result.name = file.stem().string();
   result.description = root.optional_string("description").value_or("");
-  {
-    YAML::Emitter out;
-    out << document;
-    result.effective_yaml = std::string(out.c_str()) + "\n";
-  }
   const std::string kind = root.string("study");
   if (kind == "rpsd_test") {
     if (root.has("sweep")) {
       // A case still holding a sweep means the key was given twice (YAML keeps both).
       if (!sweep_allowed) root.fail("sweep", "given more than once");
-      return read_sweep(text, command_line, root, file, std::move(result));
+      return read_sweep(text, command_line, document, root, file, std::move(result));
     }
     coordinator::TestConfig scenario = read_test_config(root, file);
     scenario.description = result.description;
     result.study = std::move(scenario);
     root.finish();
+    result.effective_yaml = emitted(document);  // after reading: its file paths are absolute now
     return result;
   }
   if (kind == "rpsd_delay_compensation") {
     result.study = read_delay_compensation(root);
     root.finish();
+    result.effective_yaml = emitted(document);
     return result;
   }
-  const std::filesystem::path servo_file = file.parent_path() / root.string("servo");
+  const std::filesystem::path servo_file = root.relative_file("servo", "the servo parameter file");
   if (!std::filesystem::exists(servo_file)) root.fail("servo", "no such parameter file: " + servo_file.string());
   servo::ServoSystemParameters servo = load_servo_parameters(servo_file);
   if (kind == "servo_sine_sweep") {
@@ -361,6 +387,7 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
                            "servo_frequency_response or servo_max_gain)");
   }
   root.finish();
+  result.effective_yaml = emitted(document);
   return result;
 }
 

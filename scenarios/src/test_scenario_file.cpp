@@ -109,7 +109,7 @@ substructure::StorySpringConfig read_story(MappingReader s) {
   return spring;
 }
 
-void read_structure(MappingReader st, const std::filesystem::path& file, coordinator::TestConfig& t) {
+void read_structure(MappingReader st, coordinator::TestConfig& t) {
   const std::string kind =
       st.choice("kind", {"linear", "matrix_market", "shear_building"}, "the numerical substructure");
   try {
@@ -129,10 +129,9 @@ void read_structure(MappingReader st, const std::filesystem::path& file, coordin
       t.structure = std::move(c);
     } else if (kind == "matrix_market") {
       substructure::MatrixMarketModelFiles files;
-      files.mass_file = file.parent_path() / st.text("mass_file", "M, a Matrix Market file (relative to this file)");
-      files.stiffness_file = file.parent_path() / st.text("stiffness_file", "K, a Matrix Market file");
-      if (st.has("damping_file"))
-        files.damping_file = file.parent_path() / st.text("damping_file", "C, a Matrix Market file");
+      files.mass_file = st.relative_file("mass_file", "M, a Matrix Market file (relative to this file)");
+      files.stiffness_file = st.relative_file("stiffness_file", "K, a Matrix Market file");
+      if (st.has("damping_file")) files.damping_file = st.relative_file("damping_file", "C, a Matrix Market file");
       const substructure::DampingConfig damping =
           st.has("damping") ? read_damping(st.mapping("damping"), nullptr) : substructure::Undamped{};
       auto c = substructure::linear_config_from_matrix_market(files, damping);
@@ -213,7 +212,7 @@ void read_clock(MappingReader clock, coordinator::TestConfig& t) {
   clock.finish();
 }
 
-void read_transport(MappingReader r, const std::filesystem::path& file, coordinator::TestConfig& t) {
+void read_transport(MappingReader r, coordinator::TestConfig& t) {
   const std::string kind = r.choice("kind", {"in_process", "dds"}, "sites in this process, or over DDS");
   t.transport.kind =
       kind == "dds" ? coordinator::TransportConfig::Kind::kDds : coordinator::TransportConfig::Kind::kInProcess;
@@ -221,8 +220,8 @@ void read_transport(MappingReader r, const std::filesystem::path& file, coordina
       r.whole_number_or("test_id", 1, 4'000'000'000L, t.transport.test_id, "the test the nodes must serve"));
   t.transport.domain_id =
       static_cast<std::uint32_t>(r.whole_number_or("domain_id", 0, 232, t.transport.domain_id, "the DDS domain"));
-  if (auto config = r.optional_string("dds_config")) {
-    t.transport.dds_config = file.parent_path() / *config;
+  if (r.has("dds_config")) {
+    t.transport.dds_config = r.relative_file("dds_config", "Cyclone DDS configuration (relative to this file)");
     try {
       config::check_input_file(t.transport.dds_config, config::kMaxYamlFileBytes, "DDS configuration");
     } catch (const config::InputFileError& e) {
@@ -251,7 +250,7 @@ void read_transport(MappingReader r, const std::filesystem::path& file, coordina
 coordinator::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file) {
   coordinator::TestConfig t;
   t.name = file.stem().string();
-  read_structure(root.mapping("structure"), file, t);
+  read_structure(root.mapping("structure"), t);
   const Eigen::Index dofs = structure_dofs(t);
 
   // Experimental channels: at most one per actuator channel.
@@ -332,7 +331,7 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
       throw ConfigError(file.string() + ": experimental[" + std::to_string(i) + "].limits." + message);
     }
   }
-  if (auto transport = root.optional_mapping("transport")) read_transport(*transport, file, t);
+  if (auto transport = root.optional_mapping("transport")) read_transport(*transport, t);
   const double dt_s = 1.0 / t.control_rate_hz;
   const double control_period_s = dt_s / integrators::make_integrator(t.integrator)->iterations_per_step();
   if (root.has("compensation")) t.compensation = read_compensation(root.mapping("compensation"), control_period_s);
@@ -343,7 +342,7 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
     root.fail(has_record ? "free_vibration" : "ground_motion", "give exactly one of ground_motion or free_vibration");
   t.initial_displacement_m = Eigen::VectorXd::Zero(dofs);
   if (has_record) {
-    t.ground_motion = read_ground_motion_section(root.mapping("ground_motion"), file, dt_s);
+    t.ground_motion = read_ground_motion_section(root.mapping("ground_motion"), dt_s);
     t.duration_s = dt_s * static_cast<double>(t.ground_motion->acceleration_m_per_s2.size() - 1);
   } else {
     MappingReader free = root.mapping("free_vibration");

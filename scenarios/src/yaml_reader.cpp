@@ -202,6 +202,13 @@ std::string MappingReader::string(std::string_view key) {
   return value.Scalar();
 }
 
+std::filesystem::path MappingReader::relative_file(std::string_view key, std::string_view meaning) {
+  const std::filesystem::path path =
+      std::filesystem::absolute(std::filesystem::path(file_).parent_path() / text(key, meaning)).lexically_normal();
+  node_[std::string(key)] = path.string();
+  return path;
+}
+
 std::optional<std::string> MappingReader::optional_string(std::string_view key) {
   if (!has(key)) return std::nullopt;
   return string(key);
@@ -251,8 +258,8 @@ std::unique_ptr<config::Source> MappingReader::section(std::string_view key, std
   return std::make_unique<MappingReader>(mapping(key));
 }
 
-std::unique_ptr<config::Source> MappingReader::file(std::string_view key, std::string_view) {
-  const std::filesystem::path path = std::filesystem::path(file_).parent_path() / string(key);
+std::unique_ptr<config::Source> MappingReader::file(std::string_view key, std::string_view meaning) {
+  const std::filesystem::path path = relative_file(key, meaning);
   try {
     config::check_input_file(path, config::kMaxYamlFileBytes, "YAML file");
   } catch (const config::InputFileError& e) {

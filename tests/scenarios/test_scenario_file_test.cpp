@@ -9,6 +9,7 @@
 #include "../servo/paper_rig.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/study_file.h"
+#include "rpsd/servo/plant_factory.h"
 
 namespace rpsd::scenarios {
 namespace {
@@ -130,6 +131,21 @@ TEST(SweepFile, EveryCaseIsReadWithItsValuesFirstAxisFastest) {
     EXPECT_DOUBLE_EQ(lead.ratio_a, file.sweep_values[c][1]);
     EXPECT_DOUBLE_EQ(file.sweep_values[c][0], file.sweep[0].values[c % 4]);
   }
+}
+
+// The sweep's effective document names its files by absolute path, keeps its sweep, and read
+// from another folder gives the same cases.
+TEST(SweepFile, ItsEffectiveDocumentReadsTheSameFromAnotherFolder) {
+  const auto sweep = load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof-compensation-sweep.yaml");
+  const std::string servo = (testing::source_dir() / "examples/servo/paper-mts-244.yaml").lexically_normal().string();
+  EXPECT_NE(sweep.effective_yaml.find("parameters: " + servo), std::string::npos) << sweep.effective_yaml;
+  const auto again =
+      parse_study(sweep.effective_yaml, std::filesystem::temp_directory_path() / "elsewhere" / "effective.yaml");
+  ASSERT_EQ(again.sweep_cases.size(), sweep.sweep_cases.size());
+  EXPECT_EQ(servo::envelope_of(again.sweep_cases.back().plant).force_n,
+            servo::envelope_of(sweep.sweep_cases.back().plant).force_n);
+  EXPECT_EQ(again.sweep_cases.back().ground_motion->acceleration_m_per_s2,
+            sweep.sweep_cases.back().ground_motion->acceleration_m_per_s2);
 }
 
 TEST(SweepFile, ABadCaseIsNamedBeforeAnythingRuns) {

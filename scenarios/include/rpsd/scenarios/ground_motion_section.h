@@ -11,9 +11,8 @@
 
 namespace rpsd::scenarios {
 
-// Reads and processes the record; file paths are relative to the scenario file. Every
+// Reads and processes the record; a file path is relative to the section's file. Every
 // error names the scenario's key or the record's file and line. Not real-time safe.
-coordinator::GroundMotion read_ground_motion_section(MappingReader section, const std::filesystem::path& scenario_file,
-                                                     double integration_step_s);
+coordinator::GroundMotion read_ground_motion_section(MappingReader section, double integration_step_s);
 
 }  // namespace rpsd::scenarios

@@ -39,6 +39,9 @@ class MappingReader final : public config::Source {
   MappingReader(YAML::Node node, std::string file, std::string key_path);
 
   std::string string(std::string_view key);
+  // A file named relative to this file's folder (or absolute): its absolute path, written back
+  // into the document too, so that the document emitted after reading runs from any folder.
+  std::filesystem::path relative_file(std::string_view key, std::string_view meaning);
   std::optional<std::string> optional_string(std::string_view key);
   // A non-empty list of at most max_rows equally long, non-empty lists of at most max_rows
   // numbers within the spec (matrix rows).
