@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "physical_ranges.h"
+#include "rpsd/config/closest_name.h"
 #include "rpsd/config/input_log.h"
+#include "rpsd/config/kind_list.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/scenarios/test_scenario_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
@@ -103,7 +105,10 @@ studies::DelayCompensationStudy read_delay_compensation(MappingReader& root) {
   if (root.has("integrator")) {
     const std::string name = root.string("integrator");
     const auto config = default_integrator(name);
-    if (!config) root.fail("integrator", "unknown integrator \"" + name + "\"");
+    if (!config)
+      root.fail("integrator", "unknown integrator \"" + name + "\"; expected " +
+                                  config::listed(integrators::scheme_names()) +
+                                  config::did_you_mean(name, integrators::scheme_names()));
     s.integrator = *config;
   }
   {

@@ -6,7 +6,9 @@
 #include <stdexcept>
 
 #include "physical_ranges.h"
+#include "rpsd/config/closest_name.h"
 #include "rpsd/config/input_file.h"
+#include "rpsd/config/kind_list.h"
 #include "rpsd/scenarios/ground_motion_section.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/scenarios/study_file.h"
@@ -161,7 +163,9 @@ void read_structure(MappingReader st, coordinator::TestConfig& t) {
 integrators::IntegratorConfig read_integrator(MappingReader r) {
   const std::string scheme = r.string("scheme");
   auto config = default_integrator(scheme);
-  if (!config) r.fail("scheme", "unknown integrator \"" + scheme + "\"");
+  if (!config)
+    r.fail("scheme", "unknown integrator \"" + scheme + "\"; expected " + config::listed(integrators::scheme_names()) +
+                         config::did_you_mean(scheme, integrators::scheme_names()));
   const Number rho = Number::between(0.0, 1.0, "", "spectral radius at infinite frequency");
   const Number alpha = Number::between(-1.0 / 3.0, 0.0, "", "numerical damping alpha");
   if (auto* kr = std::get_if<integrators::KolayRiclesAlphaParams>(&*config))

@@ -4,6 +4,7 @@
 #include <memory>
 #include <sstream>
 
+#include "rpsd/config/closest_name.h"
 #include "rpsd/config/input_file.h"
 #include "rpsd/config/key_table.h"
 #include "rpsd/config/kind_list.h"
@@ -96,7 +97,15 @@ bool MappingReader::has(std::string_view key) {
 YAML::Node MappingReader::required(std::string_view key) {
   read_keys_.insert(std::string(key));
   YAML::Node value = node_[std::string(key)];
-  if (!value) fail_at(node_, path_of(key), "required key is missing");
+  if (!value) {
+    // A misspelling of this key is the likelier mistake: name it, not the missing one.
+    for (const auto& entry : node_) {
+      const std::string given = entry.first.Scalar();
+      if (!read_keys_.contains(given) && config::closest_name(given, {key}))
+        fail_at(entry.first, path_of(given), "unknown key (did you mean \"" + std::string(key) + "\"?)");
+    }
+    fail_at(node_, path_of(key), "required key is missing");
+  }
   return value;
 }
 
@@ -241,7 +250,10 @@ std::optional<MappingReader> MappingReader::optional_mapping(std::string_view ke
 void MappingReader::finish() const {
   for (const auto& entry : node_) {
     const std::string key = entry.first.Scalar();
-    if (!read_keys_.contains(key)) fail_at(entry.first, path_of(key), "unknown key");
+    if (!read_keys_.contains(key)) {
+      const std::vector<std::string_view> known(read_keys_.begin(), read_keys_.end());
+      fail_at(entry.first, path_of(key), "unknown key" + config::did_you_mean(key, known));
+    }
   }
 }
 
@@ -251,7 +263,7 @@ std::string MappingReader::choice(std::string_view key, const std::vector<std::s
   for (const auto& c : choices) {
     if (value == c) return value;
   }
-  fail(key, "expected " + config::listed(choices) + ", got \"" + value + "\"");
+  fail(key, "expected " + config::listed(choices) + ", got \"" + value + "\"" + config::did_you_mean(value, choices));
 }
 
 std::unique_ptr<config::Source> MappingReader::section(std::string_view key, std::string_view) {
