@@ -3,7 +3,8 @@
 
   repo_checks.py no_outside_paths SOURCE_DIR
       No tracked file except .ci/run names the team's folder beside the repository (the
-      parent folder's `shared`, or its `shared/reference`): a user's clone does not have it.
+      parent folder's `shared`, or its reference folder; the patterns are OUTSIDE below): a
+      user's clone does not have it.
   repo_checks.py doc_links SOURCE_DIR
       Every relative link in a tracked Markdown file points at a file or folder that exists,
       and a link to a heading (#anchor) at a heading that exists.
