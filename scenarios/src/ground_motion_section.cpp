@@ -163,6 +163,14 @@ coordinator::GroundMotion read_section(MappingReader r, double step_s) {
 
 }  // namespace
 
+YAML::Node with_record(const YAML::Node& section, const YAML::Node& record) {
+  YAML::Node replaced = YAML::Clone(record);
+  for (const char* key : {"trim", "baseline_correction", "scale_factor", "target_pga_g", "pad_after_s"}) {
+    if (section.IsMap() && section[key]) replaced[key] = section[key];
+  }
+  return replaced;
+}
+
 coordinator::GroundMotion read_ground_motion_section(MappingReader r, double step_s) {
   try {
     return read_section(std::move(r), step_s);

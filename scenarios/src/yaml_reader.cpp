@@ -63,8 +63,8 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
   }
 }
 
-MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_path)
-    : node_(node), file_(std::move(file)), key_path_(std::move(key_path)) {
+MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_path, OverrideNodes overrides)
+    : node_(node), file_(std::move(file)), key_path_(std::move(key_path)), overrides_(std::move(overrides)) {
   if (!node_.IsMap()) fail_at(node_, key_path_, "expected a mapping of keys, got " + describe(node_));
   // YAML keeps both copies of a repeated key and lookups see only one: reject it instead.
   std::set<std::string> seen;
@@ -79,9 +79,29 @@ std::string MappingReader::path_of(std::string_view key) const {
   return key_path_.empty() ? std::string(key) : key_path_ + '.' + std::string(key);
 }
 
+namespace {
+
+bool within(const YAML::Node& tree, const YAML::Node& node) {
+  if (tree.is(node)) return true;
+  if (tree.IsMap()) {
+    for (const auto& entry : tree)
+      if (entry.first.is(node) || within(entry.second, node)) return true;
+  } else if (tree.IsSequence()) {
+    for (const auto& item : tree)
+      if (within(item, node)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void MappingReader::fail_at(const YAML::Node& node, const std::string& path, const std::string& message) const {
-  throw ConfigError(location(file_, node.Mark()) + ": " + (path.empty() ? std::string("(document)") : path) + ": " +
-                    message);
+  const std::string what = (path.empty() ? std::string("(document)") : path) + ": " + message;
+  if (overrides_) {
+    for (const OverrideNode& o : *overrides_)
+      if (within(o.value, node)) throw ConfigError(o.origin + ": " + what);
+  }
+  throw ConfigError(location(file_, node.Mark()) + ": " + what);
 }
 
 void MappingReader::fail(std::string_view key, const std::string& message) const {
@@ -233,13 +253,13 @@ std::vector<MappingReader> MappingReader::mappings(std::string_view key, std::si
   const YAML::Node value = list(key, max_count, "entries");
   std::vector<MappingReader> result;
   for (std::size_t i = 0; i < value.size(); ++i)
-    result.emplace_back(value[i], file_, path_of(key) + '[' + std::to_string(i) + ']');
+    result.emplace_back(value[i], file_, path_of(key) + '[' + std::to_string(i) + ']', overrides_);
   return result;
 }
 
 MappingReader MappingReader::mapping(std::string_view key) {
   const YAML::Node value = required(key);
-  return MappingReader(value, file_, path_of(key));
+  return MappingReader(value, file_, path_of(key), overrides_);
 }
 
 std::optional<MappingReader> MappingReader::optional_mapping(std::string_view key) {

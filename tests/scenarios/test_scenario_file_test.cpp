@@ -83,12 +83,19 @@ TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
             std::string::npos);
   EXPECT_NE(error_of({parse_override("structure.colour=red")}).find("structure.colour: unknown key"),
             std::string::npos);
-  EXPECT_NE(error_of({parse_override("nothing.here=1")}).find("--set nothing.here: no key 'nothing'"),
+  // A key --set creates is checked like any other, and the error names the override.
+  EXPECT_NE(error_of({parse_override("nothing.here=1")}).find("--set (nothing.here=1): nothing: unknown key"),
             std::string::npos);
-  // A located error keeps file:line:column.
+  // An error in a value the command line gave names the override, not a line of the file.
+  Override second = parse_override("compensation.order=7");
+  second.origin = "--set #2";
+  EXPECT_EQ(error_of({parse_override("clock.mode=as_fast_as_possible"), second}),
+            "--set #2 (compensation.order=7): compensation.order: expected a whole number from 0 to 3, got \"7\"");
+  // An error in the file keeps file:line:column (a phase lead needs its ratio_a).
   EXPECT_TRUE(std::regex_search(
-      error_of({parse_override("compensation.order=7")}),
-      std::regex(R"(sdof-free-vibration\.yaml:\d+:\d+: compensation\.order: expected a whole number from 0 to 3)")));
+      error_of({parse_override("compensation.kind=phase_lead")}),
+      std::regex(R"(sdof-free-vibration\.yaml:23:3: compensation\.ratio_a: required key is missing)")))
+      << error_of({parse_override("compensation.kind=phase_lead")});
 }
 
 // The lock-step busy wait: read as given, refused with a real-time clock (a spinning loop

@@ -15,4 +15,8 @@ namespace rpsd::scenarios {
 // error names the scenario's key or the record's file and line. Not real-time safe.
 coordinator::GroundMotion read_ground_motion_section(MappingReader section, double integration_step_s);
 
+// The section with its record replaced by `record` ({file, format, ...}) and its processing
+// kept (trim, baseline correction, scaling, padding): what rpsd run --record does.
+YAML::Node with_record(const YAML::Node& section, const YAML::Node& record);
+
 }  // namespace rpsd::scenarios

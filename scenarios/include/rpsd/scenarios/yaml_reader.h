@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -33,10 +34,18 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name);
 // Every number is read with its range (config::Number), so that the scenario reference
 // lists it; the reads that config::Source has no word for (matrices, lists of sections,
 // free-form paths) are the extra methods here.
+// A value the command line put into the document (--set #2, --record): an error in it names
+// the override, not a line of the file it never was in.
+struct OverrideNode {
+  YAML::Node value;
+  std::string origin;  // "--set #2 (servo.delay_s=-1)"
+};
+using OverrideNodes = std::shared_ptr<const std::vector<OverrideNode>>;
+
 class MappingReader final : public config::Source {
  public:
   // `node` must be a mapping; `key_path` is its dotted path ("" for the document root).
-  MappingReader(YAML::Node node, std::string file, std::string key_path);
+  MappingReader(YAML::Node node, std::string file, std::string key_path, OverrideNodes overrides = nullptr);
 
   std::string string(std::string_view key);
   // A file named relative to this file's folder (or absolute): its absolute path, written back
@@ -93,6 +102,7 @@ class MappingReader final : public config::Source {
   YAML::Node node_;
   std::string file_;
   std::string key_path_;
+  OverrideNodes overrides_;
   std::set<std::string> read_keys_;
 };
 
