@@ -262,9 +262,11 @@ const char* result_name(RunResult r) {
 }
 
 TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
-                           const coordinator::TestConfig& scenario,
-                           const std::function<void(std::int64_t, std::int64_t)>& progress,
-                           const std::atomic<bool>* stop_request) {
+                           const coordinator::TestConfig& scenario, const ProgressSink& progress,
+                           const std::atomic<bool>* stop_request, std::size_t case_number, std::size_t cases) {
+  const auto report = [&](std::string_view phase, std::int64_t done, std::int64_t planned) {
+    if (progress) progress({phase, case_number, cases, done, planned});
+  };
   std::filesystem::create_directories(dir);
   reserve_summary(dir / "summary.json", nlohmann::json{{"study", "rpsd_test"},
                                                        {"scenario", file.name},
@@ -278,7 +280,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
   const coordinator::EvaluatedTest run = coordinator::run_test_and_reference(
-      scenario, dir / "time_history.csv", dir / "reference_history.csv", progress, stop_request);
+      scenario, dir / "time_history.csv", dir / "reference_history.csv",
+      [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request);
   const coordinator::TestRun& test = run.test;
   const coordinator::Criteria& criteria = run.criteria;
   const RunResult result = result_of(test, run.reference);
@@ -369,6 +372,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
   // last, so that it describes every file beside it.
   try {
     write_file_whole(dir / "plot.json", plot_info.dump(2) + '\n');
+    report("plots", 0, 0);
     if (test.steps >= 2) draw(dir, plot_info);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
@@ -394,8 +398,7 @@ std::string legend_entry(const std::string& key, double value) {
 }
 }  // namespace
 
-RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file,
-                         const std::function<void(std::int64_t, std::int64_t)>& progress,
+RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file, const ProgressSink& progress,
                          const std::atomic<bool>* stop_request) {
   using nlohmann::json;
   std::filesystem::create_directories(dir);
@@ -410,7 +413,8 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
   for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
     char folder[32];
     std::snprintf(folder, sizeof folder, "case_%03zu", i);
-    const TestHeadline h = run_test_into(dir / folder, file, file.sweep_cases[i], progress, stop_request);
+    const TestHeadline h =
+        run_test_into(dir / folder, file, file.sweep_cases[i], progress, stop_request, i + 1, file.sweep_cases.size());
     const bool completed = h.result == RunResult::kCompleted;
     if (!completed && result == RunResult::kCompleted) result = h.result;
     json values = json::object();
@@ -463,6 +467,7 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
     }
     plots += "\n";
   }
+  if (progress) progress({"sweep plots", file.sweep_cases.size(), file.sweep_cases.size(), 0, 0});
   try {
     render_png(dir / "sweep.png",
                "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot "

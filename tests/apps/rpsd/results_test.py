@@ -198,6 +198,38 @@ def plots_of_a_long_test_keep_every_peak():
     check(code == 0 and os.path.exists(os.path.join(out, "plot_time_history.csv")), f"rpsd plot: {code} {text}")
 
 
+def progress_on_a_terminal_names_phase_and_case():
+    # On a terminal (a pseudo-terminal here), a sweep's progress names the case of all cases,
+    # the test phase with its steps, the plots, and the sweep's own plots at the end.
+    import pty
+    import threading
+    out = fresh("progress")
+    master, slave = pty.openpty()
+    seen = []
+    def read():
+        while True:
+            try:
+                chunk = os.read(master, 65536)
+            except OSError:
+                return
+            if not chunk:
+                return
+            seen.append(chunk.decode(errors="replace"))
+    reader = threading.Thread(target=read)
+    reader.start()
+    run = subprocess.run([RPSD, "run", SWEEP, "--out", out, "--set=ground_motion.trim={end_s: 4}"],
+                         stdout=subprocess.PIPE, stderr=slave, timeout=600)
+    os.close(slave)
+    reader.join(timeout=10)
+    os.close(master)
+    text = "".join(seen)
+    check(run.returncode == 0, f"the sweep failed: {run.returncode}")
+    import re
+    for expected in (r"case 8/8", r"case [1-8]/8  test  \[#* *\] \d+/4096 steps", r"case [1-8]/8  plots ",
+                     r"sweep plots"):
+        check(re.search(expected, text), f"progress lacks {expected!r}: {text[-400:]!r}")
+
+
 CASES = {
     "refuse_then_replace_a_sweep_folder": a_folder_that_held_a_sweep_is_refused_then_replaced,
     "replace_only_rpsd_folders": replace_never_clears_a_folder_rpsd_did_not_write,
@@ -208,6 +240,7 @@ CASES = {
     "summary_provenance": summary_names_the_code_and_every_input,
     "effective_scenario_anywhere": effective_scenario_runs_again_from_anywhere,
     "plots_keep_every_peak": plots_of_a_long_test_keep_every_peak,
+    "progress_on_a_terminal": progress_on_a_terminal_names_phase_and_case,
 }
 
 CASES[CASE]()
