@@ -192,11 +192,11 @@ void add_validate(CLI::App& app) {
 
 void add_plot(CLI::App& app) {
   auto dir = std::make_shared<std::string>();
-  auto* plot = app.add_subcommand("plot", "Redraw the plots of an rpsd_test output folder from its CSV files");
+  auto* plot = app.add_subcommand("plot", "Redraw the plots of a folder rpsd wrote (a test, a sweep, a study)");
   plot->add_option("dir", *dir, "Output folder of `rpsd run`")->required()->check(CLI::ExistingDirectory);
   plot->callback([dir] {
-    studies::plot_test(*dir);
-    std::cout << "rpsd plot: " << *dir << "/test.png, " << *dir << "/response.png\n";
+    const auto drawn = studies::plot_folder(*dir);
+    std::cout << "rpsd plot: " << drawn.size() << " plots in " << *dir << "\n";
   });
 }
 

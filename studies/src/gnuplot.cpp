@@ -10,7 +10,6 @@
 namespace rpsd::studies {
 
 void render_png(const std::filesystem::path& png, const std::string& script, int width_px, int height_px) {
-  const std::filesystem::path folder = png.parent_path().empty() ? std::filesystem::path(".") : png.parent_path();
   std::filesystem::path gp = png;
   gp.replace_extension(".gp");
   write_file_whole(gp, "set terminal pngcairo size " + std::to_string(width_px) + ',' + std::to_string(height_px) +
@@ -19,6 +18,11 @@ void render_png(const std::filesystem::path& png, const std::string& script, int
     throw std::runtime_error("gnuplot not found: run scripts/install-deps.sh (package gnuplot-nox) to draw " +
                              png.string() + "; the data and " + gp.string() + " are written");
   }
+  rerender(gp);
+}
+
+void rerender(const std::filesystem::path& gp) {
+  const std::filesystem::path folder = gp.parent_path().empty() ? std::filesystem::path(".") : gp.parent_path();
   const std::string command = "cd '" + folder.string() + "' && gnuplot '" + gp.filename().string() + "'";
   if (std::system(command.c_str()) != 0) throw std::runtime_error("gnuplot failed on " + gp.string());
 }

@@ -542,4 +542,26 @@ void plot_test(const std::filesystem::path& dir) {
   draw(dir, nlohmann::json::parse(in));
 }
 
+std::vector<std::filesystem::path> plot_folder(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> drawn, scripts, cases;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const auto& path = entry.path();
+    if (entry.is_directory() && std::filesystem::exists(path / "summary.json")) cases.push_back(path);
+    if (entry.is_regular_file() && path.extension() == ".gp") scripts.push_back(path);
+  }
+  std::sort(cases.begin(), cases.end());
+  std::sort(scripts.begin(), scripts.end());
+  for (const auto& c : cases)
+    for (auto& png : plot_folder(c)) drawn.push_back(std::move(png));
+  // A test's plots are drawn afresh from its tables; any other script as it stands.
+  const bool test = std::filesystem::exists(dir / "plot.json");
+  if (test) plot_test(dir);
+  for (const auto& gp : scripts) {
+    if (!test) rerender(gp);
+    drawn.push_back(std::filesystem::path(gp).replace_extension(".png"));
+  }
+  if (drawn.empty()) throw std::invalid_argument(dir.string() + ": no plots to draw; is this a folder rpsd wrote?");
+  return drawn;
+}
+
 }  // namespace rpsd::studies

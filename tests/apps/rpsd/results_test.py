@@ -248,6 +248,30 @@ def response_has_a_panel_per_dof_and_the_storey_drifts():
         check("plot_zoom.csv" in f.read(), "test.gp has no zoom")
 
 
+def plot_redraws_any_folder():
+    # rpsd plot redraws a sweep (its cases and its own table) and a Figure 5-8 study from the
+    # scripts beside their PNGs; a folder rpsd did not write is bad input, exit 2.
+    sweep, study, empty = fresh("plot-sweep"), fresh("plot-study"), fresh("plot-empty")
+    code, text = rpsd("run", SWEEP, "--out", sweep, "--set=ground_motion.trim={end_s: 1}")
+    check(code == 0, f"the sweep failed: {text}")
+    code, text = rpsd("run", os.path.join(SOURCE, "examples/scenarios/paper-fig7-max-gain.yaml"), "--out", study)
+    check(code == 0, f"the study failed: {text}")
+    gone = [os.path.join(sweep, "sweep.png"), os.path.join(sweep, "case_003", "response.png"),
+            os.path.join(study, "max_gain.png")]
+    for png in gone:
+        check(os.path.exists(png), f"{png} was not drawn by the run")
+        if os.path.exists(png):
+            os.remove(png)
+    for folder in (sweep, study):
+        code, text = rpsd("plot", folder)
+        check(code == 0, f"rpsd plot {folder}: exit {code}: {text}")
+    for png in gone:
+        check(os.path.exists(png), f"rpsd plot did not redraw {png}")
+    os.makedirs(empty)
+    code, text = rpsd("plot", empty)
+    check(code == 2 and "no plots to draw" in text, f"rpsd plot of an empty folder: exit {code}: {text}")
+
+
 CASES = {
     "refuse_then_replace_a_sweep_folder": a_folder_that_held_a_sweep_is_refused_then_replaced,
     "replace_only_rpsd_folders": replace_never_clears_a_folder_rpsd_did_not_write,
@@ -260,6 +284,7 @@ CASES = {
     "plots_keep_every_peak": plots_of_a_long_test_keep_every_peak,
     "progress_on_a_terminal": progress_on_a_terminal_names_phase_and_case,
     "response_panels_and_drifts": response_has_a_panel_per_dof_and_the_storey_drifts,
+    "plot_any_folder": plot_redraws_any_folder,
 }
 
 CASES[CASE]()

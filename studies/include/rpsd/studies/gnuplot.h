@@ -12,4 +12,7 @@ namespace rpsd::studies {
 // missing or fails.
 void render_png(const std::filesystem::path& png, const std::string& script, int width_px = 1000, int height_px = 700);
 
+// Runs gnuplot on a script render_png wrote (or a user edited), from its folder.
+void rerender(const std::filesystem::path& gp);
+
 }  // namespace rpsd::studies

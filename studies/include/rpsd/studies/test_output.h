@@ -9,6 +9,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <vector>
 
 #include "rpsd/studies/progress.h"
 #include "rpsd/studies/study_config.h"
@@ -51,5 +52,10 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
 
 // Redraws the plots of a finished test folder from its CSV files.
 void plot_test(const std::filesystem::path& dir);
+
+// Redraws every plot of any folder rpsd wrote: a test's from its CSV files, a sweep's cases
+// and its own table, a study's (Figures 5-8) from the gnuplot scripts beside its PNGs. Returns
+// the PNGs drawn; throws std::invalid_argument naming the folder if it holds none.
+std::vector<std::filesystem::path> plot_folder(const std::filesystem::path& dir);
 
 }  // namespace rpsd::studies
