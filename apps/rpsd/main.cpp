@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   rpsd::cli::add_validate(app);
   rpsd::cli::add_plot(app);
   rpsd::cli::add_servo_node(app);
+  rpsd::cli::add_reference(app);
 
   try {
     app.parse(argc, argv);

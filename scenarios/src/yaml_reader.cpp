@@ -207,12 +207,6 @@ std::optional<std::string> MappingReader::optional_string(std::string_view key) 
   return string(key);
 }
 
-int MappingReader::list_depth(std::string_view key) const {
-  const YAML::Node value = node_[std::string(key)];
-  if (!value || !value.IsSequence()) return 0;
-  return value.size() > 0 && value[0].IsSequence() ? 2 : 1;
-}
-
 std::vector<MappingReader> MappingReader::mappings(std::string_view key, std::size_t max_count) {
   const YAML::Node value = list(key, max_count, "entries");
   std::vector<MappingReader> result;
@@ -224,11 +218,6 @@ std::vector<MappingReader> MappingReader::mappings(std::string_view key, std::si
 MappingReader MappingReader::mapping(std::string_view key) {
   const YAML::Node value = required(key);
   return MappingReader(value, file_, path_of(key));
-}
-
-std::optional<MappingReader> MappingReader::optional_mapping(std::string_view key) {
-  if (!has(key)) return std::nullopt;
-  return mapping(key);
 }
 
 void MappingReader::finish() const {
@@ -245,6 +234,54 @@ std::string MappingReader::choice(std::string_view key, const std::vector<std::s
     if (value == c) return value;
   }
   fail(key, "expected " + config::listed(choices) + ", got \"" + value + "\"");
+}
+
+std::optional<double> MappingReader::optional_number(std::string_view key, const config::Number& spec) {
+  if (!has(key)) return std::nullopt;
+  return number(key, spec);
+}
+
+std::optional<std::string> MappingReader::optional_text(std::string_view key, std::string_view) {
+  return optional_string(key);
+}
+
+std::optional<std::vector<double>> MappingReader::optional_numbers(std::string_view key, const config::Number& spec,
+                                                                   std::size_t max_count) {
+  if (!has(key)) return std::nullopt;
+  return numbers(key, spec, max_count);
+}
+
+std::unique_ptr<config::Source> MappingReader::optional_section(std::string_view key, std::string_view meaning) {
+  if (!has(key)) return nullptr;
+  return section(key, meaning);
+}
+
+std::string MappingReader::choice_or(std::string_view key, const std::vector<std::string_view>& choices,
+                                     std::string_view fallback, std::string_view meaning) {
+  return has(key) ? choice(key, choices, meaning) : std::string(fallback);
+}
+
+std::vector<std::vector<double>> MappingReader::matrix(std::string_view key, const config::Number& entry,
+                                                       std::size_t max_rows) {
+  const YAML::Node value = required(key);
+  if (value.IsSequence() && value.size() > 0 && value[0].IsSequence()) {
+    const config::Number any_sign{entry.unit, entry.meaning, -entry.max, entry.max};
+    return number_rows(key, any_sign, max_rows);
+  }
+  if (value.IsSequence()) {
+    const std::vector<double> diagonal = numbers(key, entry, max_rows);
+    std::vector<std::vector<double>> rows(diagonal.size(), std::vector<double>(diagonal.size(), 0.0));
+    for (std::size_t i = 0; i < diagonal.size(); ++i) rows[i][i] = diagonal[i];
+    return rows;
+  }
+  return {{number(key, entry)}};
+}
+
+std::vector<std::unique_ptr<config::Source>> MappingReader::sections(std::string_view key, std::size_t max_count,
+                                                                     std::string_view) {
+  std::vector<std::unique_ptr<config::Source>> result;
+  for (auto& m : mappings(key, max_count)) result.push_back(std::make_unique<MappingReader>(std::move(m)));
+  return result;
 }
 
 std::unique_ptr<config::Source> MappingReader::section(std::string_view key, std::string_view) {

@@ -1,15 +1,25 @@
 // A Source that reads nothing and writes down every key asked for: the table of a section's
 // keys (path, type, unit, default, range, meaning) for the scenario reference. Numbers come
-// back as their default or as a value inside their range, so that a reader runs through.
+// back as their default or as a value inside their range (whole numbers as their largest), so
+// that a reader runs through;
+// optional numbers and texts come back absent, optional sections present.
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "rpsd/config/source.h"
 
 namespace rpsd::config {
+
+// What KeyTable::fail throws: the reader found the listing's values do not fit together,
+// after it had read its keys.
+class ListingStopped : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
 
 struct KeyRow {
   std::string path;  // "compensation.delay_s"
@@ -35,6 +45,16 @@ class KeyTable final : public Source {
   std::string text(std::string_view key, std::string_view meaning) override;
   std::string choice(std::string_view key, const std::vector<std::string_view>& choices,
                      std::string_view meaning) override;
+  std::optional<double> optional_number(std::string_view key, const Number& spec) override;
+  std::optional<std::string> optional_text(std::string_view key, std::string_view meaning) override;
+  std::optional<std::vector<double>> optional_numbers(std::string_view key, const Number& spec,
+                                                      std::size_t max_count) override;
+  std::unique_ptr<Source> optional_section(std::string_view key, std::string_view meaning) override;
+  std::string choice_or(std::string_view key, const std::vector<std::string_view>& choices, std::string_view fallback,
+                        std::string_view meaning) override;
+  std::vector<std::vector<double>> matrix(std::string_view key, const Number& entry, std::size_t max_rows) override;
+  std::vector<std::unique_ptr<Source>> sections(std::string_view key, std::size_t max_count,
+                                                std::string_view meaning) override;
   bool has(std::string_view key) override;
   std::unique_ptr<Source> section(std::string_view key, std::string_view meaning) override;
   std::unique_ptr<Source> file(std::string_view key, std::string_view meaning) override;

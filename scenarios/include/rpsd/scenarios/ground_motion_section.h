@@ -5,15 +5,15 @@
 
 #include <filesystem>
 
+#include "rpsd/config/source.h"
 #include "rpsd/coordinator/test_config.h"
 #include "rpsd/ground_motion/record.h"
-#include "rpsd/scenarios/yaml_reader.h"
 
 namespace rpsd::scenarios {
 
-// Reads and processes the record; file paths are relative to the scenario file. Every
-// error names the scenario's key or the record's file and line. Not real-time safe.
-coordinator::GroundMotion read_ground_motion_section(MappingReader section, const std::filesystem::path& scenario_file,
+// Reads and processes the record; file paths are relative to `dir`. Every error names the
+// scenario's key, and the record's file and line. Not real-time safe.
+coordinator::GroundMotion read_ground_motion_section(config::Source& section, const std::filesystem::path& dir,
                                                      double integration_step_s);
 
 }  // namespace rpsd::scenarios

@@ -30,25 +30,12 @@ YAML::Node load_yaml_file(const std::filesystem::path& file);
 // Parses YAML text; `name` stands for the file in messages.
 YAML::Node parse_yaml_text(const std::string& text, const std::string& name);
 
-// Every number is read with its range (config::Number), so that the scenario reference
-// lists it; the reads that config::Source has no word for (matrices, lists of sections,
-// free-form paths) are the extra methods here.
+// Every read goes through config::Source, with its range and meaning, so that the scenario
+// reference lists it.
 class MappingReader final : public config::Source {
  public:
   // `node` must be a mapping; `key_path` is its dotted path ("" for the document root).
   MappingReader(YAML::Node node, std::string file, std::string key_path);
-
-  std::string string(std::string_view key);
-  std::optional<std::string> optional_string(std::string_view key);
-  // A non-empty list of at most max_rows equally long, non-empty lists of at most max_rows
-  // numbers within the spec (matrix rows).
-  std::vector<std::vector<double>> number_rows(std::string_view key, const config::Number& spec, std::size_t max_rows);
-  // 0 when the key holds one value, 1 a list, 2 a list of lists (by its first item).
-  int list_depth(std::string_view key) const;
-  // A non-empty list of at most max_count mappings, each read with its own path `key[i]`.
-  std::vector<MappingReader> mappings(std::string_view key, std::size_t max_count);
-  MappingReader mapping(std::string_view key);
-  std::optional<MappingReader> optional_mapping(std::string_view key);
 
   // Rejects every key that was not read. Call after reading all known keys.
   void finish() const;
@@ -69,6 +56,17 @@ class MappingReader final : public config::Source {
   }
   std::string choice(std::string_view key, const std::vector<std::string_view>& choices,
                      std::string_view meaning) override;
+  std::optional<double> optional_number(std::string_view key, const config::Number& spec) override;
+  std::optional<std::string> optional_text(std::string_view key, std::string_view meaning) override;
+  std::optional<std::vector<double>> optional_numbers(std::string_view key, const config::Number& spec,
+                                                      std::size_t max_count) override;
+  std::unique_ptr<config::Source> optional_section(std::string_view key, std::string_view meaning) override;
+  std::string choice_or(std::string_view key, const std::vector<std::string_view>& choices, std::string_view fallback,
+                        std::string_view meaning) override;
+  std::vector<std::vector<double>> matrix(std::string_view key, const config::Number& entry,
+                                          std::size_t max_rows) override;
+  std::vector<std::unique_ptr<config::Source>> sections(std::string_view key, std::size_t max_count,
+                                                        std::string_view meaning) override;
   bool has(std::string_view key) override;
   std::unique_ptr<config::Source> section(std::string_view key, std::string_view meaning) override;
   std::unique_ptr<config::Source> file(std::string_view key, std::string_view meaning) override;
@@ -81,6 +79,14 @@ class MappingReader final : public config::Source {
   std::string path_of(std::string_view key) const;
 
  private:
+  std::string string(std::string_view key);
+  std::optional<std::string> optional_string(std::string_view key);
+  // A non-empty list of at most max_rows equally long, non-empty lists of at most max_rows
+  // numbers within the spec (matrix rows).
+  std::vector<std::vector<double>> number_rows(std::string_view key, const config::Number& spec, std::size_t max_rows);
+  // A non-empty list of at most max_count mappings, each read with its own path `key[i]`.
+  std::vector<MappingReader> mappings(std::string_view key, std::size_t max_count);
+  MappingReader mapping(std::string_view key);
   YAML::Node required(std::string_view key);
   // The list at `key`, refused when it is empty, not a list or longer than max_count.
   YAML::Node list(std::string_view key, std::size_t max_count, const std::string& of_what);
