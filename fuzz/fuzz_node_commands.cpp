@@ -1,8 +1,9 @@
 // libFuzzer target: commands from the network into a servo node's controller. The input is
-// read as a sequence of command samples with arbitrary fields (ids, steps, channel counts,
-// NaN and infinite displacements) interleaved with ticks. Whatever arrives, the actuator
-// must only ever be commanded within the stroke, by at most the increment per tick, with
-// finite values, and every command must be counted as accepted or dropped by one reason.
+// read as a sequence of command samples with arbitrary fields (ids, runs, writers, ends of
+// run, control periods, steps, channel counts, NaN and infinite displacements) interleaved with
+// ticks and releases of the run. Whatever arrives, the actuator must only ever be commanded
+// within the stroke, by at most the increment per tick, with finite values, and every command
+// must be counted as accepted, dropped by one reason, or an end of run.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 
+namespace node = rpsd::node;
 namespace servo = rpsd::servo;
 namespace transport = rpsd::transport;
 
@@ -61,9 +63,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       command.time_s = take<double>(data, size);
       command.channels = (what & 8u) ? take<std::uint8_t>(data, size) : kChannels;
       for (int c = 0; c < kChannels; ++c) command.displacement_m[c] = take<double>(data, size);
+      command.run_id = (what & 16u) ? take<std::uint64_t>(data, size) : 0x7e57;
+      command.writer = (what & 32u) ? take<std::uint64_t>(data, size) : 1;
+      command.end_of_run = (what & 64u) != 0;
+      command.control_period_s = (what & 128u) ? take<double>(data, size) : kPeriod;
       controller.accept(command);
       ++commands;
     } else {
+      if (what & 2u) controller.release_run();
       controller.tick(feedback);
       const auto applied = controller.command_m();
       for (int c = 0; c < kChannels; ++c) {
@@ -74,6 +81,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   const auto& counters = controller.counters();
-  if (counters.accepted + counters.dropped_total() != commands) __builtin_trap();
+  if (counters.accepted + counters.dropped_total() + counters.dropped(node::CommandVerdict::kEndOfRun) != commands) {
+    __builtin_trap();
+  }
   return 0;
 }

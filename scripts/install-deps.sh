@@ -12,6 +12,7 @@ packages=(
   libyaml-cpp-dev                    # scenario and parameter files
   libcli11-dev                       # the rpsd command line
   nlohmann-json3-dev                 # summary.json and --json output
+  libssl-dev                         # SHA-256 of every input file in summary.json (OpenSSL)
   gnuplot-nox                        # PNG plots (pngcairo terminal)
   cyclonedds-dev cyclonedds-tools    # DDS transport (libddsc; idlc generates the message types)
   libgtest-dev libgmock-dev          # the tests (GoogleTest and its matchers)

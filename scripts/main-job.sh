@@ -3,6 +3,7 @@
 # an earthquake RPsD test of the paper's structure on the simulated servo rig under a synthetic
 # record, the linear analysis of the seed paper's rig, its Figure 5, 6 and 7 studies, and the RPsD
 # delay-compensation study of its Figure 8 (servo model and ideal delay), into ./results.
+# Run again, it replaces what an earlier main job wrote there (rpsd run --replace).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -15,7 +16,7 @@ mkdir -p "$out"
 ./build/rpsd analyze "$rig" --json > "$out/servo-analysis.json"
 for scenario in synthetic-sdof paper-fig5-sinesweep paper-fig6-frequency-response paper-fig7-max-gain \
                 paper-fig8-delay-compensation paper-fig8-ideal-delay; do
-  ./build/rpsd run "scenarios/$scenario.yaml" --out "$out/$scenario"
+  ./build/rpsd run "examples/scenarios/$scenario.yaml" --out "$out/$scenario" --replace
 done
 echo
 echo "Earthquake RPsD test (synthetic record): $out/synthetic-sdof/summary.json, test.png, response.png, record.png"

@@ -40,10 +40,15 @@ struct DryRunNotReady : std::runtime_error {
 };
 
 // A test that stopped before its end; its files are complete for every step it took.
-struct TestAborted : std::runtime_error {
-  explicit TestAborted(const std::string& summary, const std::string& reason = {})
-      : std::runtime_error("test " + (reason.empty() ? std::string("aborted") : reason) +
-                           "; every recorded step is in " + summary) {}
+struct TestStopped : std::runtime_error {
+  TestStopped(const std::string& csv, const std::string& reason)
+      : std::runtime_error("test " + reason + "; every recorded step is in " + csv) {}
+};
+
+// SIGINT or SIGTERM ended a run in order: the step under way finished and was recorded.
+struct RunInterrupted : std::runtime_error {
+  RunInterrupted(const std::string& summary, const std::string& reason)
+      : std::runtime_error(reason + "; the steps taken are recorded, and " + summary + " says so") {}
 };
 
 }  // namespace rpsd::cli

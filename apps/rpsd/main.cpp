@@ -1,48 +1,79 @@
 // rpsd: one binary, one subcommand per job. Errors from any subcommand end here with a
-// message naming what failed and an exit code: 0 success, 1 failure, 2 bad input (scenario,
-// parameter or record files), 3 test aborted (the reason is in its summary.json), 4 the dry
-// run says the test is not ready.
+// message naming what failed and one of the exit codes of exit_codes.h.
 #include <CLI/CLI.hpp>
-
-#include "rpsd/commands.h"
-#include "rpsd/realtime/large_blocks.h"
-#include "rpsd/scenarios/config_error.h"
-
+#include <csignal>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
+
+#include "exit_codes.h"
+#include "rpsd/build_info/build_info.h"
+#include "rpsd/commands.h"
+#include "rpsd/ground_motion/record_error.h"
+#include "rpsd/realtime/large_blocks.h"
+#include "rpsd/scenarios/config_error.h"
+#include "rpsd/studies/results_files.h"
 
 int main(int argc, char** argv) {
+  using namespace rpsd::cli;
   // Before anything allocates, so that Cyclone's first receive buffer gets a mapping of its
   // own too: a run or a node of hours must not grow its heap (large_blocks.h).
   rpsd::realtime::map_large_blocks_separately();
+  // A file that may not grow further (ulimit -f) is a failed write to report, not a signal
+  // that kills the run before it can say so.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"rpsd - real-time pseudodynamic (hybrid) testing"};
+  app.set_version_flag(
+      "--version", std::string("rpsd ") + rpsd::build_info::version() + " (commit " + rpsd::build_info::commit() + ")");
   app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 ok, 1 internal error, 2 bad input, 3 test stopped before its end, 4 dry run not ready, "
+      "5 results not written, 6 interrupted (SIGINT/SIGTERM)");
   auto* analyze = app.add_subcommand("analyze", "Linear analysis of a servo system or an integrator");
   analyze->require_subcommand(0, 1);
-  rpsd::cli::add_analyze_servo(*analyze);
-  rpsd::cli::add_analyze_integrator_command(*analyze);
-  rpsd::cli::add_run(app);
-  rpsd::cli::add_validate(app);
-  rpsd::cli::add_plot(app);
-  rpsd::cli::add_servo_node(app);
-  rpsd::cli::add_reference(app);
+  add_analyze_servo(*analyze);
+  add_analyze_integrator_command(*analyze);
+  add_run(app);
+  add_validate(app);
+  add_plot(app);
+  add_servo_node(app);
+  add_reference(app);
 
   try {
     app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help
+    app.exit(e);
+    return kExitOk;
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // A missing or wrong option, a file that does not exist: bad input like a bad key.
+    app.exit(e);
+    return kExitBadInput;
   } catch (const rpsd::scenarios::ConfigError& e) {
     std::cerr << "rpsd: error: " << e.what() << '\n';
-    return 2;
-  } catch (const rpsd::cli::TestAborted& e) {
+    return kExitBadInput;
+  } catch (const rpsd::ground_motion::RecordError& e) {
+    std::cerr << "rpsd: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const TestStopped& e) {
     std::cerr << "rpsd: " << e.what() << '\n';
-    return 3;
-  } catch (const rpsd::cli::DryRunNotReady& e) {
+    return kExitStopped;
+  } catch (const DryRunNotReady& e) {
     std::cerr << "rpsd: " << e.what() << '\n';
-    return 4;
+    return kExitNotReady;
+  } catch (const rpsd::studies::ResultsNotWritten& e) {
+    std::cerr << "rpsd: error: results not written: " << e.what() << '\n';
+    return kExitResultsNotWritten;
+  } catch (const RunInterrupted& e) {
+    std::cerr << "rpsd: " << e.what() << '\n';
+    return kExitInterrupted;
+  } catch (const std::invalid_argument& e) {
+    // Inputs that do not fit together (a node file for another test, an integrator option
+    // it does not take, an --out folder in use: studies::OutputFolderInUse).
+    std::cerr << "rpsd: error: " << e.what() << '\n';
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "rpsd: error: " << e.what() << '\n';
-    return 1;
+    return kExitInternalError;
   }
-  return 0;
+  return kExitOk;
 }

@@ -11,8 +11,11 @@
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/studies/dry_run_report.h"
+#include "rpsd/studies/results_files.h"
+#include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
 #include "rpsd/studies/test_output.h"
+#include "stop_signals.h"
 
 namespace rpsd::cli {
 namespace {
@@ -23,6 +26,7 @@ struct RunOptions {
   std::vector<std::string> overrides;
   std::string record;
   bool dry_run = false;
+  bool replace = false;
   std::vector<std::string> node_files;
 };
 
@@ -73,10 +77,7 @@ bool check_before_running(const coordinator::TestConfig& test, const std::string
   for (const auto& f : node_files) nodes.push_back(node_limits(f));
   const studies::DryRunReport report = studies::dry_run(test, nodes);
   const nlohmann::json numbers = studies::report_dry_run(report, test.name, std::cout);
-  if (!out.empty()) {
-    std::filesystem::create_directories(out);
-    std::ofstream(std::filesystem::path(out) / "dry-run.json") << numbers.dump(2) << '\n';
-  }
+  if (!out.empty()) studies::write_file_whole(std::filesystem::path(out) / "dry-run.json", numbers.dump(2) + '\n');
   return report.within_limits;
 }
 
@@ -92,7 +93,10 @@ void add_run(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   auto* run = app.add_subcommand("run", "Run a scenario and write its results (CSV, summary.json, PNG plots)");
   run->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
-  run->add_option("--out", options->out, "Output folder (created if missing; optional with --dry-run)");
+  run->add_option("--out", options->out,
+                  "Output folder: created if missing, refused if it holds anything (optional with --dry-run)");
+  run->add_flag("--replace", options->replace,
+                "Clear the --out folder first when an earlier rpsd run or dry run wrote it");
   run->add_flag(
       "--dry-run", options->dry_run,
       "Run against the simulated plant in this process first and report predicted peaks against the limits and "
@@ -116,23 +120,38 @@ void add_run(CLI::App& app) {
     const auto file = scenarios::load_study(options->scenario, overrides);
     if (options->dry_run) {
       const auto* test = std::get_if<coordinator::TestConfig>(&file.study);
-      if (!test) throw std::runtime_error("--dry-run needs an rpsd_test scenario");
+      if (!test) throw CLI::ValidationError("--dry-run", "needs an rpsd_test scenario");
+      if (!options->out.empty()) studies::prepare_results_folder(options->out, options->replace);
       if (!check_before_running(*test, options->out, options->node_files)) throw DryRunNotReady();
       return;
     }
     if (!options->node_files.empty()) throw CLI::ValidationError("--node", "only with --dry-run");
     if (options->out.empty()) throw CLI::ValidationError("--out", "required (except with --dry-run)");
+    studies::prepare_results_folder(options->out, options->replace);
     double rate_hz = 1024.0;
-    if (const auto* test = std::get_if<coordinator::TestConfig>(&file.study)) rate_hz = test->control_rate_hz;
-    bool completed = true;
-    std::string reason;
+    const std::atomic<bool>* stop_request = nullptr;
+    if (const auto* test = std::get_if<coordinator::TestConfig>(&file.study)) {
+      rate_hz = test->control_rate_hz;
+      stop_request = &stop_on_signals();  // tests and sweeps stop in order; the servo studies simply end
+    }
+    studies::StudyRun run;
     {
       ProgressBar bar(rate_hz);
-      completed = studies::run_and_write(
-          file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); }, &reason);
+      run = studies::run_and_write(
+          file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); }, stop_request);
     }
-    std::cout << "rpsd run: " << file.name << " -> " << options->out << "/summary.json\n";
-    if (!completed) throw TestAborted(options->out + "/time_history.csv", reason);
+    const std::string summary = options->out + "/summary.json";
+    std::cout << "rpsd run: " << file.name << " -> " << summary << "\n";
+    switch (run.result) {
+      case studies::RunResult::kCompleted:
+        return;
+      case studies::RunResult::kStopped:
+        throw TestStopped(options->out + "/time_history.csv", run.reason);
+      case studies::RunResult::kResultsNotWritten:
+        throw studies::ResultsNotWritten(run.reason + "; " + summary + " says what is missing");
+      case studies::RunResult::kInterrupted:
+        throw RunInterrupted(summary, run.reason);
+    }
   });
 }
 
@@ -144,6 +163,12 @@ void add_validate(CLI::App& app) {
   validate->callback([options] {
     const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
     std::cout << options->scenario << ": ok\n";
+    if (const auto* test = std::get_if<coordinator::TestConfig>(&file.study)) {
+      if (!file.sweep.empty()) {
+        std::cout << "  sweep: " << file.sweep_cases.size() << " cases; the first:\n";
+      }
+      studies::print_overview(studies::overview_of(*test), std::cout);
+    }
   });
 }
 

@@ -9,10 +9,10 @@
 
 namespace rpsd::coordinator {
 
-ActuatorLinks::~ActuatorLinks() = default;
+ActuatorLinks::~ActuatorLinks() { end_run(); }
 
 ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool perfect_actuator,
-                             std::span<const double> hold_m) {
+                             std::span<const double> hold_m, std::uint64_t run_id) {
   const int channels = static_cast<int>(s.experimental.size());
   initial_force_n_.assign(static_cast<std::size_t>(channels), 0.0);
   plant_of_channel_.assign(static_cast<std::size_t>(channels), nullptr);
@@ -39,6 +39,7 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
       transport::DdsLinkConfig config;
       config.test_id = s.transport.test_id;
       config.site_id = site.site_id;
+      config.run_id = run_id;
       config.channels = static_cast<int>(site.channels.size());
       config.qos.control_period_s = control_period_s;
       config.qos.newest_only = s.clock.mode == ClockConfig::Mode::kRealTime;
@@ -105,6 +106,8 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
 
   for (std::size_t i = 0; i < dds_links_.size(); ++i) {
     if (!dds_links_[i]->wait_for_node(s.transport.discovery_timeout_s)) {
+      // A node that refuses the run ends it at once: the run reports why (refusal_text).
+      if (dds_links_[i]->refusal().kind != transport::NodeRefusal::Kind::kNone) return;
       missing += (missing.empty() ? "" : ", ") + std::to_string(sites_[i].site_id);
     }
   }
@@ -119,6 +122,27 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
 
 void ActuatorLinks::set_receive_deadline_ns(std::int64_t deadline_ns) {
   for (auto* link : dds_links_) link->set_receive_deadline_ns(deadline_ns);
+}
+
+bool ActuatorLinks::refused() const {
+  return std::any_of(dds_links_.begin(), dds_links_.end(), [](const transport::DdsLink* link) {
+    return link->refusal().kind != transport::NodeRefusal::Kind::kNone;
+  });
+}
+
+std::string ActuatorLinks::refusal_text() const {
+  std::string text;
+  for (const auto* link : dds_links_) {
+    if (link->refusal().kind == transport::NodeRefusal::Kind::kNone) continue;
+    text += (text.empty() ? "" : "; ") + link->refusal_text();
+  }
+  return text;
+}
+
+void ActuatorLinks::end_run() {
+  if (ended_) return;
+  ended_ = true;
+  for (auto* link : dds_links_) link->end_run();
 }
 
 std::vector<transport::DdsLinkCounters> ActuatorLinks::dds_counters() const {

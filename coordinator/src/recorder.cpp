@@ -1,7 +1,9 @@
 #include "rpsd/coordinator/recorder.h"
 
+#include <cerrno>
 #include <charconv>
 #include <chrono>
+#include <cstring>
 #include <stdexcept>
 
 #include "rpsd/coordinator/csv_number.h"
@@ -18,9 +20,11 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
     throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
   }
   if (!csv.empty()) {
+    csv_path_ = csv;
     csv_.open(csv);
-    if (!csv_) throw std::runtime_error(csv.string() + ": cannot write");
+    if (!csv_) throw std::runtime_error(csv.string() + ": cannot write: " + std::strerror(errno));
     write_header();
+    check_stream();
   }
   writer_ = std::thread([this] { run(); });
 }
@@ -42,7 +46,16 @@ void Recorder::take(const StepRecord& r) {
   // A slot's entries beyond the record's channels and DOFs are never written (every record
   // of one recorder has the same counts), so they hold the queue's initial zeros.
   if (keep_records_) records_.push_back(r);
-  if (csv_.is_open()) write_row(r);
+  if (csv_.is_open() && !write_failed_.load(std::memory_order_relaxed)) {
+    write_row(r);
+    check_stream();
+  }
+}
+
+void Recorder::check_stream() {
+  if (csv_ || write_failed_.load(std::memory_order_relaxed)) return;
+  write_error_ = csv_path_.string() + ": " + std::strerror(errno);
+  write_failed_.store(true, std::memory_order_release);
 }
 
 void Recorder::run() {
@@ -54,6 +67,7 @@ void Recorder::run() {
       any = true;
       if (csv_.is_open() && ++since_flush >= 256) {
         csv_.flush();
+        check_stream();
         since_flush = 0;
       }
     }
@@ -66,12 +80,16 @@ void Recorder::run() {
       }
       if (csv_.is_open() && since_flush > 0) {
         csv_.flush();
+        check_stream();
         since_flush = 0;
       }
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   }
-  if (csv_.is_open()) csv_.flush();
+  if (csv_.is_open()) {
+    csv_.close();
+    check_stream();
+  }
 }
 
 std::vector<StepRecord> Recorder::finish() {

@@ -47,6 +47,7 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)) {
   specimen_forces_ = Eigen::VectorXd::Zero(channels_);
   tracking_.resize(channels_);
   command_.test_id = feedback_.test_id = parts_.test_id;
+  command_.run_id = parts_.run_id != 0 ? parts_.run_id : transport::draw_run_id();
   command_.channels = static_cast<std::uint8_t>(channels_);
 }
 
@@ -130,7 +131,8 @@ bool RpsdLoop::commands_within_limits() {
 }
 
 StepOutcome RpsdLoop::run_away() {
-  if (parts_.stop_on_node_limits && feedback_.limit_flags != transport::kLimitNone) {
+  constexpr std::uint32_t kPositionLimits = transport::kLimitStroke | transport::kLimitForce;
+  if (parts_.stop_on_node_limits && (feedback_.limit_flags & kPositionLimits) != 0) {
     limit_stop_ = {LimitStop::Kind::kNodeLimit, -1, static_cast<double>(feedback_.limit_flags), 0.0};
     return StepOutcome::kRunAway;
   }
@@ -188,6 +190,7 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
     if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
     for (int c = 0; c < channels_; ++c) last_sent_m_[c] = command_.displacement_m[c];
     const transport::LinkStatus received = parts_.link->receive(feedback_);
+    if (received == transport::LinkStatus::kRefused) return StepOutcome::kRefused;
     // How many commands behind the newest measurement is: 0 on time. Without any feedback
     // yet, the age counts from before the first command.
     feedback_age_ = exchange_ - (feedback_.step >= 0 ? feedback_.step : -1);

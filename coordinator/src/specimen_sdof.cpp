@@ -1,6 +1,7 @@
 #include "rpsd/coordinator/specimen_sdof.h"
 
 #include <cmath>
+#include <utility>
 
 namespace rpsd::coordinator {
 
@@ -29,7 +30,11 @@ TestConfig specimen_sdof_test(const SpecimenSdof& sdof) {
     t.duration_s = sdof.duration_s;
   } else {
     const double dt_s = 1.0 / sdof.control_rate_hz;
-    t.ground_motion = GroundMotion{"record", dt_s, sdof.ground_acceleration_m_per_s2};
+    GroundMotion record;
+    record.name = "record";
+    record.dt_s = record.record_step_s = dt_s;
+    record.acceleration_m_per_s2 = sdof.ground_acceleration_m_per_s2;
+    t.ground_motion = std::move(record);
     t.initial_displacement_m = Eigen::VectorXd::Zero(1);
     t.duration_s = dt_s * static_cast<double>(sdof.ground_acceleration_m_per_s2.size() - 1);
   }

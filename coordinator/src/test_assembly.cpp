@@ -11,26 +11,6 @@
 #include "rpsd/substructure/ground_motion_load.h"
 
 namespace rpsd::coordinator {
-namespace {
-
-std::unique_ptr<substructure::NumericalModel> make_numerical(const TestConfig& s) {
-  return std::visit(
-      [](const auto& config) -> std::unique_ptr<substructure::NumericalModel> {
-        using C = std::decay_t<decltype(config)>;
-        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
-          auto model = std::make_unique<substructure::LinearMdofModel>();
-          model->configure(config);
-          return model;
-        } else {
-          auto model = std::make_unique<substructure::ShearBuilding>();
-          model->configure(config);
-          return model;
-        }
-      },
-      s.structure);
-}
-
-}  // namespace
 
 struct TestAssembly::Parts {
   const TestConfig* config = nullptr;
@@ -49,6 +29,7 @@ struct TestAssembly::Parts {
   std::int64_t steps = 0;
   TimingReport timing;
   realtime::CpuWakeLatencyHold cpus_awake;  // from the start to finish(): real time, or over DDS
+  const std::atomic<bool>* stop_request = nullptr;
 
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const StepRecord&)>& after_step) {
@@ -60,13 +41,21 @@ struct TestAssembly::Parts {
     }
     if (after_step) after_step(r);
   }
+
+  // Why the run stops although its step succeeded: the records cannot be written, or the
+  // user asked it to stop. Real-time safe.
+  StepOutcome stop_after_step() const {
+    if (recorder->write_failed()) return StepOutcome::kResultsNotWritten;
+    if (stop_request && stop_request->load(std::memory_order_relaxed)) return StepOutcome::kInterrupted;
+    return StepOutcome::kOk;
+  }
 };
 
 TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) : parts_(std::make_unique<Parts>()) {
   const bool perfect_actuator = options.perfect_actuator;
   Parts& p = *parts_;
   p.config = &s;
-  p.numerical = make_numerical(s);
+  p.numerical = make_numerical_model(s);
   const Eigen::Index dofs = p.numerical->dofs();
   const int channels = static_cast<int>(s.experimental.size());
 
@@ -101,19 +90,24 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
     parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};
   }
 
-  // Start at rest at the initial displacement, the specimens holding it.
+  // Start at rest at the initial displacement, the specimens holding it. The run's identity
+  // is drawn now: no other run, of this test id or any, carries it.
   Eigen::VectorXd hold(channels);
   p.partition.extract_commands(s.initial_displacement_m, hold);
-  p.actuators = std::make_unique<ActuatorLinks>(
-      s, control_period_s, perfect_actuator, std::span<const double>(hold.data(), static_cast<std::size_t>(channels)));
+  const std::uint64_t run_id = transport::draw_run_id();
+  p.actuators =
+      std::make_unique<ActuatorLinks>(s, control_period_s, perfect_actuator,
+                                      std::span<const double>(hold.data(), static_cast<std::size_t>(channels)), run_id);
 
   parts.integrator = p.integrator.get();
   parts.numerical = p.numerical.get();
   parts.partition = &p.partition;
+  p.stop_request = options.stop_request;
   if (options.wrap_link) p.wrapped_link = options.wrap_link(p.actuators->link());
   parts.link = p.wrapped_link ? p.wrapped_link.get() : &p.actuators->link();
   parts.recorded_dofs = s.record_dofs;
   parts.test_id = s.transport.test_id;
+  parts.run_id = run_id;
   p.real_time = s.clock.mode == ClockConfig::Mode::kRealTime && !perfect_actuator;
   parts.max_feedback_age_periods = p.real_time ? s.clock.max_feedback_age_periods : 0;
   parts.stop_on_node_limits = !perfect_actuator;
@@ -157,6 +151,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
 
 TestAssembly::~TestAssembly() = default;
 
+std::uint64_t TestAssembly::run_id() const { return parts_->loop->run_id(); }
+
 std::int64_t TestAssembly::steps_planned() const { return parts_->steps_planned; }
 
 bool TestAssembly::real_time() const { return parts_->real_time; }
@@ -170,8 +166,12 @@ std::int64_t TestAssembly::progress_every_steps() const {
 }
 
 StepOutcome TestAssembly::step() {
-  const StepOutcome outcome = parts_->loop->step(*parts_->recorder);
-  if (outcome == StepOutcome::kOk) parts_->took_step({});
+  if (parts_->actuators->refused()) return StepOutcome::kRefused;
+  StepOutcome outcome = parts_->loop->step(*parts_->recorder);
+  if (outcome == StepOutcome::kOk) {
+    parts_->took_step({});
+    outcome = parts_->stop_after_step();
+  }
   return outcome;
 }
 
@@ -184,12 +184,15 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
   Parts& p = *parts_;
   RpsdLoop& loop = *p.loop;
   StepOutcome outcome = StepOutcome::kOk;
+  if (p.actuators->refused()) return StepOutcome::kRefused;
   if (!p.real_time) {
     const std::int64_t report_every = progress_every_steps();
     for (std::int64_t n = 0; n < p.steps_planned; ++n) {
       outcome = loop.step(*p.recorder);
       if (outcome != StepOutcome::kOk) break;
       p.took_step(after_step);
+      outcome = p.stop_after_step();
+      if (outcome != StepOutcome::kOk) break;
       if (progress && (n + 1) % report_every == 0) progress(n + 1, p.steps_planned);
     }
     return outcome;
@@ -213,6 +216,8 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
     outcome = loop.step(*p.recorder);
     if (outcome != StepOutcome::kOk) return outcome;
     p.took_step(after_step);
+    outcome = p.stop_after_step();
+    if (outcome != StepOutcome::kOk) return outcome;
   }
   pacer.start();
   for (std::int64_t n = 1; n < p.steps_planned; ++n) {
@@ -223,6 +228,8 @@ StepOutcome TestAssembly::run(const std::function<void(const StepRecord&)>& afte
     outcome = loop.step(*p.recorder);
     if (outcome != StepOutcome::kOk) break;
     p.took_step(after_step);
+    outcome = p.stop_after_step();
+    if (outcome != StepOutcome::kOk) break;
   }
   timing.cycles = pacer.cycles();
   timing.overruns = pacer.overruns();
@@ -239,14 +246,24 @@ const ActuatorLinks& TestAssembly::actuators() const { return *parts_->actuators
 TestRun TestAssembly::finish(StepOutcome outcome) {
   Parts& p = *parts_;
   p.cpus_awake = {};
+  p.actuators->end_run();
   TestRun run;
   run.outcome = outcome;
+  run.run_id = p.loop->run_id();
+  if (outcome == StepOutcome::kRefused) run.refusal = p.actuators->refusal_text();
   run.steps = p.steps;
   run.steps_planned = p.steps_planned;
   run.feedback_age_periods = p.loop->feedback_age_periods();
   run.limit_stop = p.loop->limit_stop();
   run.dropped_records = p.recorder->dropped();
   run.records = p.recorder->finish();
+  // The last rows are written when the recorder closes its file: a failure there too means
+  // the results are not whole.
+  if (p.recorder->write_failed()) {
+    run.write_error = p.recorder->write_error();
+    if (outcome == StepOutcome::kOk || outcome == StepOutcome::kRecordEnded)
+      run.outcome = StepOutcome::kResultsNotWritten;
+  }
   run.timing = p.timing;
   // Command-to-feedback latency per site (each site's first channel).
   for (std::size_t i = 0; i < p.round_trips.size(); ++i) {

@@ -14,4 +14,21 @@ Eigen::Index structure_dofs(const TestConfig& config) {
       config.structure);
 }
 
+std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config) {
+  return std::visit(
+      [](const auto& structure) -> std::unique_ptr<substructure::NumericalModel> {
+        using C = std::decay_t<decltype(structure)>;
+        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
+          auto model = std::make_unique<substructure::LinearMdofModel>();
+          model->configure(structure);
+          return model;
+        } else {
+          auto model = std::make_unique<substructure::ShearBuilding>();
+          model->configure(structure);
+          return model;
+        }
+      },
+      config.structure);
+}
+
 }  // namespace rpsd::coordinator

@@ -13,16 +13,17 @@ TestRun run_test(const TestConfig& s, const std::filesystem::path& csv, bool per
 }
 
 EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem::path& test_csv,
-                                     const std::filesystem::path& reference_csv, const Progress& progress) {
+                                     const std::filesystem::path& reference_csv, const Progress& progress,
+                                     const std::atomic<bool>* stop_request) {
   const auto channels = static_cast<int>(s.experimental.size());
   const auto dofs = static_cast<std::size_t>(s.record_dofs.size());
   CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz);
-  TestAssembly test(s, {test_csv, false, false, {}});
+  TestAssembly test(s, {test_csv, false, false, {}, stop_request});
   EvaluatedTest result;
   StepOutcome test_outcome = StepOutcome::kOk, reference_outcome = StepOutcome::kOk;
 
   if (!test.real_time()) {
-    TestAssembly reference(s, {reference_csv, true, false, {}});
+    TestAssembly reference(s, {reference_csv, true, false, {}, stop_request});
     const std::int64_t planned = test.steps_planned(), report_every = test.progress_every_steps();
     for (std::int64_t n = 0; n < planned; ++n) {
       const bool testing = test_outcome == StepOutcome::kOk;
@@ -47,7 +48,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
           ++taken;
         },
         progress);
-    TestAssembly reference(s, {reference_csv, true, false, {}});
+    TestAssembly reference(s, {reference_csv, true, false, {}, stop_request});
     std::size_t paired = 0;
     reference_outcome = reference.run(
         [&](const StepRecord& r) {

@@ -106,13 +106,22 @@ void ServoNodeConfig::validate() const {
       fail(at + "max_acceleration_m_per_s2", "must be positive (infinity: no limit)", l.max_acceleration_m_per_s2);
     }
     if (!(l.stop_deceleration_m_per_s2 > 0.0)) {
-      fail(at + "stop_deceleration_m_per_s2", "must be positive (infinity: stop at once)", l.stop_deceleration_m_per_s2);
+      fail(at + "stop_deceleration_m_per_s2", "must be positive (infinity: stop at once)",
+           l.stop_deceleration_m_per_s2);
     }
     if (!(l.force_guard_stiffness_n_per_m >= 0.0) || !std::isfinite(l.force_guard_stiffness_n_per_m)) {
-      fail(at + "force_guard_stiffness_n_per_m", "must be zero (no guard) or positive", l.force_guard_stiffness_n_per_m);
+      fail(at + "force_guard_stiffness_n_per_m", "must be zero (no guard) or positive",
+           l.force_guard_stiffness_n_per_m);
     }
   }
   if (command_timeout_periods < 1) fail("command_timeout_periods", "must be at least 1", command_timeout_periods);
+  // A watchdog that waits longer than this is none: the rig would follow nobody for minutes.
+  if (const double timeout_s = command_timeout_periods * control_period_s; timeout_s > kMaxWatchdogTimeoutS) {
+    std::ostringstream problem;
+    problem << "times the control period (1/control_rate_hz) is the watchdog's timeout, at most "
+            << kMaxWatchdogTimeoutS << " s, here " << timeout_s << " s";
+    fail("command_timeout_periods", problem.str(), command_timeout_periods);
+  }
   const bool ramps = on_command_loss == LossAction::kRampToSafe || actions.stroke == LimitAction::kRampToSafe ||
                      actions.velocity == LimitAction::kRampToSafe || actions.force == LimitAction::kRampToSafe ||
                      actions.increment == LimitAction::kRampToSafe || actions.acceleration == LimitAction::kRampToSafe;

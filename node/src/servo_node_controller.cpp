@@ -25,6 +25,34 @@ const char* command_verdict_name(CommandVerdict verdict) {
       return "node not following";
     case CommandVerdict::kJoinedMidTest:
       return "joined mid-test";
+    case CommandVerdict::kNoRunId:
+      return "no run id";
+    case CommandVerdict::kOtherRun:
+      return "another run";
+    case CommandVerdict::kUnknownWriter:
+      return "unknown writer";
+    case CommandVerdict::kRunEnded:
+      return "run ended";
+    case CommandVerdict::kRateMismatch:
+      return "control rate differs";
+    case CommandVerdict::kImpossibleStep:
+      return "impossible step";
+    case CommandVerdict::kEndOfRun:
+      return "end of run";
+  }
+  return "unknown";
+}
+
+const char* run_event_name(RunEvent::Kind kind) {
+  switch (kind) {
+    case RunEvent::Kind::kBound:
+      return "took run";
+    case RunEvent::Kind::kEnded:
+      return "run ended";
+    case RunEvent::Kind::kReleasedAfterSilence:
+      return "freed after silence";
+    case RunEvent::Kind::kRefused:
+      return "refused";
   }
   return "unknown";
 }
@@ -32,7 +60,9 @@ const char* command_verdict_name(CommandVerdict verdict) {
 std::uint64_t ServoNodeCounters::dropped_total() const {
   std::uint64_t total = 0;
   for (int v = 0; v < kCommandVerdicts; ++v) {
-    if (v != static_cast<int>(CommandVerdict::kAccepted)) total += by_verdict[v];
+    if (v != static_cast<int>(CommandVerdict::kAccepted) && v != static_cast<int>(CommandVerdict::kEndOfRun)) {
+      total += by_verdict[v];
+    }
   }
   return total;
 }
@@ -45,6 +75,13 @@ ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::A
                                 std::to_string(actuator.channels()));
   }
   events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
+  run_events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
+  // A coordinator sends one command a period: after commands were lost (a partition, a stall
+  // of either host) its step leads the node's ticks by at most the stall, taken as up to a
+  // second here (and never less than the watchdog's periods).
+  const double second_in_periods = std::ceil(1.0 / config_.control_period_s);
+  max_step_lead_ = std::max<std::int64_t>(config_.command_timeout_periods,
+                                          static_cast<std::int64_t>(std::min(second_in_periods, 1e12)));
 }
 
 void ServoNodeController::start(std::span<const double> initial_displacement_m) {
@@ -70,8 +107,13 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
     target_m_[c] = command_m_[c] = reading_.displacement_m[c] = initial_displacement_m[c];
   }
   has_pending_ = false;
-  newest_accepted_step_ = followed_step_ = -1;
+  newest_accepted_step_ = last_accepted_step_ = followed_step_ = -1;
   followed_time_s_ = 0.0;
+  run_id_ = run_writer_ = ended_run_ = 0;
+  ticks_since_accepted_ = 0;
+  last_refusal_ = RunEvent{};
+  run_events_.clear();
+  run_events_not_logged_ = 0;
   commands_began_ = holding_ = safe_state_ = fault_ = false;
   missed_in_row_ = 0;
   limit_was_active_ = {};
@@ -82,34 +124,121 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
   started_ = true;
 }
 
-CommandVerdict ServoNodeController::accept(const transport::CommandSample& command) {
-  CommandVerdict verdict = CommandVerdict::kAccepted;
+namespace {
+// One control rate, to a rounding error (1/f on one side, dt/iterations on the other).
+bool same_period(double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(std::abs(a), std::abs(b)); }
+}  // namespace
+
+CommandVerdict ServoNodeController::check(const transport::CommandSample& command) const {
   const int channels = config_.channels;
-  if (command.test_id != config_.test_id) {
-    verdict = CommandVerdict::kWrongTestId;
-  } else if (command.site_id != config_.site_id) {
-    verdict = CommandVerdict::kWrongSiteId;
-  } else if (command.channels != channels) {
-    verdict = CommandVerdict::kWrongChannelCount;
-  } else if (!std::isfinite(command.time_s) ||
-             !std::all_of(command.displacement_m.begin(), command.displacement_m.begin() + channels,
-                          [](double x) { return std::isfinite(x); })) {
-    verdict = CommandVerdict::kNonFinite;
-  } else if (command.step <= newest_accepted_step_) {
-    verdict = CommandVerdict::kNotNewer;
-  } else if (fault_ || safe_state_ || !started_) {
-    verdict = CommandVerdict::kNotFollowing;
-  } else if (newest_accepted_step_ < 0 && command.step > config_.command_timeout_periods) {
-    verdict = CommandVerdict::kJoinedMidTest;
+  if (command.test_id != config_.test_id) return CommandVerdict::kWrongTestId;
+  if (command.site_id != config_.site_id) return CommandVerdict::kWrongSiteId;
+  if (command.end_of_run) return CommandVerdict::kEndOfRun;
+  // Whose command it is comes before what it says: another run's step means nothing here.
+  if (command.run_id == 0) return CommandVerdict::kNoRunId;
+  if (run_id_ != 0) {
+    if (command.run_id != run_id_) return CommandVerdict::kOtherRun;
+    if (command.writer != run_writer_) return CommandVerdict::kUnknownWriter;
+  } else if (command.run_id == ended_run_) {
+    return CommandVerdict::kRunEnded;
   }
+  if (command.channels != channels) return CommandVerdict::kWrongChannelCount;
+  if (!std::isfinite(command.time_s) ||
+      !std::all_of(command.displacement_m.begin(), command.displacement_m.begin() + channels,
+                   [](double x) { return std::isfinite(x); })) {
+    return CommandVerdict::kNonFinite;
+  }
+  if (command.control_period_s != 0.0 && !same_period(command.control_period_s, config_.control_period_s)) {
+    return CommandVerdict::kRateMismatch;
+  }
+  if (command.step <= newest_accepted_step_) return CommandVerdict::kNotNewer;
+  if (fault_ || safe_state_ || !started_) return CommandVerdict::kNotFollowing;
+  if (newest_accepted_step_ < 0) {
+    if (command.step > config_.command_timeout_periods) return CommandVerdict::kJoinedMidTest;
+  } else {
+    // step > newest here, so neither side overflows: allowed is at most ~2^62.
+    const auto allowed = static_cast<std::int64_t>(
+        std::min<std::uint64_t>(1 + ticks_since_accepted_ + static_cast<std::uint64_t>(max_step_lead_), 1ull << 62));
+    if (command.step - allowed > newest_accepted_step_) return CommandVerdict::kImpossibleStep;
+  }
+  return CommandVerdict::kAccepted;
+}
+
+CommandVerdict ServoNodeController::accept(const transport::CommandSample& command) {
+  const CommandVerdict verdict = check(command);
   ++counters_.by_verdict[static_cast<int>(verdict)];
-  if (verdict != CommandVerdict::kAccepted) return verdict;
+  switch (verdict) {
+    case CommandVerdict::kAccepted:
+      break;
+    case CommandVerdict::kEndOfRun:
+      // Only the run's own writer ends it; another's end, or a repeat, changes nothing.
+      if (run_id_ != 0 && command.run_id == run_id_ && command.writer == run_writer_) {
+        end_run(RunEvent::Kind::kEnded);
+      }
+      return verdict;
+    case CommandVerdict::kOtherRun:
+    case CommandVerdict::kUnknownWriter:
+    case CommandVerdict::kRunEnded:
+    case CommandVerdict::kRateMismatch:
+    case CommandVerdict::kImpossibleStep: {
+      const RunEvent refusal{
+          RunEvent::Kind::kRefused, counters_.ticks, command.run_id, command.writer, run_id_, command.step, verdict};
+      // A stream of the same refusal is logged once (and counted by verdict).
+      if (refusal.run_id != last_refusal_.run_id || refusal.writer != last_refusal_.writer ||
+          refusal.verdict != last_refusal_.verdict || refusal.serving_run_id != last_refusal_.serving_run_id) {
+        log_run(refusal);
+        last_refusal_ = refusal;
+      }
+      return verdict;
+    }
+    default:
+      return verdict;
+  }
+  if (run_id_ == 0) {
+    run_id_ = command.run_id;
+    run_writer_ = command.writer;
+    ++counters_.runs;
+    log_run({RunEvent::Kind::kBound, counters_.ticks, run_id_, run_writer_, 0, command.step, verdict});
+  }
   if (has_pending_) ++counters_.superseded;
   pending_ = command;
   has_pending_ = true;
-  newest_accepted_step_ = command.step;
+  newest_accepted_step_ = last_accepted_step_ = command.step;
+  ticks_since_accepted_ = 0;
   ++counters_.accepted;
   return verdict;
+}
+
+void ServoNodeController::release_run() {
+  if (run_id_ != 0) end_run(RunEvent::Kind::kReleasedAfterSilence);
+}
+
+void ServoNodeController::end_run(RunEvent::Kind why) {
+  log_run({why, counters_.ticks, run_id_, run_writer_, 0, newest_accepted_step_, CommandVerdict::kAccepted});
+  ended_run_ = run_id_;
+  run_id_ = run_writer_ = 0;
+  last_refusal_ = RunEvent{};
+  // Stop as the watchdog would (hold, or ramp to safe), and wait for the next run without
+  // calling the wait a loss.
+  has_pending_ = false;
+  if (commands_began_ && !holding_ && !fault_) {
+    holding_ = true;
+    ++counters_.holds;
+    target_m_ = command_m_;
+    safe_state_ = safe_state_ || config_.on_command_loss == LossAction::kRampToSafe;
+  }
+  commands_began_ = false;
+  missed_in_row_ = 0;
+  newest_accepted_step_ = followed_step_ = -1;
+  followed_time_s_ = 0.0;
+}
+
+void ServoNodeController::log_run(const RunEvent& event) {
+  if (run_events_.size() < run_events_.capacity()) {
+    run_events_.push_back(event);  // within the reserved capacity: no allocation
+  } else {
+    ++run_events_not_logged_;
+  }
 }
 
 void ServoNodeController::choose_target() {
@@ -283,6 +412,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
   const int channels = config_.channels;
   out.test_id = config_.test_id;
   out.site_id = config_.site_id;
+  out.run_id = run_id_;
   out.channels = static_cast<std::uint8_t>(channels);
   if (!started_) {
     out.step = -1;
@@ -306,6 +436,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     latch_fault();
   }
   ++counters_.ticks;
+  ++ticks_since_accepted_;
 
   out.step = followed_step_;
   out.time_s = followed_time_s_;

@@ -46,7 +46,28 @@ transport::NodeHeartbeat heartbeat(const ServoNodeController& controller, const 
   h.overruns = report.overruns;
   h.dropped_messages = static_cast<std::int64_t>(controller.counters().dropped_total());
   h.control_period_s = controller.config().control_period_s;
+  h.serving_run_id = controller.serving_run();
   return h;
+}
+
+// The loop wakes at least this often whatever the control period.
+constexpr std::int64_t kWakeNs = 50'000'000;
+
+// The control period in ns, within what the deadline arithmetic can add without overflow (a
+// node's watchdog bound keeps a valid period far below it).
+std::int64_t period_in_ns(double period_s) {
+  const double ns = period_s * 1e9;
+  return ns >= 1e15 ? static_cast<std::int64_t>(1e15) : std::max<std::int64_t>(1, std::llround(ns));
+}
+
+// Sleeps until `until_ns`, waking every kWakeNs to look at `stop`; false when it was set.
+bool sleep_unless_stopped(std::int64_t until_ns, const std::atomic<bool>& stop) {
+  while (!stop.load(std::memory_order_relaxed)) {
+    const std::int64_t now = realtime::monotonic_now_ns();
+    if (now >= until_ns) return true;
+    realtime::sleep_until_ns(std::min(until_ns, now + kWakeNs));
+  }
+  return false;
 }
 
 }  // namespace
@@ -58,16 +79,17 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
   // Both modes: a real-time node wakes for every command, and a lock-step one answers on
   // Cyclone's receive thread, woken for every command too.
   const realtime::CpuWakeLatencyHold awake = realtime::hold_cpus_awake(options.realtime, report.granted);
-  const double period_s = controller.config().control_period_s;
-  const auto period_ns = static_cast<std::int64_t>(std::llround(period_s * 1e9));
+  const std::int64_t period_ns = period_in_ns(controller.config().control_period_s);
   const std::int64_t start_ns = realtime::monotonic_now_ns();
   const std::int64_t end_ns =
       options.duration_s > 0.0 ? start_ns + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
+  const auto release_after_ns = static_cast<std::int64_t>(options.release_after_silence_s * 1e9);
   realtime::LatencyHistogram jitter;
   TickWatch watch{controller, report};
   transport::CommandSample command;
   transport::FeedbackSample feedback;
   std::int64_t next_heartbeat_ns = start_ns;
+  std::int64_t last_run_command_ns = start_ns;
 
   const auto publish = [&] {
     if (endpoint.publish(feedback))
@@ -79,6 +101,23 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
     if (now_ns < next_heartbeat_ns) return;
     endpoint.publish_heartbeat(heartbeat(controller, report, watch.tick));
     next_heartbeat_ns = now_ns + static_cast<std::int64_t>(1e9 / options.heartbeat_rate_hz);
+  };
+  // Taking or leaving a run is announced at once: a coordinator that starts now must not read
+  // an old heartbeat's word on what the node serves.
+  const auto announce_if_changed = [&](std::uint64_t served_before, std::int64_t now_ns) {
+    if (controller.serving_run() == served_before) return;
+    next_heartbeat_ns = now_ns;
+    maybe_heartbeat(now_ns);
+  };
+  const auto accept = [&](std::int64_t now_ns) {
+    if (controller.accept(command) == CommandVerdict::kAccepted) last_run_command_ns = now_ns;
+  };
+  // Between ticks: the heartbeat, and a run whose coordinator fell silent frees the node.
+  const auto between_ticks = [&](std::int64_t now_ns) {
+    const std::uint64_t served = controller.serving_run();
+    if (served != 0 && now_ns - last_run_command_ns > release_after_ns) controller.release_run();
+    announce_if_changed(served, now_ns);
+    maybe_heartbeat(now_ns);
   };
 
   if (options.real_time) {
@@ -94,15 +133,22 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
     std::int64_t deadline = realtime::monotonic_now_ns() + period_ns + grace_ns;
     std::int64_t last_tick = 0;
     while (!stop.load(std::memory_order_relaxed)) {
-      const bool command_came = endpoint.wait_for_command_until(deadline);
+      const std::int64_t now = realtime::monotonic_now_ns();
+      if (end_ns > 0 && now >= end_ns) break;
+      const bool command_came = endpoint.wait_for_command_until(std::min(deadline, now + kWakeNs));
       std::int64_t woke = realtime::monotonic_now_ns();
+      if (!command_came && woke < deadline) {
+        between_ticks(woke);  // a slow control rate: woken to look around, not to tick
+        continue;
+      }
       if (command_came && woke < last_tick + min_spacing_ns) {
-        realtime::sleep_until_ns(last_tick + min_spacing_ns);
+        if (!sleep_unless_stopped(last_tick + min_spacing_ns, stop)) break;
         woke = realtime::monotonic_now_ns();
       }
       last_tick = woke;
       if (!command_came) jitter.add(woke - deadline);
-      while (endpoint.take_command(command)) controller.accept(command);
+      const std::uint64_t served = controller.serving_run();
+      while (endpoint.take_command(command)) accept(woke);
       controller.tick(feedback);
       watch.after_tick();
       publish();
@@ -114,22 +160,27 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
         ++report.overruns;
         deadline = done + period_ns;
       }
-      maybe_heartbeat(done);
-      if (end_ns > 0 && done >= end_ns) break;
+      announce_if_changed(served, done);
+      between_ticks(done);
     }
     report.jitter = jitter.summary();
   } else {
     // Lock-step: each command is answered on Cyclone's receive thread as it arrives, so no
     // other thread has to be woken for it (the round trip loses one thread hand-off). This
-    // thread sends the heartbeats and watches the stop flag; the mutex keeps the two apart.
+    // thread sends the heartbeats, watches the stop flag and frees the node from a silent
+    // run; the mutex keeps the two apart.
     std::mutex mutex;
     const auto answer = [&] {
       const std::lock_guard lock(mutex);
+      const std::uint64_t served = controller.serving_run();
+      const std::int64_t now = realtime::monotonic_now_ns();
       while (endpoint.take_command(command)) {
         if (!answer_lock_step(controller, command, feedback)) continue;
+        last_run_command_ns = now;
         watch.after_tick();
         publish();
       }
+      announce_if_changed(served, now);
     };
     using Answer = decltype(answer);
     endpoint.call_on_command_arrival([](void* a) { (*static_cast<const Answer*>(a))(); },
@@ -139,11 +190,11 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
       const std::int64_t now = realtime::monotonic_now_ns();
       {
         const std::lock_guard lock(mutex);
-        maybe_heartbeat(now);
+        between_ticks(now);
       }
       if (end_ns > 0 && now >= end_ns) break;
       // Wake at least every 50 ms to look at the stop flag, and for the next heartbeat.
-      realtime::sleep_until_ns(std::min(now + 50'000'000, next_heartbeat_ns));
+      realtime::sleep_until_ns(std::min(now + kWakeNs, next_heartbeat_ns));
     }
     endpoint.call_on_command_arrival(nullptr, nullptr);
   }

@@ -1,6 +1,7 @@
 #include "rpsd/node/servo_node_process.h"
 
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "rpsd/node/controller_emulator.h"
@@ -17,7 +18,21 @@ nlohmann::json node_summary(const ServoNodeSetup& setup, const ServoNodeControll
   const auto& c = controller.counters();
   json dropped = json::object();
   for (int v = 1; v < kCommandVerdicts; ++v) {
+    if (v == static_cast<int>(CommandVerdict::kEndOfRun)) continue;  // not a drop
     dropped[command_verdict_name(static_cast<CommandVerdict>(v))] = c.by_verdict[v];
+  }
+  json run_events = json::array();
+  for (const auto& e : controller.run_events()) {
+    json event = {{"event", run_event_name(e.kind)},
+                  {"tick", e.tick},
+                  {"run_id", transport::run_id_text(e.run_id)},
+                  {"writer", e.writer},
+                  {"step", e.step}};
+    if (e.kind == RunEvent::Kind::kRefused) {
+      event["reason"] = command_verdict_name(e.verdict);
+      event["serving_run_id"] = e.serving_run_id != 0 ? json(transport::run_id_text(e.serving_run_id)) : json(nullptr);
+    }
+    run_events.push_back(event);
   }
   json limits = json::object();
   for (int k = 0; k < kLimitKinds; ++k) {
@@ -52,6 +67,12 @@ nlohmann::json node_summary(const ServoNodeSetup& setup, const ServoNodeControll
           {"commands_applied", c.applied},
           {"last_command_step", controller.newest_accepted_step()},
           {"commands_dropped", dropped},
+          {"end_of_run_commands", c.dropped(CommandVerdict::kEndOfRun)},
+          {"runs", c.runs},
+          {"serving_run_id",
+           controller.serving_run() != 0 ? json(transport::run_id_text(controller.serving_run())) : json(nullptr)},
+          {"run_events", run_events},
+          {"run_events_not_logged", controller.run_events_not_logged()},
           {"missed_periods", c.missed_periods},
           {"holds", c.holds},
           {"first_command_tick", report.first_command_tick},
@@ -70,6 +91,47 @@ nlohmann::json node_summary(const ServoNodeSetup& setup, const ServoNodeControll
           {"memory_locked", report.granted.memory_locked},
           {"sched_fifo", report.granted.fifo_granted},
           {"cpus_kept_awake", report.granted.cpus_kept_awake}};
+}
+
+// One line per run event: which runs the node served, and what it refused while serving them.
+void log_run_events(const ServoNodeController& controller, std::ostream& log) {
+  for (const auto& e : controller.run_events()) {
+    log << "rpsd servo-node: tick " << e.tick << ": ";
+    const std::string run = "run " + transport::run_id_text(e.run_id);
+    switch (e.kind) {
+      case RunEvent::Kind::kBound:
+        log << "took " << run << " (first step " << e.step << ")";
+        break;
+      case RunEvent::Kind::kEnded:
+        log << run << " ended (last step " << e.step << ")";
+        break;
+      case RunEvent::Kind::kReleasedAfterSilence:
+        log << run << " sent nothing for a while: freed the node from it (last step " << e.step << ")";
+        break;
+      case RunEvent::Kind::kRefused:
+        log << "refused a command of " << run << " (" << command_verdict_name(e.verdict) << ", step " << e.step
+            << ", writer " << e.writer << "; serving "
+            << (e.serving_run_id != 0 ? "run " + transport::run_id_text(e.serving_run_id) : std::string("no run"))
+            << ")";
+        break;
+    }
+    log << '\n';
+  }
+  if (controller.run_events_not_logged() > 0) {
+    log << "rpsd servo-node: " << controller.run_events_not_logged() << " more run events not logged\n";
+  }
+}
+
+// "5 dropped (another run 3, unknown writer 2)".
+std::string dropped_text(const ServoNodeCounters& c) {
+  std::string text = std::to_string(c.dropped_total()) + " dropped";
+  std::string reasons;
+  for (int v = 1; v < kCommandVerdicts; ++v) {
+    if (v == static_cast<int>(CommandVerdict::kEndOfRun) || c.by_verdict[v] == 0) continue;
+    reasons += (reasons.empty() ? "" : ", ") + std::string(command_verdict_name(static_cast<CommandVerdict>(v))) + " " +
+               std::to_string(c.by_verdict[v]);
+  }
+  return reasons.empty() ? text : text + " (" + reasons + ")";
 }
 
 }  // namespace
@@ -99,8 +161,9 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   const ServoNodeLoopReport report = run_servo_node_loop(controller, endpoint, loop, stop);
   if (!report.granted.refused.empty()) log << "rpsd servo-node: " << report.granted.refused;
   const auto& c = controller.counters();
-  log << "rpsd servo-node: stopped after " << c.ticks << " ticks, " << c.applied << " commands applied, "
-      << c.dropped_total() << " dropped, " << report.overruns << " overruns"
+  log_run_events(controller, log);
+  log << "rpsd servo-node: stopped after " << c.ticks << " ticks, " << c.runs << " run(s), " << c.applied
+      << " commands applied, " << dropped_text(c) << ", " << report.overruns << " overruns"
       << (controller.faulted() ? ", FAULTED" : "") << std::endl;
   return node_summary(setup, controller, report);
 }

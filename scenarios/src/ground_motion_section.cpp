@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "ground_motion_keys.h"
 #include "physical_ranges.h"
@@ -111,6 +112,13 @@ Processing processing(config::Source& r) {
 
 namespace {
 
+// Shortest text that reads back to the same number (for the processing list).
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", value);
+  return text;
+}
+
 gm::GroundMotionRecord load_file(config::Source& r, const std::filesystem::path& dir) {
   namespace keys = ground_motion_keys;
   const keys::RecordFile file = keys::record_file(r, dir);
@@ -147,12 +155,28 @@ coordinator::GroundMotion read_section(config::Source& r, const std::filesystem:
   const ground_motion_keys::Processing p = ground_motion_keys::processing(r);
   r.finish();
   if (p.scale_factor && p.target_pga_g) r.fail("target_pga_g", "give scale_factor or target_pga_g, not both");
+  // Processing in a fixed order: trim, baseline, scale, pad, resample.
+  const double record_step_s = record.dt_s, record_pga_m_per_s2 = gm::peak_ground_acceleration(record).value_m_per_s2;
+  std::vector<std::string> processing;
   try {
-    if (p.trim) record = gm::trim(record, *p.trim);
-    if (p.baseline) record = gm::baseline_correct(record, {*p.baseline});
-    if (p.scale_factor) record = gm::scale(record, {*p.scale_factor, std::nullopt});
+    if (p.trim) {
+      record = gm::trim(record, *p.trim);
+      processing.push_back("trimmed to " + number_text(p.trim->start_s) + "-" +
+                           (p.trim->end_s ? number_text(*p.trim->end_s) : std::string("end")) + " s");
+    }
+    if (p.baseline) {
+      record = gm::baseline_correct(record, {*p.baseline});
+      processing.push_back(std::string("baseline corrected (") +
+                           (*p.baseline == gm::BaselineMethod::kPolynomialDisplacement ? "polynomial" : "remove_mean") +
+                           ")");
+    }
+    if (p.scale_factor) {
+      record = gm::scale(record, {*p.scale_factor, std::nullopt});
+      processing.push_back("scaled by " + number_text(*p.scale_factor));
+    }
     if (p.target_pga_g) {
       record = gm::scale(record, {std::nullopt, *p.target_pga_g * gm::to_m_per_s2(gm::AccelerationUnit::kG)});
+      processing.push_back("scaled to a PGA of " + number_text(*p.target_pga_g) + " g");
     }
   } catch (const gm::RecordError& e) {
     r.fail(source_key, e.what());
@@ -166,7 +190,10 @@ coordinator::GroundMotion read_section(config::Source& r, const std::filesystem:
            "the record peaks at " + std::to_string(peak / g) + " g, more than the " +
                std::to_string(static_cast<int>(kMaxPgaG)) + " g a ground motion can have (units?)");
   }
-  if (p.pad_after_s > 0.0) record = gm::pad(record, {0.0, p.pad_after_s});
+  if (p.pad_after_s > 0.0) {
+    record = gm::pad(record, {0.0, p.pad_after_s});
+    processing.push_back("padded with " + number_text(p.pad_after_s) + " s of zeros");
+  }
   // Linear interpolation to the integration step (exact at the record's own samples when the
   // step divides the record's); coarser steps than the record's are refused.
   if (std::abs(record.dt_s - step_s) > 1e-12 * step_s) {
@@ -178,8 +205,10 @@ coordinator::GroundMotion read_section(config::Source& r, const std::filesystem:
     if (record.duration_s() / step_s > 2e7)
       r.fail(source_key, "the record at the integration step would exceed 2e7 samples");
     record = gm::resample(record, {step_s, false});
+    processing.push_back("resampled linearly to " + number_text(step_s) + " s");
   }
-  return {record.source, record.dt_s, std::move(record.acceleration_m_per_s2)};
+  return {record.source, record.dt_s,         std::move(record.acceleration_m_per_s2),
+          record_step_s, record_pga_m_per_s2, std::move(processing)};
 }
 
 }  // namespace

@@ -164,7 +164,9 @@ YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vect
 }
 
 studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
-  return parse_study(read_config_text(file), file, overrides);
+  studies::StudyDocument document = parse_study(read_config_text(file), file, overrides);
+  document.input_files.insert(document.input_files.begin(), file);
+  return document;
 }
 
 studies::StudyDocument parse_study(const std::string& yaml_text, const std::filesystem::path& file,

@@ -2,7 +2,10 @@
 
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
+
+#include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
 
@@ -16,8 +19,7 @@ CsvTable& CsvTable::column(std::string name, std::vector<double> values) {
 }
 
 void CsvTable::write(const std::filesystem::path& file) const {
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error(file.string() + ": cannot write");
+  std::ostringstream out;
   for (std::size_t c = 0; c < names_.size(); ++c) out << (c ? "," : "") << names_[c];
   out << '\n';
   const std::size_t rows = columns_.empty() ? 0 : columns_.front().size();
@@ -29,7 +31,7 @@ void CsvTable::write(const std::filesystem::path& file) const {
     }
     out << '\n';
   }
-  if (!out) throw std::runtime_error(file.string() + ": write failed");
+  write_file_whole(file, out.str());
 }
 
 }  // namespace rpsd::studies

@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "rpsd/compensation/delay_theory.h"
@@ -18,6 +19,8 @@
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/studies/damping_identification.h"
 #include "rpsd/studies/gnuplot.h"
+#include "rpsd/studies/provenance.h"
+#include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
 namespace {
@@ -104,7 +107,8 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
         k.stopped_by = coordinator::limit_stop_name(test.limit_stop().kind);
         break;
       }
-      if (outcome != coordinator::StepOutcome::kOk) throw std::runtime_error("delay-compensation case stopped: loop failure");
+      if (outcome != coordinator::StepOutcome::kOk)
+        throw std::runtime_error("delay-compensation case stopped: loop failure");
       sums.add_test(test.last_record());
       x.push_back(test.last_record().displacement_m[0]);
       if (abort_level > 0.0 && std::abs(x.back()) > abort_level) {
@@ -159,6 +163,7 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
   const json summary = {
       {"study", "rpsd_delay_compensation"},
       {"scenario", file.name},
+      {"provenance", provenance_json(file)},
       {"plant", ideal ? "ideal_delay" : "servo_model"},
       {"structure",
        {{"mass_kg", study.mass_kg},
@@ -171,11 +176,11 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
                          integrators::describe(study.integrator)},
       {"phase_lead_ratio_a", study.phase_lead_ratio_a},
       {"cases", entries}};
-  std::ofstream(dir / "summary.json") << summary.dump(2) << '\n';
+  write_file_whole(dir / "summary.json", summary.dump(2) + '\n');
 
   // Table for the damping plot.
   {
-    std::ofstream table(dir / "damping.csv");
+    std::ostringstream table;
     table << "residual_delay_ms,compensated_delay_ms,identified_damping_ratio,predicted_damping_ratio,"
              "approximate_damping_ratio,predicted_damping_ratio_loop\n";
     for (const auto& k : cases) {
@@ -183,6 +188,7 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
             << ',' << k.predicted_damping_ratio << ',' << k.approximate_damping_ratio << ','
             << k.predicted_damping_ratio_loop << '\n';
     }
+    write_file_whole(dir / "damping.csv", table.str());
   }
   // Panels (a) under- and (b) over-compensation: every case of each kind, displacement / d0.
   const auto panel = [&](bool under) {

@@ -2,7 +2,10 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
+
+#include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
 
@@ -10,13 +13,8 @@ void render_png(const std::filesystem::path& png, const std::string& script, int
   const std::filesystem::path folder = png.parent_path().empty() ? std::filesystem::path(".") : png.parent_path();
   std::filesystem::path gp = png;
   gp.replace_extension(".gp");
-  {
-    std::ofstream out(gp);
-    if (!out) throw std::runtime_error(gp.string() + ": cannot write");
-    out << "set terminal pngcairo size " << width_px << ',' << height_px << " font 'sans,10'\n"
-        << "set output '" << png.filename().string() << "'\n"
-        << script;
-  }
+  write_file_whole(gp, "set terminal pngcairo size " + std::to_string(width_px) + ',' + std::to_string(height_px) +
+                           " font 'sans,10'\nset output '" + png.filename().string() + "'\n" + script);
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
     throw std::runtime_error("gnuplot not found: run scripts/install-deps.sh (package gnuplot-nox) to draw " +
                              png.string() + "; the data and " + gp.string() + " are written");

@@ -4,13 +4,15 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/studies/csv_table.h"
 #include "rpsd/studies/delay_compensation_study.h"
 #include "rpsd/studies/gnuplot.h"
-#include "rpsd/studies/test_output.h"
+#include "rpsd/studies/provenance.h"
+#include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
 namespace {
@@ -31,10 +33,10 @@ json servo_json(const servo::ServoSystemParameters& p) {
           {"max_stable_p_gain_full_model", a.max_stable_p_gain_full_model}};
 }
 
-void write_json(const std::filesystem::path& file, const json& value) {
-  std::ofstream out(file);
-  out << value.dump(2) << '\n';
-  if (!out) throw std::runtime_error(file.string() + ": cannot write");
+// DIR/summary.json of a study, with where it came from.
+void write_summary_json(const std::filesystem::path& dir, const StudyDocument& file, json summary) {
+  summary["provenance"] = provenance_json(file);
+  write_file_whole(dir / "summary.json", summary.dump(2) + '\n');
 }
 
 template <typename Row, typename Getter>
@@ -83,17 +85,18 @@ void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& fil
                       {"linear_with_servovalve", to_json(c.full_linear)},
                       {"first_order_eq9", to_json(c.first_order)}});
   }
-  write_json(dir / "summary.json", {{"study", "servo_sine_sweep"},
-                                    {"scenario", file.name},
-                                    {"servo", servo_json(study.servo)},
-                                    {"amplitude_mm", 1e3 * study.amplitude_m},
-                                    {"sweep_hz", {study.start_frequency_hz, study.end_frequency_hz}},
-                                    {"duration_s", study.duration_s},
-                                    {"plant_rate_hz", study.servo.plant_rate_hz},
-                                    {"command_rate_hz", study.command_rate_hz},
-                                    {"max_spool_opening", r.max_spool_opening},
-                                    {"peak_force_kn", 1e-3 * r.peak_force_n},
-                                    {"comparison", report}});
+  write_summary_json(dir, file,
+                     {{"study", "servo_sine_sweep"},
+                      {"scenario", file.name},
+                      {"servo", servo_json(study.servo)},
+                      {"amplitude_mm", 1e3 * study.amplitude_m},
+                      {"sweep_hz", {study.start_frequency_hz, study.end_frequency_hz}},
+                      {"duration_s", study.duration_s},
+                      {"plant_rate_hz", study.servo.plant_rate_hz},
+                      {"command_rate_hz", study.command_rate_hz},
+                      {"max_spool_opening", r.max_spool_opening},
+                      {"peak_force_kn", 1e-3 * r.peak_force_n},
+                      {"comparison", report}});
   render_png(dir / "sine_sweep.png",
              "set multiplot layout 2,1 title '" + file.name + ": " +
                  std::to_string(1e3 * study.amplitude_m).substr(0, 4) +
@@ -139,17 +142,18 @@ void write_frequency_response(const std::filesystem::path& dir, const StudyDocum
   }
   const auto peak = std::max_element(rows.begin(), rows.end(),
                                      [](auto& a, auto& b) { return a.eq8.amplitude_ratio < b.eq8.amplitude_ratio; });
-  write_json(dir / "summary.json",
-             {{"study", "servo_frequency_response"},
-              {"scenario", file.name},
-              {"servo", servo_json(study.servo)},
-              {"phase_lead",
-               {{"ratio_a", study.phase_lead.ratio_a},
-                {"time_constant_s", study.phase_lead.time_constant_s},
-                {"zero_time_constant_s", study.phase_lead.ratio_a * study.phase_lead.time_constant_s},
-                {"max_phase_lead_deg", study.phase_lead.max_phase_lead_rad() * 180.0 / std::numbers::pi}}},
-              {"eq8_peak", {{"frequency_hz", peak->frequency_hz}, {"amplitude_ratio", peak->eq8.amplitude_ratio}}},
-              {"at", points}});
+  write_summary_json(
+      dir, file,
+      {{"study", "servo_frequency_response"},
+       {"scenario", file.name},
+       {"servo", servo_json(study.servo)},
+       {"phase_lead",
+        {{"ratio_a", study.phase_lead.ratio_a},
+         {"time_constant_s", study.phase_lead.time_constant_s},
+         {"zero_time_constant_s", study.phase_lead.ratio_a * study.phase_lead.time_constant_s},
+         {"max_phase_lead_deg", study.phase_lead.max_phase_lead_rad() * 180.0 / std::numbers::pi}}},
+       {"eq8_peak", {{"frequency_hz", peak->frequency_hz}, {"amplitude_ratio", peak->eq8.amplitude_ratio}}},
+       {"at", points}});
   render_png(
       dir / "frequency_response.png",
       "set multiplot layout 2,1 title '" + file.name +
@@ -177,18 +181,18 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
       .column("oil_column_frequency_hz", pick(rows, [](auto& r) { return r.oil_column_frequency_hz; }))
       .write(dir / "max_gain.csv");
   const auto& p = study.servo;
-  write_json(dir / "summary.json",
-             {{"study", "servo_max_gain"},
-              {"scenario", file.name},
-              {"servo", servo_json(p)},
-              {"rig_mass_kg", p.specimen.mass_kg},
-              {"rig_max_p_gain_routh_eq8", servo::max_stable_p_gain(p, servo::LinearModel::kPaperEq8)},
-              {"rig_max_p_gain_full_model", servo::max_stable_p_gain_from_eigenvalues(p)},
-              {"held_constant",
-               {{"stiffness_n_per_m", p.specimen.stiffness.initial_n_per_m},
-                {"damping_n_s_per_m", p.specimen.damping_n_s_per_m()}}},
-              {"mass_range_kg", {rows.front().mass_kg, rows.back().mass_kg}},
-              {"max_p_gain_range", {rows.front().max_p_gain_routh, rows.back().max_p_gain_routh}}});
+  write_summary_json(dir, file,
+                     {{"study", "servo_max_gain"},
+                      {"scenario", file.name},
+                      {"servo", servo_json(p)},
+                      {"rig_mass_kg", p.specimen.mass_kg},
+                      {"rig_max_p_gain_routh_eq8", servo::max_stable_p_gain(p, servo::LinearModel::kPaperEq8)},
+                      {"rig_max_p_gain_full_model", servo::max_stable_p_gain_from_eigenvalues(p)},
+                      {"held_constant",
+                       {{"stiffness_n_per_m", p.specimen.stiffness.initial_n_per_m},
+                        {"damping_n_s_per_m", p.specimen.damping_n_s_per_m()}}},
+                      {"mass_range_kg", {rows.front().mass_kg, rows.back().mass_kg}},
+                      {"max_p_gain_range", {rows.front().max_p_gain_routh, rows.back().max_p_gain_routh}}});
   char point[160];
   std::snprintf(point, sizeof point,
                 "set label 1 'operating gain %.3f' at first %g, first %g point pt 7 ps 1.2 offset 1,1\n",
@@ -205,10 +209,11 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
       900, 600);
 }
 
-bool run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
-                   const std::function<void(std::int64_t, std::int64_t)>& progress, std::string* abort_reason) {
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
+                       const std::function<void(std::int64_t, std::int64_t)>& progress,
+                       const std::atomic<bool>* stop_request) {
+  StudyRun run;
   std::filesystem::create_directories(dir);
-  bool completed = true;
   std::visit(
       [&](const auto& study) {
         using Study = std::decay_t<decltype(study)>;
@@ -221,15 +226,16 @@ bool run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
         } else if constexpr (std::is_same_v<Study, DelayCompensationStudy>) {
           write_delay_compensation(dir, file, study, run_delay_compensation(study, dir));
         } else if (!file.sweep.empty()) {
-          completed = run_sweep_into(dir, file, progress) == RunResult::kCompleted;
+          run.result = run_sweep_into(dir, file, progress, stop_request);
+          if (run.result != RunResult::kCompleted) run.reason = "see " + (dir / "summary.json").string();
         } else {
-          const TestHeadline headline = run_test_into(dir, file, study, progress);
-          completed = headline.result == RunResult::kCompleted;
-          if (!completed && abort_reason) *abort_reason = headline.outcome;
+          const TestHeadline headline = run_test_into(dir, file, study, progress, stop_request);
+          run.result = headline.result;
+          run.reason = headline.outcome;
         }
       },
       file.study);
-  return completed;
+  return run;
 }
 
 }  // namespace rpsd::studies

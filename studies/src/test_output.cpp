@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "rpsd/coordinator/limit_stop_text.h"
@@ -11,6 +12,9 @@
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/studies/gnuplot.h"
+#include "rpsd/studies/provenance.h"
+#include "rpsd/studies/results_files.h"
+#include "rpsd/transport/messages.h"
 
 namespace rpsd::studies {
 namespace {
@@ -33,6 +37,12 @@ const char* outcome_text(coordinator::StepOutcome o) {
       return "aborted: a coordinator limit was reached";
     case coordinator::StepOutcome::kRunAway:
       return "stopped: the test ran away";
+    case coordinator::StepOutcome::kResultsNotWritten:
+      return "stopped: the results could not be written";
+    case coordinator::StepOutcome::kInterrupted:
+      return "interrupted: the user stopped the run (SIGINT or SIGTERM); the nodes hold where they are";
+    case coordinator::StepOutcome::kRefused:
+      return "refused";
   }
   return "aborted";
 }
@@ -103,12 +113,13 @@ void write_spectrum(const std::filesystem::path& dir, const coordinator::GroundM
   ground_motion::ResponseSpectrumOptions options;
   options.periods_s = ground_motion::log_spaced_periods(0.02, 5.0, 80);
   const auto spectrum = ground_motion::response_spectrum(record, options);
-  std::ofstream out(dir / "spectrum.csv");
+  std::ostringstream out;
   out << "period_s,pseudo_acceleration_m_per_s2,displacement_m\n";
   for (std::size_t i = 0; i < spectrum.periods_s.size(); ++i) {
     out << spectrum.periods_s[i] << ',' << spectrum.pseudo_acceleration_m_per_s2[i] << ',' << spectrum.displacement_m[i]
         << '\n';
   }
+  write_file_whole(dir / "spectrum.csv", out.str());
 }
 
 nlohmann::json ground_motion_json(const coordinator::GroundMotion& motion) {
@@ -118,11 +129,18 @@ nlohmann::json ground_motion_json(const coordinator::GroundMotion& motion) {
           {"dt_s", motion.dt_s},
           {"points", motion.acceleration_m_per_s2.size()},
           {"pga_m_per_s2", pga},
-          {"pga_g", pga / 9.80665}};
+          {"pga_g", pga / 9.80665},
+          {"record_step_s", motion.record_step_s},
+          {"record_pga_g", std::abs(motion.record_pga_m_per_s2) / 9.80665},
+          {"processing", motion.processing}};
 }
 
 std::string describe_outcome(const coordinator::TestConfig& s, const coordinator::TestRun& test) {
   std::string text = outcome_text(test.outcome);
+  if (test.outcome == coordinator::StepOutcome::kRefused) {
+    // Refused by a site's node: its reason, not a step (the run never had the site).
+    return text + ": " + (test.refusal.empty() ? std::string("a site's node refused this run") : test.refusal);
+  }
   if (test.outcome == coordinator::StepOutcome::kLinkFailure) {
     char detail[200];
     if (test.timing.real_time) {
@@ -135,6 +153,11 @@ std::string describe_outcome(const coordinator::TestConfig& s, const coordinator
                     static_cast<double>(test.steps + 1) / s.control_rate_hz);
     }
     text += detail;
+  } else if (test.outcome == coordinator::StepOutcome::kInterrupted) {
+    char detail[100];
+    std::snprintf(detail, sizeof detail, " (after step %zu, t = %.4f s)", static_cast<std::size_t>(test.steps),
+                  static_cast<double>(test.steps) / s.control_rate_hz);
+    text += detail;
   } else if (test.outcome != coordinator::StepOutcome::kOk && test.outcome != coordinator::StepOutcome::kRecordEnded) {
     char detail[100];
     std::snprintf(detail, sizeof detail, " (at step %zu, t = %.4f s)", static_cast<std::size_t>(test.steps + 1),
@@ -144,6 +167,7 @@ std::string describe_outcome(const coordinator::TestConfig& s, const coordinator
   if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
     text += " (" + coordinator::describe_limit_stop(test.limit_stop) + ")";
   }
+  if (!test.write_error.empty()) text += " (" + test.write_error + ")";
   return text;
 }
 
@@ -159,7 +183,11 @@ nlohmann::json timing_json(const coordinator::TimingReport& t) {
                           {"late", c.late},
                           {"dropped_wrong_test_or_site", c.wrong_test_or_site},
                           {"dropped_wrong_channels", c.wrong_channels},
-                          {"dropped_older_step", c.older_step}};
+                          {"dropped_older_step", c.older_step},
+                          {"dropped_other_run", c.other_run},
+                          {"dropped_unknown_writer", c.unknown_writer},
+                          {"dropped_no_run", c.no_run},
+                          {"dropped_impossible_step", c.impossible_step}};
     }
     sites.push_back(site);
   }
@@ -182,21 +210,61 @@ nlohmann::json timing_json(const coordinator::TimingReport& t) {
 
 }  // namespace
 
+namespace {
+
+RunResult result_of(const coordinator::TestRun& test, const coordinator::TestRun& reference) {
+  using coordinator::StepOutcome;
+  if (test.outcome == StepOutcome::kResultsNotWritten || !test.write_error.empty() || !reference.write_error.empty()) {
+    return RunResult::kResultsNotWritten;
+  }
+  if (test.outcome == StepOutcome::kInterrupted) return RunResult::kInterrupted;
+  if (test.outcome == StepOutcome::kOk || test.outcome == StepOutcome::kRecordEnded) return RunResult::kCompleted;
+  return RunResult::kStopped;
+}
+
+}  // namespace
+
+const char* result_name(RunResult r) {
+  switch (r) {
+    case RunResult::kCompleted:
+      return "completed";
+    case RunResult::kStopped:
+      return "stopped";
+    case RunResult::kResultsNotWritten:
+      return "results_not_written";
+    case RunResult::kInterrupted:
+      return "interrupted";
+  }
+  return "stopped";
+}
+
 TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
                            const coordinator::TestConfig& scenario,
-                           const std::function<void(std::int64_t, std::int64_t)>& progress) {
+                           const std::function<void(std::int64_t, std::int64_t)>& progress,
+                           const std::atomic<bool>* stop_request) {
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
+  reserve_summary(dir / "summary.json", nlohmann::json{{"study", "rpsd_test"},
+                                                       {"scenario", file.name},
+                                                       {"result", "running"},
+                                                       {"outcome", "running (or killed before it could finish)"},
+                                                       {"completed", false}}
+                                                .dump(2) +
+                                            '\n');
+  write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
-  const coordinator::EvaluatedTest run =
-      coordinator::run_test_and_reference(scenario, dir / "time_history.csv", dir / "reference_history.csv", progress);
+  const coordinator::EvaluatedTest run = coordinator::run_test_and_reference(
+      scenario, dir / "time_history.csv", dir / "reference_history.csv", progress, stop_request);
   const coordinator::TestRun& test = run.test;
   const coordinator::Criteria& criteria = run.criteria;
-  const bool completed =
-      test.outcome == coordinator::StepOutcome::kOk || test.outcome == coordinator::StepOutcome::kRecordEnded;
-  const std::string outcome = describe_outcome(scenario, test);
+  const RunResult result = result_of(test, run.reference);
+  const bool completed = result == RunResult::kCompleted;
+  std::string outcome = describe_outcome(scenario, test);
+  if (test.write_error.empty() && !run.reference.write_error.empty()) {
+    outcome = (completed ? "" : outcome + "; ") + "stopped: the results could not be written (" +
+              run.reference.write_error + ")";
+  }
 
   using nlohmann::json;
   json channels = json::array();
@@ -246,8 +314,10 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"study", "rpsd_test"},
       {"scenario", file.name},
       {"description", file.description},
+      {"result", result_name(result)},
       {"outcome", outcome},
       {"completed", completed},
+      {"run_id", transport::run_id_text(test.run_id)},
       {"stopped_by", stopped_by},
       {"steps", test.steps},
       {"steps_planned", test.steps_planned},
@@ -265,22 +335,24 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"clock", scenario.clock.mode == coordinator::ClockConfig::Mode::kRealTime ? "real_time" : "as_fast_as_possible"},
       {"transport", scenario.transport.kind == coordinator::TransportConfig::Kind::kDds ? "dds" : "in_process"},
       {"timing", timing_json(test.timing)},
+      {"provenance", provenance_json(file)},
   };
-  std::ofstream(dir / "summary.json") << summary.dump(2) << '\n';
   const json plot_info = {{"title", file.name},
                           {"channels", scenario.experimental.size()},
                           {"recorded_dofs", scenario.record_dofs.size()},
                           {"ground_motion", scenario.ground_motion.has_value()}};
-  std::ofstream(dir / "plot.json") << plot_info.dump(2) << '\n';
-  // An aborted test keeps its exit status: a plot that cannot be drawn (too few steps) is
-  // reported, not fatal.
+  // The plots are drawn from the CSV files, which are the results: one that cannot be drawn
+  // (too few steps, no gnuplot) is reported and `rpsd plot` redraws it; summary.json comes
+  // last, so that it describes every file beside it.
   try {
+    write_file_whole(dir / "plot.json", plot_info.dump(2) + '\n');
     if (test.steps >= 2) draw(dir, plot_info);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
   }
+  write_summary(dir / "summary.json", summary.dump(2) + '\n');
   TestHeadline headline;
-  headline.result = completed ? RunResult::kCompleted : RunResult::kAborted;
+  headline.result = result;
   headline.outcome = outcome;
   if (!criteria.channels.empty()) headline.j2_percent = criteria.channels[0].j2_rms_tracking_error_percent;
   if (!criteria.dofs.empty()) {
@@ -300,21 +372,24 @@ std::string legend_entry(const std::string& key, double value) {
 }  // namespace
 
 RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file,
-                         const std::function<void(std::int64_t, std::int64_t)>& progress) {
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "effective-scenario.yaml") << file.effective_yaml;
+                         const std::function<void(std::int64_t, std::int64_t)>& progress,
+                         const std::atomic<bool>* stop_request) {
   using nlohmann::json;
+  std::filesystem::create_directories(dir);
+  reserve_summary(dir / "summary.json",
+                  json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"result", "running"}}.dump(2) + '\n');
+  write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
   json cases = json::array();
-  std::ofstream table(dir / "sweep.csv");
+  std::ostringstream table;
   for (const auto& axis : file.sweep) table << axis.key_path << ',';
   table << "completed,J2_percent,J4_percent,peak_displacement_m,reference_peak_displacement_m,folder\n";
-  bool all_completed = true;
+  RunResult result = RunResult::kCompleted;
   for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
     char folder[32];
     std::snprintf(folder, sizeof folder, "case_%03zu", i);
-    const TestHeadline h = run_test_into(dir / folder, file, file.sweep_cases[i], progress);
+    const TestHeadline h = run_test_into(dir / folder, file, file.sweep_cases[i], progress, stop_request);
     const bool completed = h.result == RunResult::kCompleted;
-    all_completed = all_completed && completed;
+    if (!completed && result == RunResult::kCompleted) result = h.result;
     json values = json::object();
     for (std::size_t a = 0; a < file.sweep.size(); ++a) {
       values[file.sweep[a].key_path] = file.sweep_values[i][a];
@@ -323,18 +398,30 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
     table << (completed ? 1 : 0) << ',' << h.j2_percent << ',' << h.j4_percent << ',' << h.peak_displacement_m << ','
           << h.reference_peak_displacement_m << ',' << folder << '\n';
     cases.push_back({{"values", values},
+                     {"result", result_name(h.result)},
                      {"completed", completed},
                      {"J2_percent", h.j2_percent},
                      {"J4_percent", h.j4_percent},
                      {"peak_displacement_m", h.peak_displacement_m},
                      {"reference_peak_displacement_m", h.reference_peak_displacement_m},
                      {"folder", folder}});
+    // A case stopped by the user or by a failed write ends the sweep; a case stopped by a
+    // limit is a result of the sweep, and the next case runs.
+    if (h.result == RunResult::kInterrupted || h.result == RunResult::kResultsNotWritten) {
+      result = h.result;
+      break;
+    }
   }
-  table.close();
+  write_file_whole(dir / "sweep.csv", table.str());
   json axes = json::array();
   for (const auto& axis : file.sweep) axes.push_back({{"key", axis.key_path}, {"values", axis.values}});
-  std::ofstream(dir / "summary.json")
-      << json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"axes", axes}, {"cases", cases}}.dump(2) << '\n';
+  const json summary{{"study", "rpsd_test_sweep"},
+                     {"scenario", file.name},
+                     {"provenance", provenance_json(file)},
+                     {"result", result_name(result)},
+                     {"cases_planned", file.sweep_cases.size()},
+                     {"axes", axes},
+                     {"cases", cases}};
   // One line per value of the second axis (or one line), J2 and J4 against the first axis.
   const std::size_t lines = file.sweep.size() > 1 ? file.sweep[1].values.size() : 1;
   const std::size_t per_line = file.sweep[0].values.size();
@@ -353,13 +440,18 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
     }
     plots += "\n";
   }
-  render_png(dir / "sweep.png",
-             "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot "
-             "layout 2,1 title '" +
-                 file.name + ": sweep of " + file.sweep[0].key_path + "'\nset xlabel '" + file.sweep[0].key_path +
-                 "'\n" + plots + "unset multiplot\n",
-             1000, 800);
-  return all_completed ? RunResult::kCompleted : RunResult::kAborted;
+  try {
+    render_png(dir / "sweep.png",
+               "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot "
+               "layout 2,1 title '" +
+                   file.name + ": sweep of " + file.sweep[0].key_path + "'\nset xlabel '" + file.sweep[0].key_path +
+                   "'\n" + plots + "unset multiplot\n",
+               1000, 800);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
+  }
+  write_summary(dir / "summary.json", summary.dump(2) + '\n');
+  return result;
 }
 
 void plot_test(const std::filesystem::path& dir) {

@@ -156,5 +156,40 @@ TEST(FeedbackAge, LockStepStopsOnTheFirstLateFeedback) {
   EXPECT_EQ(r.records.size(), 1u);
 }
 
+// A site's node that serves another run (the link says kRefused) stops the test at once with
+// its own outcome, in real time too: not late feedback to carry on with, not a silent node.
+class RefusingLink final : public transport::Link {
+ public:
+  RefusingLink(transport::Link& inner, std::int64_t refused_from) : inner_(inner), refused_from_(refused_from) {}
+  transport::LinkStatus send(const transport::CommandSample& command) override {
+    exchange_ = command.step;
+    return inner_.send(command);
+  }
+  transport::LinkStatus receive(transport::FeedbackSample& feedback) override {
+    if (exchange_ < refused_from_) return inner_.receive(feedback);
+    transport::FeedbackSample unused;
+    inner_.receive(unused);
+    return transport::LinkStatus::kRefused;
+  }
+
+ private:
+  transport::Link& inner_;
+  std::int64_t refused_from_;
+  std::int64_t exchange_ = -1;
+};
+
+TEST(FeedbackAge, ANodeThatRefusesTheRunStopsItAtOnceAndNotAsSilence) {
+  for (const bool real_time : {false, true}) {
+    TestConfig config = specimen_sdof_test(SpecimenSdof{});
+    if (real_time) config.clock.mode = ClockConfig::Mode::kRealTime;
+    config.clock.max_feedback_age_periods = 4;
+    AssemblyOptions options;
+    options.wrap_link = [](transport::Link& inner) { return std::make_unique<RefusingLink>(inner, 100); };
+    const testing::SdofRun r = testing::run_steps(config, options);
+    EXPECT_EQ(r.outcome, StepOutcome::kRefused) << "real time " << real_time;
+    EXPECT_EQ(r.records.size(), 100u) << "real time " << real_time;
+  }
+}
+
 }  // namespace
 }  // namespace rpsd::coordinator

@@ -1,8 +1,8 @@
 // One node implementation: a site's node runs the same controller in this process (behind the
 // in-process link) as `rpsd servo-node` runs over DDS, so its limits act identically in a
 // rehearsal and on the rig. The same velocity limit, tripped by the paper's SDOF in free
-// vibration, stops the test at the same step with the same flags and the same measurements
-// before it, both ways.
+// vibration, aborts the node and stops the test at the same step with the same flags and the
+// same measurements before it, both ways.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,6 +12,7 @@
 
 #include "rpsd/node/servo_node_loop.h"
 #include "rpsd/servo/simulated_actuator.h"
+#include "rpsd/transport/messages.h"
 #include "specimen_runs.h"
 
 namespace rpsd::coordinator {
@@ -26,7 +27,7 @@ transport::DdsDomainConfig loopback() {
 }
 
 // The paper's SDOF released from 10 mm: its velocity peaks near 0.1 m/s, and the node lets
-// the command move at most 0.03 m/s (clamped).
+// the command move at most 0.03 m/s (abort).
 TestConfig clamped_sdof() {
   SpecimenSdof sdof;
   sdof.duration_s = 2.0;
@@ -35,6 +36,7 @@ TestConfig clamped_sdof() {
   config.transport.test_id = kTest;
   node::ServoNodeConfig node;
   node.limits[0].max_velocity_m_per_s = 0.03;
+  node.actions.velocity = node::LimitAction::kAbort;
   config.site_nodes[1] = node;
   return config;
 }
@@ -92,10 +94,8 @@ class DdsNode {
 TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
   const TestConfig in_process = clamped_sdof();
   const testing::SdofRun here = testing::run_steps(in_process);
-  // The node clamped a command: the test left what the node allows, and stopped.
-  ASSERT_EQ(here.outcome, StepOutcome::kRunAway);
-  ASSERT_EQ(here.limit_stop.kind, LimitStop::Kind::kNodeLimit);
-  EXPECT_TRUE(static_cast<std::uint32_t>(here.limit_stop.value) & transport::kLimitVelocity);
+  // The node aborted on a command too fast: the test stopped on its fault.
+  ASSERT_EQ(here.outcome, StepOutcome::kNodeFault);
   EXPECT_GT(here.records.size(), 0u);
 
   TestConfig over_dds = in_process;
@@ -110,9 +110,7 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
     there = testing::run_steps(over_dds);
     velocity_activations = node.controller().counters().activations(node::LimitKind::kVelocity);
   }
-  EXPECT_EQ(there.outcome, StepOutcome::kRunAway);
-  EXPECT_EQ(there.limit_stop.kind, here.limit_stop.kind);
-  EXPECT_EQ(there.limit_stop.value, here.limit_stop.value);
+  EXPECT_EQ(there.outcome, StepOutcome::kNodeFault);
   EXPECT_EQ(velocity_activations, 1u);
   ASSERT_EQ(here.records.size(), there.records.size());
   for (std::size_t n = 0; n < here.records.size(); ++n) {
@@ -124,6 +122,40 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
   TestConfig free = in_process;
   free.site_nodes.clear();
   EXPECT_EQ(testing::run_steps(free).outcome, StepOutcome::kOk);
+}
+
+// One node, two runs of one test id (two coordinators): the node serves the run whose first
+// command it took and says so in its heartbeat; a second run is refused before its first step
+// with its own reason, never taking the first run's measurements for its own; the first goes
+// on to its end, and once it has ended (its end of run) the node serves the next run.
+TEST(SiteNode, ASecondRunOfOneTestIsRefusedWhileTheFirstRunsAndServedAfterIt) {
+  TestConfig config = clamped_sdof();
+  config.site_nodes[1] = node::ServoNodeConfig{};  // no limit acts: the run goes to its end
+  config.transport.kind = TransportConfig::Kind::kDds;
+  config.transport.domain_id = loopback().domain_id;
+  config.transport.dds_config = loopback().config_file;
+  config.clock.realtime.keep_cpus_awake = false;
+  DdsNode node(config);
+  TestAssembly first(config, {});
+  ASSERT_EQ(first.step(), StepOutcome::kOk);
+  {
+    TestAssembly second(config, {});
+    EXPECT_NE(second.run_id(), first.run_id());
+    EXPECT_EQ(second.step(), StepOutcome::kRefused);
+    const TestRun refused = second.finish(StepOutcome::kRefused);
+    EXPECT_EQ(refused.steps, 0);
+    EXPECT_EQ(refused.refusal, "site 1 is serving another run (run " + transport::run_id_text(first.run_id()) +
+                                   "; this run is " + transport::run_id_text(second.run_id()) +
+                                   "): a node serves one run at a time");
+  }
+  for (std::int64_t n = 1; n < first.steps_planned(); ++n) ASSERT_EQ(first.step(), StepOutcome::kOk) << n;
+  const TestRun done = first.finish(StepOutcome::kOk);
+  EXPECT_EQ(done.steps, first.steps_planned());
+  EXPECT_EQ(done.run_id, first.run_id());
+  TestAssembly third(config, {});
+  EXPECT_EQ(third.step(), StepOutcome::kOk);
+  third.finish(StepOutcome::kOk);
+  EXPECT_EQ(node.controller().counters().runs, 2u);
 }
 
 }  // namespace

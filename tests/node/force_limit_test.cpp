@@ -37,6 +37,7 @@ Peak drive(const ServoNodeSetup& setup, std::uint32_t seed, int ticks) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   transport::CommandSample command;
   command.test_id = setup.node.test_id;
+  command.run_id = 1;
   command.site_id = setup.node.site_id;
   command.channels = 1;
   transport::FeedbackSample feedback;
@@ -95,7 +96,8 @@ TEST(ForceLimit, HoldsWithin5PercentForAnyCommandSequenceOnTheShippedNodes) {
     }
     EXPECT_LE(worst, 1.05 * bound) << name << ": seed " << worst_seed;
     RecordProperty(std::string("worst_force_over_limit_") + name, std::to_string(worst / bound));
-    std::printf("%s: worst measured force %.1f N = %.3f x the limit (seed %u)\n", name, worst, worst / bound, worst_seed);
+    std::printf("%s: worst measured force %.1f N = %.3f x the limit (seed %u)\n", name, worst, worst / bound,
+                worst_seed);
   }
 }
 

@@ -38,6 +38,7 @@ TEST(LockStepNode, FeedbackIsTheActuatorReadingOfEachAcceptedCommand) {
 
   transport::CommandSample command;
   command.test_id = 3;
+  command.run_id = 0x3;
   command.site_id = 2;
   command.channels = 1;
   transport::FeedbackSample feedback;

@@ -55,6 +55,7 @@ RunResult run(ServoNodeController& node, int silent_periods) {
   node.start(x0);
   transport::CommandSample command;
   command.test_id = 11;
+  command.run_id = 0x5eed;
   command.site_id = 2;
   command.channels = 2;
   transport::FeedbackSample feedback;
@@ -97,7 +98,8 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
       {{servo::Polynomial{2.18385e13},
         servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
        1.19e6,
-       8192.0, {}});
+       8192.0,
+       {}});
   servo::Plant* plants[] = {&paper, &benchmark};
   servo::SimulatedActuator actuator(plants);
   ServoNodeController node(node_config(), actuator);

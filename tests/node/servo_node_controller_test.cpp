@@ -40,8 +40,8 @@ class IdealActuator final : public servo::Actuator {
       return status;
     }
     for (int c = 0; c < channels_; ++c) {
-      reading.displacement_m[c] = command_m[c];
-      reading.force_n[c] = stiffness_ * command_m[c];
+      reading.displacement_m[c] = command_m[c] + measured_offset_m;
+      reading.force_n[c] = stiffness_ * reading.displacement_m[c];
     }
     reading.fresh = true;
     return status;
@@ -52,6 +52,7 @@ class IdealActuator final : public servo::Actuator {
   std::vector<std::vector<double>> commands;
   std::vector<double> periods;
   std::deque<servo::ActuatorStatus> script;  // statuses to return, then kOk
+  double measured_offset_m = 0.0;            // a piston that drifts from its command (a fault)
 
  private:
   int channels_;
@@ -59,6 +60,7 @@ class IdealActuator final : public servo::Actuator {
 };
 
 constexpr std::uint32_t kTest = 7, kSite = 3;
+constexpr std::uint64_t kRun = 0x7e57;
 constexpr double kPeriod = 1.0 / 1024.0;
 
 ServoNodeConfig config(int channels = 1) {
@@ -75,6 +77,7 @@ CommandSample command(std::int64_t step, std::initializer_list<double> x) {
   CommandSample c;
   c.test_id = kTest;
   c.site_id = kSite;
+  c.run_id = kRun;
   c.step = step;
   c.time_s = static_cast<double>(step) * kPeriod;
   c.channels = static_cast<std::uint8_t>(x.size());
@@ -139,6 +142,20 @@ TEST(ServoNodeController, ConfigErrorsNameTheField) {
   EXPECT_EQ(config_error(c).rfind("limits[0].max_increment_m:", 0), 0u);
   c = config();
   c.command_timeout_periods = 0;
+  EXPECT_EQ(config_error(c).rfind("command_timeout_periods:", 0), 0u);
+  // The watchdog's timeout is bounded: a rate of 1e-300 Hz would stretch it to never.
+  c = config();
+  c.command_timeout_periods = 10;
+  c.control_period_s = 1.0;
+  EXPECT_EQ(config_error(c), "");
+  c.control_period_s = 1e300;
+  EXPECT_EQ(config_error(c).rfind("command_timeout_periods: times the control period (1/control_rate_hz) is the "
+                                  "watchdog's timeout, at most 10 s, here 1e+301 s",
+                                  0),
+            0u)
+      << config_error(c);
+  c.control_period_s = 1.0;
+  c.command_timeout_periods = 11;
   EXPECT_EQ(config_error(c).rfind("command_timeout_periods:", 0), 0u);
   c = config(2);
   c.on_command_loss = LossAction::kRampToSafe;
@@ -554,7 +571,9 @@ TEST(ServoNodeController, ANodeThatMissedTheStartOfATestNeverFollowsIt) {
   node.start(x0);
   EXPECT_EQ(node.accept(command(4, {0.001})), CommandVerdict::kAccepted);
   EXPECT_EQ(idle(node).step, 4);
-  EXPECT_EQ(node.accept(command(1186, {0.001})), CommandVerdict::kAccepted);  // later steps: only newer
+  // Later steps: newer, and no further ahead than a coordinator at this rate can have gone
+  // (one step a tick since, plus a second's worth: ServoNodeController's max_step_lead_).
+  EXPECT_EQ(node.accept(command(1000, {0.001})), CommandVerdict::kAccepted);
 }
 
 TEST(ServoNodeController, TheNewestPendingCommandWins) {
@@ -619,6 +638,244 @@ TEST(ServoNodeController, StartRefusesAnInitialPositionBeyondTheStroke) {
   EXPECT_THROW(node.start(two), std::invalid_argument);
   EXPECT_TRUE(actuator.started_at.empty());
 }
+
+// The interlocks act on what is measured: a piston that drifts beyond the stroke while its
+// command stays inside (a servovalve fault, a lost LVDT) trips the stroke limit.
+TEST(ServoNodeController, AMeasuredDisplacementBeyondTheStrokeTripsItsLimit) {
+  auto c = config();
+  c.limits[0].max_stroke_m = 0.05;
+  c.actions.stroke = LimitAction::kAbort;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  send(node, command(1, {0.01}));
+  EXPECT_FALSE(node.faulted());
+  actuator.measured_offset_m = 0.045;  // measured 0.055 for a command of 0.01
+  send(node, command(2, {0.01}));      // the exchange that measures it
+  const FeedbackSample out = send(node, command(3, {0.01}));
+  EXPECT_TRUE(node.faulted());
+  EXPECT_NE(out.status & transport::kNodeFault, 0u);
+  EXPECT_NE(out.limit_flags & transport::kLimitStroke, 0u);
+  ASSERT_EQ(node.events().size(), 1u);
+  EXPECT_EQ(node.events()[0].kind, LimitKind::kStroke);
+  EXPECT_DOUBLE_EQ(node.events()[0].observed, 0.055);  // the measurement, not the command
+}
+
+// A limit whose action is ramp_to_safe moves every channel to its safe position at the safe
+// ramp velocity, exactly v T per period, and the node then follows no command.
+TEST(ServoNodeController, RampToSafeOnALimitGoesToTheSafePositionAtTheSafeVelocity) {
+  auto c = config();
+  c.limits[0].max_stroke_m = 0.05;
+  c.actions.stroke = LimitAction::kRampToSafe;
+  c.safe_ramp_velocity_m_per_s = 0.0625;  // 2^-14 m per period
+  c.safe_position_m = {0.0};
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  const double start_m = 0.0078125, step_m = 0.0625 * kPeriod;  // 2^-7 m: 128 periods from safe
+  send(node, command(1, {start_m}));
+  const FeedbackSample tripped = send(node, command(2, {0.06}));
+  EXPECT_NE(tripped.limit_flags & transport::kLimitStroke, 0u);
+  EXPECT_EQ(actuator.last(), start_m);  // the trip stops the command where it is
+  for (int k = 1; k <= 128; ++k) {
+    idle(node);
+    ASSERT_EQ(actuator.last(), start_m - k * step_m) << k;
+  }
+  for (int i = 0; i < 10; ++i) idle(node);
+  EXPECT_EQ(actuator.last(), 0.0);
+  EXPECT_EQ(node.accept(command(3, {0.01})), CommandVerdict::kNotFollowing);
+  EXPECT_FALSE(node.faulted());
+}
+
+// A hold stops a moving command at the stop deceleration instead of freezing it: a stop from
+// v takes v / (a T) periods, and the command comes to rest v^2 / (2 a) further on.
+TEST(ServoNodeController, AHoldBrakesAtTheStopDeceleration) {
+  auto c = config();
+  c.limits[0].max_velocity_m_per_s = 0.1;
+  c.actions.velocity = LimitAction::kHold;
+  const double a = 2.0, v = 0.05;
+  c.limits[0].stop_deceleration_m_per_s2 = a;
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  std::int64_t step = 1;
+  double x = 0.0;
+  for (; step <= 100; ++step) send(node, command(step, {x += v * kPeriod}));  // a steady 0.05 m/s
+  const double moving_at_m = actuator.last();
+  std::vector<double> applied{actuator.last()};
+  for (int k = 0; k < 100; ++k) {
+    send(node, command(step++, {x += 0.2 * kPeriod}));  // now twice the velocity limit
+    applied.push_back(actuator.last());
+  }
+  EXPECT_GT(node.counters().activations(LimitKind::kVelocity), 0u);
+  double v_before = v, max_dv = 0.0;
+  int moving = 0;
+  for (std::size_t i = 1; i < applied.size(); ++i) {
+    const double v_now = (applied[i] - applied[i - 1]) / kPeriod;
+    max_dv = std::max(max_dv, std::abs(v_now - v_before));
+    moving += v_now > 0.0 ? 1 : 0;
+    v_before = v_now;
+  }
+  EXPECT_LE(max_dv, a * kPeriod * (1 + 1e-9));             // no period changes the velocity by more than a T
+  EXPECT_NEAR(moving, v / (a * kPeriod), 1.0);             // 25.6 periods to stop
+  EXPECT_EQ(applied.back(), applied[applied.size() - 2]);  // at rest
+  EXPECT_NEAR(applied.back() - moving_at_m, v * v / (2 * a), v * kPeriod);  // 0.625 mm on
+}
+
+namespace run_identity {
+
+constexpr std::uint64_t kOtherRun = 0xb0b, kWriter = 7, kOtherWriter = 8;
+
+// A command of run `run` from writer `writer` (the node's endpoint fills the writer in).
+CommandSample of(std::uint64_t run, std::uint64_t writer, std::int64_t step, double x_m) {
+  CommandSample c = command(step, {x_m});
+  c.run_id = run;
+  c.writer = writer;
+  return c;
+}
+
+CommandSample end_of(std::uint64_t run, std::uint64_t writer, std::int64_t step) {
+  CommandSample c = of(run, writer, step, 0.0);
+  c.end_of_run = true;
+  return c;
+}
+
+struct NodeServingRun : ::testing::Test {
+  NodeServingRun() : rig(config()) {}
+  Rig rig;
+  ServoNodeController& node = rig.node;
+  IdealActuator& actuator = rig.actuator;
+};
+
+// Two coordinators of one test id: the node serves the run it saw first, refuses the other's
+// commands (never applied), and says in every feedback sample which run it serves, so that the
+// other coordinator never takes these measurements for its own.
+TEST_F(NodeServingRun, ServesTheFirstRunItSeesAndRefusesAnother) {
+  EXPECT_EQ(node.serving_run(), 0u);
+  EXPECT_EQ(idle(node).run_id, 0u);  // serving no run: no coordinator may use this sample
+  FeedbackSample out = send(node, of(kRun, kWriter, 0, 0.001));
+  EXPECT_EQ(node.serving_run(), kRun);
+  EXPECT_EQ(out.run_id, kRun);
+  for (std::int64_t step = 0; step < 5; ++step) {
+    // The other run's command, of the same test and site, even with a newer step.
+    EXPECT_EQ(node.accept(of(kOtherRun, 9, step + 1, 0.02)), CommandVerdict::kOtherRun);
+    out = send(node, of(kRun, kWriter, step + 1, 0.001 * static_cast<double>(step + 2)));
+    EXPECT_EQ(out.run_id, kRun);
+    EXPECT_EQ(out.step, step + 1);
+  }
+  for (const auto& sent : actuator.commands) EXPECT_LT(sent[0], 0.01);
+  EXPECT_EQ(node.counters().dropped(CommandVerdict::kOtherRun), 5u);
+  EXPECT_EQ(node.counters().runs, 1u);
+  // The log names the run taken and the one refused, once however many of its commands came.
+  const auto events = node.run_events();
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].kind, RunEvent::Kind::kBound);
+  EXPECT_EQ(events[0].run_id, kRun);
+  EXPECT_EQ(events[0].writer, kWriter);
+  EXPECT_EQ(events[1].kind, RunEvent::Kind::kRefused);
+  EXPECT_EQ(events[1].run_id, kOtherRun);
+  EXPECT_EQ(events[1].serving_run_id, kRun);
+  EXPECT_EQ(events[1].verdict, CommandVerdict::kOtherRun);
+  EXPECT_STREQ(command_verdict_name(CommandVerdict::kOtherRun), "another run");
+}
+
+// Security off, anyone can write a command with the run's id (it is in every heartbeat). The
+// node follows the writer that began the run: a forged command from another writer is
+// refused, whatever its step, and so is a forged end of run.
+TEST_F(NodeServingRun, FollowsTheWriterThatBeganTheRun) {
+  send(node, of(kRun, kWriter, 0, 0.001));
+  EXPECT_EQ(node.accept(of(kRun, kOtherWriter, 1, 0.02)), CommandVerdict::kUnknownWriter);
+  EXPECT_EQ(node.accept(of(kRun, kOtherWriter, 9'000'000'000'000'000'000, 0.02)), CommandVerdict::kUnknownWriter);
+  EXPECT_EQ(node.accept(end_of(kRun, kOtherWriter, 2)), CommandVerdict::kEndOfRun);
+  EXPECT_EQ(node.serving_run(), kRun);  // the forged end changed nothing
+  const FeedbackSample out = send(node, of(kRun, kWriter, 1, 0.002));
+  EXPECT_EQ(out.step, 1);
+  EXPECT_EQ(actuator.last(), 0.002);
+  EXPECT_EQ(node.counters().dropped(CommandVerdict::kUnknownWriter), 2u);
+  EXPECT_EQ(node.counters().dropped_total(), 2u);  // an end of run is not a drop
+  EXPECT_EQ(node.run_events().size(), 2u);         // took the run; refused the writer (once)
+}
+
+// A command with a step no coordinator at this rate can have reached (9 x 10^18 took a node
+// over: every real command after it was "not newer") is refused, and the run goes on. The
+// bound: one step per tick since the last accepted command, plus max_step_lead (a second's
+// worth, 1024 periods here, more than command_timeout_periods).
+TEST_F(NodeServingRun, AnImpossibleStepIsRefusedAndTheRunGoesOn) {
+  send(node, of(kRun, kWriter, 0, 0.001));
+  send(node, of(kRun, kWriter, 1, 0.001));  // one tick since
+  EXPECT_EQ(node.accept(of(kRun, kWriter, 9'000'000'000'000'000'000, 0.02)), CommandVerdict::kImpossibleStep);
+  EXPECT_EQ(node.accept(of(kRun, kWriter, 1 + 1 + 1 + 1024 + 1, 0.001)), CommandVerdict::kImpossibleStep);
+  EXPECT_EQ(node.accept(of(kRun, kWriter, 1 + 1 + 1 + 1024, 0.001)), CommandVerdict::kAccepted);
+  idle(node);
+  // Ticks without a command (lost commands) widen the bound one step each.
+  for (int i = 0; i < 99; ++i) idle(node);
+  EXPECT_EQ(node.accept(of(kRun, kWriter, 1027 + 100 + 1024 + 2, 0.001)), CommandVerdict::kImpossibleStep);
+  EXPECT_EQ(node.accept(of(kRun, kWriter, 1027 + 100 + 1024 + 1, 0.001)), CommandVerdict::kAccepted);
+  EXPECT_EQ(node.counters().dropped(CommandVerdict::kImpossibleStep), 3u);
+  EXPECT_EQ(node.serving_run(), kRun);
+  EXPECT_EQ(idle(node).step, 1027 + 100 + 1024 + 1);
+}
+
+// The run's end frees the node: it holds where the command was (as its watchdog would), its
+// feedback names no run, and it serves the next run from that run's step 0. The ended run
+// cannot come back, and an end of another run changes nothing.
+TEST_F(NodeServingRun, TheRunsEndFreesTheNodeForTheNext) {
+  for (std::int64_t step = 0; step < 20; ++step) send(node, of(kRun, kWriter, step, 1e-4 * static_cast<double>(step)));
+  EXPECT_EQ(node.accept(end_of(kOtherRun, kOtherWriter, 21)), CommandVerdict::kEndOfRun);
+  EXPECT_EQ(node.serving_run(), kRun);
+  EXPECT_EQ(node.accept(end_of(kRun, kWriter, 20)), CommandVerdict::kEndOfRun);
+  EXPECT_EQ(node.serving_run(), 0u);
+  EXPECT_TRUE(node.holding());
+  EXPECT_EQ(node.counters().holds, 1u);
+  FeedbackSample out = idle(node);
+  EXPECT_EQ(out.run_id, 0u);
+  EXPECT_EQ(out.step, -1);
+  EXPECT_EQ(out.status & transport::kNodeHolding, transport::kNodeHolding);
+  EXPECT_EQ(actuator.last(), 19e-4);
+  EXPECT_EQ(node.accept(end_of(kRun, kWriter, 20)), CommandVerdict::kEndOfRun);  // a repeat: nothing
+  EXPECT_EQ(node.accept(of(kRun, kWriter, 20, 0.002)), CommandVerdict::kRunEnded);
+  for (int i = 0; i < 2000; ++i) idle(node);  // waiting for a run is no loss: no new hold
+  EXPECT_EQ(node.counters().holds, 1u);
+
+  out = send(node, of(kOtherRun, kOtherWriter, 0, 0.0021));
+  EXPECT_EQ(node.serving_run(), kOtherRun);
+  EXPECT_EQ(out.run_id, kOtherRun);
+  EXPECT_EQ(out.step, 0);
+  EXPECT_FALSE(node.holding());
+  EXPECT_EQ(node.accept(of(kRun, kWriter, 21, 0.002)), CommandVerdict::kOtherRun);
+  EXPECT_EQ(node.counters().runs, 2u);
+  EXPECT_EQ(node.counters().dropped(CommandVerdict::kEndOfRun), 3u);
+  std::vector<RunEvent::Kind> kinds;
+  for (const auto& e : node.run_events()) kinds.push_back(e.kind);
+  EXPECT_EQ(kinds,
+            (std::vector<RunEvent::Kind>{RunEvent::Kind::kBound, RunEvent::Kind::kEnded, RunEvent::Kind::kRefused,
+                                         RunEvent::Kind::kBound, RunEvent::Kind::kRefused}));
+}
+
+// A coordinator that died sends no end: the loop frees the node after a silence
+// (release_run); the node holds and serves the next run.
+TEST_F(NodeServingRun, ReleasingASilentRunFreesTheNode) {
+  send(node, of(kRun, kWriter, 0, 0.001));
+  node.release_run();
+  EXPECT_EQ(node.serving_run(), 0u);
+  EXPECT_TRUE(node.holding());
+  ASSERT_EQ(node.run_events().size(), 2u);
+  EXPECT_EQ(node.run_events()[1].kind, RunEvent::Kind::kReleasedAfterSilence);
+  EXPECT_EQ(node.run_events()[1].run_id, kRun);
+  node.release_run();  // nothing to release
+  EXPECT_EQ(node.run_events().size(), 2u);
+  EXPECT_EQ(send(node, of(kOtherRun, kOtherWriter, 0, 0.001)).run_id, kOtherRun);
+}
+
+TEST_F(NodeServingRun, ACommandWithoutARunOrAtAnotherRateIsRefused) {
+  EXPECT_EQ(node.accept(of(0, kWriter, 0, 0.001)), CommandVerdict::kNoRunId);
+  CommandSample c = of(kRun, kWriter, 0, 0.001);
+  c.control_period_s = 1.0 / 512.0;
+  EXPECT_EQ(node.accept(c), CommandVerdict::kRateMismatch);
+  EXPECT_EQ(node.serving_run(), 0u);  // refused before the node took the run
+  c.control_period_s = kPeriod;
+  EXPECT_EQ(node.accept(c), CommandVerdict::kAccepted);
+  EXPECT_EQ(node.serving_run(), kRun);
+}
+
+}  // namespace run_identity
 
 }  // namespace
 }  // namespace rpsd::node

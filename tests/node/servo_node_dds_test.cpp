@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <string>
 #include <thread>
@@ -28,6 +29,7 @@ using transport::CommandSample;
 using transport::FeedbackSample;
 
 constexpr std::uint32_t kTest = 61, kSite = 2;
+constexpr std::uint64_t kRun = 0x61;
 
 transport::DdsDomainConfig loopback() {
   // Domains 190..229 for this binary: apart from the other DDS tests' 40..189.
@@ -67,10 +69,11 @@ class RawCoordinator {
     return status.current_count > 0;
   }
   void write(std::uint32_t test_id, std::uint32_t site_id, std::int64_t step, std::uint8_t channels, double x_m,
-             double time_s = 0.0) {
+             double time_s = 0.0, std::uint64_t run_id = kRun) {
     rpsd_dds_Command wire{};
     wire.test_id = test_id;
     wire.site_id = site_id;
+    wire.run_id = run_id;
     wire.step = step;
     wire.time_s = time_s;
     wire.channels = channels;
@@ -86,13 +89,17 @@ class RawCoordinator {
     dds_sample_info_t info[1];
     while (steps.size() < count && realtime::monotonic_now_ns() < until) {
       if (dds_take(ports_.reader(), samples, info, 1, 1) > 0) {
-        if (info[0].valid_data) steps.push_back(wire.step);
+        if (info[0].valid_data) {
+          steps.push_back(wire.step);
+          runs.push_back(wire.run_id);
+        }
       } else {
         dds_sleepfor(DDS_MSECS(1));
       }
     }
     return steps;
   }
+  std::vector<std::uint64_t> runs;  // the run each feedback sample taken named
 
  private:
   transport::DdsSitePorts ports_;
@@ -220,6 +227,86 @@ TEST_F(NodeOverDds, LockStepAnswersEveryCommandAndNothingAfterTheLoopEnds) {
   coordinator.write(kTest, kSite, 51, 1, 0.009);
   EXPECT_TRUE(coordinator.take_steps(1, 0.3).empty());
   EXPECT_EQ(actuator.sent.size(), 50u);
+}
+
+ServoNodeLoopOptions lock_step_options() {
+  ServoNodeLoopOptions options;
+  options.real_time = false;
+  options.realtime.lock_memory = false;
+  options.realtime.fifo_priority = 0;
+  options.realtime.keep_cpus_awake = false;
+  return options;
+}
+
+// A coordinator that dies sends no end of run: after release_after_silence_s without a command
+// of its run the node frees itself, and the next run (another coordinator, another writer)
+// gets answers. Until then the node refuses the next run's commands.
+TEST_F(NodeOverDds, ARunThatFellSilentFreesTheNodeForTheNext) {
+  ASSERT_TRUE(coordinator.wait_for_reader(10.0));
+  std::atomic<bool> stop{false};
+  ServoNodeLoopOptions options = lock_step_options();
+  options.release_after_silence_s = 1.0;
+  ServoNodeLoopReport report;
+  std::thread loop([&] { report = run_servo_node_loop(node, endpoint, options, stop); });
+  coordinator.take_steps(1000, 0.5);  // discovery of the feedback reader
+  for (std::int64_t step = 0; step < 3; ++step) {
+    coordinator.write(kTest, kSite, step, 1, 1e-4);
+    ASSERT_EQ(coordinator.take_steps(1, 5.0).size(), 1u);
+  }
+  EXPECT_EQ(coordinator.runs.back(), kRun);
+  transport::DdsParticipant next_side(loopback());
+  RawCoordinator next(next_side, kTest, kSite);
+  ASSERT_TRUE(next.wait_for_reader(10.0));
+  constexpr std::uint64_t kNextRun = 0x62;
+  next.take_steps(1000, 0.3);
+  next.write(kTest, kSite, 0, 1, 2e-4, 0.0, kNextRun);  // the node still serves kRun: refused
+  EXPECT_TRUE(next.take_steps(1, 0.3).empty());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // silence beyond 1 s
+  next.write(kTest, kSite, 1, 1, 2e-4, 0.0, kNextRun);
+  const auto got = next.take_steps(1, 5.0);
+  stop = true;
+  loop.join();
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0], 1);
+  EXPECT_EQ(next.runs.back(), kNextRun);
+  EXPECT_EQ(node.counters().runs, 2u);
+  EXPECT_EQ(node.counters().dropped(CommandVerdict::kOtherRun), 1u);
+  std::vector<RunEvent::Kind> kinds;
+  for (const auto& e : node.run_events()) kinds.push_back(e.kind);
+  EXPECT_EQ(kinds, (std::vector<RunEvent::Kind>{RunEvent::Kind::kBound, RunEvent::Kind::kRefused,
+                                                RunEvent::Kind::kReleasedAfterSilence, RunEvent::Kind::kBound}));
+}
+
+// A node at a very slow control rate (a 10 s period, its first tick 20 s away) stops within
+// a fraction of a second of being asked, and at the end of its duration: the loop wakes at
+// least every 50 ms whatever the period. The futures' 10 s are a bound against a hang.
+TEST(SlowNode, StopsWhenAskedAndAtTheEndOfItsDurationWhateverItsRate) {
+  transport::DdsParticipant participant(loopback());
+  transport::DdsNodeEndpoint endpoint(participant, {kTest, kSite, {}});
+  IdealActuator actuator;
+  ServoNodeConfig c = NodeOverDds::config();
+  c.control_period_s = 10.0;
+  c.command_timeout_periods = 1;
+  ServoNodeController node(c, actuator);
+  const double x0[] = {0.0};
+  node.start(x0);
+  for (const bool real_time : {true, false}) {
+    ServoNodeLoopOptions options = lock_step_options();
+    options.real_time = real_time;
+    std::atomic<bool> stop{false};
+    auto stopped = std::async(std::launch::async, [&] { return run_servo_node_loop(node, endpoint, options, stop); });
+    EXPECT_EQ(stopped.wait_for(std::chrono::milliseconds(300)), std::future_status::timeout);  // it serves
+    stop = true;
+    EXPECT_EQ(stopped.wait_for(std::chrono::seconds(10)), std::future_status::ready) << "real time " << real_time;
+    stopped.get();
+
+    options.duration_s = 0.3;
+    std::atomic<bool> never{false};
+    auto ended = std::async(std::launch::async, [&] { return run_servo_node_loop(node, endpoint, options, never); });
+    EXPECT_EQ(ended.wait_for(std::chrono::seconds(10)), std::future_status::ready) << "real time " << real_time;
+    ended.get();
+  }
+  EXPECT_EQ(actuator.sent.size(), 0u);  // no tick was due
 }
 
 }  // namespace

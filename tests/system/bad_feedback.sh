@@ -65,7 +65,7 @@ for mode in lock_step real_time; do
       || fail "real time: site 2 dropped $(json "$out/summary.json" "$m")"
   fi
   [ "$(json "$out/summary.json" "j['timing']['sites'][0]['messages']")" = \
-    "$(json "$out/summary.json" "{'dropped_older_step': 0, 'dropped_wrong_channels': 0, 'dropped_wrong_test_or_site': 0, 'late': 0, 'received': $stop, 'sent': $stop}")" ] \
+    "$(json "$out/summary.json" "{'dropped_impossible_step': 0, 'dropped_no_run': 0, 'dropped_older_step': 0, 'dropped_other_run': 0, 'dropped_unknown_writer': 0, 'dropped_wrong_channels': 0, 'dropped_wrong_test_or_site': 0, 'late': 0, 'received': $stop, 'sent': $stop}")" ] \
     || [ $mode = real_time ] || fail "$mode: site 1 $(json "$out/summary.json" "j['timing']['sites'][0]['messages']")"
   faults=$(json "$WORK/fault-$mode.json" "j['sites']['2']['fault_sent_at_step']")
   if [ $mode = lock_step ]; then

@@ -122,6 +122,7 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
   rpsd::transport::NodeHeartbeat heartbeat;
   heartbeat.test_id = o.test_id;
   heartbeat.site_id = site;
+  heartbeat.control_period_s = 1.0 / 1024.0;  // the bridge scenario's
   std::int64_t next_heartbeat_ns = 0;
   while (!g_stop.load()) {
     if (const std::int64_t now = rpsd::realtime::monotonic_now_ns(); now >= next_heartbeat_ns) {
@@ -130,9 +131,12 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
     }
     if (!node.wait_for_command_until(rpsd::realtime::monotonic_now_ns() + 50'000'000)) continue;
     while (node.take_command(c)) {
+      if (c.end_of_run) continue;
+      heartbeat.serving_run_id = c.run_id;  // the run it answers, as a node serves one
       FeedbackSample f;
       f.test_id = c.test_id;
       f.site_id = site;
+      f.run_id = c.run_id;
       f.step = c.step;
       f.time_s = c.time_s;
       f.channels = c.channels;

@@ -63,7 +63,7 @@ coordinator() {
   local vars=()
   while [ $# -gt 0 ] && [ "$1" != -- ]; do vars+=("$1"); shift; done
   [ $# -gt 0 ] && shift
-  env "${vars[@]}" "$RPSD" run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/$tag" --set transport.kind=dds \
+  env "${vars[@]}" "$RPSD" run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$WORK/results-$tag" --set transport.kind=dds \
     --set transport.domain_id=$DOMAIN --set transport.dds_config="$config" --set "ground_motion.trim={end_s: 1}" "$@" \
     > "$WORK/$tag.log" 2>&1
 }
@@ -73,7 +73,7 @@ expect_refused() {
   code=$(cat "$WORK/$tag.code")
   [ "$code" = 1 ] || fail "$tag: exit code $code, expected 1: $(cat "$WORK/$tag.log")"
   grep -qF "$message" "$WORK/$tag.log" || fail "$tag: no \"$message\" in: $(cat "$WORK/$tag.log")"
-  [ ! -f "$WORK/$tag/time_history.csv" ] || fail "$tag: results written"
+  [ ! -f "$WORK/results-$tag/time_history.csv" ] || fail "$tag: results written"
 }
 
 # sniff TAG: capture this domain's RTPS packets on lo (raw socket: root) in the background
@@ -215,8 +215,8 @@ sniffed wire-secure
 python3 - "$WORK" <<'PY' || fail "the secured run is incomplete"
 import json, sys
 w = sys.argv[1]
-run = json.load(open(f"{w}/secure/summary.json"))
-rows = sum(1 for _ in open(f"{w}/secure/time_history.csv")) - 1
+run = json.load(open(f"{w}/results-secure/summary.json"))
+rows = sum(1 for _ in open(f"{w}/results-secure/time_history.csv")) - 1
 steps = run["steps"]
 if steps != rows or steps < 1000:
     sys.exit(f"{steps} steps, {rows} rows recorded")

@@ -44,6 +44,7 @@ class DdsReceivePath : public ::testing::Test {
         FeedbackSample f;
         f.test_id = kTest;
         f.site_id = kSite;
+        f.run_id = c.run_id;
         f.step = c.step;
         f.channels = 2;
         f.displacement_m[0] = c.displacement_m[0];

@@ -32,6 +32,7 @@ void echo(DdsNodeEndpoint& node, std::uint32_t site, const std::atomic<bool>& st
       FeedbackSample f;
       f.test_id = c.test_id;
       f.site_id = site;
+      f.run_id = c.run_id;
       f.step = c.step;
       f.time_s = c.time_s;
       f.channels = c.channels;
@@ -162,6 +163,7 @@ TEST(DdsLink, FeedbackWithAForeignSiteIdOrChannelCountIsDroppedAndCounted) {
   link.send(c);
   FeedbackSample bad;
   bad.test_id = 31;
+  bad.run_id = link.run_id();
   bad.site_id = 9;  // in the partition of site 1, but claiming another site
   bad.channels = 1;
   node.publish(bad);
@@ -188,6 +190,7 @@ TEST(DdsLink, FeedbackOfAnotherTestOrAnOlderStepIsDroppedAndCounted) {
   FeedbackSample f;
   f.test_id = 51;
   f.site_id = 1;
+  f.run_id = link.run_id();
   f.channels = 1;
   f.step = 5;
   f.displacement_m[0] = 0.005;
@@ -230,11 +233,14 @@ FeedbackSample newest_after_an_alarm(std::uint32_t test, const FeedbackSample& a
   FeedbackSample f;
   f.test_id = test;
   f.site_id = 1;
+  f.run_id = link.run_id();
   f.channels = 1;
   for (std::int64_t step = 1; step <= 3; ++step) {
     f.step = step;
     f.displacement_m[0] = 0.001 * step;
-    node.publish(step == 1 ? alarm : f);
+    FeedbackSample answer = step == 1 ? alarm : f;
+    answer.run_id = link.run_id();
+    node.publish(answer);
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(100));  // all three in the reader
   FeedbackSample got;
@@ -301,6 +307,211 @@ TEST(DdsLink, ARealTimeDeadlineEndsTheWaitAndHandsBackTheNewestSample) {
   EXPECT_DOUBLE_EQ(f.displacement_m[0], 0.5);
   stop = true;
   responder.join();
+}
+
+// Identity. A node serves one run at a time and says which (heartbeat, feedback); the link
+// refuses a run its site's node will not serve, before the first command when the heartbeat
+// says so, and uses only its own run's feedback from the node that answers it.
+
+TEST(DdsLink, EveryCommandCarriesTheRunAndTheControlPeriod) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(81, 1, 1));
+  DdsNodeEndpoint node(node_side, node_config(81, 1));
+  ASSERT_TRUE(connect(link, node, 81, 1));
+  EXPECT_NE(link.run_id(), 0u);
+  DdsLink other(coordinator, link_config(81, 2, 1));
+  EXPECT_NE(other.run_id(), link.run_id());  // drawn at random for each
+  CommandSample c;
+  c.channels = 1;
+  c.step = 3;
+  link.send(c);
+  ASSERT_TRUE(node.wait_for_command_until(realtime::monotonic_now_ns() + 5'000'000'000));
+  CommandSample got;
+  ASSERT_TRUE(node.take_command(got));
+  EXPECT_EQ(got.run_id, link.run_id());
+  EXPECT_EQ(got.control_period_s, 1.0 / 1024.0);
+  EXPECT_FALSE(got.end_of_run);
+  EXPECT_NE(got.writer, 0u);  // the node's endpoint names the writer
+  const std::uint64_t writer = got.writer;
+  link.end_run();
+  ASSERT_TRUE(node.wait_for_command_until(realtime::monotonic_now_ns() + 5'000'000'000));
+  ASSERT_TRUE(node.take_command(got));
+  EXPECT_TRUE(got.end_of_run);
+  EXPECT_EQ(got.run_id, link.run_id());
+  EXPECT_EQ(got.step, 4);
+  EXPECT_EQ(got.writer, writer);
+}
+
+TEST(DdsLink, ANodeServingAnotherRunRefusesTheRunBeforeItsFirstCommand) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(82, 1, 1));
+  DdsNodeEndpoint node(node_side, node_config(82, 1));
+  EXPECT_FALSE(connect(link, node, 82, 1, 10.0, 0xabc));
+  EXPECT_EQ(link.refusal().kind, NodeRefusal::Kind::kServingOtherRun);
+  EXPECT_EQ(link.refusal().serving_run_id, 0xabcu);
+  EXPECT_EQ(link.refusal_text(), "site 1 is serving another run (run 0000000000000abc; this run is " +
+                                     run_id_text(link.run_id()) + "): a node serves one run at a time");
+  CommandSample c;
+  c.channels = 1;
+  link.send(c);
+  FeedbackSample f;
+  EXPECT_EQ(link.receive(f), LinkStatus::kRefused);
+}
+
+TEST(DdsLink, ANodeServingThisRunIsReady) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(83, 1, 1));
+  DdsNodeEndpoint node(node_side, node_config(83, 1));
+  EXPECT_TRUE(connect(link, node, 83, 1, 10.0, link.run_id()));
+  EXPECT_EQ(link.refusal().kind, NodeRefusal::Kind::kNone);
+  EXPECT_EQ(link.refusal_text(), "");
+}
+
+TEST(DdsLink, ANodeAtAnotherControlRateRefusesTheRun) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(84, 2, 1));
+  DdsNodeEndpoint node(node_side, node_config(84, 2));
+  EXPECT_FALSE(connect(link, node, 84, 2, 10.0, 0, 1.0 / 512.0));
+  EXPECT_EQ(link.refusal().kind, NodeRefusal::Kind::kRateMismatch);
+  EXPECT_EQ(link.refusal_text(),
+            "site 2 runs at 512 Hz and this test at 1024 Hz (control periods 0.00195312 s and 0.000976562 s): node and "
+            "coordinator must run at one rate");
+  DdsLink slow(coordinator, link_config(84, 3, 1));
+  DdsNodeEndpoint node_at_1_hz(node_side, node_config(84, 3));
+  EXPECT_FALSE(connect(slow, node_at_1_hz, 84, 3, 10.0, 0, 1.0));
+  EXPECT_EQ(slow.refusal_text().rfind("site 3 runs at 1 Hz and this test at 1024 Hz", 0), 0u) << slow.refusal_text();
+}
+
+// Two coordinators passed the start check together; the node took the other's first command.
+// Its feedback names the other run: this run stops at once, never using the measurement,
+// also when the other run is steps ahead (its steps are not this run's "impossible" ones).
+TEST(DdsLink, FeedbackOfAnotherRunRefusesTheRunAtOnce) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(85, 1, 1, 30.0));
+  DdsNodeEndpoint node(node_side, node_config(85, 1));
+  ASSERT_TRUE(connect(link, node, 85, 1));
+  CommandSample c;
+  c.channels = 1;
+  link.send(c);
+  FeedbackSample theirs;
+  theirs.test_id = 85;
+  theirs.site_id = 1;
+  theirs.run_id = 0xd0d0;
+  theirs.channels = 1;
+  theirs.step = 500;
+  theirs.displacement_m[0] = 1.0;
+  node.publish(theirs);
+  FeedbackSample f;
+  f.displacement_m[0] = 0.25;
+  EXPECT_EQ(link.receive(f), LinkStatus::kRefused);  // not a 30 s timeout
+  EXPECT_EQ(f.displacement_m[0], 0.25);              // their measurement unused
+  EXPECT_EQ(link.counters().other_run, 1);
+  EXPECT_EQ(link.counters().impossible_step, 0);
+  EXPECT_EQ(link.counters().received, 0);
+  EXPECT_EQ(link.refusal().serving_run_id, 0xd0d0u);
+}
+
+// The node serving no run (before it took this run's first command) is not this run's answer.
+TEST(DdsLink, FeedbackOfANodeServingNoRunIsNotUsed) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(86, 1, 1, 0.3));
+  DdsNodeEndpoint node(node_side, node_config(86, 1));
+  ASSERT_TRUE(connect(link, node, 86, 1));
+  CommandSample c;
+  c.channels = 1;
+  link.send(c);
+  FeedbackSample none;
+  none.test_id = 86;
+  none.site_id = 1;
+  none.channels = 1;
+  none.step = 0;
+  none.displacement_m[0] = 1.0;
+  node.publish(none);
+  FeedbackSample f;
+  EXPECT_EQ(link.receive(f), LinkStatus::kTimeout);
+  EXPECT_EQ(link.counters().no_run, 1);
+  EXPECT_EQ(link.counters().received, 0);
+  EXPECT_EQ(link.refusal().kind, NodeRefusal::Kind::kNone);
+}
+
+// Once its node has answered, the link uses that writer's feedback only: another writer in the
+// site's partition (a second node, a forger) is counted, never used, and cannot end the run by
+// claiming another.
+TEST(DdsLink, OnceItsNodeAnsweredTheLinkUsesNoOtherWriter) {
+  DdsParticipant coordinator(loopback()), node_side(loopback()), intruder_side(loopback());
+  DdsLink link(coordinator, link_config(87, 1, 1, 5.0));
+  DdsNodeEndpoint node(node_side, node_config(87, 1));
+  DdsNodeEndpoint intruder(intruder_side, node_config(87, 1));
+  ASSERT_TRUE(connect(link, node, 87, 1));
+  const std::int64_t until = realtime::monotonic_now_ns() + 10'000'000'000;
+  while (!intruder.coordinator_matched() && realtime::monotonic_now_ns() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(intruder.coordinator_matched());
+  FeedbackSample f;
+  f.test_id = 87;
+  f.site_id = 1;
+  f.run_id = link.run_id();
+  f.channels = 1;
+  CommandSample c;
+  c.channels = 1;
+  link.send(c);
+  f.displacement_m[0] = 0.001;
+  node.publish(f);
+  FeedbackSample got;
+  ASSERT_EQ(link.receive(got), LinkStatus::kOk);
+  c.step = 1;
+  link.send(c);
+  FeedbackSample forged = f;
+  forged.step = 1;
+  forged.displacement_m[0] = 1.0;
+  intruder.publish(forged);
+  forged.run_id = 0xbad;
+  intruder.publish(forged);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // both in the link's reader first
+  f.step = 1;
+  f.displacement_m[0] = 0.002;
+  node.publish(f);
+  ASSERT_EQ(link.receive(got), LinkStatus::kOk);
+  EXPECT_EQ(got.displacement_m[0], 0.002);
+  EXPECT_EQ(link.counters().unknown_writer, 2);
+  EXPECT_EQ(link.counters().other_run, 0);
+  EXPECT_EQ(link.refusal().kind, NodeRefusal::Kind::kNone);
+}
+
+// No node can answer a step not sent yet: such a sample (step 9 x 10^18) is dropped and
+// counted, and the true answers after it are used, not taken for older ones.
+TEST(DdsLink, FeedbackOfAStepNotSentYetIsDropped) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(88, 1, 1, 5.0));
+  DdsNodeEndpoint node(node_side, node_config(88, 1));
+  ASSERT_TRUE(connect(link, node, 88, 1));
+  FeedbackSample f;
+  f.test_id = 88;
+  f.site_id = 1;
+  f.run_id = link.run_id();
+  f.channels = 1;
+  CommandSample c;
+  c.channels = 1;
+  for (std::int64_t step = 0; step < 3; ++step) {
+    c.step = step;
+    link.send(c);
+    if (step == 1) {
+      FeedbackSample ahead = f;
+      ahead.step = 9'000'000'000'000'000'000;
+      ahead.displacement_m[0] = 1.0;
+      node.publish(ahead);
+    }
+    f.step = step;
+    f.displacement_m[0] = 0.001 * static_cast<double>(step);
+    node.publish(f);
+    FeedbackSample got;
+    ASSERT_EQ(link.receive(got), LinkStatus::kOk) << step;
+    EXPECT_EQ(got.step, step);
+    EXPECT_EQ(got.displacement_m[0], 0.001 * static_cast<double>(step));
+  }
+  EXPECT_EQ(link.counters().impossible_step, 1);
+  EXPECT_EQ(link.counters().older_step, 0);
 }
 
 }  // namespace

@@ -37,15 +37,19 @@ inline DdsNodeEndpointConfig node_config(std::uint32_t test, std::uint32_t site)
   return c;
 }
 
-// The node's side of the start handshake: heartbeats, as a servo node sends them, while the
-// link waits for the node; true once the link has found it.
+// The node's side of the start handshake: heartbeats, as a servo node sends them (serving
+// run `serving_run_id`, 0: none, at `control_period_s`), while the link waits for the node;
+// true once the link has found it and it serves no other run at the link's rate.
 inline bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, std::uint32_t site,
-                    double timeout_s = 10.0) {
+                    double timeout_s = 10.0, std::uint64_t serving_run_id = 0,
+                    double control_period_s = DdsQosSettings{}.control_period_s) {
   std::atomic<bool> done{false};
   std::thread announcer([&] {
     NodeHeartbeat h;
     h.test_id = test;
     h.site_id = site;
+    h.control_period_s = control_period_s;
+    h.serving_run_id = serving_run_id;
     while (!done) {
       node.publish_heartbeat(h);
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -18,15 +18,18 @@ template <class In, class Out>
 void copy_header(const In& in, Out& out) {
   out.test_id = in.test_id;
   out.site_id = in.site_id;
+  out.run_id = in.run_id;
   out.step = in.step;
   out.time_s = in.time_s;
   out.channels = in.channels;
 }
 
-// CommandSample <-> rpsd_dds_Command.
+// CommandSample <-> rpsd_dds_Command (writer is local and not on the wire).
 template <class In, class Out>
 void copy_command(const In& in, Out& out) {
   copy_header(in, out);
+  out.control_period_s = in.control_period_s;
+  out.end_of_run = in.end_of_run;
   std::ranges::copy(in.displacement_m, std::begin(out.displacement_m));
 }
 
@@ -51,6 +54,7 @@ inline void copy_heartbeat(const NodeHeartbeat& in, rpsd_dds_NodeHeartbeat& out)
   out.dropped_messages = in.dropped_messages;
   out.control_period_s = in.control_period_s;
   out.coordinator_matched = in.coordinator_matched;
+  out.serving_run_id = in.serving_run_id;
 }
 
 }  // namespace rpsd::transport

@@ -23,6 +23,7 @@ bool DdsNodeEndpoint::take_command(CommandSample& command) {
   while (dds_take(ports_.reader(), samples, info, 1, 1) > 0) {
     if (!info[0].valid_data) continue;
     copy_command(wire, command);
+    command.writer = info[0].publication_handle;
     return true;
   }
   return false;

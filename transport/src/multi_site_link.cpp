@@ -8,7 +8,7 @@
 namespace rpsd::transport {
 
 namespace {
-// kOk < kTimeout < kStaleStep < kPeerLost: the worst site decides.
+// kOk < kTimeout < kStaleStep < kPeerLost < kRefused: the worst site decides.
 LinkStatus worse(LinkStatus a, LinkStatus b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
 constexpr std::int64_t kNothingYet = std::numeric_limits<std::int64_t>::min();
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "rpsd/coordinator/test_config.h"
@@ -23,12 +24,14 @@ struct SiteSummary {
 
 class ActuatorLinks {
  public:
-  // Builds the sites' links and puts every actuator at rest at hold_m (one value per
-  // channel, in channel order). With perfect_actuator, in-process plants follow their
-  // command exactly whatever the transport. DDS: waits for every site's node to be
-  // discovered and throws std::runtime_error naming the missing sites. Not real-time safe.
+  // Builds the sites' links for run `run_id` and puts every actuator at rest at hold_m (one
+  // value per channel, in channel order). With perfect_actuator, in-process plants follow
+  // their command exactly whatever the transport. DDS: waits for every site's node to be
+  // discovered and throws std::runtime_error naming the missing sites, unless a node refuses
+  // the run (refused()). Not real-time safe.
   ActuatorLinks(const TestConfig& config, double control_period_s, bool perfect_actuator,
-                std::span<const double> hold_m);
+                std::span<const double> hold_m, std::uint64_t run_id);
+  // Ends the run on every site (end_run) if it has not been. Not real-time safe.
   ~ActuatorLinks();
 
   transport::Link& link() { return *multi_site_; }
@@ -45,6 +48,14 @@ class ActuatorLinks {
   }
   // Over DDS: messages each site's link refused or found late.
   std::vector<transport::DdsLinkCounters> dds_counters() const;
+  // A site's node refuses this run (it serves another, or runs at another rate), at the start
+  // or since. Real-time safe.
+  bool refused() const;
+  // Every site's refusal, as sentences ("site 1 is serving another run (...)"). Not real-time safe.
+  std::string refusal_text() const;
+  // Tells every site's node that the run is over, once, so that it may serve the next run at
+  // once. Not real-time safe.
+  void end_run();
 
  private:
   std::vector<SiteSummary> sites_;
@@ -58,6 +69,7 @@ class ActuatorLinks {
   std::unique_ptr<transport::MultiSiteLink> multi_site_;
   std::vector<double> initial_force_n_;
   std::vector<const servo::Plant*> plant_of_channel_;
+  bool ended_ = false;
 };
 
 }  // namespace rpsd::coordinator

@@ -1,6 +1,7 @@
 // Hands step records from the real-time loop to a writer thread, which appends them to a
 // CSV file (flushed every few hundred rows, so a crash loses at most the unflushed tail)
-// and, if asked, keeps them in memory for metrics after the run.
+// and, if asked, keeps them in memory for metrics after the run. Every write is checked: a
+// failed one (a full disk) is reported to the loop through write_failed(), never ignored.
 #pragma once
 
 #include <atomic>
@@ -41,14 +42,20 @@ class Recorder {
   // RecorderOptions::keep_records). Not real-time safe.
   std::vector<StepRecord> finish();
   std::uint64_t dropped() const { return dropped_.load(); }
+  // A write to the CSV failed: the rows from then on are not on disk. Real-time safe.
+  bool write_failed() const { return write_failed_.load(std::memory_order_acquire); }
+  // What failed ("FILE: No space left on device"); empty while nothing has.
+  std::string write_error() const { return write_failed() ? write_error_ : std::string(); }
 
  private:
   void write_header();
   void write_row(const StepRecord& r);
   void take(const StepRecord& r);  // writer thread: one record off the queue
   void run();
+  void check_stream();  // writer thread: a failed write becomes write_failed()
 
   realtime::SpscQueue<StepRecord> queue_;
+  std::filesystem::path csv_path_;
   std::ofstream csv_;
   int channels_, dofs_;
   bool keep_records_;
@@ -56,6 +63,8 @@ class Recorder {
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};
   std::atomic<std::uint64_t> dropped_{0};
+  std::string write_error_;  // set by the writer thread before write_failed_
+  std::atomic<bool> write_failed_{false};
   std::thread writer_;
   bool finished_ = false;
 };

@@ -40,6 +40,8 @@ struct LoopParts {
   std::span<const double> ground_acceleration_m_per_s2;         // at t = n dt (borrowed); empty: free vibration
   const substructure::GroundMotionLoad* ground_load = nullptr;  // F = -M iota a_g; needed with a record
   std::uint32_t test_id = 1;
+  // This run's identity, on every command (0: the loop draws one): a node serves one run at a time.
+  std::uint64_t run_id = 0;
   // As fast as possible, a full recorder queue makes the loop wait (nothing is lost); in
   // real time it drops and counts the record instead, so the loop never blocks.
   bool wait_for_recorder = true;
@@ -52,8 +54,8 @@ struct LoopParts {
   // increment is never sent; a measured force or tracking error beyond its bound stops the
   // test at once.
   std::vector<CoordinatorLimits> limits;
-  // A run-away also stops the test: any limit of a node acting, a piston on its end stop, a
-  // servovalve fully open for longer than this many exchanges in a row.
+  // A run-away also stops the test: a node's stroke or force limit acting, a piston on its
+  // end stop, a servovalve fully open for longer than this many exchanges in a row.
   bool stop_on_node_limits = false;
   int max_valve_saturation_exchanges = 0;  // 0: not checked
 };
@@ -86,6 +88,10 @@ enum class StepOutcome : std::uint8_t {
   kNonFinite,
   kLimit,    // a coordinator limit (limit_stop() says which)
   kRunAway,  // the test left the rig's envelope or diverged (limit_stop() says how)
+  // Set by the test around the loop, never by the loop itself:
+  kResultsNotWritten,  // a write of the step records failed (a full disk)
+  kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)
+  kRefused,            // a site's node serves another run, or runs at another rate (the link says which)
 };
 
 class RpsdLoop {
@@ -116,6 +122,7 @@ class RpsdLoop {
   const LimitStop& limit_stop() const { return limit_stop_; }
 
   std::int64_t step_index() const { return step_; }
+  std::uint64_t run_id() const { return command_.run_id; }
   std::int64_t steps_available() const;  // ground-motion steps, or unlimited (-1)
   double dt_s() const { return parts_.integrator->dt_s(); }
 

@@ -4,6 +4,7 @@
 // safe; stepping is.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -41,8 +42,11 @@ struct TestRun {
   StepOutcome outcome = StepOutcome::kOk;
   std::int64_t steps_planned = 0;
   std::uint64_t dropped_records = 0;
+  std::string write_error;                // kResultsNotWritten: the file and the system's reason
   std::int64_t feedback_age_periods = 0;  // how old the newest feedback was when it stopped (periods)
   LimitStop limit_stop;                   // the coordinator limit that stopped it, if one did
+  std::uint64_t run_id = 0;               // this run's identity on every command
+  std::string refusal;                    // StepOutcome::kRefused: which site refused the run and why
   TimingReport timing;
 };
 
@@ -54,6 +58,9 @@ struct AssemblyOptions {
   // Optional: a link placed between the loop and the actuators (a network emulation that
   // delays or loses feedback, for tests).
   std::function<std::unique_ptr<transport::Link>(transport::Link& actuators)> wrap_link;
+  // Set (from a signal handler, another thread) when the user asks the run to stop: the
+  // step under way finishes and is recorded, the next one returns kInterrupted.
+  const std::atomic<bool>* stop_request = nullptr;
 };
 
 // One run of a test with every part built and started at rest.
@@ -65,6 +72,8 @@ class TestAssembly {
   TestAssembly(const TestAssembly&) = delete;
   TestAssembly& operator=(const TestAssembly&) = delete;
 
+  // This run's identity, on every command: no other run carries it.
+  std::uint64_t run_id() const;
   // Steps in the scenario (its duration, or the record's length if shorter).
   std::int64_t steps_planned() const;
   // The test is paced by the real-time clock (the reference never is).
@@ -74,7 +83,8 @@ class TestAssembly {
   // Steps between two progress reports: about 0.5 s of simulated time.
   std::int64_t progress_every_steps() const;
   // One step as fast as possible, recorded (a full recorder queue makes it wait, so nothing
-  // is lost). Real-time safe except for that wait.
+  // is lost); kRefused without a step when a site's node refused the run at the start.
+  // Real-time safe except for that wait.
   StepOutcome step();
   const StepRecord& last_record() const;
   // What stopped the loop when step() or run() returned kLimit or kRunAway.
@@ -84,8 +94,8 @@ class TestAssembly {
   // and must be real-time safe. `progress` as for run_test (as fast as possible only).
   StepOutcome run(const std::function<void(const StepRecord&)>& after_step,
                   const std::function<void(std::int64_t, std::int64_t)>& progress);
-  // Stops the recorder; the run's outcome, counts, timing and (if kept) records. Not
-  // real-time safe.
+  // Stops the recorder and ends the run on the sites' nodes; the run's outcome, counts, timing
+  // and (if kept) records. Not real-time safe.
   TestRun finish(StepOutcome outcome);
 
   // The parts, for analyses beside the run (the dry run). Not real-time safe.

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -56,8 +57,12 @@ struct TransportConfig {
   double discovery_timeout_s = 10.0;  // longest wait for every site's node at start
 };
 
-// When a test has run away, beyond the limits of each channel (coordinator_limits.h) and any
-// node limit acting: a servovalve fully open for longer than this.
+// When a test has run away, beyond the limits of each channel (coordinator_limits.h), a
+// node's stroke or force limit acting and a piston on its end stop: a servovalve fully open
+// for longer than this. A node's rate limits (velocity, increment, acceleration) shape the
+// commands it applies, also after a command that came late or was lost in real time; they
+// are recorded per step (limit_flags), and a command faster than the rig is the coordinator's
+// increment limit's to stop.
 struct RunAwayConfig {
   double max_valve_saturation_s = 0.25;
 };
@@ -67,6 +72,9 @@ struct GroundMotion {
   std::string name;  // file or generator, for titles
   double dt_s = 0.0;
   std::vector<double> acceleration_m_per_s2;
+  double record_step_s = 0.0;           // the record's own step, before resampling
+  double record_pga_m_per_s2 = 0.0;     // the record's own peak, before any processing
+  std::vector<std::string> processing;  // what was done to it, in order ("scaled by 0.15", ...)
 };
 
 struct TestConfig {
@@ -95,5 +103,9 @@ struct TestConfig {
 
 // DOFs of the scenario's structure.
 Eigen::Index structure_dofs(const TestConfig& config);
+
+// The numerical part of the scenario's structure, configured (without the specimens). Throws
+// what configuring it throws. Not real-time safe.
+std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config);
 
 }  // namespace rpsd::coordinator

@@ -29,9 +29,10 @@ struct EvaluatedTest {
 // however long the record. In real time the reference is not run inside the paced cycle: the
 // test keeps only its recorded DOFs' displacements (8 bytes per DOF per step, allocated
 // before the clock starts) and the reference runs afterwards. The reference goes on to the
-// end when the test aborts.
+// end when the test aborts. Both stop when *stop_request is set (AssemblyOptions).
 EvaluatedTest run_test_and_reference(const TestConfig& config, const std::filesystem::path& test_csv,
-                                     const std::filesystem::path& reference_csv, const Progress& progress = {});
+                                     const std::filesystem::path& reference_csv, const Progress& progress = {},
+                                     const std::atomic<bool>* stop_request = nullptr);
 
 // The criteria from two runs that kept their records; the same numbers as
 // run_test_and_reference gives.

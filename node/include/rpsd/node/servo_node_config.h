@@ -41,11 +41,11 @@ std::uint32_t limit_flag(LimitKind kind);
 // tightened: limit_to_envelope).
 struct ChannelLimits {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  double max_stroke_m = kNone;                // |command| and |measured displacement|
-  double max_velocity_m_per_s = kNone;        // |command change| / control period
-  double max_force_n = kNone;                 // |measured force|, and the force a command may ask for
-  double max_increment_m = kNone;             // |command change| from one applied command to the next
-  double max_acceleration_m_per_s2 = kNone;   // |change of command change| / control period^2
+  double max_stroke_m = kNone;               // |command| and |measured displacement|
+  double max_velocity_m_per_s = kNone;       // |command change| / control period
+  double max_force_n = kNone;                // |measured force|, and the force a command may ask for
+  double max_increment_m = kNone;            // |command change| from one applied command to the next
+  double max_acceleration_m_per_s2 = kNone;  // |change of command change| / control period^2
   // The stiffness the force guard predicts with (an upper bound of the specimen's): a command
   // is kept where F_measured + k (x_command - x_measured) stays within max_force_n. 0: no guard.
   double force_guard_stiffness_n_per_m = 0.0;
@@ -64,6 +64,10 @@ struct LimitActions {
   LimitAction of(LimitKind kind) const;
 };
 
+// The longest a node's watchdog may wait for a command (command_timeout_periods times the
+// control period) before it holds.
+inline constexpr double kMaxWatchdogTimeoutS = 10.0;
+
 struct ServoNodeConfig {
   std::uint32_t test_id = 0;
   std::uint32_t site_id = 0;
@@ -71,7 +75,8 @@ struct ServoNodeConfig {
   double control_period_s = 1.0 / 1024.0;
   std::array<ChannelLimits, transport::kMaxChannels> limits{};  // per channel
   LimitActions actions;
-  // Consecutive control periods without a new command after which the node holds.
+  // Consecutive control periods without a new command after which the node holds; at most
+  // kMaxWatchdogTimeoutS in all.
   int command_timeout_periods = 10;
   LossAction on_command_loss = LossAction::kHold;
   std::array<double, transport::kMaxChannels> safe_position_m{};  // per channel, within the stroke

@@ -29,9 +29,32 @@ enum class CommandVerdict : std::uint8_t {
   // test began without this node (a node restarted mid-test), which must not take it over
   // from its own initial position.
   kJoinedMidTest,
+  kNoRunId,        // run id 0: every command names its run
+  kOtherRun,       // the node serves another run
+  kUnknownWriter,  // the run the node serves, but not from the writer it follows (a forgery)
+  kRunEnded,       // a command of the run the node has just ended
+  kRateMismatch,   // the command states a control period other than the node's
+  // A step further beyond the newest accepted one than a coordinator at this rate can have
+  // gone: one step a period since, plus max_step_lead (a forgery, or a coordinator's bug).
+  kImpossibleStep,
+  kEndOfRun,  // not a drop: a run's end (the node frees itself if it is the run it serves)
 };
-inline constexpr int kCommandVerdicts = 8;
+inline constexpr int kCommandVerdicts = 15;
 const char* command_verdict_name(CommandVerdict verdict);
+
+// What happened to the node's run: it took a run, the run ended, the node freed itself after a
+// silence, or it refused a command of another run or writer, or with an impossible step.
+struct RunEvent {
+  enum class Kind : std::uint8_t { kBound, kEnded, kReleasedAfterSilence, kRefused };
+  Kind kind = Kind::kBound;
+  std::uint64_t tick = 0;
+  std::uint64_t run_id = 0;                            // the run taken, ended or released; or the refused command's
+  std::uint64_t writer = 0;                            // its writer
+  std::uint64_t serving_run_id = 0;                    // kRefused: the run the node served then (0: none)
+  std::int64_t step = -1;                              // the command's step
+  CommandVerdict verdict = CommandVerdict::kAccepted;  // kRefused: why
+};
+const char* run_event_name(RunEvent::Kind kind);
 
 struct ServoNodeCounters {
   std::uint64_t accepted = 0;
@@ -48,6 +71,7 @@ struct ServoNodeCounters {
   std::uint64_t valve_saturated_ticks = 0;                      // ticks with a servovalve fully open
   std::uint64_t actuator_no_replies = 0;
   std::uint64_t actuator_faults = 0;
+  std::uint64_t runs = 0;  // runs taken (a node serves one at a time)
 
   std::uint64_t dropped(CommandVerdict verdict) const { return by_verdict[static_cast<int>(verdict)]; }
   std::uint64_t dropped_total() const;
@@ -78,11 +102,23 @@ class ServoNodeController {
   void start(std::span<const double> initial_displacement_m);
 
   // Checks an incoming command and keeps it as the pending one (a newer accepted command
-  // replaces it); anything else is dropped, counted by reason and never applied. The first
-  // command accepted after start() must have a step of at most command_timeout_periods
-  // (a test's first is 0): a node that sees a test first later on, restarted while the
-  // coordinator carried on, never follows it. Real-time safe.
+  // replaces it); anything else is dropped, counted by reason and never applied. The node
+  // serves one run at a time: the first command it accepts binds it to that command's run and
+  // writer, and it refuses every other run and writer until the run ends (its end-of-run
+  // command, or release_run()). A run's first command must have a step of at most
+  // command_timeout_periods (a test's first is 0): a node that sees a test first later on,
+  // restarted while the coordinator carried on, never follows it. Real-time safe.
   CommandVerdict accept(const transport::CommandSample& command);
+
+  // Frees the node from its run (the loop calls it after a silence: the coordinator is gone):
+  // the node holds (or ramps to safe) as its watchdog would and may take another run. Nothing
+  // when it serves none. Real-time safe.
+  void release_run();
+  // The run the node serves (0: none).
+  std::uint64_t serving_run() const { return run_id_; }
+  // Bindings, ends and refusals in order, up to event_log_capacity; later ones are counted only.
+  std::span<const RunEvent> run_events() const { return run_events_; }
+  std::uint64_t run_events_not_logged() const { return run_events_not_logged_; }
 
   // One control period: applies the pending command (or holds/ramps after
   // command_timeout_periods periods without one), enforces the limits, exchanges with the
@@ -96,8 +132,9 @@ class ServoNodeController {
   std::span<const LimitEvent> events() const { return events_; }
   std::uint64_t events_not_logged() const { return events_not_logged_; }
 
-  // The step of the newest command accepted (-1 before the first).
-  std::int64_t newest_accepted_step() const { return newest_accepted_step_; }
+  // The step of the newest command accepted (-1 before the first), in the run served or, between
+  // runs, the last run.
+  std::int64_t newest_accepted_step() const { return last_accepted_step_; }
   bool faulted() const { return fault_; }
   bool holding() const { return holding_; }
   bool in_safe_state() const { return safe_state_; }
@@ -108,6 +145,9 @@ class ServoNodeController {
 
  private:
   using Values = std::array<double, transport::kMaxChannels>;
+  CommandVerdict check(const transport::CommandSample& command) const;
+  void end_run(RunEvent::Kind why);
+  void log_run(const RunEvent& event);
   void choose_target();
   std::uint32_t apply_limits(Values& applied);
   void log(const LimitEvent& event);
@@ -117,9 +157,18 @@ class ServoNodeController {
   servo::Actuator& actuator_;
   bool started_ = false;
 
+  std::uint64_t run_id_ = 0, run_writer_ = 0;  // the run served and its writer (0: none)
+  std::uint64_t ended_run_ = 0;                // the run ended last
+  std::uint64_t ticks_since_accepted_ = 0;
+  std::int64_t max_step_lead_ = 0;    // periods a step may lead the ticks since the last accepted one
+  RunEvent last_refusal_;             // the last refusal logged: repeats of it are counted only
+  std::vector<RunEvent> run_events_;  // capacity reserved at construction, never grown past it
+  std::uint64_t run_events_not_logged_ = 0;
+
   transport::CommandSample pending_;
   bool has_pending_ = false;
-  std::int64_t newest_accepted_step_ = -1;
+  std::int64_t newest_accepted_step_ = -1;  // of the run served (-1: none yet, or no run)
+  std::int64_t last_accepted_step_ = -1;    // what newest_accepted_step() reports
   std::int64_t followed_step_ = -1;
   double followed_time_s_ = 0.0;
 

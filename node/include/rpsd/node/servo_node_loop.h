@@ -3,6 +3,8 @@
 // Real time: ticks on its own deadlines, applies each command on the tick it triggers and holds after
 // command_timeout_periods without one. Lock-step: one tick per command, answered on Cyclone's receive
 // thread, so the plant does not advance while the coordinator computes. Details: docs/realtime.md
+// Either way the loop wakes at least every 50 ms (the stop flag, the duration, the heartbeat),
+// whatever the control period, and frees the node from a run whose commands have stopped.
 #pragma once
 
 #include <atomic>
@@ -21,6 +23,10 @@ struct ServoNodeLoopOptions {
   realtime::RealTimeRequest realtime;
   // Stop after this long (0: until `stop` is set).
   double duration_s = 0.0;
+  // A run that sends no command for this long has ended without saying so (its coordinator
+  // died): the node frees itself for another. Longer than any pause of a live run (a host
+  // stalled for a second or two), shorter than an operator takes to start the next run.
+  double release_after_silence_s = 5.0;
 };
 
 struct ServoNodeLoopReport {

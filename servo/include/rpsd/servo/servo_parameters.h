@@ -54,7 +54,7 @@ struct ActuatorParameters {
   double oil_volume_m3 = 0.0;            // V_t, both chambers and passages
   double bulk_modulus_pa = 0.0;          // beta_e, effective
   double leakage_m3_per_s_per_pa = 0.0;  // C_l, total servovalve/actuator leakage
-  double stroke_m = 0.0;                 // half stroke (+/-), informational
+  double stroke_m = 0.0;                 // half stroke (+/-): the piston's end stops
 
   // Compressibility coefficient K_a = V_t / (4 beta_e), m^5/N (Merritt).
   double compressibility_m5_per_n() const { return oil_volume_m3 / (4.0 * bulk_modulus_pa); }

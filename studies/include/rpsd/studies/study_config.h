@@ -3,6 +3,7 @@
 // (coordinator::TestConfig) with an optional sweep over one or two of its keys.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <variant>
 #include <vector>
@@ -71,6 +72,9 @@ struct StudyDocument {
   std::string description;     // optional `description:` text
   Study study;                 // for a sweep: the first case
   std::string effective_yaml;  // the document as read, with --set overrides applied
+  // Every file read to build it, in the order read: the scenario, parameter files, records,
+  // matrices (for the SHA-256 of each in summary.json).
+  std::vector<std::filesystem::path> input_files;
   // `sweep:` of an rpsd_test scenario (one or two axes; empty when there is none). Every
   // case has been read and checked before anything runs.
   std::vector<SweepAxis> sweep;

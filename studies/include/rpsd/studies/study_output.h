@@ -2,6 +2,7 @@
 // DIR/summary.json, and PNG plots like the seed paper's figures. Not real-time safe.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "rpsd/studies/servo_studies.h"
+#include "rpsd/studies/test_output.h"
 
 namespace rpsd::studies {
 
@@ -21,11 +23,16 @@ void write_frequency_response(const std::filesystem::path& dir, const StudyDocum
 void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file, const MaxGainStudy& study,
                     const std::vector<MaxGainRow>& rows);
 
-// Runs whichever study the file holds and writes it into dir (created if missing). False
-// when an `rpsd_test` run aborted (its files are still complete for every step it took);
-// `abort_reason` (optional) then receives why.
-bool run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
-                   const std::function<void(std::int64_t, std::int64_t)>& progress = {},
-                   std::string* abort_reason = nullptr);
+struct StudyRun {
+  RunResult result = RunResult::kCompleted;
+  std::string reason;  // why an `rpsd_test` run did not complete (as in its summary.json)
+};
+
+// Runs whichever study the file holds and writes it into dir (created if missing; the
+// command line first makes sure it is empty: prepare_results_folder). A test that stopped still has every step it took
+// on disk. `stop_request` (optional): set by a signal handler to end a test or sweep in order.
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
+                       const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+                       const std::atomic<bool>* stop_request = nullptr);
 
 }  // namespace rpsd::studies

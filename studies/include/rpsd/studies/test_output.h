@@ -1,9 +1,12 @@
 // Runs an `rpsd_test` scenario into an output folder: time_history.csv (written step by step
 // while the test runs, so an aborted or crashed run keeps every step it took),
 // reference_history.csv (perfect actuator), summary.json, effective-scenario.yaml and PNG
-// plots. Not real-time safe.
+// plots. summary.json is written first as "running" and last with the outcome, each time
+// whole (results_files.h): a run killed outright leaves "running", never an older outcome.
+// Not real-time safe.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <functional>
 
@@ -12,7 +15,14 @@
 namespace rpsd::studies {
 
 // Outcome of a whole run, for the exit code.
-enum class RunResult { kCompleted, kAborted };
+enum class RunResult {
+  kCompleted,
+  kStopped,            // a limit, a run-away, a link or node failure: the reason is in summary.json
+  kResultsNotWritten,  // a write failed; what could be written says so
+  kInterrupted,        // SIGINT or SIGTERM: stopped in order after the step under way
+};
+// summary.json's "result": completed, stopped, results_not_written or interrupted.
+const char* result_name(RunResult result);
 
 // The headline numbers of one run, for sweep tables.
 struct TestHeadline {
@@ -25,14 +35,19 @@ struct TestHeadline {
 };
 
 // `progress` (optional) receives (steps done, steps planned) while the test runs.
+// `stop_request`: as in coordinator::AssemblyOptions. The folder must be ready
+// (prepare_results_folder).
 TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
                            const coordinator::TestConfig& scenario,
-                           const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+                           const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+                           const std::atomic<bool>* stop_request = nullptr);
 
 // Runs every case of a sweep into dir/case_NN/ and writes the table across the cases
-// (sweep.csv, summary.json, sweep.png). kAborted if any case aborted.
+// (sweep.csv, summary.json, sweep.png): kStopped if any case stopped; an interruption or a
+// failed write ends the sweep after the case under way.
 RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file,
-                         const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+                         const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+                         const std::atomic<bool>* stop_request = nullptr);
 
 // Redraws the plots of a finished test folder from its CSV files.
 void plot_test(const std::filesystem::path& dir);

@@ -6,10 +6,17 @@
 // Real time: the coordinator sets a receive deadline each cycle; feedback that has not come
 // by then is late — receive() returns kTimeout and hands back the newest feedback the node
 // sent (if any), so the caller decides whether to carry on with it and counts it.
+//
+// Identity: every command carries the link's run id; a node serves one run at a time and its
+// feedback names the run it serves. The link uses only feedback of its own run, from the one
+// writer that first answered it; a node that serves another run (its feedback or heartbeat
+// says so) or runs at another control period refuses this run: receive() returns kRefused and
+// refusal() says why.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "rpsd/transport/dds_qos_profile.h"
 #include "rpsd/transport/dds_site_ports.h"
@@ -20,6 +27,7 @@ namespace rpsd::transport {
 struct DdsLinkConfig {
   std::uint32_t test_id = 1;
   std::uint32_t site_id = 1;
+  std::uint64_t run_id = 0;  // this run's (0: the link draws one)
   int channels = 1;
   DdsQosSettings qos;
   double feedback_timeout_s = 1.0;  // longest wait for one step's feedback
@@ -33,8 +41,24 @@ struct DdsLinkConfig {
 struct DdsLinkCounters {
   std::int64_t sent = 0, received = 0;
   std::int64_t wrong_test_or_site = 0, wrong_channels = 0, older_step = 0;
+  std::int64_t other_run = 0;        // feedback of another run: the node serves it, not this one
+  std::int64_t unknown_writer = 0;   // feedback of this run from a writer other than its node's
+  std::int64_t no_run = 0;           // feedback of a node serving no run (before it took this one)
+  std::int64_t impossible_step = 0;  // feedback of a step not sent yet: no node can have answered it
   std::int64_t late = 0;
   std::int64_t waits = 0;  // receives that slept on the waitset (the feedback was not in yet)
+};
+
+// Why a site's node will not serve this run.
+struct NodeRefusal {
+  enum class Kind : std::uint8_t {
+    kNone,
+    kServingOtherRun,  // the node serves another run (serving_run_id)
+    kRateMismatch,     // the node's control period (node_control_period_s) is not this run's
+  };
+  Kind kind = Kind::kNone;
+  std::uint64_t serving_run_id = 0;
+  double node_control_period_s = 0.0;
 };
 
 class DdsLink final : public Link {
@@ -44,8 +68,20 @@ class DdsLink final : public Link {
 
   // Waits until the site's node is discovered both ways on this side and its heartbeat says
   // it has discovered this coordinator too; only then does the first command reach it.
-  // Not real-time safe.
+  // False after timeout_s, or at once when the heartbeat says the node refuses this run
+  // (refusal()). Not real-time safe.
   bool wait_for_node(double timeout_s);
+
+  std::uint64_t run_id() const { return config_.run_id; }
+  // Why the node refuses this run (kind kNone: it has not).
+  const NodeRefusal& refusal() const { return refusal_; }
+  // The refusal as a sentence naming the site: "site 1 is serving another run (...)". Not
+  // real-time safe.
+  std::string refusal_text() const;
+
+  // Tells the node the run is over, so that it may serve another at once (a node also frees
+  // itself after a silence); nothing when no command was sent. Not real-time safe.
+  void end_run();
 
   // Real-time safe (no allocation in rpsd's code; Cyclone serialises the sample).
   LinkStatus send(const CommandSample& command) override;
@@ -63,13 +99,17 @@ class DdsLink final : public Link {
   // stops on it even when newer answers came before it looked. Real-time safe.
   void drain();
 
-  // Takes the heartbeats waiting; true when the newest says the node has matched us.
+  // Takes the heartbeats waiting; true when the newest says the node has matched us. The
+  // newest also says whether the node refuses this run (refusal_). Real-time safe.
   bool node_reports_matched();
+  void refuse(NodeRefusal::Kind kind, std::uint64_t serving_run_id, double node_period_s);
 
   DdsLinkConfig config_;
   DdsSitePorts ports_;
   DdsEntity heartbeat_subscriber_, heartbeat_reader_;
   bool node_matched_ = false;
+  NodeRefusal refusal_;
+  std::uint64_t node_writer_ = 0;  // the writer of the first feedback of this run (0: none yet)
   std::int64_t sent_step_ = -1;
   std::int64_t sent_at_ns_ = 0;
   std::int64_t receive_deadline_ns_ = 0;

@@ -1,6 +1,6 @@
 // The servo node's side of a site connection over Cyclone DDS: it takes commands and
-// publishes feedback and heartbeats. It does not judge commands (test id, site id, step):
-// the node's controller does, and counts what it drops.
+// publishes feedback and heartbeats. It does not judge commands (test id, site id, run,
+// writer, step): the node's controller does, and counts what it drops.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,8 @@ class DdsNodeEndpoint {
   // Blocks until a command is waiting or the absolute CLOCK_MONOTONIC deadline passes.
   // Real-time safe.
   bool wait_for_command_until(std::int64_t deadline_ns) const { return ports_.wait_for_data_until(deadline_ns); }
-  // Takes the oldest waiting command; false when there is none. Real-time safe.
+  // Takes the oldest waiting command, with the writer that sent it; false when there is none.
+  // Real-time safe.
   bool take_command(CommandSample& command);
   // Real-time safe (Cyclone serialises the sample).
   bool publish(const FeedbackSample& feedback);

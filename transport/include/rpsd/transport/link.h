@@ -12,6 +12,7 @@ enum class LinkStatus : std::uint8_t {
   kTimeout,    // no feedback for this step before the deadline
   kStaleStep,  // feedback arrived for a different step
   kPeerLost,
+  kRefused,  // the site's node serves another run (DdsLink::refusal says which)
 };
 
 class Link {

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 namespace rpsd::transport {
 
@@ -14,19 +15,26 @@ inline constexpr int kMaxChannels = 8;
 struct CommandSample {
   std::uint32_t test_id = 0;
   std::uint32_t site_id = 0;
+  // The coordinator's run (draw_run_id, never 0): a node serves one run at a time.
+  std::uint64_t run_id = 0;
   std::int64_t step = 0;
   double time_s = 0.0;
+  double control_period_s = 0.0;  // the coordinator's; 0: not stated (in process)
+  bool end_of_run = false;        // the run is over; no displacement: the node is free again
   std::uint8_t channels = 0;
   std::array<double, kMaxChannels> displacement_m{};
+  // Filled by the node's endpoint, never sent: the DDS writer that sent the command (its
+  // instance handle; 0 in process). A node follows one writer of its run.
+  std::uint64_t writer = 0;
 };
 
 // Node status bits reported with every feedback sample.
 enum NodeStatus : std::uint32_t {
   kNodeOk = 0,
-  kNodeLimitActive = 1u << 0,  // a limit changed the command or the state this period
-  kNodeFault = 1u << 1,        // the node cannot follow commands (bad command, aborted, hardware)
-  kNodeHolding = 1u << 2,      // commands stopped arriving: the node holds (or ramps to safe)
-  kNodeEndStop = 1u << 3,      // a piston is at the end of its stroke
+  kNodeLimitActive = 1u << 0,     // a limit changed the command or the state this period
+  kNodeFault = 1u << 1,           // the node cannot follow commands (bad command, aborted, hardware)
+  kNodeHolding = 1u << 2,         // commands stopped arriving: the node holds (or ramps to safe)
+  kNodeEndStop = 1u << 3,         // a piston is at the end of its stroke
   kNodeValveSaturated = 1u << 4,  // a servovalve is fully open: the actuator cannot go faster
 };
 
@@ -45,6 +53,7 @@ enum LimitFlag : std::uint32_t {
 struct FeedbackSample {
   std::uint32_t test_id = 0;
   std::uint32_t site_id = 0;
+  std::uint64_t run_id = 0;  // the run the node serves (0: none); only that run may use it
   std::int64_t step = 0;
   double time_s = 0.0;
   std::uint8_t channels = 0;
@@ -80,6 +89,13 @@ struct NodeHeartbeat {
   // The node's command reader and feedback writer have both matched a coordinator's (DDS
   // discovery done on the node's side too). Filled in by DdsNodeEndpoint::publish_heartbeat.
   bool coordinator_matched = false;
+  std::uint64_t serving_run_id = 0;  // the run the node serves (0: none)
 };
+
+// A new run's identity: 64 random bits from std::random_device, never 0 (which means no run).
+// Not real-time safe.
+std::uint64_t draw_run_id();
+// A run id as 16 hex digits, for messages.
+std::string run_id_text(std::uint64_t run_id);
 
 }  // namespace rpsd::transport

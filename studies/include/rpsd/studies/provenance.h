@@ -1,0 +1,21 @@
+// Where a result came from: the rpsd that wrote it (version, commit) and every file it read,
+// each with its SHA-256, so that a summary.json names exactly what produced it. Not
+// real-time safe.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "rpsd/studies/study_config.h"
+
+namespace rpsd::studies {
+
+// The SHA-256 of a file's bytes, as 64 lowercase hex digits. Throws std::runtime_error naming
+// the file when it cannot be read.
+std::string sha256_of_file(const std::filesystem::path& file);
+
+// {"rpsd": {"version", "commit"}, "inputs": [{"file", "sha256"}, ...]}
+nlohmann::json provenance_json(const StudyDocument& document);
+
+}  // namespace rpsd::studies

@@ -1,0 +1,52 @@
+// What rpsd understood of a test scenario, before anything runs (`rpsd validate`): the
+// structure's DOFs, modes and damping (whole, and its numerical part), the steps, the record,
+// and each channel's rig envelope and the limits the test will run with. Builds nothing that
+// moves or connects. Not real-time safe.
+#pragma once
+
+#include <Eigen/Core>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "rpsd/coordinator/coordinator_limits.h"
+#include "rpsd/coordinator/test_config.h"
+#include "rpsd/servo/envelope.h"
+
+namespace rpsd::studies {
+
+struct ModeOverview {
+  double frequency_hz = 0.0;
+  double damping_ratio = 0.0;  // phi' C phi / (2 w) of the mass-normalised mode
+};
+
+struct ChannelOverview {
+  int channel = 0;
+  Eigen::Index dof = 0;
+  std::uint32_t site_id = 1;
+  double specimen_stiffness_n_per_m = 0.0;
+  servo::Envelope envelope;
+  coordinator::CoordinatorLimits limits;  // the envelope unless the scenario tightens it
+};
+
+struct ScenarioOverview {
+  Eigen::Index dofs = 0;
+  std::vector<ModeOverview> structure_modes;  // numerical part with the specimens' stiffness
+  std::vector<ModeOverview> numerical_modes;  // numerical part alone (empty: no stiffness of its own)
+  double control_rate_hz = 0.0;
+  std::int64_t steps = 0;
+  double duration_s = 0.0;
+  bool has_record = false;
+  std::string record;                              // its source
+  double source_step_s = 0.0, source_pga_g = 0.0;  // the record as read
+  std::vector<std::string> processing;             // what the scenario did to it, in order
+  double record_dt_s = 0.0, record_pga_g = 0.0;    // as the test runs it
+  std::vector<ChannelOverview> channels;
+};
+
+ScenarioOverview overview_of(const coordinator::TestConfig& test);
+
+// A few lines for a person: one section per part, SI units, frequencies in Hz.
+void print_overview(const ScenarioOverview& overview, std::ostream& out);
+
+}  // namespace rpsd::studies

@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""What a run leaves on disk, checked as a user meets it: an output folder holds one run's
+files only, a run stopped by SIGINT or SIGTERM says so with the last step it took, a file
+that cannot be written ends the run with exit 5, and the exit codes of the README's table.
+
+  results_test.py CASE RPSD SOURCE_DIR SCRATCH_DIR
+
+Every check that fails is printed; the exit code is 1 if any did."""
+import hashlib
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+CASE, RPSD, SOURCE, SCRATCH = sys.argv[1:5]
+SYNTHETIC = os.path.join(SOURCE, "examples/scenarios/synthetic-sdof.yaml")
+SWEEP = os.path.join(SOURCE, "examples/scenarios/elcentro-sdof-compensation-sweep.yaml")
+problems = []
+
+
+def check(condition, message):
+    if not condition:
+        problems.append(message)
+
+
+def rpsd(*args, env=None, prefix=()):
+    run = subprocess.run([*prefix, RPSD, *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                         timeout=600, env=env)
+    return run.returncode, run.stdout
+
+
+def summary(folder):
+    with open(os.path.join(folder, "summary.json")) as f:
+        return json.load(f)
+
+
+def data_rows(csv):
+    with open(csv, "rb") as f:
+        return sum(1 for _ in f) - 1  # the header
+
+
+def fresh(name):
+    folder = os.path.join(SCRATCH, name)
+    shutil.rmtree(folder, ignore_errors=True)
+    return folder
+
+
+def a_folder_that_held_a_sweep_is_refused_then_replaced():
+    out = fresh("held-a-sweep")
+    code, text = rpsd("run", SWEEP, "--out", out, "--set=ground_motion.trim={end_s: 0.5}")
+    check(code == 0 and os.path.isdir(os.path.join(out, "case_007")), f"the sweep did not run: {code} {text}")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set", "ground_motion.synthetic.duration_s=3")
+    check(code == 2, f"a folder holding a sweep was accepted: exit {code}")
+    check("not empty" in text and "--replace" in text, f"the refusal does not say why: {text}")
+    check(summary(out).get("study") == "rpsd_test_sweep", "the refused run touched the folder")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--replace", "--set", "ground_motion.synthetic.duration_s=3")
+    check(code == 0, f"--replace failed: exit {code}: {text}")
+    left = sorted(n for n in os.listdir(out) if n.startswith("case_") or n.startswith("sweep"))
+    check(not left, f"the sweep's files are still beside the new run: {left}")
+    check(summary(out).get("study") == "rpsd_test", "summary.json is not the new run's")
+
+
+def replace_never_clears_a_folder_rpsd_did_not_write():
+    out = fresh("not-rpsd")
+    os.makedirs(out)
+    with open(os.path.join(out, "notes.txt"), "w") as f:
+        f.write("keep me")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--replace")
+    check(code == 2, f"exit {code}, expected 2")
+    check("rpsd wrote" in text, f"the refusal does not say why: {text}")
+    check(os.listdir(out) == ["notes.txt"], f"the folder changed: {os.listdir(out)}")
+
+
+def interrupted(signal_number, *settings):
+    out = fresh(f"interrupted-{signal_number}")
+    # An earlier, completed run in the same folder: nothing of it may pass for the new one.
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set", "ground_motion.synthetic.duration_s=3")
+    check(code == 0, f"the first run failed: {text}")
+    process = subprocess.Popen([RPSD, "run", SYNTHETIC, "--out", out, "--replace", "--set",
+                                "ground_motion.synthetic.duration_s=600", *settings],
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    csv = os.path.join(out, "time_history.csv")
+    deadline = time.monotonic() + 120  # a bound on hanging, not a speed requirement
+    while time.monotonic() < deadline and process.poll() is None:
+        # The new run is under way: its summary says "running" and its records are growing.
+        try:
+            if summary(out).get("result") == "running" and os.path.getsize(csv) > 200_000:
+                break
+        except (OSError, ValueError):
+            pass
+        time.sleep(0.05)
+    process.send_signal(signal_number)
+    try:
+        output, _ = process.communicate(timeout=120)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        problems.append("the run did not stop after the signal")
+        return
+    check(process.returncode == 6, f"exit {process.returncode}, expected 6: {output}")
+    s = summary(out)
+    check(s.get("result") == "interrupted", f"summary result is {s.get('result')!r}")
+    check(s.get("completed") is False, "summary says completed")
+    check(str(s.get("outcome", "")).startswith("interrupted"), f"outcome: {s.get('outcome')}")
+    steps = s.get("steps", -1)
+    check(0 < steps < 600 * 1024, f"steps {steps}")
+    check(f"after step {steps}," in s.get("outcome", ""), f"the outcome does not name the last step {steps}")
+    rows, dropped = data_rows(csv), s.get("dropped_records", 0)
+    check(rows + dropped == steps, f"time_history.csv has {rows} rows and {dropped} dropped, summary says {steps} steps")
+
+
+def a_file_that_cannot_grow_ends_the_run_with_exit_5():
+    out = fresh("file-size-limit")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set", "ground_motion.synthetic.duration_s=600",
+                      prefix=("prlimit", "--fsize=400000"))
+    check(code == 5, f"exit {code}, expected 5: {text}")
+    check("File too large" in text, f"the reason is not printed: {text}")
+    s = summary(out)
+    check(s.get("result") == "results_not_written", f"summary result is {s.get('result')!r}")
+    check(s.get("completed") is False, "summary says completed")
+    check("time_history.csv: File too large" in s.get("outcome", ""), f"outcome: {s.get('outcome')}")
+
+
+def a_missing_tool_is_exit_1():
+    out = fresh("plot-without-gnuplot")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set", "ground_motion.synthetic.duration_s=3")
+    check(code == 0, f"the run failed: {text}")
+    code, text = rpsd("plot", out, env={"PATH": "/nonexistent"})
+    check(code == 1, f"exit {code}, expected 1: {text}")
+    check("gnuplot not found" in text, f"the reason is not printed: {text}")
+
+
+def summary_names_the_code_and_every_input():
+    out = fresh("provenance")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set", "ground_motion.synthetic.duration_s=3")
+    check(code == 0, f"the run failed: {text}")
+    code, version = rpsd("--version")
+    check(code == 0 and version.startswith("rpsd "), f"rpsd --version: exit {code}: {version}")
+    p = summary(out)["provenance"]
+    check(f"rpsd {p['rpsd']['version']} (commit {p['rpsd']['commit']})" == version.strip(),
+          f"summary {p['rpsd']} against --version {version.strip()}")
+    files = {os.path.realpath(i["file"]): i["sha256"] for i in p["inputs"]}
+    for expected in (SYNTHETIC,):
+        path = os.path.realpath(expected)
+        if path not in files:
+            problems.append(f"{expected} is not among the inputs {sorted(files)}")
+            continue
+        with open(path, "rb") as f:
+            check(files[path] == hashlib.sha256(f.read()).hexdigest(), f"{expected}: wrong SHA-256")
+
+
+CASES = {
+    "refuse_then_replace_a_sweep_folder": a_folder_that_held_a_sweep_is_refused_then_replaced,
+    "replace_only_rpsd_folders": replace_never_clears_a_folder_rpsd_did_not_write,
+    "sigint_as_fast_as_possible": lambda: interrupted(signal.SIGINT),
+    "sigterm_in_real_time": lambda: interrupted(signal.SIGTERM, "--set", "clock.mode=real_time"),
+    "file_size_limit_exit_5": a_file_that_cannot_grow_ends_the_run_with_exit_5,
+    "missing_tool_exit_1": a_missing_tool_is_exit_1,
+    "summary_provenance": summary_names_the_code_and_every_input,
+}
+
+CASES[CASE]()
+for p in problems:
+    print("FAILED:", p)
+sys.exit(1 if problems else 0)

@@ -1,0 +1,113 @@
+// The recorder checks every write: a file that cannot grow (RLIMIT_FSIZE here, a full disk in
+// the lab) is reported through write_failed(), and the test stops with kResultsNotWritten
+// instead of completing with rows missing.
+#include "rpsd/coordinator/recorder.h"
+
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+
+#include "../servo/paper_rig.h"
+#include "rpsd/coordinator/test_assembly.h"
+#include "rpsd/scenarios/study_file.h"
+
+namespace rpsd::coordinator {
+namespace {
+
+// Files this process writes may not grow past `bytes` while it lives; writes beyond fail
+// with EFBIG instead of raising SIGXFSZ.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limit = saved_;
+    limit.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &limit);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, old_handler_);
+  }
+
+ private:
+  rlimit saved_{};
+  void (*old_handler_)(int) = nullptr;
+};
+
+std::filesystem::path scratch(const char* name) {
+  return std::filesystem::temp_directory_path() / (std::string(name) + "-" + std::to_string(getpid()) + ".csv");
+}
+
+StepRecord some_record(std::int64_t step) {
+  StepRecord r;
+  r.step = step;
+  r.time_s = 1e-3 * static_cast<double>(step);
+  r.target_m[0] = 1.2345678e-3;
+  r.displacement_m[0] = -9.87654321e-4;
+  return r;
+}
+
+TEST(Recorder, AFileThatCannotGrowIsReportedWithItsNameAndTheSystemsReason) {
+  const auto csv = scratch("rpsd-recorder-limit");
+  std::string error;
+  {
+    const FileSizeLimit limit(32 * 1024);
+    Recorder recorder(csv, 1, 1, {false, 64});
+    for (std::int64_t n = 0; n < 5000; ++n) recorder.record_or_wait(some_record(n));
+    recorder.finish();
+    EXPECT_TRUE(recorder.write_failed());
+    error = recorder.write_error();
+  }
+  EXPECT_NE(error.find(csv.string()), std::string::npos) << error;
+  EXPECT_NE(error.find("File too large"), std::string::npos) << error;
+  std::filesystem::remove(csv);
+}
+
+TEST(Recorder, AWholeFileIsNotAFailure) {
+  const auto csv = scratch("rpsd-recorder-whole");
+  Recorder recorder(csv, 1, 1, {false, 64});
+  for (std::int64_t n = 0; n < 5000; ++n) recorder.record_or_wait(some_record(n));
+  recorder.finish();
+  EXPECT_FALSE(recorder.write_failed());
+  EXPECT_EQ(recorder.write_error(), "");
+  std::filesystem::remove(csv);
+}
+
+const TestConfig& elcentro() {
+  static const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml");
+  return std::get<TestConfig>(file.study);
+}
+
+TEST(TestAssembly, AFailedRecordStopsTheTestWithItsOwnOutcome) {
+  const auto csv = scratch("rpsd-assembly-limit");
+  const FileSizeLimit limit(64 * 1024);
+  TestAssembly test(elcentro(), {csv, false, false, {}, nullptr});
+  const StepOutcome outcome = test.run({}, {});
+  const TestRun run = test.finish(outcome);
+  EXPECT_EQ(run.outcome, StepOutcome::kResultsNotWritten);
+  EXPECT_LT(run.steps, run.steps_planned);  // it stopped, it did not run on unrecorded
+  EXPECT_NE(run.write_error.find(csv.string()), std::string::npos) << run.write_error;
+  std::filesystem::remove(csv);
+}
+
+TEST(TestAssembly, AStopRequestEndsTheRunAfterTheStepUnderWay) {
+  std::atomic<bool> stop{false};
+  TestAssembly test(elcentro(), {{}, false, false, {}, &stop});
+  std::int64_t seen = 0;
+  const StepOutcome outcome = test.run(
+      [&](const StepRecord&) {
+        if (++seen == 100) stop.store(true);
+      },
+      {});
+  const TestRun run = test.finish(outcome);
+  EXPECT_EQ(run.outcome, StepOutcome::kInterrupted);
+  EXPECT_EQ(run.steps, 100);  // the step under way is counted and recorded, no further one
+}
+
+}  // namespace
+}  // namespace rpsd::coordinator
