@@ -4,12 +4,27 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "commands.h"
 #include "rpsd/scenarios/scenario_reference.h"
 
 namespace rpsd::cli {
+namespace {
+
+// The first line where the two texts part, counted from 1: where to look in a stale file.
+std::size_t first_differing_line(const std::string& a, const std::string& b) {
+  std::istringstream in_a(a), in_b(b);
+  std::string line_a, line_b;
+  for (std::size_t n = 1;; ++n) {
+    const bool more_a = static_cast<bool>(std::getline(in_a, line_a));
+    const bool more_b = static_cast<bool>(std::getline(in_b, line_b));
+    if (more_a != more_b || line_a != line_b || !more_a) return n;
+  }
+}
+
+}  // namespace
 
 void add_reference(CLI::App& app) {
   auto check = std::make_shared<std::string>();
@@ -26,8 +41,9 @@ void add_reference(CLI::App& app) {
     std::stringstream committed;
     committed << in.rdbuf();
     if (committed.str() != text) {
-      throw std::runtime_error(*check +
-                               " differs from what the readers say; regenerate it: rpsd reference > "
+      throw std::runtime_error(*check + " differs from what the readers say (from line " +
+                               std::to_string(first_differing_line(committed.str(), text)) +
+                               "); regenerate it from the source tree: build/rpsd reference > "
                                "docs/scenario-reference.md");
     }
     std::cout << *check << ": matches the readers\n";

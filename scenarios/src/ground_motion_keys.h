@@ -29,8 +29,8 @@ ground_motion::At2ReadOptions peer_at2(config::Source& r);
 ground_motion::PlainTextOptions plain_text(config::Source& r);
 ground_motion::TimeAccelerationOptions time_acceleration(config::Source& r);
 
-// `synthetic:` instead of a file.
-ground_motion::SyntheticGroundMotionOptions synthetic(config::Source& s);
+// `synthetic:` instead of a file (nullopt: a file).
+std::optional<ground_motion::SyntheticGroundMotionOptions> synthetic(config::Source& r);
 
 // What is done to the record, in this order: trim, baseline, scale, pad.
 struct Processing {

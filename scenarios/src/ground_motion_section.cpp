@@ -70,7 +70,10 @@ gm::TimeAccelerationOptions time_acceleration(config::Source& r) {
   return options;
 }
 
-gm::SyntheticGroundMotionOptions synthetic(config::Source& s) {
+std::optional<gm::SyntheticGroundMotionOptions> synthetic(config::Source& r) {
+  const auto section = r.optional_section("synthetic", "a seeded synthetic record instead of a file");
+  if (!section) return std::nullopt;
+  config::Source& s = *section;
   gm::SyntheticGroundMotionOptions options;
   options.seed = static_cast<std::uint64_t>(s.whole_number("seed", 0, 4294967295L, "the random generator's seed"));
   options.duration_s =
@@ -139,11 +142,10 @@ gm::GroundMotionRecord load_file(config::Source& r, const std::filesystem::path&
 
 coordinator::GroundMotion read_section(config::Source& r, const std::filesystem::path& dir, double step_s) {
   gm::GroundMotionRecord record;
-  auto synthetic = r.optional_section("synthetic", "a seeded synthetic record instead of a file");
+  const auto synthetic = ground_motion_keys::synthetic(r);
   const char* source_key = synthetic ? "synthetic" : "file";
   try {
-    record =
-        synthetic ? gm::generate_synthetic_ground_motion(ground_motion_keys::synthetic(*synthetic)) : load_file(r, dir);
+    record = synthetic ? gm::generate_synthetic_ground_motion(*synthetic) : load_file(r, dir);
   } catch (const ConfigError&) {
     throw;
   } catch (const gm::RecordError& e) {

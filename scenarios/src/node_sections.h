@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 
 #include "rpsd/config/source.h"
 #include "rpsd/node/servo_node_setup.h"
@@ -15,6 +16,12 @@ void dds(config::Source& d, const std::filesystem::path& dir, node::ServoNodeSet
 void actuator(config::Source& a, node::ServoNodeSetup& f);
 void limits(config::Source& l, node::ServoNodeSetup& f);
 void watchdog(config::Source& w, node::ServoNodeSetup& f);
+
+// The whole file: its own keys, then its sections. Returns the `limits` section, if any (the
+// envelope's check names its keys).
+std::unique_ptr<config::Source> node_file(config::Source& root, const std::filesystem::path& dir,
+                                          node::ServoNodeSetup& f);
+void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f);
 
 void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f);
 void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f);

@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -68,15 +69,18 @@ class Document {
     heading(3, title, text);
     out_ << "| key | type | unit | default | range | meaning |\n|---|---|---|---|---|---|\n";
     for (const auto& r : rows) {
+      keys_.insert(r.path);
       out_ << "| `" << r.path << "` | " << cell(r.type) << " | " << cell(r.unit) << " | " << cell(r.fallback) << " | "
            << cell(r.range) << " | " << cell(r.meaning) << " |\n";
     }
   }
   std::string text() const { return out_.str(); }
+  const std::set<std::string>& keys() const { return keys_; }
   std::ostringstream& out() { return out_; }
 
  private:
   std::ostringstream out_;
+  std::set<std::string> keys_;
 };
 
 template <class Kinds, class Read>
@@ -165,7 +169,7 @@ void test_scenario(Document& doc) {
   doc.table("ground_motion (format: time_acceleration)",
             listing("ground_motion", [](config::Source& s) { (void)gk::time_acceleration(s); }));
   doc.table("ground_motion.synthetic (instead of a file)",
-            listing("ground_motion.synthetic", [](config::Source& s) { (void)gk::synthetic(s); }));
+            listing("ground_motion", [](config::Source& s) { (void)gk::synthetic(s); }));
   doc.table("ground_motion (processing, in this order)",
             listing("ground_motion", [](config::Source& s) { (void)gk::processing(s); }),
             "Whatever the scaling, the processed record may peak at no more than 10 g.");
@@ -174,7 +178,7 @@ void test_scenario(Document& doc) {
               ts::free_vibration(s, kListedDofs, t);
             }));
   doc.table("output", listing("output", [](config::Source& s) { (void)ts::record_dofs(s, kListedDofs); }));
-  doc.table("sweep[]", listing("sweep[]", [](config::Source& s) { (void)study_sections::sweep_axis(s); }),
+  doc.table("sweep", listing("", [](config::Source& s) { (void)study_sections::sweep(s); }),
             "One or two keys, each run with every value: the cases are read in full before anything runs.");
 }
 
@@ -189,10 +193,11 @@ void node_file(Document& doc) {
   namespace ns = node_sections;
   doc.heading(2, "Servo node file (`rpsd servo-node`)",
               "A site's node: which test and site it serves, its pace, what it drives, its own limits (the rig's "
-              "envelope unless tighter) and its watchdog. Top level: `description`, `node`, `dds`, `actuator`, "
-              "`limits`, `watchdog`.");
+              "envelope unless tighter) and its watchdog.");
   node::ServoNodeSetup f;
   f.node.channels = transport::kMaxChannels;
+  doc.table("The file's own keys", listing("", [f](config::Source& s) mutable { (void)ns::node_file(s, {}, f); },
+                                           {"node", "dds", "actuator", "limits", "watchdog"}));
   doc.table("node", listing("node", [&f](config::Source& s) { ns::node(s, f); }));
   doc.table("dds", listing("dds", [&f](config::Source& s) { ns::dds(s, {}, f); }));
   doc.table("actuator", listing("actuator", [&f](config::Source& s) { ns::actuator(s, f); }, {"actuator.servo"}));
@@ -204,6 +209,8 @@ void node_file(Document& doc) {
   doc.table("watchdog", listing("watchdog", [&f](config::Source& s) { ns::watchdog(s, f); }));
   doc.heading(2, "Controller emulator file (`rpsd controller-emulator`)");
   node::ControllerEmulatorSetup e;
+  doc.table("The file's own keys",
+            listing("", [e](config::Source& s) mutable { ns::emulator_file(s, e); }, {"udp", "actuator"}));
   doc.table("udp", listing("udp", [&e](config::Source& s) { ns::emulator_udp(s, e); }));
   doc.table("actuator",
             listing("actuator", [&e](config::Source& s) { ns::emulator_actuator(s, e); }, {"actuator.servo"}),
@@ -233,9 +240,7 @@ void studies_section(Document& doc) {
             "`plant` takes a scenario's `servo` keys (servo_model or ideal_delay).");
 }
 
-}  // namespace
-
-std::string scenario_reference() {
+Document reference_document() {
   Document doc;
   doc.out() << "# Scenario reference\n\n"
             << "<!-- Generated from the readers: `rpsd reference > docs/scenario-reference.md`. "
@@ -249,7 +254,13 @@ std::string scenario_reference() {
   servo_parameter_file(doc);
   node_file(doc);
   studies_section(doc);
-  return doc.text();
+  return doc;
 }
+
+}  // namespace
+
+std::string scenario_reference() { return reference_document().text(); }
+
+std::set<std::string> scenario_reference_keys() { return reference_document().keys(); }
 
 }  // namespace rpsd::scenarios

@@ -161,6 +161,28 @@ void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f) {
   a.finish();
 }
 
+std::unique_ptr<config::Source> node_file(config::Source& root, const std::filesystem::path& dir,
+                                          node::ServoNodeSetup& f) {
+  root.optional_text("description", "one line for titles");
+  node(*root.section("node", "which test and site the node serves, and its pace"), f);
+  dds(*root.section("dds", "how the node meets the coordinator"), dir, f);
+  actuator(*root.section("actuator", "what the node drives"), f);
+  auto limits_section = root.optional_section("limits", "the node's own limits, one value per channel");
+  if (limits_section) limits(*limits_section, f);
+  if (auto watchdog_section = root.optional_section("watchdog", "what the node does when commands stop")) {
+    watchdog(*watchdog_section, f);
+  }
+  root.finish();
+  return limits_section;
+}
+
+void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f) {
+  root.optional_text("description", "one line for titles");
+  emulator_udp(*root.section("udp", "where the emulator listens"), f);
+  emulator_actuator(*root.section("actuator", "the actuators it emulates"), f);
+  root.finish();
+}
+
 }  // namespace node_sections
 
 node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
@@ -168,16 +190,7 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
   MappingReader root(document, file.string(), "");
   node::ServoNodeSetup f;
   f.name = file.stem().string();
-  root.optional_text("description", "one line for titles");
-  node_sections::node(*root.section("node", "which test and site the node serves, and its pace"), f);
-  node_sections::dds(*root.section("dds", "how the node meets the coordinator"), file.parent_path(), f);
-  node_sections::actuator(*root.section("actuator", "what the node drives"), f);
-  auto limits = root.optional_section("limits", "the node's own limits, one value per channel");
-  if (limits) node_sections::limits(*limits, f);
-  if (auto watchdog = root.optional_section("watchdog", "what the node does when commands stop")) {
-    node_sections::watchdog(*watchdog, f);
-  }
-  root.finish();
+  const auto limits = node_sections::node_file(root, file.parent_path(), f);
   // The rig's envelope is every limit's default, and a limit may only tighten it; the force
   // guard predicts with the simulated specimen's stiffness unless the file gives one.
   const servo::Envelope envelope = node::envelope_of(f.actuator);
@@ -209,10 +222,7 @@ node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::pa
   MappingReader root(document, file.string(), "");
   node::ControllerEmulatorSetup f;
   f.name = file.stem().string();
-  root.optional_text("description", "one line for titles");
-  node_sections::emulator_udp(*root.section("udp", "where the emulator listens"), f);
-  node_sections::emulator_actuator(*root.section("actuator", "the actuators it emulates"), f);
-  root.finish();
+  node_sections::emulator_file(root, f);
   return f;
 }
 

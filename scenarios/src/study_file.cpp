@@ -116,9 +116,7 @@ std::string number_text(double v) {
 studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line,
                                   MappingReader& root, const std::filesystem::path& file,
                                   studies::StudyDocument result) {
-  for (auto& axis : root.sections("sweep", 2, "one or two keys to sweep, each with values or a range")) {
-    result.sweep.push_back(study_sections::sweep_axis(*axis));
-  }
+  result.sweep = study_sections::sweep(root);
   const std::size_t n0 = result.sweep[0].values.size();
   const std::size_t n1 = result.sweep.size() > 1 ? result.sweep[1].values.size() : 1;
   if (n0 * n1 > 1000) root.fail("sweep", "more than 1000 cases");

@@ -147,6 +147,8 @@ studies::DelayCompensationStudy delay_compensation(config::Source& root) {
   return s;
 }
 
+namespace {
+
 studies::SweepAxis sweep_axis(config::Source& axis) {
   studies::SweepAxis a;
   a.key_path = axis.text("key", "the swept key's path (a.b.0.c)");
@@ -165,6 +167,16 @@ studies::SweepAxis sweep_axis(config::Source& axis) {
   axis.finish();
   if (a.key_path.rfind("sweep", 0) == 0 || a.key_path == "study") axis.fail("key", "cannot sweep this key");
   return a;
+}
+
+}  // namespace
+
+std::vector<studies::SweepAxis> sweep(config::Source& root) {
+  std::vector<studies::SweepAxis> axes;
+  for (auto& axis : root.sections("sweep", 2, "one or two keys to sweep, each with values or a range")) {
+    axes.push_back(sweep_axis(*axis));
+  }
+  return axes;
 }
 
 }  // namespace rpsd::scenarios::study_sections

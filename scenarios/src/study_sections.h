@@ -6,6 +6,7 @@
 #include <array>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rpsd/config/source.h"
 #include "rpsd/studies/study_config.h"
@@ -24,7 +25,7 @@ studies::FrequencyResponseStudy frequency_response(config::Source& root, config:
 studies::MaxGainStudy max_gain(config::Source& root, config::Source& servo);
 studies::DelayCompensationStudy delay_compensation(config::Source& root);
 
-// One axis of `sweep:`.
-studies::SweepAxis sweep_axis(config::Source& axis);
+// `sweep:`, one or two axes.
+std::vector<studies::SweepAxis> sweep(config::Source& root);
 
 }  // namespace rpsd::scenarios::study_sections

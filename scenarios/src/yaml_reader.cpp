@@ -33,7 +33,23 @@ std::string expected_number(const config::Number& spec) {
   return "a number " + config::range_text(spec);
 }
 
+std::set<std::string>* accepted_log = nullptr;
+
+// "a[3].b[0].c" -> "a[].b[].c", as the reference writes a list's items.
+std::string without_indices(const std::string& path) {
+  std::string out;
+  bool in_index = false;
+  for (char c : path) {
+    if (c == ']') in_index = false;
+    if (!in_index) out += c;
+    if (c == '[') in_index = true;
+  }
+  return out;
+}
+
 }  // namespace
+
+void log_accepted_keys(std::set<std::string>* log) { accepted_log = log; }
 
 std::string read_yaml_file_text(const std::filesystem::path& file) {
   try {
@@ -88,13 +104,18 @@ void MappingReader::fail(std::string_view key, const std::string& message) const
   fail_at(value ? value : node_, path_of(key), message);
 }
 
-bool MappingReader::has(std::string_view key) {
+void MappingReader::accept(std::string_view key) {
   read_keys_.insert(std::string(key));
+  if (accepted_log) accepted_log->insert(without_indices(path_of(key)));
+}
+
+bool MappingReader::has(std::string_view key) {
+  accept(key);
   return static_cast<bool>(node_[std::string(key)]);
 }
 
 YAML::Node MappingReader::required(std::string_view key) {
-  read_keys_.insert(std::string(key));
+  accept(key);
   YAML::Node value = node_[std::string(key)];
   if (!value) fail_at(node_, path_of(key), "required key is missing");
   return value;
@@ -186,7 +207,7 @@ long MappingReader::whole_number_or(std::string_view key, long minimum, long max
 }
 
 bool MappingReader::boolean_or(std::string_view key, bool fallback, std::string_view) {
-  read_keys_.insert(std::string(key));
+  accept(key);
   const YAML::Node value = node_[std::string(key)];
   if (!value) return fallback;
   bool result = false;

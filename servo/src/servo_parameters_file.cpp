@@ -108,8 +108,7 @@ ServoSystemParameters read_servo_parameters(config::Source& file) {
     sensors->finish();
   }
   p.specimen = read_specimen(*file.section("specimen", "what the actuator drives"));
-  if (file.has("simulation")) {
-    const auto simulation = file.section("simulation", "how the plant is integrated");
+  if (const auto simulation = file.optional_section("simulation", "how the plant is integrated")) {
     p.plant_rate_hz =
         simulation->number_or("plant_rate_hz", p.plant_rate_hz,
                               Number::between(1e3, 1e6, "Hz", "fixed-step RK4 rate of the continuous plant"));

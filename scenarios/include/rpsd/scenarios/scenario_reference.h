@@ -4,11 +4,16 @@
 // the committed file differs. Not real-time safe.
 #pragma once
 
+#include <set>
 #include <string>
 
 namespace rpsd::scenarios {
 
 // The whole reference, Markdown.
 std::string scenario_reference();
+
+// The key column of every table ("experimental[].dof"): what the agreement test holds the
+// readers to.
+std::set<std::string> scenario_reference_keys();
 
 }  // namespace rpsd::scenarios

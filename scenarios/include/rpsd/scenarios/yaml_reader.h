@@ -30,6 +30,11 @@ YAML::Node load_yaml_file(const std::filesystem::path& file);
 // Parses YAML text; `name` stands for the file in messages.
 YAML::Node parse_yaml_text(const std::string& text, const std::string& name);
 
+// While `log` is set (a test's; nullptr: none), every key a MappingReader accepts goes into it
+// as its path with list indices left out ("experimental[].dof"): how a test checks that the
+// scenario reference lists every key the readers accept. Not thread-safe.
+void log_accepted_keys(std::set<std::string>* log);
+
 // Every read goes through config::Source, with its range and meaning, so that the scenario
 // reference lists it.
 class MappingReader final : public config::Source {
@@ -87,6 +92,8 @@ class MappingReader final : public config::Source {
   // A non-empty list of at most max_count mappings, each read with its own path `key[i]`.
   std::vector<MappingReader> mappings(std::string_view key, std::size_t max_count);
   MappingReader mapping(std::string_view key);
+  // Marks the key as known to finish() (and logs it).
+  void accept(std::string_view key);
   YAML::Node required(std::string_view key);
   // The list at `key`, refused when it is empty, not a list or longer than max_count.
   YAML::Node list(std::string_view key, std::size_t max_count, const std::string& of_what);
