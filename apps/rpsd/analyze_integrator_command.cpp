@@ -29,9 +29,10 @@ struct Options {
   bool json = false;
 };
 
+// The scenario's names (integrator.scheme), with - or _ alike; newmark is newmark_average.
 constexpr const char* kNames =
-    "central-difference, newmark-average, newmark-linear, hht, generalized-alpha, alpha-os, "
-    "chang, cr, kr-alpha";
+    "central_difference, newmark (newmark_average), newmark_linear, hht_alpha, generalized_alpha, alpha_os, "
+    "chang, chen_ricles, kolay_ricles_alpha";
 
 std::string normalized(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),
@@ -49,7 +50,8 @@ ri::IntegratorConfig config_from(const Options& o) {
     throw std::invalid_argument("--rho-inf applies to generalized-alpha and kr-alpha, not '" + o.name + "'");
   if (o.alpha && !takes_alpha) throw std::invalid_argument("--alpha applies to hht and alpha-os, not '" + o.name + "'");
   if (n == "central-difference" || n == "cd") return ri::CentralDifferenceParams{};
-  if (n == "newmark-average" || n == "average-acceleration") return ri::NewmarkParams::average_acceleration();
+  if (n == "newmark" || n == "newmark-average" || n == "average-acceleration")
+    return ri::NewmarkParams::average_acceleration();
   if (n == "newmark-linear" || n == "linear-acceleration") return ri::NewmarkParams::linear_acceleration();
   if (n == "hht" || n == "hht-alpha") return ri::HhtAlphaParams{o.alpha.value_or(-0.1), {}};
   if (n == "alpha-os") return ri::AlphaOsParams{o.alpha.value_or(-1.0 / 6.0)};

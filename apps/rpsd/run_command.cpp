@@ -85,7 +85,10 @@ bool check_before_running(const coordinator::TestConfig& test, const std::string
 
 std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
   std::vector<scenarios::Override> overrides;
-  for (const auto& t : texts) overrides.push_back(scenarios::parse_override(t));
+  for (const auto& t : texts) {
+    overrides.push_back(scenarios::parse_override(t));
+    overrides.back().origin = "--set #" + std::to_string(overrides.size());
+  }
   return overrides;
 }
 
@@ -110,11 +113,12 @@ void add_run(CLI::App& app) {
   // the problem and exits 2 like every other bad input.
   run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's");
   run->callback([options] {
-    // --record replaces the whole ground_motion section first; --set may then refine it.
+    // --record replaces the record and keeps the scenario's processing; --set may then refine it.
     std::vector<scenarios::Override> overrides;
     if (!options->record.empty()) {
-      overrides.push_back({"ground_motion", "{file: \"" + std::filesystem::absolute(options->record).string() +
-                                                "\", format: peer_at2}"});
+      overrides.push_back({"ground_motion",
+                           "{file: \"" + std::filesystem::absolute(options->record).string() + "\", format: peer_at2}",
+                           "--record", scenarios::Override::Kind::kRecord});
     }
     for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
     const auto file = scenarios::load_study(options->scenario, overrides);

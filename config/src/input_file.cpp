@@ -7,6 +7,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "rpsd/config/input_log.h"
+
 namespace rpsd::config {
 namespace {
 
@@ -72,6 +74,7 @@ InputFile::InputFile(const std::filesystem::path& file, std::uintmax_t max_bytes
     throw;
   }
   size_bytes_ = static_cast<std::uintmax_t>(info.st_size);
+  InputLog::note(file);
 }
 
 InputFile::~InputFile() {

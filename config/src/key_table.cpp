@@ -145,6 +145,16 @@ std::unique_ptr<Source> KeyTable::file(std::string_view key, std::string_view me
   return std::make_unique<KeyTable>(path_of(key) + " (file)", rows_);
 }
 
+std::filesystem::path KeyTable::relative_file(std::string_view key, std::string_view meaning) {
+  add(key, "file name", "", "", "", meaning);
+  return "file";
+}
+
+std::optional<std::filesystem::path> KeyTable::optional_relative_file(std::string_view key, std::string_view meaning) {
+  add(key, "file name", "", "none", "", meaning);
+  return std::nullopt;
+}
+
 void KeyTable::fail(std::string_view key, const std::string& message) {
   throw ListingStopped("a reader failed while its keys were being listed: " + path_of(key) + ": " + message);
 }

@@ -52,6 +52,12 @@ std::optional<Scheme> parse_scheme(std::string_view name) {
   return std::nullopt;
 }
 
+std::vector<std::string_view> scheme_names() {
+  std::vector<std::string_view> names;
+  for (const auto& [s, name] : kNames) names.push_back(name);
+  return names;
+}
+
 std::unique_ptr<Integrator> make_integrator(const IntegratorConfig& config) {
   return std::visit(
       [](const auto& p) -> std::unique_ptr<Integrator> {

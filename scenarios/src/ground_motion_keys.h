@@ -19,12 +19,13 @@ namespace rpsd::scenarios::ground_motion_keys {
 
 inline constexpr std::array<std::string_view, 3> kFormats = {"peer_at2", "plain_text", "time_acceleration"};
 
-// `file:` and `format:`, the format's own keys after them.
+// `file:` (made absolute, see config::Source::relative_file) and `format:`, the format's own
+// keys after them.
 struct RecordFile {
   std::filesystem::path path;
   std::string format;
 };
-RecordFile record_file(config::Source& r, const std::filesystem::path& dir);
+RecordFile record_file(config::Source& r);
 ground_motion::At2ReadOptions peer_at2(config::Source& r);
 ground_motion::PlainTextOptions plain_text(config::Source& r);
 ground_motion::TimeAccelerationOptions time_acceleration(config::Source& r);

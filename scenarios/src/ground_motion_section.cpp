@@ -37,9 +37,9 @@ std::size_t skip_lines(config::Source& r) {
 
 }  // namespace
 
-RecordFile record_file(config::Source& r, const std::filesystem::path& dir) {
+RecordFile record_file(config::Source& r) {
   RecordFile f;
-  f.path = dir / r.text("file", "the record file (relative to this file)");
+  f.path = r.relative_file("file", "the record file (relative to this file)");
   f.format =
       r.choice("format", std::vector<std::string_view>(kFormats.begin(), kFormats.end()), "the record file's format");
   return f;
@@ -122,9 +122,9 @@ std::string number_text(double value) {
   return text;
 }
 
-gm::GroundMotionRecord load_file(config::Source& r, const std::filesystem::path& dir) {
+gm::GroundMotionRecord load_file(config::Source& r) {
   namespace keys = ground_motion_keys;
-  const keys::RecordFile file = keys::record_file(r, dir);
+  const keys::RecordFile file = keys::record_file(r);
   if (file.format == "peer_at2") {
     const auto options = keys::peer_at2(r);
     if (!std::filesystem::exists(file.path)) r.fail("file", "no such record file: " + file.path.string());
@@ -140,12 +140,12 @@ gm::GroundMotionRecord load_file(config::Source& r, const std::filesystem::path&
   return gm::read_time_acceleration(file.path, options);
 }
 
-coordinator::GroundMotion read_section(config::Source& r, const std::filesystem::path& dir, double step_s) {
+coordinator::GroundMotion read_section(config::Source& r, double step_s) {
   gm::GroundMotionRecord record;
   const auto synthetic = ground_motion_keys::synthetic(r);
   const char* source_key = synthetic ? "synthetic" : "file";
   try {
-    record = synthetic ? gm::generate_synthetic_ground_motion(*synthetic) : load_file(r, dir);
+    record = synthetic ? gm::generate_synthetic_ground_motion(*synthetic) : load_file(r);
   } catch (const ConfigError&) {
     throw;
   } catch (const gm::RecordError& e) {
@@ -215,10 +215,17 @@ coordinator::GroundMotion read_section(config::Source& r, const std::filesystem:
 
 }  // namespace
 
-coordinator::GroundMotion read_ground_motion_section(config::Source& section, const std::filesystem::path& dir,
-                                                     double step_s) {
+YAML::Node with_record(const YAML::Node& section, const YAML::Node& record) {
+  YAML::Node replaced = YAML::Clone(record);
+  for (const char* key : {"trim", "baseline_correction", "scale_factor", "target_pga_g", "pad_after_s"}) {
+    if (section.IsMap() && section[key]) replaced[key] = section[key];
+  }
+  return replaced;
+}
+
+coordinator::GroundMotion read_ground_motion_section(config::Source& section, double step_s) {
   try {
-    return read_section(section, dir, step_s);
+    return read_section(section, step_s);
   } catch (const gm::RecordError& e) {
     throw ConfigError(e.what());  // the message names the record's file and line
   }

@@ -106,17 +106,18 @@ void test_scenario(Document& doc) {
   namespace gk = ground_motion_keys;
   doc.heading(2, "Test scenario (`study: rpsd_test`)",
               "A hybrid test: a numerical structure, the DOFs specimens take, their actuators, the integrator, "
-              "the clock and what drives the test. Paths inside are relative to the scenario file.");
+              "the clock and what drives the test. A file name inside is relative to the scenario file (or "
+              "absolute); effective-scenario.yaml, saved with the results, holds it absolute.");
   doc.table("The file's own keys", listing("", [](config::Source& s) {
               std::string description;
               study_sections::study_kind(s, description);
               (void)ts::document(s);
             }));
   doc.table("structure (kind: linear)",
-            listing("structure", [](config::Source& s) { (void)ts::structure(s, {}); }, {"structure.damping"}));
+            listing("structure", [](config::Source& s) { (void)ts::structure(s); }, {"structure.damping"}));
   doc.table(
       "structure (kind: matrix_market)",
-      listing("structure", [](config::Source& s) { (void)ts::matrix_market_structure(s, {}); }, {"structure.damping"}),
+      listing("structure", [](config::Source& s) { (void)ts::matrix_market_structure(s); }, {"structure.damping"}),
       "Regular files of at most 256 MB, at most 100000 rows and columns.");
   doc.table("structure (kind: shear_building)",
             listing("structure", [](config::Source& s) { (void)ts::shear_building(s); },
@@ -154,13 +155,13 @@ void test_scenario(Document& doc) {
             }));
   doc.table("transport", listing("transport", [](config::Source& s) {
               coordinator::TestConfig t;
-              ts::transport(s, {}, t);
+              ts::transport(s, t);
             }));
   kind_tables<compensation::CompensatorKinds>(
       doc, "compensation", "the compensator (compensation/)",
       [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s); });
   doc.table("ground_motion (a record file)",
-            listing("ground_motion", [](config::Source& s) { (void)gk::record_file(s, {}); }),
+            listing("ground_motion", [](config::Source& s) { (void)gk::record_file(s); }),
             "Regular files of at most 64 MB, read line by line.");
   doc.table("ground_motion (format: peer_at2)",
             listing("ground_motion", [](config::Source& s) { (void)gk::peer_at2(s); }));

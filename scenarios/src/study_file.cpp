@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "rpsd/config/input_log.h"
+#include "rpsd/scenarios/ground_motion_section.h"
 #include "rpsd/scenarios/test_scenario_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
 #include "study_sections.h"
@@ -45,13 +47,30 @@ Override parse_override(const std::string& text) {
   if (equals == std::string::npos || equals == 0) {
     throw ConfigError("--set " + text + ": expected key.path=value");
   }
-  return {text.substr(0, equals), text.substr(equals + 1)};
+  return {text.substr(0, equals), text.substr(equals + 1), "--set", Override::Kind::kSet};
 }
 
 namespace {
 
-// Walks key.path (mapping keys, or list indices as numbers) and replaces the value there.
-void apply_override(YAML::Node root, const Override& o) {
+std::string origin_of(const Override& o) {
+  return (o.origin.empty() ? std::string("--set") : o.origin) + " (" + o.key_path + "=" + o.value + ")";
+}
+
+// The key under which `value` sits in `parent`, and the value: an "unknown key" error there
+// names the override.
+void note_key_of(const YAML::Node& parent, const YAML::Node& value, const std::string& origin,
+                 std::vector<OverrideNode>& nodes) {
+  for (const auto& entry : parent) {
+    if (entry.second.is(value)) nodes.push_back({entry.first, origin});
+  }
+  nodes.push_back({value, origin});
+}
+
+// Walks key.path (mapping keys, or list indices as numbers) and replaces the value there; a
+// missing mapping on the way is created (ground_motion.trim.end_s=5 without a trim). Returns
+// the nodes the command line put in, so that an error in one names its override.
+std::vector<OverrideNode> apply_override(YAML::Node root, const Override& o) {
+  const std::string origin = origin_of(o);
   std::vector<std::string> keys;
   std::size_t start = 0;
   for (std::size_t dot; (dot = o.key_path.find('.', start)) != std::string::npos; start = dot + 1) {
@@ -62,8 +81,15 @@ void apply_override(YAML::Node root, const Override& o) {
   try {
     value = YAML::Load(o.value);
   } catch (const YAML::Exception& e) {
-    throw ConfigError("--set " + o.key_path + "=" + o.value + ": not a YAML value: " + e.msg);
+    throw ConfigError(origin + ": not a YAML value: " + e.msg);
   }
+  if (o.kind == Override::Kind::kRecord) {
+    const YAML::Node section = root["ground_motion"];
+    root["ground_motion"] = with_record(section ? section : YAML::Node(YAML::NodeType::Map), value);
+    const YAML::Node replaced = root["ground_motion"];
+    return {{replaced["file"], origin}, {replaced["format"], origin}};
+  }
+  std::vector<OverrideNode> created{{value, origin}};
   std::vector<YAML::Node> path{root};
   for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
     YAML::Node parent = path.back();
@@ -73,27 +99,46 @@ void apply_override(YAML::Node root, const Override& o) {
       try {
         index = std::stoul(keys[i]);
       } catch (const std::exception&) {
-        throw ConfigError("--set " + o.key_path + ": '" + keys[i] + "' must be a list index");
+        throw ConfigError(origin + ": '" + keys[i] + "' must be a list index");
       }
-      if (index >= parent.size()) throw ConfigError("--set " + o.key_path + ": index " + keys[i] + " out of range");
+      if (index >= parent.size()) throw ConfigError(origin + ": index " + keys[i] + " out of range");
       child = parent[index];
-    } else if (parent.IsMap() && parent[keys[i]]) {
+    } else if (parent.IsMap()) {
+      if (!parent[keys[i]]) {
+        parent[keys[i]] = YAML::Node(YAML::NodeType::Map);
+        note_key_of(parent, parent[keys[i]], origin, created);
+      }
       child = parent[keys[i]];
     } else {
-      throw ConfigError("--set " + o.key_path + ": no key '" + keys[i] + "' in the scenario");
+      throw ConfigError(origin + ": '" + keys[i - 1] + "' is not a mapping");
     }
     path.push_back(child);
   }
   YAML::Node parent = path.back();
   if (parent.IsSequence()) {
-    const std::size_t index = std::stoul(keys.back());
-    if (index >= parent.size()) throw ConfigError("--set " + o.key_path + ": index out of range");
+    std::size_t index = 0;
+    try {
+      index = std::stoul(keys.back());
+    } catch (const std::exception&) {
+      throw ConfigError(origin + ": '" + keys.back() + "' must be a list index");
+    }
+    if (index >= parent.size()) throw ConfigError(origin + ": index out of range");
     parent[index] = value;
   } else if (parent.IsMap()) {
     parent[keys.back()] = value;  // a new key is checked like any other by the reader
+    note_key_of(parent, value, origin, created);
   } else {
-    throw ConfigError("--set " + o.key_path + ": the parent is not a mapping");
+    throw ConfigError(origin + ": the parent is not a mapping");
   }
+  return created;
+}
+
+OverrideNodes apply_overrides(YAML::Node root, const std::vector<Override>& overrides) {
+  auto nodes = std::make_shared<std::vector<OverrideNode>>();
+  for (const Override& o : overrides) {
+    for (auto& n : apply_override(root, o)) nodes->push_back(std::move(n));
+  }
+  return nodes;
 }
 
 }  // namespace
@@ -101,7 +146,35 @@ void apply_override(YAML::Node root, const Override& o) {
 namespace {
 
 studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
-                                     const std::vector<Override>& command_line, bool sweep_allowed = true);
+                                     const std::vector<Override>& command_line, OverrideNodes overrides,
+                                     bool sweep_allowed = true);
+
+std::string emitted(const YAML::Node& document) {
+  YAML::Emitter out;
+  out << document;
+  return std::string(out.c_str()) + "\n";
+}
+
+// A sweep's cases are read from copies: the file paths their readers made absolute are
+// carried back into the sweep's own document (same key, same file name, now absolute).
+void adopt_absolute_paths(YAML::Node sweep, const YAML::Node& one_case) {
+  if (sweep.IsMap() && one_case.IsMap()) {
+    for (auto entry : sweep) {
+      const std::string key = entry.first.Scalar();
+      const YAML::Node theirs = one_case[key];
+      if (!theirs) continue;
+      if (entry.second.IsScalar() && theirs.IsScalar()) {
+        const std::filesystem::path ours(entry.second.Scalar()), absolute(theirs.Scalar());
+        if (ours.is_relative() && absolute.is_absolute() && ours.filename() == absolute.filename())
+          sweep[key] = absolute.string();
+      } else {
+        adopt_absolute_paths(entry.second, theirs);
+      }
+    }
+  } else if (sweep.IsSequence() && one_case.IsSequence()) {
+    for (std::size_t i = 0; i < sweep.size() && i < one_case.size(); ++i) adopt_absolute_paths(sweep[i], one_case[i]);
+  }
+}
 
 // Shortest text that reads back as the same double.
 std::string number_text(double v) {
@@ -114,7 +187,7 @@ std::string number_text(double v) {
 // `range: {start, stop, count}`. Each case is the document with the axis values set as
 // overrides, read in full, so that every case is checked before the batch runs.
 studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line,
-                                  MappingReader& root, const std::filesystem::path& file,
+                                  YAML::Node document, MappingReader& root, const std::filesystem::path& file,
                                   studies::StudyDocument result) {
   result.sweep = study_sections::sweep(root);
   const std::size_t n0 = result.sweep[0].values.size();
@@ -123,20 +196,25 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
   // The first axis varies fastest: each value of the second axis is one block of cases.
   for (std::size_t j = 0; j < n1; ++j) {
     for (std::size_t i = 0; i < n0; ++i) {
-      std::vector<Override> overrides{{result.sweep[0].key_path, number_text(result.sweep[0].values[i])}};
+      std::vector<Override> overrides{
+          {result.sweep[0].key_path, number_text(result.sweep[0].values[i]), "sweep", Override::Kind::kSet}};
       std::vector<double> values{result.sweep[0].values[i]};
       if (result.sweep.size() > 1) {
-        overrides.push_back({result.sweep[1].key_path, number_text(result.sweep[1].values[j])});
+        overrides.push_back(
+            {result.sweep[1].key_path, number_text(result.sweep[1].values[j]), "sweep", Override::Kind::kSet});
         values.push_back(result.sweep[1].values[j]);
       }
       studies::StudyDocument one;
       try {
         // Parsed afresh from the text, so that every untouched value keeps its line and column.
         YAML::Node case_document = parse_yaml_text(text, file.string());
-        for (const Override& o : command_line) apply_override(case_document, o);
+        auto nodes = std::make_shared<std::vector<OverrideNode>>(*apply_overrides(case_document, command_line));
         case_document.remove("sweep");
-        for (const Override& o : overrides) apply_override(case_document, o);
-        one = read_document(case_document, file, text, {}, false);
+        for (const Override& o : overrides) {
+          for (auto& n : apply_override(case_document, o)) nodes->push_back(std::move(n));
+        }
+        one = read_document(case_document, file, text, {}, nodes, false);
+        if (result.sweep_cases.empty()) adopt_absolute_paths(document, case_document);
       } catch (const ConfigError& e) {
         std::string where = result.sweep[0].key_path + " = " + number_text(values[0]);
         if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
@@ -147,6 +225,7 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
     }
   }
   result.study = result.sweep_cases.front();
+  result.effective_yaml = emitted(document);
   // The other keys were checked by every case's own reader.
   return result;
 }
@@ -157,52 +236,51 @@ std::string read_config_text(const std::filesystem::path& file) { return read_ya
 
 YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   YAML::Node document = parse_yaml_text(read_config_text(file), file.string());
-  for (const Override& o : overrides) apply_override(document, o);
+  apply_overrides(document, overrides);
   return document;
 }
 
 studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  config::InputLog inputs;  // the scenario first, then every file it names (records, matrices, ...)
   studies::StudyDocument document = parse_study(read_config_text(file), file, overrides);
-  document.input_files.insert(document.input_files.begin(), file);
+  document.input_files = inputs.files();
   return document;
 }
 
 studies::StudyDocument parse_study(const std::string& yaml_text, const std::filesystem::path& file,
                                    const std::vector<Override>& overrides) {
   YAML::Node document = parse_yaml_text(yaml_text, file.string());
-  for (const Override& o : overrides) apply_override(document, o);
+  const OverrideNodes nodes = apply_overrides(document, overrides);
   // Sweep cases re-parse the text and re-apply these overrides, keeping every line number.
-  return read_document(document, file, yaml_text, overrides);
+  return read_document(document, file, yaml_text, overrides, nodes);
 }
 
 namespace {
 
 studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
-                                     const std::vector<Override>& command_line, bool sweep_allowed) {
-  MappingReader root(document, file.string(), "");
+                                     const std::vector<Override>& command_line, OverrideNodes overrides,
+                                     bool sweep_allowed) {
+  MappingReader root(document, file.string(), "", std::move(overrides));
   studies::StudyDocument result;
   result.name = file.stem().string();
-  {
-    YAML::Emitter out;
-    out << document;
-    result.effective_yaml = std::string(out.c_str()) + "\n";
-  }
   const std::string kind = study_sections::study_kind(root, result.description);
   if (kind == "rpsd_test") {
     if (root.has("sweep")) {
       // A case still holding a sweep means the key was given twice (YAML keeps both).
       if (!sweep_allowed) root.fail("sweep", "given more than once");
-      return read_sweep(text, command_line, root, file, std::move(result));
+      return read_sweep(text, command_line, document, root, file, std::move(result));
     }
     coordinator::TestConfig scenario = read_test_config(root, file);
     scenario.description = result.description;
     result.study = std::move(scenario);
     root.finish();
+    result.effective_yaml = emitted(document);  // after reading: its file paths are absolute now
     return result;
   }
   if (kind == "rpsd_delay_compensation") {
     result.study = study_sections::delay_compensation(root);
     root.finish();
+    result.effective_yaml = emitted(document);
     return result;
   }
   const auto servo = root.file("servo", "the servo-system parameter file (relative to this file)");
@@ -214,6 +292,7 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
     result.study = study_sections::max_gain(root, *servo);
   }
   root.finish();
+  result.effective_yaml = emitted(document);
   return result;
 }
 

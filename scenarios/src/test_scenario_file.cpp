@@ -13,9 +13,8 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
   namespace sections = test_sections;
   coordinator::TestConfig t;
   t.name = file.stem().string();
-  const std::filesystem::path dir = file.parent_path();
   sections::Document d = sections::document(root);
-  t.structure = sections::structure(*d.structure, dir);
+  t.structure = sections::structure(*d.structure);
   const Eigen::Index dofs = structure_dofs(t);
 
   std::set<Eigen::Index> used;
@@ -47,13 +46,13 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
       throw ConfigError(file.string() + ": experimental[" + std::to_string(i) + "].limits." + message);
     }
   }
-  if (d.transport) sections::transport(*d.transport, dir, t);
+  if (d.transport) sections::transport(*d.transport, t);
   if (d.compensation) t.compensation = sections::compensation(*d.compensation, control_period_s);
 
   const double dt_s = 1.0 / t.control_rate_hz;
   t.initial_displacement_m = Eigen::VectorXd::Zero(dofs);
   if (d.ground_motion) {
-    t.ground_motion = read_ground_motion_section(*d.ground_motion, dir, dt_s);
+    t.ground_motion = read_ground_motion_section(*d.ground_motion, dt_s);
     t.duration_s = dt_s * static_cast<double>(t.ground_motion->acceleration_m_per_s2.size() - 1);
   } else {
     sections::free_vibration(*d.free_vibration, dofs, t);

@@ -5,7 +5,9 @@
 
 #include "physical_ranges.h"
 #include "rpsd/compensation/compensator_factory.h"
+#include "rpsd/config/closest_name.h"
 #include "rpsd/config/input_file.h"
+#include "rpsd/config/kind_list.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/study_file.h"
@@ -75,12 +77,12 @@ substructure::LinearMdofConfig linear_structure(config::Source& st) {
   return c;
 }
 
-MatrixMarketStructure matrix_market_structure(config::Source& st, const std::filesystem::path& dir) {
+MatrixMarketStructure matrix_market_structure(config::Source& st) {
   MatrixMarketStructure s;
-  s.files.mass_file = dir / st.text("mass_file", "M, a Matrix Market file (relative to this file)");
-  s.files.stiffness_file = dir / st.text("stiffness_file", "K, a Matrix Market file");
-  if (auto c = st.optional_text("damping_file", "C, a Matrix Market file (or damping:)"))
-    s.files.damping_file = dir / *c;
+  s.files.mass_file = st.relative_file("mass_file", "M, a Matrix Market file (relative to this file)");
+  s.files.stiffness_file = st.relative_file("stiffness_file", "K, a Matrix Market file");
+  if (auto c = st.optional_relative_file("damping_file", "C, a Matrix Market file (or damping:)"))
+    s.files.damping_file = *c;
   s.damping = optional_damping(st, nullptr);
   return s;
 }
@@ -97,7 +99,7 @@ substructure::ShearBuildingConfig shear_building(config::Source& st) {
   return c;
 }
 
-Structure structure(config::Source& st, const std::filesystem::path& dir) {
+Structure structure(config::Source& st) {
   const std::string kind =
       st.choice("kind", {"linear", "matrix_market", "shear_building"}, "the numerical substructure");
   Structure result;
@@ -109,7 +111,7 @@ Structure structure(config::Source& st, const std::filesystem::path& dir) {
       probe.configure(c);  // validates: symmetric, positive definite, sizes
       result = std::move(c);
     } else if (kind == "matrix_market") {
-      MatrixMarketStructure s = matrix_market_structure(st, dir);
+      MatrixMarketStructure s = matrix_market_structure(st);
       st.finish();
       auto c = substructure::linear_config_from_matrix_market(s.files, s.damping);
       substructure::LinearMdofModel probe;
@@ -240,15 +242,15 @@ coordinator::ExperimentalChannel experimental(config::Source& e, Eigen::Index do
   return channel;
 }
 
-std::vector<std::string_view> integrator_names() {
-  std::vector<std::string_view> names;
-  for (auto scheme :
-       {integrators::Scheme::kCentralDifference, integrators::Scheme::kNewmark, integrators::Scheme::kHhtAlpha,
-        integrators::Scheme::kGeneralizedAlpha, integrators::Scheme::kAlphaOs, integrators::Scheme::kChang,
-        integrators::Scheme::kChenRicles, integrators::Scheme::kKolayRiclesAlpha}) {
-    names.push_back(integrators::scheme_name(scheme));
-  }
-  return names;
+std::vector<std::string_view> integrator_names() { return integrators::scheme_names(); }
+
+void check_integrator_name(config::Source& r, std::string_view key) {
+  if (!r.has(key)) return;
+  const std::string name = r.text(key, "the time-stepping scheme");
+  if (default_integrator(name)) return;
+  const std::vector<std::string_view> names = integrator_names();
+  r.fail(key,
+         "unknown integrator \"" + name + "\"; expected " + config::listed(names) + config::did_you_mean(name, names));
 }
 
 void integrator_parameters(config::Source& r, integrators::IntegratorConfig& config) {
@@ -264,6 +266,7 @@ void integrator_parameters(config::Source& r, integrators::IntegratorConfig& con
 }
 
 integrators::IntegratorConfig integrator(config::Source& r) {
+  check_integrator_name(r, "scheme");
   const std::string scheme = r.choice("scheme", integrator_names(), "the time-stepping scheme");
   integrators::IntegratorConfig config = *default_integrator(scheme);
   integrator_parameters(r, config);
@@ -294,7 +297,7 @@ void clock(config::Source& c, coordinator::TestConfig& t) {
   c.finish();
 }
 
-void transport(config::Source& r, const std::filesystem::path& dir, coordinator::TestConfig& t) {
+void transport(config::Source& r, coordinator::TestConfig& t) {
   const std::string kind = r.choice("kind", {"in_process", "dds"}, "sites in this process, or over DDS");
   t.transport.kind =
       kind == "dds" ? coordinator::TransportConfig::Kind::kDds : coordinator::TransportConfig::Kind::kInProcess;
@@ -302,7 +305,7 @@ void transport(config::Source& r, const std::filesystem::path& dir, coordinator:
       r.whole_number_or("test_id", 1, 4'000'000'000L, t.transport.test_id, "the test the nodes must serve"));
   t.transport.domain_id =
       static_cast<std::uint32_t>(r.whole_number_or("domain_id", 0, 232, t.transport.domain_id, "the DDS domain"));
-  const auto config = r.optional_text("dds_config", "a Cyclone DDS XML file (relative to this file)");
+  const auto config = r.optional_relative_file("dds_config", "a Cyclone DDS XML file (relative to this file)");
   t.transport.feedback_timeout_s =
       r.number_or("feedback_timeout_s", t.transport.feedback_timeout_s,
                   Number{"s", "lock-step: the longest wait for one step's feedback", 0.0, 60.0, true});
@@ -314,7 +317,7 @@ void transport(config::Source& r, const std::filesystem::path& dir, coordinator:
                   Number::between(0.0, 0.01, "s", "lock-step: spin this long for feedback before sleeping"));
   r.finish();
   if (config) {
-    t.transport.dds_config = dir / *config;
+    t.transport.dds_config = *config;
     try {
       config::check_input_file(t.transport.dds_config, config::kMaxYamlFileBytes, "DDS configuration");
     } catch (const config::InputFileError& e) {

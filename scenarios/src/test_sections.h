@@ -33,16 +33,17 @@ struct Document {
 };
 Document document(config::Source& root);
 
-// `structure:` by its kind, checked (a model is configured from it); files relative to dir.
+// `structure:` by its kind, checked (a model is configured from it); files relative to the
+// section's file (config::Source::relative_file).
 using Structure = std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig>;
-Structure structure(config::Source& st, const std::filesystem::path& dir);
+Structure structure(config::Source& st);
 // Each kind's keys, unchecked.
 substructure::LinearMdofConfig linear_structure(config::Source& st);
 struct MatrixMarketStructure {
   substructure::MatrixMarketModelFiles files;
   substructure::DampingConfig damping;
 };
-MatrixMarketStructure matrix_market_structure(config::Source& st, const std::filesystem::path& dir);
+MatrixMarketStructure matrix_market_structure(config::Source& st);
 substructure::ShearBuildingConfig shear_building(config::Source& st);
 // `damping:`; `mass` is the structure's when it is known (a single ratio needs it).
 substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* mass);
@@ -59,9 +60,12 @@ integrators::IntegratorConfig integrator(config::Source& r);
 // The keys of one scheme (rho_inf, alpha) into its default parameters.
 void integrator_parameters(config::Source& r, integrators::IntegratorConfig& config);
 std::vector<std::string_view> integrator_names();
+// An unknown scheme at `key` is refused with every name and a did-you-mean (a listing, whose
+// has() says no, lists nothing here: the choice that follows lists the key).
+void check_integrator_name(config::Source& r, std::string_view key);
 
 void clock(config::Source& c, coordinator::TestConfig& t);
-void transport(config::Source& r, const std::filesystem::path& dir, coordinator::TestConfig& t);
+void transport(config::Source& r, coordinator::TestConfig& t);
 compensation::CompensatorConfig compensation(config::Source& r, double control_period_s);
 void free_vibration(config::Source& f, Eigen::Index dofs, coordinator::TestConfig& t);
 std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs);

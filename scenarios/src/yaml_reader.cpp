@@ -4,6 +4,7 @@
 #include <memory>
 #include <sstream>
 
+#include "rpsd/config/closest_name.h"
 #include "rpsd/config/input_file.h"
 #include "rpsd/config/key_table.h"
 #include "rpsd/config/kind_list.h"
@@ -78,8 +79,8 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
   }
 }
 
-MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_path)
-    : node_(node), file_(std::move(file)), key_path_(std::move(key_path)) {
+MappingReader::MappingReader(YAML::Node node, std::string file, std::string key_path, OverrideNodes overrides)
+    : node_(node), file_(std::move(file)), key_path_(std::move(key_path)), overrides_(std::move(overrides)) {
   if (!node_.IsMap()) fail_at(node_, key_path_, "expected a mapping of keys, got " + describe(node_));
   // YAML keeps both copies of a repeated key and lookups see only one: reject it instead.
   std::set<std::string> seen;
@@ -94,9 +95,29 @@ std::string MappingReader::path_of(std::string_view key) const {
   return key_path_.empty() ? std::string(key) : key_path_ + '.' + std::string(key);
 }
 
+namespace {
+
+bool within(const YAML::Node& tree, const YAML::Node& node) {
+  if (tree.is(node)) return true;
+  if (tree.IsMap()) {
+    for (const auto& entry : tree)
+      if (entry.first.is(node) || within(entry.second, node)) return true;
+  } else if (tree.IsSequence()) {
+    for (const auto& item : tree)
+      if (within(item, node)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void MappingReader::fail_at(const YAML::Node& node, const std::string& path, const std::string& message) const {
-  throw ConfigError(location(file_, node.Mark()) + ": " + (path.empty() ? std::string("(document)") : path) + ": " +
-                    message);
+  const std::string what = (path.empty() ? std::string("(document)") : path) + ": " + message;
+  if (overrides_) {
+    for (const OverrideNode& o : *overrides_)
+      if (within(o.value, node)) throw ConfigError(o.origin + ": " + what);
+  }
+  throw ConfigError(location(file_, node.Mark()) + ": " + what);
 }
 
 void MappingReader::fail(std::string_view key, const std::string& message) const {
@@ -117,7 +138,15 @@ bool MappingReader::has(std::string_view key) {
 YAML::Node MappingReader::required(std::string_view key) {
   accept(key);
   YAML::Node value = node_[std::string(key)];
-  if (!value) fail_at(node_, path_of(key), "required key is missing");
+  if (!value) {
+    // A misspelling of this key is the likelier mistake: name it, not the missing one.
+    for (const auto& entry : node_) {
+      const std::string given = entry.first.Scalar();
+      if (!read_keys_.contains(given) && config::closest_name(given, {key}))
+        fail_at(entry.first, path_of(given), "unknown key (did you mean \"" + std::string(key) + "\"?)");
+    }
+    fail_at(node_, path_of(key), "required key is missing");
+  }
   return value;
 }
 
@@ -223,6 +252,19 @@ std::string MappingReader::string(std::string_view key) {
   return value.Scalar();
 }
 
+std::filesystem::path MappingReader::relative_file(std::string_view key, std::string_view meaning) {
+  const std::filesystem::path path =
+      std::filesystem::absolute(std::filesystem::path(file_).parent_path() / text(key, meaning)).lexically_normal();
+  node_[std::string(key)] = path.string();
+  return path;
+}
+
+std::optional<std::filesystem::path> MappingReader::optional_relative_file(std::string_view key,
+                                                                           std::string_view meaning) {
+  if (!has(key)) return std::nullopt;
+  return relative_file(key, meaning);
+}
+
 std::optional<std::string> MappingReader::optional_string(std::string_view key) {
   if (!has(key)) return std::nullopt;
   return string(key);
@@ -232,19 +274,22 @@ std::vector<MappingReader> MappingReader::mappings(std::string_view key, std::si
   const YAML::Node value = list(key, max_count, "entries");
   std::vector<MappingReader> result;
   for (std::size_t i = 0; i < value.size(); ++i)
-    result.emplace_back(value[i], file_, path_of(key) + '[' + std::to_string(i) + ']');
+    result.emplace_back(value[i], file_, path_of(key) + '[' + std::to_string(i) + ']', overrides_);
   return result;
 }
 
 MappingReader MappingReader::mapping(std::string_view key) {
   const YAML::Node value = required(key);
-  return MappingReader(value, file_, path_of(key));
+  return MappingReader(value, file_, path_of(key), overrides_);
 }
 
 void MappingReader::finish() const {
   for (const auto& entry : node_) {
     const std::string key = entry.first.Scalar();
-    if (!read_keys_.contains(key)) fail_at(entry.first, path_of(key), "unknown key");
+    if (!read_keys_.contains(key)) {
+      const std::vector<std::string_view> known(read_keys_.begin(), read_keys_.end());
+      fail_at(entry.first, path_of(key), "unknown key" + config::did_you_mean(key, known));
+    }
   }
 }
 
@@ -254,7 +299,7 @@ std::string MappingReader::choice(std::string_view key, const std::vector<std::s
   for (const auto& c : choices) {
     if (value == c) return value;
   }
-  fail(key, "expected " + config::listed(choices) + ", got \"" + value + "\"");
+  fail(key, "expected " + config::listed(choices) + ", got \"" + value + "\"" + config::did_you_mean(value, choices));
 }
 
 std::optional<double> MappingReader::optional_number(std::string_view key, const config::Number& spec) {
@@ -309,8 +354,8 @@ std::unique_ptr<config::Source> MappingReader::section(std::string_view key, std
   return std::make_unique<MappingReader>(mapping(key));
 }
 
-std::unique_ptr<config::Source> MappingReader::file(std::string_view key, std::string_view) {
-  const std::filesystem::path path = std::filesystem::path(file_).parent_path() / string(key);
+std::unique_ptr<config::Source> MappingReader::file(std::string_view key, std::string_view meaning) {
+  const std::filesystem::path path = relative_file(key, meaning);
   try {
     config::check_input_file(path, config::kMaxYamlFileBytes, "YAML file");
   } catch (const config::InputFileError& e) {

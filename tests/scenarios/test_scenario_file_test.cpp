@@ -9,6 +9,7 @@
 #include "../servo/paper_rig.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/study_file.h"
+#include "rpsd/servo/plant_factory.h"
 
 namespace rpsd::scenarios {
 namespace {
@@ -77,19 +78,26 @@ TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
   EXPECT_NE(error_of({parse_override("experimental.0.site=0")}).find("experimental[0].site"), std::string::npos);
   EXPECT_NE(
       error_of({parse_override("integrator.scheme=euler")})
-          .find("integrator.scheme: expected central_difference, newmark, hht_alpha, generalized_alpha, alpha_os, "
-                "chang, chen_ricles or kolay_ricles_alpha, got \"euler\""),
+          .find("integrator.scheme: unknown integrator \"euler\"; expected central_difference, newmark, hht_alpha, "
+                "generalized_alpha, alpha_os, chang, chen_ricles or kolay_ricles_alpha"),
       std::string::npos);
   EXPECT_NE(error_of({parse_override("experimental.0.restoring_force=guess")}).find("experimental[0].restoring_force"),
             std::string::npos);
   EXPECT_NE(error_of({parse_override("structure.colour=red")}).find("structure.colour: unknown key"),
             std::string::npos);
-  EXPECT_NE(error_of({parse_override("nothing.here=1")}).find("--set nothing.here: no key 'nothing'"),
+  // A key --set creates is checked like any other, and the error names the override.
+  EXPECT_NE(error_of({parse_override("nothing.here=1")}).find("--set (nothing.here=1): nothing: unknown key"),
             std::string::npos);
-  // A located error keeps file:line:column.
+  // An error in a value the command line gave names the override, not a line of the file.
+  Override second = parse_override("compensation.order=7");
+  second.origin = "--set #2";
+  EXPECT_EQ(error_of({parse_override("clock.mode=as_fast_as_possible"), second}),
+            "--set #2 (compensation.order=7): compensation.order: expected a whole number from 0 to 3, got \"7\"");
+  // An error in the file keeps file:line:column (a phase lead needs its ratio_a).
   EXPECT_TRUE(std::regex_search(
-      error_of({parse_override("compensation.order=7")}),
-      std::regex(R"(sdof-free-vibration\.yaml:\d+:\d+: compensation\.order: expected a whole number from 0 to 3)")));
+      error_of({parse_override("compensation.kind=phase_lead")}),
+      std::regex(R"(sdof-free-vibration\.yaml:23:3: compensation\.ratio_a: required key is missing)")))
+      << error_of({parse_override("compensation.kind=phase_lead")});
 }
 
 // The lock-step busy wait: read as given, refused with a real-time clock (a spinning loop
@@ -132,6 +140,21 @@ TEST(SweepFile, EveryCaseIsReadWithItsValuesFirstAxisFastest) {
     EXPECT_DOUBLE_EQ(lead.ratio_a, file.sweep_values[c][1]);
     EXPECT_DOUBLE_EQ(file.sweep_values[c][0], file.sweep[0].values[c % 4]);
   }
+}
+
+// The sweep's effective document names its files by absolute path, keeps its sweep, and read
+// from another folder gives the same cases.
+TEST(SweepFile, ItsEffectiveDocumentReadsTheSameFromAnotherFolder) {
+  const auto sweep = load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof-compensation-sweep.yaml");
+  const std::string servo = (testing::source_dir() / "examples/servo/paper-mts-244.yaml").lexically_normal().string();
+  EXPECT_NE(sweep.effective_yaml.find("parameters: " + servo), std::string::npos) << sweep.effective_yaml;
+  const auto again =
+      parse_study(sweep.effective_yaml, std::filesystem::temp_directory_path() / "elsewhere" / "effective.yaml");
+  ASSERT_EQ(again.sweep_cases.size(), sweep.sweep_cases.size());
+  EXPECT_EQ(servo::envelope_of(again.sweep_cases.back().plant).force_n,
+            servo::envelope_of(sweep.sweep_cases.back().plant).force_n);
+  EXPECT_EQ(again.sweep_cases.back().ground_motion->acceleration_m_per_s2,
+            sweep.sweep_cases.back().ground_motion->acceleration_m_per_s2);
 }
 
 TEST(SweepFile, ABadCaseIsNamedBeforeAnythingRuns) {

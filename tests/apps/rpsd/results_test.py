@@ -26,9 +26,9 @@ def check(condition, message):
         problems.append(message)
 
 
-def rpsd(*args, env=None, prefix=()):
+def rpsd(*args, env=None, prefix=(), cwd=None):
     run = subprocess.run([*prefix, RPSD, *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                         timeout=600, env=env)
+                         timeout=600, env=env, cwd=cwd)
     return run.returncode, run.stdout
 
 
@@ -133,22 +133,43 @@ def a_missing_tool_is_exit_1():
 
 
 def summary_names_the_code_and_every_input():
+    # The scenario, the servo parameter file it names, and a record given on the command line:
+    # each listed once, in the order read, with the SHA-256 of its bytes (hashlib's, not rpsd's).
     out = fresh("provenance")
-    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set", "ground_motion.synthetic.duration_s=3")
+    record = os.path.join(SOURCE, "data/ground-motions/STM090.AT2")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--record", record, "--set", "ground_motion.scale_factor=0.05",
+                      "--set=ground_motion.trim={end_s: 3}")
     check(code == 0, f"the run failed: {text}")
     code, version = rpsd("--version")
     check(code == 0 and version.startswith("rpsd "), f"rpsd --version: exit {code}: {version}")
     p = summary(out)["provenance"]
     check(f"rpsd {p['rpsd']['version']} (commit {p['rpsd']['commit']})" == version.strip(),
           f"summary {p['rpsd']} against --version {version.strip()}")
-    files = {os.path.realpath(i["file"]): i["sha256"] for i in p["inputs"]}
-    for expected in (SYNTHETIC,):
-        path = os.path.realpath(expected)
-        if path not in files:
-            problems.append(f"{expected} is not among the inputs {sorted(files)}")
-            continue
-        with open(path, "rb") as f:
-            check(files[path] == hashlib.sha256(f.read()).hexdigest(), f"{expected}: wrong SHA-256")
+    listed = [os.path.realpath(i["file"]) for i in p["inputs"]]
+    expected = [os.path.realpath(f) for f in (SYNTHETIC, os.path.join(SOURCE, "examples/servo/paper-mts-244.yaml"),
+                                              record)]
+    check(listed == expected, f"inputs {listed}, expected {expected}")
+    for i in p["inputs"]:
+        with open(i["file"], "rb") as f:
+            check(i["sha256"] == hashlib.sha256(f.read()).hexdigest(), f"{i['file']}: wrong SHA-256")
+
+
+def effective_scenario_runs_again_from_anywhere():
+    # effective-scenario.yaml names its files by absolute path: run from another folder (cwd
+    # elsewhere, the results folder moved), it reproduces the run bit for bit, reading the same
+    # files (same SHA-256).
+    first, moved, again = fresh("effective-first"), fresh("effective-moved"), fresh("effective-again")
+    code, text = rpsd("run", os.path.join(SOURCE, "examples/scenarios/elcentro-sdof.yaml"), "--out", first,
+                      "--set=ground_motion.trim={end_s: 3}")
+    check(code == 0, f"the first run failed: {text}")
+    shutil.move(first, moved)
+    code, text = rpsd("run", "effective-scenario.yaml", "--out", again, cwd=moved)
+    check(code == 0, f"the run of effective-scenario.yaml failed: {text}")
+    for name in ("time_history.csv", "reference_history.csv"):
+        with open(os.path.join(moved, name), "rb") as a, open(os.path.join(again, name), "rb") as b:
+            check(a.read() == b.read(), f"{name} differs between the run and its effective scenario")
+    inputs = lambda d: [i["sha256"] for i in summary(d)["provenance"]["inputs"][1:]]
+    check(len(inputs(moved)) == 2 and inputs(moved) == inputs(again), f"inputs {inputs(moved)} and {inputs(again)}")
 
 
 CASES = {
@@ -159,6 +180,7 @@ CASES = {
     "file_size_limit_exit_5": a_file_that_cannot_grow_ends_the_run_with_exit_5,
     "missing_tool_exit_1": a_missing_tool_is_exit_1,
     "summary_provenance": summary_names_the_code_and_every_input,
+    "effective_scenario_anywhere": effective_scenario_runs_again_from_anywhere,
 }
 
 CASES[CASE]()

@@ -23,7 +23,9 @@ class ListingStopped : public std::logic_error {
 
 struct KeyRow {
   std::string path;  // "compensation.delay_s"
-  std::string type;  // "number", "whole number", "list of numbers", "true or false", "one of ...", "section", "file"
+  // "number", "whole number", "list of numbers", "true or false", "one of ...", "section",
+  // "file" (another file, its keys listed), "file name" (a file another reader opens)
+  std::string type;
   std::string unit;
   std::string fallback;  // the default, empty when the key is required
   std::string range;
@@ -58,6 +60,8 @@ class KeyTable final : public Source {
   bool has(std::string_view key) override;
   std::unique_ptr<Source> section(std::string_view key, std::string_view meaning) override;
   std::unique_ptr<Source> file(std::string_view key, std::string_view meaning) override;
+  std::filesystem::path relative_file(std::string_view key, std::string_view meaning) override;
+  std::optional<std::filesystem::path> optional_relative_file(std::string_view key, std::string_view meaning) override;
   void finish() override {}
   [[noreturn]] void fail(std::string_view key, const std::string& message) override;
   [[noreturn]] void fail_section(const std::string& message) override;

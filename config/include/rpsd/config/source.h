@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -79,6 +80,12 @@ class Source {
   // (relative to this file).
   virtual std::unique_ptr<Source> section(std::string_view key, std::string_view meaning) = 0;
   virtual std::unique_ptr<Source> file(std::string_view key, std::string_view meaning) = 0;
+  // The name of a file another reader opens (a record, a matrix), relative to this file's
+  // folder or absolute: its absolute path. A reader of a document writes the absolute path
+  // back into it, so that the document emitted after reading runs from any folder.
+  virtual std::filesystem::path relative_file(std::string_view key, std::string_view meaning) = 0;
+  virtual std::optional<std::filesystem::path> optional_relative_file(std::string_view key,
+                                                                      std::string_view meaning) = 0;
   // Rejects every key that was not read.
   virtual void finish() = 0;
   // An error at the key, with the file's location and the key's path; and one about the

@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 namespace rpsd::integrators {
 
@@ -25,6 +26,8 @@ Scheme scheme_of(const IntegratorConfig& config);
 // Stable lower-case name: central_difference, newmark, hht_alpha, ...
 std::string_view scheme_name(Scheme scheme);
 std::optional<Scheme> parse_scheme(std::string_view name);
+// Every scheme's name, in the order above (for messages listing them).
+std::vector<std::string_view> scheme_names();
 
 // Not real-time safe. Validates the parameters (throws std::invalid_argument).
 std::unique_ptr<Integrator> make_integrator(const IntegratorConfig& config);

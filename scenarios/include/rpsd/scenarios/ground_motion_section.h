@@ -3,7 +3,7 @@
 // corrected on request, and resampled to the integration step.
 #pragma once
 
-#include <filesystem>
+#include <yaml-cpp/yaml.h>
 
 #include "rpsd/config/source.h"
 #include "rpsd/coordinator/test_config.h"
@@ -11,9 +11,13 @@
 
 namespace rpsd::scenarios {
 
-// Reads and processes the record; file paths are relative to `dir`. Every error names the
-// scenario's key, and the record's file and line. Not real-time safe.
-coordinator::GroundMotion read_ground_motion_section(config::Source& section, const std::filesystem::path& dir,
-                                                     double integration_step_s);
+// Reads and processes the record; a file path is relative to the section's file (and made
+// absolute in the document, config::Source::relative_file). Every error names the scenario's
+// key, and the record's file and line. Not real-time safe.
+coordinator::GroundMotion read_ground_motion_section(config::Source& section, double integration_step_s);
+
+// The section with its record replaced by `record` ({file, format, ...}) and its processing
+// kept (trim, baseline correction, scaling, padding): what rpsd run --record does.
+YAML::Node with_record(const YAML::Node& section, const YAML::Node& record);
 
 }  // namespace rpsd::scenarios

@@ -20,6 +20,10 @@ namespace rpsd::scenarios {
 struct Override {
   std::string key_path;
   std::string value;
+  std::string origin;  // how errors name it ("--set #2"); "--set" when empty
+  // kRecord: `value` is a record ({file, format}) that replaces the ground motion's record and
+  // keeps its processing (trim, baseline correction, scaling, padding).
+  enum class Kind { kSet, kRecord } kind = Kind::kSet;
 };
 
 // Parses "key.path=value"; throws ConfigError naming the text when there is no '='.

@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -35,12 +36,20 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name);
 // scenario reference lists every key the readers accept. Not thread-safe.
 void log_accepted_keys(std::set<std::string>* log);
 
+// A value the command line put into the document (--set #2, --record): an error in it names
+// the override, not a line of the file it never was in.
+struct OverrideNode {
+  YAML::Node value;
+  std::string origin;  // "--set #2 (servo.delay_s=-1)"
+};
+using OverrideNodes = std::shared_ptr<const std::vector<OverrideNode>>;
+
 // Every read goes through config::Source, with its range and meaning, so that the scenario
 // reference lists it.
 class MappingReader final : public config::Source {
  public:
   // `node` must be a mapping; `key_path` is its dotted path ("" for the document root).
-  MappingReader(YAML::Node node, std::string file, std::string key_path);
+  MappingReader(YAML::Node node, std::string file, std::string key_path, OverrideNodes overrides = nullptr);
 
   // Rejects every key that was not read. Call after reading all known keys.
   void finish() const;
@@ -75,6 +84,9 @@ class MappingReader final : public config::Source {
   bool has(std::string_view key) override;
   std::unique_ptr<config::Source> section(std::string_view key, std::string_view meaning) override;
   std::unique_ptr<config::Source> file(std::string_view key, std::string_view meaning) override;
+  // Writes the absolute path back into the document.
+  std::filesystem::path relative_file(std::string_view key, std::string_view meaning) override;
+  std::optional<std::filesystem::path> optional_relative_file(std::string_view key, std::string_view meaning) override;
   void finish() override { static_cast<const MappingReader*>(this)->finish(); }
   [[noreturn]] void fail(std::string_view key, const std::string& message) override {
     static_cast<const MappingReader*>(this)->fail(key, message);
@@ -103,6 +115,7 @@ class MappingReader final : public config::Source {
   YAML::Node node_;
   std::string file_;
   std::string key_path_;
+  OverrideNodes overrides_;
   std::set<std::string> read_keys_;
 };
 
