@@ -30,22 +30,33 @@ struct RunOptions {
   std::vector<std::string> node_files;
 };
 
-// Steps, simulated time, speed as a multiple of real time, ETA; on a terminal only, and
-// only once the run has lasted a second.
+// Phase, sweep case, steps, simulated time, speed as a multiple of real time and an estimate
+// of the time left (a sweep's from the case under way); on a terminal only, and only once the
+// run has lasted a second.
 class ProgressBar {
  public:
-  explicit ProgressBar(double control_rate_hz) : rate_hz_(control_rate_hz), start_(std::chrono::steady_clock::now()) {}
-  void operator()(std::int64_t done, std::int64_t planned) {
+  explicit ProgressBar(double control_rate_hz) : rate_hz_(control_rate_hz), start_(Clock::now()), case_start_(start_) {}
+  void operator()(const studies::ProgressReport& r) {
     if (!isatty(STDERR_FILENO)) return;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    if (wall < 1.0) return;
-    const double simulated = done / rate_hz_;
-    const double speed = simulated / wall;
-    const double eta = speed > 0.0 ? (planned - done) / rate_hz_ / speed : 0.0;
-    const int width = 30, filled = planned > 0 ? static_cast<int>(width * done / planned) : 0;
-    std::fprintf(stderr, "\r[%.*s%*s] %lld/%lld steps  %.1f s simulated  %.1fx real time  ETA %.0f s ", filled,
-                 "##############################", width - filled, "", static_cast<long long>(done),
-                 static_cast<long long>(planned), simulated, speed, eta);
+    const auto now = Clock::now();
+    if (r.case_number != case_number_) case_number_ = r.case_number, case_start_ = now;
+    if (seconds(now - start_) < 1.0) return;
+    char where[48] = "";
+    if (r.cases > 1) std::snprintf(where, sizeof where, "case %zu/%zu  ", r.case_number, r.cases);
+    if (r.planned <= 0) {
+      std::fprintf(stderr, "\r%s%-12s%90s", where, std::string(r.phase).c_str(), "");
+    } else {
+      const double wall = seconds(now - case_start_), simulated = static_cast<double>(r.done) / rate_hz_;
+      const double speed = wall > 0.0 ? simulated / wall : 0.0;
+      const double fraction = static_cast<double>(r.done) / static_cast<double>(r.planned);
+      // The case under way at its own pace, and every case after it as long as this one.
+      double left = speed > 0.0 ? (static_cast<double>(r.planned - r.done) / rate_hz_) / speed : 0.0;
+      if (fraction > 0.0) left += static_cast<double>(r.cases - r.case_number) * wall / fraction;
+      const int width = 30, filled = static_cast<int>(width * fraction);
+      std::fprintf(stderr, "\r%s%-5s [%.*s%*s] %lld/%lld steps  %.1f s simulated  %.1fx real time  ETA %.0f s ", where,
+                   std::string(r.phase).c_str(), filled, "##############################", width - filled, "",
+                   static_cast<long long>(r.done), static_cast<long long>(r.planned), simulated, speed, left);
+    }
     drawn_ = true;
   }
   ~ProgressBar() {
@@ -53,8 +64,11 @@ class ProgressBar {
   }
 
  private:
+  using Clock = std::chrono::steady_clock;
+  static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
   double rate_hz_;
-  std::chrono::steady_clock::time_point start_;
+  Clock::time_point start_, case_start_;
+  std::size_t case_number_ = 1;
   bool drawn_ = false;
 };
 
@@ -142,7 +156,7 @@ void add_run(CLI::App& app) {
     {
       ProgressBar bar(rate_hz);
       run = studies::run_and_write(
-          file, options->out, [&bar](std::int64_t d, std::int64_t p) { bar(d, p); }, stop_request);
+          file, options->out, [&bar](const studies::ProgressReport& r) { bar(r); }, stop_request);
     }
     const std::string summary = options->out + "/summary.json";
     std::cout << "rpsd run: " << file.name << " -> " << summary << "\n";

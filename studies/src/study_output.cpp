@@ -209,8 +209,7 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
       900, 600);
 }
 
-StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
-                       const std::function<void(std::int64_t, std::int64_t)>& progress,
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir, const ProgressSink& progress,
                        const std::atomic<bool>* stop_request) {
   StudyRun run;
   std::filesystem::create_directories(dir);

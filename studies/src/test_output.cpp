@@ -12,6 +12,7 @@
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/studies/gnuplot.h"
+#include "rpsd/studies/plot_decimation.h"
 #include "rpsd/studies/provenance.h"
 #include "rpsd/studies/results_files.h"
 #include "rpsd/transport/messages.h"
@@ -47,6 +48,25 @@ const char* outcome_text(coordinator::StepOutcome o) {
   return "aborted";
 }
 
+// The tables the plots read: a long test's drawn from its rows keeping every peak of what
+// the plots show (plot_time_history.csv, plot_reference_history.csv), a short one's whole.
+std::pair<std::string, std::string> plotted_tables(const std::filesystem::path& dir, int first_dof_column, int dofs) {
+  constexpr std::size_t kBuckets = 1100;  // one per pixel column of the widest plot
+  const auto column = [](int c) { return [c](const CsvRow& row) { return row.at(c - 1); }; };
+  std::vector<PlottedQuantity> dof_columns;
+  for (int d = 0; d < dofs; ++d) dof_columns.push_back(column(first_dof_column + 4 * d));
+  std::vector<PlottedQuantity> drawn = dof_columns;
+  for (int c : {3, 4, 5, 6, 8}) drawn.push_back(column(c));
+  drawn.push_back([](const CsvRow& row) { return row.at(5) - row.at(3); });  // measured - target
+  const auto table = [&](const char* name, const std::vector<PlottedQuantity>& quantities) {
+    const std::string decimated = std::string("plot_") + name;
+    if (write_rows_keeping_peaks(dir / name, dir / decimated, quantities, kBuckets)) return decimated;
+    std::filesystem::remove(dir / decimated);  // a shorter run's redraw must not draw an older one's
+    return std::string(name);
+  };
+  return {table("time_history.csv", drawn), table("reference_history.csv", dof_columns)};
+}
+
 // The plots read only the CSV files and plot.json, so `rpsd plot DIR` can redraw them.
 void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   const int channels = info.at("channels");
@@ -54,23 +74,24 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   const std::string title = info.at("title");
   const bool has_record = info.at("ground_motion");
   // time_history.csv columns: 1 step, 2 time, 3 a_g, then 6 per channel, then 4 per DOF.
+  const int first_dof_column = 4 + 6 * channels;
+  const auto [th, reference] = plotted_tables(dir, first_dof_column, dofs);
   std::string script = "set datafile separator ','\nset grid\nset key outside right\n";
   script += "set multiplot layout " + std::to_string(has_record ? 4 : 3) + ",1 title '" + title + "'\n";
   script += "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\nset title 'experimental channel 0'\n";
-  script +=
-      "plot 'time_history.csv' using 2:($4*1e3) with lines lw 1.5 title 'target', "
-      "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) with lines lw 1 title "
-      "'measured'\n";
+  script += "plot '" + th +
+            "' using 2:($4*1e3) with lines lw 1.5 title 'target', "
+            "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) with lines lw 1 title "
+            "'measured'\n";
   script += "set ylabel 'tracking error (mm)'\nset title 'measured - target'\n";
-  script += "plot 'time_history.csv' using 2:(($6-$4)*1e3) with lines lw 1 notitle\n";
-  const int first_dof_column = 4 + 6 * channels;
+  script += "plot '" + th + "' using 2:(($6-$4)*1e3) with lines lw 1 notitle\n";
   script +=
       "set xlabel 'measured displacement (mm)'\nset ylabel 'specimen restoring force (kN)'\nset title 'hysteresis, "
       "channel 0'\n";
-  script += "plot 'time_history.csv' using ($6*1e3):($8*1e-3) with lines lw 1 notitle\n";
+  script += "plot '" + th + "' using ($6*1e3):($8*1e-3) with lines lw 1 notitle\n";
   if (has_record) {
     script += "set xlabel 'time (s)'\nset ylabel 'ground acceleration (m/s^2)'\nset title 'record'\n";
-    script += "plot 'time_history.csv' using 2:3 with lines lw 1 notitle\n";
+    script += "plot '" + th + "' using 2:3 with lines lw 1 notitle\n";
   }
   script += "unset multiplot\n";
   render_png(dir / "test.png", script, 1100, has_record ? 1300 : 1000);
@@ -82,11 +103,11 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   for (int d = 0; d < dofs; ++d) {
     const int column = first_dof_column + 4 * d;
     if (d > 0) floors += ", ";
-    char line[256];
+    char line[512];
     std::snprintf(line, sizeof line,
-                  "'time_history.csv' using 2:($%d*1e3) with lines lw 1.5 title 'DOF %d', "
-                  "'reference_history.csv' using 2:($%d*1e3) with lines lw 1 dt 2 title 'DOF %d reference'",
-                  column, d, column, d);
+                  "'%s' using 2:($%d*1e3) with lines lw 1.5 title 'DOF %d', "
+                  "'%s' using 2:($%d*1e3) with lines lw 1 dt 2 title 'DOF %d reference'",
+                  th.c_str(), column, d, reference.c_str(), column, d);
     floors += line;
   }
   render_png(dir / "response.png", floors + "\n", 1100, 600);
@@ -96,7 +117,9 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
                "set datafile separator ','\nset grid\nset multiplot layout 2,1 title '" + title +
                    ": ground motion as applied'\n"
                    "set xlabel 'time (s)'\nset ylabel 'acceleration (m/s^2)'\n"
-                   "plot 'time_history.csv' using 2:3 with lines lw 1 notitle\n"
+                   "plot '" +
+                   th +
+                   "' using 2:3 with lines lw 1 notitle\n"
                    "set logscale x\nset xlabel 'period (s)'\nset ylabel 'pseudo-acceleration (m/s^2)'\n"
                    "set title '5 % damped response spectrum'\n"
                    "plot 'spectrum.csv' using 1:2 with lines lw 2 notitle\nunset multiplot\n",
@@ -239,9 +262,11 @@ const char* result_name(RunResult r) {
 }
 
 TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
-                           const coordinator::TestConfig& scenario,
-                           const std::function<void(std::int64_t, std::int64_t)>& progress,
-                           const std::atomic<bool>* stop_request) {
+                           const coordinator::TestConfig& scenario, const ProgressSink& progress,
+                           const std::atomic<bool>* stop_request, std::size_t case_number, std::size_t cases) {
+  const auto report = [&](std::string_view phase, std::int64_t done, std::int64_t planned) {
+    if (progress) progress({phase, case_number, cases, done, planned});
+  };
   std::filesystem::create_directories(dir);
   reserve_summary(dir / "summary.json", nlohmann::json{{"study", "rpsd_test"},
                                                        {"scenario", file.name},
@@ -255,7 +280,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
   const coordinator::EvaluatedTest run = coordinator::run_test_and_reference(
-      scenario, dir / "time_history.csv", dir / "reference_history.csv", progress, stop_request);
+      scenario, dir / "time_history.csv", dir / "reference_history.csv",
+      [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request);
   const coordinator::TestRun& test = run.test;
   const coordinator::Criteria& criteria = run.criteria;
   const RunResult result = result_of(test, run.reference);
@@ -346,6 +372,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
   // last, so that it describes every file beside it.
   try {
     write_file_whole(dir / "plot.json", plot_info.dump(2) + '\n');
+    report("plots", 0, 0);
     if (test.steps >= 2) draw(dir, plot_info);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
@@ -371,8 +398,7 @@ std::string legend_entry(const std::string& key, double value) {
 }
 }  // namespace
 
-RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file,
-                         const std::function<void(std::int64_t, std::int64_t)>& progress,
+RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file, const ProgressSink& progress,
                          const std::atomic<bool>* stop_request) {
   using nlohmann::json;
   std::filesystem::create_directories(dir);
@@ -387,7 +413,8 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
   for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
     char folder[32];
     std::snprintf(folder, sizeof folder, "case_%03zu", i);
-    const TestHeadline h = run_test_into(dir / folder, file, file.sweep_cases[i], progress, stop_request);
+    const TestHeadline h =
+        run_test_into(dir / folder, file, file.sweep_cases[i], progress, stop_request, i + 1, file.sweep_cases.size());
     const bool completed = h.result == RunResult::kCompleted;
     if (!completed && result == RunResult::kCompleted) result = h.result;
     json values = json::object();
@@ -440,6 +467,7 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
     }
     plots += "\n";
   }
+  if (progress) progress({"sweep plots", file.sweep_cases.size(), file.sweep_cases.size(), 0, 0});
   try {
     render_png(dir / "sweep.png",
                "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot "

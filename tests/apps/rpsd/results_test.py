@@ -172,6 +172,64 @@ def effective_scenario_runs_again_from_anywhere():
     check(len(inputs(moved)) == 2 and inputs(moved) == inputs(again), f"inputs {inputs(moved)} and {inputs(again)}")
 
 
+def plots_of_a_long_test_keep_every_peak():
+    # El Centro's 40,949 steps are drawn from far fewer rows, and the rows drawn hold the same
+    # peaks of the measured displacement and force as the whole table; a redraw rewrites them.
+    out = fresh("long-plots")
+    code, text = rpsd("run", os.path.join(SOURCE, "examples/scenarios/elcentro-sdof.yaml"), "--out", out)
+    check(code == 0, f"the run failed: {text}")
+    def columns(name):
+        with open(os.path.join(out, name)) as f:
+            header = f.readline().strip().split(",")
+            rows = [list(map(float, line.split(","))) for line in f]
+        return header, rows
+    header, whole = columns("time_history.csv")
+    header_drawn, drawn = columns("plot_time_history.csv")
+    check(header == header_drawn, "the drawn table's header differs")
+    check(len(drawn) < len(whole) / 5, f"{len(drawn)} rows drawn of {len(whole)}")
+    for name in ("measured_m_ch0", "specimen_restoring_force_n_ch0", "displacement_m_dof0", "ground_acceleration_m_per_s2"):
+        i = header.index(name)
+        for pick in (max, min):
+            check(pick(r[i] for r in whole) == pick(r[i] for r in drawn), f"{name}: the {pick.__name__} is not drawn")
+    with open(os.path.join(out, "test.gp")) as f:
+        check("plot_time_history.csv" in f.read(), "test.gp does not draw the decimated table")
+    os.remove(os.path.join(out, "plot_time_history.csv"))
+    code, text = rpsd("plot", out)
+    check(code == 0 and os.path.exists(os.path.join(out, "plot_time_history.csv")), f"rpsd plot: {code} {text}")
+
+
+def progress_on_a_terminal_names_phase_and_case():
+    # On a terminal (a pseudo-terminal here), a sweep's progress names the case of all cases,
+    # the test phase with its steps, the plots, and the sweep's own plots at the end.
+    import pty
+    import threading
+    out = fresh("progress")
+    master, slave = pty.openpty()
+    seen = []
+    def read():
+        while True:
+            try:
+                chunk = os.read(master, 65536)
+            except OSError:
+                return
+            if not chunk:
+                return
+            seen.append(chunk.decode(errors="replace"))
+    reader = threading.Thread(target=read)
+    reader.start()
+    run = subprocess.run([RPSD, "run", SWEEP, "--out", out, "--set=ground_motion.trim={end_s: 4}"],
+                         stdout=subprocess.PIPE, stderr=slave, timeout=600)
+    os.close(slave)
+    reader.join(timeout=10)
+    os.close(master)
+    text = "".join(seen)
+    check(run.returncode == 0, f"the sweep failed: {run.returncode}")
+    import re
+    for expected in (r"case 8/8", r"case [1-8]/8  test  \[#* *\] \d+/4096 steps", r"case [1-8]/8  plots ",
+                     r"sweep plots"):
+        check(re.search(expected, text), f"progress lacks {expected!r}: {text[-400:]!r}")
+
+
 CASES = {
     "refuse_then_replace_a_sweep_folder": a_folder_that_held_a_sweep_is_refused_then_replaced,
     "replace_only_rpsd_folders": replace_never_clears_a_folder_rpsd_did_not_write,
@@ -181,6 +239,8 @@ CASES = {
     "missing_tool_exit_1": a_missing_tool_is_exit_1,
     "summary_provenance": summary_names_the_code_and_every_input,
     "effective_scenario_anywhere": effective_scenario_runs_again_from_anywhere,
+    "plots_keep_every_peak": plots_of_a_long_test_keep_every_peak,
+    "progress_on_a_terminal": progress_on_a_terminal_names_phase_and_case,
 }
 
 CASES[CASE]()

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rpsd/studies/progress.h"
 #include "rpsd/studies/servo_studies.h"
 #include "rpsd/studies/test_output.h"
 
@@ -31,8 +32,7 @@ struct StudyRun {
 // Runs whichever study the file holds and writes it into dir (created if missing; the
 // command line first makes sure it is empty: prepare_results_folder). A test that stopped still has every step it took
 // on disk. `stop_request` (optional): set by a signal handler to end a test or sweep in order.
-StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
-                       const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir, const ProgressSink& progress = {},
                        const std::atomic<bool>* stop_request = nullptr);
 
 }  // namespace rpsd::studies

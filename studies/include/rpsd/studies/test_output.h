@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <functional>
 
+#include "rpsd/studies/progress.h"
 #include "rpsd/studies/study_config.h"
 
 namespace rpsd::studies {
@@ -34,19 +35,18 @@ struct TestHeadline {
   double reference_peak_displacement_m = 0.0;
 };
 
-// `progress` (optional) receives (steps done, steps planned) while the test runs.
-// `stop_request`: as in coordinator::AssemblyOptions. The folder must be ready
-// (prepare_results_folder).
+// `progress` (optional) hears of each phase (the test and its reference with their steps,
+// then the plots), as case `case_number` of `cases` of a sweep. `stop_request`: as in
+// coordinator::AssemblyOptions. The folder must be ready (prepare_results_folder).
 TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
-                           const coordinator::TestConfig& scenario,
-                           const std::function<void(std::int64_t, std::int64_t)>& progress = {},
-                           const std::atomic<bool>* stop_request = nullptr);
+                           const coordinator::TestConfig& scenario, const ProgressSink& progress = {},
+                           const std::atomic<bool>* stop_request = nullptr, std::size_t case_number = 1,
+                           std::size_t cases = 1);
 
 // Runs every case of a sweep into dir/case_NN/ and writes the table across the cases
 // (sweep.csv, summary.json, sweep.png): kStopped if any case stopped; an interruption or a
 // failed write ends the sweep after the case under way.
-RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file,
-                         const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file, const ProgressSink& progress = {},
                          const std::atomic<bool>* stop_request = nullptr);
 
 // Redraws the plots of a finished test folder from its CSV files.

@@ -1,0 +1,27 @@
+# `cpack` builds rpsd_<version>_amd64.deb: the rpsd binary, the module libraries, headers and
+# CMake package, and under share/rpsd the example scenarios with the records, servo files and
+# DDS configurations they name (their relative paths hold there as in the source tree), and the
+# docs under share/doc/rpsd. Runtime dependencies come from dpkg-shlibdeps, plus gnuplot for
+# the plots; building against the CMake package needs the -dev packages it recommends.
+set(RPSD_SHARE_DIR ${CMAKE_INSTALL_DATADIR}/rpsd)
+install(DIRECTORY examples/ DESTINATION ${RPSD_SHARE_DIR}/examples)
+install(DIRECTORY data/ground-motions/ DESTINATION ${RPSD_SHARE_DIR}/data/ground-motions)
+install(DIRECTORY transport/config/ DESTINATION ${RPSD_SHARE_DIR}/transport/config)
+install(FILES README.md LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME rpsd)
+set(CPACK_PACKAGE_VENDOR "rpsd developers")
+set(CPACK_PACKAGE_CONTACT "rpsd developers <maintainers@users.noreply.github.com>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "${PROJECT_DESCRIPTION}")
+set(CPACK_PACKAGE_DESCRIPTION
+    "Coordinator, simulated servo-hydraulic rig and servo nodes over Cyclone DDS for real-time pseudodynamic tests.")
+set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "gnuplot-nox | gnuplot")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
+    "libeigen3-dev, libyaml-cpp-dev, nlohmann-json3-dev, libcli11-dev, cyclonedds-dev, libssl-dev")
+include(CPack)

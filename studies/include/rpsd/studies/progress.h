@@ -1,0 +1,20 @@
+// What a run is doing, for a progress display: the phase, the case of a sweep (1-based), and
+// the steps of a phase that has them. Not real-time safe (the loop reports every ~0.5 s).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string_view>
+
+namespace rpsd::studies {
+
+struct ProgressReport {
+  std::string_view phase;  // "test", "plots", "sweep table"
+  std::size_t case_number = 1, cases = 1;
+  std::int64_t done = 0, planned = 0;  // 0 planned: a phase without steps
+};
+
+using ProgressSink = std::function<void(const ProgressReport&)>;
+
+}  // namespace rpsd::studies
