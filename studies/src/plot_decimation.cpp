@@ -1,6 +1,7 @@
 #include "rpsd/studies/plot_decimation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -54,26 +55,49 @@ std::vector<std::size_t> rows_keeping_peaks(const std::vector<CsvRow>& rows, con
   return kept;
 }
 
-bool write_rows_keeping_peaks(const std::filesystem::path& from, const std::filesystem::path& to,
-                              const std::vector<PlottedQuantity>& drawn, std::size_t buckets) {
-  std::ifstream in(from);
-  if (!in) throw std::runtime_error(from.string() + ": cannot be read");
-  std::string header, line;
-  std::getline(in, header);
-  std::vector<std::string> lines;
-  std::vector<CsvRow> rows;
+CsvTable read_csv_table(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file.string() + ": cannot be read");
+  CsvTable table;
+  std::getline(in, table.header);
+  std::string line;
   while (std::getline(in, line)) {
-    rows.push_back(parse_row(line));
-    lines.push_back(std::move(line));
+    table.rows.push_back(parse_row(line));
+    table.lines.push_back(std::move(line));
+    table.rectangular = table.rectangular && table.rows.back().size() == table.rows.front().size();
   }
-  if (rows.size() <= 4 * buckets) return false;
-  // A short row (an interrupted write) would be read past its end: draw it whole instead.
-  const std::size_t width = rows.front().size();
-  for (const CsvRow& row : rows)
-    if (row.size() != width) return false;
-  std::string text = header + '\n';
-  for (std::size_t r : rows_keeping_peaks(rows, drawn, buckets)) text += lines[r] + '\n';
+  return table;
+}
+
+namespace {
+
+void write_lines(const CsvTable& table, const std::vector<std::size_t>& kept, const std::filesystem::path& to) {
+  std::string text = table.header + '\n';
+  for (std::size_t r : kept) text += table.lines[r] + '\n';
   write_file_whole(to, text);
+}
+
+}  // namespace
+
+bool write_rows_keeping_peaks(const CsvTable& table, const std::filesystem::path& to,
+                              const std::vector<PlottedQuantity>& drawn, std::size_t buckets) {
+  // A short row (an interrupted write) would be read past its end: draw it whole instead.
+  if (table.rows.size() <= 4 * buckets || !table.rectangular) return false;
+  write_lines(table, rows_keeping_peaks(table.rows, drawn, buckets), to);
+  return true;
+}
+
+bool write_rows_around_peak(const CsvTable& table, const std::filesystem::path& to, const PlottedQuantity& quantity,
+                            const PlottedQuantity& time, double half_window) {
+  if (table.rows.empty() || !table.rectangular) return false;
+  std::size_t peak = 0;
+  for (std::size_t r = 1; r < table.rows.size(); ++r)
+    if (std::abs(quantity(table.rows[r])) > std::abs(quantity(table.rows[peak]))) peak = r;
+  const double centre = time(table.rows[peak]);
+  std::vector<std::size_t> kept;
+  for (std::size_t r = 0; r < table.rows.size(); ++r)
+    if (std::abs(time(table.rows[r]) - centre) <= half_window) kept.push_back(r);
+  write_lines(table, kept, to);
   return true;
 }
 

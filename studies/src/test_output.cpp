@@ -49,22 +49,69 @@ const char* outcome_text(coordinator::StepOutcome o) {
 }
 
 // The tables the plots read: a long test's drawn from its rows keeping every peak of what
-// the plots show (plot_time_history.csv, plot_reference_history.csv), a short one's whole.
-std::pair<std::string, std::string> plotted_tables(const std::filesystem::path& dir, int first_dof_column, int dofs) {
+// the plots show (plot_time_history.csv, plot_reference_history.csv), a short one's whole;
+// and plot_zoom.csv, every row within 0.5 s of the largest target, where the lag shows.
+struct PlottedTables {
+  std::string test, reference, zoom;
+};
+
+PlottedTables plotted_tables(const std::filesystem::path& dir, int first_dof_column, int dofs, bool drifts) {
   constexpr std::size_t kBuckets = 1100;  // one per pixel column of the widest plot
   const auto column = [](int c) { return [c](const CsvRow& row) { return row.at(c - 1); }; };
   std::vector<PlottedQuantity> dof_columns;
   for (int d = 0; d < dofs; ++d) dof_columns.push_back(column(first_dof_column + 4 * d));
+  for (int d = 1; drifts && d < dofs; ++d) {
+    const int upper = first_dof_column + 4 * d - 1, lower = upper - 4;
+    dof_columns.push_back([=](const CsvRow& row) { return row.at(upper) - row.at(lower); });
+  }
   std::vector<PlottedQuantity> drawn = dof_columns;
   for (int c : {3, 4, 5, 6, 8}) drawn.push_back(column(c));
   drawn.push_back([](const CsvRow& row) { return row.at(5) - row.at(3); });  // measured - target
-  const auto table = [&](const char* name, const std::vector<PlottedQuantity>& quantities) {
-    const std::string decimated = std::string("plot_") + name;
-    if (write_rows_keeping_peaks(dir / name, dir / decimated, quantities, kBuckets)) return decimated;
-    std::filesystem::remove(dir / decimated);  // a shorter run's redraw must not draw an older one's
-    return std::string(name);
+  PlottedTables names{"time_history.csv", "reference_history.csv", "plot_zoom.csv"};
+  const auto decimate = [&](std::string& name, const CsvTable& table, const std::vector<PlottedQuantity>& quantities) {
+    const std::string decimated = "plot_" + name;
+    if (write_rows_keeping_peaks(table, dir / decimated, quantities, kBuckets)) {
+      name = decimated;
+    } else {
+      std::filesystem::remove(dir / decimated);  // a shorter run's redraw must not draw an older one's
+    }
   };
-  return {table("time_history.csv", drawn), table("reference_history.csv", dof_columns)};
+  {
+    const CsvTable test = read_csv_table(dir / names.test);
+    if (!write_rows_around_peak(test, dir / names.zoom, column(4), column(2), 0.5)) names.zoom.clear();
+    decimate(names.test, test, drawn);
+  }
+  decimate(names.reference, read_csv_table(dir / names.reference), dof_columns);
+  return names;
+}
+
+std::string dof_panels(const std::string& title, const PlottedTables& t, int first_dof_column,
+                       const std::vector<int>& dof_numbers, bool drifts) {
+  const int dofs = static_cast<int>(dof_numbers.size());
+  std::string script = "set datafile separator ','\nset grid\nset key top right\nset xlabel 'time (s)'\n";
+  script += "set multiplot layout " + std::to_string(dofs) + "," + (drifts ? "2" : "1") + " title '" + title +
+            ": test against the perfect-actuator reference'\n";
+  char line[640];
+  for (int d = 0; d < dofs; ++d) {
+    const int c = first_dof_column + 4 * d;
+    std::snprintf(line, sizeof line,
+                  "set ylabel 'displacement (mm)'\nset title 'DOF %d'\n"
+                  "plot '%s' using 2:($%d*1e3) with lines lw 1.5 title 'test', "
+                  "'%s' using 2:($%d*1e3) with lines lw 1 dt 2 title 'reference'\n",
+                  dof_numbers[d], t.test.c_str(), c, t.reference.c_str(), c);
+    script += line;
+    if (!drifts) continue;
+    // Storey d's drift: this floor less the one below (the ground for the first).
+    const std::string drift = d == 0 ? "($" + std::to_string(c) + "*1e3)"
+                                     : "(($" + std::to_string(c) + "-$" + std::to_string(c - 4) + ")*1e3)";
+    std::snprintf(line, sizeof line,
+                  "set ylabel 'drift (mm)'\nset title 'storey %d drift'\n"
+                  "plot '%s' using 2:%s with lines lw 1.5 title 'test', "
+                  "'%s' using 2:%s with lines lw 1 dt 2 title 'reference'\n",
+                  d + 1, t.test.c_str(), drift.c_str(), t.reference.c_str(), drift.c_str());
+    script += line;
+  }
+  return script + "unset multiplot\n";
 }
 
 // The plots read only the CSV files and plot.json, so `rpsd plot DIR` can redraw them.
@@ -73,16 +120,29 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   const int dofs = info.at("recorded_dofs");
   const std::string title = info.at("title");
   const bool has_record = info.at("ground_motion");
+  const bool drifts = info.value("storey_drifts", false);
+  std::vector<int> dof_numbers = info.value("dof_numbers", std::vector<int>{});
+  if (static_cast<int>(dof_numbers.size()) != dofs) {
+    dof_numbers.resize(dofs);
+    for (int d = 0; d < dofs; ++d) dof_numbers[d] = d;
+  }
   // time_history.csv columns: 1 step, 2 time, 3 a_g, then 6 per channel, then 4 per DOF.
   const int first_dof_column = 4 + 6 * channels;
-  const auto [th, reference] = plotted_tables(dir, first_dof_column, dofs);
+  const PlottedTables t = plotted_tables(dir, first_dof_column, dofs, drifts);
+  const std::string& th = t.test;
+  const int panels = 3 + (has_record ? 1 : 0) + (t.zoom.empty() ? 0 : 1);
   std::string script = "set datafile separator ','\nset grid\nset key outside right\n";
-  script += "set multiplot layout " + std::to_string(has_record ? 4 : 3) + ",1 title '" + title + "'\n";
+  script += "set multiplot layout " + std::to_string(panels) + ",1 title '" + title + "'\n";
+  const std::string tracking =
+      "' using 2:($4*1e3) with lines lw 1.5 title 'target', "
+      "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) "
+      "with lines lw 1 title 'measured'\n";
   script += "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\nset title 'experimental channel 0'\n";
-  script += "plot '" + th +
-            "' using 2:($4*1e3) with lines lw 1.5 title 'target', "
-            "'' using 2:($5*1e3) with lines lw 1 dt 2 title 'command', '' using 2:($6*1e3) with lines lw 1 title "
-            "'measured'\n";
+  script += "plot '" + th + tracking;
+  if (!t.zoom.empty()) {
+    script += "set title 'channel 0 around its largest target: the lag of measured behind target'\n";
+    script += "plot '" + t.zoom + tracking;
+  }
   script += "set ylabel 'tracking error (mm)'\nset title 'measured - target'\n";
   script += "plot '" + th + "' using 2:(($6-$4)*1e3) with lines lw 1 notitle\n";
   script +=
@@ -94,23 +154,9 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
     script += "plot '" + th + "' using 2:3 with lines lw 1 notitle\n";
   }
   script += "unset multiplot\n";
-  render_png(dir / "test.png", script, 1100, has_record ? 1300 : 1000);
-
-  std::string floors =
-      "set datafile separator ','\nset grid\nset key outside right\nset xlabel 'time (s)'\n"
-      "set ylabel 'displacement (mm)'\nset title '" +
-      title + ": recorded DOFs, test and perfect-actuator reference'\nplot ";
-  for (int d = 0; d < dofs; ++d) {
-    const int column = first_dof_column + 4 * d;
-    if (d > 0) floors += ", ";
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "'%s' using 2:($%d*1e3) with lines lw 1.5 title 'DOF %d', "
-                  "'%s' using 2:($%d*1e3) with lines lw 1 dt 2 title 'DOF %d reference'",
-                  th.c_str(), column, d, reference.c_str(), column, d);
-    floors += line;
-  }
-  render_png(dir / "response.png", floors + "\n", 1100, 600);
+  render_png(dir / "test.png", script, 1100, 300 * panels + 100);
+  render_png(dir / "response.png", dof_panels(title, t, first_dof_column, dof_numbers, drifts), drifts ? 1400 : 1100,
+             260 * dofs + 80);
 
   if (has_record) {
     render_png(dir / "record.png",
@@ -363,9 +409,17 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"timing", timing_json(test.timing)},
       {"provenance", provenance_json(file)},
   };
+  std::vector<int> dof_numbers;
+  for (auto d : scenario.record_dofs) dof_numbers.push_back(static_cast<int>(d));
+  bool from_the_ground_up = true;  // DOFs 0, 1, ... n-1: a storey's drift is one less the next
+  for (std::size_t i = 0; i < dof_numbers.size(); ++i) from_the_ground_up &= dof_numbers[i] == static_cast<int>(i);
+  const bool storey_drifts = std::holds_alternative<substructure::ShearBuildingConfig>(scenario.structure) &&
+                             from_the_ground_up && dof_numbers.size() > 1;
   const json plot_info = {{"title", file.name},
                           {"channels", scenario.experimental.size()},
                           {"recorded_dofs", scenario.record_dofs.size()},
+                          {"dof_numbers", dof_numbers},
+                          {"storey_drifts", storey_drifts},
                           {"ground_motion", scenario.ground_motion.has_value()}};
   // The plots are drawn from the CSV files, which are the results: one that cannot be drawn
   // (too few steps, no gnuplot) is reported and `rpsd plot` redraws it; summary.json comes

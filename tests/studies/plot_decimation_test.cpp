@@ -58,10 +58,10 @@ TEST(PlotDecimation, WritesOnlyLongTablesAndKeepsTheirLines) {
     for (int i = 0; i < rows; ++i) out << i << ',' << (i == rows / 2 ? 9.5 : 0.25) << '\n';
   };
   write(40);
-  EXPECT_FALSE(write_rows_keeping_peaks(dir / "table.csv", dir / "short.csv", {kSecond}, 10));
+  EXPECT_FALSE(write_rows_keeping_peaks(read_csv_table(dir / "table.csv"), dir / "short.csv", {kSecond}, 10));
   EXPECT_FALSE(std::filesystem::exists(dir / "short.csv"));
   write(1000);
-  ASSERT_TRUE(write_rows_keeping_peaks(dir / "table.csv", dir / "long.csv", {kSecond}, 10));
+  ASSERT_TRUE(write_rows_keeping_peaks(read_csv_table(dir / "table.csv"), dir / "long.csv", {kSecond}, 10));
   std::ifstream in(dir / "long.csv");
   std::string line, text;
   std::getline(in, line);
@@ -71,6 +71,26 @@ TEST(PlotDecimation, WritesOnlyLongTablesAndKeepsTheirLines) {
   EXPECT_LE(lines, 22);
   EXPECT_NE(text.find("500,9.5\n"), std::string::npos);
   EXPECT_NE(text.find("999,0.25\n"), std::string::npos);
+}
+
+// The zoom: every row within the half window of the largest magnitude (here a negative one),
+// and no other.
+TEST(PlotDecimation, TheZoomHoldsTheRowsAroundTheLargestMagnitude) {
+  const auto dir = std::filesystem::temp_directory_path() / "rpsd-plot-decimation";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream out(dir / "zoom-source.csv");
+    out << "time_s,value\n";
+    for (int i = 0; i < 100; ++i) out << 0.1 * i << ',' << (i == 60 ? -3.0 : (i == 20 ? 2.0 : 0.0)) << '\n';
+  }
+  ASSERT_TRUE(write_rows_around_peak(
+      read_csv_table(dir / "zoom-source.csv"), dir / "zoom.csv", kSecond, [](const CsvRow& r) { return r.at(0); },
+      0.25));
+  const CsvTable zoom = read_csv_table(dir / "zoom.csv");
+  ASSERT_EQ(zoom.rows.size(), 5u);  // 5.8, 5.9, 6.0, 6.1, 6.2 s
+  EXPECT_NEAR(zoom.rows.front()[0], 5.8, 1e-12);
+  EXPECT_EQ(zoom.rows[2][1], -3.0);
+  EXPECT_NEAR(zoom.rows.back()[0], 6.2, 1e-12);
 }
 
 }  // namespace

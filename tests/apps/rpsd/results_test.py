@@ -230,6 +230,24 @@ def progress_on_a_terminal_names_phase_and_case():
         check(re.search(expected, text), f"progress lacks {expected!r}: {text[-400:]!r}")
 
 
+def response_has_a_panel_per_dof_and_the_storey_drifts():
+    # A shear building's response.png: one panel per recorded DOF and one per storey drift (a
+    # floor less the one below), each test against reference; test.png zooms on the peak.
+    out = fresh("drifts")
+    code, text = rpsd("run", os.path.join(SOURCE, "examples/scenarios/shear-building-bouc-wen.yaml"), "--out", out,
+                      "--set=ground_motion.trim={end_s: 4}")
+    check(code == 0, f"the run failed: {text}")
+    with open(os.path.join(out, "response.gp")) as f:
+        gp = f.read()
+    check("set multiplot layout 3,2" in gp, "response.gp is not 3 DOFs by 2")
+    for d in range(3):
+        check(f"set title 'DOF {d}'" in gp and f"set title 'storey {d + 1} drift'" in gp, f"no panels for DOF {d}")
+    # Columns: 1 channel -> DOF displacements at 10, 14, 18; storey 3 is DOF 2 less DOF 1.
+    check("using 2:(($18-$14)*1e3)" in gp, "storey 3's drift is not DOF 2 less DOF 1")
+    with open(os.path.join(out, "test.gp")) as f:
+        check("plot_zoom.csv" in f.read(), "test.gp has no zoom")
+
+
 CASES = {
     "refuse_then_replace_a_sweep_folder": a_folder_that_held_a_sweep_is_refused_then_replaced,
     "replace_only_rpsd_folders": replace_never_clears_a_folder_rpsd_did_not_write,
@@ -241,6 +259,7 @@ CASES = {
     "effective_scenario_anywhere": effective_scenario_runs_again_from_anywhere,
     "plots_keep_every_peak": plots_of_a_long_test_keep_every_peak,
     "progress_on_a_terminal": progress_on_a_terminal_names_phase_and_case,
+    "response_panels_and_drifts": response_has_a_panel_per_dof_and_the_storey_drifts,
 }
 
 CASES[CASE]()

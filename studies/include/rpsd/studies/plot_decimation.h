@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace rpsd::studies {
@@ -20,9 +21,24 @@ using PlottedQuantity = std::function<double(const CsvRow&)>;
 std::vector<std::size_t> rows_keeping_peaks(const std::vector<CsvRow>& rows, const std::vector<PlottedQuantity>& drawn,
                                             std::size_t buckets);
 
-// Writes `to`: `from`'s header and the rows kept. Returns false, writing nothing, when `from`
-// has no more than 4 rows per bucket (drawing it whole is cheap).
-bool write_rows_keeping_peaks(const std::filesystem::path& from, const std::filesystem::path& to,
+// A CSV table as written by the recorder: its header, and each row's text and numbers.
+struct CsvTable {
+  std::string header;
+  std::vector<std::string> lines;
+  std::vector<CsvRow> rows;
+  bool rectangular = true;  // every row as long as the first (an interrupted write is not)
+};
+CsvTable read_csv_table(const std::filesystem::path& file);
+
+// Writes `to`: the header and the rows kept. Returns false, writing nothing, when the table
+// has no more than 4 rows per bucket (drawing it whole is cheap) or is not rectangular.
+bool write_rows_keeping_peaks(const CsvTable& table, const std::filesystem::path& to,
                               const std::vector<PlottedQuantity>& drawn, std::size_t buckets);
+
+// Writes `to`: the header and every row within `half_window` (in `time` units) of the row
+// where `quantity` is largest in magnitude: the zoom that shows the phase lag at the peak.
+// Returns false, writing nothing, for an empty or ragged table.
+bool write_rows_around_peak(const CsvTable& table, const std::filesystem::path& to, const PlottedQuantity& quantity,
+                            const PlottedQuantity& time, double half_window);
 
 }  // namespace rpsd::studies
