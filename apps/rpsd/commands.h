@@ -28,6 +28,9 @@ void add_plot(CLI::App& app);
 // `rpsd servo-node NODE.yaml` and `rpsd controller-emulator EMULATOR.yaml`.
 void add_servo_node(CLI::App& app);
 
+// `rpsd reference [--check FILE]` (hidden): the scenario reference from the readers.
+void add_reference(CLI::App& app);
+
 // `--set key.path=value` texts to overrides (ConfigError on a malformed one).
 std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts);
 

@@ -1,8 +1,9 @@
 #include "rpsd/config/key_table.h"
 
+#include "rpsd/config/kind_list.h"
+
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 
 namespace rpsd::config {
 
@@ -67,7 +68,7 @@ std::vector<double> KeyTable::numbers(std::string_view key, const Number& spec, 
 
 long KeyTable::whole_number(std::string_view key, long min, long max, std::string_view meaning) {
   add(key, "whole number", "", "", std::to_string(min) + " to " + std::to_string(max), meaning);
-  return min;
+  return max;  // a count as large as it may be: a list sized by it shows its longest
 }
 
 long KeyTable::whole_number_or(std::string_view key, long min, long max, long fallback, std::string_view meaning) {
@@ -82,15 +83,54 @@ bool KeyTable::boolean_or(std::string_view key, bool fallback, std::string_view 
 
 std::string KeyTable::choice(std::string_view key, const std::vector<std::string_view>& choices,
                              std::string_view meaning) {
-  std::string listed;
-  for (const auto& c : choices) listed += (listed.empty() ? "" : ", ") + std::string(c);
-  add(key, "one of", "", "", listed, meaning);
+  add(key, "one of", "", "", listed(choices), meaning);
   return choices.empty() ? std::string() : std::string(choices.front());
 }
 
 std::string KeyTable::text(std::string_view key, std::string_view meaning) {
   add(key, "text", "", "", "", meaning);
   return "text";
+}
+
+std::optional<double> KeyTable::optional_number(std::string_view key, const Number& spec) {
+  add(key, "number", spec.unit, "none", range_text(spec), spec.meaning);
+  return std::nullopt;
+}
+
+std::optional<std::string> KeyTable::optional_text(std::string_view key, std::string_view meaning) {
+  add(key, "text", "", "none", "", meaning);
+  return std::nullopt;
+}
+
+std::optional<std::vector<double>> KeyTable::optional_numbers(std::string_view key, const Number& spec,
+                                                              std::size_t max_count) {
+  add(key, "list of 1 to " + std::to_string(max_count) + " numbers", spec.unit, "none", range_text(spec), spec.meaning);
+  return std::nullopt;
+}
+
+std::unique_ptr<Source> KeyTable::optional_section(std::string_view key, std::string_view meaning) {
+  add(key, "section", "", "none", "", meaning);
+  return std::make_unique<KeyTable>(path_of(key), rows_);
+}
+
+std::string KeyTable::choice_or(std::string_view key, const std::vector<std::string_view>& choices,
+                                std::string_view fallback, std::string_view meaning) {
+  add(key, "one of", "", std::string(fallback), listed(choices), meaning);
+  return std::string(fallback);
+}
+
+std::vector<std::vector<double>> KeyTable::matrix(std::string_view key, const Number& entry, std::size_t max_rows) {
+  add(key, "matrix: rows, a diagonal or one number, at most " + std::to_string(max_rows) + " rows", entry.unit, "",
+      "diagonal " + range_text(entry) + ", others within +/- " + number_text(entry.max), entry.meaning);
+  return {{inside(entry)}};
+}
+
+std::vector<std::unique_ptr<Source>> KeyTable::sections(std::string_view key, std::size_t max_count,
+                                                        std::string_view meaning) {
+  add(key, "list of 1 to " + std::to_string(max_count) + " sections", "", "", "", meaning);
+  std::vector<std::unique_ptr<Source>> one;
+  one.push_back(std::make_unique<KeyTable>(path_of(key) + "[]", rows_));
+  return one;
 }
 
 bool KeyTable::has(std::string_view) { return false; }
@@ -105,13 +145,23 @@ std::unique_ptr<Source> KeyTable::file(std::string_view key, std::string_view me
   return std::make_unique<KeyTable>(path_of(key) + " (file)", rows_);
 }
 
+std::filesystem::path KeyTable::relative_file(std::string_view key, std::string_view meaning) {
+  add(key, "file name", "", "", "", meaning);
+  return "file";
+}
+
+std::optional<std::filesystem::path> KeyTable::optional_relative_file(std::string_view key, std::string_view meaning) {
+  add(key, "file name", "", "none", "", meaning);
+  return std::nullopt;
+}
+
 void KeyTable::fail(std::string_view key, const std::string& message) {
-  throw std::logic_error("a reader failed while its keys were being listed: " + path_of(key) + ": " + message);
+  throw ListingStopped("a reader failed while its keys were being listed: " + path_of(key) + ": " + message);
 }
 
 void KeyTable::fail_section(const std::string& message) {
-  throw std::logic_error("a reader failed while its keys were being listed: " +
-                         (path_.empty() ? std::string("(document)") : path_) + ": " + message);
+  throw ListingStopped("a reader failed while its keys were being listed: " +
+                       (path_.empty() ? std::string("(document)") : path_) + ": " + message);
 }
 
 }  // namespace rpsd::config

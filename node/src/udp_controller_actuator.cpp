@@ -188,7 +188,7 @@ UdpControllerConfig UdpControllerConfig::read(config::Source& section, int chann
   u.channels = channels;
   u.controller_host = section.text("host", "the controller's address (dotted IPv4)");
   u.controller_port = static_cast<std::uint16_t>(section.whole_number("port", 1, 65535, "the controller's UDP port"));
-  u.local_host = section.has("local_host") ? section.text("local_host", "address to bind (dotted IPv4)") : u.local_host;
+  u.local_host = section.optional_text("local_host", "address to bind (dotted IPv4)").value_or(u.local_host);
   u.local_port =
       static_cast<std::uint16_t>(section.whole_number_or("local_port", 0, 65535, 0, "port to bind (0: any free one)"));
   u.reply_timeout_s = section.number_or("reply_timeout_s", u.reply_timeout_s,
@@ -196,10 +196,12 @@ UdpControllerConfig UdpControllerConfig::read(config::Source& section, int chann
   u.max_missed_replies = static_cast<int>(section.whole_number_or(
       "max_missed_replies", 0, 1000, u.max_missed_replies, "consecutive missing replies before the actuator faults"));
   // Hardware: nothing in the file can say what the rig can do unless the file says it.
-  if (!section.has("rig")) {
+  // optional_section, not section: the error names what to give (a listing descends either way).
+  const auto rig = section.optional_section("rig", "what the rig behind the controller can do (required)");
+  if (!rig) {
     section.fail("rig", "a hardware node must state its rig's envelope: rig: {stroke_m, force_n, velocity_m_per_s}");
   }
-  u.rig = servo::Envelope::read(*section.section("rig", "what the rig behind the controller can do"));
+  u.rig = servo::Envelope::read(*rig);
   return u;
 }
 

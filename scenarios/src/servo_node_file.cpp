@@ -1,42 +1,107 @@
 #include "rpsd/scenarios/servo_node_file.h"
 
+#include <array>
 #include <cmath>
 #include <optional>
+#include <utility>
 
+#include "node_sections.h"
 #include "physical_ranges.h"
 #include "rpsd/config/input_file.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
 
 namespace rpsd::scenarios {
+namespace node_sections {
 namespace {
 
 using config::Number;
 using namespace ranges;
 
-node::LimitAction limit_action(MappingReader& r, const std::string& key, node::LimitAction fallback) {
-  if (!r.has(key)) return fallback;
-  const std::string text =
-      r.choice(key, {"clamp", "hold", "ramp_to_safe", "abort"}, "what the node does when the limit acts");
-  if (text == "clamp") return node::LimitAction::kClamp;
-  if (text == "hold") return node::LimitAction::kHold;
-  if (text == "ramp_to_safe") return node::LimitAction::kRampToSafe;
-  return node::LimitAction::kAbort;
+constexpr std::array<std::pair<node::LimitAction, std::string_view>, 4> kActions{{
+    {node::LimitAction::kClamp, "clamp"},
+    {node::LimitAction::kHold, "hold"},
+    {node::LimitAction::kRampToSafe, "ramp_to_safe"},
+    {node::LimitAction::kAbort, "abort"},
+}};
+
+node::LimitAction limit_action(config::Source& r, const std::string& key, node::LimitAction fallback) {
+  std::vector<std::string_view> names;
+  std::string_view fallback_name;
+  for (const auto& [action, name] : kActions) {
+    names.push_back(name);
+    if (action == fallback) fallback_name = name;
+  }
+  const std::string text = r.choice_or(key, names, fallback_name, "what the node does when the limit acts");
+  for (const auto& [action, name] : kActions) {
+    if (text == name) return action;
+  }
+  return fallback;
 }
 
-std::vector<double> per_channel(MappingReader& r, const std::string& key, int channels, double fallback,
+std::vector<double> per_channel(config::Source& r, const std::string& key, int channels, double fallback,
                                 const Number& spec) {
-  if (!r.has(key)) return std::vector<double>(static_cast<std::size_t>(channels), fallback);
-  auto values = r.numbers(key, spec, static_cast<std::size_t>(channels));
-  if (static_cast<int>(values.size()) != channels)
+  const auto values = r.optional_numbers(key, spec, static_cast<std::size_t>(channels));
+  if (!values) return std::vector<double>(static_cast<std::size_t>(channels), fallback);
+  if (static_cast<int>(values->size()) != channels)
     r.fail(key, "needs one value per channel (" + std::to_string(channels) + ")");
-  return values;
+  return *values;
 }
 
 // A limit is positive and finite: leaving it out takes the rig's envelope.
 Number limit(std::string_view unit, std::string_view meaning, double max) { return {unit, meaning, 0.0, max, true}; }
 
-void read_limits(MappingReader r, node::ServoNodeSetup& f) {
+Number initial_position() {
+  return Number::between(-kMaxDisplacementM, kMaxDisplacementM, "m", "each piston's position at start");
+}
+
+}  // namespace
+
+void node(config::Source& n, node::ServoNodeSetup& f) {
+  f.node.test_id = static_cast<std::uint32_t>(n.whole_number("test_id", 1, 4'000'000'000L, "the test the node serves"));
+  f.node.site_id = static_cast<std::uint32_t>(n.whole_number("site_id", 1, 1'000'000, "the node's site"));
+  const std::string mode =
+      n.choice("mode", {"real_time", "lock_step"}, "paced by its own clock, or one step per command");
+  f.mode = mode == "real_time" ? node::ServoNodeSetup::Mode::kRealTime : node::ServoNodeSetup::Mode::kLockStep;
+  // A servo controller's loop: 1 Hz is a quasi-static test, 100 kHz beyond any controller.
+  f.node.control_period_s =
+      1.0 / n.number("control_rate_hz", Number::between(1.0, kMaxNodeRateHz, "Hz", "the node's control loop"));
+  f.heartbeat_rate_hz = n.number_or("heartbeat_rate_hz", f.heartbeat_rate_hz,
+                                    Number::between(0.1, 1000.0, "Hz", "how often the node says it is alive"));
+  f.realtime.lock_memory = n.boolean_or("lock_memory", f.realtime.lock_memory, "mlockall the process");
+  f.realtime.fifo_priority = static_cast<int>(
+      n.whole_number_or("fifo_priority", 0, 99, f.realtime.fifo_priority, "SCHED_FIFO priority, 0: none"));
+  f.realtime.keep_cpus_awake =
+      n.boolean_or("keep_cpus_awake", f.realtime.keep_cpus_awake, "hold /dev/cpu_dma_latency at 0");
+  n.finish();
+}
+
+void dds(config::Source& d, const std::filesystem::path& dir, node::ServoNodeSetup& f) {
+  f.dds.domain_id = static_cast<std::uint32_t>(d.whole_number_or("domain_id", 0, 232, 0, "the DDS domain"));
+  const auto config = d.optional_text("config", "a Cyclone DDS XML file (relative to this file)");
+  d.finish();
+  if (config) {
+    const auto path = dir / *config;
+    try {
+      config::check_input_file(path, config::kMaxYamlFileBytes, "DDS configuration");
+    } catch (const config::InputFileError& e) {
+      d.fail("config", e.what());
+    }
+    f.dds.config_file = path.string();
+  }
+}
+
+void actuator(config::Source& a, node::ServoNodeSetup& f) {
+  f.node.channels =
+      static_cast<int>(a.whole_number("channels", 1, transport::kMaxChannels, "the actuators the node drives"));
+  f.initial_displacement_m = per_channel(a, "initial_displacement_m", f.node.channels, 0.0, initial_position());
+  using Kinds = node::ActuatorKinds;
+  const std::string kind = a.choice("kind", Kinds::names(), "what the node drives (node/)");
+  f.actuator = *Kinds::read(kind, a, f.node.channels);
+  a.finish();
+}
+
+void limits(config::Source& r, node::ServoNodeSetup& f) {
   const int n = f.node.channels;
   constexpr double kNone = node::ChannelLimits::kNone;
   const auto stroke = per_channel(r, "max_stroke_m", n, kNone, limit("m", "|displacement|", kMaxDisplacementM));
@@ -55,7 +120,7 @@ void read_limits(MappingReader r, node::ServoNodeSetup& f) {
   for (int c = 0; c < n; ++c) {
     f.node.limits[c] = {stroke[c], velocity[c], force[c], increment[c], acceleration[c], guard[c], stop[c]};
   }
-  if (auto actions = r.optional_mapping("actions")) {
+  if (auto actions = r.optional_section("actions", "what each limit does when it acts")) {
     f.node.actions.stroke = limit_action(*actions, "stroke", f.node.actions.stroke);
     f.node.actions.velocity = limit_action(*actions, "velocity", f.node.actions.velocity);
     f.node.actions.force = limit_action(*actions, "force", f.node.actions.force);
@@ -66,12 +131,11 @@ void read_limits(MappingReader r, node::ServoNodeSetup& f) {
   r.finish();
 }
 
-void read_watchdog(MappingReader r, node::ServoNodeSetup& f) {
+void watchdog(config::Source& r, node::ServoNodeSetup& f) {
   f.node.command_timeout_periods = static_cast<int>(r.whole_number_or(
       "command_timeout_periods", 1, 1'000'000, f.node.command_timeout_periods, "periods without a command"));
-  const std::string loss = r.has("on_command_loss") ? r.choice("on_command_loss", {"hold", "ramp_to_safe"},
-                                                               "what the node does when commands stop")
-                                                    : "hold";
+  const std::string loss =
+      r.choice_or("on_command_loss", {"hold", "ramp_to_safe"}, "hold", "what the node does when commands stop");
   f.node.on_command_loss = loss == "ramp_to_safe" ? node::LossAction::kRampToSafe : node::LossAction::kHold;
   const auto safe = per_channel(r, "safe_position_m", f.node.channels, 0.0,
                                 Number::between(-kMaxDisplacementM, kMaxDisplacementM, "m", "where ramp_to_safe goes"));
@@ -81,64 +145,52 @@ void read_watchdog(MappingReader r, node::ServoNodeSetup& f) {
   r.finish();
 }
 
-}  // namespace
+void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f) {
+  f.bind_host = u.optional_text("bind_host", "the address it listens on (default: 127.0.0.1)").value_or(f.bind_host);
+  f.port = static_cast<std::uint16_t>(u.whole_number("port", 1, 65535, "the UDP port it listens on"));
+  u.finish();
+}
+
+void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f) {
+  f.channels = static_cast<int>(a.whole_number("channels", 1, transport::kMaxChannels, "the actuators it emulates"));
+  f.initial_displacement_m = per_channel(a, "initial_displacement_m", f.channels, 0.0, initial_position());
+  const double k =
+      a.number_or("specimen_stiffness_n_per_m", 0.0,
+                  Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen the load cell sees: F = k x"));
+  f.plant = servo::read_plant_config(*a.section("servo", "each channel's plant"), k);
+  a.finish();
+}
+
+std::unique_ptr<config::Source> node_file(config::Source& root, const std::filesystem::path& dir,
+                                          node::ServoNodeSetup& f) {
+  root.optional_text("description", "one line for titles");
+  node(*root.section("node", "which test and site the node serves, and its pace"), f);
+  dds(*root.section("dds", "how the node meets the coordinator"), dir, f);
+  actuator(*root.section("actuator", "what the node drives"), f);
+  auto limits_section = root.optional_section("limits", "the node's own limits, one value per channel");
+  if (limits_section) limits(*limits_section, f);
+  if (auto watchdog_section = root.optional_section("watchdog", "what the node does when commands stop")) {
+    watchdog(*watchdog_section, f);
+  }
+  root.finish();
+  return limits_section;
+}
+
+void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f) {
+  root.optional_text("description", "one line for titles");
+  emulator_udp(*root.section("udp", "where the emulator listens"), f);
+  emulator_actuator(*root.section("actuator", "the actuators it emulates"), f);
+  root.finish();
+}
+
+}  // namespace node_sections
 
 node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   YAML::Node document = load_yaml_document(file, overrides);
   MappingReader root(document, file.string(), "");
   node::ServoNodeSetup f;
   f.name = file.stem().string();
-  root.optional_string("description");
-  {
-    MappingReader node = root.mapping("node");
-    f.node.test_id =
-        static_cast<std::uint32_t>(node.whole_number("test_id", 1, 4'000'000'000L, "the test the node serves"));
-    f.node.site_id = static_cast<std::uint32_t>(node.whole_number("site_id", 1, 1'000'000, "the node's site"));
-    const std::string mode =
-        node.choice("mode", {"real_time", "lock_step"}, "paced by its own clock, or one step per command");
-    f.mode = mode == "real_time" ? node::ServoNodeSetup::Mode::kRealTime : node::ServoNodeSetup::Mode::kLockStep;
-    // A servo controller's loop: 1 Hz is a quasi-static test, 100 kHz beyond any controller.
-    f.node.control_period_s =
-        1.0 / node.number("control_rate_hz", Number::between(1.0, kMaxNodeRateHz, "Hz", "the node's control loop"));
-    f.heartbeat_rate_hz = node.number_or("heartbeat_rate_hz", f.heartbeat_rate_hz,
-                                         Number::between(0.1, 1000.0, "Hz", "how often the node says it is alive"));
-    f.realtime.lock_memory = node.boolean_or("lock_memory", f.realtime.lock_memory, "mlockall the process");
-    f.realtime.fifo_priority = static_cast<int>(
-        node.whole_number_or("fifo_priority", 0, 99, f.realtime.fifo_priority, "SCHED_FIFO priority, 0: none"));
-    f.realtime.keep_cpus_awake =
-        node.boolean_or("keep_cpus_awake", f.realtime.keep_cpus_awake, "hold /dev/cpu_dma_latency at 0");
-    node.finish();
-  }
-  {
-    MappingReader dds = root.mapping("dds");
-    f.dds.domain_id = static_cast<std::uint32_t>(dds.whole_number_or("domain_id", 0, 232, 0, "the DDS domain"));
-    if (auto config = dds.optional_string("config")) {
-      const auto path = file.parent_path() / *config;
-      try {
-        config::check_input_file(path, config::kMaxYamlFileBytes, "DDS configuration");
-      } catch (const config::InputFileError& e) {
-        dds.fail("config", e.what());
-      }
-      f.dds.config_file = path.string();
-    }
-    dds.finish();
-  }
-  {
-    MappingReader actuator = root.mapping("actuator");
-    f.node.channels = static_cast<int>(
-        actuator.whole_number("channels", 1, transport::kMaxChannels, "the actuators the node drives"));
-    f.initial_displacement_m =
-        per_channel(actuator, "initial_displacement_m", f.node.channels, 0.0,
-                    Number::between(-kMaxDisplacementM, kMaxDisplacementM, "m", "each piston's position at start"));
-    using Kinds = node::ActuatorKinds;
-    const std::string kind = actuator.choice("kind", Kinds::names(), "what the node drives (node/)");
-    f.actuator = *Kinds::read(kind, actuator, f.node.channels);
-    actuator.finish();
-  }
-  std::optional<MappingReader> limits = root.optional_mapping("limits");
-  if (limits) read_limits(*limits, f);
-  if (auto watchdog = root.optional_mapping("watchdog")) read_watchdog(*watchdog, f);
-  root.finish();
+  const auto limits = node_sections::node_file(root, file.parent_path(), f);
   // The rig's envelope is every limit's default, and a limit may only tighten it; the force
   // guard predicts with the simulated specimen's stiffness unless the file gives one.
   const servo::Envelope envelope = node::envelope_of(f.actuator);
@@ -170,25 +222,7 @@ node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::pa
   MappingReader root(document, file.string(), "");
   node::ControllerEmulatorSetup f;
   f.name = file.stem().string();
-  root.optional_string("description");
-  {
-    MappingReader udp = root.mapping("udp");
-    f.bind_host = udp.optional_string("bind_host").value_or(f.bind_host);
-    f.port = static_cast<std::uint16_t>(udp.whole_number("port", 1, 65535, "the UDP port it listens on"));
-    udp.finish();
-  }
-  MappingReader actuator = root.mapping("actuator");
-  f.channels =
-      static_cast<int>(actuator.whole_number("channels", 1, transport::kMaxChannels, "the actuators it emulates"));
-  f.initial_displacement_m =
-      per_channel(actuator, "initial_displacement_m", f.channels, 0.0,
-                  Number::between(-kMaxDisplacementM, kMaxDisplacementM, "m", "each piston's position at start"));
-  const double k =
-      actuator.number_or("specimen_stiffness_n_per_m", 0.0,
-                         Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen the load cell sees: F = k x"));
-  f.plant = servo::read_plant_config(*actuator.section("servo", "each channel's plant"), k);
-  actuator.finish();
-  root.finish();
+  node_sections::emulator_file(root, f);
   return f;
 }
 

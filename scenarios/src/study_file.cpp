@@ -3,138 +3,13 @@
 #include <charconv>
 #include <cmath>
 
-#include "physical_ranges.h"
-#include "rpsd/config/closest_name.h"
 #include "rpsd/config/input_log.h"
-#include "rpsd/config/kind_list.h"
 #include "rpsd/scenarios/ground_motion_section.h"
-#include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/scenarios/test_scenario_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
-#include "rpsd/servo/linear_analysis.h"
+#include "study_sections.h"
 
 namespace rpsd::scenarios {
-namespace {
-
-using config::Number;
-using namespace ranges;
-
-// `points` values from start to stop, equally spaced in log10, within `value`.
-std::vector<double> read_log_range(MappingReader range, const Number& value) {
-  const double start = range.number("start", value);
-  const double stop = range.number("stop", value);
-  const long points = range.whole_number("points", 2, 100000, "how many values");
-  if (stop <= start) range.fail("stop", "must be greater than start");
-  range.finish();
-  return log_spaced(start, stop, static_cast<int>(points));
-}
-
-studies::SineSweepStudy read_sine_sweep(MappingReader& root, servo::ServoSystemParameters servo) {
-  studies::SineSweepStudy s;
-  s.servo = std::move(servo);
-  s.command_rate_hz = root.number_or("command_rate_hz", s.command_rate_hz,
-                                     Number::between(kMinControlRateHz, kMaxNodeRateHz, "Hz", "commands per second"));
-  MappingReader sweep = root.mapping("sine_sweep");
-  s.amplitude_m = sweep.number("amplitude_m", Number{"m", "the sine's amplitude", 0.0, kMaxDisplacementM, true});
-  s.start_frequency_hz =
-      sweep.number("start_frequency_hz", Number::between(0.0, kMaxFrequencyHz, "Hz", "the sweep's first frequency"));
-  s.end_frequency_hz =
-      sweep.number("end_frequency_hz", Number{"Hz", "the sweep's last frequency", 0.0, kMaxFrequencyHz, true});
-  s.duration_s = sweep.number("duration_s", Number{"s", "the sweep's length", 0.0, kMaxRecordDurationS, true});
-  if (s.duration_s * s.command_rate_hz > kMaxSteps) sweep.fail("duration_s", "more than 1e9 commands");
-  if (s.end_frequency_hz <= s.start_frequency_hz) sweep.fail("end_frequency_hz", "must exceed start_frequency_hz");
-  if (s.end_frequency_hz * 8.0 > s.command_rate_hz) {
-    sweep.fail("end_frequency_hz", "needs at least 8 command samples per cycle (raise command_rate_hz)");
-  }
-  sweep.finish();
-  if (root.has("report_frequencies_hz")) {
-    s.report_frequencies_hz =
-        root.numbers("report_frequencies_hz",
-                     Number{"Hz", "frequencies the report gives gain and phase at", 0.0, kMaxFrequencyHz, true}, 1000);
-    for (double f : s.report_frequencies_hz) {
-      if (f <= s.start_frequency_hz || f >= s.end_frequency_hz) {
-        root.fail("report_frequencies_hz", "every report frequency must lie inside the sweep");
-      }
-    }
-  }
-  return s;
-}
-
-studies::FrequencyResponseStudy read_frequency_response(MappingReader& root, servo::ServoSystemParameters servo) {
-  studies::FrequencyResponseStudy s;
-  s.frequencies_hz = read_log_range(root.mapping("frequencies_hz"),
-                                    Number{"Hz", "the frequencies of the response", 0.0, kMaxFrequencyHz, true});
-  MappingReader lead = root.mapping("phase_lead");
-  const double a = lead.number("ratio_a", Number::between(1.0, 100.0, "", "the lead network's a (1: no lead)"));
-  // Without an explicit T the network's zero cancels the first-order lag of Eq. 9.
-  s.phase_lead =
-      lead.has("time_constant_s")
-          ? compensation::PhaseLeadParameters{a, lead.number("time_constant_s",
-                                                             Number{"s", "the lead network's T", 0.0, 10.0, true})}
-          : compensation::cancel_first_order_lag(servo::response_delay_s(servo), a);
-  lead.finish();
-  s.servo = std::move(servo);
-  return s;
-}
-
-studies::MaxGainStudy read_max_gain(MappingReader& root, servo::ServoSystemParameters servo) {
-  studies::MaxGainStudy s;
-  s.servo = std::move(servo);
-  s.masses_kg = read_log_range(root.mapping("attached_mass_kg"),
-                               Number{"kg", "the masses the actuator carries", 0.0, kMaxMassKg, true});
-  return s;
-}
-
-studies::DelayCompensationStudy read_delay_compensation(MappingReader& root) {
-  studies::DelayCompensationStudy s;
-  MappingReader structure = root.mapping("structure");
-  s.mass_kg = structure.number("mass_kg", Number{"kg", "the SDOF's mass", 0.0, kMaxMassKg, true});
-  s.stiffness_n_per_m =
-      structure.number("stiffness_n_per_m", Number{"N/m", "the SDOF's stiffness", 0.0, kMaxStiffnessNPerM, true});
-  s.damping_ratio = structure.number("damping_ratio", Number::between(0.0, 1.0, "", "fraction of critical"));
-  structure.finish();
-  s.initial_displacement_m =
-      root.number("initial_displacement_m", Number{"m", "the free vibration's start", 0.0, kMaxDisplacementM, true});
-  s.control_rate_hz =
-      root.number_or("control_rate_hz", s.control_rate_hz,
-                     Number::between(kMinControlRateHz, kMaxControlRateHz, "Hz", "integration steps per second"));
-  s.duration_s = root.number("duration_s", Number{"s", "each run's length", 0.0, kMaxDurationS, true});
-  if (s.duration_s * s.control_rate_hz > kMaxSteps) root.fail("duration_s", "more than 1e9 steps");
-  s.abort_amplitude_factor =
-      root.number_or("abort_amplitude_factor", s.abort_amplitude_factor,
-                     Number::between(1.0, 1e3, "", "a run stops once it grows this many times its start"));
-  if (root.has("integrator")) {
-    const std::string name = root.string("integrator");
-    const auto config = default_integrator(name);
-    if (!config)
-      root.fail("integrator", "unknown integrator \"" + name + "\"; expected " +
-                                  config::listed(integrators::scheme_names()) +
-                                  config::did_you_mean(name, integrators::scheme_names()));
-    s.integrator = *config;
-  }
-  {
-    MappingReader plant = root.mapping("plant");
-    const servo::PlantConfig config = servo::read_plant_config(plant, s.stiffness_n_per_m);
-    if (const auto* servo = std::get_if<servo::ServoSystemParameters>(&config)) {
-      s.plant = *servo;
-    } else if (const auto* delay = std::get_if<servo::PureDelayParameters>(&config)) {
-      s.plant = *delay;
-    } else {
-      plant.fail("kind", "the Figure 8 study takes servo_model or ideal_delay");
-    }
-  }
-  MappingReader compensation = root.mapping("compensation");
-  s.phase_lead_ratio_a =
-      compensation.number("phase_lead_ratio_a", Number{"", "the lead network's a", 1.0, 100.0, true});
-  for (double ms : compensation.numbers("compensated_delays_ms",
-                                        Number{"ms", "each run's compensated delay", 0.0, 1000.0, true}, 100)) {
-    s.compensated_delays_s.push_back(ms * 1e-3);
-  }
-  compensation.finish();
-  return s;
-}
-
-}  // namespace
 
 std::optional<integrators::IntegratorConfig> default_integrator(std::string_view name) {
   const auto scheme = integrators::parse_scheme(name);
@@ -314,25 +189,7 @@ std::string number_text(double v) {
 studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line,
                                   YAML::Node document, MappingReader& root, const std::filesystem::path& file,
                                   studies::StudyDocument result) {
-  auto axes = root.mappings("sweep", 2);
-  for (auto& axis : axes) {
-    studies::SweepAxis a;
-    a.key_path = axis.string("key");
-    if (a.key_path.rfind("sweep", 0) == 0 || a.key_path == "study") axis.fail("key", "cannot sweep this key");
-    // The swept key's own reader checks each value's range, case by case.
-    const Number value = Number::any("", "a value of the swept key");
-    if (axis.has("values")) {
-      a.values = axis.numbers("values", value, 1000);
-    } else {
-      MappingReader range = axis.mapping("range");
-      const double start = range.number("start", value), stop = range.number("stop", value);
-      const long count = range.whole_number("count", 2, 1000, "how many values");
-      range.finish();
-      for (long i = 0; i < count; ++i) a.values.push_back(start + (stop - start) * i / (count - 1));
-    }
-    axis.finish();
-    result.sweep.push_back(std::move(a));
-  }
+  result.sweep = study_sections::sweep(root);
   const std::size_t n0 = result.sweep[0].values.size();
   const std::size_t n1 = result.sweep.size() > 1 ? result.sweep[1].values.size() : 1;
   if (n0 * n1 > 1000) root.fail("sweep", "more than 1000 cases");
@@ -406,8 +263,7 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
   MappingReader root(document, file.string(), "", std::move(overrides));
   studies::StudyDocument result;
   result.name = file.stem().string();
-  result.description = root.optional_string("description").value_or("");
-  const std::string kind = root.string("study");
+  const std::string kind = study_sections::study_kind(root, result.description);
   if (kind == "rpsd_test") {
     if (root.has("sweep")) {
       // A case still holding a sweep means the key was given twice (YAML keeps both).
@@ -422,24 +278,18 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
     return result;
   }
   if (kind == "rpsd_delay_compensation") {
-    result.study = read_delay_compensation(root);
+    result.study = study_sections::delay_compensation(root);
     root.finish();
     result.effective_yaml = emitted(document);
     return result;
   }
-  const std::filesystem::path servo_file = root.relative_file("servo", "the servo parameter file");
-  if (!std::filesystem::exists(servo_file)) root.fail("servo", "no such parameter file: " + servo_file.string());
-  servo::ServoSystemParameters servo = load_servo_parameters(servo_file);
+  const auto servo = root.file("servo", "the servo-system parameter file (relative to this file)");
   if (kind == "servo_sine_sweep") {
-    result.study = read_sine_sweep(root, std::move(servo));
+    result.study = study_sections::sine_sweep(root, *servo);
   } else if (kind == "servo_frequency_response") {
-    result.study = read_frequency_response(root, std::move(servo));
-  } else if (kind == "servo_max_gain") {
-    result.study = read_max_gain(root, std::move(servo));
+    result.study = study_sections::frequency_response(root, *servo);
   } else {
-    root.fail("study", "unknown study \"" + kind +
-                           "\" (expected rpsd_test, rpsd_delay_compensation, servo_sine_sweep, "
-                           "servo_frequency_response or servo_max_gain)");
+    result.study = study_sections::max_gain(root, *servo);
   }
   root.finish();
   result.effective_yaml = emitted(document);

@@ -34,7 +34,23 @@ std::string expected_number(const config::Number& spec) {
   return "a number " + config::range_text(spec);
 }
 
+std::set<std::string>* accepted_log = nullptr;
+
+// "a[3].b[0].c" -> "a[].b[].c", as the reference writes a list's items.
+std::string without_indices(const std::string& path) {
+  std::string out;
+  bool in_index = false;
+  for (char c : path) {
+    if (c == ']') in_index = false;
+    if (!in_index) out += c;
+    if (c == '[') in_index = true;
+  }
+  return out;
+}
+
 }  // namespace
+
+void log_accepted_keys(std::set<std::string>* log) { accepted_log = log; }
 
 std::string read_yaml_file_text(const std::filesystem::path& file) {
   try {
@@ -109,13 +125,18 @@ void MappingReader::fail(std::string_view key, const std::string& message) const
   fail_at(value ? value : node_, path_of(key), message);
 }
 
-bool MappingReader::has(std::string_view key) {
+void MappingReader::accept(std::string_view key) {
   read_keys_.insert(std::string(key));
+  if (accepted_log) accepted_log->insert(without_indices(path_of(key)));
+}
+
+bool MappingReader::has(std::string_view key) {
+  accept(key);
   return static_cast<bool>(node_[std::string(key)]);
 }
 
 YAML::Node MappingReader::required(std::string_view key) {
-  read_keys_.insert(std::string(key));
+  accept(key);
   YAML::Node value = node_[std::string(key)];
   if (!value) {
     // A misspelling of this key is the likelier mistake: name it, not the missing one.
@@ -215,7 +236,7 @@ long MappingReader::whole_number_or(std::string_view key, long minimum, long max
 }
 
 bool MappingReader::boolean_or(std::string_view key, bool fallback, std::string_view) {
-  read_keys_.insert(std::string(key));
+  accept(key);
   const YAML::Node value = node_[std::string(key)];
   if (!value) return fallback;
   bool result = false;
@@ -238,15 +259,15 @@ std::filesystem::path MappingReader::relative_file(std::string_view key, std::st
   return path;
 }
 
+std::optional<std::filesystem::path> MappingReader::optional_relative_file(std::string_view key,
+                                                                           std::string_view meaning) {
+  if (!has(key)) return std::nullopt;
+  return relative_file(key, meaning);
+}
+
 std::optional<std::string> MappingReader::optional_string(std::string_view key) {
   if (!has(key)) return std::nullopt;
   return string(key);
-}
-
-int MappingReader::list_depth(std::string_view key) const {
-  const YAML::Node value = node_[std::string(key)];
-  if (!value || !value.IsSequence()) return 0;
-  return value.size() > 0 && value[0].IsSequence() ? 2 : 1;
 }
 
 std::vector<MappingReader> MappingReader::mappings(std::string_view key, std::size_t max_count) {
@@ -260,11 +281,6 @@ std::vector<MappingReader> MappingReader::mappings(std::string_view key, std::si
 MappingReader MappingReader::mapping(std::string_view key) {
   const YAML::Node value = required(key);
   return MappingReader(value, file_, path_of(key), overrides_);
-}
-
-std::optional<MappingReader> MappingReader::optional_mapping(std::string_view key) {
-  if (!has(key)) return std::nullopt;
-  return mapping(key);
 }
 
 void MappingReader::finish() const {
@@ -284,6 +300,54 @@ std::string MappingReader::choice(std::string_view key, const std::vector<std::s
     if (value == c) return value;
   }
   fail(key, "expected " + config::listed(choices) + ", got \"" + value + "\"" + config::did_you_mean(value, choices));
+}
+
+std::optional<double> MappingReader::optional_number(std::string_view key, const config::Number& spec) {
+  if (!has(key)) return std::nullopt;
+  return number(key, spec);
+}
+
+std::optional<std::string> MappingReader::optional_text(std::string_view key, std::string_view) {
+  return optional_string(key);
+}
+
+std::optional<std::vector<double>> MappingReader::optional_numbers(std::string_view key, const config::Number& spec,
+                                                                   std::size_t max_count) {
+  if (!has(key)) return std::nullopt;
+  return numbers(key, spec, max_count);
+}
+
+std::unique_ptr<config::Source> MappingReader::optional_section(std::string_view key, std::string_view meaning) {
+  if (!has(key)) return nullptr;
+  return section(key, meaning);
+}
+
+std::string MappingReader::choice_or(std::string_view key, const std::vector<std::string_view>& choices,
+                                     std::string_view fallback, std::string_view meaning) {
+  return has(key) ? choice(key, choices, meaning) : std::string(fallback);
+}
+
+std::vector<std::vector<double>> MappingReader::matrix(std::string_view key, const config::Number& entry,
+                                                       std::size_t max_rows) {
+  const YAML::Node value = required(key);
+  if (value.IsSequence() && value.size() > 0 && value[0].IsSequence()) {
+    const config::Number any_sign{entry.unit, entry.meaning, -entry.max, entry.max};
+    return number_rows(key, any_sign, max_rows);
+  }
+  if (value.IsSequence()) {
+    const std::vector<double> diagonal = numbers(key, entry, max_rows);
+    std::vector<std::vector<double>> rows(diagonal.size(), std::vector<double>(diagonal.size(), 0.0));
+    for (std::size_t i = 0; i < diagonal.size(); ++i) rows[i][i] = diagonal[i];
+    return rows;
+  }
+  return {{number(key, entry)}};
+}
+
+std::vector<std::unique_ptr<config::Source>> MappingReader::sections(std::string_view key, std::size_t max_count,
+                                                                     std::string_view) {
+  std::vector<std::unique_ptr<config::Source>> result;
+  for (auto& m : mappings(key, max_count)) result.push_back(std::make_unique<MappingReader>(std::move(m)));
+  return result;
 }
 
 std::unique_ptr<config::Source> MappingReader::section(std::string_view key, std::string_view) {

@@ -66,13 +66,15 @@ SpecimenStiffness read_stiffness(config::Source& r) {
       r.number("initial_n_per_m", Number::between(0.0, 1e13, "N/m", "the specimen's initial stiffness"));
   s.change_displacement_m = r.number_or("change_displacement_m", 0.0,
                                         Number::between(0.0, 10.0, "m", "where the stiffness changes (0: linear)"));
+  const auto secondary = r.optional_number(
+      "secondary_n_per_m", Number::between(0.0, 1e13, "N/m", "the stiffness beyond change_displacement_m"));
+  r.finish();
   if (s.change_displacement_m > 0.0) {
-    s.secondary_n_per_m =
-        r.number("secondary_n_per_m", Number::between(0.0, 1e13, "N/m", "the stiffness beyond change_displacement_m"));
-  } else if (r.has("secondary_n_per_m")) {
+    if (!secondary) r.fail("secondary_n_per_m", "required key is missing (change_displacement_m > 0)");
+    s.secondary_n_per_m = *secondary;
+  } else if (secondary) {
     r.fail("secondary_n_per_m", "needs change_displacement_m > 0 (the displacement where the stiffness changes)");
   }
-  r.finish();
   return s;
 }
 
@@ -106,8 +108,7 @@ ServoSystemParameters read_servo_parameters(config::Source& file) {
     sensors->finish();
   }
   p.specimen = read_specimen(*file.section("specimen", "what the actuator drives"));
-  if (file.has("simulation")) {
-    const auto simulation = file.section("simulation", "how the plant is integrated");
+  if (const auto simulation = file.optional_section("simulation", "how the plant is integrated")) {
     p.plant_rate_hz =
         simulation->number_or("plant_rate_hz", p.plant_rate_hz,
                               Number::between(1e3, 1e6, "Hz", "fixed-step RK4 rate of the continuous plant"));

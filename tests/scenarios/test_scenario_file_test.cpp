@@ -77,7 +77,9 @@ TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
   EXPECT_NE(error_of({parse_override("clock.fifo_priority=120")}).find("clock.fifo_priority"), std::string::npos);
   EXPECT_NE(error_of({parse_override("experimental.0.site=0")}).find("experimental[0].site"), std::string::npos);
   EXPECT_NE(
-      error_of({parse_override("integrator.scheme=euler")}).find("integrator.scheme: unknown integrator \"euler\""),
+      error_of({parse_override("integrator.scheme=euler")})
+          .find("integrator.scheme: unknown integrator \"euler\"; expected central_difference, newmark, hht_alpha, "
+                "generalized_alpha, alpha_os, chang, chen_ricles or kolay_ricles_alpha"),
       std::string::npos);
   EXPECT_NE(error_of({parse_override("experimental.0.restoring_force=guess")}).find("experimental[0].restoring_force"),
             std::string::npos);

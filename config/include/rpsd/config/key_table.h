@@ -1,9 +1,12 @@
 // A Source that reads nothing and writes down every key asked for: the table of a section's
 // keys (path, type, unit, default, range, meaning) for the scenario reference. Numbers come
-// back as their default or as a value inside their range, so that a reader runs through.
+// back as their default or as a value inside their range (whole numbers as their largest), so
+// that a reader runs through;
+// optional numbers and texts come back absent, optional sections present.
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -11,9 +14,18 @@
 
 namespace rpsd::config {
 
+// What KeyTable::fail throws: the reader found the listing's values do not fit together,
+// after it had read its keys.
+class ListingStopped : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
 struct KeyRow {
   std::string path;  // "compensation.delay_s"
-  std::string type;  // "number", "whole number", "list of numbers", "true or false", "one of ...", "section", "file"
+  // "number", "whole number", "list of numbers", "true or false", "one of ...", "section",
+  // "file" (another file, its keys listed), "file name" (a file another reader opens)
+  std::string type;
   std::string unit;
   std::string fallback;  // the default, empty when the key is required
   std::string range;
@@ -35,9 +47,21 @@ class KeyTable final : public Source {
   std::string text(std::string_view key, std::string_view meaning) override;
   std::string choice(std::string_view key, const std::vector<std::string_view>& choices,
                      std::string_view meaning) override;
+  std::optional<double> optional_number(std::string_view key, const Number& spec) override;
+  std::optional<std::string> optional_text(std::string_view key, std::string_view meaning) override;
+  std::optional<std::vector<double>> optional_numbers(std::string_view key, const Number& spec,
+                                                      std::size_t max_count) override;
+  std::unique_ptr<Source> optional_section(std::string_view key, std::string_view meaning) override;
+  std::string choice_or(std::string_view key, const std::vector<std::string_view>& choices, std::string_view fallback,
+                        std::string_view meaning) override;
+  std::vector<std::vector<double>> matrix(std::string_view key, const Number& entry, std::size_t max_rows) override;
+  std::vector<std::unique_ptr<Source>> sections(std::string_view key, std::size_t max_count,
+                                                std::string_view meaning) override;
   bool has(std::string_view key) override;
   std::unique_ptr<Source> section(std::string_view key, std::string_view meaning) override;
   std::unique_ptr<Source> file(std::string_view key, std::string_view meaning) override;
+  std::filesystem::path relative_file(std::string_view key, std::string_view meaning) override;
+  std::optional<std::filesystem::path> optional_relative_file(std::string_view key, std::string_view meaning) override;
   void finish() override {}
   [[noreturn]] void fail(std::string_view key, const std::string& message) override;
   [[noreturn]] void fail_section(const std::string& message) override;

@@ -31,9 +31,11 @@ YAML::Node load_yaml_file(const std::filesystem::path& file);
 // Parses YAML text; `name` stands for the file in messages.
 YAML::Node parse_yaml_text(const std::string& text, const std::string& name);
 
-// Every number is read with its range (config::Number), so that the scenario reference
-// lists it; the reads that config::Source has no word for (matrices, lists of sections,
-// free-form paths) are the extra methods here.
+// While `log` is set (a test's; nullptr: none), every key a MappingReader accepts goes into it
+// as its path with list indices left out ("experimental[].dof"): how a test checks that the
+// scenario reference lists every key the readers accept. Not thread-safe.
+void log_accepted_keys(std::set<std::string>* log);
+
 // A value the command line put into the document (--set #2, --record): an error in it names
 // the override, not a line of the file it never was in.
 struct OverrideNode {
@@ -42,25 +44,12 @@ struct OverrideNode {
 };
 using OverrideNodes = std::shared_ptr<const std::vector<OverrideNode>>;
 
+// Every read goes through config::Source, with its range and meaning, so that the scenario
+// reference lists it.
 class MappingReader final : public config::Source {
  public:
   // `node` must be a mapping; `key_path` is its dotted path ("" for the document root).
   MappingReader(YAML::Node node, std::string file, std::string key_path, OverrideNodes overrides = nullptr);
-
-  std::string string(std::string_view key);
-  // A file named relative to this file's folder (or absolute): its absolute path, written back
-  // into the document too, so that the document emitted after reading runs from any folder.
-  std::filesystem::path relative_file(std::string_view key, std::string_view meaning);
-  std::optional<std::string> optional_string(std::string_view key);
-  // A non-empty list of at most max_rows equally long, non-empty lists of at most max_rows
-  // numbers within the spec (matrix rows).
-  std::vector<std::vector<double>> number_rows(std::string_view key, const config::Number& spec, std::size_t max_rows);
-  // 0 when the key holds one value, 1 a list, 2 a list of lists (by its first item).
-  int list_depth(std::string_view key) const;
-  // A non-empty list of at most max_count mappings, each read with its own path `key[i]`.
-  std::vector<MappingReader> mappings(std::string_view key, std::size_t max_count);
-  MappingReader mapping(std::string_view key);
-  std::optional<MappingReader> optional_mapping(std::string_view key);
 
   // Rejects every key that was not read. Call after reading all known keys.
   void finish() const;
@@ -81,9 +70,23 @@ class MappingReader final : public config::Source {
   }
   std::string choice(std::string_view key, const std::vector<std::string_view>& choices,
                      std::string_view meaning) override;
+  std::optional<double> optional_number(std::string_view key, const config::Number& spec) override;
+  std::optional<std::string> optional_text(std::string_view key, std::string_view meaning) override;
+  std::optional<std::vector<double>> optional_numbers(std::string_view key, const config::Number& spec,
+                                                      std::size_t max_count) override;
+  std::unique_ptr<config::Source> optional_section(std::string_view key, std::string_view meaning) override;
+  std::string choice_or(std::string_view key, const std::vector<std::string_view>& choices, std::string_view fallback,
+                        std::string_view meaning) override;
+  std::vector<std::vector<double>> matrix(std::string_view key, const config::Number& entry,
+                                          std::size_t max_rows) override;
+  std::vector<std::unique_ptr<config::Source>> sections(std::string_view key, std::size_t max_count,
+                                                        std::string_view meaning) override;
   bool has(std::string_view key) override;
   std::unique_ptr<config::Source> section(std::string_view key, std::string_view meaning) override;
   std::unique_ptr<config::Source> file(std::string_view key, std::string_view meaning) override;
+  // Writes the absolute path back into the document.
+  std::filesystem::path relative_file(std::string_view key, std::string_view meaning) override;
+  std::optional<std::filesystem::path> optional_relative_file(std::string_view key, std::string_view meaning) override;
   void finish() override { static_cast<const MappingReader*>(this)->finish(); }
   [[noreturn]] void fail(std::string_view key, const std::string& message) override {
     static_cast<const MappingReader*>(this)->fail(key, message);
@@ -93,6 +96,16 @@ class MappingReader final : public config::Source {
   std::string path_of(std::string_view key) const;
 
  private:
+  std::string string(std::string_view key);
+  std::optional<std::string> optional_string(std::string_view key);
+  // A non-empty list of at most max_rows equally long, non-empty lists of at most max_rows
+  // numbers within the spec (matrix rows).
+  std::vector<std::vector<double>> number_rows(std::string_view key, const config::Number& spec, std::size_t max_rows);
+  // A non-empty list of at most max_count mappings, each read with its own path `key[i]`.
+  std::vector<MappingReader> mappings(std::string_view key, std::size_t max_count);
+  MappingReader mapping(std::string_view key);
+  // Marks the key as known to finish() (and logs it).
+  void accept(std::string_view key);
   YAML::Node required(std::string_view key);
   // The list at `key`, refused when it is empty, not a list or longer than max_count.
   YAML::Node list(std::string_view key, std::size_t max_count, const std::string& of_what);
