@@ -11,13 +11,13 @@ void AdaptiveInverseCompensationParameters::validate() const {
   detail::require_non_negative(w + "min_delay_s", min_delay_s);
   detail::require_finite(w + "max_delay_s", max_delay_s);
   if (!(max_delay_s >= min_delay_s)) {
-    detail::fail(w + "max_delay_s", "must be >= min_delay_s = " + std::to_string(min_delay_s), max_delay_s);
+    detail::fail(w + "max_delay_s", "must be >= min_delay_s = " + detail::number(min_delay_s), max_delay_s);
   }
   detail::require_finite(w + "initial_delay_s", initial_delay_s);
   if (!(initial_delay_s >= min_delay_s && initial_delay_s <= max_delay_s)) {
     detail::fail(w + "initial_delay_s",
-                 "must lie in [min_delay_s, max_delay_s] = [" + std::to_string(min_delay_s) + ", " +
-                     std::to_string(max_delay_s) + "]",
+                 "must lie in [min_delay_s, max_delay_s] = [" + detail::number(min_delay_s) + ", " +
+                     detail::number(max_delay_s) + "]",
                  initial_delay_s);
   }
   detail::require_positive(w + "max_delay_rate", max_delay_rate);

@@ -8,6 +8,14 @@
 
 namespace rpsd::compensation::detail {
 
+// A number as the user would write it (1e-06, not 0.000001; std::to_string prints 0.000000).
+inline std::string number(double value) {
+  std::ostringstream s;
+  s.precision(15);
+  s << value;
+  return s.str();
+}
+
 // Throws std::invalid_argument("<what>: <requirement>, got <value>").
 [[noreturn]] inline void fail(const std::string& what, const std::string& requirement, double value) {
   std::ostringstream s;

@@ -36,7 +36,8 @@ void check_matrices(const linalg::StructuralMatrix& M, const linalg::StructuralM
 void Integrator::configure(const StructuralMatrices& matrices, double dt_s, const ConfigureOptions& options) {
   phase_ = Phase::kUnconfigured;
   if (!(dt_s > 0.0) || !std::isfinite(dt_s))
-    throw std::invalid_argument("time step dt_s must be positive and finite, got " + std::to_string(dt_s));
+    throw std::invalid_argument("time step dt_s must be positive and finite, got " +
+                                (std::ostringstream() << dt_s).str());
   mass_ = matrices.mass_kg.compacted();
   damping_ = matrices.damping_n_s_per_m.compacted();
   stiffness_ = matrices.initial_stiffness_n_per_m.compacted();

@@ -189,7 +189,7 @@ coordinator::GroundMotion read_section(config::Source& r, double step_s) {
   const double g = gm::to_m_per_s2(gm::AccelerationUnit::kG);
   if (!(peak <= kMaxPgaG * g)) {
     r.fail(p.scale_factor ? "scale_factor" : source_key,
-           "the record peaks at " + std::to_string(peak / g) + " g, more than the " +
+           "the record peaks at " + number_text(peak / g) + " g, more than the " +
                std::to_string(static_cast<int>(kMaxPgaG)) + " g a ground motion can have (units?)");
   }
   if (p.pad_after_s > 0.0) {
@@ -200,8 +200,8 @@ coordinator::GroundMotion read_section(config::Source& r, double step_s) {
   // step divides the record's); coarser steps than the record's are refused.
   if (std::abs(record.dt_s - step_s) > 1e-12 * step_s) {
     if (step_s > record.dt_s) {
-      r.fail(source_key, "the record's step " + std::to_string(record.dt_s) + " s is finer than the integration step " +
-                             std::to_string(step_s) + " s; raise clock.control_rate_hz");
+      r.fail(source_key, "the record's step " + number_text(record.dt_s) + " s is finer than the integration step " +
+                             number_text(step_s) + " s; raise clock.control_rate_hz");
     }
     // Bound the memory a scenario can ask for (2e7 samples = 160 MB).
     if (record.duration_s() / step_s > 2e7)

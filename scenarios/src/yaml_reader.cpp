@@ -75,6 +75,16 @@ YAML::Node parse_yaml_text(const std::string& text, const std::string& name) {
     if (!root.IsMap()) throw ConfigError(name + ": expected a mapping of keys at the top level");
     return root;
   } catch (const YAML::Exception& e) {
+    // yaml-cpp says "illegal map value" or the like for a tab; name the tab instead.
+    std::size_t line = 1, start = 0;
+    for (std::size_t end; start < text.size(); start = end + 1, ++line) {
+      end = std::min(text.find('\n', start), text.size());
+      const std::size_t first = text.find_first_not_of(' ', start);
+      if (first < end && text[first] == '\t') {
+        throw ConfigError(name + ":" + std::to_string(line) + ":" + std::to_string(first - start + 1) +
+                          ": a tab in the indentation; YAML allows only spaces there");
+      }
+    }
     throw ConfigError(location(name, e.mark) + ": YAML syntax error: " + e.msg);
   }
 }
