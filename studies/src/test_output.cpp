@@ -450,6 +450,13 @@ std::string legend_entry(const std::string& key, double value) {
   std::snprintf(text, sizeof text, "%s = %g", key.c_str(), value);
   return text;
 }
+// A log axis where the values span a decade or more (and are all positive), else a linear one.
+std::string logscale(const char* axis, const std::vector<double>& values) {
+  const auto [low, high] = std::minmax_element(values.begin(), values.end());
+  const bool decades = low != values.end() && *low > 0.0 && *high >= 10.0 * *low;
+  return std::string(decades ? "set logscale " : "unset logscale ") + axis + "\n";
+}
+
 }  // namespace
 
 RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file, const ProgressSink& progress,
@@ -464,6 +471,7 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
   for (const auto& axis : file.sweep) table << axis.key_path << ',';
   table << "completed,J2_percent,J4_percent,peak_displacement_m,reference_peak_displacement_m,folder\n";
   RunResult result = RunResult::kCompleted;
+  std::vector<double> j2s, j4s;
   for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
     char folder[32];
     std::snprintf(folder, sizeof folder, "case_%03zu", i);
@@ -476,6 +484,8 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
       values[file.sweep[a].key_path] = file.sweep_values[i][a];
       table << file.sweep_values[i][a] << ',';
     }
+    j2s.push_back(h.j2_percent);
+    j4s.push_back(h.j4_percent);
     table << (completed ? 1 : 0) << ',' << h.j2_percent << ',' << h.j4_percent << ',' << h.peak_displacement_m << ','
           << h.reference_peak_displacement_m << ',' << folder << '\n';
     cases.push_back({{"values", values},
@@ -507,9 +517,11 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
   const std::size_t lines = file.sweep.size() > 1 ? file.sweep[1].values.size() : 1;
   const std::size_t per_line = file.sweep[0].values.size();
   const int metric_column = static_cast<int>(file.sweep.size()) + 2;  // J2 after the axes and `completed`
-  std::string plots;
+  std::string plots = logscale("x", file.sweep[0].values);
   for (const char* metric : {"J2 (tracking error, %)", "J4 (error against perfect actuator, %)"}) {
-    const int column = metric_column + (plots.empty() ? 0 : 1);
+    const bool second = plots.find("plot ") != std::string::npos;
+    const int column = metric_column + (second ? 1 : 0);
+    plots += logscale("y", second ? j4s : j2s);
     plots += std::string("set ylabel '") + metric + "'\nplot ";
     for (std::size_t l = 0; l < lines; ++l) {
       char piece[256];

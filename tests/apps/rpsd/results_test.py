@@ -272,6 +272,21 @@ def plot_redraws_any_folder():
     check(code == 2 and "no plots to draw" in text, f"rpsd plot of an empty folder: exit {code}: {text}")
 
 
+def sweep_plots_use_log_axes_across_decades():
+    # Delays of 1, 10 and 100 ms span two decades: sweep.png's x axis is logarithmic; the
+    # shipped sweep's 80-110 ms is not.
+    wide, narrow = fresh("sweep-wide"), fresh("sweep-narrow")
+    trim = "--set=ground_motion.trim={end_s: 1}"
+    code, text = rpsd("run", SWEEP, "--out", wide, trim,
+                      "--set=sweep=[{key: compensation.delay_s, values: [0.001, 0.01, 0.1]}]")
+    check(code == 0, f"the wide sweep failed: {text}")
+    code, text = rpsd("run", SWEEP, "--out", narrow, trim)
+    check(code == 0, f"the narrow sweep failed: {text}")
+    for folder, expected in ((wide, "set logscale x"), (narrow, "unset logscale x")):
+        with open(os.path.join(folder, "sweep.gp")) as f:
+            check(expected in f.read(), f"{folder}/sweep.gp lacks {expected!r}")
+
+
 CASES = {
     "refuse_then_replace_a_sweep_folder": a_folder_that_held_a_sweep_is_refused_then_replaced,
     "replace_only_rpsd_folders": replace_never_clears_a_folder_rpsd_did_not_write,
@@ -285,6 +300,7 @@ CASES = {
     "progress_on_a_terminal": progress_on_a_terminal_names_phase_and_case,
     "response_panels_and_drifts": response_has_a_panel_per_dof_and_the_storey_drifts,
     "plot_any_folder": plot_redraws_any_folder,
+    "sweep_log_axes": sweep_plots_use_log_axes_across_decades,
 }
 
 CASES[CASE]()
