@@ -284,7 +284,7 @@ def sweep_plots_use_log_axes_across_decades():
     check(code == 0, f"the narrow sweep failed: {text}")
     for folder, expected in ((wide, "set logscale x"), (narrow, "unset logscale x")):
         with open(os.path.join(folder, "sweep.gp")) as f:
-            check(expected in f.read(), f"{folder}/sweep.gp lacks {expected!r}")
+            check(expected in f.read().splitlines(), f"{folder}/sweep.gp lacks the line {expected!r}")
 
 
 CASES = {
