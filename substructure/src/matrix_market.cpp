@@ -67,7 +67,7 @@ Contents read_entries(const std::filesystem::path& file) {
     throw std::invalid_argument(e.what());
   }
   config::InputFile& in = *opened;
-  const auto getline = [&in, &f](std::string& text) {
+  const auto getline = [&in](std::string& text) {
     try {
       return in.next_line(text);
     } catch (const config::InputFileError& e) {

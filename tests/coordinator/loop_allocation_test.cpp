@@ -64,7 +64,8 @@ TEST(LoopAllocation, NoAllocationPerStep) {
           {servo::Polynomial{2.18385e13},
            servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
           setup.stiffness_n_per_m,
-          8192.0, {}};
+          8192.0,
+          {}};
       EXPECT_EQ(allocations_over_steps(setup, benchmark, 2000), 0) << compensation::compensator_name(compensator);
     }
   }

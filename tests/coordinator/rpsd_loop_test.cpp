@@ -21,7 +21,9 @@ using studies::identify_damping;
 using testing::displacements;
 using testing::run_sdof;
 
-servo::PureDelayParameters delay_plant(double delay_s) { return {delay_s, SpecimenSdof{}.stiffness_n_per_m, 8192.0, {}}; }
+servo::PureDelayParameters delay_plant(double delay_s) {
+  return {delay_s, SpecimenSdof{}.stiffness_n_per_m, 8192.0, {}};
+}
 
 compensation::DelayedOscillator paper_sdof(const SpecimenSdof& s) {
   return {s.mass_kg, 2.0 * s.damping_ratio * std::sqrt(s.stiffness_n_per_m * s.mass_kg), 0.0, s.stiffness_n_per_m};

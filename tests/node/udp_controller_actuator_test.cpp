@@ -65,7 +65,8 @@ servo::TransferFunctionPlantParameters benchmark() {
   return {{servo::Polynomial{2.18385e13},
            servo::Polynomial{2.16756e13, 5.43547e11, 2.32849e9, 8.42178e6, 1.25906e4, 29.13}},
           1.19e6,
-          8192.0, {}};
+          8192.0,
+          {}};
 }
 
 TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {

@@ -25,8 +25,8 @@ const char* actuator_status_name(ActuatorStatus status);
 struct ActuatorReading {
   std::array<double, kMaxChannels> displacement_m{};
   std::array<double, kMaxChannels> force_n{};
-  bool fresh = true;            // false when this period brought no new measurement
-  bool at_end_stop = false;     // a piston is at the end of its stroke
+  bool fresh = true;             // false when this period brought no new measurement
+  bool at_end_stop = false;      // a piston is at the end of its stroke
   bool valve_saturated = false;  // a servovalve is fully open
 };
 

@@ -24,7 +24,7 @@ struct DelayCompensationCase {
   double predicted_damping_ratio_loop = 0.0;  // root of m s^2 + c s + k G_c(s) G_a(s)
   bool stable = false;
   bool aborted_on_amplitude = false;
-  std::string stopped_by;  // the limit or run-away rule that ended an unstable case ("" if none did)
+  std::string stopped_by;                    // the limit or run-away rule that ended an unstable case ("" if none did)
   double tracking_rms_error_percent = 0.0;   // J2 between target and measured
   double tracking_peak_error_percent = 0.0;  // J3
   double tracking_delay_s = 0.0;             // J1: cross-correlation of measured against target
