@@ -148,22 +148,13 @@ void ServoNodeConfig::validate() const {
 }
 
 void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope) {
-  const auto tighten = [](double& limit, double rig, const std::string& key, const char* what) {
-    if (limit == ChannelLimits::kNone) {
-      limit = rig;
-    } else if (limit > rig) {
-      std::ostringstream message;
-      message << key << ": " << limit << " is beyond the rig's " << what << " of " << rig
-              << " (a limit may only tighten the rig's envelope)";
-      throw std::invalid_argument(message.str());
-    }
-  };
+  using servo::tighten_to_rig;
   for (int c = 0; c < config.channels; ++c) {
     ChannelLimits& l = config.limits[c];
     const std::string at = indexed("limits", c) + ".";
-    tighten(l.max_stroke_m, envelope.stroke_m, at + "max_stroke_m", "stroke");
-    tighten(l.max_force_n, envelope.force_n, at + "max_force_n", "force capacity");
-    tighten(l.max_velocity_m_per_s, envelope.velocity_m_per_s, at + "max_velocity_m_per_s", "velocity capacity");
+    tighten_to_rig(l.max_stroke_m, envelope.stroke_m, at + "max_stroke_m", "stroke");
+    tighten_to_rig(l.max_force_n, envelope.force_n, at + "max_force_n", "force capacity");
+    tighten_to_rig(l.max_velocity_m_per_s, envelope.velocity_m_per_s, at + "max_velocity_m_per_s", "velocity capacity");
   }
 }
 

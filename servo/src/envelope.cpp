@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 namespace rpsd::servo {
@@ -30,6 +31,17 @@ std::string describe(const Envelope& e) {
   std::snprintf(text, sizeof text, "stroke +/-%.4g mm, force +/-%.4g kN, velocity %.3g m/s", 1e3 * e.stroke_m,
                 1e-3 * e.force_n, e.velocity_m_per_s);
   return text;
+}
+
+void tighten_to_rig(double& limit, double rig, const std::string& key, const char* what) {
+  if (limit == Envelope::kNone) {
+    limit = rig;
+  } else if (limit > rig) {
+    std::ostringstream message;
+    message << key << ": " << limit << " is beyond the rig's " << what << " of " << rig
+            << " (a limit may only tighten the rig's envelope)";
+    throw std::invalid_argument(message.str());
+  }
 }
 
 }  // namespace rpsd::servo

@@ -28,4 +28,9 @@ struct Envelope {
 // "stroke +/-127 mm, force +/-156 kN, velocity 1.31 m/s"
 std::string describe(const Envelope& envelope);
 
+// A user's limit against the rig's: none given (infinity) becomes the rig's; one beyond it
+// throws std::invalid_argument naming `key` and the rig's `what` ("stroke"); a tighter one
+// stands. The one rule for nodes and coordinators alike. Not real-time safe.
+void tighten_to_rig(double& limit, double rig, const std::string& key, const char* what);
+
 }  // namespace rpsd::servo
