@@ -52,7 +52,7 @@ class DdsNode {
     servo::Plant* plants[] = {plant_.get()};
     actuator_ = std::make_unique<servo::SimulatedActuator>(plants);
     node::ServoNodeConfig c = config.site_nodes.at(1);
-    c.test_id = kTest;
+    c.test_id = config.transport.test_id;
     c.site_id = 1;
     c.channels = 1;
     c.control_period_s = 1.0 / config.control_rate_hz;
@@ -77,7 +77,7 @@ class DdsNode {
  private:
   static transport::DdsNodeEndpointConfig endpoint_config(const TestConfig& config) {
     transport::DdsNodeEndpointConfig c;
-    c.test_id = kTest;
+    c.test_id = config.transport.test_id;
     c.site_id = 1;
     c.qos.control_period_s = 1.0 / config.control_rate_hz;
     return c;
@@ -130,6 +130,7 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
 // on to its end, and once it has ended (its end of run) the node serves the next run.
 TEST(SiteNode, ASecondRunOfOneTestIsRefusedWhileTheFirstRunsAndServedAfterIt) {
   TestConfig config = clamped_sdof();
+  config.transport.test_id = kTest + 1;            // not the other test's: ctest may run both at once
   config.site_nodes[1] = node::ServoNodeConfig{};  // no limit acts: the run goes to its end
   config.transport.kind = TransportConfig::Kind::kDds;
   config.transport.domain_id = loopback().domain_id;
