@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "rpsd/compensation/command_compensator.h"
-#include "rpsd/compensation/tracking_indicator.h"
 #include "rpsd/coordinator/coordinator_limits.h"
+#include "rpsd/coordinator/experimental_exchange.h"
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/coordinator/restoring_force.h"
 #include "rpsd/integrators/integrator.h"
@@ -60,40 +60,6 @@ struct LoopParts {
   int max_valve_saturation_exchanges = 0;  // 0: not checked
 };
 
-// What stopped the test, on which channel, at what value: one of the coordinator's limits
-// (StepOutcome::kLimit) or a run-away (StepOutcome::kRunAway).
-struct LimitStop {
-  enum class Kind : std::uint8_t {
-    kNone,
-    kStroke,
-    kIncrement,
-    kForce,
-    kTrackingError,    // |target - measured| beyond max_tracking_error_m
-    kNodeLimit,        // a node's limit acted; value: its limit flags
-    kEndStop,          // a piston reached the end of its stroke
-    kValveSaturation,  // a servovalve stayed fully open; value: exchanges in a row
-  };
-  Kind kind = Kind::kNone;
-  int channel = -1;
-  double value = 0.0, bound = 0.0;
-};
-const char* limit_stop_name(LimitStop::Kind kind);
-
-enum class StepOutcome : std::uint8_t {
-  kOk,
-  kRecordEnded,
-  kLinkFailure,
-  kIntegratorError,
-  kNodeFault,
-  kNonFinite,
-  kLimit,    // a coordinator limit (limit_stop() says which)
-  kRunAway,  // the test left the rig's envelope or diverged (limit_stop() says how)
-  // Set by the test around the loop, never by the loop itself:
-  kResultsNotWritten,  // a write of the step records failed (a full disk)
-  kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)
-  kRefused,            // a site's node serves another run, or runs at another rate (the link says which)
-};
-
 class RpsdLoop {
  public:
   // Checks the parts fit together and sizes every buffer. Throws std::invalid_argument
@@ -114,42 +80,31 @@ class RpsdLoop {
   void set_wait_for_recorder(bool wait) { parts_.wait_for_recorder = wait; }
   // Real time: how late the current cycle woke (recorded with the step). Real-time safe.
   void set_cycle_lateness_ns(std::int64_t ns) { cycle_lateness_ns_ = ns; }
-  std::int64_t late_feedback_total() const { return late_total_; }
+  std::int64_t late_feedback_total() const { return exchange_.late_feedback_total(); }
   // Control periods between the newest feedback and the last command sent, as of the last
   // exchange (0: on time).
-  std::int64_t feedback_age_periods() const { return feedback_age_; }
+  std::int64_t feedback_age_periods() const { return exchange_.feedback_age_periods(); }
   // The coordinator limit that stopped the loop (kind kNone if none did).
-  const LimitStop& limit_stop() const { return limit_stop_; }
+  const LimitStop& limit_stop() const { return exchange_.limit_stop(); }
 
   std::int64_t step_index() const { return step_; }
-  std::uint64_t run_id() const { return command_.run_id; }
+  std::uint64_t run_id() const { return exchange_.run_id(); }
   std::int64_t steps_available() const;  // ground-motion steps, or unlimited (-1)
   double dt_s() const { return parts_.integrator->dt_s(); }
 
  private:
-  void experimental_forces(const transport::FeedbackSample& feedback);
-  bool commands_within_limits();  // fills limit_stop_ when not
-  StepOutcome run_away();         // kOk, or kRunAway with limit_stop_ filled
   void fill_record(StepRecord& r) const;
 
   LoopParts parts_;
+  ExperimentalExchange exchange_;
   int channels_ = 0;
   Eigen::Index dofs_ = 0;
-  Eigen::VectorXd force_, targets_, specimen_forces_, restoring_;
+  Eigen::VectorXd force_, targets_, restoring_;
   Eigen::VectorXd previous_d_, previous_v_, previous_r_, previous_f_, work_a_, work_b_;
-  std::vector<compensation::TrackingIndicator> tracking_;
-  transport::CommandSample command_;
-  transport::FeedbackSample feedback_;
   StepRecord record_;
   std::int64_t step_ = 0;
-  std::int64_t exchange_ = 0;
   std::int64_t cycle_lateness_ns_ = 0;
-  std::int64_t late_total_ = 0;
-  std::int64_t feedback_age_ = 0;
-  LimitStop limit_stop_;
-  std::array<double, transport::kMaxChannels> last_sent_m_{};
   std::int64_t oldest_age_this_step_ = 0;
-  int saturated_exchanges_ = 0;
   double input_energy_j_ = 0.0, damping_energy_j_ = 0.0, restoring_energy_j_ = 0.0, kinetic_energy_j_ = 0.0;
 };
 

@@ -1,0 +1,44 @@
+// How a step of a test ended, and which limit stopped it: shared by the loop that integrates
+// the structure (rpsd_loop.h) and the exchange with the experimental sites it runs
+// (experimental_exchange.h), which an outside integrator (OpenSees) may drive too.
+#pragma once
+
+#include <cstdint>
+
+namespace rpsd::coordinator {
+
+// What stopped the test, on which channel, at what value: one of the coordinator's limits
+// (StepOutcome::kLimit) or a run-away (StepOutcome::kRunAway).
+struct LimitStop {
+  enum class Kind : std::uint8_t {
+    kNone,
+    kStroke,
+    kIncrement,
+    kForce,
+    kTrackingError,    // |target - measured| beyond max_tracking_error_m
+    kNodeLimit,        // a node's limit acted; value: its limit flags
+    kEndStop,          // a piston reached the end of its stroke
+    kValveSaturation,  // a servovalve stayed fully open; value: exchanges in a row
+  };
+  Kind kind = Kind::kNone;
+  int channel = -1;
+  double value = 0.0, bound = 0.0;
+};
+const char* limit_stop_name(LimitStop::Kind kind);
+
+enum class StepOutcome : std::uint8_t {
+  kOk,
+  kRecordEnded,
+  kLinkFailure,
+  kIntegratorError,
+  kNodeFault,
+  kNonFinite,
+  kLimit,    // a coordinator limit (limit_stop() says which)
+  kRunAway,  // the test left the rig's envelope or diverged (limit_stop() says how)
+  // Set by the test around the loop, never by the loop itself:
+  kResultsNotWritten,  // a write of the step records failed (a full disk)
+  kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)
+  kRefused,            // a site's node serves another run, or runs at another rate (the link says which)
+};
+
+}  // namespace rpsd::coordinator

@@ -1,0 +1,27 @@
+#include "rpsd/coordinator/step_outcome.h"
+
+namespace rpsd::coordinator {
+
+const char* limit_stop_name(LimitStop::Kind kind) {
+  switch (kind) {
+    case LimitStop::Kind::kNone:
+      return "none";
+    case LimitStop::Kind::kStroke:
+      return "max_stroke_m";
+    case LimitStop::Kind::kIncrement:
+      return "max_increment_m";
+    case LimitStop::Kind::kForce:
+      return "max_force_n";
+    case LimitStop::Kind::kTrackingError:
+      return "max_tracking_error_m";
+    case LimitStop::Kind::kNodeLimit:
+      return "node_limit";
+    case LimitStop::Kind::kEndStop:
+      return "end_stop";
+    case LimitStop::Kind::kValveSaturation:
+      return "valve_saturation";
+  }
+  return "unknown";
+}
+
+}  // namespace rpsd::coordinator
