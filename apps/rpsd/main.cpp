@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   add_validate(app);
   add_plot(app);
   add_servo_node(app);
+  add_site_server(app);
   add_reference(app);
 
   try {

@@ -1,0 +1,206 @@
+#include "rpsd/opensees/tcp_stream.h"
+
+#include <arpa/inet.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <thread>
+
+namespace rpsd::opensees {
+namespace {
+
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+// Waits until fd is readable or the deadline (< 0: none) passes; false on timeout.
+bool wait_readable(int fd, double deadline_s) {
+  for (;;) {
+    int timeout_ms = -1;
+    if (deadline_s >= 0.0) {
+      const double left = deadline_s - now_s();
+      if (left <= 0.0) return false;
+      timeout_ms = static_cast<int>(std::ceil(left * 1000.0));
+    }
+    pollfd p{fd, POLLIN, 0};
+    const int n = ::poll(&p, 1, timeout_ms);
+    if (n > 0) return true;
+    if (n < 0 && errno != EINTR) return true;  // let recv report the error
+  }
+}
+
+void set_low_latency(int fd) {
+  const int one = 1;
+  ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  ::setsockopt(fd, IPPROTO_TCP, TCP_QUICKACK, &one, sizeof one);
+}
+
+std::string address_text(const sockaddr_in& a) {
+  char text[INET_ADDRSTRLEN] = "";
+  ::inet_ntop(AF_INET, &a.sin_addr, text, sizeof text);
+  return std::string(text) + ":" + std::to_string(ntohs(a.sin_port));
+}
+
+sockaddr_in resolve(const std::string& host, std::uint16_t port) {
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port);
+  if (::inet_pton(AF_INET, host.c_str(), &a.sin_addr) == 1) return a;
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  if (const int rc = ::getaddrinfo(host.c_str(), nullptr, &hints, &found); rc != 0 || !found) {
+    throw std::runtime_error("cannot resolve host \"" + host + "\": " + ::gai_strerror(rc));
+  }
+  a.sin_addr = reinterpret_cast<sockaddr_in*>(found->ai_addr)->sin_addr;
+  ::freeaddrinfo(found);
+  return a;
+}
+
+}  // namespace
+
+const char* io_status_text(IoStatus status) {
+  switch (status) {
+    case IoStatus::kOk:
+      return "ok";
+    case IoStatus::kClosed:
+      return "the peer closed the connection";
+    case IoStatus::kShort:
+      return "the peer stopped inside a message (a short message)";
+    case IoStatus::kTimeout:
+      return "nothing arrived in time";
+    case IoStatus::kError:
+      return "the connection failed";
+  }
+  return "unknown";
+}
+
+TcpStream::TcpStream(int fd, StreamOptions options) : fd_(fd), options_(options) {
+  if (options_.low_latency) set_low_latency(fd_);
+  sockaddr_in a{};
+  socklen_t length = sizeof a;
+  if (::getpeername(fd_, reinterpret_cast<sockaddr*>(&a), &length) == 0) peer_ = address_text(a);
+}
+
+TcpStream::TcpStream(TcpStream&& other) noexcept
+    : fd_(other.fd_), options_(other.options_), peer_(std::move(other.peer_)) {
+  other.fd_ = -1;
+}
+
+TcpStream& TcpStream::operator=(TcpStream&& other) noexcept {
+  if (this != &other) {
+    close();
+    fd_ = other.fd_;
+    options_ = other.options_;
+    peer_ = std::move(other.peer_);
+    other.fd_ = -1;
+  }
+  return *this;
+}
+
+TcpStream::~TcpStream() { close(); }
+
+void TcpStream::close() noexcept {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+}
+
+TcpStream TcpStream::connect(const std::string& host, std::uint16_t port, double timeout_s, StreamOptions options) {
+  const sockaddr_in to = resolve(host, port);
+  const double deadline = now_s() + timeout_s;
+  int last_error = 0;
+  for (;;) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) throw std::runtime_error(std::string("cannot open a TCP socket: ") + std::strerror(errno));
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&to), sizeof to) == 0) return TcpStream(fd, options);
+    last_error = errno;
+    ::close(fd);
+    if (now_s() >= deadline) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  throw std::runtime_error("no OpenSees answered at " + address_text(to) + " within " + std::to_string(timeout_s) +
+                           " s (" + std::strerror(last_error) + ")");
+}
+
+IoStatus TcpStream::read_exact(std::span<std::byte> buffer, double first_byte_timeout_s,
+                               double rest_timeout_s) noexcept {
+  if (fd_ < 0) return IoStatus::kError;
+  std::size_t done = 0;
+  double deadline = first_byte_timeout_s < 0.0 ? -1.0 : now_s() + first_byte_timeout_s;
+  while (done < buffer.size()) {
+    if (!wait_readable(fd_, deadline)) return done == 0 ? IoStatus::kTimeout : IoStatus::kShort;
+    const ssize_t n = ::recv(fd_, buffer.data() + done, buffer.size() - done, 0);
+    if (n == 0) return done == 0 ? IoStatus::kClosed : IoStatus::kShort;
+    if (n < 0) {
+      if (errno == EINTR || errno == EAGAIN) continue;
+      return IoStatus::kError;
+    }
+    if (done == 0) deadline = rest_timeout_s < 0.0 ? -1.0 : now_s() + rest_timeout_s;
+    done += static_cast<std::size_t>(n);
+  }
+  if (options_.low_latency) {
+    // Linux clears quick-ack mode on its own; re-arming it acknowledges the next segment at
+    // once, so the peer's second small write is not held back by Nagle.
+    const int one = 1;
+    ::setsockopt(fd_, IPPROTO_TCP, TCP_QUICKACK, &one, sizeof one);
+  }
+  return IoStatus::kOk;
+}
+
+IoStatus TcpStream::write_all(std::span<const std::byte> bytes) noexcept {
+  if (fd_ < 0) return IoStatus::kError;
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::send(fd_, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno == EPIPE || errno == ECONNRESET ? IoStatus::kClosed : IoStatus::kError;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return IoStatus::kOk;
+}
+
+TcpListener::TcpListener(const std::string& address, std::uint16_t port) {
+  const sockaddr_in at = resolve(address, port);
+  fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) throw std::runtime_error(std::string("cannot open a TCP socket: ") + std::strerror(errno));
+  const int one = 1;
+  ::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  if (::bind(fd_, reinterpret_cast<const sockaddr*>(&at), sizeof at) != 0 || ::listen(fd_, 1) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd_);
+    fd_ = -1;
+    throw std::runtime_error("cannot listen on " + address_text(at) + ": " + reason);
+  }
+  sockaddr_in bound{};
+  socklen_t length = sizeof bound;
+  ::getsockname(fd_, reinterpret_cast<sockaddr*>(&bound), &length);
+  port_ = ntohs(bound.sin_port);
+}
+
+TcpListener::~TcpListener() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::optional<TcpStream> TcpListener::accept(double timeout_s, StreamOptions options) {
+  const double deadline = timeout_s < 0.0 ? -1.0 : now_s() + timeout_s;
+  for (;;) {
+    if (!wait_readable(fd_, deadline)) return std::nullopt;
+    const int fd = ::accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);
+    if (fd >= 0) return TcpStream(fd, options);
+    if (errno != EINTR && errno != ECONNABORTED && errno != EAGAIN) {
+      throw std::runtime_error(std::string("accept failed: ") + std::strerror(errno));
+    }
+  }
+}
+
+}  // namespace rpsd::opensees

@@ -1,0 +1,124 @@
+#include "rpsd/scenarios/site_server_file.h"
+
+#include <algorithm>
+#include <set>
+
+#include "physical_ranges.h"
+#include "rpsd/config/input_log.h"
+#include "rpsd/integrators/factory.h"
+#include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/yaml_reader.h"
+#include "test_sections.h"
+
+namespace rpsd::scenarios {
+namespace {
+
+using config::Number;
+using namespace ranges;
+
+void listen(config::Source& l, site_server::SiteServerConfig& c) {
+  c.listen_address =
+      l.optional_text("address", "the IPv4 address to listen on (default 127.0.0.1)").value_or(c.listen_address);
+  c.listen_port = static_cast<std::uint16_t>(
+      l.whole_number_or("port", 0, 65535, 0, "the TCP port of the element's -server (0: any free port, printed)"));
+  c.accept_timeout_s = l.number_or("accept_timeout_s", c.accept_timeout_s,
+                                   Number{"s", "the longest wait for OpenSees to connect", 0.0, 86400.0, true});
+  c.idle_timeout_s = l.number_or("idle_timeout_s", c.idle_timeout_s,
+                                 Number{"s", "the longest wait for OpenSees' next request", 0.0, 86400.0, true});
+  c.message_timeout_s = l.number_or("message_timeout_s", c.message_timeout_s,
+                                    Number{"s", "a request's rest, once it has begun", 0.0, 600.0, true});
+  l.finish();
+}
+
+// experimental[i]: a test's channel keys, with basic_dof and relative_to for dof.
+coordinator::ExperimentalChannel channel(config::Source& e, int dofs, std::size_t index, site_server::ChannelMap& map,
+                                         std::unique_ptr<config::Source>& limits_section) {
+  coordinator::ExperimentalChannel channel;
+  map.basic_dof = static_cast<int>(
+      e.whole_number("basic_dof", 0, dofs - 1, "the element's basic DOF the actuator follows (0-based, -dof order)"));
+  map.relative_to = static_cast<int>(
+      e.whole_number_or("relative_to", -1, dofs - 1, -1,
+                        "a basic DOF whose displacement is subtracted (a spring's other end; -1: none)"));
+  if (map.relative_to == map.basic_dof) e.fail("relative_to", "must differ from basic_dof");
+  channel.dof.dof = map.basic_dof;
+  channel.dof.actuator_channel = e.whole_number_or("channel", 0, transport::kMaxChannels - 1, static_cast<long>(index),
+                                                   "the actuator channel (default: i)");
+  channel.dof.displacement_scale = e.number_or(
+      "displacement_scale", 1.0, Number::between(1e-3, 1e3, "", "specimen displacement per model displacement"));
+  channel.dof.force_scale =
+      e.number_or("force_scale", 1.0, Number::between(1e-6, 1e6, "", "model force per specimen force"));
+  channel.dof.specimen_stiffness_estimate_n_per_m = e.number(
+      "specimen_stiffness_n_per_m",
+      Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen's estimated stiffness (OpenSees' initial K)"));
+  const std::string source = e.choice_or("restoring_force", {"measured_force", "stiffness_times_displacement"},
+                                         "measured_force", "what goes back to OpenSees as the specimen's force");
+  channel.restoring_force = source == "measured_force"
+                                ? coordinator::RestoringForceSource::kMeasuredForce
+                                : coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
+  channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1, "the site's node"));
+  limits_section = e.optional_section("limits", "the coordinator's limits on this channel (only tighter than the rig)");
+  if (limits_section) channel.limits = test_sections::limits(*limits_section);
+  e.finish();
+  return channel;
+}
+
+}  // namespace
+
+site_server::SiteServerConfig load_site_server(const std::filesystem::path& file,
+                                               const std::vector<Override>& overrides) {
+  config::InputLog inputs;
+  config::InputLog::note(file);
+  YAML::Node document = load_yaml_document(file, overrides);
+  MappingReader root(document, file.string(), "");
+  site_server::SiteServerConfig c;
+  c.name = file.stem().string();
+  c.description = root.optional_text("description", "one line for titles and summaries").value_or("");
+  coordinator::TestConfig& t = c.site;
+  t.name = c.name;
+  t.description = c.description;
+  listen(*root.section("listen", "where OpenSees' genericClient element connects"), c);
+  c.element_dofs = static_cast<int>(root.whole_number(
+      "element_dofs", 1, 64, "the genericClient's basic DOFs: every -dof entry of every node, in order"));
+  auto channels =
+      root.sections("experimental", transport::kMaxChannels, "the actuator channels, each following a basic DOF");
+  std::vector<std::unique_ptr<config::Source>> limit_sections(channels.size());
+  c.maps.resize(channels.size());
+  std::set<long> used;
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    site_server::ChannelMap map;
+    t.experimental.push_back(channel(*channels[i], c.element_dofs, i, map, limit_sections[i]));
+    const auto ch = static_cast<long>(t.experimental.back().dof.actuator_channel);
+    if (ch >= static_cast<long>(channels.size()) || !used.insert(ch).second) {
+      channels[i]->fail("channel", "channels must be 0 to " + std::to_string(channels.size() - 1) + ", each once");
+    }
+    c.maps[static_cast<std::size_t>(ch)] = map;
+  }
+  // Channel order, as the exchange wants it.
+  std::sort(t.experimental.begin(), t.experimental.end(),
+            [](const auto& a, const auto& b) { return a.dof.actuator_channel < b.dof.actuator_channel; });
+  t.plant = servo::read_plant_config(*root.section("servo", "every channel's actuator (servo/)"),
+                                     t.experimental.front().dof.specimen_stiffness_estimate_n_per_m);
+  test_sections::clock(*root.section("clock", "the control rate: one command per OpenSees step"), t);
+  if (t.clock.mode != coordinator::ClockConfig::Mode::kAsFastAsPossible) {
+    root.fail("clock", "OpenSees paces a site server's test: clock.mode must be as_fast_as_possible (lock-step)");
+  }
+  const double control_period_s = 1.0 / t.control_rate_hz;
+  for (std::size_t i = 0; i < t.experimental.size(); ++i) {
+    try {
+      (void)coordinator::within_envelope(t.experimental[i].limits, servo::envelope_of(t.plant), control_period_s);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(file.string() + ": experimental[" + std::to_string(i) + "].limits." + e.what());
+    }
+  }
+  if (auto transport = root.optional_section("transport", "how the sites are reached (default: in process)")) {
+    test_sections::transport(*transport, t);
+  }
+  if (auto compensation = root.optional_section("compensation", "the delay compensator (default: none)")) {
+    t.compensation = test_sections::compensation(*compensation, control_period_s);
+  }
+  root.finish();
+  c.input_files = inputs.files();
+  return c;
+}
+
+}  // namespace rpsd::scenarios

@@ -1,0 +1,21 @@
+// summary.json of a site-server run: whether OpenSees' test completed inside the rig's
+// envelope, or what stopped it (the client, a limit, the user), with the client, the
+// channels' peaks and the files read. Not real-time safe.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "rpsd/site_server/site_server.h"
+
+namespace rpsd::site_server {
+
+enum class SiteResult : std::uint8_t { kCompleted, kStopped, kInterrupted, kResultsNotWritten };
+SiteResult result_of(const SiteRun& run);
+// Why the run stopped, in one sentence ("" when it completed).
+std::string stop_reason(const SiteRun& run);
+
+nlohmann::json site_summary(const SiteServerConfig& config, const SiteRun& run, const std::string& peer,
+                            std::uint16_t port);
+
+}  // namespace rpsd::site_server

@@ -1,0 +1,92 @@
+#include "rpsd/site_server/site_summary.h"
+
+#include <filesystem>
+
+#include "rpsd/build_info/build_info.h"
+#include "rpsd/coordinator/limit_stop_text.h"
+#include "rpsd/studies/provenance.h"
+
+namespace rpsd::site_server {
+
+SiteResult result_of(const SiteRun& run) {
+  if (!run.write_error.empty() || run.outcome == coordinator::StepOutcome::kResultsNotWritten) {
+    return SiteResult::kResultsNotWritten;
+  }
+  if (run.end.kind == opensees::SessionEnd::Kind::kInterrupted) return SiteResult::kInterrupted;
+  if (run.end.kind == opensees::SessionEnd::Kind::kDie && run.outcome == coordinator::StepOutcome::kOk) {
+    return SiteResult::kCompleted;
+  }
+  return SiteResult::kStopped;
+}
+
+std::string stop_reason(const SiteRun& run) {
+  if (result_of(run) == SiteResult::kCompleted) return "";
+  if (run.end.kind != opensees::SessionEnd::Kind::kSiteStopped) return run.end.text;
+  if (!run.stop_text.empty()) return run.stop_text;
+  using coordinator::StepOutcome;
+  switch (run.outcome) {
+    case StepOutcome::kLimit:
+    case StepOutcome::kRunAway:
+      return "stopped by " + coordinator::describe_limit_stop(run.limit_stop);
+    case StepOutcome::kLinkFailure:
+      return "a servo node stopped answering";
+    case StepOutcome::kNodeFault:
+      return "a servo node reported a fault";
+    case StepOutcome::kNonFinite:
+      return "a measurement is not a number";
+    case StepOutcome::kRefused:
+      return "a servo node refused the run";
+    default:
+      return "the site stopped";
+  }
+}
+
+nlohmann::json site_summary(const SiteServerConfig& config, const SiteRun& run, const std::string& peer,
+                            std::uint16_t port) {
+  static constexpr const char* kResults[] = {"completed", "stopped", "interrupted", "results_not_written"};
+  nlohmann::json summary;
+  summary["name"] = config.name;
+  summary["description"] = config.description;
+  summary["kind"] = "site_server";
+  summary["outcome"] = kResults[static_cast<int>(result_of(run))];
+  if (result_of(run) != SiteResult::kCompleted) {
+    nlohmann::json stopped{{"kind", opensees::session_end_name(run.end.kind)}, {"reason", stop_reason(run)}};
+    if (run.limit_stop.kind != coordinator::LimitStop::Kind::kNone) {
+      stopped["limit"] = coordinator::limit_stop_name(run.limit_stop.kind);
+      stopped["channel"] = run.limit_stop.channel;
+      stopped["value"] = run.limit_stop.value;
+      stopped["bound"] = run.limit_stop.bound;
+    }
+    if (!run.write_error.empty()) stopped["write_error"] = run.write_error;
+    // After the stop nothing reached the actuators; OpenSees' requests got not-a-number.
+    stopped["requests_answered_with_nan"] = run.drained;
+    summary["stopped_by"] = stopped;
+  }
+  summary["client"] = {{"peer", peer}, {"sizes", run.client_sizes}};
+  summary["listen"] = {{"address", config.listen_address}, {"port", port}};
+  summary["element_dofs"] = config.element_dofs;
+  summary["control_rate_hz"] = config.site.control_rate_hz;
+  summary["exchanges"] = run.exchanges;
+  summary["commits"] = run.commits;
+  summary["run_id"] = transport::run_id_text(run.run_id);
+  nlohmann::json channels = nlohmann::json::array();
+  for (std::size_t ch = 0; ch < config.maps.size(); ++ch) {
+    channels.push_back({{"channel", ch},
+                        {"basic_dof", config.maps[ch].basic_dof},
+                        {"relative_to", config.maps[ch].relative_to},
+                        {"site", config.site.experimental[ch].site_id},
+                        {"peak_measured_m", run.peak_measured_m[ch]},
+                        {"peak_force_n", run.peak_force_n[ch]}});
+  }
+  summary["channels"] = channels;
+  nlohmann::json inputs = nlohmann::json::array();
+  for (const auto& file : config.input_files) {
+    inputs.push_back({{"file", std::filesystem::absolute(file).lexically_normal().string()},
+                      {"sha256", studies::sha256_of_file(file)}});
+  }
+  summary["provenance"] = {{"rpsd", {{"version", build_info::version()}, {"commit", build_info::commit()}}},
+                           {"inputs", inputs}};
+  return summary;
+}
+
+}  // namespace rpsd::site_server
