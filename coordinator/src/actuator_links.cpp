@@ -29,14 +29,28 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
   }
 
   const bool over_dds = s.transport.kind == TransportConfig::Kind::kDds && !perfect_actuator;
-  if (over_dds) {
+  const bool dds_sites = std::any_of(sites_.begin(), sites_.end(),
+                                     [&s](const SiteSummary& site) { return !s.opensees_site(site.site_id); });
+  if (over_dds && dds_sites) {
     participant_ = std::make_unique<transport::DdsParticipant>(
         transport::DdsDomainConfig{s.transport.domain_id, s.transport.dds_config.string()});
   }
   std::vector<transport::SiteRoute> routes;
   std::string missing;
   for (const SiteSummary& site : sites_) {
-    if (over_dds) {
+    if (const OpenSeesSite* remote = s.opensees_site(site.site_id)) {
+      // A numerical site: its substructure answers every step in OpenSees (the reference its own).
+      opensees::AdapterSiteConfig adapter = remote->adapter;
+      if (perfect_actuator) adapter.port = remote->reference_port;
+      auto link = std::make_unique<opensees::AdapterLink>(adapter);
+      adapter_links_.push_back(link.get());
+      site_links_.push_back(std::move(link));
+      for (int ch : site.channels) {
+        const auto& e = *by_channel[static_cast<std::size_t>(ch)];
+        initial_force_n_[static_cast<std::size_t>(ch)] =
+            e.dof.specimen_stiffness_estimate_n_per_m * hold_m[static_cast<std::size_t>(ch)];
+      }
+    } else if (over_dds) {
       transport::DdsLinkConfig config;
       config.test_id = s.transport.test_id;
       config.site_id = site.site_id;
@@ -133,6 +147,9 @@ bool ActuatorLinks::refused() const {
 
 std::string ActuatorLinks::refusal_text() const {
   std::string text;
+  for (const auto* link : adapter_links_) {
+    if (!link->failure().empty()) text += (text.empty() ? "" : "; ") + link->failure();
+  }
   for (const auto* link : dds_links_) {
     if (link->refusal().kind == transport::NodeRefusal::Kind::kNone) continue;
     text += (text.empty() ? "" : "; ") + link->refusal_text();
@@ -144,6 +161,7 @@ void ActuatorLinks::end_run() {
   if (ended_) return;
   ended_ = true;
   for (auto* link : dds_links_) link->end_run();
+  for (auto* link : adapter_links_) link->end_run();
 }
 
 std::vector<transport::DdsLinkCounters> ActuatorLinks::dds_counters() const {

@@ -78,14 +78,18 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   for (const auto& channel : s.experimental) {
     // The loop wants channel order; the partition numbered the channels 0..n-1.
     const auto ch = static_cast<std::size_t>(channel.dof.actuator_channel);
+    // An OpenSees site is numerical: no lag to compensate, no rig to limit.
+    const bool numerical_site = s.opensees_site(channel.site_id) != nullptr;
     p.compensators.push_back(compensation::make_compensator(
-        perfect_actuator ? compensation::CompensatorConfig{compensation::PassThroughParameters{}} : s.compensation,
+        perfect_actuator || numerical_site ? compensation::CompensatorConfig{compensation::PassThroughParameters{}}
+                                           : s.compensation,
         control_period_s));
     parts.compensators[ch] = p.compensators.back().get();
     // The rig's envelope is every limit's default; the reference is numerical: no rig, no limits.
     if (!perfect_actuator) {
       parts.limits.resize(static_cast<std::size_t>(channels));
-      parts.limits[ch] = within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
+      parts.limits[ch] = numerical_site ? CoordinatorLimits{}
+                                        : within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
     }
     parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};
   }

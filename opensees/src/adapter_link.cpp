@@ -19,7 +19,8 @@ AdapterLink::AdapterLink(const AdapterSiteConfig& config, StreamOptions options)
   if (stream_.write_all(std::as_bytes(std::span<const std::int32_t>(wire))) != IoStatus::kOk) {
     throw std::runtime_error("the OpenSees adapter at " + stream_.peer() + " closed the connection at its setup");
   }
-  out_.assign(static_cast<std::size_t>(sizes.data_size), 0.0);
+  message_size_ = static_cast<std::size_t>(sizes.data_size);
+  out_.assign(2 * message_size_, 0.0);  // two messages: the trial and the force request
   in_.assign(static_cast<std::size_t>(sizes.data_size), 0.0);
 }
 
@@ -27,17 +28,13 @@ AdapterLink::~AdapterLink() { end_run(); }
 
 transport::LinkStatus AdapterLink::send(const transport::CommandSample& command) {
   if (!stream_.is_open()) return transport::LinkStatus::kPeerLost;
+  // [3, displacements] and [10] in one write: the adapter answers only once both are in, and
+  // two small writes would wait on Nagle and the delayed ACK.
   std::fill(out_.begin(), out_.end(), 0.0);
   out_[0] = kSetTrialResponse;
   for (int i = 0; i < config_.dofs; ++i) out_[static_cast<std::size_t>(i) + 1] = command.displacement_m[i];
-  const auto bytes = std::as_bytes(std::span<const double>(out_));
-  if (stream_.write_all(bytes) != IoStatus::kOk) {
-    failure_ = "the OpenSees adapter at " + stream_.peer() + " closed the connection";
-    return transport::LinkStatus::kPeerLost;
-  }
-  std::fill(out_.begin(), out_.end(), 0.0);
-  out_[0] = kGetForce;
-  if (stream_.write_all(bytes) != IoStatus::kOk) {
+  out_[message_size_] = kGetForce;
+  if (stream_.write_all(std::as_bytes(std::span<const double>(out_))) != IoStatus::kOk) {
     failure_ = "the OpenSees adapter at " + stream_.peer() + " closed the connection";
     return transport::LinkStatus::kPeerLost;
   }
@@ -74,7 +71,7 @@ void AdapterLink::end_run() {
   ended_ = true;
   std::fill(out_.begin(), out_.end(), 0.0);
   out_[0] = kDie;
-  (void)stream_.write_all(std::as_bytes(std::span<const double>(out_)));
+  (void)stream_.write_all(std::as_bytes(std::span<const double>(out_).first(message_size_)));
   stream_.close();
 }
 

@@ -23,20 +23,44 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
     t.experimental.push_back(sections::experimental(*d.experimental[i], dofs, i, limit_sections[i]));
     if (!used.insert(t.experimental.back().dof.dof).second) d.experimental[i]->fail("dof", "is experimental twice");
   }
+  std::set<std::uint32_t> specimen_sites;
+  for (const auto& e : t.experimental) specimen_sites.insert(e.site_id);
+  const std::size_t specimens = t.experimental.size();
+  for (auto& o : d.opensees_sites) {
+    const auto first = static_cast<int>(t.experimental.size());
+    t.opensees_sites.push_back(sections::opensees_site(*o, dofs, first, t.experimental));
+    if (t.experimental.size() > static_cast<std::size_t>(transport::kMaxChannels)) {
+      o->fail("dofs", "more than " + std::to_string(transport::kMaxChannels) + " channels in all");
+    }
+    const std::uint32_t id = t.opensees_sites.back().adapter.site_id;
+    if (specimen_sites.count(id) || std::count_if(t.opensees_sites.begin(), t.opensees_sites.end(), [id](const auto& x) {
+          return x.adapter.site_id == id;
+        }) > 1) {
+      o->fail("site", "site " + std::to_string(id) + " is already another site's");
+    }
+    for (std::size_t i = static_cast<std::size_t>(first); i < t.experimental.size(); ++i) {
+      if (!used.insert(t.experimental[i].dof.dof).second) {
+        o->fail("dofs", "DOF " + std::to_string(t.experimental[i].dof.dof) + " is taken by another site or specimen");
+      }
+    }
+  }
   t.influence = Eigen::VectorXd::Ones(dofs);
   if (d.influence) {
     if (static_cast<Eigen::Index>(d.influence->size()) != dofs) root.fail("influence", "needs one value per DOF");
     t.influence = Eigen::Map<const Eigen::VectorXd>(d.influence->data(), dofs);
   }
   // One specimen stiffness for the plants' load cells: the first channel's estimate.
-  t.plant = servo::read_plant_config(*d.servo, t.experimental.front().dof.specimen_stiffness_estimate_n_per_m);
+  if (d.servo) {
+    t.plant = servo::read_plant_config(
+        *d.servo, specimens > 0 ? t.experimental.front().dof.specimen_stiffness_estimate_n_per_m : 0.0);
+  }
   if (d.integrator) t.integrator = sections::integrator(*d.integrator);
   // The control rate is read before anything divides by it.
   sections::clock(*d.clock, t);
   // A limit may only tighten the rig's envelope.
   const double control_period_s =
       1.0 / t.control_rate_hz / integrators::make_integrator(t.integrator)->iterations_per_step();
-  for (std::size_t i = 0; i < t.experimental.size(); ++i) {
+  for (std::size_t i = 0; i < specimens; ++i) {
     try {
       (void)coordinator::within_envelope(t.experimental[i].limits, servo::envelope_of(t.plant), control_period_s);
     } catch (const std::invalid_argument& e) {
@@ -47,6 +71,9 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
     }
   }
   if (d.transport) sections::transport(*d.transport, t);
+  if (!t.opensees_sites.empty() && t.clock.mode == coordinator::ClockConfig::Mode::kRealTime) {
+    root.fail("opensees_sites", "an OpenSees site answers when its static step converges: clock.mode as_fast_as_possible");
+  }
   if (d.compensation) t.compensation = sections::compensation(*d.compensation, control_period_s);
 
   const double dt_s = 1.0 / t.control_rate_hz;

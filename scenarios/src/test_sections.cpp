@@ -45,11 +45,20 @@ substructure::DampingConfig optional_damping(config::Source& st, const Eigen::Ma
 Document document(config::Source& root) {
   Document d;
   d.structure = root.section("structure", "the numerical substructure");
-  d.experimental = root.sections("experimental", transport::kMaxChannels, "the DOFs a specimen takes, one per channel");
+  // A test may be numerical apart from OpenSees sites: then it needs no specimen, and no servo.
+  if (root.has("opensees_sites")) {
+    d.opensees_sites = root.sections("opensees_sites", transport::kMaxChannels,
+                                     "numerical sites: remote OpenSees models behind an adapter element");
+  }
+  if (d.opensees_sites.empty() || root.has("experimental")) {
+    d.experimental =
+        root.sections("experimental", transport::kMaxChannels, "the DOFs a specimen takes, one per channel");
+  }
   d.influence = root.optional_numbers(
       "influence", Number::between(-1.0, 1.0, "", "each DOF's share of the ground acceleration (default: all 1)"),
       kMaxDofs);
-  d.servo = root.section("servo", "every channel's actuator (servo/)");
+  d.servo = d.experimental.empty() ? root.optional_section("servo", "every channel's actuator (servo/)")
+                                   : root.section("servo", "every channel's actuator (servo/)");
   d.integrator = root.optional_section("integrator", "the time-stepping scheme (default: central_difference)");
   d.clock = root.section("clock", "how the test is paced");
   d.transport = root.optional_section("transport", "how the sites are reached (default: in process)");
@@ -146,6 +155,16 @@ substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* ma
     rayleigh->finish();
     result = modes;
   }
+  // C = a0 M + a1 K0 as OpenSees' `rayleigh a0 0 a1 0` gives it: the same C when a model is
+  // split between rpsd and OpenSees, where damping fitted to this part's modes would differ.
+  auto coefficients = d.optional_section("rayleigh_coefficients", "Rayleigh damping given by its coefficients");
+  if (coefficients) {
+    substructure::RayleighCoefficients c;
+    c.a0_per_s = coefficients->number_or("a0_per_s", 0.0, Number::between(0.0, 1e4, "1/s", "C = a0 M + a1 K0: a0"));
+    c.a1_s = coefficients->number_or("a1_s", 0.0, Number::between(0.0, 10.0, "s", "C = a0 M + a1 K0: a1"));
+    coefficients->finish();
+    result = c;
+  }
   // One DOF: c = 2 zeta sqrt(k m); the stiffness is the structure's total (numerical plus
   // the experimental estimate), given here explicitly.
   const auto zeta = d.optional_number("damping_ratio", Number::between(0.0, 1.0, "", "one DOF: fraction of critical"));
@@ -153,6 +172,9 @@ substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* ma
                                                                   0.0, kMaxStiffnessNPerM, true});
   d.finish();
   if (rayleigh && zeta) d.fail("rayleigh", "give either rayleigh or damping_ratio, not both");
+  if (coefficients && (rayleigh || zeta)) {
+    d.fail("rayleigh_coefficients", "give one of rayleigh, rayleigh_coefficients or damping_ratio");
+  }
   if (zeta && !k) d.fail("damping_ratio", "needs of_stiffness_n_per_m, the stiffness it refers to");
   if (k && !zeta) d.fail("of_stiffness_n_per_m", "only with damping_ratio");
   if (zeta) {
@@ -240,6 +262,43 @@ coordinator::ExperimentalChannel experimental(config::Source& e, Eigen::Index do
   if (limits_section) channel.limits = limits(*limits_section);
   e.finish();
   return channel;
+}
+
+coordinator::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, int first_channel,
+                                        std::vector<coordinator::ExperimentalChannel>& channels) {
+  coordinator::OpenSeesSite site;
+  opensees::AdapterSiteConfig& a = site.adapter;
+  a.site_id = static_cast<std::uint32_t>(o.whole_number("site", 1, 1'000'000, "the site's id (not a specimen's)"));
+  a.host = o.optional_text("host", "the host of the OpenSees process (default 127.0.0.1)").value_or(a.host);
+  a.port = static_cast<std::uint16_t>(o.whole_number("port", 1, 65535, "the adapter element's port"));
+  site.reference_port = static_cast<std::uint16_t>(o.whole_number(
+      "reference_port", 1, 65535, "a second OpenSees process of the same model, for the perfect-actuator reference"));
+  const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "", "a DOF of the structure (0-based)");
+  const std::vector<double> listed =
+      o.numbers("dofs", dof, static_cast<std::size_t>(transport::kMaxChannels));
+  const auto stiffness = o.optional_numbers(
+      "stiffness_n_per_m",
+      Number::between(0.0, kMaxStiffnessNPerM, "N/m", "each DOF's stiffness estimate, for the integrator's K0"),
+      static_cast<std::size_t>(transport::kMaxChannels));
+  a.connect_timeout_s = o.number_or("connect_timeout_s", a.connect_timeout_s,
+                                    Number{"s", "the longest wait for the adapter to listen", 0.0, 3600.0, true});
+  a.reply_timeout_s = o.number_or("reply_timeout_s", a.reply_timeout_s,
+                                  Number{"s", "the longest wait for one step's forces", 0.0, 3600.0, true});
+  o.finish();
+  if (site.reference_port == a.port) o.fail("reference_port", "must differ from port: an adapter serves one run");
+  if (stiffness && stiffness->size() != listed.size()) o.fail("stiffness_n_per_m", "needs one value per DOF in dofs");
+  a.dofs = static_cast<int>(listed.size());
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    if (listed[i] != std::floor(listed[i])) o.fail("dofs", "expected whole DOF numbers");
+    coordinator::ExperimentalChannel channel;
+    channel.dof.dof = static_cast<Eigen::Index>(listed[i]);
+    channel.dof.actuator_channel = first_channel + static_cast<int>(i);
+    channel.dof.specimen_stiffness_estimate_n_per_m = stiffness ? (*stiffness)[i] : 0.0;
+    channel.restoring_force = coordinator::RestoringForceSource::kMeasuredForce;
+    channel.site_id = a.site_id;
+    channels.push_back(channel);
+  }
+  return site;
 }
 
 std::vector<std::string_view> integrator_names() { return integrators::scheme_names(); }

@@ -20,7 +20,8 @@ namespace rpsd::scenarios::test_sections {
 // The document's own keys; every section is a handle, read afterwards in order.
 struct Document {
   std::unique_ptr<config::Source> structure;
-  std::vector<std::unique_ptr<config::Source>> experimental;
+  std::vector<std::unique_ptr<config::Source>> experimental;     // empty when only OpenSees sites take DOFs
+  std::vector<std::unique_ptr<config::Source>> opensees_sites;
   std::optional<std::vector<double>> influence;
   std::unique_ptr<config::Source> servo;
   std::unique_ptr<config::Source> integrator;
@@ -55,6 +56,9 @@ substructure::StorySpringConfig story_of_kind(config::Source& s, std::string_vie
 coordinator::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
                                               std::unique_ptr<config::Source>& limits);
 coordinator::CoordinatorLimits limits(config::Source& l);
+// opensees_sites[i]: the site, and one channel per DOF it carries (channels from `first_channel`).
+coordinator::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, int first_channel,
+                                        std::vector<coordinator::ExperimentalChannel>& channels);
 
 integrators::IntegratorConfig integrator(config::Source& r);
 // The keys of one scheme (rho_inf, alpha) into its default parameters.

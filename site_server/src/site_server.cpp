@@ -84,9 +84,10 @@ bool SiteServer::set_trial(std::span<const double> displacement, std::span<const
     }
     step_time_s_ = time_s;
   }
-  // Within a step, a trial that moves nothing (an explicit scheme's corrector sends the same
-  // displacements with new velocities) is not another command: the actuators would be
-  // driven two control periods per step.
+  // A trial that moves nothing is not another command: an explicit scheme sends each step's
+  // displacements twice (NewmarkExplicit: predictor, then corrector with new velocities;
+  // CentralDifference: the new ones stamped with the old time, then again with the new),
+  // and commanding both would drive the actuators two control periods per step.
   bool moved = false;
   for (int i = 0; i < config_.element_dofs; ++i) moved |= trial_d_[i] != displacement[static_cast<std::size_t>(i)];
   for (int i = 0; i < config_.element_dofs; ++i) {
@@ -95,7 +96,7 @@ bool SiteServer::set_trial(std::span<const double> displacement, std::span<const
     trial_a_[i] = acceleration[static_cast<std::size_t>(i)];
   }
   trial_time_s_ = time_s;
-  pending_ = pending_ || new_step || moved;
+  pending_ = pending_ || moved;
   return true;
 }
 

@@ -11,6 +11,7 @@
 #include "rpsd/coordinator/test_config.h"
 #include "rpsd/node/actuator_factory.h"
 #include "rpsd/node/lock_step_node.h"
+#include "rpsd/opensees/adapter_link.h"
 #include "rpsd/servo/plant.h"
 #include "rpsd/transport/dds_link.h"
 #include "rpsd/transport/multi_site_link.h"
@@ -66,6 +67,7 @@ class ActuatorLinks {
   std::vector<std::unique_ptr<transport::Link>> site_links_;
   std::unique_ptr<transport::DdsParticipant> participant_;
   std::vector<transport::DdsLink*> dds_links_;
+  std::vector<opensees::AdapterLink*> adapter_links_;
   std::unique_ptr<transport::MultiSiteLink> multi_site_;
   std::vector<double> initial_force_n_;
   std::vector<const servo::Plant*> plant_of_channel_;

@@ -18,6 +18,7 @@
 #include "rpsd/coordinator/restoring_force.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/node/servo_node_config.h"
+#include "rpsd/opensees/adapter_link.h"
 #include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/substructure/linear_mdof_model.h"
@@ -77,6 +78,16 @@ struct GroundMotion {
   std::vector<std::string> processing;  // what was done to it, in order ("scaled by 0.15", ...)
 };
 
+// A numerical site carried by a remote OpenSees model through its `adapter` element: its
+// basic DOFs are the structure's `dofs`, each an experimental channel of this site whose
+// restoring force is the substructure's (no rig, no compensation). An adapter serves one run,
+// so the perfect-actuator reference that runs beside the test needs a second OpenSees process
+// on reference_port.
+struct OpenSeesSite {
+  opensees::AdapterSiteConfig adapter;  // site id, host, port, DOF count, timeouts
+  std::uint16_t reference_port = 0;
+};
+
 struct TestConfig {
   std::string name;
   std::string description;
@@ -99,6 +110,14 @@ struct TestConfig {
   // watchdog; identity, channels and period come from the test). A site without one runs
   // a node with ServoNodeConfig's defaults.
   std::map<std::uint32_t, node::ServoNodeConfig> site_nodes;
+  // Numerical sites in remote OpenSees processes (their channels are in `experimental`).
+  std::vector<OpenSeesSite> opensees_sites;
+  // The OpenSees site of a site id, or nullptr for a site with an actuator.
+  const OpenSeesSite* opensees_site(std::uint32_t site_id) const {
+    for (const auto& site : opensees_sites)
+      if (site.adapter.site_id == site_id) return &site;
+    return nullptr;
+  }
 };
 
 // DOFs of the scenario's structure.

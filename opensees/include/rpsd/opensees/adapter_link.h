@@ -42,6 +42,7 @@ class AdapterLink : public transport::Link {
  private:
   AdapterSiteConfig config_;
   TcpStream stream_;
+  std::size_t message_size_ = 0;  // doubles per message
   std::vector<double> out_, in_;
   std::int64_t step_ = -1;
   double time_s_ = 0.0;
