@@ -50,6 +50,10 @@ class SiteServer : public opensees::GenericClientSite {
   void stiffness(std::span<double> matrix) override;
   void commit() override;
 
+  // The run so far, and the actuators (for tests and reports). Not real-time safe.
+  const SiteRun& run() const { return run_; }
+  const coordinator::ActuatorLinks& actuators() const { return *actuators_; }
+
  private:
   bool stop(coordinator::StepOutcome outcome);
 

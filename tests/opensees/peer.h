@@ -1,0 +1,33 @@
+// A scripted peer on loopback for the OpenSees protocol tests: what an OpenSees element would
+// send (sizes, requests of data_size doubles), written and read as raw bytes.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rpsd/opensees/tcp_stream.h"
+
+namespace rpsd::opensees::test {
+
+inline void write_ints(TcpStream& s, const std::array<std::int32_t, 11>& sizes) {
+  ASSERT_EQ(s.write_all(std::as_bytes(std::span<const std::int32_t>(sizes))), IoStatus::kOk);
+}
+
+// One request: `values` first, zeros up to data_size.
+inline void write_request(TcpStream& s, int data_size, std::initializer_list<double> values) {
+  std::vector<double> message(static_cast<std::size_t>(data_size), 0.0);
+  std::copy(values.begin(), values.end(), message.begin());
+  ASSERT_EQ(s.write_all(std::as_bytes(std::span<const double>(message))), IoStatus::kOk);
+}
+
+inline std::vector<double> read_reply(TcpStream& s, int data_size) {
+  std::vector<double> reply(static_cast<std::size_t>(data_size), 0.0);
+  EXPECT_EQ(s.read_exact(std::as_writable_bytes(std::span<double>(reply)), 5.0, 5.0), IoStatus::kOk);
+  return reply;
+}
+
+}  // namespace rpsd::opensees::test

@@ -1,0 +1,98 @@
+// The site OpenSees talks to, driven through its site interface as the session drives it:
+// a two-node spring's actuator follows the relative displacement and its force goes back
+// equal and opposite; one command per moved trial; a trial beyond the rig never reaches the
+// actuator; a step OpenSees and the site disagree on stops the test with both numbers.
+#include "rpsd/site_server/site_server.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "rpsd/coordinator/actuator_links.h"
+
+namespace rpsd::site_server {
+namespace {
+
+constexpr double kRateHz = 1024.0, kPeriodS = 1.0 / kRateHz, kSpringNPerM = 1000.0;
+
+// A perfect actuator (ideal delay 0) on a spring, on a rig of +/- 10 mm.
+SiteServerConfig spring_site(int element_dofs, ChannelMap map) {
+  SiteServerConfig c;
+  c.name = "spring";
+  c.element_dofs = element_dofs;
+  c.maps = {map};
+  coordinator::ExperimentalChannel channel;
+  channel.dof.dof = map.basic_dof;
+  channel.dof.specimen_stiffness_estimate_n_per_m = kSpringNPerM;
+  c.site.experimental = {channel};
+  servo::PureDelayParameters plant;
+  plant.specimen_stiffness_n_per_m = kSpringNPerM;
+  plant.rig = {0.01, 1e6, 10.0};
+  c.site.plant = plant;
+  c.site.control_rate_hz = kRateHz;
+  return c;
+}
+
+std::filesystem::path scratch_csv(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("rpsd-site-server-" + name + ".csv");
+}
+
+TEST(SiteServer, ATwoNodeSpringFollowsTheRelativeDisplacementAndPushesBothEndsApart) {
+  const SiteServerConfig config = spring_site(2, {1, 0});
+  SiteServer site(config, scratch_csv("two-node"));
+  const std::vector<double> d{0.001, 0.004}, zero{0.0, 0.0};
+  ASSERT_TRUE(site.set_trial(d, zero, zero, kPeriodS));
+  std::vector<double> force(2);
+  ASSERT_TRUE(site.force(force));
+  // k (d1 - d0) = 1000 N/m x 3 mm on node j, its opposite on node i.
+  EXPECT_NEAR(force[1], 3.0, 1e-12);
+  EXPECT_NEAR(force[0], -3.0, 1e-12);
+  std::vector<double> k(4);
+  site.stiffness(k);
+  EXPECT_EQ(k, (std::vector<double>{kSpringNPerM, -kSpringNPerM, -kSpringNPerM, kSpringNPerM}));
+}
+
+TEST(SiteServer, ATrialThatMovesNothingIsNotAnotherCommand) {
+  const SiteServerConfig config = spring_site(1, {0, -1});
+  SiteServer site(config, scratch_csv("moves"));
+  const std::vector<double> zero{0.0};
+  std::vector<double> force(1);
+  // NewmarkExplicit: the predictor and the corrector carry the same displacement.
+  for (int step = 1; step <= 3; ++step) {
+    const std::vector<double> d{0.001 * step};
+    for (int twice = 0; twice < 2; ++twice) {
+      ASSERT_TRUE(site.set_trial(d, zero, zero, step * kPeriodS));
+      ASSERT_TRUE(site.force(force));
+    }
+  }
+  EXPECT_EQ(site.run().exchanges, 3);
+  EXPECT_NEAR(force[0], 3.0, 1e-12);
+}
+
+TEST(SiteServer, ATrialBeyondTheRigsStrokeNeverReachesTheActuator) {
+  const SiteServerConfig config = spring_site(1, {0, -1});
+  SiteServer site(config, scratch_csv("stroke"));
+  const std::vector<double> zero{0.0}, beyond{0.02};
+  std::vector<double> force(1);
+  ASSERT_TRUE(site.set_trial(beyond, zero, zero, kPeriodS));
+  EXPECT_FALSE(site.force(force));
+  EXPECT_EQ(site.run().limit_stop.kind, coordinator::LimitStop::Kind::kStroke);
+  EXPECT_EQ(site.run().exchanges, 0);
+  EXPECT_EQ(site.actuators().simulated_plant(0)->measure().displacement_m, 0.0);  // held at rest
+  // Stopped: no later trial is taken either.
+  EXPECT_FALSE(site.set_trial(zero, zero, zero, 2 * kPeriodS));
+}
+
+TEST(SiteServer, AStepOfAnotherLengthStopsTheTestWithBothRates) {
+  const SiteServerConfig config = spring_site(1, {0, -1});
+  SiteServer site(config, scratch_csv("rate"));
+  const std::vector<double> zero{0.0}, d{0.001};
+  EXPECT_FALSE(site.set_trial(d, zero, zero, 0.01));
+  EXPECT_THAT(site.run().stop_text, testing::HasSubstr("OpenSees stepped 0.01 s"));
+  EXPECT_THAT(site.run().stop_text, testing::HasSubstr("give the OpenSees analysis dt = 0.0009765625"));
+  EXPECT_EQ(site.run().exchanges, 0);
+}
+
+}  // namespace
+}  // namespace rpsd::site_server
