@@ -17,6 +17,7 @@
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/transport/messages.h"
+#include "site_server_sections.h"
 #include "study_sections.h"
 #include "test_sections.h"
 
@@ -138,6 +139,14 @@ void test_scenario(Document& doc) {
               std::unique_ptr<config::Source> limits;
               (void)ts::experimental(s, kListedDofs, 0, limits);
             }));
+  doc.table("opensees_sites[]",
+            listing("opensees_sites[]",
+                    [](config::Source& s) {
+                      std::vector<coordinator::ExperimentalChannel> channels;
+                      (void)ts::opensees_site(s, kListedDofs, 0, channels);
+                    }),
+            "Numerical sites in remote OpenSees models behind their `adapter` element (docs/opensees.md). "
+            "With them, `experimental` and `servo` may be left out; the test runs lock-step.");
   kind_tables<servo::PlantKinds>(doc, "servo", "the plant",
                                  [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s, 1.0); },
                                  {"servo.parameters (file)"});
@@ -218,6 +227,34 @@ void node_file(Document& doc) {
             "`actuator.servo` takes a scenario's `servo` keys.");
 }
 
+void site_server_file(Document& doc) {
+  namespace sv = site_server_sections;
+  doc.heading(2, "Site server file (`rpsd site-server`)",
+              "The experimental site of an OpenSees model (docs/opensees.md): where it listens, the genericClient "
+              "element's basic DOFs and the channel that follows each, and a test's `servo`, `compensation`, "
+              "`clock` (lock-step) and `transport` keys.");
+  site_server::SiteServerConfig c;
+  c.element_dofs = 64;
+  doc.table("The file's own keys",
+            listing("",
+                    [c](config::Source& s) mutable {
+                      std::vector<std::unique_ptr<config::Source>> limits;
+                      sv::site_file(s, c, limits);
+                    },
+                    {"listen", "experimental[]", "servo", "clock", "transport", "compensation"}),
+            "`servo`, `clock`, `transport` and `compensation` take a test scenario's keys.");
+  doc.table("listen", listing("listen", [&c](config::Source& s) { sv::listen(s, c); }));
+  doc.table("experimental[]",
+            listing("experimental[]",
+                    [](config::Source& s) {
+                      std::unique_ptr<config::Source> limits;
+                      site_server::ChannelMap map;
+                      (void)sv::channel(s, 64, 0, map, limits);
+                    },
+                    {"experimental[].limits"}),
+            "`limits` takes a test scenario's `experimental[].limits` keys.");
+}
+
 void studies_section(Document& doc) {
   namespace ss = study_sections;
   doc.heading(2, "Studies", "The seed paper's studies; `study:` and `description:` as in a test scenario.");
@@ -254,6 +291,7 @@ Document reference_document() {
   test_scenario(doc);
   servo_parameter_file(doc);
   node_file(doc);
+  site_server_file(doc);
   studies_section(doc);
   return doc;
 }

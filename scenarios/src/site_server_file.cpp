@@ -8,10 +8,11 @@
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
+#include "site_server_sections.h"
 #include "test_sections.h"
 
 namespace rpsd::scenarios {
-namespace {
+namespace site_server_sections {
 
 using config::Number;
 using namespace ranges;
@@ -62,16 +63,8 @@ coordinator::ExperimentalChannel channel(config::Source& e, int dofs, std::size_
   return channel;
 }
 
-}  // namespace
-
-site_server::SiteServerConfig load_site_server(const std::filesystem::path& file,
-                                               const std::vector<Override>& overrides) {
-  config::InputLog inputs;
-  config::InputLog::note(file);
-  YAML::Node document = load_yaml_document(file, overrides);
-  MappingReader root(document, file.string(), "");
-  site_server::SiteServerConfig c;
-  c.name = file.stem().string();
+void site_file(config::Source& root, site_server::SiteServerConfig& c,
+               std::vector<std::unique_ptr<config::Source>>& limit_sections) {
   c.description = root.optional_text("description", "one line for titles and summaries").value_or("");
   coordinator::TestConfig& t = c.site;
   t.name = c.name;
@@ -81,7 +74,7 @@ site_server::SiteServerConfig load_site_server(const std::filesystem::path& file
       "element_dofs", 1, 64, "the genericClient's basic DOFs: every -dof entry of every node, in order"));
   auto channels =
       root.sections("experimental", transport::kMaxChannels, "the actuator channels, each following a basic DOF");
-  std::vector<std::unique_ptr<config::Source>> limit_sections(channels.size());
+  limit_sections.resize(channels.size());
   c.maps.resize(channels.size());
   std::set<long> used;
   for (std::size_t i = 0; i < channels.size(); ++i) {
@@ -96,12 +89,35 @@ site_server::SiteServerConfig load_site_server(const std::filesystem::path& file
   // Channel order, as the exchange wants it.
   std::sort(t.experimental.begin(), t.experimental.end(),
             [](const auto& a, const auto& b) { return a.dof.actuator_channel < b.dof.actuator_channel; });
-  t.plant = servo::read_plant_config(*root.section("servo", "every channel's actuator (servo/)"),
-                                     t.experimental.front().dof.specimen_stiffness_estimate_n_per_m);
+  t.plant = servo::read_plant_config(
+      *root.section("servo", "every channel's actuator (servo/)"),
+      t.experimental.empty() ? 0.0 : t.experimental.front().dof.specimen_stiffness_estimate_n_per_m);
   test_sections::clock(*root.section("clock", "the control rate: one command per OpenSees step"), t);
   if (t.clock.mode != coordinator::ClockConfig::Mode::kAsFastAsPossible) {
     root.fail("clock", "OpenSees paces a site server's test: clock.mode must be as_fast_as_possible (lock-step)");
   }
+  if (auto transport = root.optional_section("transport", "how the sites are reached (default: in process)")) {
+    test_sections::transport(*transport, t);
+  }
+  if (auto compensation = root.optional_section("compensation", "the delay compensator (default: none)")) {
+    t.compensation = test_sections::compensation(*compensation, 1.0 / t.control_rate_hz);
+  }
+  root.finish();
+}
+
+}  // namespace site_server_sections
+
+site_server::SiteServerConfig load_site_server(const std::filesystem::path& file,
+                                               const std::vector<Override>& overrides) {
+  config::InputLog inputs;
+  config::InputLog::note(file);
+  YAML::Node document = load_yaml_document(file, overrides);
+  MappingReader root(document, file.string(), "");
+  site_server::SiteServerConfig c;
+  c.name = file.stem().string();
+  std::vector<std::unique_ptr<config::Source>> limit_sections;
+  site_server_sections::site_file(root, c, limit_sections);
+  const coordinator::TestConfig& t = c.site;
   const double control_period_s = 1.0 / t.control_rate_hz;
   for (std::size_t i = 0; i < t.experimental.size(); ++i) {
     try {
@@ -110,13 +126,6 @@ site_server::SiteServerConfig load_site_server(const std::filesystem::path& file
       throw ConfigError(file.string() + ": experimental[" + std::to_string(i) + "].limits." + e.what());
     }
   }
-  if (auto transport = root.optional_section("transport", "how the sites are reached (default: in process)")) {
-    test_sections::transport(*transport, t);
-  }
-  if (auto compensation = root.optional_section("compensation", "the delay compensator (default: none)")) {
-    t.compensation = test_sections::compensation(*compensation, control_period_s);
-  }
-  root.finish();
   c.input_files = inputs.files();
   return c;
 }

@@ -33,9 +33,8 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
       o->fail("dofs", "more than " + std::to_string(transport::kMaxChannels) + " channels in all");
     }
     const std::uint32_t id = t.opensees_sites.back().adapter.site_id;
-    if (specimen_sites.count(id) || std::count_if(t.opensees_sites.begin(), t.opensees_sites.end(), [id](const auto& x) {
-          return x.adapter.site_id == id;
-        }) > 1) {
+    if (specimen_sites.count(id) || std::count_if(t.opensees_sites.begin(), t.opensees_sites.end(),
+                                                  [id](const auto& x) { return x.adapter.site_id == id; }) > 1) {
       o->fail("site", "site " + std::to_string(id) + " is already another site's");
     }
     for (std::size_t i = static_cast<std::size_t>(first); i < t.experimental.size(); ++i) {
@@ -72,7 +71,8 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
   }
   if (d.transport) sections::transport(*d.transport, t);
   if (!t.opensees_sites.empty() && t.clock.mode == coordinator::ClockConfig::Mode::kRealTime) {
-    root.fail("opensees_sites", "an OpenSees site answers when its static step converges: clock.mode as_fast_as_possible");
+    root.fail("opensees_sites",
+              "an OpenSees site answers when its static step converges: clock.mode as_fast_as_possible");
   }
   if (d.compensation) t.compensation = sections::compensation(*d.compensation, control_period_s);
 

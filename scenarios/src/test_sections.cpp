@@ -46,11 +46,13 @@ Document document(config::Source& root) {
   Document d;
   d.structure = root.section("structure", "the numerical substructure");
   // A test may be numerical apart from OpenSees sites: then it needs no specimen, and no servo.
-  if (root.has("opensees_sites")) {
+  // A listing (has() says no to everything, "structure" included) lists both lists.
+  const bool listing = !root.has("structure");
+  if (root.has("opensees_sites") || listing) {
     d.opensees_sites = root.sections("opensees_sites", transport::kMaxChannels,
                                      "numerical sites: remote OpenSees models behind an adapter element");
   }
-  if (d.opensees_sites.empty() || root.has("experimental")) {
+  if (d.opensees_sites.empty() || root.has("experimental") || listing) {
     d.experimental =
         root.sections("experimental", transport::kMaxChannels, "the DOFs a specimen takes, one per channel");
   }
@@ -274,8 +276,7 @@ coordinator::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, in
   site.reference_port = static_cast<std::uint16_t>(o.whole_number(
       "reference_port", 1, 65535, "a second OpenSees process of the same model, for the perfect-actuator reference"));
   const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "", "a DOF of the structure (0-based)");
-  const std::vector<double> listed =
-      o.numbers("dofs", dof, static_cast<std::size_t>(transport::kMaxChannels));
+  const std::vector<double> listed = o.numbers("dofs", dof, static_cast<std::size_t>(transport::kMaxChannels));
   const auto stiffness = o.optional_numbers(
       "stiffness_n_per_m",
       Number::between(0.0, kMaxStiffnessNPerM, "N/m", "each DOF's stiffness estimate, for the integrator's K0"),

@@ -20,7 +20,7 @@ namespace rpsd::scenarios::test_sections {
 // The document's own keys; every section is a handle, read afterwards in order.
 struct Document {
   std::unique_ptr<config::Source> structure;
-  std::vector<std::unique_ptr<config::Source>> experimental;     // empty when only OpenSees sites take DOFs
+  std::vector<std::unique_ptr<config::Source>> experimental;  // empty when only OpenSees sites take DOFs
   std::vector<std::unique_ptr<config::Source>> opensees_sites;
   std::optional<std::vector<double>> influence;
   std::unique_ptr<config::Source> servo;

@@ -16,6 +16,7 @@
 #include "rpsd/scenarios/scenario_reference.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
+#include "rpsd/scenarios/site_server_file.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
 
@@ -46,6 +47,8 @@ void read(const fs::path& file) {
     (void)load_servo_node(file);
   } else if (root["udp"]) {
     (void)load_controller_emulator(file);
+  } else if (root["listen"]) {
+    (void)load_site_server(file);
   } else {
     (void)load_servo_parameters(file);
   }
