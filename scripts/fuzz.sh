@@ -101,4 +101,18 @@ mkdir -p "$seeds/params" "$build/corpus/params"
 { printf '\x00'; cat examples/servo/paper-mts-244.yaml; } >"$seeds/params/servo-parameters"
 for f in examples/nodes/*.yaml; do { printf '\x01'; cat "$f"; } >"$seeds/params/node-$(basename "$f")"; done
 run fuzz_parameter_files params -max_len=4096
+# A genericClient's byte stream into the site server's session: seeded with a client's setup
+# (2 basic DOFs, 11-double messages) and one step (trial, force request, commit, die).
+mkdir -p "$seeds/opensees" "$build/corpus/opensees"
+python3 - "$seeds/opensees" <<'PY'
+import struct, sys
+out = sys.argv[1]
+def message(*values):
+    return struct.pack("<11d", *(list(values) + [0.0] * (11 - len(values))))
+setup = struct.pack("<11i", 2, 2, 2, 0, 1, 0, 0, 0, 2, 0, 11)
+step = message(3, 0.001, 0.002, 0, 0, 0, 0, 0.01) + message(10) + message(12) + message(5)
+open(f"{out}/one-step", "wb").write(setup + step + message(99))
+open(f"{out}/beyond-the-limit", "wb").write(setup + message(3, 2.0) + message(10) + message(10) + message(99))
+PY
+run fuzz_opensees_session opensees -max_len=4096
 exit $status

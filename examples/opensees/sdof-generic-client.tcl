@@ -12,7 +12,7 @@ set host [expr {[llength $argv] > 5 ? [lindex $argv 5] : "127.0.0.1"}]
 if {$out eq "" || $record eq "" || $port eq ""} { puts stderr "usage: sdof-generic-client.tcl output_dir record_path scale duration_s port \[host\]"; exit 2 }
 file mkdir $out
 
-set m 7080.0;  set k 700.8e3;  set zeta 0.011;  set g 9.81
+set m 7080.0;  set k 700.8e3;  set zeta 0.011;  set g 9.80665
 set dt [expr {1.0/1024.0}]
 
 model basic -ndm 1 -ndf 1

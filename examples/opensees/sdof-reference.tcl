@@ -10,7 +10,7 @@ set duration [expr {[llength $argv] > 3 ? [lindex $argv 3] : 20.0}]
 if {$out eq "" || $record eq ""} { puts stderr "usage: sdof-reference.tcl output_dir record_path \[scale\] \[duration_s\]"; exit 2 }
 file mkdir $out
 
-set m 7080.0;  set k 700.8e3;  set zeta 0.011;  set g 9.81
+set m 7080.0;  set k 700.8e3;  set zeta 0.011;  set g 9.80665
 set dt [expr {1.0/1024.0}]
 
 model basic -ndm 1 -ndf 1

@@ -14,7 +14,7 @@ if {$material ni {elastic steel01} || $out eq "" || $record eq ""} {
 }
 file mkdir $out
 
-set m 5000.0;  set k1 700.8e3;  set k2 600e3;  set k3 400e3;  set g 9.81
+set m 5000.0;  set k1 700.8e3;  set k2 600e3;  set k3 400e3;  set g 9.80665
 set zeta 0.02
 set omega1 4.9217210853   ;# rad/s, mode 1 of the elastic frame; checked with eigen below
 set Fy2 2000.0            ;# N, storey-2 yield force for steel01 (same as upper-storeys-adapter.tcl);

@@ -88,7 +88,7 @@ bool SiteServer::set_trial(std::span<const double> displacement, std::span<const
   // displacements twice (NewmarkExplicit: predictor, then corrector with new velocities;
   // CentralDifference: the new ones stamped with the old time, then again with the new),
   // and commanding both would drive the actuators two control periods per step.
-  bool moved = false;
+  bool moved = !commanded_;  // the first trial is a command even at rest: the steps line up with OpenSees'
   for (int i = 0; i < config_.element_dofs; ++i) moved |= trial_d_[i] != displacement[static_cast<std::size_t>(i)];
   for (int i = 0; i < config_.element_dofs; ++i) {
     trial_d_[i] = displacement[static_cast<std::size_t>(i)];
@@ -104,6 +104,7 @@ bool SiteServer::force(std::span<double> force) {
   if (stopped_) return false;
   if (pending_) {
     pending_ = false;
+    commanded_ = true;
     for (std::size_t ch = 0; ch < config_.maps.size(); ++ch) {
       const ChannelMap& map = config_.maps[ch];
       const double relative = map.relative_to >= 0 ? trial_d_[map.relative_to] : 0.0;

@@ -67,7 +67,7 @@ class SiteServer : public opensees::GenericClientSite {
   coordinator::StepRecord record_;
   SiteRun run_;
   double trial_time_s_ = 0.0, step_time_s_ = 0.0;
-  bool pending_ = false, stopped_ = false;
+  bool pending_ = false, stopped_ = false, commanded_ = false;
 };
 
 }  // namespace rpsd::site_server
