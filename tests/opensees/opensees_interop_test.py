@@ -460,7 +460,29 @@ def split_steel01():
 
 TOL_STEEL01 = 3e-4
 
-CASES = {f.__name__: f for f in (sdof_perfect, three_storey_perfect, sdof_paper_rig, split_linear, split_steel01)}
+def wrong_dofs():
+    """The real OpenSees with an element of other DOFs than the site's: the three-storey client's
+    storey-1 element has 2 basic DOFs, the SDOF site 1. The site refuses it by name, nothing is
+    commanded, and OpenSees, answered with not-a-number, ends instead of hanging."""
+    folder = fresh("wrong_dofs")
+    client, server, text = generic_client_run(os.path.join(EXAMPLES, "sdof-site-perfect.yaml"),
+                                              "three-storey-generic-client.tcl", folder, 0.1, 2, opensees_timeout=50)
+    check(server == 3, f"rpsd site-server exit {server}, expected 3 (stopped): {text}")
+    check(client is not None, "OpenSees did not end within 50 s after the refusal (it hung)")
+    with open(os.path.join(folder, "site/summary.json")) as f:
+        summary = json.load(f)
+    stopped = summary.get("stopped_by", {})
+    check(summary.get("outcome") == "stopped", f"outcome {summary.get('outcome')}, expected stopped")
+    check(stopped.get("kind") == "client_sizes", f"stopped_by.kind {stopped.get('kind')}, expected client_sizes")
+    check("the element has 2 basic DOFs (ctrlDisp), the site 1" in stopped.get("reason", ""),
+          f"stopped_by.reason does not name both DOF counts: {stopped.get('reason')!r}")
+    check(summary.get("exchanges") == 0, f"{summary.get('exchanges')} commands were sent, expected none")
+    history = read_csv(os.path.join(folder, "site/time_history.csv"))
+    check(len(history) == 0, f"time_history.csv has {len(history)} rows, expected none")
+
+
+CASES = {f.__name__: f for f in (sdof_perfect, three_storey_perfect, sdof_paper_rig, split_linear, split_steel01,
+                                 wrong_dofs)}
 
 
 def main():

@@ -8,6 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <future>
+
+#include "../opensees/peer.h"
+#include "rpsd/opensees/protocol.h"
 
 #include "rpsd/coordinator/actuator_links.h"
 
@@ -92,6 +96,29 @@ TEST(SiteServer, AStepOfAnotherLengthStopsTheTestWithBothRates) {
   EXPECT_THAT(site.run().stop_text, testing::HasSubstr("OpenSees stepped 0.01 s"));
   EXPECT_THAT(site.run().stop_text, testing::HasSubstr("give the OpenSees analysis dt = 0.0009765625"));
   EXPECT_EQ(site.run().exchanges, 0);
+}
+
+TEST(SiteServer, AClientThatLeavesMidStepLeavesTheActuatorWhereItsLastCommandPutIt) {
+  const SiteServerConfig config = spring_site(1, {0, -1});
+  SiteServer site(config, scratch_csv("leaves"));
+  opensees::TcpListener listener("127.0.0.1", 0);
+  auto client = std::async(std::launch::async, [&] {
+    opensees::TcpStream c = opensees::TcpStream::connect("127.0.0.1", listener.port(), 5.0);
+    opensees::test::write_ints(c, opensees::generic_client_sizes(1).to_wire());
+    for (int n = 1; n <= 3; ++n) {
+      opensees::test::write_request(c, 256, {opensees::kSetTrialResponse, 0.001 * n, 0.0, 0.0, n * kPeriodS});
+      opensees::test::write_request(c, 256, {opensees::kGetForce});
+      (void)opensees::test::read_reply(c, 256);
+    }
+    // The fourth step's trial, and then the client is gone before asking for its force.
+    opensees::test::write_request(c, 256, {opensees::kSetTrialResponse, 0.009, 0.0, 0.0, 4 * kPeriodS});
+  });
+  const SiteRun run = site.serve(*listener.accept(5.0), nullptr);
+  client.get();
+  EXPECT_EQ(run.end.kind, opensees::SessionEnd::Kind::kClosed);
+  EXPECT_EQ(run.exchanges, 3);
+  // Held at the third command (3 mm), never sent toward the fourth trial's 9 mm.
+  EXPECT_NEAR(site.actuators().simulated_plant(0)->measure().displacement_m, 0.003, 1e-12);
 }
 
 }  // namespace
