@@ -6,6 +6,7 @@
 
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/coordinator/actuator_links.h"
+#include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/servo/envelope.h"
 
 namespace rpsd::site_server {
@@ -179,6 +180,10 @@ SiteRun SiteServer::serve(opensees::TcpStream stream, const std::atomic<bool>* s
   options.message_timeout_s = config_.message_timeout_s;
   options.stop_request = stop_request;
   opensees::GenericClientSession session(std::move(stream), options);
+  // A lock-step exchange with another process: each request wakes this one from idle, which is
+  // slow unless the CPUs are kept awake (docs/dds-transport.md; clock.keep_cpus_awake).
+  realtime::RealTimeSetupReport awake;
+  const realtime::CpuWakeLatencyHold cpus_awake = realtime::hold_cpus_awake(config_.site.clock.realtime, awake);
   run_.end = session.serve(*this);
   run_.client_sizes = session.sizes().text();
   run_.drained = session.drained();
