@@ -9,7 +9,9 @@
 
 #include "rpsd/commands.h"
 #include "rpsd/scenarios/servo_node_file.h"
+#include "rpsd/scenarios/site_server_file.h"
 #include "rpsd/scenarios/study_file.h"
+#include "rpsd/site_server/site_summary.h"
 #include "rpsd/studies/dry_run_report.h"
 #include "rpsd/studies/results_files.h"
 #include "rpsd/studies/scenario_overview.h"
@@ -176,9 +178,17 @@ void add_run(CLI::App& app) {
 void add_validate(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   auto* validate = app.add_subcommand("validate", "Check a scenario without running it");
-  validate->add_option("scenario", options->scenario, "Scenario file (YAML)")->required()->check(CLI::ExistingFile);
+  validate->add_option("scenario", options->scenario, "Scenario file, or a site-server file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
   validate->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
   validate->callback([options] {
+    if (scenarios::is_site_server_file(options->scenario)) {
+      const auto site = scenarios::load_site_server(options->scenario, parse_overrides(options->overrides));
+      std::cout << options->scenario << ": ok (a site-server file)\n";
+      site_server::print_site_overview(site, std::cout);
+      return;
+    }
     const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
     std::cout << options->scenario << ": ok\n";
     if (const auto* test = std::get_if<coordinator::TestConfig>(&file.study)) {

@@ -59,11 +59,7 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   const Eigen::Index dofs = p.numerical->dofs();
   const int channels = static_cast<int>(s.experimental.size());
 
-  substructure::PartitionConfig split;
-  split.dofs = dofs;
-  for (const auto& e : s.experimental) split.experimental.push_back(e.dof);
-  split.influence = s.influence;
-  p.partition.configure(split);
+  p.partition.configure(partition_config(s, dofs));
 
   p.integrator = integrators::make_integrator(s.integrator);
   const double dt_s = 1.0 / s.control_rate_hz;
@@ -88,8 +84,9 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
     // The rig's envelope is every limit's default; the reference is numerical: no rig, no limits.
     if (!perfect_actuator) {
       parts.limits.resize(static_cast<std::size_t>(channels));
-      parts.limits[ch] = numerical_site ? CoordinatorLimits{}
-                                        : within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
+      parts.limits[ch] = numerical_site
+                             ? CoordinatorLimits{}
+                             : within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
     }
     parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};
   }

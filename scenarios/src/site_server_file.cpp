@@ -107,6 +107,11 @@ void site_file(config::Source& root, site_server::SiteServerConfig& c,
 
 }  // namespace site_server_sections
 
+bool is_site_server_file(const std::filesystem::path& file) {
+  const YAML::Node document = load_yaml_document(file, {});
+  return document.IsMap() && document["listen"] && !document["study"];
+}
+
 site_server::SiteServerConfig load_site_server(const std::filesystem::path& file,
                                                const std::vector<Override>& overrides) {
   config::InputLog inputs;

@@ -277,9 +277,10 @@ coordinator::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, in
       "reference_port", 1, 65535, "a second OpenSees process of the same model, for the perfect-actuator reference"));
   const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "", "a DOF of the structure (0-based)");
   const std::vector<double> listed = o.numbers("dofs", dof, static_cast<std::size_t>(transport::kMaxChannels));
-  const auto stiffness = o.optional_numbers(
+  const auto stiffness = o.matrix(
       "stiffness_n_per_m",
-      Number::between(0.0, kMaxStiffnessNPerM, "N/m", "each DOF's stiffness estimate, for the integrator's K0"),
+      Number::between(-kMaxStiffnessNPerM, kMaxStiffnessNPerM, "N/m",
+                      "the substructure's initial stiffness over its DOFs (rows, or a diagonal), for K0 and the modes"),
       static_cast<std::size_t>(transport::kMaxChannels));
   a.connect_timeout_s = o.number_or("connect_timeout_s", a.connect_timeout_s,
                                     Number{"s", "the longest wait for the adapter to listen", 0.0, 3600.0, true});
@@ -287,14 +288,20 @@ coordinator::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, in
                                   Number{"s", "the longest wait for one step's forces", 0.0, 3600.0, true});
   o.finish();
   if (site.reference_port == a.port) o.fail("reference_port", "must differ from port: an adapter serves one run");
-  if (stiffness && stiffness->size() != listed.size()) o.fail("stiffness_n_per_m", "needs one value per DOF in dofs");
   a.dofs = static_cast<int>(listed.size());
+  if (stiffness.size() != listed.size()) o.fail("stiffness_n_per_m", "needs one row per DOF in dofs");
+  site.stiffness_n_per_m = matrix_from_rows(stiffness);
+  if (!site.stiffness_n_per_m.isApprox(site.stiffness_n_per_m.transpose()) ||
+      (site.stiffness_n_per_m.diagonal().array() < 0.0).any()) {
+    o.fail("stiffness_n_per_m", "must be symmetric with no negative diagonal entry");
+  }
   for (std::size_t i = 0; i < listed.size(); ++i) {
     if (listed[i] != std::floor(listed[i])) o.fail("dofs", "expected whole DOF numbers");
     coordinator::ExperimentalChannel channel;
     channel.dof.dof = static_cast<Eigen::Index>(listed[i]);
     channel.dof.actuator_channel = first_channel + static_cast<int>(i);
-    channel.dof.specimen_stiffness_estimate_n_per_m = stiffness ? (*stiffness)[i] : 0.0;
+    channel.dof.specimen_stiffness_estimate_n_per_m =
+        site.stiffness_n_per_m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
     channel.restoring_force = coordinator::RestoringForceSource::kMeasuredForce;
     channel.site_id = a.site_id;
     channels.push_back(channel);

@@ -4,6 +4,8 @@
 
 #include "rpsd/build_info/build_info.h"
 #include "rpsd/coordinator/limit_stop_text.h"
+#include "rpsd/servo/envelope.h"
+#include "rpsd/servo/plant_factory.h"
 #include "rpsd/studies/provenance.h"
 
 namespace rpsd::site_server {
@@ -38,6 +40,25 @@ std::string stop_reason(const SiteRun& run) {
       return "a servo node refused the run";
     default:
       return "the site stopped";
+  }
+}
+
+void print_site_overview(const SiteServerConfig& c, std::ostream& out) {
+  const coordinator::TestConfig& t = c.site;
+  const double period_s = 1.0 / t.control_rate_hz;
+  const servo::Envelope envelope = servo::envelope_of(t.plant);
+  out << "  listens on " << c.listen_address << ":" << c.listen_port << " for an OpenSees genericClient with "
+      << c.element_dofs << " basic DOF(s); one command per OpenSees step of " << period_s << " s\n";
+  out << "  sites: " << (t.transport.kind == coordinator::TransportConfig::Kind::kDds ? "over DDS" : "in process")
+      << "\n";
+  for (std::size_t ch = 0; ch < c.maps.size(); ++ch) {
+    const auto& e = t.experimental[ch];
+    const coordinator::CoordinatorLimits l = coordinator::within_envelope(e.limits, envelope, period_s);
+    out << "  channel " << ch << ": basic DOF " << c.maps[ch].basic_dof;
+    if (c.maps[ch].relative_to >= 0) out << " minus basic DOF " << c.maps[ch].relative_to;
+    out << ", site " << e.site_id << ", specimen " << e.dof.specimen_stiffness_estimate_n_per_m << " N/m; rig "
+        << servo::describe(envelope) << "; limits: stroke " << l.max_stroke_m << " m, force " << l.max_force_n
+        << " N, increment " << l.max_increment_m << " m, tracking error " << l.max_tracking_error_m << " m\n";
   }
 }
 

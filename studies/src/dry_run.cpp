@@ -143,6 +143,12 @@ void check_against_node(ChannelPrediction& p) {
 }  // namespace
 
 DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<NodeLimits>& nodes) {
+  if (!original.opensees_sites.empty()) {
+    // Each OpenSees adapter serves one run: a dry run would use up the processes the test needs.
+    throw std::invalid_argument(
+        "a dry run cannot include OpenSees sites (opensees_sites): each adapter serves one run, and the dry run "
+        "would use up the OpenSees process the test needs; check the model with `rpsd validate` instead");
+  }
   coordinator::TestConfig s = original;
   s.transport.kind = coordinator::TransportConfig::Kind::kInProcess;
   s.clock.mode = coordinator::ClockConfig::Mode::kAsFastAsPossible;

@@ -35,12 +35,8 @@ ScenarioOverview overview_of(const coordinator::TestConfig& s) {
   ScenarioOverview o;
   const auto numerical = coordinator::make_numerical_model(s);
   o.dofs = numerical->dofs();
-  substructure::PartitionConfig split;
-  split.dofs = o.dofs;
-  for (const auto& e : s.experimental) split.experimental.push_back(e.dof);
-  split.influence = s.influence;
   substructure::Partition partition;
-  partition.configure(split);
+  partition.configure(coordinator::partition_config(s, o.dofs));
   const Eigen::MatrixXd c = numerical->damping().to_dense();
   o.structure_modes = modes_of(numerical->mass(), partition.with_specimen_stiffness(numerical->initial_stiffness()), c);
   // The numerical part alone has modes only if it carries stiffness of its own everywhere.
@@ -71,8 +67,13 @@ ScenarioOverview overview_of(const coordinator::TestConfig& s) {
     ch.dof = e.dof.dof;
     ch.site_id = e.site_id;
     ch.specimen_stiffness_n_per_m = e.dof.specimen_stiffness_estimate_n_per_m;
-    ch.envelope = envelope;
-    ch.limits = coordinator::within_envelope(e.limits, envelope, control_period_s);
+    if (const coordinator::OpenSeesSite* site = s.opensees_site(e.site_id)) {
+      ch.opensees = site->adapter.host + ":" + std::to_string(site->adapter.port) +
+                    ", reference :" + std::to_string(site->reference_port);
+    } else {
+      ch.envelope = envelope;
+      ch.limits = coordinator::within_envelope(e.limits, envelope, control_period_s);
+    }
     o.channels.push_back(ch);
   }
   return o;
@@ -109,6 +110,14 @@ void print_overview(const ScenarioOverview& o, std::ostream& out) {
     out << "  record: none (free vibration from the initial displacement)\n";
   }
   for (const ChannelOverview& c : o.channels) {
+    if (!c.opensees.empty()) {
+      // A numerical site: no rig, no compensation, no rig limits.
+      std::snprintf(line, sizeof line, "  channel %d: DOF %lld, OpenSees site %u at %s, stiffness %.6g N/m\n",
+                    c.channel, static_cast<long long>(c.dof), c.site_id, c.opensees.c_str(),
+                    c.specimen_stiffness_n_per_m);
+      out << line;
+      continue;
+    }
     std::snprintf(line, sizeof line,
                   "  channel %d: DOF %lld, site %u, specimen %.6g N/m; rig %s; limits: stroke %.6g m, force %.6g N, "
                   "increment %.6g m, tracking error %.6g m\n",

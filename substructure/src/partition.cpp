@@ -78,6 +78,15 @@ void Partition::configure(const PartitionConfig& config) {
   channel_of_dof_ = std::move(channel_of_dof);
   numerical_ = std::move(numerical);
   influence_ = config.influence;
+  const auto channels = static_cast<Eigen::Index>(by_channel_.size());
+  for (const auto& c : config.couplings) {
+    if (c.channel_a < 0 || c.channel_a >= channels || c.channel_b < 0 || c.channel_b >= channels ||
+        c.channel_a == c.channel_b || !std::isfinite(c.stiffness_n_per_m)) {
+      throw std::invalid_argument("partition: a stiffness coupling needs two different channels of the " +
+                                  num(channels) + " and a finite stiffness");
+    }
+  }
+  couplings_ = config.couplings;
 }
 
 bool Partition::is_experimental(Eigen::Index dof) const noexcept { return channel_of(dof) >= 0; }
@@ -128,7 +137,13 @@ linalg::StructuralMatrix Partition::with_specimen_stiffness(const linalg::Struct
     diag.emplace_back(x.dof, x.dof, x.force_scale * x.displacement_scale * x.specimen_stiffness_estimate_n_per_m);
   }
   linalg::SparseMatrix D(n_, n_);
-  D.setFromTriplets(diag.begin(), diag.end());
+  for (const auto& c : couplings_) {
+    const Eigen::Index a = by_channel_[static_cast<std::size_t>(c.channel_a)].dof;
+    const Eigen::Index b = by_channel_[static_cast<std::size_t>(c.channel_b)].dof;
+    diag.emplace_back(a, b, c.stiffness_n_per_m);
+    diag.emplace_back(b, a, c.stiffness_n_per_m);
+  }
+  D.setFromTriplets(diag.begin(), diag.end());  // duplicates are summed
   return linalg::StructuralMatrix::linear_combination(1.0, K_num, 1.0, linalg::StructuralMatrix(D))
       .converted(K_num.storage());
 }

@@ -86,6 +86,9 @@ struct GroundMotion {
 struct OpenSeesSite {
   opensees::AdapterSiteConfig adapter;  // site id, host, port, DOF count, timeouts
   std::uint16_t reference_port = 0;
+  // The substructure's initial stiffness between its DOFs (row i, column j: the adapter's
+  // -dof order), for K0; its diagonal is the channels' estimates. Empty: diagonal only.
+  Eigen::MatrixXd stiffness_n_per_m;
 };
 
 struct TestConfig {
@@ -119,6 +122,10 @@ struct TestConfig {
     return nullptr;
   }
 };
+
+// The partition of the scenario's structure: its experimental channels, their estimated
+// stiffness (an OpenSees site's whole matrix) and the influence vector.
+substructure::PartitionConfig partition_config(const TestConfig& config, Eigen::Index dofs);
 
 // DOFs of the scenario's structure.
 Eigen::Index structure_dofs(const TestConfig& config);

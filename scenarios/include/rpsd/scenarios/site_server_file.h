@@ -12,6 +12,9 @@
 
 namespace rpsd::scenarios {
 
+// A site-server file has `listen:` and no `study:` (ConfigError if it cannot be read as YAML).
+bool is_site_server_file(const std::filesystem::path& file);
+
 // Throws ConfigError naming file:line:column and the key path. Not real-time safe.
 site_server::SiteServerConfig load_site_server(const std::filesystem::path& file,
                                                const std::vector<Override>& overrides = {});

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 
 #include "rpsd/site_server/site_server.h"
@@ -14,6 +15,10 @@ enum class SiteResult : std::uint8_t { kCompleted, kStopped, kInterrupted, kResu
 SiteResult result_of(const SiteRun& run);
 // Why the run stopped, in one sentence ("" when it completed).
 std::string stop_reason(const SiteRun& run);
+
+// What `rpsd validate SITE.yaml` prints: where it listens, the element, and per channel the
+// DOFs it follows, the rig and the limits in force.
+void print_site_overview(const SiteServerConfig& config, std::ostream& out);
 
 nlohmann::json site_summary(const SiteServerConfig& config, const SiteRun& run, const std::string& peer,
                             std::uint16_t port);

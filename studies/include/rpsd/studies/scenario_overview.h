@@ -27,6 +27,7 @@ struct ChannelOverview {
   double specimen_stiffness_n_per_m = 0.0;
   servo::Envelope envelope;
   coordinator::CoordinatorLimits limits;  // the envelope unless the scenario tightens it
+  std::string opensees;                   // an OpenSees site's address ("host:port, reference :port"); "" otherwise
 };
 
 struct ScenarioOverview {

@@ -29,6 +29,14 @@ struct PartitionConfig {
   Eigen::Index dofs = 0;                      // DOFs of the whole model
   std::vector<ExperimentalDof> experimental;  // channels must be exactly 0..size()-1
   Eigen::VectorXd influence;                  // ground-motion influence vector ι, size dofs
+  // Estimated stiffness between two channels' DOFs (model units, N/m), added symmetrically
+  // to K0 beside the diagonal estimates: a substructure that couples its DOFs (an OpenSees
+  // site's storeys). Each entry {channel a, channel b, k} adds k at (a, b) and (b, a).
+  struct Coupling {
+    Eigen::Index channel_a = 0, channel_b = 0;
+    double stiffness_n_per_m = 0.0;
+  };
+  std::vector<Coupling> couplings;
 };
 
 class Partition {
@@ -65,8 +73,8 @@ class Partition {
   void add_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured, Eigen::Ref<Eigen::VectorXd> r) const noexcept;
 
   // K_num plus the specimens' estimated stiffness in model units
-  // (force_scale · displacement_scale · k_specimen on the diagonal of each experimental DOF),
-  // with the storage of K_num. Not real-time safe.
+  // (force_scale · displacement_scale · k_specimen on the diagonal of each experimental DOF,
+  // and the couplings between them), with the storage of K_num. Not real-time safe.
   [[nodiscard]] linalg::StructuralMatrix with_specimen_stiffness(const linalg::StructuralMatrix& K_num) const;
 
  private:
@@ -75,6 +83,7 @@ class Partition {
   std::vector<Eigen::Index> channel_of_dof_;
   std::vector<Eigen::Index> numerical_;
   Eigen::VectorXd influence_;
+  std::vector<PartitionConfig::Coupling> couplings_;
 };
 
 }  // namespace rpsd::substructure
