@@ -37,6 +37,14 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
   }
   std::vector<transport::SiteRoute> routes;
   std::string missing;
+  // A remote site's forces at rest, before any feedback: its stiffness estimate times the hold.
+  const auto estimate_initial_forces = [&](const SiteSummary& site) {
+    for (int ch : site.channels) {
+      const auto& e = *by_channel[static_cast<std::size_t>(ch)];
+      initial_force_n_[static_cast<std::size_t>(ch)] =
+          e.dof.specimen_stiffness_estimate_n_per_m * hold_m[static_cast<std::size_t>(ch)];
+    }
+  };
   for (const SiteSummary& site : sites_) {
     if (const OpenSeesSite* remote = s.opensees_site(site.site_id)) {
       // A numerical site: its substructure answers every step in OpenSees (the reference its own).
@@ -45,11 +53,7 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
       auto link = std::make_unique<opensees::AdapterLink>(adapter);
       adapter_links_.push_back(link.get());
       site_links_.push_back(std::move(link));
-      for (int ch : site.channels) {
-        const auto& e = *by_channel[static_cast<std::size_t>(ch)];
-        initial_force_n_[static_cast<std::size_t>(ch)] =
-            e.dof.specimen_stiffness_estimate_n_per_m * hold_m[static_cast<std::size_t>(ch)];
-      }
+      estimate_initial_forces(site);
     } else if (over_dds) {
       transport::DdsLinkConfig config;
       config.test_id = s.transport.test_id;
@@ -63,11 +67,7 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
       auto link = std::make_unique<transport::DdsLink>(*participant_, config);
       dds_links_.push_back(link.get());
       site_links_.push_back(std::move(link));
-      for (int ch : site.channels) {
-        const auto& e = *by_channel[static_cast<std::size_t>(ch)];
-        initial_force_n_[static_cast<std::size_t>(ch)] =
-            e.dof.specimen_stiffness_estimate_n_per_m * hold_m[static_cast<std::size_t>(ch)];
-      }
+      estimate_initial_forces(site);
     } else {
       // The site's node as `rpsd servo-node` runs it, answered in lock-step in this process.
       const int site_channels = static_cast<int>(site.channels.size());

@@ -42,23 +42,7 @@ coordinator::ExperimentalChannel channel(config::Source& e, int dofs, std::size_
                         "a basic DOF whose displacement is subtracted (a spring's other end; -1: none)"));
   if (map.relative_to == map.basic_dof) e.fail("relative_to", "must differ from basic_dof");
   channel.dof.dof = map.basic_dof;
-  channel.dof.actuator_channel = e.whole_number_or("channel", 0, transport::kMaxChannels - 1, static_cast<long>(index),
-                                                   "the actuator channel (default: i)");
-  channel.dof.displacement_scale = e.number_or(
-      "displacement_scale", 1.0, Number::between(1e-3, 1e3, "", "specimen displacement per model displacement"));
-  channel.dof.force_scale =
-      e.number_or("force_scale", 1.0, Number::between(1e-6, 1e6, "", "model force per specimen force"));
-  channel.dof.specimen_stiffness_estimate_n_per_m = e.number(
-      "specimen_stiffness_n_per_m",
-      Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen's estimated stiffness (OpenSees' initial K)"));
-  const std::string source = e.choice_or("restoring_force", {"measured_force", "stiffness_times_displacement"},
-                                         "measured_force", "what goes back to OpenSees as the specimen's force");
-  channel.restoring_force = source == "measured_force"
-                                ? coordinator::RestoringForceSource::kMeasuredForce
-                                : coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
-  channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1, "the site's node"));
-  limits_section = e.optional_section("limits", "the coordinator's limits on this channel (only tighter than the rig)");
-  if (limits_section) channel.limits = test_sections::limits(*limits_section);
+  test_sections::specimen_channel(e, index, channel, limits_section);
   e.finish();
   return channel;
 }

@@ -240,10 +240,8 @@ coordinator::CoordinatorLimits limits(config::Source& l) {
   return c;
 }
 
-coordinator::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
-                                              std::unique_ptr<config::Source>& limits_section) {
-  coordinator::ExperimentalChannel channel;
-  channel.dof.dof = e.whole_number("dof", 0, dofs - 1, "the structure's DOF the specimen takes (0-based)");
+void specimen_channel(config::Source& e, std::size_t index, coordinator::ExperimentalChannel& channel,
+                      std::unique_ptr<config::Source>& limits_section) {
   channel.dof.actuator_channel = e.whole_number_or("channel", 0, transport::kMaxChannels - 1, static_cast<long>(index),
                                                    "the actuator channel (default: i)");
   // Similitude scales of a reduced-size specimen: 1:1000 geometry, forces down to 1e-6.
@@ -262,6 +260,13 @@ coordinator::ExperimentalChannel experimental(config::Source& e, Eigen::Index do
   channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1, "the site's node"));
   limits_section = e.optional_section("limits", "the coordinator's limits on this channel (only tighter than the rig)");
   if (limits_section) channel.limits = limits(*limits_section);
+}
+
+coordinator::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
+                                              std::unique_ptr<config::Source>& limits_section) {
+  coordinator::ExperimentalChannel channel;
+  channel.dof.dof = e.whole_number("dof", 0, dofs - 1, "the structure's DOF the specimen takes (0-based)");
+  specimen_channel(e, index, channel, limits_section);
   e.finish();
   return channel;
 }

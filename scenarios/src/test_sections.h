@@ -56,6 +56,10 @@ substructure::StorySpringConfig story_of_kind(config::Source& s, std::string_vie
 coordinator::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
                                               std::unique_ptr<config::Source>& limits);
 coordinator::CoordinatorLimits limits(config::Source& l);
+// A specimen channel's own keys (channel, scales, stiffness, restoring force, site, limits),
+// whatever says which DOF it takes; the caller finishes the section.
+void specimen_channel(config::Source& e, std::size_t index, coordinator::ExperimentalChannel& channel,
+                      std::unique_ptr<config::Source>& limits_section);
 // opensees_sites[i]: the site, and one channel per DOF it carries (channels from `first_channel`).
 coordinator::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, int first_channel,
                                         std::vector<coordinator::ExperimentalChannel>& channels);
