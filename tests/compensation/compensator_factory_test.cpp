@@ -18,13 +18,11 @@ std::vector<CompensatorConfig> all_configs() {
   AdaptiveInverseCompensationParameters adaptive_inverse;
   adaptive_inverse.initial_delay_s = 0.01;
   adaptive_inverse.proportional_gain_s_per_m2 = 100.0;
-  return {PassThroughParameters{},
-          DiscretePhaseLeadParameters::for_delay(0.03, 4.0),
-          DiscretePhaseLeadParameters::for_delay(0.03, 4.0, 2.0),
-          PolynomialExtrapolationParameters{3, 0.0123},
-          InverseCompensationParameters{0.02},
-          adaptive_inverse,
-          AdaptiveTimeSeriesParameters{}};
+  return {PassThroughParameters{}, DiscretePhaseLeadParameters::for_delay(0.03, 4.0),
+          DiscretePhaseLeadParameters::for_delay(0.03, 4.0, 2.0), PolynomialExtrapolationParameters{3, 0.0123},
+          InverseCompensationParameters{0.02}, adaptive_inverse, AdaptiveTimeSeriesParameters{},
+          // A lag-lead of unit DC gain: (s + 20)(s + 40) / ((s + 10)(s + 80)).
+          LtiFilterParameters{{{1.0, 60.0, 800.0}, {1.0, 90.0, 800.0}}, 0.0}};
 }
 
 TEST(CompensatorFactory, MakesTheSchemeTheConfigNames) {

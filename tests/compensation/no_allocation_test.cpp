@@ -67,7 +67,8 @@ TEST(NoAllocation, EveryCompensatorCommandAndObserve) {
                                        PolynomialExtrapolationParameters{3, 0.02},
                                        InverseCompensationParameters{0.02},
                                        adaptive_inverse,
-                                       ats};
+                                       ats,
+                                       LtiFilterParameters{{{1.0, 60.0, 800.0}, {1.0, 90.0, 800.0}}, 0.0}};
   for (const CompensatorConfig& config : configs) {
     const auto c = make_compensator(config, kDt);
     c->reset(0.0);

@@ -12,15 +12,17 @@
 #include "rpsd/compensation/command_compensator.h"
 #include "rpsd/compensation/discrete_phase_lead.h"
 #include "rpsd/compensation/inverse_compensator.h"
+#include "rpsd/compensation/lti_filter_compensator.h"
 #include "rpsd/compensation/pass_through_compensator.h"
 #include "rpsd/compensation/polynomial_extrapolation.h"
 #include "rpsd/config/kind_list.h"
 
 namespace rpsd::compensation {
 
-using CompensatorKinds = config::KindList<PassThroughParameters, DiscretePhaseLeadParameters,
-                                          PolynomialExtrapolationParameters, InverseCompensationParameters,
-                                          AdaptiveInverseCompensationParameters, AdaptiveTimeSeriesParameters>;
+using CompensatorKinds =
+    config::KindList<PassThroughParameters, DiscretePhaseLeadParameters, PolynomialExtrapolationParameters,
+                     InverseCompensationParameters, AdaptiveInverseCompensationParameters, AdaptiveTimeSeriesParameters,
+                     LtiFilterParameters>;
 using CompensatorConfig = CompensatorKinds::Variant;
 
 // The compensator for config, configured for control step dt_s and at rest at zero
