@@ -16,21 +16,45 @@ Eigen::Index structure_dofs(const TestConfig& config) {
       config.structure);
 }
 
-std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config) {
+namespace {
+
+std::unique_ptr<substructure::NumericalModel> configured(
+    const std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig>& structure) {
   return std::visit(
-      [](const auto& structure) -> std::unique_ptr<substructure::NumericalModel> {
-        using C = std::decay_t<decltype(structure)>;
+      [](const auto& c) -> std::unique_ptr<substructure::NumericalModel> {
+        using C = std::decay_t<decltype(c)>;
         if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
           auto model = std::make_unique<substructure::LinearMdofModel>();
-          model->configure(structure);
+          model->configure(c);
           return model;
         } else {
           auto model = std::make_unique<substructure::ShearBuilding>();
-          model->configure(structure);
+          model->configure(c);
           return model;
         }
       },
-      config.structure);
+      structure);
+}
+
+}  // namespace
+
+std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config) {
+  if (!config.whole_structure_damping) return configured(config.structure);
+  // The whole structure's C, from M and K0 with the specimens' stiffness; the numerical part
+  // keeps it less the specimens' own damping (in model units, as their stiffness).
+  const auto undamped = configured(config.structure);
+  substructure::Partition partition;
+  partition.configure(partition_config(config, undamped->dofs()));
+  const linalg::StructuralMatrix k_whole = partition.with_specimen_stiffness(undamped->initial_stiffness());
+  Eigen::MatrixXd c = substructure::build_damping(*config.whole_structure_damping, undamped->mass(), k_whole,
+                                                  "whole_structure_damping: ")
+                          .c.to_dense();
+  for (const auto& e : config.experimental) {
+    c(e.dof.dof, e.dof.dof) -= e.dof.force_scale * e.dof.displacement_scale * e.specimen_damping_n_s_per_m;
+  }
+  auto structure = config.structure;
+  std::visit([&c](auto& s) { s.damping = substructure::DampingMatrix{linalg::StructuralMatrix(c)}; }, structure);
+  return configured(structure);
 }
 
 substructure::PartitionConfig partition_config(const TestConfig& s, Eigen::Index dofs) {

@@ -131,10 +131,15 @@ void test_scenario(Document& doc) {
                 (void)ts::story_of_kind(s, kind);
               }));
   }
-  doc.table("structure.damping", listing("structure.damping", [](config::Source& s) {
-              const Eigen::MatrixXd one = Eigen::MatrixXd::Ones(1, 1);
-              (void)ts::damping(s, &one);
-            }));
+  doc.table("structure.damping",
+            listing("structure.damping",
+                    [](config::Source& s) {
+                      const Eigen::MatrixXd one = Eigen::MatrixXd::Ones(1, 1);
+                      (void)ts::damping(s, &one);
+                    }),
+            "`whole_structure_damping` takes the same keys (but damping_ratio): the damping of the whole structure, "
+            "numerical part with the specimens' stiffness, of which the numerical part gets all but the specimens' "
+            "own `specimen_damping_n_s_per_m`.");
   doc.table("experimental[]", listing("experimental[]", [](config::Source& s) {
               std::unique_ptr<config::Source> limits;
               (void)ts::experimental(s, kListedDofs, 0, limits);

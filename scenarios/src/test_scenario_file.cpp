@@ -85,6 +85,17 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
     sections::free_vibration(*d.free_vibration, dofs, t);
   }
   if (d.output) t.record_dofs = sections::record_dofs(*d.output, dofs);
+  if (d.whole_structure_damping) {
+    const bool own = std::visit(
+        [](const auto& c) { return !std::holds_alternative<substructure::Undamped>(c.damping); }, t.structure);
+    if (own) root.fail("whole_structure_damping", "give either structure.damping or whole_structure_damping, not both");
+    t.whole_structure_damping = sections::damping(*d.whole_structure_damping, nullptr);
+    try {
+      (void)coordinator::make_numerical_model(t);
+    } catch (const std::invalid_argument& e) {
+      d.whole_structure_damping->fail_section(e.what());
+    }
+  }
   if (t.record_dofs.empty()) {
     for (Eigen::Index i = 0; i < std::min<Eigen::Index>(dofs, 8); ++i) t.record_dofs.push_back(i);
   }

@@ -68,6 +68,10 @@ Document document(config::Source& root) {
   d.ground_motion = root.optional_section("ground_motion", "the record that drives the test");
   d.free_vibration = root.optional_section("free_vibration", "or: a free vibration from given displacements");
   d.output = root.optional_section("output", "what is recorded");
+  d.whole_structure_damping = root.optional_section(
+      "whole_structure_damping",
+      "the damping of the whole structure (numerical part and specimens); the numerical part gets it less the "
+      "specimens' own");
   if ((d.ground_motion != nullptr) == (d.free_vibration != nullptr)) {
     root.fail(d.ground_motion ? "free_vibration" : "ground_motion",
               "give exactly one of ground_motion or free_vibration");
@@ -157,6 +161,13 @@ substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* ma
     rayleigh->finish();
     result = modes;
   }
+  auto modal = d.optional_section("modal", "classical damping with a ratio per mode");
+  if (modal) {
+    const auto ratios = modal->numbers(
+        "damping_ratios", Number::between(0.0, 1.0, "", "each mode's fraction of critical (one: every mode)"), 100000);
+    modal->finish();
+    result = substructure::ModalDamping{ratios};
+  }
   // C = a0 M + a1 K0 as OpenSees' `rayleigh a0 0 a1 0` gives it: the same C when a model is
   // split between rpsd and OpenSees, where damping fitted to this part's modes would differ.
   auto coefficients = d.optional_section("rayleigh_coefficients", "Rayleigh damping given by its coefficients");
@@ -174,8 +185,11 @@ substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* ma
                                                                   0.0, kMaxStiffnessNPerM, true});
   d.finish();
   if (rayleigh && zeta) d.fail("rayleigh", "give either rayleigh or damping_ratio, not both");
-  if (coefficients && (rayleigh || zeta)) {
-    d.fail("rayleigh_coefficients", "give one of rayleigh, rayleigh_coefficients or damping_ratio");
+  if (static_cast<int>(rayleigh != nullptr) + static_cast<int>(coefficients != nullptr) +
+          static_cast<int>(modal != nullptr) + static_cast<int>(zeta.has_value()) >
+      1) {
+    d.fail(modal ? "modal" : "rayleigh_coefficients",
+           "give one of rayleigh, rayleigh_coefficients, modal or damping_ratio");
   }
   if (zeta && !k) d.fail("damping_ratio", "needs of_stiffness_n_per_m, the stiffness it refers to");
   if (k && !zeta) d.fail("of_stiffness_n_per_m", "only with damping_ratio");
@@ -252,6 +266,9 @@ void specimen_channel(config::Source& e, std::size_t index, coordinator::Experim
   channel.dof.specimen_stiffness_estimate_n_per_m =
       e.number("specimen_stiffness_n_per_m",
                Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen's estimated stiffness"));
+  channel.specimen_damping_n_s_per_m =
+      e.number_or("specimen_damping_n_s_per_m", 0.0,
+                  Number::between(0.0, 1e9, "N s/m", "the specimen's own damping (taken from the whole structure's)"));
   const std::string source = e.choice("restoring_force", {"measured_force", "stiffness_times_displacement"},
                                       "what the structure takes as the specimen's force");
   channel.restoring_force = source == "measured_force"

@@ -31,6 +31,7 @@ struct Document {
   std::unique_ptr<config::Source> ground_motion;
   std::unique_ptr<config::Source> free_vibration;
   std::unique_ptr<config::Source> output;
+  std::unique_ptr<config::Source> whole_structure_damping;
 };
 Document document(config::Source& root);
 

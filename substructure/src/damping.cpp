@@ -64,6 +64,27 @@ BuiltDamping build_damping(const DampingConfig& config, const linalg::Structural
           } catch (const std::invalid_argument& e) {
             throw std::invalid_argument(context + e.what());
           }
+        } else if constexpr (std::is_same_v<T, ModalDamping>) {
+          const std::size_t given = cfg.damping_ratios.size();
+          if (given != 1 && given != static_cast<std::size_t>(n)) {
+            throw std::invalid_argument(context + "modal damping: " + std::to_string(given) + " ratios for " +
+                                        std::to_string(n) + " modes (give one, or one per mode)");
+          }
+          for (double z : cfg.damping_ratios) {
+            if (!(std::isfinite(z) && z >= 0.0)) {
+              throw std::invalid_argument(context + "modal damping: a ratio " + detail::fmt(z) + " is not >= 0");
+            }
+          }
+          const ModalSolution modes = modal_analysis(M, K);
+          const Eigen::MatrixXd m = M.to_dense();
+          Eigen::VectorXd c_modal(n);
+          for (Eigen::Index k = 0; k < n; ++k) {
+            c_modal[k] = 2.0 * cfg.damping_ratios[given == 1 ? 0 : static_cast<std::size_t>(k)] * modes.omega_rad_s[k];
+          }
+          const Eigen::MatrixXd m_phi = m * modes.modes;
+          Eigen::MatrixXd c = m_phi * c_modal.asDiagonal() * m_phi.transpose();
+          c = 0.5 * (c + c.transpose());  // symmetric to the last bit
+          return {linalg::StructuralMatrix(c), std::nullopt};
         } else {
           static_assert(std::is_same_v<T, RayleighCoefficients>);
           if (!(std::isfinite(cfg.a0_per_s) && cfg.a0_per_s >= 0.0) || !(std::isfinite(cfg.a1_s) && cfg.a1_s >= 0.0)) {

@@ -29,6 +29,7 @@ namespace fs = std::filesystem;
 const std::vector<std::pair<std::string, std::string>> kSameKeysAs = {
     {"plant.", "servo."},           // rpsd_delay_compensation's plant
     {"actuator.servo.", "servo."},  // the node's and the emulator's plant
+    {"whole_structure_damping.", "structure.damping."},
 };
 
 std::string as_listed(const std::string& key) {

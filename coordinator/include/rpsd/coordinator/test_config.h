@@ -32,6 +32,9 @@ struct ExperimentalChannel {
   RestoringForceSource restoring_force = RestoringForceSource::kMeasuredForce;
   std::uint32_t site_id = 1;  // the servo node (site) that owns the actuator
   CoordinatorLimits limits;   // experimental[i].limits
+  // The specimen's own damping (specimen scale), part of the whole structure's: what the
+  // numerical part's damping leaves out when the damping is the whole structure's.
+  double specimen_damping_n_s_per_m = 0.0;
 };
 
 // How the loop is paced.
@@ -113,6 +116,10 @@ struct TestConfig {
   // watchdog; identity, channels and period come from the test). A site without one runs
   // a node with ServoNodeConfig's defaults.
   std::map<std::uint32_t, node::ServoNodeConfig> site_nodes;
+  // The damping of the whole structure (numerical part with the specimens' stiffness), when
+  // given: the numerical part's C is it less the specimens' own damping (the structure's own
+  // damping is then none). The RTHS benchmark's 5 % in every mode of the reference building.
+  std::optional<substructure::DampingConfig> whole_structure_damping;
   // Numerical sites in remote OpenSees processes (their channels are in `experimental`).
   std::vector<OpenSeesSite> opensees_sites;
   // The OpenSees site of a site id, or nullptr for a site with an actuator.

@@ -1,6 +1,8 @@
 #pragma once
 // How a model's damping matrix C is specified, and how it is built from M and K0.
 
+#include <vector>
+
 #include "rpsd/linalg/structural_matrix.h"
 #include "rpsd/substructure/rayleigh.h"
 
@@ -36,8 +38,15 @@ struct RayleighFromFrequencies {
   double damping_ratio_b = 0.05;
 };
 
-using DampingConfig =
-    std::variant<Undamped, DampingMatrix, RayleighFromModes, RayleighFromFrequencies, RayleighCoefficients>;
+// Classical damping with a ratio per mode: C = M Φ diag(2 ζ_k ω_k) Φᵀ M, Φ mass-normalised
+// (modal.h), so that mode k has ratio ζ_k exactly (the RTHS benchmark's 5 % in every mode).
+// One ratio applies to every mode; otherwise one per mode, in ascending frequency.
+struct ModalDamping {
+  std::vector<double> damping_ratios;
+};
+
+using DampingConfig = std::variant<Undamped, DampingMatrix, RayleighFromModes, RayleighFromFrequencies,
+                                   RayleighCoefficients, ModalDamping>;
 
 struct BuiltDamping {
   linalg::StructuralMatrix c;                    // same storage as K0
