@@ -55,6 +55,11 @@ bool GenericClientSession::reply(std::span<const double> values) {
   return stream_.write_all(std::as_bytes(std::span<const double>(reply_))) == IoStatus::kOk;
 }
 
+bool GenericClientSession::answer_not_a_number() {
+  ++drained_;
+  return stream_.write_all(std::as_bytes(std::span<const double>(nan_reply_))) == IoStatus::kOk;
+}
+
 SessionEnd GenericClientSession::serve(GenericClientSite& site) {
   const int n = options_.basic_dofs;
   std::array<std::int32_t, 11> wire{};
@@ -123,10 +128,7 @@ SessionEnd GenericClientSession::serve(GenericClientSite& site) {
       // Stopped: nothing more reaches the actuators, and every answer is not-a-number until the
       // client finishes (an OpenSees client reads a closed connection forever, so it is not closed).
       if (code != kSetTrialResponse && code != kCommitState) {
-        ++drained_;
-        if (stream_.write_all(std::as_bytes(std::span<const double>(nan_reply_))) != IoStatus::kOk) {
-          return finish({SessionEnd::Kind::kIoError, "the reply could not be sent"});
-        }
+        if (!answer_not_a_number()) return finish({SessionEnd::Kind::kIoError, "the reply could not be sent"});
       }
       continue;
     }
@@ -191,10 +193,7 @@ SessionEnd GenericClientSession::serve(GenericClientSite& site) {
     }
     if (stopped && code != kSetTrialResponse && code != kCommitState) {
       // The request this stop interrupted still gets its answer.
-      ++drained_;
-      if (stream_.write_all(std::as_bytes(std::span<const double>(nan_reply_))) != IoStatus::kOk) {
-        return finish({SessionEnd::Kind::kIoError, "the reply could not be sent"});
-      }
+      if (!answer_not_a_number()) return finish({SessionEnd::Kind::kIoError, "the reply could not be sent"});
     } else if (!replied) {
       return finish({SessionEnd::Kind::kIoError, "the reply could not be sent"});
     }

@@ -58,6 +58,11 @@ SiteServer::SiteServer(const SiteServerConfig& config, const std::filesystem::pa
 
 SiteServer::~SiteServer() = default;
 
+double SiteServer::reference_of(std::size_t channel) const {
+  const int relative_to = config_.maps[channel].relative_to;
+  return relative_to >= 0 ? trial_d_[relative_to] : 0.0;
+}
+
 bool SiteServer::stop(coordinator::StepOutcome outcome) {
   stopped_ = true;
   run_.outcome = outcome;
@@ -107,10 +112,8 @@ bool SiteServer::force(std::span<double> force) {
     pending_ = false;
     commanded_ = true;
     for (std::size_t ch = 0; ch < config_.maps.size(); ++ch) {
-      const ChannelMap& map = config_.maps[ch];
-      const double relative = map.relative_to >= 0 ? trial_d_[map.relative_to] : 0.0;
-      targets_[static_cast<Eigen::Index>(ch)] =
-          config_.site.experimental[ch].dof.displacement_scale * (trial_d_[map.basic_dof] - relative);
+      targets_[static_cast<Eigen::Index>(ch)] = config_.site.experimental[ch].dof.displacement_scale *
+                                                (trial_d_[config_.maps[ch].basic_dof] - reference_of(ch));
     }
     const coordinator::StepOutcome outcome = exchange_->exchange(targets_, trial_time_s_);
     if (outcome != coordinator::StepOutcome::kOk) return stop(outcome);
@@ -145,10 +148,9 @@ bool SiteServer::force(std::span<double> force) {
 void SiteServer::measured_displacement(std::span<double> displacement) {
   for (int i = 0; i < config_.element_dofs; ++i) displacement[static_cast<std::size_t>(i)] = trial_d_[i];
   for (std::size_t ch = 0; ch < config_.maps.size(); ++ch) {
-    const ChannelMap& map = config_.maps[ch];
-    const double relative = map.relative_to >= 0 ? trial_d_[map.relative_to] : 0.0;
-    displacement[static_cast<std::size_t>(map.basic_dof)] =
-        exchange_->feedback().displacement_m[ch] / config_.site.experimental[ch].dof.displacement_scale + relative;
+    displacement[static_cast<std::size_t>(config_.maps[ch].basic_dof)] =
+        exchange_->feedback().displacement_m[ch] / config_.site.experimental[ch].dof.displacement_scale +
+        reference_of(ch);
   }
 }
 

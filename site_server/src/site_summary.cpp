@@ -1,8 +1,5 @@
 #include "rpsd/site_server/site_summary.h"
 
-#include <filesystem>
-
-#include "rpsd/build_info/build_info.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/servo/envelope.h"
 #include "rpsd/servo/plant_factory.h"
@@ -100,13 +97,7 @@ nlohmann::json site_summary(const SiteServerConfig& config, const SiteRun& run, 
                         {"peak_force_n", run.peak_force_n[ch]}});
   }
   summary["channels"] = channels;
-  nlohmann::json inputs = nlohmann::json::array();
-  for (const auto& file : config.input_files) {
-    inputs.push_back({{"file", std::filesystem::absolute(file).lexically_normal().string()},
-                      {"sha256", studies::sha256_of_file(file)}});
-  }
-  summary["provenance"] = {{"rpsd", {{"version", build_info::version()}, {"commit", build_info::commit()}}},
-                           {"inputs", inputs}};
+  summary["provenance"] = studies::provenance_json(config.input_files);
   return summary;
 }
 

@@ -37,9 +37,11 @@ std::string sha256_of_file(const std::filesystem::path& file) {
   return hex;
 }
 
-nlohmann::json provenance_json(const StudyDocument& document) {
+nlohmann::json provenance_json(const StudyDocument& document) { return provenance_json(document.input_files); }
+
+nlohmann::json provenance_json(const std::vector<std::filesystem::path>& input_files) {
   nlohmann::json inputs = nlohmann::json::array();
-  for (const auto& file : document.input_files) {
+  for (const auto& file : input_files) {
     inputs.push_back(
         {{"file", std::filesystem::absolute(file).lexically_normal().string()}, {"sha256", sha256_of_file(file)}});
   }

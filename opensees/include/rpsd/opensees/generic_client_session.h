@@ -79,6 +79,7 @@ class GenericClientSession {
  private:
   IoStatus read_request();  // waits in slices so that stop_request is seen
   bool reply(std::span<const double> values);
+  bool answer_not_a_number();  // once stopped: one reply of NaN, counted
 
   TcpStream stream_;
   SessionOptions options_;

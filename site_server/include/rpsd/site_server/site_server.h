@@ -56,6 +56,8 @@ class SiteServer : public opensees::GenericClientSite {
 
  private:
   bool stop(coordinator::StepOutcome outcome);
+  // The trial displacement a channel's is measured from (its relative_to DOF's, or zero).
+  double reference_of(std::size_t channel) const;
 
   const SiteServerConfig& config_;
   double control_period_s_ = 0.0;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "rpsd/studies/study_config.h"
 
@@ -17,5 +18,7 @@ std::string sha256_of_file(const std::filesystem::path& file);
 
 // {"rpsd": {"version", "commit"}, "inputs": [{"file", "sha256"}, ...]}
 nlohmann::json provenance_json(const StudyDocument& document);
+// The same for any list of files read (a site-server file).
+nlohmann::json provenance_json(const std::vector<std::filesystem::path>& input_files);
 
 }  // namespace rpsd::studies
