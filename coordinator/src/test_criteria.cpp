@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace rpsd::coordinator {
 namespace {
@@ -14,10 +17,19 @@ compensation::CrossCorrelationOptions delay_options(int max_lag_samples) {
 
 }  // namespace
 
-CriteriaAccumulator::CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz)
+CriteriaAccumulator::CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz,
+                                         std::vector<FloorSource> floors)
     : max_lag_samples_(static_cast<int>(0.2 * control_rate_hz)),  // up to 200 ms
       control_rate_hz_(control_rate_hz),
-      dofs_(static_cast<std::size_t>(recorded_dofs)) {
+      dofs_(static_cast<std::size_t>(recorded_dofs)),
+      floors_(std::move(floors)) {
+  if (recorded_dofs > kMaxRecordedDofs)
+    throw std::invalid_argument("criteria: at most " + std::to_string(kMaxRecordedDofs) + " recorded DOFs");
+  floors_.resize(dofs_.size());
+  for (const FloorSource& f : floors_) {
+    if (f.channel >= channels || !(f.displacement_scale > 0.0))
+      throw std::invalid_argument("criteria: a floor's channel or displacement scale is out of range");
+  }
   channels_.reserve(static_cast<std::size_t>(channels));
   for (int c = 0; c < channels; ++c)
     channels_.push_back({compensation::CrossCorrelationAccumulator(delay_options(max_lag_samples_))});
@@ -39,8 +51,16 @@ void CriteriaAccumulator::add_test(const StepRecord& r) {
   ++test_steps_;
 }
 
+void CriteriaAccumulator::floor_displacements(const StepRecord& test, std::span<double> out) const {
+  for (std::size_t d = 0; d < dofs_.size(); ++d) {
+    const FloorSource& f = floors_[d];
+    out[d] = f.channel < 0 ? test.displacement_m[d] : test.measured_m[f.channel] / f.displacement_scale;
+  }
+}
+
 void CriteriaAccumulator::add_pair(const StepRecord& test, const StepRecord& reference) {
-  add_pair(std::span<const double>(test.displacement_m.data(), dofs_.size()), reference);
+  floor_displacements(test, floor_scratch_m_);
+  add_pair(std::span<const double>(floor_scratch_m_.data(), dofs_.size()), reference);
 }
 
 void CriteriaAccumulator::add_pair(std::span<const double> test_displacement_m, const StepRecord& reference) {

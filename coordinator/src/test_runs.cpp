@@ -4,6 +4,21 @@
 #include <vector>
 
 namespace rpsd::coordinator {
+namespace {
+
+// The benchmark's floors: an experimental DOF's displacement is the measured one.
+std::vector<FloorSource> floor_sources(const TestConfig& s) {
+  std::vector<FloorSource> floors(s.record_dofs.size());
+  for (std::size_t d = 0; d < floors.size(); ++d) {
+    for (std::size_t c = 0; c < s.experimental.size(); ++c) {
+      const auto& dof = s.experimental[c].dof;
+      if (dof.dof == s.record_dofs[d]) floors[d] = {static_cast<int>(dof.actuator_channel), dof.displacement_scale};
+    }
+  }
+  return floors;
+}
+
+}  // namespace
 
 TestRun run_test(const TestConfig& s, const std::filesystem::path& csv, bool perfect_actuator,
                  const Progress& progress) {
@@ -17,7 +32,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
                                      const std::atomic<bool>* stop_request) {
   const auto channels = static_cast<int>(s.experimental.size());
   const auto dofs = static_cast<std::size_t>(s.record_dofs.size());
-  CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz);
+  CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz, floor_sources(s));
   TestAssembly test(s, {test_csv, false, false, {}, stop_request});
   EvaluatedTest result;
   StepOutcome test_outcome = StepOutcome::kOk, reference_outcome = StepOutcome::kOk;
@@ -43,8 +58,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
     test_outcome = test.run(
         [&](const StepRecord& r) {
           sums.add_test(r);
-          std::copy_n(r.displacement_m.begin(), dofs,
-                      displacements.begin() + static_cast<std::ptrdiff_t>(taken * dofs));
+          sums.floor_displacements(r, std::span<double>(displacements.data() + taken * dofs, dofs));
           ++taken;
         },
         progress);
@@ -65,7 +79,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
 
 Criteria evaluate(const TestConfig& s, const TestRun& test, const TestRun& reference) {
   CriteriaAccumulator sums(static_cast<int>(s.experimental.size()), static_cast<int>(s.record_dofs.size()),
-                           s.control_rate_hz);
+                           s.control_rate_hz, floor_sources(s));
   const std::size_t pairs = std::min(test.records.size(), reference.records.size());
   for (std::size_t i = 0; i < test.records.size(); ++i) {
     sums.add_test(test.records[i]);

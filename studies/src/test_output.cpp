@@ -1,5 +1,7 @@
 #include "rpsd/studies/test_output.h"
 
+#include "rpsd/studies/benchmark_criteria.h"
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -358,19 +360,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
                     {"rms_error_vs_reference_percent", dc.rms_error_percent},
                     {"peak_error_vs_reference_percent", dc.peak_error_percent}});
   }
-  // Benchmark numbering: J4-J6 RMS and J7-J9 peak errors of the first three recorded DOFs.
-  json benchmark = json::object();
-  static constexpr const char* kRmsNames[] = {"J4", "J5", "J6"};
-  static constexpr const char* kPeakNames[] = {"J7", "J8", "J9"};
-  for (std::size_t d = 0; d < std::min<std::size_t>(3, criteria.dofs.size()); ++d) {
-    benchmark[kRmsNames[d]] = criteria.dofs[d].rms_error_percent;
-    benchmark[kPeakNames[d]] = criteria.dofs[d].peak_error_percent;
-  }
-  if (!criteria.channels.empty()) {
-    benchmark["J1"] = channels[0]["J1_tracking_delay_ms"];
-    benchmark["J2"] = criteria.channels[0].j2_rms_tracking_error_percent;
-    benchmark["J3"] = criteria.channels[0].j3_peak_tracking_error_percent;
-  }
+  const json benchmark = benchmark_criteria_json(criteria);
   // What stopped a test that did not complete, for scripts: which limit, where, how far.
   json stopped_by = nullptr;
   if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
@@ -401,6 +391,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"channels", channels},
       {"dofs", dofs},
       {"benchmark_criteria", benchmark},
+      {"benchmark_criteria_definitions", benchmark_criteria_definitions(criteria)},
       {"energy_error_j", criteria.energy_error_j},
       {"dropped_records", test.dropped_records},
       {"overruns", test.timing.overruns},

@@ -334,3 +334,39 @@ TEST(TestCriteria, J4ToJ9OfADelayedResponseFollowTheDelayedSine) {
 
 }  // namespace
 }  // namespace rpsd::coordinator
+
+namespace rpsd::coordinator {
+namespace {
+
+TEST(TestCriteria, AnExperimentalFloorIsJudgedOnItsMeasuredDisplacementAsThePaperDefinesJ4AndJ7) {
+  // Floor 1 is channel 1's DOF (specimen scale 2: measured = 2 x model). Its numerical
+  // displacement equals the reference, its measured one is (1 + 3 %) of 2 x reference: the
+  // paper's J4 = J7 = 3 %, where the numerical y_n would give 0. Floor 2 stays numerical.
+  const auto reference = [](int d, int k) { return kFloorAmplitude[d] * std::sin(kTheta * k); };
+  DofRuns runs = dof_records(2, reference, reference);
+  for (int k = 0; k < kSamples; ++k) {
+    StepRecord& t = runs.test[static_cast<std::size_t>(k)];
+    t.channels = 2;
+    t.measured_m[0] = 5.0;  // another channel's: must not count
+    t.measured_m[1] = 2.0 * 1.03 * reference(0, k);
+  }
+  CriteriaAccumulator by_record(2, 2, kRateHz, {{1, 2.0}, {}}), by_span(2, 2, kRateHz, {{1, 2.0}, {}});
+  for (std::size_t k = 0; k < runs.test.size(); ++k) {
+    by_record.add_pair(runs.test[k], runs.reference[k]);
+    std::array<double, 2> floors{};
+    by_span.floor_displacements(runs.test[k], floors);
+    by_span.add_pair(floors, runs.reference[k]);
+  }
+  for (const Criteria& c : {by_record.criteria(), by_span.criteria()}) {
+    ASSERT_EQ(c.dofs.size(), 2u);
+    EXPECT_LT(relative(c.dofs[0].rms_error_percent, 3.0), 1e-9);
+    EXPECT_LT(relative(c.dofs[0].peak_error_percent, 3.0), 1e-9);
+    EXPECT_LT(relative(c.dofs[0].peak_displacement_m, 1.03 * kFloorAmplitude[0]), 1e-12);
+    EXPECT_EQ(c.dofs[1].rms_error_percent, 0.0);
+  }
+  EXPECT_THROW(CriteriaAccumulator(1, 1, kRateHz, {{1, 1.0}}), std::invalid_argument);
+  EXPECT_THROW(CriteriaAccumulator(1, 1, kRateHz, {{0, 0.0}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rpsd::coordinator

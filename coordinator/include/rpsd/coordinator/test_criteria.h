@@ -2,9 +2,11 @@
 // one step record at a time, so that a test of any length is evaluated without keeping its
 // history. Per channel J1-J3 and the final tracking indicator; per recorded DOF J4-J9
 // against the perfect-actuator reference; the energy error at the end. RMS values are raw
-// (not mean-removed); J4-J9 follow the paper's order.
+// (not mean-removed); J4-J9 follow the paper's order, and a floor that is an experimental
+// DOF is the measured x_m there, as the paper defines it (docs/benchmark.md).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -34,19 +36,30 @@ struct Criteria {
   double energy_error_j = 0.0;  // input - (kinetic + damping + restoring) at the end
 };
 
+// Where a recorded DOF's displacement for J4-J9 comes from: the numerical model's (channel
+// -1), or a channel's measured displacement divided by its displacement scale.
+struct FloorSource {
+  int channel = -1;
+  double displacement_scale = 1.0;  // specimen / model
+};
+
 class CriteriaAccumulator {
  public:
   // J1 searches lags up to 200 ms and is NaN for a record not longer than twice that.
-  // Not real-time safe.
-  CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz);
+  // `floors`: one per recorded DOF (empty: every one numerical). Not real-time safe.
+  CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz, std::vector<FloorSource> floors = {});
 
   // A step of the test: J1-J3, the tracking indicator and the energy. Real-time safe.
   void add_test(const StepRecord& test);
   // The same step of the test and of its reference, for J4-J9; pairs run from the first
   // step while both runs have one. Real-time safe.
   void add_pair(const StepRecord& test, const StepRecord& reference);
-  // The same with the test's recorded-DOF displacements kept apart. Real-time safe.
+  // The same with the test's recorded-DOF displacements kept apart (floor_displacements).
+  // Real-time safe.
   void add_pair(std::span<const double> test_displacement_m, const StepRecord& reference);
+  // The recorded DOFs' displacements J4-J9 compare, model scale, into `out` (one per
+  // recorded DOF). Real-time safe.
+  void floor_displacements(const StepRecord& test, std::span<double> out) const;
 
   std::int64_t test_steps() const { return test_steps_; }
   ChannelCriteria channel(int c) const;
@@ -65,6 +78,8 @@ class CriteriaAccumulator {
   double control_rate_hz_;
   std::vector<ChannelSums> channels_;
   std::vector<DofSums> dofs_;
+  std::vector<FloorSource> floors_;
+  std::array<double, kMaxRecordedDofs> floor_scratch_m_{};
   std::int64_t test_steps_ = 0;
   double energy_error_j_ = 0.0;
 };
