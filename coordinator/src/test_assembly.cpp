@@ -55,7 +55,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   const bool perfect_actuator = options.perfect_actuator;
   Parts& p = *parts_;
   p.config = &s;
-  p.numerical = make_numerical_model(s);
+  p.numerical =
+      make_numerical_model(s, perfect_actuator ? SpecimenShare::kKeptInNumericalPart : SpecimenShare::kLeftToSpecimens);
   const Eigen::Index dofs = p.numerical->dofs();
   const int channels = static_cast<int>(s.experimental.size());
 
@@ -117,7 +118,7 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
           ? 0
           : std::max(1, static_cast<int>(std::lround(s.run_away.max_valve_saturation_s / control_period_s)));
   if (s.ground_motion) {
-    p.ground_load.configure(p.numerical->mass(), s.influence);
+    p.ground_load.configure(whole_structure_mass(s), s.influence);
     parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
     parts.ground_load = &p.ground_load;
   }

@@ -46,6 +46,12 @@ void CriteriaAccumulator::add_test(const StepRecord& r) {
     s.peak_error = std::max(s.peak_error, std::abs(e));
     s.peak_target = std::max(s.peak_target, std::abs(target));
     s.final_tracking_indicator_m2 = r.tracking_indicator_m2[c];
+    s.peak_measured = std::max(s.peak_measured, std::abs(measured));
+    s.peak_force = std::max(s.peak_force, std::abs(r.measured_force_n[c]));
+    if (test_steps_ > 0) {
+      s.peak_velocity = std::max(s.peak_velocity, std::abs(r.command_m[c] - s.last_command) * control_rate_hz_);
+    }
+    s.last_command = r.command_m[c];
   }
   energy_error_j_ = r.input_energy_j - (r.kinetic_energy_j + r.damping_energy_j + r.restoring_energy_j);
   ++test_steps_;
@@ -86,6 +92,9 @@ ChannelCriteria CriteriaAccumulator::channel(int c) const {
   cc.j2_rms_tracking_error_percent = s.target2 > 0.0 ? 100.0 * std::sqrt(s.error2 / s.target2) : 0.0;
   cc.j3_peak_tracking_error_percent = s.peak_target > 0.0 ? 100.0 * s.peak_error / s.peak_target : 0.0;
   cc.final_tracking_indicator_m2 = s.final_tracking_indicator_m2;
+  cc.peak_measured_m = s.peak_measured;
+  cc.peak_measured_force_n = s.peak_force;
+  cc.peak_command_velocity_m_per_s = s.peak_velocity;
   return cc;
 }
 

@@ -195,6 +195,11 @@ void test_scenario(Document& doc) {
   doc.table("output", listing("output", [](config::Source& s) { (void)ts::record_dofs(s, kListedDofs); }));
   doc.table("sweep", listing("", [](config::Source& s) { (void)study_sections::sweep(s); }),
             "One or two keys, each run with every value: the cases are read in full before anything runs.");
+  doc.table("monte_carlo", listing("", [](config::Source& s) { (void)study_sections::monte_carlo(s); }),
+            "Instead of a sweep: `runs` runs, each with the listed keys drawn about the file's values (normal: "
+            "`standard_deviation`; uniform: `half_width`) from one generator seeded with `seed`, and "
+            "`noise_seed_key` (optional) set to seed + run number. Every run is read in full before anything runs; "
+            "the results are each run's folder, runs.csv and the statistics of every criterion (docs/benchmark.md).");
 }
 
 void servo_parameter_file(Document& doc) {

@@ -7,6 +7,7 @@
 #include "rpsd/scenarios/ground_motion_section.h"
 #include "rpsd/scenarios/test_scenario_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
+#include "rpsd/studies/monte_carlo.h"
 #include "study_sections.h"
 
 namespace rpsd::scenarios {
@@ -183,6 +184,24 @@ std::string number_text(double v) {
   return std::string(buffer, end);
 }
 
+// One case of a batch (a sweep's case, a Monte Carlo run): the document parsed afresh from the
+// text, so that every untouched value keeps its line and column, with the command line's
+// overrides, without the batch key, with the case's own values; read in full. The first case
+// carries the file paths its readers made absolute back into the batch's document.
+studies::StudyDocument read_case(const std::string& text, const std::filesystem::path& file,
+                                 const std::vector<Override>& command_line, const char* batch_key,
+                                 const std::vector<Override>& overrides, YAML::Node batch_document, bool first) {
+  YAML::Node case_document = parse_yaml_text(text, file.string());
+  auto nodes = std::make_shared<std::vector<OverrideNode>>(*apply_overrides(case_document, command_line));
+  case_document.remove(batch_key);
+  for (const Override& o : overrides) {
+    for (auto& n : apply_override(case_document, o)) nodes->push_back(std::move(n));
+  }
+  studies::StudyDocument one = read_document(case_document, file, text, {}, nodes, false);
+  if (first) adopt_absolute_paths(batch_document, case_document);
+  return one;
+}
+
 // `sweep:` is a list of one or two axes, each `key` with `values: [...]` or
 // `range: {start, stop, count}`. Each case is the document with the axis values set as
 // overrides, read in full, so that every case is checked before the batch runs.
@@ -206,15 +225,7 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
       }
       studies::StudyDocument one;
       try {
-        // Parsed afresh from the text, so that every untouched value keeps its line and column.
-        YAML::Node case_document = parse_yaml_text(text, file.string());
-        auto nodes = std::make_shared<std::vector<OverrideNode>>(*apply_overrides(case_document, command_line));
-        case_document.remove("sweep");
-        for (const Override& o : overrides) {
-          for (auto& n : apply_override(case_document, o)) nodes->push_back(std::move(n));
-        }
-        one = read_document(case_document, file, text, {}, nodes, false);
-        if (result.sweep_cases.empty()) adopt_absolute_paths(document, case_document);
+        one = read_case(text, file, command_line, "sweep", overrides, document, result.sweep_cases.empty());
       } catch (const ConfigError& e) {
         std::string where = result.sweep[0].key_path + " = " + number_text(values[0]);
         if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
@@ -227,6 +238,70 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
   result.study = result.sweep_cases.front();
   result.effective_yaml = emitted(document);
   // The other keys were checked by every case's own reader.
+  return result;
+}
+
+// The number at key.path in the document (mapping keys, or list indices as numbers).
+std::optional<double> number_at(const YAML::Node& root, const std::string& key_path) {
+  YAML::Node node = YAML::Clone(root);
+  std::size_t start = 0;
+  while (node) {
+    const std::size_t dot = key_path.find('.', start);
+    const std::string key = key_path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (node.IsSequence()) {
+      std::size_t index = 0;
+      if (std::from_chars(key.data(), key.data() + key.size(), index).ec != std::errc() || index >= node.size())
+        return std::nullopt;
+      node = node[index];
+    } else if (node.IsMap()) {
+      node = node[key];
+    } else {
+      return std::nullopt;
+    }
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  double value = 0.0;
+  if (!node || !node.IsScalar() || !YAML::convert<double>::decode(node, value)) return std::nullopt;
+  return value;
+}
+
+// `monte_carlo:` runs, each the document with the perturbed keys (and the noise seed) set as
+// overrides and read in full, so that every run is checked before the batch runs.
+studies::StudyDocument read_monte_carlo(const std::string& text, const std::vector<Override>& command_line,
+                                        YAML::Node document, MappingReader& root, const std::filesystem::path& file,
+                                        studies::StudyDocument result) {
+  studies::MonteCarloConfig config = study_sections::monte_carlo(root);
+  for (auto& p : config.parameters) {
+    const auto nominal = number_at(document, p.key_path);
+    if (!nominal) root.fail("monte_carlo", "parameters: " + p.key_path + " is not a number in this scenario");
+    p.nominal = *nominal;
+  }
+  const auto draws = studies::draw_monte_carlo(config);
+  for (int run = 0; run < config.runs; ++run) {
+    std::vector<Override> overrides;
+    for (std::size_t i = 0; i < config.parameters.size(); ++i) {
+      overrides.push_back(
+          {config.parameters[i].key_path, number_text(draws[run][i]), "monte_carlo", Override::Kind::kSet});
+    }
+    if (!config.noise_seed_key.empty()) {
+      overrides.push_back({config.noise_seed_key, std::to_string(config.seed + static_cast<std::uint64_t>(run) + 1),
+                           "monte_carlo", Override::Kind::kSet});
+    }
+    studies::StudyDocument one;
+    try {
+      one = read_case(text, file, command_line, "monte_carlo", overrides, document, result.sweep_cases.empty());
+    } catch (const ConfigError& e) {
+      std::string where;
+      for (const auto& o : overrides) where += (where.empty() ? "" : ", ") + o.key_path + " = " + o.value;
+      throw ConfigError(std::string(e.what()) + " (monte_carlo run " + std::to_string(run + 1) + ": " + where + ")");
+    }
+    result.sweep_cases.push_back(std::get<coordinator::TestConfig>(one.study));
+    result.sweep_values.push_back(draws[run]);
+  }
+  result.monte_carlo = std::move(config);
+  result.study = result.sweep_cases.front();
+  result.effective_yaml = emitted(document);
   return result;
 }
 
@@ -265,10 +340,15 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
   result.name = file.stem().string();
   const std::string kind = study_sections::study_kind(root, result.description);
   if (kind == "rpsd_test") {
+    if (root.has("sweep") && root.has("monte_carlo")) root.fail("monte_carlo", "give either sweep or monte_carlo");
     if (root.has("sweep")) {
       // A case still holding a sweep means the key was given twice (YAML keeps both).
       if (!sweep_allowed) root.fail("sweep", "given more than once");
       return read_sweep(text, command_line, document, root, file, std::move(result));
+    }
+    if (root.has("monte_carlo")) {
+      if (!sweep_allowed) root.fail("monte_carlo", "given more than once");
+      return read_monte_carlo(text, command_line, document, root, file, std::move(result));
     }
     coordinator::TestConfig scenario = read_test_config(root, file);
     scenario.description = result.description;

@@ -180,4 +180,34 @@ std::vector<studies::SweepAxis> sweep(config::Source& root) {
   return axes;
 }
 
+studies::MonteCarloConfig monte_carlo(config::Source& root) {
+  using P = studies::MonteCarloParameter;
+  const auto section = root.section("monte_carlo", "seeded runs with perturbed parameters");
+  studies::MonteCarloConfig m;
+  m.runs = static_cast<int>(section->whole_number("runs", 2, 1000, "how many perturbed runs"));
+  m.seed = static_cast<std::uint64_t>(section->whole_number("seed", 0, 2'000'000'000, "the generator's seed"));
+  m.noise_seed_key =
+      section->optional_text("noise_seed_key", "a key that gets seed + run number in each run (converter noise)")
+          .value_or("");
+  for (auto& item : section->sections("parameters", 20, "the perturbed keys and their distributions")) {
+    P p;
+    p.key_path = item->text("key", "the perturbed key's path (a.b.0.c); the file's value is the mean");
+    const std::string kind = item->choice_or("distribution", {"normal", "uniform"}, "normal", "the distribution");
+    if (kind == "normal") {
+      p.distribution = P::Distribution::kNormal;
+      p.spread = item->number("standard_deviation", Number::positive("", "in the key's unit"));
+    } else {
+      p.distribution = P::Distribution::kUniform;
+      p.spread = item->number("half_width", Number::positive("", "in the key's unit"));
+    }
+    item->finish();
+    if (p.key_path.rfind("monte_carlo", 0) == 0 || p.key_path == "study" || p.key_path == m.noise_seed_key)
+      item->fail("key", "cannot perturb this key");
+    m.parameters.push_back(std::move(p));
+  }
+  if (m.parameters.empty()) section->fail("parameters", "name at least one key to perturb");
+  section->finish();
+  return m;
+}
+
 }  // namespace rpsd::scenarios::study_sections

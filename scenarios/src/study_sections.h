@@ -27,5 +27,7 @@ studies::DelayCompensationStudy delay_compensation(config::Source& root);
 
 // `sweep:`, one or two axes.
 std::vector<studies::SweepAxis> sweep(config::Source& root);
+// `monte_carlo:` (the nominal values are filled in by the caller, from the document).
+studies::MonteCarloConfig monte_carlo(config::Source& root);
 
 }  // namespace rpsd::scenarios::study_sections

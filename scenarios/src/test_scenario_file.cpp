@@ -96,6 +96,15 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
       d.whole_structure_damping->fail_section(e.what());
     }
   }
+  const bool specimen_masses =
+      std::any_of(t.experimental.begin(), t.experimental.end(), [](const auto& e) { return e.specimen_mass_kg > 0.0; });
+  if (specimen_masses) {
+    try {
+      (void)coordinator::make_numerical_model(t);
+    } catch (const std::invalid_argument& e) {
+      root.fail("experimental", e.what());
+    }
+  }
   if (t.record_dofs.empty()) {
     for (Eigen::Index i = 0; i < std::min<Eigen::Index>(dofs, 8); ++i) t.record_dofs.push_back(i);
   }

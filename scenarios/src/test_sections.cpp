@@ -269,6 +269,10 @@ void specimen_channel(config::Source& e, std::size_t index, coordinator::Experim
   channel.specimen_damping_n_s_per_m =
       e.number_or("specimen_damping_n_s_per_m", 0.0,
                   Number::between(0.0, 1e9, "N s/m", "the specimen's own damping (taken from the whole structure's)"));
+  channel.specimen_mass_kg =
+      e.number_or("specimen_mass_kg", 0.0,
+                  Number::between(0.0, 1e9, "kg",
+                                  "the specimen's own mass (taken from the structure's; the ground motion loads it)"));
   const std::string source = e.choice("restoring_force", {"measured_force", "stiffness_times_displacement"},
                                       "what the structure takes as the specimen's force");
   channel.restoring_force = source == "measured_force"

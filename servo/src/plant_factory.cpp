@@ -24,6 +24,8 @@ Envelope envelope_of(const PlantConfig& config) {
       [](const auto& p) -> Envelope {
         if constexpr (std::is_same_v<std::decay_t<decltype(p)>, ServoSystemParameters>) {
           return p.envelope();
+        } else if constexpr (std::is_same_v<std::decay_t<decltype(p)>, FeedbackControlledPlantParameters>) {
+          return p.rig();
         } else {
           return p.rig;
         }
@@ -36,6 +38,8 @@ double specimen_stiffness_of(const PlantConfig& config) {
       [](const auto& p) -> double {
         if constexpr (std::is_same_v<std::decay_t<decltype(p)>, ServoSystemParameters>) {
           return p.specimen.stiffness.initial_n_per_m;
+        } else if constexpr (std::is_same_v<std::decay_t<decltype(p)>, FeedbackControlledPlantParameters>) {
+          return p.plant.specimen_stiffness_n_per_m;
         } else {
           return p.specimen_stiffness_n_per_m;
         }

@@ -25,6 +25,13 @@ void TransferFunctionPlantParameters::validate() const {
   }
   if (!(specimen_stiffness_n_per_m >= 0.0))
     throw std::invalid_argument("specimen_stiffness_n_per_m: must be zero or positive");
+  if (!(specimen_damping_n_s_per_m >= 0.0) || !(specimen_mass_kg >= 0.0))
+    throw std::invalid_argument("specimen damping and mass: must be zero or positive");
+  const int roll_off = tf.denominator.degree() - tf.numerator.degree();
+  if (specimen_damping_n_s_per_m > 0.0 && roll_off < 2)
+    throw std::invalid_argument("specimen_damping_n_s_per_m: the transfer function must roll off by s^2 or more");
+  if (specimen_mass_kg > 0.0 && roll_off < 3)
+    throw std::invalid_argument("specimen_mass_kg: the transfer function must roll off by s^3 or more");
 }
 
 TransferFunctionPlant::TransferFunctionPlant(const TransferFunctionPlantParameters& parameters)
@@ -53,6 +60,9 @@ TransferFunctionPlant::TransferFunctionPlant(const TransferFunctionPlantParamete
     b_[i] /= s;
     c_[i] *= s;
   }
+  // With CB = 0 (and CAB = 0), y' = CAx and y'' = CA^2 x.
+  c_velocity_ = a_.transpose() * c_;
+  c_acceleration_ = a_.transpose() * c_velocity_;
   for (auto* v : {&x_, &k1_, &k2_, &k3_, &k4_, &scratch_}) *v = Eigen::VectorXd::Zero(n);
   reset(0.0);
 }
@@ -92,7 +102,10 @@ PlantMeasurement TransferFunctionPlant::measure() const {
   const double y = c_.dot(x_) + d_ * last_command_m_;
   const double stroke = parameters_.rig.stroke_m;
   const double x = std::clamp(y, -stroke, stroke);
-  return {x, parameters_.specimen_stiffness_n_per_m * x, std::abs(y) >= stroke, false};
+  const double force = parameters_.specimen_stiffness_n_per_m * x +
+                       parameters_.specimen_damping_n_s_per_m * c_velocity_.dot(x_) +
+                       parameters_.specimen_mass_kg * c_acceleration_.dot(x_);
+  return {x, force, std::abs(y) >= stroke, false};
 }
 
 TransferFunctionPlantParameters TransferFunctionPlantParameters::read(config::Source& section,
@@ -114,6 +127,12 @@ TransferFunctionPlantParameters TransferFunctionPlantParameters::read(config::So
       Polynomial(Eigen::Map<Eigen::VectorXd>(numerator.data(), static_cast<Eigen::Index>(numerator.size()))),
       Polynomial(Eigen::Map<Eigen::VectorXd>(denominator.data(), static_cast<Eigen::Index>(denominator.size())))};
   t.specimen_stiffness_n_per_m = specimen_stiffness_n_per_m;
+  t.specimen_damping_n_s_per_m = section.number_or(
+      "specimen_damping_n_s_per_m", 0.0,
+      config::Number::non_negative("N s/m", "the specimen's damping in the measured force: + c dx_m/dt"));
+  t.specimen_mass_kg =
+      section.number_or("specimen_mass_kg", 0.0,
+                        config::Number::non_negative("kg", "the specimen's mass in the measured force: + m d2x_m/dt2"));
   t.plant_rate_hz = section.number_or("plant_rate_hz", t.plant_rate_hz,
                                       config::Number::between(1e3, 1e6, "Hz", "fixed-step integration rate"));
   t.rig = Envelope::read(*section.section("rig", "what the simulated rig can do"));

@@ -38,13 +38,11 @@ ScenarioOverview overview_of(const coordinator::TestConfig& s) {
   substructure::Partition partition;
   partition.configure(coordinator::partition_config(s, o.dofs));
   const Eigen::MatrixXd c = numerical->damping().to_dense();
-  // The whole structure: the specimens' stiffness and their own damping too.
-  Eigen::MatrixXd c_whole = c;
-  for (const auto& e : s.experimental) {
-    c_whole(e.dof.dof, e.dof.dof) += e.dof.force_scale * e.dof.displacement_scale * e.specimen_damping_n_s_per_m;
-  }
-  o.structure_modes =
-      modes_of(numerical->mass(), partition.with_specimen_stiffness(numerical->initial_stiffness()), c_whole);
+  // The whole structure: the numerical part with the specimens' stiffness, damping and mass (as
+  // the perfect-actuator reference runs it).
+  const auto whole = coordinator::make_numerical_model(s, coordinator::SpecimenShare::kKeptInNumericalPart);
+  o.structure_modes = modes_of(whole->mass(), partition.with_specimen_stiffness(whole->initial_stiffness()),
+                               whole->damping().to_dense());
   // The numerical part alone has modes only if it carries stiffness of its own everywhere.
   const Eigen::MatrixXd k = numerical->initial_stiffness().to_dense();
   if (k.ldlt().isPositive() && k.fullPivLu().rank() == k.rows()) {

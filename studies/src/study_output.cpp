@@ -1,5 +1,7 @@
 #include "rpsd/studies/study_output.h"
 
+#include "rpsd/studies/monte_carlo_output.h"
+
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -224,6 +226,9 @@ StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& d
           write_max_gain(dir, file, study, run_max_gain(study));
         } else if constexpr (std::is_same_v<Study, DelayCompensationStudy>) {
           write_delay_compensation(dir, file, study, run_delay_compensation(study, dir));
+        } else if (file.monte_carlo) {
+          run.result = run_monte_carlo_into(dir, file, progress, stop_request);
+          if (run.result != RunResult::kCompleted) run.reason = "see " + (dir / "summary.json").string();
         } else if (!file.sweep.empty()) {
           run.result = run_sweep_into(dir, file, progress, stop_request);
           if (run.result != RunResult::kCompleted) run.reason = "see " + (dir / "summary.json").string();

@@ -349,7 +349,10 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
                          std::isfinite(cc.j1_tracking_delay_ms) ? json(cc.j1_tracking_delay_ms) : json(nullptr)},
                         {"J2_rms_tracking_error_percent", cc.j2_rms_tracking_error_percent},
                         {"J3_peak_tracking_error_percent", cc.j3_peak_tracking_error_percent},
-                        {"final_tracking_indicator_m2", cc.final_tracking_indicator_m2}});
+                        {"final_tracking_indicator_m2", cc.final_tracking_indicator_m2},
+                        {"peak_measured_m", cc.peak_measured_m},
+                        {"peak_measured_force_n", cc.peak_measured_force_n},
+                        {"peak_command_velocity_m_per_s", cc.peak_command_velocity_m_per_s}});
   }
   json dofs = json::array();
   for (std::size_t d = 0; d < criteria.dofs.size(); ++d) {
@@ -426,7 +429,14 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
   TestHeadline headline;
   headline.result = result;
   headline.outcome = outcome;
-  if (!criteria.channels.empty()) headline.j2_percent = criteria.channels[0].j2_rms_tracking_error_percent;
+  headline.benchmark = benchmark_values(criteria);
+  if (!criteria.channels.empty()) {
+    const auto& c0 = criteria.channels[0];
+    headline.j2_percent = c0.j2_rms_tracking_error_percent;
+    headline.peak_measured_m = c0.peak_measured_m;
+    headline.peak_measured_force_n = c0.peak_measured_force_n;
+    headline.peak_command_velocity_m_per_s = c0.peak_command_velocity_m_per_s;
+  }
   if (!criteria.dofs.empty()) {
     headline.j4_percent = criteria.dofs[0].rms_error_percent;
     headline.peak_displacement_m = criteria.dofs[0].peak_displacement_m;

@@ -84,3 +84,49 @@ TEST(WholeStructureDamping, StructureDampingAndWholeStructureDampingTogetherAreR
 
 }  // namespace
 }  // namespace rpsd::coordinator
+
+namespace rpsd::coordinator {
+namespace {
+
+// Case 1 with the specimen's mass too (the benchmark's m_e = 29.13 kg).
+TestConfig case1_with_specimen_mass(double mass_kg) {
+  std::string text = text_of(kCase1);
+  const std::string damping = "specimen_damping_n_s_per_m: 114.6\n";
+  text.insert(text.find(damping) + damping.size(), "    specimen_mass_kg: " + std::to_string(mass_kg) + "\n");
+  return std::get<TestConfig>(scenarios::parse_study(text, kCase1).study);
+}
+
+TEST(WholeStructureDamping, TheSpecimensMassIsLeftToItsForceAndTheReferenceKeepsTheWholeBuilding) {
+  const TestConfig t = case1_with_specimen_mass(29.13);
+  const auto test_part = make_numerical_model(t);
+  EXPECT_NEAR(test_part->mass().to_dense()(0, 0), 1000.0 - 29.13, 1e-9);
+  EXPECT_EQ(test_part->mass().to_dense()(1, 1), 1000.0);
+  // The ground motion loads the whole building, specimen included.
+  EXPECT_EQ(whole_structure_mass(t).to_dense()(0, 0), 1000.0);
+  // The reference (perfect actuator, specimen k x only) keeps the specimen's mass and damping.
+  const auto reference = make_numerical_model(t, SpecimenShare::kKeptInNumericalPart);
+  EXPECT_EQ(reference->mass().to_dense()(0, 0), 1000.0);
+  EXPECT_NEAR(reference->damping().to_dense()(0, 0), test_part->damping().to_dense()(0, 0) + 114.6, 1e-9);
+  // The test's numerical part with the specimen's m, c and k is the reference building: 5 %
+  // in every mode of M, C, K0 (state-matrix eigenvalues).
+  Eigen::MatrixXd m = test_part->mass().to_dense(), c = test_part->damping().to_dense();
+  m(0, 0) += 29.13;
+  c(0, 0) += 114.6;
+  substructure::Partition partition;
+  partition.configure(partition_config(t, test_part->dofs()));
+  const Eigen::MatrixXd k = partition.with_specimen_stiffness(test_part->initial_stiffness()).to_dense();
+  for (double z : substructure::test::state_space_damping_ratios(m, c, k)) EXPECT_NEAR(z, 0.05, 1e-9);
+}
+
+TEST(WholeStructureDamping, ASpecimenHeavierThanItsFloorIsRefusedNamingTheKey) {
+  try {
+    (void)case1_with_specimen_mass(1500.0);
+    FAIL() << "accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("specimen_mass_kg"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("experimental"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rpsd::coordinator

@@ -69,7 +69,8 @@ TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
                 .find("experimental[0].dof: expected a whole number from 0 to 0"),
             std::string::npos);
   EXPECT_NE(error_of({parse_override("servo.kind=hydraulic")})
-                .find("servo.kind: expected servo_model, ideal_delay or transfer_function, got \"hydraulic\""),
+                .find("servo.kind: expected servo_model, ideal_delay, transfer_function or feedback_controlled, got "
+                      "\"hydraulic\""),
             std::string::npos);
   EXPECT_NE(
       error_of({parse_override("clock.mode=sometimes")}).find("clock.mode: expected as_fast_as_possible or real_time"),

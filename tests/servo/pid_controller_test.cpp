@@ -120,7 +120,10 @@ struct LoopResult {
 };
 template <typename Reference>
 LoopResult run_loop(Reference reference, int samples) {
-  TransferFunctionPlant plant({benchmark_plant(), 0.0, 8.0 * 4096.0, {}});
+  TransferFunctionPlantParameters parameters;
+  parameters.transfer_function = benchmark_plant();
+  parameters.plant_rate_hz = 8.0 * 4096.0;
+  TransferFunctionPlant plant(parameters);
   PidController pid(kBenchmarkPi, kPeriod);
   LoopResult result;
   for (int k = 0; k < samples; ++k) {
@@ -233,8 +236,14 @@ TEST(PidController, NonFiniteErrorGivesNanAndBadGainsAreNamed) {
   pid.reset(0.0);
   EXPECT_EQ(pid.update(0.1, -1.0, 1.0), 0.1 + 10.0 * kPeriod / 2.0 * 0.1);
   EXPECT_FALSE(std::isfinite(pid.update(kInf, -1.0, 1.0)));
-  PidController integral_only({0.0, 10.0, 0.0, 0.0}, kPeriod);
-  EXPECT_FALSE(std::isfinite(integral_only.update(-kInf, -1.0, 1.0)));
+  // With every gain finite and nonzero an infinite error would otherwise be limited to +/-1.
+  PidController all_terms({1.0, 10.0, 0.01, 0.001}, kPeriod);
+  EXPECT_FALSE(std::isfinite(all_terms.update(kInf, -1.0, 1.0)));
+  EXPECT_FALSE(std::isfinite(all_terms.update(0.0, -1.0, 1.0)));
+  all_terms.reset(0.0);
+  EXPECT_FALSE(std::isfinite(all_terms.update(-kInf, -1.0, 1.0)));
+  all_terms.reset(0.0);
+  EXPECT_TRUE(std::isnan(all_terms.update(0.0, 1.0, -1.0)));  // limits out of order
 
   auto expect_names = [](const PidGains& gains, const std::string& key) {
     try {

@@ -98,17 +98,17 @@ TEST(SignalConverter, QuantisedValueStaysInsideTheSaturationAndTheConverterRange
     EXPECT_DOUBLE_EQ(c.convert(-0.05), -3.8 * kLvdtMPerV);
     EXPECT_TRUE(c.saturated());
   }
-  {  // converter wider than the saturation: 4 bits over +/- 10 V, step 1.25 V, clamp at 3.8 V
+  {  // converter wider than the saturation: 4 bits over +/- 10 V, step 1.25 V, clamp at 4.4 V
     SignalConverterParameters p;
     p.units_per_volt = 1.0;
-    p.saturation_v = 3.8;
+    p.saturation_v = 4.4;
     p.bits = 4;
     p.full_scale_v = 10.0;
     SignalConverter c(p);
     EXPECT_EQ(c.step_units(), 1.25);
-    EXPECT_EQ(c.convert(100.0), 3.75);  // 3.8 would round to 4 * 1.25 = 5 > 3.8
+    EXPECT_EQ(c.convert(100.0), 3.75);  // 4.4 V is 3.52 steps: it would round to 4 * 1.25 = 5 V > 4.4 V
     EXPECT_TRUE(c.saturated());
-    EXPECT_EQ(c.convert(-3.9), -3.75);
+    EXPECT_EQ(c.convert(-4.5), -3.75);
     EXPECT_TRUE(c.saturated());
     EXPECT_EQ(c.convert(3.0), 2.5);  // 2.4 steps
     EXPECT_FALSE(c.saturated());
@@ -160,6 +160,27 @@ TEST(SignalConverter, NoiseIsWhiteGaussianOfTheGivenRms) {
   EXPECT_NEAR(static_cast<double>(beyond_two_sigma) / n, std::erfc(std::sqrt(2.0)), 0.003);
 }
 
+TEST(SignalConverter, NoiseComesBeforeTheSaturationAndTheConverter) {
+  SignalConverterParameters p = displacement_adc();
+  p.noise_rms_v = 0.002;  // about 70 steps of 29 uV
+  SignalConverter c(p);
+  const double step_m = c.step_units();
+  const double top_m = (std::ldexp(1.0, 17) - 1.0) * 3.8 / std::ldexp(1.0, 17) * kLvdtMPerV;
+  int distinct = 0;
+  double previous = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    const double y = c.convert(0.01);
+    const double steps = y / step_m;
+    ASSERT_LE(std::abs(steps - std::round(steps)), 1e-9 * std::abs(steps)) << i << " " << y;
+    distinct += i > 0 && y != previous;
+    previous = y;
+    // Well beyond the saturation the noise cannot show: the top code every time.
+    ASSERT_EQ(c.convert(0.05), top_m) << i;
+    ASSERT_EQ(c.convert(-0.05), -3.8 * kLvdtMPerV) << i;
+  }
+  EXPECT_GT(distinct, 900);  // the noise is there
+}
+
 std::vector<double> sequence(SignalConverter& c, int n) {
   std::vector<double> out(n);
   for (int i = 0; i < n; ++i) out[i] = c.convert(1e-5 * i);  // up to 0.01 m, 1.27 V: never clamped
@@ -181,7 +202,8 @@ TEST(SignalConverter, SeedsRepeatAndDiffer) {
   int equal = 0;
   for (int i = 0; i < n; ++i) equal += different[i] == first[i];
   EXPECT_LT(equal, n / 10);
-  EXPECT_NE(sequence(a, n), first);  // the sequence goes on
+  // The sequence goes on; 1001 + 500 draws again leave a value held.
+  EXPECT_NE(sequence(a, 500), std::vector<double>(first.begin(), first.begin() + 500));
   a.reseed();
   EXPECT_EQ(sequence(a, n), first);
 }

@@ -35,6 +35,9 @@ struct ExperimentalChannel {
   // The specimen's own damping (specimen scale), part of the whole structure's: what the
   // numerical part's damping leaves out when the damping is the whole structure's.
   double specimen_damping_n_s_per_m = 0.0;
+  // The specimen's own mass (specimen scale), part of the structure's: the numerical part
+  // leaves it to the measured force (m_e d2x_m/dt2), and the ground motion still loads it.
+  double specimen_mass_kg = 0.0;
 };
 
 // How the loop is paced.
@@ -137,8 +140,18 @@ substructure::PartitionConfig partition_config(const TestConfig& config, Eigen::
 // DOFs of the scenario's structure.
 Eigen::Index structure_dofs(const TestConfig& config);
 
-// The numerical part of the scenario's structure, configured (without the specimens). Throws
-// what configuring it throws. Not real-time safe.
-std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config);
+// Whether the numerical part leaves the specimens' own damping and mass to their measured
+// force (a test), or keeps them (the perfect-actuator reference, whose specimen is k x only:
+// the whole structure).
+enum class SpecimenShare { kLeftToSpecimens, kKeptInNumericalPart };
+
+// The numerical part of the scenario's structure, configured (without the specimens' stiffness).
+// Throws what configuring it throws. Not real-time safe.
+std::unique_ptr<substructure::NumericalModel> make_numerical_model(
+    const TestConfig& config, SpecimenShare share = SpecimenShare::kLeftToSpecimens);
+
+// The whole structure's mass, specimens' included (the structure's as given): what the ground
+// motion loads. Not real-time safe.
+linalg::StructuralMatrix whole_structure_mass(const TestConfig& config);
 
 }  // namespace rpsd::coordinator

@@ -21,6 +21,12 @@ struct ChannelCriteria {
   double j2_rms_tracking_error_percent = 0.0;
   double j3_peak_tracking_error_percent = 0.0;
   double final_tracking_indicator_m2 = 0.0;
+  // For the benchmark's constraints (stroke, force, velocity): the peaks of the measured
+  // displacement and force, and of the command's rate of change (the measured displacement's
+  // would be its sensor noise times the control rate).
+  double peak_measured_m = 0.0;
+  double peak_measured_force_n = 0.0;
+  double peak_command_velocity_m_per_s = 0.0;
 };
 
 struct DofCriteria {
@@ -69,6 +75,7 @@ class CriteriaAccumulator {
   struct ChannelSums {
     compensation::CrossCorrelationAccumulator delay;
     double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0, final_tracking_indicator_m2 = 0.0;
+    double peak_measured = 0.0, peak_force = 0.0, peak_velocity = 0.0, last_command = 0.0;
   };
   struct DofSums {
     DofCriteria peaks;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rpsd/config/kind_list.h"
+#include "rpsd/servo/feedback_controlled_plant.h"
 #include "rpsd/servo/plant.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_parameters.h"
@@ -14,9 +15,11 @@
 
 namespace rpsd::servo {
 
-// The actuator of a channel: the seed paper's servo-hydraulic model, an ideal delay, or a
-// transfer function from command to displacement.
-using PlantKinds = config::KindList<ServoSystemParameters, PureDelayParameters, TransferFunctionPlantParameters>;
+// The actuator of a channel: the seed paper's servo-hydraulic model, an ideal delay, a
+// transfer function from command to displacement, or a PID loop around a plant from the
+// controller's output.
+using PlantKinds = config::KindList<ServoSystemParameters, PureDelayParameters, TransferFunctionPlantParameters,
+                                    FeedbackControlledPlantParameters>;
 using PlantConfig = PlantKinds::Variant;
 
 std::unique_ptr<Plant> make_plant(const PlantConfig& config);

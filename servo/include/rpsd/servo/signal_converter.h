@@ -18,8 +18,8 @@
 namespace rpsd::servo {
 
 struct SignalConverterParameters {
-  double units_per_volt =
-      0.0;                    // scale, e.g. 7.89e-3 m/V or 1096 N/V; 0: no voltage stages, the signal passes unchanged
+  // Sensor or actuator scale, e.g. 7.89e-3 m/V or 1096 N/V; 0: no voltage stages, the signal passes unchanged.
+  double units_per_volt = 0.0;
   double noise_rms_v = 0.0;   // Gaussian noise, RMS volts (0: none)
   double saturation_v = 0.0;  // clamp to +/- this many volts (0: none)
   int bits = 0;               // converter resolution, at most 30 (0: no converter)

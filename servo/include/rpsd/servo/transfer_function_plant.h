@@ -29,6 +29,11 @@ struct TransferFunctionPlantParameters {
   double specimen_stiffness_n_per_m = 0.0;  // the load cell reads k x_m
   double plant_rate_hz = 8192.0;
   Envelope rig;  // the measured displacement stops at +/- rig.stroke_m
+  // The load cell adds c dx_m/dt + m d2x_m/dt2 when the specimen has damping or mass (the benchmark's c_e,
+  // m_e): exact derivatives of the output from the state, so the transfer function must
+  // roll off by at least two (damping) or three (mass) powers of s.
+  double specimen_damping_n_s_per_m = 0.0;
+  double specimen_mass_kg = 0.0;
 
   // Throws std::invalid_argument when improper, unstable, or too fast for the rate.
   void validate() const;
@@ -49,6 +54,7 @@ class TransferFunctionPlant final : public Plant {
   TransferFunctionPlantParameters parameters_;
   Eigen::MatrixXd a_;
   Eigen::VectorXd b_, c_;
+  Eigen::VectorXd c_velocity_, c_acceleration_;  // dx_m/dt = c_velocity' x, d2x_m/dt2 likewise
   double d_ = 0.0;
   Eigen::VectorXd x_, k1_, k2_, k3_, k4_, scratch_;
   double last_command_m_ = 0.0;

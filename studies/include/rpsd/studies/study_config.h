@@ -3,7 +3,9 @@
 // (coordinator::TestConfig) with an optional sweep over one or two of its keys.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -67,6 +69,22 @@ struct SweepAxis {
   std::vector<double> values;
 };
 
+// `monte_carlo:` of an rpsd_test scenario: each run is the scenario with the named keys drawn
+// about their values in the file (monte_carlo.h).
+struct MonteCarloParameter {
+  enum class Distribution { kNormal, kUniform };
+  std::string key_path;
+  Distribution distribution = Distribution::kNormal;
+  double nominal = 0.0;  // the scenario's own value
+  double spread = 0.0;   // standard deviation (normal) or half width (uniform), > 0
+};
+struct MonteCarloConfig {
+  int runs = 0;
+  std::uint64_t seed = 0;
+  std::vector<MonteCarloParameter> parameters;
+  std::string noise_seed_key;  // optional: each run gets its own seed there (seed + run number)
+};
+
 struct StudyDocument {
   std::string name;            // the file's stem, for titles
   std::string description;     // optional `description:` text
@@ -80,6 +98,9 @@ struct StudyDocument {
   std::vector<SweepAxis> sweep;
   std::vector<coordinator::TestConfig> sweep_cases;  // the first axis varies fastest
   std::vector<std::vector<double>> sweep_values;     // the axis values of each case
+  // `monte_carlo:` (then sweep is empty, sweep_cases are the runs and sweep_values the drawn
+  // parameter values of each).
+  std::optional<MonteCarloConfig> monte_carlo;
 };
 
 }  // namespace rpsd::studies

@@ -6,6 +6,7 @@
 // Not real-time safe.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <filesystem>
 #include <functional>
@@ -34,6 +35,11 @@ struct TestHeadline {
   double j4_percent = 0.0;           // first recorded DOF against the reference
   double peak_displacement_m = 0.0;  // first recorded DOF
   double reference_peak_displacement_m = 0.0;
+  std::array<double, 9> benchmark{};  // J1-J9 (benchmark_criteria.h), NaN where the test has none
+  // Channel 0's peaks, for the benchmark's constraints (ChannelCriteria).
+  double peak_measured_m = 0.0;
+  double peak_measured_force_n = 0.0;
+  double peak_command_velocity_m_per_s = 0.0;
 };
 
 // `progress` (optional) hears of each phase (the test and its reference with their steps,

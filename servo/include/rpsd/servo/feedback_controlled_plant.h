@@ -1,0 +1,74 @@
+// A servo controller closing its loop at the control rate around a plant given from the
+// controller's output: the target's error against the measured displacement goes through a
+// PID (pid_controller.h) whose output a D/A converter holds over the period; the plant's
+// displacement and force come back through their sensors' A/D converters
+// (signal_converter.h), and that measurement is both the controller's feedback and what
+// the node reports. The RTHS benchmark's G_xu with its sample PI controller is one of these
+// (docs/benchmark.md). Without a controller the command goes straight to the D/A.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+#include "rpsd/config/source.h"
+#include "rpsd/servo/envelope.h"
+#include "rpsd/servo/pid_controller.h"
+#include "rpsd/servo/plant.h"
+#include "rpsd/servo/signal_converter.h"
+#include "rpsd/servo/transfer_function_plant.h"
+
+namespace rpsd::servo {
+
+class FeedbackControlledPlant;
+
+// The converters of one channel; each off unless stated.
+struct ChannelConverters {
+  SignalConverterParameters command;       // the controller's output (D/A), m
+  SignalConverterParameters displacement;  // the displacement sensor (A/D), m
+  SignalConverterParameters force;         // the load cell (A/D), N
+};
+
+struct FeedbackControlledPlantParameters {
+  using Model = FeedbackControlledPlant;
+  static constexpr std::string_view kName = "feedback_controlled";
+  static constexpr std::string_view kSummary =
+      "a PID servo controller at the control rate around a plant from its output (a transfer function or the RTHS "
+      "benchmark's G_xu), with D/A and A/D converters";
+  static FeedbackControlledPlantParameters read(config::Source& section, double specimen_stiffness_n_per_m);
+
+  TransferFunctionPlantParameters plant;  // from the controller's output u to x_m; its rig
+  std::optional<PidGains> controller;     // none: the command goes to the D/A as it is
+  ChannelConverters converters;
+
+  // Throws std::invalid_argument naming the problem. Not real-time safe.
+  void validate() const;
+  const Envelope& rig() const { return plant.rig; }
+};
+
+class FeedbackControlledPlant final : public Plant {
+ public:
+  // Not real-time safe.
+  explicit FeedbackControlledPlant(const FeedbackControlledPlantParameters& parameters);
+
+  // At rest holding displacement_m: the plant at the equilibrium of u = x / G_xu(0), the
+  // integral carrying that u, the noise restarted from its seeds. Real-time safe.
+  void reset(double displacement_m) override;
+  // One control period: the controller acts on the target at its end (command_end_m) and the
+  // displacement measured at its start, and its output is held for duration_s. Real-time safe.
+  void advance(double command_start_m, double command_end_m, double duration_s) override;
+  // The converted readings; valve_saturated: the controller's output or its D/A at a limit.
+  PlantMeasurement measure() const override { return measured_; }
+
+ private:
+  void read_sensors();
+
+  FeedbackControlledPlantParameters parameters_;
+  TransferFunctionPlant plant_;
+  std::optional<PidController> controller_;
+  SignalConverter command_, displacement_, force_;
+  double output_limit_ = 0.0;  // the D/A's range in plant units (infinite without saturation)
+  double last_output_ = 0.0;
+  PlantMeasurement measured_;
+};
+
+}  // namespace rpsd::servo

@@ -1,0 +1,166 @@
+#include "rpsd/servo/feedback_controlled_plant.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "rpsd/servo/benchmark_transfer_system.h"
+
+namespace rpsd::servo {
+namespace {
+
+// Control periods the controller is built for: the node's is fixed for a test, and a PID's
+// Tustin coefficients depend on it.
+constexpr double kPeriodTolerance = 1e-9;
+
+SignalConverterParameters read_converter(config::Source& parent, std::string_view key, std::string_view unit,
+                                         std::uint64_t seed) {
+  SignalConverterParameters p;
+  p.seed = seed;
+  const auto section = parent.optional_section(key, "a converter chain (all stages optional)");
+  if (!section) return p;
+  using config::Number;
+  p.units_per_volt = section->number("units_per_volt", Number::positive(unit, "sensor or actuator scale per volt"));
+  p.noise_rms_v = section->number_or("noise_rms_v", 0.0, Number::non_negative("V", "Gaussian noise, RMS"));
+  p.saturation_v = section->number_or("saturation_v", 0.0, Number::non_negative("V", "+/- range (0: none)"));
+  p.bits = static_cast<int>(section->whole_number_or("bits", 0, 30, 0, "converter resolution (0: none)"));
+  p.full_scale_v =
+      section->number_or("full_scale_v", 0.0, Number::non_negative("V", "converter range (0: the saturation's)"));
+  section->finish();
+  return p;  // checked with the whole plant (validate), once every key has been read
+}
+
+PidGains read_controller(config::Source& section) {
+  using config::Number;
+  PidGains g;
+  g.proportional = section.number_or("proportional_gain", 0.0, Number::non_negative("", "Kp, m/m"));
+  g.integral_per_s = section.number_or("integral_gain_per_s", 0.0, Number::non_negative("1/s", "Ki"));
+  g.derivative_s = section.number_or("derivative_gain_s", 0.0, Number::non_negative("s", "Kd"));
+  g.derivative_filter_time_s =
+      section.number_or("derivative_filter_time_s", 0.0, Number::non_negative("s", "Tf of Kd s / (Tf s + 1)"));
+  section.finish();
+  return g;  // checked with the whole plant (validate)
+}
+
+}  // namespace
+
+FeedbackControlledPlantParameters FeedbackControlledPlantParameters::read(config::Source& section,
+                                                                          double specimen_stiffness_n_per_m) {
+  FeedbackControlledPlantParameters p;
+  const bool by_coefficients = section.has("numerator_descending") || section.has("denominator_descending");
+  const auto benchmark = section.optional_section("rths_benchmark_model", "the benchmark's G_xu by its parameters");
+  if (by_coefficients == static_cast<bool>(benchmark)) {
+    section.fail_section(
+        "give the plant either as numerator_descending/denominator_descending or as "
+        "rths_benchmark_model, not both or neither");
+  }
+  if (benchmark) {
+    const BenchmarkTransferSystem b = BenchmarkTransferSystem::read(*benchmark);
+    p.plant.transfer_function = b.transfer_function();
+    p.plant.specimen_stiffness_n_per_m = b.specimen_stiffness_n_per_m;
+    p.plant.specimen_damping_n_s_per_m = b.specimen_damping_n_s_per_m;
+    p.plant.specimen_mass_kg = b.specimen_mass_kg;
+    p.plant.plant_rate_hz = section.number_or("plant_rate_hz", 32768.0,
+                                              config::Number::between(1e3, 1e6, "Hz", "fixed-step integration rate"));
+    p.plant.rig = Envelope::read(*section.section("rig", "what the simulated rig can do"));
+  } else {
+    p.plant = TransferFunctionPlantParameters::read(section, specimen_stiffness_n_per_m);
+  }
+  if (const auto c = section.optional_section("controller", "the servo controller's PID on the tracking error")) {
+    p.controller = read_controller(*c);
+  }
+  if (const auto c = section.optional_section("converters", "D/A and A/D converters of each channel")) {
+    const auto seed = static_cast<std::uint64_t>(
+        c->whole_number_or("seed", 0, 2'000'000'000, 1, "noise seed (each converter its own stream from it)"));
+    p.converters.command = read_converter(*c, "command", "m", seed);
+    p.converters.displacement = read_converter(*c, "displacement", "m", seed + 1);
+    p.converters.force = read_converter(*c, "force", "N", seed + 2);
+    c->finish();
+  }
+  try {
+    p.validate();
+  } catch (const std::invalid_argument& e) {
+    section.fail_section(e.what());
+  }
+  return p;
+}
+
+void FeedbackControlledPlantParameters::validate() const {
+  plant.validate();
+  if (controller) {
+    try {
+      controller->validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("controller: ") + e.what());
+    }
+  }
+  const std::pair<const char*, const SignalConverterParameters*> named[] = {
+      {"converters.command", &converters.command},
+      {"converters.displacement", &converters.displacement},
+      {"converters.force", &converters.force}};
+  for (const auto& [name, converter] : named) {
+    try {
+      converter->validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string(name) + ": " + e.what());
+    }
+  }
+}
+
+FeedbackControlledPlant::FeedbackControlledPlant(const FeedbackControlledPlantParameters& parameters)
+    : parameters_(parameters),
+      plant_(parameters.plant),
+      command_(parameters.converters.command),
+      displacement_(parameters.converters.displacement),
+      force_(parameters.converters.force) {
+  parameters_.validate();
+  const auto& c = parameters_.converters.command;
+  output_limit_ = c.saturation_v > 0.0 ? c.saturation_v * c.units_per_volt : std::numeric_limits<double>::infinity();
+  reset(0.0);
+}
+
+void FeedbackControlledPlant::read_sensors() {
+  const PlantMeasurement m = plant_.measure();
+  measured_.displacement_m = displacement_.convert(m.displacement_m);
+  measured_.force_n = force_.convert(m.force_n);
+  measured_.at_end_stop = m.at_end_stop;
+}
+
+void FeedbackControlledPlant::reset(double displacement_m) {
+  plant_.reset(displacement_m);
+  last_output_ = displacement_m / parameters_.plant.transfer_function.static_gain();
+  if (controller_) controller_->reset(last_output_);
+  command_.reseed();
+  displacement_.reseed();
+  force_.reseed();
+  read_sensors();
+  measured_.valve_saturated = false;
+}
+
+void FeedbackControlledPlant::advance(double command_start_m, double command_end_m, double duration_s) {
+  if (!(duration_s > 0.0)) return;
+  if (parameters_.controller) {
+    if (!controller_ || std::abs(controller_->period_s() - duration_s) > kPeriodTolerance * duration_s) {
+      // First period (or a new one): the controller is built for it. Only at the start of a
+      // test, where the node's period is fixed.
+      controller_.emplace(*parameters_.controller, duration_s);
+      controller_->reset(last_output_);
+    }
+    const double error = command_end_m - measured_.displacement_m;
+    const double u = command_.convert(controller_->update(error, -output_limit_, output_limit_));
+    plant_.advance(u, u, duration_s);  // the D/A holds the controller's output
+    measured_.valve_saturated = controller_->saturated() || command_.saturated();
+    last_output_ = u;
+  } else {
+    const double start = last_output_;
+    (void)command_start_m;
+    last_output_ = command_.convert(command_end_m);
+    plant_.advance(start, last_output_, duration_s);
+    measured_.valve_saturated = command_.saturated();
+  }
+  read_sensors();
+}
+
+}  // namespace rpsd::servo

@@ -1,0 +1,21 @@
+// Runs a `monte_carlo:` scenario into an output folder: each run into run_NNN/ as `rpsd run`
+// writes a test, then runs.csv (each run's drawn values, outcome, J1-J9 and the constraint
+// peaks), statistics.csv and statistics.md (mean, standard deviation and extremes of each over
+// the runs) and summary.json. Not real-time safe.
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+
+#include "rpsd/studies/progress.h"
+#include "rpsd/studies/study_config.h"
+#include "rpsd/studies/test_output.h"
+
+namespace rpsd::studies {
+
+// kStopped if any run stopped (a run stopped by a limit is still a result, and the next one
+// runs); an interruption or a failed write ends the batch after the run under way.
+RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocument& file,
+                               const ProgressSink& progress = {}, const std::atomic<bool>* stop_request = nullptr);
+
+}  // namespace rpsd::studies

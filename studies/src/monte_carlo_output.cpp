@@ -1,0 +1,153 @@
+#include "rpsd/studies/monte_carlo_output.h"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rpsd/studies/benchmark_criteria.h"
+#include "rpsd/studies/monte_carlo.h"
+#include "rpsd/studies/provenance.h"
+#include "rpsd/studies/results_files.h"
+
+namespace rpsd::studies {
+namespace {
+
+// What the table summarises per run: J1-J9, then channel 0's peaks for the constraints.
+struct Quantity {
+  std::string name;
+  std::string measures;
+};
+
+std::vector<Quantity> quantities() {
+  std::vector<Quantity> q;
+  for (const auto& c : kBenchmarkCriterionList) q.push_back({std::string(c.name), std::string(c.measures)});
+  q.push_back({"peak_measured_m", "peak |x_m| of channel 0 (stroke), m"});
+  q.push_back({"peak_measured_force_n", "peak measured force of channel 0, N"});
+  q.push_back({"peak_command_velocity_m_per_s", "peak rate of change of channel 0's command, m/s"});
+  return q;
+}
+
+std::vector<double> values_of(const TestHeadline& h) {
+  std::vector<double> v(h.benchmark.begin(), h.benchmark.end());
+  v.push_back(h.peak_measured_m);
+  v.push_back(h.peak_measured_force_n);
+  v.push_back(h.peak_command_velocity_m_per_s);
+  return v;
+}
+
+std::string number(double v) {
+  if (!std::isfinite(v)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocument& file,
+                               const ProgressSink& progress, const std::atomic<bool>* stop_request) {
+  using nlohmann::json;
+  const MonteCarloConfig& mc = *file.monte_carlo;
+  std::filesystem::create_directories(dir);
+  reserve_summary(
+      dir / "summary.json",
+      json{{"study", "rpsd_test_monte_carlo"}, {"scenario", file.name}, {"result", "running"}}.dump(2) + '\n');
+  write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
+  const std::vector<Quantity> names = quantities();
+  std::ostringstream runs_csv;
+  runs_csv << "run,";
+  for (const auto& p : mc.parameters) runs_csv << p.key_path << ',';
+  runs_csv << "completed,";
+  for (const auto& q : names) runs_csv << q.name << ',';
+  runs_csv << "folder\n";
+  std::vector<std::vector<double>> per_quantity(names.size());
+  RunResult result = RunResult::kCompleted;
+  int completed_runs = 0;
+  json runs = json::array();
+  for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
+    char folder[32];
+    std::snprintf(folder, sizeof folder, "run_%03zu", i + 1);
+    const TestHeadline h =
+        run_test_into(dir / folder, file, file.sweep_cases[i], progress, stop_request, i + 1, file.sweep_cases.size());
+    const bool completed = h.result == RunResult::kCompleted;
+    completed_runs += completed ? 1 : 0;
+    if (!completed && result == RunResult::kCompleted) result = h.result;
+    const std::vector<double> v = values_of(h);
+    runs_csv << i + 1 << ',';
+    json drawn = json::object();
+    for (std::size_t p = 0; p < mc.parameters.size(); ++p) {
+      runs_csv << number(file.sweep_values[i][p]) << ',';
+      drawn[mc.parameters[p].key_path] = file.sweep_values[i][p];
+    }
+    runs_csv << (completed ? 1 : 0) << ',';
+    json criteria = json::object();
+    for (std::size_t q = 0; q < names.size(); ++q) {
+      runs_csv << number(v[q]) << ',';
+      criteria[names[q].name] = json_number(v[q]);
+      per_quantity[q].push_back(v[q]);
+    }
+    runs_csv << folder << '\n';
+    runs.push_back({{"run", i + 1},
+                    {"values", drawn},
+                    {"result", result_name(h.result)},
+                    {"outcome", h.outcome},
+                    {"criteria", criteria},
+                    {"folder", folder}});
+    if (h.result == RunResult::kInterrupted || h.result == RunResult::kResultsNotWritten) {
+      result = h.result;
+      break;
+    }
+  }
+  write_file_whole(dir / "runs.csv", runs_csv.str());
+
+  std::ostringstream csv, markdown;
+  csv << "quantity,runs,mean,standard_deviation,minimum,maximum,measures\n";
+  markdown << "| quantity | runs | mean | standard deviation | minimum | maximum |\n|---|---|---|---|---|---|\n";
+  json statistics = json::object();
+  for (std::size_t q = 0; q < names.size(); ++q) {
+    const RunStatistics s = run_statistics(per_quantity[q]);
+    csv << names[q].name << ',' << s.runs << ',' << number(s.mean) << ',' << number(s.standard_deviation) << ','
+        << number(s.minimum) << ',' << number(s.maximum) << ",\"" << names[q].measures << "\"\n";
+    markdown << "| " << names[q].name << " | " << s.runs << " | " << number(s.mean) << " | "
+             << number(s.standard_deviation) << " | " << number(s.minimum) << " | " << number(s.maximum) << " |\n";
+    statistics[names[q].name] = {{"runs", s.runs},
+                                 {"mean", json_number(s.mean)},
+                                 {"standard_deviation", json_number(s.standard_deviation)},
+                                 {"minimum", json_number(s.minimum)},
+                                 {"maximum", json_number(s.maximum)},
+                                 {"measures", names[q].measures}};
+  }
+  write_file_whole(dir / "statistics.csv", csv.str());
+  write_file_whole(dir / "statistics.md", markdown.str());
+  json parameters = json::array();
+  for (std::size_t p = 0; p < mc.parameters.size(); ++p) {
+    const auto& m = mc.parameters[p];
+    const bool normal = m.distribution == MonteCarloParameter::Distribution::kNormal;
+    parameters.push_back({{"key", m.key_path},
+                          {"distribution", normal ? "normal" : "uniform"},
+                          {"nominal", m.nominal},
+                          {normal ? "standard_deviation" : "half_width", m.spread}});
+  }
+  const json summary{{"study", "rpsd_test_monte_carlo"},
+                     {"scenario", file.name},
+                     {"description", file.description},
+                     {"result", result_name(result)},
+                     {"completed", result == RunResult::kCompleted},
+                     {"runs_planned", mc.runs},
+                     {"runs_completed", completed_runs},
+                     {"seed", mc.seed},
+                     {"noise_seed_key", mc.noise_seed_key},
+                     {"parameters", parameters},
+                     {"statistics", statistics},
+                     {"runs", runs},
+                     {"provenance", provenance_json(file)}};
+  write_summary(dir / "summary.json", summary.dump(2) + '\n');
+  return result;
+}
+
+}  // namespace rpsd::studies

@@ -1,0 +1,67 @@
+// `monte_carlo:` in a scenario: each run is the file with the drawn values set, read and
+// checked in full before anything runs; errors name the key and the run.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "../servo/paper_rig.h"
+#include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/study_file.h"
+#include "rpsd/servo/plant_factory.h"
+#include "rpsd/studies/monte_carlo.h"
+
+namespace rpsd::scenarios {
+namespace {
+
+std::filesystem::path case1() {
+  return testing::source_dir() / "examples/scenarios/rths-benchmark-sample-controller-case-1.yaml";
+}
+
+TEST(MonteCarloFile, EachRunIsTheScenarioWithItsDrawnPlantAndItsOwnNoiseSeed) {
+  const auto file = load_study(case1(), {parse_override("monte_carlo.runs=4")});
+  ASSERT_TRUE(file.monte_carlo);
+  const studies::MonteCarloConfig& mc = *file.monte_carlo;
+  ASSERT_EQ(mc.parameters.size(), 4u);
+  EXPECT_EQ(mc.parameters[0].key_path, "servo.rths_benchmark_model.a3_per_s");
+  EXPECT_EQ(mc.parameters[0].nominal, 3.3);  // the file's value is the mean
+  EXPECT_EQ(mc.parameters[3].spread, 5.0e4);
+  ASSERT_EQ(file.sweep_cases.size(), 4u);
+  const auto draws = studies::draw_monte_carlo(mc);
+  for (std::size_t run = 0; run < 4; ++run) {
+    SCOPED_TRACE(run);
+    EXPECT_EQ(file.sweep_values[run], draws[run]);
+    const auto& plant = std::get<servo::FeedbackControlledPlantParameters>(file.sweep_cases[run].plant);
+    // The run's own k_e: in G_xu's constant term through (s + a3) k_e, and in the load cell.
+    EXPECT_EQ(plant.plant.specimen_stiffness_n_per_m, draws[run][3]);
+    EXPECT_EQ(plant.converters.displacement.seed, mc.seed + run + 1 + 1);  // seed + run, then + 1 for displacement
+    // The coordinator's estimate of the specimen stays nominal.
+    EXPECT_EQ(file.sweep_cases[run].experimental[0].dof.specimen_stiffness_estimate_n_per_m, 1.19e6);
+  }
+  EXPECT_NE(file.sweep_values[0][0], file.sweep_values[1][0]);
+}
+
+TEST(MonteCarloFile, AKeyThatIsNotANumberOrARunThatCannotBeBuiltIsNamed) {
+  try {
+    (void)load_study(case1(), {parse_override("monte_carlo.parameters.0.key=servo.no_such_key")});
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("servo.no_such_key is not a number"), std::string::npos) << e.what();
+  }
+  try {
+    // a3 drawn about -1000 with sigma 1: G_xu has a pole in the right half-plane in every run.
+    (void)load_study(case1(), {parse_override("servo.rths_benchmark_model.a3_per_s=-1000")});
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("monte_carlo run 1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unstable"), std::string::npos) << e.what();
+  }
+  try {
+    (void)load_study(case1(), {parse_override("sweep=[{key: servo.plant_rate_hz, values: [16384]}]")});
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("either sweep or monte_carlo"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rpsd::scenarios
