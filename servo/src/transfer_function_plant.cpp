@@ -60,9 +60,8 @@ TransferFunctionPlant::TransferFunctionPlant(const TransferFunctionPlantParamete
     b_[i] /= s;
     c_[i] *= s;
   }
-  // With CB = 0 (and CAB = 0), y' = CAx and y'' = CA^2 x.
+  // With CB = 0, y' = CAx.
   c_velocity_ = a_.transpose() * c_;
-  c_acceleration_ = a_.transpose() * c_velocity_;
   for (auto* v : {&x_, &k1_, &k2_, &k3_, &k4_, &scratch_}) *v = Eigen::VectorXd::Zero(n);
   reset(0.0);
 }
@@ -72,6 +71,7 @@ void TransferFunctionPlant::reset(double displacement_m) {
   const double command = displacement_m / static_gain;
   x_ = -a_.partialPivLu().solve(b_ * command);
   last_command_m_ = command;
+  mean_acceleration_m_per_s2_ = 0.0;
 }
 
 void TransferFunctionPlant::advance(double command_start_m, double command_end_m, double duration_s) {
@@ -79,6 +79,7 @@ void TransferFunctionPlant::advance(double command_start_m, double command_end_m
   const int substeps = detail::substeps(duration_s / max_step_s_);
   const double h = duration_s / substeps;
   const double slope = (command_end_m - command_start_m) / duration_s;
+  const double velocity_before = c_velocity_.dot(x_);
   for (int i = 0; i < substeps; ++i) {
     const double u0 = command_start_m + slope * i * h;
     k1_.noalias() = a_ * x_;
@@ -95,6 +96,7 @@ void TransferFunctionPlant::advance(double command_start_m, double command_end_m
     x_ += (h / 6.0) * (k1_ + 2.0 * k2_ + 2.0 * k3_ + k4_);
   }
   last_command_m_ = command_end_m;
+  mean_acceleration_m_per_s2_ = (c_velocity_.dot(x_) - velocity_before) / duration_s;
 }
 
 PlantMeasurement TransferFunctionPlant::measure() const {
@@ -104,7 +106,7 @@ PlantMeasurement TransferFunctionPlant::measure() const {
   const double x = std::clamp(y, -stroke, stroke);
   const double force = parameters_.specimen_stiffness_n_per_m * x +
                        parameters_.specimen_damping_n_s_per_m * c_velocity_.dot(x_) +
-                       parameters_.specimen_mass_kg * c_acceleration_.dot(x_);
+                       parameters_.specimen_mass_kg * mean_acceleration_m_per_s2_;
   return {x, force, std::abs(y) >= stroke, false};
 }
 

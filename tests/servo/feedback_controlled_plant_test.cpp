@@ -95,7 +95,7 @@ TEST(FeedbackControlledPlant, TheIntegralActionHoldsATargetExactlyThoughTheStati
 }
 
 TEST(FeedbackControlledPlant, TheSpecimensDampingAndMassEnterTheMeasuredForce) {
-  // Steady sine: F = (k - m w^2 + j c w) X, with X the measured displacement's phasor.
+  // Steady sine: F = (k + j c w - m w^2) X to first order in w dt, X the displacement's phasor.
   FeedbackControlledPlantParameters p = sample_controller_loop();
   const BenchmarkTransferSystem b = nominal();
   p.plant.specimen_damping_n_s_per_m = b.specimen_damping_n_s_per_m * 100.0;  // large enough to see
@@ -114,8 +114,12 @@ TEST(FeedbackControlledPlant, TheSpecimensDampingAndMassEnterTheMeasuredForce) {
   }
   const HarmonicFit xf = fit_harmonic(phase, x), ff = fit_harmonic(phase, force);
   const std::complex<double> xp = std::polar(xf.amplitude, xf.phase_rad), fp = std::polar(ff.amplitude, ff.phase_rad);
-  const std::complex<double> expected = std::complex<double>(b.specimen_stiffness_n_per_m - b.specimen_mass_kg * w * w,
-                                                             p.plant.specimen_damping_n_s_per_m * w) *
+  // The inertial part is the acceleration averaged over the period, (v(t) - v(t - dt)) / dt:
+  // j w (1 - e^{-j w dt}) / dt X, which tends to -w^2 X.
+  const std::complex<double> jw(0.0, w);
+  const std::complex<double> mean_acceleration = jw * (1.0 - std::exp(-jw * dt)) / dt;
+  const std::complex<double> expected = (b.specimen_stiffness_n_per_m + jw * p.plant.specimen_damping_n_s_per_m +
+                                         b.specimen_mass_kg * mean_acceleration) *
                                         xp;
   EXPECT_NEAR(std::abs(fp) / std::abs(expected), 1.0, 1e-6);
   EXPECT_NEAR(std::arg(fp / expected), 0.0, 1e-6);

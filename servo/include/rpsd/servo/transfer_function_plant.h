@@ -29,9 +29,12 @@ struct TransferFunctionPlantParameters {
   double specimen_stiffness_n_per_m = 0.0;  // the load cell reads k x_m
   double plant_rate_hz = 8192.0;
   Envelope rig;  // the measured displacement stops at +/- rig.stroke_m
-  // The load cell adds c dx_m/dt + m d2x_m/dt2 when the specimen has damping or mass (the benchmark's c_e,
-  // m_e): exact derivatives of the output from the state, so the transfer function must
-  // roll off by at least two (damping) or three (mass) powers of s.
+  // The load cell adds c dx_m/dt + m a when the specimen has damping or mass (the benchmark's
+  // c_e, m_e): dx_m/dt exact from the state, a the acceleration averaged over the last advance
+  // (the change of that velocity over its length), as a load cell behind an anti-aliasing
+  // filter reads it: a command ramping from sample to sample accelerates the specimen at the
+  // corners, which an instantaneous value at the sample would miss. The transfer function must
+  // roll off by at least two powers of s (three with mass).
   double specimen_damping_n_s_per_m = 0.0;
   double specimen_mass_kg = 0.0;
 
@@ -54,10 +57,11 @@ class TransferFunctionPlant final : public Plant {
   TransferFunctionPlantParameters parameters_;
   Eigen::MatrixXd a_;
   Eigen::VectorXd b_, c_;
-  Eigen::VectorXd c_velocity_, c_acceleration_;  // dx_m/dt = c_velocity' x, d2x_m/dt2 likewise
+  Eigen::VectorXd c_velocity_;  // dx_m/dt = c_velocity' x
   double d_ = 0.0;
   Eigen::VectorXd x_, k1_, k2_, k3_, k4_, scratch_;
   double last_command_m_ = 0.0;
+  double mean_acceleration_m_per_s2_ = 0.0;  // over the last advance
   double max_step_s_;
 };
 
