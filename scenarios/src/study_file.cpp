@@ -233,6 +233,7 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
       }
       result.sweep_cases.push_back(std::get<coordinator::TestConfig>(one.study));
       result.sweep_values.push_back(values);
+      result.case_yaml.push_back(one.effective_yaml);
     }
   }
   result.study = result.sweep_cases.front();
@@ -298,6 +299,7 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
     }
     result.sweep_cases.push_back(std::get<coordinator::TestConfig>(one.study));
     result.sweep_values.push_back(draws[run]);
+    result.case_yaml.push_back(one.effective_yaml);
   }
   result.monte_carlo = std::move(config);
   result.study = result.sweep_cases.front();

@@ -41,7 +41,7 @@ std::vector<double> values_of(const TestHeadline& h) {
 std::string number(double v) {
   if (!std::isfinite(v)) return "";
   char text[32];
-  std::snprintf(text, sizeof text, "%.9g", v);
+  std::snprintf(text, sizeof text, "%.17g", v);  // reads back as the same double
   return text;
 }
 

@@ -323,7 +323,10 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
                                                        {"completed", false}}
                                                 .dump(2) +
                                             '\n');
-  write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
+  // A case of a batch writes its own document, with its values, never the batch's.
+  const bool one_of_a_batch = case_number >= 1 && case_number <= file.case_yaml.size();
+  write_file_whole(dir / "effective-scenario.yaml",
+                   one_of_a_batch ? file.case_yaml[case_number - 1] : file.effective_yaml);
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.

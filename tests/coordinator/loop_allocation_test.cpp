@@ -48,6 +48,8 @@ TEST(LoopAllocation, NoAllocationPerStep) {
       compensation::PolynomialExtrapolationParameters{3, 0.02},
       compensation::DiscretePhaseLeadParameters::for_delay(0.08, 5.0),
       compensation::AdaptiveTimeSeriesParameters{},
+      // The benchmark's phase lead G_T = 50.8 (s + 168.6) / (s + 8570), Tustin.
+      compensation::LtiFilterParameters{{{50.8, 8564.88}, {1.0, 8570.0}}, 0.0},
   };
   const integrators::IntegratorConfig integrators[] = {
       integrators::CentralDifferenceParams{}, integrators::KolayRiclesAlphaParams{}, integrators::HhtAlphaParams{}};
@@ -67,6 +69,17 @@ TEST(LoopAllocation, NoAllocationPerStep) {
           8192.0,
           {}};
       EXPECT_EQ(allocations_over_steps(setup, benchmark, 2000), 0) << compensation::compensator_name(compensator);
+      // The same under the benchmark's sample PI controller, with its converters and noise, and
+      // a specimen with damping and mass.
+      servo::FeedbackControlledPlantParameters controlled;
+      controlled.plant = benchmark;
+      controlled.plant.specimen_damping_n_s_per_m = 114.22;
+      controlled.plant.specimen_mass_kg = 29.13;
+      controlled.controller = servo::PidGains{2.0, 95.0, 0.0, 0.0};
+      controlled.converters.command = {7.89e-3, 0.0, 3.8, 18, 0.0, 1};
+      controlled.converters.displacement = {7.89e-3, 0.002, 10.0, 18, 0.0, 2};
+      controlled.converters.force = {1096.0, 0.002, 10.0, 18, 0.0, 3};
+      EXPECT_EQ(allocations_over_steps(setup, controlled, 2000), 0) << compensation::compensator_name(compensator);
     }
   }
 }

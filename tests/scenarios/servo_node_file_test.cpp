@@ -28,3 +28,23 @@ TEST(ServoNodeFile, ARealTimeNodeKeepsTheCpusAwakeUnlessTurnedOff) {
 
 }  // namespace
 }  // namespace rpsd::scenarios
+
+namespace rpsd::scenarios {
+namespace {
+
+TEST(ServoNodeFile, ANodeRunsTheBenchmarksControllerAndConvertersAndTheRigIsItsDefaultLimit) {
+  const node::ServoNodeSetup file = load_servo_node(testing::source_dir() / "examples/nodes/rths-benchmark-site.yaml");
+  const auto& simulated = std::get<node::SimulatedActuatorConfig>(file.actuator);
+  const auto& plant = std::get<servo::FeedbackControlledPlantParameters>(simulated.plant);
+  ASSERT_TRUE(plant.controller);
+  EXPECT_EQ(plant.controller->proportional, 2.0);
+  EXPECT_EQ(plant.converters.force.units_per_volt, 1096.0);
+  EXPECT_EQ(plant.converters.command.saturation_v, 3.8);
+  EXPECT_EQ(plant.plant.specimen_mass_kg, 29.13);
+  // No limits given: the rig's envelope (the benchmark's +/-7 mm, 8.9 kN).
+  EXPECT_EQ(file.node.limits[0].max_stroke_m, 0.007);
+  EXPECT_EQ(file.node.limits[0].max_force_n, 8900.0);
+}
+
+}  // namespace
+}  // namespace rpsd::scenarios

@@ -98,6 +98,7 @@ struct StudyDocument {
   std::vector<SweepAxis> sweep;
   std::vector<coordinator::TestConfig> sweep_cases;  // the first axis varies fastest
   std::vector<std::vector<double>> sweep_values;     // the axis values of each case
+  std::vector<std::string> case_yaml;                // each case's own document (its effective-scenario.yaml)
   // `monte_carlo:` (then sweep is empty, sweep_cases are the runs and sweep_values the drawn
   // parameter values of each).
   std::optional<MonteCarloConfig> monte_carlo;
