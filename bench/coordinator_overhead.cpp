@@ -43,7 +43,7 @@ int main(int argc, char** argv) try {
   setup.control_rate_hz = scenario.control_rate_hz;
   setup.integrator = scenario.integrator;
   setup.compensation = scenario.compensation;
-  setup.plant = servo::PureDelayParameters{0.0, k, scenario.control_rate_hz, {}};
+  setup.plant = servo::PureDelayParameters{0.0, k, scenario.control_rate_hz, {}, {}};
   setup.ground_acceleration_m_per_s2 = ground;
   const coordinator::TestConfig config = coordinator::specimen_sdof_test(setup);
   const double dt_s = 1.0 / scenario.control_rate_hz;

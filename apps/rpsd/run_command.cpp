@@ -195,6 +195,11 @@ void add_validate(CLI::App& app) {
       if (!file.sweep.empty()) {
         std::cout << "  sweep: " << file.sweep_cases.size() << " cases; the first:\n";
       }
+      if (file.monte_carlo) {
+        std::cout << "  monte_carlo: " << file.sweep_cases.size() << " runs (seed " << file.monte_carlo->seed
+                  << "), each read and checked; " << file.monte_carlo->parameters.size()
+                  << " keys drawn; the first run:\n";
+      }
       studies::print_overview(studies::overview_of(*test), std::cout);
     }
   });

@@ -75,7 +75,7 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
       for (int ch : site.channels) {
         const double k = by_channel[static_cast<std::size_t>(ch)]->dof.specimen_stiffness_estimate_n_per_m;
         simulated.plants.owned.push_back(servo::make_plant(
-            perfect_actuator ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}}} : s.plant));
+            perfect_actuator ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}, {}}} : s.plant));
         simulated.plants.pointers.push_back(simulated.plants.owned.back().get());
       }
       simulated.actuator = std::make_unique<servo::SimulatedActuator>(simulated.plants.pointers);

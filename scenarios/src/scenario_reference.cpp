@@ -1,5 +1,7 @@
 #include "rpsd/scenarios/scenario_reference.h"
 
+#include "rpsd/servo/channel_converters.h"
+
 #include <functional>
 #include <memory>
 #include <set>
@@ -140,6 +142,11 @@ void test_scenario(Document& doc) {
             "`whole_structure_damping` takes the same keys (but damping_ratio): the damping of the whole structure, "
             "numerical part with the specimens' stiffness, of which the numerical part gets all but the specimens' "
             "own `specimen_damping_n_s_per_m`.");
+  doc.table("servo.converters (any kind; a feedback_controlled loop has them inside)",
+            listing("servo", [](config::Source& s) { (void)servo::read_channel_converters(s); }),
+            "Each converter: physical / units_per_volt, + Gaussian noise (V), clamp to +/- saturation_v, round to "
+            "the nearest of 2^bits codes over +/- full_scale_v, back to physical units; every stage optional. "
+            "The D/A at its limit counts as a servovalve fully open.");
   doc.table("experimental[]", listing("experimental[]", [](config::Source& s) {
               std::unique_ptr<config::Source> limits;
               (void)ts::experimental(s, kListedDofs, 0, limits);

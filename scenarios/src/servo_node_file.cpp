@@ -203,6 +203,11 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
     throw ConfigError(file.string() + ": " + message);
   }
   if (const auto* simulated = std::get_if<node::SimulatedActuatorConfig>(&f.actuator)) {
+    try {
+      servo::check_control_period(simulated->plant, f.node.control_period_s);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(file.string() + ": actuator.servo." + e.what());
+    }
     for (int c = 0; c < f.node.channels; ++c) {
       double& k = f.node.limits[c].force_guard_stiffness_n_per_m;
       if (k == 0.0) k = servo::specimen_stiffness_of(simulated->plant);

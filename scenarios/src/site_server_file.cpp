@@ -108,6 +108,11 @@ site_server::SiteServerConfig load_site_server(const std::filesystem::path& file
   site_server_sections::site_file(root, c, limit_sections);
   const coordinator::TestConfig& t = c.site;
   const double control_period_s = 1.0 / t.control_rate_hz;
+  try {
+    servo::check_control_period(t.plant, control_period_s);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(file.string() + ": servo." + e.what());
+  }
   for (std::size_t i = 0; i < t.experimental.size(); ++i) {
     try {
       (void)coordinator::within_envelope(t.experimental[i].limits, servo::envelope_of(t.plant), control_period_s);

@@ -59,6 +59,11 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
   // A limit may only tighten the rig's envelope.
   const double control_period_s =
       1.0 / t.control_rate_hz / integrators::make_integrator(t.integrator)->iterations_per_step();
+  try {
+    servo::check_control_period(t.plant, control_period_s);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(file.string() + ": servo." + e.what());
+  }
   for (std::size_t i = 0; i < specimens; ++i) {
     try {
       (void)coordinator::within_envelope(t.experimental[i].limits, servo::envelope_of(t.plant), control_period_s);

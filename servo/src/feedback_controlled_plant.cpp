@@ -4,7 +4,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "rpsd/servo/benchmark_transfer_system.h"
 
@@ -14,23 +13,6 @@ namespace {
 // Control periods the controller is built for: the node's is fixed for a test, and a PID's
 // Tustin coefficients depend on it.
 constexpr double kPeriodTolerance = 1e-9;
-
-SignalConverterParameters read_converter(config::Source& parent, std::string_view key, std::string_view unit,
-                                         std::uint64_t seed) {
-  SignalConverterParameters p;
-  p.seed = seed;
-  const auto section = parent.optional_section(key, "a converter chain (all stages optional)");
-  if (!section) return p;
-  using config::Number;
-  p.units_per_volt = section->number("units_per_volt", Number::positive(unit, "sensor or actuator scale per volt"));
-  p.noise_rms_v = section->number_or("noise_rms_v", 0.0, Number::non_negative("V", "Gaussian noise, RMS"));
-  p.saturation_v = section->number_or("saturation_v", 0.0, Number::non_negative("V", "+/- range (0: none)"));
-  p.bits = static_cast<int>(section->whole_number_or("bits", 0, 30, 0, "converter resolution (0: none)"));
-  p.full_scale_v =
-      section->number_or("full_scale_v", 0.0, Number::non_negative("V", "converter range (0: the saturation's)"));
-  section->finish();
-  return p;  // checked with the whole plant (validate), once every key has been read
-}
 
 PidGains read_controller(config::Source& section) {
   using config::Number;
@@ -71,14 +53,7 @@ FeedbackControlledPlantParameters FeedbackControlledPlantParameters::read(config
   if (const auto c = section.optional_section("controller", "the servo controller's PID on the tracking error")) {
     p.controller = read_controller(*c);
   }
-  if (const auto c = section.optional_section("converters", "D/A and A/D converters of each channel")) {
-    const auto seed = static_cast<std::uint64_t>(
-        c->whole_number_or("seed", 0, 2'000'000'000, 1, "noise seed (each converter its own stream from it)"));
-    p.converters.command = read_converter(*c, "command", "m", seed);
-    p.converters.displacement = read_converter(*c, "displacement", "m", seed + 1);
-    p.converters.force = read_converter(*c, "force", "N", seed + 2);
-    c->finish();
-  }
+  p.converters = read_channel_converters(section);
   try {
     p.validate();
   } catch (const std::invalid_argument& e) {
@@ -96,16 +71,15 @@ void FeedbackControlledPlantParameters::validate() const {
       throw std::invalid_argument(std::string("controller: ") + e.what());
     }
   }
-  const std::pair<const char*, const SignalConverterParameters*> named[] = {
-      {"converters.command", &converters.command},
-      {"converters.displacement", &converters.displacement},
-      {"converters.force", &converters.force}};
-  for (const auto& [name, converter] : named) {
-    try {
-      converter->validate();
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string(name) + ": " + e.what());
-    }
+  converters.validate();
+}
+
+void FeedbackControlledPlantParameters::validate_for_period(double control_period_s) const {
+  if (!controller) return;
+  try {
+    (void)PidController(*controller, control_period_s);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("controller: ") + e.what());
   }
 }
 
@@ -144,7 +118,8 @@ void FeedbackControlledPlant::advance(double command_start_m, double command_end
   if (parameters_.controller) {
     if (!controller_ || std::abs(controller_->period_s() - duration_s) > kPeriodTolerance * duration_s) {
       // First period (or a new one): the controller is built for it. Only at the start of a
-      // test, where the node's period is fixed.
+      // test, where the node's period is fixed; the files' readers checked the controller at
+      // that period (validate_for_period).
       controller_.emplace(*parameters_.controller, duration_s);
       controller_->reset(last_output_);
     }

@@ -1,22 +1,48 @@
 #include "rpsd/servo/plant_factory.h"
 
+#include "rpsd/servo/converted_plant.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
+
+#include <stdexcept>
 
 namespace rpsd::servo {
 
 std::unique_ptr<Plant> make_plant(const PlantConfig& config) {
   return std::visit(
       [](const auto& p) -> std::unique_ptr<Plant> {
-        return std::make_unique<typename std::decay_t<decltype(p)>::Model>(p);
+        auto plant = std::make_unique<typename std::decay_t<decltype(p)>::Model>(p);
+        // A servo loop has its converters inside the loop; any other plant behind them.
+        if constexpr (!std::is_same_v<std::decay_t<decltype(p)>, FeedbackControlledPlantParameters>) {
+          if (p.converters.any()) return std::make_unique<ConvertedPlant>(std::move(plant), p.converters);
+        }
+        return plant;
       },
       config);
 }
 
 PlantConfig read_plant_config(config::Source& section, double specimen_stiffness_n_per_m) {
   const std::string kind = section.choice("kind", PlantKinds::names(), "the plant");
-  const PlantConfig plant = *PlantKinds::read(kind, section, specimen_stiffness_n_per_m);
+  PlantConfig plant = *PlantKinds::read(kind, section, specimen_stiffness_n_per_m);
+  std::visit(
+      [&section](auto& p) {
+        if constexpr (!std::is_same_v<std::decay_t<decltype(p)>, FeedbackControlledPlantParameters>) {
+          p.converters = read_channel_converters(section);
+          try {
+            p.converters.validate();
+          } catch (const std::invalid_argument& e) {
+            section.fail("converters", e.what());
+          }
+        }
+      },
+      plant);
   section.finish();
   return plant;
+}
+
+void check_control_period(const PlantConfig& config, double control_period_s) {
+  if (const auto* controlled = std::get_if<FeedbackControlledPlantParameters>(&config)) {
+    controlled->validate_for_period(control_period_s);
+  }
 }
 
 Envelope envelope_of(const PlantConfig& config) {

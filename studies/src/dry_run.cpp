@@ -1,5 +1,7 @@
 #include "rpsd/studies/dry_run.h"
 
+#include "rpsd/servo/converted_plant.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -185,7 +187,9 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
       previous_command[c] = r.command_m[c];
       targets[c].push_back(r.target_m[c]);
       measured[c].push_back(r.measured_m[c]);
-      if (const auto* servo = dynamic_cast<const servo::ServoHydraulicPlant*>(test.actuators().simulated_plant(c))) {
+      const servo::Plant* plant = test.actuators().simulated_plant(c);
+      if (const auto* converted = dynamic_cast<const servo::ConvertedPlant*>(plant)) plant = &converted->plant();
+      if (const auto* servo = dynamic_cast<const servo::ServoHydraulicPlant*>(plant)) {
         p.peak_valve_opening = std::max(p.peak_valve_opening.value_or(0.0), std::abs(servo->spool_opening()));
       }
     }

@@ -93,7 +93,7 @@ TEST(FeedbackAge, OnePeriodLateFeedbackIsOneMorePeriodOfDelay) {
   LaggingTest t;
   t.lag = 1;
   t.sdof.duration_s = 12.0;
-  t.sdof.plant = servo::PureDelayParameters{plant_delay_s, t.sdof.stiffness_n_per_m, 8192.0, {}};
+  t.sdof.plant = servo::PureDelayParameters{plant_delay_s, t.sdof.stiffness_n_per_m, 8192.0, {}, {}};
   const auto r = run(t);
   const SpecimenSdof& setup = t.sdof;
   const double dt_s = 1.0 / setup.control_rate_hz;

@@ -31,7 +31,7 @@ transport::DdsDomainConfig loopback() {
 TestConfig clamped_sdof() {
   SpecimenSdof sdof;
   sdof.duration_s = 2.0;
-  sdof.plant = servo::PureDelayParameters{0.004, sdof.stiffness_n_per_m, 8192.0, {}};
+  sdof.plant = servo::PureDelayParameters{0.004, sdof.stiffness_n_per_m, 8192.0, {}, {}};
   TestConfig config = specimen_sdof_test(sdof);
   config.transport.test_id = kTest;
   node::ServoNodeConfig node;

@@ -209,5 +209,17 @@ TEST(FeedbackControlledPlant, ReadsTheBenchmarkFormAndNamesAPlantGivenTwice) {
   }
 }
 
+TEST(FeedbackControlledPlant, ADerivativeFilterShorterThanHalfThePeriodIsRefusedBeforeTheTest) {
+  FeedbackControlledPlantParameters p = sample_controller_loop();
+  p.controller = PidGains{2.0, 95.0, 1e-3, 1e-4};  // Tf = 0.1 ms < T/2 = 0.122 ms at 4096 Hz
+  EXPECT_NO_THROW(p.validate_for_period(1.0 / 2048.0 / 4.0));
+  try {
+    check_control_period(p, 1.0 / kRateHz);
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("controller"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rpsd::servo

@@ -18,7 +18,7 @@ struct SpecimenSdof {
   double duration_s = 10.0;
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
   compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
-  servo::PlantConfig plant = servo::PureDelayParameters{0.0, 700.8e3, 8192.0, {}};
+  servo::PlantConfig plant = servo::PureDelayParameters{0.0, 700.8e3, 8192.0, {}, {}};
   RestoringForceSource restoring_force = RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
   // Ground acceleration at t = n / control_rate_hz (F = -m a_g); empty: free vibration.
   // With a record the test lasts as long as the record.

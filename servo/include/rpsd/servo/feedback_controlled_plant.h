@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "rpsd/config/source.h"
+#include "rpsd/servo/channel_converters.h"
 #include "rpsd/servo/envelope.h"
 #include "rpsd/servo/pid_controller.h"
 #include "rpsd/servo/plant.h"
@@ -20,13 +21,6 @@
 namespace rpsd::servo {
 
 class FeedbackControlledPlant;
-
-// The converters of one channel; each off unless stated.
-struct ChannelConverters {
-  SignalConverterParameters command;       // the controller's output (D/A), m
-  SignalConverterParameters displacement;  // the displacement sensor (A/D), m
-  SignalConverterParameters force;         // the load cell (A/D), N
-};
 
 struct FeedbackControlledPlantParameters {
   using Model = FeedbackControlledPlant;
@@ -42,6 +36,9 @@ struct FeedbackControlledPlantParameters {
 
   // Throws std::invalid_argument naming the problem. Not real-time safe.
   void validate() const;
+  // The controller at this control period (a derivative filter shorter than half a period
+  // rings at the Nyquist frequency): std::invalid_argument naming it. Not real-time safe.
+  void validate_for_period(double control_period_s) const;
   const Envelope& rig() const { return plant.rig; }
 };
 

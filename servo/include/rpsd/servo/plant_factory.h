@@ -28,6 +28,10 @@ std::unique_ptr<Plant> make_plant(const PlantConfig& config);
 // k for the plants that have no specimen of their own. Not real-time safe.
 PlantConfig read_plant_config(config::Source& section, double specimen_stiffness_n_per_m);
 
+// Checks what depends on the control period (a servo loop's controller): std::invalid_argument
+// naming the problem. Not real-time safe.
+void check_control_period(const PlantConfig& config, double control_period_s);
+
 // The rig the configuration describes (infinite when none was stated: a numerical reference).
 Envelope envelope_of(const PlantConfig& config);
 // The stiffness of the specimen the configuration's load cell sees (its initial stiffness).

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "rpsd/config/source.h"
+#include "rpsd/servo/channel_converters.h"
 #include "rpsd/servo/envelope.h"
 
 #include <vector>
@@ -26,6 +27,7 @@ struct PureDelayParameters {
   double specimen_stiffness_n_per_m = 0.0;  // the load cell reads k x_m (an elastic specimen)
   double sample_rate_hz = 8192.0;           // command history resolution; advances split to <= 1/rate
   Envelope rig;                             // the piston stops at +/- rig.stroke_m
+  ChannelConverters converters{};           // servo.converters (none unless stated)
 
   // Throws std::invalid_argument naming the bad field. Not real-time safe.
   void validate() const;

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "rpsd/config/source.h"
+#include "rpsd/servo/channel_converters.h"
 #include "rpsd/servo/envelope.h"
 
 namespace rpsd::servo {
@@ -110,7 +111,8 @@ struct ServoSystemParameters {
   ActuatorParameters actuator;
   SensorParameters sensors;
   SpecimenParameters specimen;
-  double plant_rate_hz = 8192.0;  // fixed-step integration rate of the continuous plant
+  double plant_rate_hz = 8192.0;   // fixed-step integration rate of the continuous plant
+  ChannelConverters converters{};  // the scenario's servo.converters (none unless stated)
 
   // Throws std::invalid_argument naming the first inconsistent field. Not real-time safe.
   void validate() const;

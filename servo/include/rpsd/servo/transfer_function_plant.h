@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "rpsd/config/source.h"
+#include "rpsd/servo/channel_converters.h"
 #include "rpsd/servo/envelope.h"
 
 #include <Eigen/Core>
@@ -37,6 +38,7 @@ struct TransferFunctionPlantParameters {
   // roll off by at least two powers of s (three with mass).
   double specimen_damping_n_s_per_m = 0.0;
   double specimen_mass_kg = 0.0;
+  ChannelConverters converters{};  // servo.converters (none unless stated)
 
   // Throws std::invalid_argument when improper, unstable, or too fast for the rate.
   void validate() const;
