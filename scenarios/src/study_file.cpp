@@ -67,17 +67,23 @@ void note_key_of(const YAML::Node& parent, const YAML::Node& value, const std::s
   nodes.push_back({value, origin});
 }
 
+// "a.0.b" as {"a", "0", "b"}.
+std::vector<std::string> key_path_parts(const std::string& key_path) {
+  std::vector<std::string> keys;
+  std::size_t start = 0;
+  for (std::size_t dot; (dot = key_path.find('.', start)) != std::string::npos; start = dot + 1) {
+    keys.push_back(key_path.substr(start, dot - start));
+  }
+  keys.push_back(key_path.substr(start));
+  return keys;
+}
+
 // Walks key.path (mapping keys, or list indices as numbers) and replaces the value there; a
 // missing mapping on the way is created (ground_motion.trim.end_s=5 without a trim). Returns
 // the nodes the command line put in, so that an error in one names its override.
 std::vector<OverrideNode> apply_override(YAML::Node root, const Override& o) {
   const std::string origin = origin_of(o);
-  std::vector<std::string> keys;
-  std::size_t start = 0;
-  for (std::size_t dot; (dot = o.key_path.find('.', start)) != std::string::npos; start = dot + 1) {
-    keys.push_back(o.key_path.substr(start, dot - start));
-  }
-  keys.push_back(o.key_path.substr(start));
+  const std::vector<std::string> keys = key_path_parts(o.key_path);
   YAML::Node value;
   try {
     value = YAML::Load(o.value);
@@ -245,25 +251,20 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
 // The number at key.path in the document (mapping keys, or list indices as numbers).
 std::optional<double> number_at(const YAML::Node& root, const std::string& key_path) {
   YAML::Node node = YAML::Clone(root);
-  std::size_t start = 0;
-  while (node) {
-    const std::size_t dot = key_path.find('.', start);
-    const std::string key = key_path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+  for (const std::string& key : key_path_parts(key_path)) {
     if (node.IsSequence()) {
       std::size_t index = 0;
       if (std::from_chars(key.data(), key.data() + key.size(), index).ec != std::errc() || index >= node.size())
         return std::nullopt;
-      node = node[index];
-    } else if (node.IsMap()) {
-      node = node[key];
+      node.reset(node[index]);  // rebind: `=` would write into the tree
+    } else if (node.IsMap() && node[key]) {
+      node.reset(node[key]);
     } else {
       return std::nullopt;
     }
-    if (dot == std::string::npos) break;
-    start = dot + 1;
   }
   double value = 0.0;
-  if (!node || !node.IsScalar() || !YAML::convert<double>::decode(node, value)) return std::nullopt;
+  if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) return std::nullopt;
   return value;
 }
 

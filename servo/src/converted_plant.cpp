@@ -1,11 +1,16 @@
 #include "rpsd/servo/converted_plant.h"
 
+#include <limits>
 #include <stdexcept>
 
 namespace rpsd::servo {
 
-ConvertedPlant::ConvertedPlant(std::unique_ptr<Plant> plant, const ChannelConverters& converters)
+ConvertedPlant::ConvertedPlant(std::unique_ptr<Plant> plant, const ChannelConverters& converters, Output output)
     : plant_(std::move(plant)),
+      output_(output),
+      command_limit_(converters.command.saturation_v > 0.0
+                         ? converters.command.saturation_v * converters.command.units_per_volt
+                         : std::numeric_limits<double>::infinity()),
       command_(converters.command),
       displacement_(converters.displacement),
       force_(converters.force) {
@@ -31,7 +36,7 @@ void ConvertedPlant::reset(double displacement_m) {
 
 void ConvertedPlant::advance(double, double command_end_m, double duration_s) {
   const double command = command_.convert(command_end_m);
-  plant_->advance(last_command_m_, command, duration_s);
+  plant_->advance(output_ == Output::kHold ? command : last_command_m_, command, duration_s);
   last_command_m_ = command;
   read_sensors(command_.saturated());
 }

@@ -1,7 +1,6 @@
 #include "rpsd/servo/feedback_controlled_plant.h"
 
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -53,7 +52,7 @@ FeedbackControlledPlantParameters FeedbackControlledPlantParameters::read(config
   if (const auto c = section.optional_section("controller", "the servo controller's PID on the tracking error")) {
     p.controller = read_controller(*c);
   }
-  p.converters = read_channel_converters(section);
+  // Its `converters` are read with every plant's (read_plant_config).
   try {
     p.validate();
   } catch (const std::invalid_argument& e) {
@@ -85,57 +84,40 @@ void FeedbackControlledPlantParameters::validate_for_period(double control_perio
 
 FeedbackControlledPlant::FeedbackControlledPlant(const FeedbackControlledPlantParameters& parameters)
     : parameters_(parameters),
-      plant_(parameters.plant),
-      command_(parameters.converters.command),
-      displacement_(parameters.converters.displacement),
-      force_(parameters.converters.force) {
+      converted_(std::make_unique<TransferFunctionPlant>(parameters.plant), parameters.converters,
+                 parameters.controller ? ConvertedPlant::Output::kHold : ConvertedPlant::Output::kRamp) {
   parameters_.validate();
-  const auto& c = parameters_.converters.command;
-  output_limit_ = c.saturation_v > 0.0 ? c.saturation_v * c.units_per_volt : std::numeric_limits<double>::infinity();
   reset(0.0);
 }
 
-void FeedbackControlledPlant::read_sensors() {
-  const PlantMeasurement m = plant_.measure();
-  measured_.displacement_m = displacement_.convert(m.displacement_m);
-  measured_.force_n = force_.convert(m.force_n);
-  measured_.at_end_stop = m.at_end_stop;
-}
-
 void FeedbackControlledPlant::reset(double displacement_m) {
-  plant_.reset(displacement_m);
-  last_output_ = displacement_m / parameters_.plant.transfer_function.static_gain();
-  if (controller_) controller_->reset(last_output_);
-  command_.reseed();
-  displacement_.reseed();
-  force_.reseed();
-  read_sensors();
-  measured_.valve_saturated = false;
+  converted_.reset(displacement_m);
+  holding_output_ = displacement_m / parameters_.plant.transfer_function.static_gain();
+  if (controller_) controller_->reset(holding_output_);
 }
 
 void FeedbackControlledPlant::advance(double command_start_m, double command_end_m, double duration_s) {
   if (!(duration_s > 0.0)) return;
-  if (parameters_.controller) {
-    if (!controller_ || std::abs(controller_->period_s() - duration_s) > kPeriodTolerance * duration_s) {
-      // First period (or a new one): the controller is built for it. Only at the start of a
-      // test, where the node's period is fixed; the files' readers checked the controller at
-      // that period (validate_for_period).
-      controller_.emplace(*parameters_.controller, duration_s);
-      controller_->reset(last_output_);
-    }
-    const double error = command_end_m - measured_.displacement_m;
-    const double u = command_.convert(controller_->update(error, -output_limit_, output_limit_));
-    plant_.advance(u, u, duration_s);  // the D/A holds the controller's output
-    measured_.valve_saturated = controller_->saturated() || command_.saturated();
-    last_output_ = u;
-  } else {
-    const double start = last_output_;
-    (void)command_start_m;
-    last_output_ = command_.convert(command_end_m);
-    plant_.advance(start, last_output_, duration_s);
-    measured_.valve_saturated = command_.saturated();
+  if (!parameters_.controller) {
+    converted_.advance(command_start_m, command_end_m, duration_s);
+    return;
   }
-  read_sensors();
+  if (!controller_ || std::abs(controller_->period_s() - duration_s) > kPeriodTolerance * duration_s) {
+    // First period (or a new one): the controller is built for it. Only at the start of a
+    // test, where the node's period is fixed; the files' readers checked the controller at
+    // that period (validate_for_period).
+    controller_.emplace(*parameters_.controller, duration_s);
+    controller_->reset(holding_output_);
+  }
+  const double error = command_end_m - converted_.measure().displacement_m;
+  const double u = controller_->update(error, -converted_.command_limit(), converted_.command_limit());
+  converted_.advance(u, u, duration_s);
+}
+
+PlantMeasurement FeedbackControlledPlant::measure() const {
+  PlantMeasurement m = converted_.measure();
+  m.valve_saturated = m.valve_saturated || (controller_ && controller_->saturated());
+  return m;
 }
 
 }  // namespace rpsd::servo

@@ -12,10 +12,10 @@
 
 #include "rpsd/config/source.h"
 #include "rpsd/servo/channel_converters.h"
+#include "rpsd/servo/converted_plant.h"
 #include "rpsd/servo/envelope.h"
 #include "rpsd/servo/pid_controller.h"
 #include "rpsd/servo/plant.h"
-#include "rpsd/servo/signal_converter.h"
 #include "rpsd/servo/transfer_function_plant.h"
 
 namespace rpsd::servo {
@@ -54,18 +54,13 @@ class FeedbackControlledPlant final : public Plant {
   // displacement measured at its start, and its output is held for duration_s. Real-time safe.
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   // The converted readings; valve_saturated: the controller's output or its D/A at a limit.
-  PlantMeasurement measure() const override { return measured_; }
+  PlantMeasurement measure() const override;
 
  private:
-  void read_sensors();
-
   FeedbackControlledPlantParameters parameters_;
-  TransferFunctionPlant plant_;
+  ConvertedPlant converted_;  // the plant behind the converters; the D/A holds with a controller
   std::optional<PidController> controller_;
-  SignalConverter command_, displacement_, force_;
-  double output_limit_ = 0.0;  // the D/A's range in plant units (infinite without saturation)
-  double last_output_ = 0.0;
-  PlantMeasurement measured_;
+  double holding_output_ = 0.0;  // the controller's output that holds the last reset
 };
 
 }  // namespace rpsd::servo
