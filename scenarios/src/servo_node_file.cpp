@@ -145,11 +145,7 @@ void watchdog(config::Source& r, node::ServoNodeSetup& f) {
   r.finish();
 }
 
-void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f) {
-  f.bind_host = u.optional_text("bind_host", "the address it listens on (default: 127.0.0.1)").value_or(f.bind_host);
-  f.port = static_cast<std::uint16_t>(u.whole_number("port", 1, 65535, "the UDP port it listens on"));
-  u.finish();
-}
+void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f) { f.udp = node::ControllerEmulatorConfig::read(u); }
 
 void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f) {
   f.channels = static_cast<int>(a.whole_number("channels", 1, transport::kMaxChannels, "the actuators it emulates"));
