@@ -34,26 +34,30 @@ ControllerEmulatorConfig ControllerEmulatorConfig::read(config::Source& u) {
   c.protocol_version = static_cast<int>(u.whole_number_or("protocol_version", 1, 2, udp_protocol::kVersion2,
                                                           "2: every datagram authenticated; 1: none (legacy)"));
   const auto key_file = u.optional_relative_file("key_file", "version 2: the key shared with the node (mode 0600)");
+  if (key_file) c.key_file = key_file->string();
   u.finish();
-  for (const auto& [key, host] : {std::pair{"bind_host", c.bind_host}, std::pair{"node_host", c.node_host}}) {
+  return c;
+}
+
+void ControllerEmulatorConfig::check_and_load_key(config::Source& u) {
+  for (const auto& [key, host] : {std::pair{"bind_host", bind_host}, std::pair{"node_host", node_host}}) {
     try {
       Ipv4Endpoint::parse(host, 0, key);
     } catch (const std::invalid_argument& e) {
       u.fail(key, e.what());
     }
   }
-  if (c.protocol_version == udp_protocol::kVersion1 && key_file) {
+  if (protocol_version == udp_protocol::kVersion1 && !key_file.empty()) {
     u.fail("key_file", "protocol version 1 authenticates nothing: remove key_file, or use protocol_version 2");
   }
-  if (c.protocol_version == udp_protocol::kVersion2) {
-    if (!key_file) u.fail("key_file", "protocol version 2 (the default) needs the key shared with the node");
+  if (protocol_version == udp_protocol::kVersion2) {
+    if (key_file.empty()) u.fail("key_file", "protocol version 2 (the default) needs the key shared with the node");
     try {
-      c.key = read_udp_key_file(*key_file);
+      key = read_udp_key_file(key_file);
     } catch (const std::invalid_argument& e) {
       u.fail("key_file", e.what());
     }
   }
-  return c;
 }
 
 ControllerEmulator::ControllerEmulator(std::span<servo::Plant* const> plants, const ControllerEmulatorConfig& config)

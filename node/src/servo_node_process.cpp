@@ -168,7 +168,21 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   log << "rpsd servo-node: stopped after " << c.ticks << " ticks, " << c.runs << " run(s), " << c.applied
       << " commands applied, " << dropped_text(c) << ", " << report.overruns << " overruns"
       << (controller.faulted() ? ", FAULTED" : "") << std::endl;
-  return node_summary(setup, controller, report);
+  nlohmann::json summary = node_summary(setup, controller, report);
+  if (const auto* udp = dynamic_cast<const UdpControllerActuator*>(actuator.actuator.get())) {
+    const UdpControllerCounters& u = udp->counters();
+    summary["udp_link"] = {{"protocol_version", std::get<UdpControllerConfig>(setup.actuator).protocol_version},
+                           {"commands_sent", u.commands_sent},
+                           {"replies", u.replies},
+                           {"missed_replies", u.missed_replies},
+                           {"stale_replies", u.stale_replies},
+                           {"bad_replies", u.bad_replies},
+                           {"foreign_datagrams", u.foreign_datagrams},
+                           {"unauthenticated_replies", u.unauthenticated_replies},
+                           {"other_session_replies", u.other_session_replies},
+                           {"controller_faults", u.controller_faults}};
+  }
+  return summary;
 }
 
 nlohmann::json emulate_controller(const ControllerEmulatorSetup& setup, const ServeOptions& options,

@@ -174,9 +174,11 @@ std::unique_ptr<config::Source> node_file(config::Source& root, const std::files
 
 void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f) {
   root.optional_text("description", "one line for titles");
-  emulator_udp(*root.section("udp", "where the emulator listens"), f);
+  const auto udp = root.section("udp", "where the emulator listens, its node, the protocol and key");
+  emulator_udp(*udp, f);
   emulator_actuator(*root.section("actuator", "the actuators it emulates"), f);
   root.finish();
+  f.udp.check_and_load_key(*udp);
 }
 
 }  // namespace node_sections

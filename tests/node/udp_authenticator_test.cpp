@@ -54,6 +54,21 @@ TEST(UdpAuthenticator, EqualsOpenSslsHmacSha256) {
   }
 }
 
+// docs/udp-controller-protocol.md's vector for controller implementers.
+TEST(UdpAuthenticator, MatchesTheDocumentedTestVector) {
+  std::vector<std::byte> key(32), message(120);
+  for (std::size_t i = 0; i < key.size(); ++i) key[i] = static_cast<std::byte>(i);
+  for (std::size_t i = 0; i < 4; ++i) message[i] = static_cast<std::byte>("RPSC"[i]);
+  std::array<std::byte, kUdpTagBytes> tag{};
+  UdpAuthenticator(key).tag(message, tag);
+  std::string hex;
+  for (const std::byte b : tag) {
+    hex += "0123456789abcdef"[static_cast<int>(b) >> 4];
+    hex += "0123456789abcdef"[static_cast<int>(b) & 15];
+  }
+  EXPECT_EQ(hex, "e4a47a1fca3dafa9d44d773a723bbacecd8afa9825d216aead780ba9f0dac847");
+}
+
 TEST(UdpAuthenticator, RefusesAnotherKeysTagAndAnyAlteredByte) {
   std::mt19937 random(4231);
   const auto key = random_bytes(32, random);

@@ -28,10 +28,14 @@ struct ControllerEmulatorConfig {
   std::string node_host = "127.0.0.1";
   std::uint16_t node_port = 0;
   int protocol_version = udp_protocol::kVersion2;
+  std::string key_file;        // version 2: where the key is (relative paths: to the emulator file)
   std::vector<std::byte> key;  // version 2: the key shared with the node (read_udp_key_file)
 
-  // The `udp` section of an emulator file (a key file relative to it). Not real-time safe.
+  // The keys of the `udp` section of an emulator file. Not real-time safe.
   static ControllerEmulatorConfig read(config::Source& udp);
+  // Then, once every key of the file is read (so that a listing of the keys has seen them
+  // all): checks the addresses and the version, and reads the key file, failing at the key.
+  void check_and_load_key(config::Source& udp);
 };
 
 struct ControllerEmulatorCounters {
