@@ -18,7 +18,8 @@ std::unique_ptr<UdpAuthenticator> keyed(const ControllerEmulatorConfig& config) 
   if (config.protocol_version != udp_protocol::kVersion2) {
     throw std::invalid_argument("protocol_version: 1 or 2, got " + std::to_string(config.protocol_version));
   }
-  if (config.key.empty()) throw std::invalid_argument("key_file: protocol version 2 needs the key shared with the node");
+  if (config.key.empty())
+    throw std::invalid_argument("key_file: protocol version 2 needs the key shared with the node");
   return std::make_unique<UdpAuthenticator>(config.key);
 }
 
@@ -91,7 +92,8 @@ void ControllerEmulator::reply(std::uint64_t sequence, ControllerStatus status) 
     sent = udp_protocol::encode_reply(reply, session_, *key_, reply_packet_v2_) == PacketStatus::kOk &&
            socket_.send_to(reply_packet_v2_, node_);
   } else {
-    sent = udp_protocol::encode_reply(reply, reply_packet_) == PacketStatus::kOk && socket_.send_to(reply_packet_, node_);
+    sent =
+        udp_protocol::encode_reply(reply, reply_packet_) == PacketStatus::kOk && socket_.send_to(reply_packet_, node_);
   }
   if (!sent) ++counters_.send_errors;
 }
@@ -112,7 +114,8 @@ bool ControllerEmulator::admit(std::span<const std::byte> bytes, const Ipv4Endpo
       ++counters_.unauthenticated;
       return false;
     }
-    if (s != PacketStatus::kOk || (command.hello && session.controller_nonce != udp_protocol::Session{}.controller_nonce)) {
+    if (s != PacketStatus::kOk ||
+        (command.hello && session.controller_nonce != udp_protocol::Session{}.controller_nonce)) {
       ++counters_.bad_packets;
       return false;
     }

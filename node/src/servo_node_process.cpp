@@ -220,8 +220,8 @@ nlohmann::json emulate_controller(const ControllerEmulatorSetup& setup, const Se
           {"wrong_channels", c.wrong_channels},
           {"stale_commands", c.stale_commands},
           {"refused_commands", c.refused_commands},
-          {"position_m", std::vector<double>(reading.displacement_m.begin(),
-                                             reading.displacement_m.begin() + emulator.channels())}};
+          {"position_m",
+           std::vector<double>(reading.displacement_m.begin(), reading.displacement_m.begin() + emulator.channels())}};
 }
 
 }  // namespace rpsd::node

@@ -99,7 +99,8 @@ std::vector<std::byte> read_udp_key_file(const std::filesystem::path& file) {
   std::vector<std::byte> key(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(size));
   OPENSSL_cleanse(buffer.data(), buffer.size());
   if (size < kUdpMinKeyBytes || size > kUdpMaxKeyBytes) {
-    const std::string got = size > kUdpMaxKeyBytes ? "more than " + std::to_string(kUdpMaxKeyBytes) : std::to_string(size);
+    const std::string got =
+        size > kUdpMaxKeyBytes ? "more than " + std::to_string(kUdpMaxKeyBytes) : std::to_string(size);
     throw refuse("the key file holds " + got + " bytes; a key is " + std::to_string(kUdpMinKeyBytes) + " to " +
                  std::to_string(kUdpMaxKeyBytes) + " raw bytes (make one with: openssl rand -out " + name + " 32)");
   }

@@ -54,7 +54,7 @@ UdpControllerActuator::UdpControllerActuator(const UdpControllerConfig& config)
       controller_(Ipv4Endpoint::parse(config.controller_host, config.controller_port, "controller_host")),
       socket_(validated_local(config)),
       key_(config.protocol_version == udp_protocol::kVersion2 ? std::make_unique<UdpAuthenticator>(config.key)
-                                                               : nullptr) {
+                                                              : nullptr) {
   config_.key.clear();  // the keyed states are all that is kept
 }
 

@@ -145,7 +145,9 @@ void watchdog(config::Source& r, node::ServoNodeSetup& f) {
   r.finish();
 }
 
-void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f) { f.udp = node::ControllerEmulatorConfig::read(u); }
+void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f) {
+  f.udp = node::ControllerEmulatorConfig::read(u);
+}
 
 void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f) {
   f.channels = static_cast<int>(a.whole_number("channels", 1, transport::kMaxChannels, "the actuators it emulates"));

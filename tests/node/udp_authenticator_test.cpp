@@ -126,8 +126,9 @@ TEST_F(KeyFile, OnlyItsOwnerMayReadIt) {
 }
 
 TEST_F(KeyFile, HoldsThirtyTwoToSixtyFourRawBytes) {
-  EXPECT_NE(error(write(31, 0600)).find("holds 31 bytes; a key is 32 to 64 raw bytes (make one with: openssl rand -out "),
-            std::string::npos);
+  EXPECT_NE(
+      error(write(31, 0600)).find("holds 31 bytes; a key is 32 to 64 raw bytes (make one with: openssl rand -out "),
+      std::string::npos);
   EXPECT_NE(error(write(65, 0600)).find("holds more than 64 bytes"), std::string::npos);
   EXPECT_NE(error(write(0, 0600)).find("holds 0 bytes"), std::string::npos);
   const std::string missing = error(file_.string() + ".missing");

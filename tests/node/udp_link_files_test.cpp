@@ -38,8 +38,7 @@ class LinkFiles : public ::testing::Test {
                            "  channels: 1\n"
                            "  host: 127.0.0.1\n"
                            "  port: 45999\n"
-                        << link
-                        << "  rig: {stroke_m: 0.25, force_n: 1.0e6, velocity_m_per_s: 1.0}\n";
+                        << link << "  rig: {stroke_m: 0.25, force_n: 1.0e6, velocity_m_per_s: 1.0}\n";
     return file;
   }
   fs::path emulator_file(const std::string& link) {
@@ -94,8 +93,7 @@ TEST_F(LinkFiles, VersionTwoIsTheDefaultAndNeedsAKeyFile) {
   const auto& udp = std::get<UdpControllerConfig>(setup.actuator);
   EXPECT_EQ(udp.protocol_version, 2);
   EXPECT_EQ(udp.key.size(), 32u);
-  EXPECT_NE(describe_link(udp).find("protocol version 2 (HMAC-SHA-256, key " + key_.string() + ")"),
-            std::string::npos);
+  EXPECT_NE(describe_link(udp).find("protocol version 2 (HMAC-SHA-256, key " + key_.string() + ")"), std::string::npos);
   EXPECT_EQ(scenarios::load_controller_emulator(emulator_file("  key_file: lab.key\n")).udp.key.size(), 32u);
 }
 
@@ -118,8 +116,7 @@ TEST_F(LinkFiles, TheEmulatorFileNamesItsNode) {
                          "force_n: 1.0e6, velocity_m_per_s: 1.0}}}\n";
   const std::string e = error_of([&] { (void)scenarios::load_controller_emulator(file); });
   EXPECT_NE(e.find("udp.node_host"), std::string::npos) << e;
-  const auto setup =
-      scenarios::load_controller_emulator(emulator_file("  key_file: lab.key\n"));
+  const auto setup = scenarios::load_controller_emulator(emulator_file("  key_file: lab.key\n"));
   EXPECT_EQ(setup.udp.node_host, "127.0.0.1");
   EXPECT_EQ(setup.udp.node_port, 45998);
 }

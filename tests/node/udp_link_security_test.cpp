@@ -35,7 +35,8 @@ using Served = ControllerEmulator::Served;
 
 // One emulated channel whose piston is where it was commanded at the end of each period.
 struct Rig {
-  explicit Rig(int version, const std::vector<std::byte>& key = test_key()) : emulator(plants, emulator_config(version, key)) {
+  explicit Rig(int version, const std::vector<std::byte>& key = test_key())
+      : emulator(plants, emulator_config(version, key)) {
     const double x0[] = {0.0};
     emulator.start(x0);
   }
@@ -80,7 +81,7 @@ TEST(UdpLinkSecurity, AStrangersCommandAndQueryDoNotMoveThePiston) {
       ASSERT_EQ(node.exchange(x, 0.001, reading), servo::ActuatorStatus::kOk);
     }
     for (int attempt = 0; attempt < 3; ++attempt) send_the_reported_datagrams(rig.emulator);  // the 3 tries
-    EXPECT_EQ(rig.position_m(), 0.001);  // not 0.2 m
+    EXPECT_EQ(rig.position_m(), 0.001);                                                       // not 0.2 m
     EXPECT_EQ(rig.emulator.counters().foreign_datagrams, 6u);
     EXPECT_EQ(rig.emulator.counters().commands_applied, 1u);
     // The node's session goes on: the stranger's query reset nothing and its sequence took nothing.
@@ -114,7 +115,8 @@ class HandMadeNode {
     return answered(sequence).value_or(Session{});
   }
 
-  udp_protocol::CommandPacketV2 command(std::uint64_t sequence, double x_m, const Session& session, bool query = false) {
+  udp_protocol::CommandPacketV2 command(std::uint64_t sequence, double x_m, const Session& session,
+                                        bool query = false) {
     ControllerCommand command;
     command.sequence = sequence;
     command.channels = 1;
@@ -139,8 +141,9 @@ class HandMadeNode {
       const long size = socket_.receive(buffer, from);
       ControllerReply reply;
       Session session;
-      if (size > 0 && udp_protocol::decode_reply(std::span<const std::byte>(buffer.data(), static_cast<std::size_t>(size)),
-                                                 key_, reply, session) == PacketStatus::kOk &&
+      if (size > 0 &&
+          udp_protocol::decode_reply(std::span<const std::byte>(buffer.data(), static_cast<std::size_t>(size)), key_,
+                                     reply, session) == PacketStatus::kOk &&
           reply.sequence == sequence) {
         return session;
       }
@@ -160,7 +163,8 @@ TEST(UdpLinkSecurity, ASequenceOnlyMovesForwardWithinASession) {
   const Session session = node.hello(10, 0xA1);
   ASSERT_NE(session.controller_nonce, Session{}.controller_nonce);  // the controller drew its own
   EXPECT_EQ(node.send(node.command(11, 0.001, session)), Served::kApplied);
-  EXPECT_EQ(node.send(node.command(0, 0.0, session, true)), Served::kIgnored);  // a query with sequence 0 resets nothing
+  EXPECT_EQ(node.send(node.command(0, 0.0, session, true)),
+            Served::kIgnored);  // a query with sequence 0 resets nothing
   EXPECT_EQ(node.send(node.command(11, 0.005, session)), Served::kIgnored);
   EXPECT_EQ(node.send(node.command(5, 0.005, session)), Served::kIgnored);
   EXPECT_EQ(rig.position_m(), 0.001);
@@ -289,7 +293,7 @@ TEST(UdpLinkSecurity, TheNodeRefusesRepliesOfAnotherSessionOrKey) {
   auto exchanged = std::async(std::launch::async, [&] { return node.exchange(x, 0.001, reading); });
   const auto [command, session] = controller.receive();
   EXPECT_EQ(session, second);
-  controller.reply(command.sequence, 0.2, first);                           // a reply of session 1
+  controller.reply(command.sequence, 0.2, first);                                  // a reply of session 1
   controller.reply(command.sequence, 0.2, second, UdpAuthenticator(test_key(9)));  // another key
   EXPECT_EQ(exchanged.get(), servo::ActuatorStatus::kNoReply);
   EXPECT_FALSE(reading.fresh);

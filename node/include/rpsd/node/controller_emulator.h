@@ -41,15 +41,15 @@ struct ControllerEmulatorConfig {
 struct ControllerEmulatorCounters {
   std::uint64_t commands_applied = 0;
   std::uint64_t queries = 0;
-  std::uint64_t sessions = 0;            // sessions begun by the node (a hello; a query in version 1)
-  std::uint64_t foreign_datagrams = 0;   // from another address or port than the node's, ignored
-  std::uint64_t unauthenticated = 0;     // version 2: a tag not made with the key, ignored
-  std::uint64_t other_session = 0;       // version 2: a genuine datagram of another session (a replay), ignored
-  std::uint64_t outside_session = 0;     // commands or queries before the node began a session, ignored
-  std::uint64_t bad_packets = 0;         // undecodable datagrams, ignored
-  std::uint64_t wrong_channels = 0;      // commands for another channel count, ignored
-  std::uint64_t stale_commands = 0;      // sequence not newer than the last one taken in the session, ignored
-  std::uint64_t refused_commands = 0;    // commands answered but not applied while in fault
+  std::uint64_t sessions = 0;           // sessions begun by the node (a hello; a query in version 1)
+  std::uint64_t foreign_datagrams = 0;  // from another address or port than the node's, ignored
+  std::uint64_t unauthenticated = 0;    // version 2: a tag not made with the key, ignored
+  std::uint64_t other_session = 0;      // version 2: a genuine datagram of another session (a replay), ignored
+  std::uint64_t outside_session = 0;    // commands or queries before the node began a session, ignored
+  std::uint64_t bad_packets = 0;        // undecodable datagrams, ignored
+  std::uint64_t wrong_channels = 0;     // commands for another channel count, ignored
+  std::uint64_t stale_commands = 0;     // sequence not newer than the last one taken in the session, ignored
+  std::uint64_t refused_commands = 0;   // commands answered but not applied while in fault
   std::uint64_t send_errors = 0;
 };
 

@@ -14,7 +14,7 @@
 
 namespace rpsd::node {
 
-inline constexpr std::size_t kUdpTagBytes = 32;    // a full HMAC-SHA-256, not truncated
+inline constexpr std::size_t kUdpTagBytes = 32;     // a full HMAC-SHA-256, not truncated
 inline constexpr std::size_t kUdpMinKeyBytes = 32;  // the hash's length (RFC 2104's minimum advice)
 inline constexpr std::size_t kUdpMaxKeyBytes = 64;  // SHA-256's block: a longer key would be hashed down
 

@@ -59,11 +59,11 @@ struct UdpControllerConfig {
 
 struct UdpControllerCounters {
   std::uint64_t commands_sent = 0;
-  std::uint64_t replies = 0;            // matching replies taken
-  std::uint64_t missed_replies = 0;     // periods without a matching reply in time
-  std::uint64_t stale_replies = 0;      // replies to an older command, drained
-  std::uint64_t bad_replies = 0;        // undecodable, or a sequence never sent, or wrong channels
-  std::uint64_t foreign_datagrams = 0;  // datagrams from another address or port than the controller's
+  std::uint64_t replies = 0;                  // matching replies taken
+  std::uint64_t missed_replies = 0;           // periods without a matching reply in time
+  std::uint64_t stale_replies = 0;            // replies to an older command, drained
+  std::uint64_t bad_replies = 0;              // undecodable, or a sequence never sent, or wrong channels
+  std::uint64_t foreign_datagrams = 0;        // datagrams from another address or port than the controller's
   std::uint64_t unauthenticated_replies = 0;  // version 2: a tag not made with the key
   std::uint64_t other_session_replies = 0;    // version 2: a genuine reply of another session (a replay)
   std::uint64_t send_errors = 0;
@@ -115,8 +115,8 @@ class UdpControllerActuator final : public servo::Actuator {
   UdpControllerCounters counters_;
   std::unique_ptr<UdpAuthenticator> key_;  // version 2
   udp_protocol::Session session_;
-  bool awaiting_hello_ = false;             // start(): the controller's nonce is not known yet
-  udp_protocol::Session reply_session_;     // the session of the reply take_queued() matched
+  bool awaiting_hello_ = false;          // start(): the controller's nonce is not known yet
+  udp_protocol::Session reply_session_;  // the session of the reply take_queued() matched
   udp_protocol::CommandPacket command_packet_{};
   udp_protocol::CommandPacketV2 command_packet_v2_{};
   std::array<std::byte, udp_protocol::kReplyBytesV2 + 1> receive_buffer_{};  // +1: oversized datagrams show

@@ -18,8 +18,8 @@ namespace rpsd::node::udp_protocol {
 
 inline constexpr std::uint32_t kCommandMagic = 0x43535052;  // bytes "RPSC" on the wire
 inline constexpr std::uint32_t kReplyMagic = 0x52535052;    // bytes "RPSR" on the wire
-inline constexpr std::uint16_t kVersion1 = 1;  // unauthenticated: only for a file that asks for it
-inline constexpr std::uint16_t kVersion2 = 2;  // each datagram carries its session and an HMAC-SHA-256 tag
+inline constexpr std::uint16_t kVersion1 = 1;               // unauthenticated: only for a file that asks for it
+inline constexpr std::uint16_t kVersion2 = 2;               // each datagram carries its session and an HMAC-SHA-256 tag
 inline constexpr int kMaxChannels = transport::kMaxChannels;           // slots in every packet
 inline constexpr std::size_t kCommandBytes = 24 + 8 * kMaxChannels;    // 88
 inline constexpr std::size_t kReplyBytes = 16 + 2 * 8 * kMaxChannels;  // 144
@@ -27,7 +27,7 @@ inline constexpr double kMinPeriodS = 1e-6;                            // comman
 inline constexpr double kMaxPeriodS = 1.0;
 
 inline constexpr std::size_t kNonceBytes = 16;
-inline constexpr std::size_t kSessionBytes = 2 * kNonceBytes;                             // node's, controller's
+inline constexpr std::size_t kSessionBytes = 2 * kNonceBytes;                                 // node's, controller's
 inline constexpr std::size_t kCommandBytesV2 = kCommandBytes + kSessionBytes + kUdpTagBytes;  // 152
 inline constexpr std::size_t kReplyBytesV2 = kReplyBytes + kSessionBytes + kUdpTagBytes;      // 208
 
