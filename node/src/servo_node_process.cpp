@@ -158,6 +158,9 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   log << "rpsd servo-node: test " << setup.node.test_id << " site " << setup.node.site_id << ", " << setup.node.channels
       << " channel(s), " << (loop.real_time ? "real time" : "lock-step") << " at " << 1.0 / setup.node.control_period_s
       << " Hz" << std::endl;
+  if (const auto* udp = std::get_if<UdpControllerConfig>(&setup.actuator)) {
+    log << "rpsd servo-node: " << describe_link(*udp) << std::endl;
+  }
   const ServoNodeLoopReport report = run_servo_node_loop(controller, endpoint, loop, stop);
   if (!report.granted.refused.empty()) log << "rpsd servo-node: " << report.granted.refused;
   const auto& c = controller.counters();
@@ -165,28 +168,60 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   log << "rpsd servo-node: stopped after " << c.ticks << " ticks, " << c.runs << " run(s), " << c.applied
       << " commands applied, " << dropped_text(c) << ", " << report.overruns << " overruns"
       << (controller.faulted() ? ", FAULTED" : "") << std::endl;
-  return node_summary(setup, controller, report);
+  nlohmann::json summary = node_summary(setup, controller, report);
+  if (const auto* udp = dynamic_cast<const UdpControllerActuator*>(actuator.actuator.get())) {
+    const UdpControllerCounters& u = udp->counters();
+    summary["udp_link"] = {{"protocol_version", std::get<UdpControllerConfig>(setup.actuator).protocol_version},
+                           {"commands_sent", u.commands_sent},
+                           {"replies", u.replies},
+                           {"missed_replies", u.missed_replies},
+                           {"stale_replies", u.stale_replies},
+                           {"bad_replies", u.bad_replies},
+                           {"foreign_datagrams", u.foreign_datagrams},
+                           {"unauthenticated_replies", u.unauthenticated_replies},
+                           {"other_session_replies", u.other_session_replies},
+                           {"controller_faults", u.controller_faults}};
+  }
+  return summary;
 }
 
 nlohmann::json emulate_controller(const ControllerEmulatorSetup& setup, const ServeOptions& options,
                                   const std::atomic<bool>& stop, std::ostream& log) {
   const servo::PlantSet plants = servo::make_plants(setup.plant, setup.channels);
-  ControllerEmulatorConfig config;
-  config.bind_host = setup.bind_host;
-  config.port = setup.port;
-  ControllerEmulator emulator(plants.pointers, config);
+  ControllerEmulator emulator(plants.pointers, setup.udp);
   emulator.start(setup.initial_displacement_m);
-  log << "rpsd controller-emulator: " << setup.channels << " channel(s) on udp " << setup.bind_host << ":"
-      << emulator.port() << std::endl;
+  log << "rpsd controller-emulator: " << setup.channels << " channel(s) on udp " << setup.udp.bind_host << ":"
+      << emulator.port() << ", taking datagrams from node " << emulator.node().to_string() << " only, protocol version "
+      << emulator.protocol_version()
+      << (emulator.protocol_version() == udp_protocol::kVersion1
+              ? ": WARNING: the link is unauthenticated; whoever can send from the node's address and port commands "
+                "the actuator"
+              : " (HMAC-SHA-256)")
+      << std::endl;
   const std::int64_t end_ns =
       options.duration_s > 0.0 ? realtime::monotonic_now_ns() + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
   while (!stop.load() && (end_ns == 0 || realtime::monotonic_now_ns() < end_ns)) emulator.serve(0.05);
   const auto& c = emulator.counters();
-  log << "rpsd controller-emulator: stopped after " << c.commands_applied << " commands, " << c.bad_packets
-      << " bad packets ignored" << std::endl;
-  return {{"commands_applied", c.commands_applied}, {"queries", c.queries},
-          {"bad_packets", c.bad_packets},           {"wrong_channels", c.wrong_channels},
-          {"stale_commands", c.stale_commands},     {"refused_commands", c.refused_commands}};
+  log << "rpsd controller-emulator: stopped after " << c.commands_applied << " commands in " << c.sessions
+      << " session(s); ignored " << c.foreign_datagrams << " foreign, " << c.unauthenticated << " unauthenticated, "
+      << c.other_session << " other-session, " << c.outside_session << " outside-session, " << c.stale_commands
+      << " stale and " << c.bad_packets << " bad datagrams" << std::endl;
+  const auto& reading = emulator.reading();
+  return {{"protocol_version", emulator.protocol_version()},
+          {"node", emulator.node().to_string()},
+          {"sessions", c.sessions},
+          {"commands_applied", c.commands_applied},
+          {"queries", c.queries},
+          {"foreign_datagrams", c.foreign_datagrams},
+          {"unauthenticated", c.unauthenticated},
+          {"other_session", c.other_session},
+          {"outside_session", c.outside_session},
+          {"bad_packets", c.bad_packets},
+          {"wrong_channels", c.wrong_channels},
+          {"stale_commands", c.stale_commands},
+          {"refused_commands", c.refused_commands},
+          {"position_m",
+           std::vector<double>(reading.displacement_m.begin(), reading.displacement_m.begin() + emulator.channels())}};
 }
 
 }  // namespace rpsd::node

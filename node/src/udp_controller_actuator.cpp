@@ -28,6 +28,16 @@ void UdpControllerConfig::validate() const {
   if (!(start_timeout_s > 0.0) || !std::isfinite(start_timeout_s))
     throw std::invalid_argument("start_timeout_s: must be positive");
   if (!(start_tolerance_m >= 0.0)) throw std::invalid_argument("start_tolerance_m: must be zero or positive");
+  if (protocol_version == udp_protocol::kVersion1) {
+    if (!key.empty()) throw std::invalid_argument("key_file: protocol version 1 authenticates nothing");
+  } else if (protocol_version == udp_protocol::kVersion2) {
+    if (key.size() < kUdpMinKeyBytes || key.size() > kUdpMaxKeyBytes) {
+      throw std::invalid_argument("key_file: protocol version 2 needs a key of " + std::to_string(kUdpMinKeyBytes) +
+                                  " to " + std::to_string(kUdpMaxKeyBytes) + " bytes shared with the controller");
+    }
+  } else {
+    throw std::invalid_argument("protocol_version: 1 or 2, got " + std::to_string(protocol_version));
+  }
 }
 
 namespace {
@@ -35,15 +45,47 @@ Ipv4Endpoint validated_local(const UdpControllerConfig& config) {
   config.validate();
   return Ipv4Endpoint::parse(config.local_host, config.local_port, "local_host");
 }
+
+constexpr std::array<std::byte, udp_protocol::kNonceBytes> kNoNonce{};
 }  // namespace
 
 UdpControllerActuator::UdpControllerActuator(const UdpControllerConfig& config)
     : config_(config),
       controller_(Ipv4Endpoint::parse(config.controller_host, config.controller_port, "controller_host")),
-      socket_(validated_local(config)) {}
+      socket_(validated_local(config)),
+      key_(config.protocol_version == udp_protocol::kVersion2 ? std::make_unique<UdpAuthenticator>(config.key)
+                                                              : nullptr) {
+  config_.key.clear();  // the keyed states are all that is kept
+}
+
+bool UdpControllerActuator::encode(const ControllerCommand& command) noexcept {
+  if (key_) return udp_protocol::encode_command(command, session_, *key_, command_packet_v2_) == PacketStatus::kOk;
+  return udp_protocol::encode_command(command, command_packet_) == PacketStatus::kOk;
+}
+
+bool UdpControllerActuator::decode(std::span<const std::byte> bytes, ControllerReply& reply) noexcept {
+  if (!key_) return udp_protocol::decode_reply(bytes, reply) == PacketStatus::kOk;
+  const PacketStatus s = udp_protocol::decode_reply(bytes, *key_, reply, reply_session_);
+  if (s == PacketStatus::kBadTag) {
+    ++counters_.unauthenticated_replies;
+    return false;
+  }
+  if (s != PacketStatus::kOk) {
+    ++counters_.bad_replies;
+    return false;
+  }
+  // The node's nonce is new at every start(); the controller's is known once the hello is answered.
+  const bool ours = reply_session_.node_nonce == session_.node_nonce &&
+                    (awaiting_hello_ ? reply_session_.controller_nonce != kNoNonce
+                                     : reply_session_.controller_nonce == session_.controller_nonce);
+  if (!ours) ++counters_.other_session_replies;
+  return ours;
+}
 
 bool UdpControllerActuator::send_packet() noexcept {
-  if (!socket_.send_to(command_packet_, controller_)) {
+  const std::span<const std::byte> packet =
+      key_ ? std::span<const std::byte>(command_packet_v2_) : std::span<const std::byte>(command_packet_);
+  if (!socket_.send_to(packet, controller_)) {
     ++counters_.send_errors;
     return false;
   }
@@ -67,8 +109,8 @@ bool UdpControllerActuator::take_queued(std::uint64_t sequence, ControllerReply&
     const auto bytes = std::span<const std::byte>(
         receive_buffer_.data(), std::min<std::size_t>(static_cast<std::size_t>(size), receive_buffer_.size()));
     ControllerReply decoded;
-    if (udp_protocol::decode_reply(bytes, decoded) != PacketStatus::kOk) {
-      ++counters_.bad_replies;
+    if (!decode(bytes, decoded)) {
+      if (!key_) ++counters_.bad_replies;  // version 2 counted by reason in decode()
     } else if (decoded.sequence == sequence) {
       reply = decoded;
       return true;
@@ -99,23 +141,30 @@ void UdpControllerActuator::start(std::span<const double> initial_displacement_m
                                 " initial displacements expected, got " +
                                 std::to_string(initial_displacement_m.size()));
   }
+  // Version 2: a new session, of a nonce no earlier datagram carries; version 1: a query.
   ControllerCommand query;
   query.channels = static_cast<std::uint8_t>(channels);
-  query.query = true;
+  query.query = !key_;
+  query.hello = key_ != nullptr;
   std::copy(initial_displacement_m.begin(), initial_displacement_m.end(), query.displacement_m.begin());
+  if (key_) {
+    session_ = {};
+    random_nonce(session_.node_nonce);
+    awaiting_hello_ = true;
+  }
   ControllerReply reply;
   bool answered = false;
   const double give_up_s = monotonic_seconds() + config_.start_timeout_s;
   // A lost datagram is likely enough on a busy network: ask again every 100 ms.
   while (!answered && monotonic_seconds() < give_up_s) {
     query.sequence = ++sequence_;
-    if (udp_protocol::encode_command(query, command_packet_) != PacketStatus::kOk) {
-      throw std::invalid_argument("UdpControllerActuator::start: initial displacement is not finite");
-    }
+    if (!encode(query)) throw std::invalid_argument("UdpControllerActuator::start: initial displacement is not finite");
     take_queued(query.sequence, reply);  // drop whatever an earlier session left queued
     send_packet();
     answered = await(query.sequence, std::min(give_up_s, monotonic_seconds() + 0.1), reply);
   }
+  awaiting_hello_ = false;
+  if (answered && key_) session_.controller_nonce = reply_session_.controller_nonce;
   const std::string who = "UdpControllerActuator: controller at " + controller_.to_string();
   if (!answered) {
     std::ostringstream message;
@@ -151,7 +200,7 @@ servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> co
   command.channels = static_cast<std::uint8_t>(channels);
   command.period_s = period_s;
   std::copy(command_m.begin(), command_m.end(), command.displacement_m.begin());
-  if (udp_protocol::encode_command(command, command_packet_) != PacketStatus::kOk) return servo::ActuatorStatus::kFault;
+  if (!encode(command)) return servo::ActuatorStatus::kFault;
 
   ControllerReply reply;
   take_queued(command.sequence, reply);  // stale replies of earlier periods
@@ -195,6 +244,10 @@ UdpControllerConfig UdpControllerConfig::read(config::Source& section, int chann
                                         {"s", "how long past the control period to wait for a reply", 0.0, 1.0, true});
   u.max_missed_replies = static_cast<int>(section.whole_number_or(
       "max_missed_replies", 0, 1000, u.max_missed_replies, "consecutive missing replies before the actuator faults"));
+  u.protocol_version = static_cast<int>(section.whole_number_or("protocol_version", 1, 2, udp_protocol::kVersion2,
+                                                                "2: every datagram authenticated; 1: none (legacy)"));
+  const auto key_file =
+      section.optional_relative_file("key_file", "version 2: the key shared with the controller (mode 0600)");
   // Hardware: nothing in the file can say what the rig can do unless the file says it.
   // optional_section, not section: the error names what to give (a listing descends either way).
   const auto rig = section.optional_section("rig", "what the rig behind the controller can do (required)");
@@ -202,7 +255,34 @@ UdpControllerConfig UdpControllerConfig::read(config::Source& section, int chann
     section.fail("rig", "a hardware node must state its rig's envelope: rig: {stroke_m, force_n, velocity_m_per_s}");
   }
   u.rig = servo::Envelope::read(*rig);
+  // Checked once every key is read, so that a listing of the keys sees them all.
+  if (u.protocol_version == udp_protocol::kVersion1 && key_file) {
+    section.fail("key_file", "protocol version 1 authenticates nothing: remove key_file, or use protocol_version 2");
+  }
+  if (u.protocol_version == udp_protocol::kVersion2) {
+    if (!key_file) {
+      section.fail("key_file",
+                   "protocol version 2 (the default) needs the key shared with the controller "
+                   "(docs/udp-controller-protocol.md); protocol_version: 1 for an unauthenticated legacy link");
+    }
+    try {
+      u.key = read_udp_key_file(*key_file);
+    } catch (const std::invalid_argument& e) {
+      section.fail("key_file", e.what());
+    }
+    u.key_file = key_file->string();
+  }
   return u;
+}
+
+std::string describe_link(const UdpControllerConfig& config) {
+  const std::string controller = config.controller_host + ":" + std::to_string(config.controller_port);
+  if (config.protocol_version == udp_protocol::kVersion1) {
+    return "UDP controller " + controller +
+           ", protocol version 1: WARNING: the link is unauthenticated; whoever can send from the controller's address "
+           "feeds this node measurements (protocol_version 2 and a key_file authenticate it)";
+  }
+  return "UDP controller " + controller + ", protocol version 2 (HMAC-SHA-256, key " + config.key_file + ")";
 }
 
 OwnedActuator UdpControllerConfig::make(const UdpControllerConfig& config, int) {

@@ -146,9 +146,7 @@ void watchdog(config::Source& r, node::ServoNodeSetup& f) {
 }
 
 void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f) {
-  f.bind_host = u.optional_text("bind_host", "the address it listens on (default: 127.0.0.1)").value_or(f.bind_host);
-  f.port = static_cast<std::uint16_t>(u.whole_number("port", 1, 65535, "the UDP port it listens on"));
-  u.finish();
+  f.udp = node::ControllerEmulatorConfig::read(u);
 }
 
 void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f) {
@@ -178,9 +176,11 @@ std::unique_ptr<config::Source> node_file(config::Source& root, const std::files
 
 void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f) {
   root.optional_text("description", "one line for titles");
-  emulator_udp(*root.section("udp", "where the emulator listens"), f);
+  const auto udp = root.section("udp", "where the emulator listens, its node, the protocol and key");
+  emulator_udp(*udp, f);
   emulator_actuator(*root.section("actuator", "the actuators it emulates"), f);
   root.finish();
+  f.udp.check_and_load_key(*udp);
 }
 
 }  // namespace node_sections

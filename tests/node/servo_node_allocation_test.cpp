@@ -1,7 +1,8 @@
 // The servo node allocates nothing per control period: the controller with its limits
 // acting, events logged, bad commands dropped, the watchdog holding and ramping to safe,
-// over the simulated plants and over the UDP adapter (the emulator's thread is not counted:
-// only the control-loop thread must not allocate).
+// over the simulated plants and over the UDP adapter in both protocol versions (version 2
+// tags and checks every datagram; the emulator's thread is not counted: only the
+// control-loop thread must not allocate).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -17,6 +18,7 @@
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
+#include "udp_test_link.h"
 
 namespace rpsd::node {
 namespace {
@@ -112,31 +114,35 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
   EXPECT_TRUE(r.reached_safe_state);
 }
 
-TEST(ServoNodeAllocation, NoAllocationPerTickOverTheUdpAdapter) {
+void expect_no_allocation_per_tick_over_the_udp_adapter(int version) {
   servo::TransferFunctionPlant a({{servo::Polynomial{1.0}, servo::Polynomial{1.0, 0.01}}, 1e5, 8192.0, {}});
   servo::TransferFunctionPlant b({{servo::Polynomial{1.0}, servo::Polynomial{1.0, 0.02}}, 1e5, 8192.0, {}});
   servo::Plant* plants[] = {&a, &b};
-  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  ControllerEmulator emulator(plants, testing::emulator_config(version));
   const double x0[] = {0.0, 0.0};
   emulator.start(x0);
-  std::atomic<bool> stop{false};
-  std::thread serving([&] {
-    while (!stop.load()) emulator.serve(0.01);
-  });
-  UdpControllerConfig config;
-  config.channels = 2;
-  config.controller_port = emulator.port();
-  config.local_host = "127.0.0.1";
-  config.reply_timeout_s = 2.0;
-  UdpControllerActuator adapter(config);
+  UdpControllerActuator adapter(testing::adapter_config(emulator, 2));
+  testing::pair(emulator, adapter);
   ServoNodeController node(node_config(), adapter);
-  const RunResult r = run(node, 2000);
-  stop.store(true);
-  serving.join();
+  RunResult r;
+  {
+    const testing::Serving serving(emulator);
+    r = run(node, 2000);
+  }
   EXPECT_EQ(r.allocations, 0);
   EXPECT_EQ(adapter.counters().missed_replies, 0u);
+  EXPECT_EQ(adapter.counters().replies, 3000u + 2000u);  // one a tick
   EXPECT_EQ(node.counters().actuator_no_replies, 0u);
+  EXPECT_EQ(emulator.counters().sessions, 1u);
   EXPECT_TRUE(r.reached_safe_state);
+}
+
+TEST(ServoNodeAllocation, NoAllocationPerTickOverTheUdpAdapter) {
+  expect_no_allocation_per_tick_over_the_udp_adapter(udp_protocol::kVersion1);
+}
+
+TEST(ServoNodeAllocation, NoAllocationPerTickOverTheAuthenticatedUdpAdapter) {
+  expect_no_allocation_per_tick_over_the_udp_adapter(udp_protocol::kVersion2);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // The hardware adapter against the controller emulator over 127.0.0.1: the same plants give
 // the same measurements bit for bit as in process; missing replies give kNoReply and then a
 // latched kFault; stale replies are drained; start() refuses a controller that does not
-// answer, has other channels or stands elsewhere; the emulator ignores bad datagrams.
+// answer, has other channels or stands elsewhere; the emulator ignores bad datagrams. Over
+// protocol version 2 (the default) unless a test says version 1.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -20,45 +21,23 @@
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
+#include "udp_test_link.h"
 
 namespace rpsd::node {
 namespace {
 
+using testing::adapter_config;
+using testing::emulator_config;
+using testing::pair;
+using testing::Serving;
 using udp_protocol::ControllerStatus;
-
-// Serves the emulator on its own thread until destroyed.
-class Serving {
- public:
-  explicit Serving(ControllerEmulator& emulator)
-      : thread_([this, &emulator] {
-          while (!stop_.load()) emulator.serve(0.01);
-        }) {}
-  ~Serving() {
-    stop_.store(true);
-    thread_.join();
-  }
-
- private:
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
-
-UdpControllerConfig adapter_config(const ControllerEmulator& emulator, int channels) {
-  UdpControllerConfig config;
-  config.channels = channels;
-  config.controller_host = "127.0.0.1";
-  config.controller_port = emulator.port();
-  config.local_host = "127.0.0.1";
-  config.reply_timeout_s = 2.0;  // generous: a loaded machine must not turn into a missed reply
-  return config;
-}
 
 // An emulated controller whose actuator is perfect: it measures its command at the end of
 // each period, and the load cell reads 1e5 N/m times that.
 struct IdealController {
   servo::PureDelayPlant plant{{0.0, 1e5, 8192.0, {}}};
   std::array<servo::Plant*, 1> plants{&plant};
-  ControllerEmulator emulator{plants, {"127.0.0.1", 0}};
+  ControllerEmulator emulator{plants, emulator_config()};
 };
 
 servo::TransferFunctionPlantParameters benchmark() {
@@ -75,9 +54,10 @@ TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {
   servo::TransferFunctionPlant tf_remote(benchmark()), tf_local(benchmark());
   servo::Plant* remote[] = {&paper_remote, &tf_remote};
   servo::Plant* local[] = {&paper_local, &tf_local};
-  ControllerEmulator emulator(remote, {"127.0.0.1", 0});
+  ControllerEmulator emulator(remote, emulator_config());
   servo::SimulatedActuator in_process(local);
   UdpControllerActuator adapter(adapter_config(emulator, 2));
+  pair(emulator, adapter);
 
   const double dt = 1.0 / 1024.0, x0[] = {0.002, -0.001};
   emulator.start(x0);
@@ -102,7 +82,7 @@ TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {
   // 20 mm amplitude: the test exchanged real motion, not a standstill.
   EXPECT_GT(std::abs(direct.displacement_m[0] - 0.002), 1e-3);
   EXPECT_EQ(adapter.counters().replies, static_cast<std::uint64_t>(periods) + 0);
-  EXPECT_EQ(adapter.counters().commands_sent, static_cast<std::uint64_t>(periods) + 1);  // + the start query
+  EXPECT_EQ(adapter.counters().commands_sent, static_cast<std::uint64_t>(periods) + 1);  // + the start hello
   EXPECT_EQ(adapter.counters().missed_replies, 0u);
 }
 
@@ -113,6 +93,7 @@ TEST(UdpControllerActuator, MissingRepliesGiveNoReplyThenALatchedFault) {
   config.reply_timeout_s = 0.01;
   config.max_missed_replies = 2;
   UdpControllerActuator adapter(config);
+  pair(emulator, adapter);
   const double x0[] = {0.001}, u[] = {0.0015};
   emulator.start(x0);
   servo::ActuatorReading reading;
@@ -134,12 +115,14 @@ TEST(UdpControllerActuator, MissingRepliesGiveNoReplyThenALatchedFault) {
   EXPECT_EQ(adapter.counters().missed_replies, 3u);
 
   // Restarting clears the latch once the controller answers again. The three commands it
-  // missed are still queued at the emulator and are applied first (in order), then the query.
+  // missed are still queued at the emulator and are applied first (in order), then the hello
+  // begins a new session.
   const Serving serving(emulator);
   adapter.start(std::span<const double>(u, 1));
   EXPECT_EQ(adapter.exchange(u, 0.001, reading), servo::ActuatorStatus::kOk);
   EXPECT_TRUE(reading.fresh);
-  EXPECT_GE(adapter.counters().stale_replies, 3u);  // the replies to the three missed commands
+  // The replies to the three missed commands, of the session start() ended.
+  EXPECT_GE(adapter.counters().other_session_replies, 3u);
 }
 
 TEST(UdpControllerActuator, StaleRepliesAreDrainedAndCounted) {
@@ -148,8 +131,13 @@ TEST(UdpControllerActuator, StaleRepliesAreDrainedAndCounted) {
   UdpControllerConfig config = adapter_config(emulator, 1);
   config.reply_timeout_s = 0.01;
   UdpControllerActuator adapter(config);
+  pair(emulator, adapter);
   const double x0[] = {0.0};
   emulator.start(x0);
+  {
+    const Serving serving(emulator);
+    adapter.start(x0);
+  }
   servo::ActuatorReading reading;
   const double late[] = {0.004}, next[] = {0.005};
   EXPECT_EQ(adapter.exchange(late, 0.001, reading), servo::ActuatorStatus::kNoReply);
@@ -171,6 +159,7 @@ TEST(UdpControllerActuator, ControllerFaultIsReportedWithTheMeasurement) {
   IdealController ideal;
   auto& [plant, plants, emulator] = ideal;
   UdpControllerActuator adapter(adapter_config(emulator, 1));
+  pair(emulator, adapter);
   const double x0[] = {0.002}, u[] = {0.003};
   emulator.start(x0);
   const Serving serving(emulator);
@@ -206,13 +195,16 @@ TEST(UdpControllerActuator, StartRefusesAnAbsentMismatchedOrDisplacedController)
   UdpControllerConfig config = adapter_config(emulator, 1);
   config.start_timeout_s = 0.2;
   UdpControllerActuator silent(config);
+  pair(emulator, silent);
   EXPECT_NE(start_error(silent, zero).find("did not answer within 0.2 s"), std::string::npos)
       << start_error(silent, zero);
 
   const Serving serving(emulator);
   UdpControllerActuator two(adapter_config(emulator, 2));
+  pair(emulator, two);
   EXPECT_NE(start_error(two, zeros).find("has 1 channels, the config 2"), std::string::npos);
   UdpControllerActuator one(adapter_config(emulator, 1));
+  pair(emulator, one);
   EXPECT_NE(start_error(one, away).find("channel 0 measures 0 m, the initial displacement is 0.01 m"),
             std::string::npos)
       << start_error(one, away);
@@ -231,6 +223,7 @@ TEST(UdpControllerActuator, ConfigErrorsNameTheField) {
   };
   UdpControllerConfig good;
   good.controller_port = 5000;
+  good.key = testing::test_key();
   EXPECT_EQ(message(good), "");
   auto bad = good;
   bad.controller_host = "10.0.0";
@@ -248,17 +241,29 @@ TEST(UdpControllerActuator, ConfigErrorsNameTheField) {
   bad.reply_timeout_s = 0.0;
   EXPECT_EQ(message(bad).rfind("reply_timeout_s:", 0), 0u);
   bad = good;
+  bad.key.clear();  // version 2, the default, needs a key
+  EXPECT_EQ(message(bad).rfind("key_file:", 0), 0u);
+  bad.protocol_version = udp_protocol::kVersion1;
+  EXPECT_EQ(message(bad), "");
+  bad.key = testing::test_key();  // version 1 authenticates nothing: a key would mislead
+  EXPECT_EQ(message(bad).rfind("key_file:", 0), 0u);
+  bad = good;
+  bad.protocol_version = 3;
+  EXPECT_EQ(message(bad).rfind("protocol_version:", 0), 0u);
+  bad = good;
   bad.max_missed_replies = -1;
   EXPECT_EQ(message(bad).rfind("max_missed_replies:", 0), 0u);
   EXPECT_THROW(UdpControllerActuator{bad}, std::invalid_argument);
 }
 
 TEST(ControllerEmulator, IgnoresBadDatagramsAndStops) {
-  IdealController ideal;
-  auto& [plant, plants, emulator] = ideal;
+  servo::PureDelayPlant plant{{0.0, 1e5, 8192.0, {}}};
+  servo::Plant* plants[] = {&plant};
+  ControllerEmulator emulator(plants, emulator_config(udp_protocol::kVersion1));
   const double x0[] = {0.0};
   emulator.start(x0);
   UdpSocket client(Ipv4Endpoint::parse("127.0.0.1", 0, "test"));
+  emulator.set_node(testing::loopback(client.local_port()));
   const Ipv4Endpoint to = Ipv4Endpoint::parse("127.0.0.1", emulator.port(), "test");
   using Served = ControllerEmulator::Served;
 
@@ -266,10 +271,17 @@ TEST(ControllerEmulator, IgnoresBadDatagramsAndStops) {
   ASSERT_TRUE(client.send_to(garbage, to));
   EXPECT_EQ(emulator.serve(2.0), Served::kIgnored);
   udp_protocol::ControllerCommand command;
+  command.channels = 1;
+  command.query = true;  // the node begins a session
+  command.sequence = 1;
+  udp_protocol::CommandPacket packet{};
+  ASSERT_EQ(udp_protocol::encode_command(command, packet), udp_protocol::PacketStatus::kOk);
+  ASSERT_TRUE(client.send_to(packet, to));
+  EXPECT_EQ(emulator.serve(2.0), Served::kQueried);
+  command.query = false;
   command.sequence = 5;
   command.channels = 2;
   command.period_s = 0.001;
-  udp_protocol::CommandPacket packet{};
   ASSERT_EQ(udp_protocol::encode_command(command, packet), udp_protocol::PacketStatus::kOk);
   ASSERT_TRUE(client.send_to(packet, to));
   EXPECT_EQ(emulator.serve(2.0), Served::kIgnored);  // two channels to a one-channel controller
@@ -288,9 +300,11 @@ TEST(ControllerEmulator, IgnoresBadDatagramsAndStops) {
   EXPECT_EQ(counters.stale_commands, 1u);
   EXPECT_EQ(plant.time_s(), 0.001);  // only the valid command advanced the plant
 
-  // The only reply the client got is the valid command's.
+  // The only replies the client got are the query's and the valid command's.
   std::array<std::byte, 200> buffer{};
   Ipv4Endpoint from;
+  ASSERT_EQ(client.wait_readable(2.0), UdpSocket::Wait::kReadable);
+  ASSERT_EQ(client.receive(buffer, from), static_cast<long>(udp_protocol::kReplyBytes));
   ASSERT_EQ(client.wait_readable(2.0), UdpSocket::Wait::kReadable);
   ASSERT_EQ(client.receive(buffer, from), static_cast<long>(udp_protocol::kReplyBytes));
   udp_protocol::ControllerReply reply;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rpsd/node/actuator_factory.h"
+#include "rpsd/node/controller_emulator.h"
 #include "rpsd/node/servo_node_config.h"
 #include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/transport/dds_participant.h"
@@ -31,8 +32,7 @@ struct ServoNodeSetup {
 
 struct ControllerEmulatorSetup {
   std::string name;
-  std::string bind_host = "127.0.0.1";
-  std::uint16_t port = 0;
+  ControllerEmulatorConfig udp;  // where it listens, its node, the protocol and key
   int channels = 1;
   servo::PlantConfig plant;
   std::vector<double> initial_displacement_m;

@@ -1,18 +1,23 @@
 // Hardware adapter: an external real-time controller (Speedgoat/xPC target, LabVIEW loop)
 // that closes the servo loop itself and talks the UDP protocol of udp_controller_protocol.h
 // (docs/udp-controller-protocol.md). Each control period sends one command datagram and
-// waits for the reply that echoes its sequence number.
+// waits for the reply that echoes its sequence number. It takes replies from the configured
+// controller address and port only, and in version 2 (the default) only those tagged with the
+// shared key for the session its start() began.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rpsd/config/source.h"
 #include "rpsd/servo/envelope.h"
 
+#include "rpsd/node/udp_authenticator.h"
 #include "rpsd/node/udp_controller_protocol.h"
 #include "rpsd/node/udp_socket.h"
 #include "rpsd/servo/actuator.h"
@@ -33,7 +38,11 @@ struct UdpControllerConfig {
   std::string controller_host = "127.0.0.1";  // dotted IPv4
   std::uint16_t controller_port = 0;          // required
   std::string local_host = "0.0.0.0";         // address to bind (dotted IPv4)
-  std::uint16_t local_port = 0;               // 0: any free port
+  std::uint16_t local_port = 0;               // 0: any free port (a controller that filters needs a fixed one)
+  // 2: every datagram authenticated with `key`; 1: nothing authenticated (legacy controllers).
+  int protocol_version = udp_protocol::kVersion2;
+  std::string key_file;        // where `key` came from, for messages
+  std::vector<std::byte> key;  // version 2: the key shared with the controller (read_udp_key_file)
   // How long past the control period to wait for a reply: the controller answers at the end
   // of the period over which it applied the command, so the wait is period_s + this.
   double reply_timeout_s = 0.001;
@@ -50,11 +59,13 @@ struct UdpControllerConfig {
 
 struct UdpControllerCounters {
   std::uint64_t commands_sent = 0;
-  std::uint64_t replies = 0;            // matching replies taken
-  std::uint64_t missed_replies = 0;     // periods without a matching reply in time
-  std::uint64_t stale_replies = 0;      // replies to an older command, drained
-  std::uint64_t bad_replies = 0;        // undecodable, or a sequence never sent, or wrong channels
-  std::uint64_t foreign_datagrams = 0;  // datagrams from another address than the controller's
+  std::uint64_t replies = 0;                  // matching replies taken
+  std::uint64_t missed_replies = 0;           // periods without a matching reply in time
+  std::uint64_t stale_replies = 0;            // replies to an older command, drained
+  std::uint64_t bad_replies = 0;              // undecodable, or a sequence never sent, or wrong channels
+  std::uint64_t foreign_datagrams = 0;        // datagrams from another address or port than the controller's
+  std::uint64_t unauthenticated_replies = 0;  // version 2: a tag not made with the key
+  std::uint64_t other_session_replies = 0;    // version 2: a genuine reply of another session (a replay)
   std::uint64_t send_errors = 0;
   std::uint64_t receive_errors = 0;
   std::uint64_t controller_faults = 0;  // replies with status kFault
@@ -68,10 +79,11 @@ class UdpControllerActuator final : public servo::Actuator {
 
   int channels() const override { return config_.channels; }
 
-  // Queries the controller (kFlagQuery: it applies nothing and starts a session), retrying
-  // until start_timeout_s; throws std::runtime_error when it does not answer, reports a
-  // fault, has another channel count, or measures farther than start_tolerance_m from
-  // initial_displacement_m. Clears a latched fault. Not real-time safe.
+  // Begins a session, retrying until start_timeout_s: version 2 draws a new node nonce and
+  // sends a hello, whose reply brings the controller's nonce; version 1 sends a query. Throws
+  // std::runtime_error when the controller does not answer, reports a fault, has another
+  // channel count, or measures farther than start_tolerance_m from initial_displacement_m.
+  // Clears a latched fault. Not real-time safe.
   void start(std::span<const double> initial_displacement_m) override;
 
   // Sends the command and waits up to period_s + reply_timeout_s for its reply, draining
@@ -90,18 +102,31 @@ class UdpControllerActuator final : public servo::Actuator {
   bool take_queued(std::uint64_t sequence, udp_protocol::ControllerReply& reply) noexcept;
   // take_queued, waiting until the monotonic deadline.
   bool await(std::uint64_t sequence, double deadline_s, udp_protocol::ControllerReply& reply) noexcept;
-  // Sends command_packet_; counts it or the error.
+  // Encodes the command into the packet of the link's version.
+  bool encode(const udp_protocol::ControllerCommand& command) noexcept;
+  // Decodes a reply of the link's version and checks its session (counted when refused).
+  bool decode(std::span<const std::byte> bytes, udp_protocol::ControllerReply& reply) noexcept;
+  // Sends the encoded packet; counts it or the error.
   bool send_packet() noexcept;
 
   UdpControllerConfig config_;
   Ipv4Endpoint controller_;
   UdpSocket socket_;
   UdpControllerCounters counters_;
+  std::unique_ptr<UdpAuthenticator> key_;  // version 2
+  udp_protocol::Session session_;
+  bool awaiting_hello_ = false;          // start(): the controller's nonce is not known yet
+  udp_protocol::Session reply_session_;  // the session of the reply take_queued() matched
   udp_protocol::CommandPacket command_packet_{};
-  std::array<std::byte, udp_protocol::kReplyBytes + 1> receive_buffer_{};  // +1: oversized datagrams show
+  udp_protocol::CommandPacketV2 command_packet_v2_{};
+  std::array<std::byte, udp_protocol::kReplyBytesV2 + 1> receive_buffer_{};  // +1: oversized datagrams show
   std::uint64_t sequence_ = 0;
   int consecutive_missed_ = 0;
   bool link_fault_ = false;
 };
+
+// One line for a node's start: the controller, the protocol and, for version 1, that nothing
+// on the link is authenticated.
+std::string describe_link(const UdpControllerConfig& config);
 
 }  // namespace rpsd::node
