@@ -171,8 +171,8 @@ void limit_to_converters(ServoNodeConfig& config, const servo::ReadingRanges& ra
     const std::string at = indexed("limits", c) + ".";
     servo::require_readable(l.max_stroke_m, l.max_stroke_m == config.rig[c].stroke_m, ranges.displacement_m,
                             at + "max_stroke_m", converters_key + ".displacement", "m");
-    servo::require_readable(l.max_force_n, l.max_force_n == config.rig[c].force_n, ranges.force_n,
-                            at + "max_force_n", converters_key + ".force", "N");
+    servo::require_readable(l.max_force_n, l.max_force_n == config.rig[c].force_n, ranges.force_n, at + "max_force_n",
+                            converters_key + ".force", "N");
   }
 }
 

@@ -431,9 +431,9 @@ std::uint32_t ServoNodeController::check_measurement() {
       LimitKind kind;
       double reading, rig;
       const servo::ConverterRange& rail;
-    } quantities[2] = {{LimitKind::kStroke, reading_.displacement_m[c], config_.rig[c].stroke_m,
-                        config_.rails[c].displacement_m},
-                       {LimitKind::kForce, reading_.force_n[c], config_.rig[c].force_n, config_.rails[c].force_n}};
+    } quantities[2] = {
+        {LimitKind::kStroke, reading_.displacement_m[c], config_.rig[c].stroke_m, config_.rails[c].displacement_m},
+        {LimitKind::kForce, reading_.force_n[c], config_.rig[c].force_n, config_.rails[c].force_n}};
     for (int q = 0; q < 2; ++q) {
       const auto& [kind, reading, rig, rail] = quantities[q];
       const bool on_rail = rail.at_rail(reading);

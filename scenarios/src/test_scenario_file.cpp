@@ -69,9 +69,9 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
   for (std::size_t i = 0; i < specimens; ++i) {
     try {
       const coordinator::CoordinatorLimits& stated = t.experimental[i].limits;
-      coordinator::require_readable(
-          stated, coordinator::within_envelope(stated, servo::envelope_of(t.plant), control_period_s),
-          servo::reading_ranges_of(t.plant), "servo.converters");
+      coordinator::require_readable(stated,
+                                    coordinator::within_envelope(stated, servo::envelope_of(t.plant), control_period_s),
+                                    servo::reading_ranges_of(t.plant), "servo.converters");
     } catch (const std::invalid_argument& e) {
       const std::string message = e.what();
       if (limit_sections[i])

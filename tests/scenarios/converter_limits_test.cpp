@@ -44,16 +44,15 @@ std::string study_error(const std::filesystem::path& file, std::initializer_list
 // The case of issue 25: a force A/D saturating at 2 V reads at most 131071 steps of 4/2^18 V
 // times 1096 N/V = 2191.98 N (and -131072 steps below zero), below the 3000 N limit.
 TEST(ConverterLimits, AForceLimitItsConverterCannotReadIsRefusedNamingBothKeys) {
-  const std::string e = study_error(
-      kBenchmark, {"experimental.0.limits.max_force_n=3000", "servo.converters.force.saturation_v=2"});
+  const std::string e =
+      study_error(kBenchmark, {"experimental.0.limits.max_force_n=3000", "servo.converters.force.saturation_v=2"});
   EXPECT_NE(e.find("experimental[0].limits.max_force_n: 3000 N is not strictly inside what servo.converters.force "
                    "can read, -2192 to 2191.98 N"),
             std::string::npos)
       << e;
   // Strictly inside: a limit below the rail stands.
-  EXPECT_EQ(study_error(kBenchmark,
-                        {"experimental.0.limits.max_force_n=2000", "servo.converters.force.saturation_v=2"}),
-            "");
+  EXPECT_EQ(
+      study_error(kBenchmark, {"experimental.0.limits.max_force_n=2000", "servo.converters.force.saturation_v=2"}), "");
 }
 
 // No limit stated: the rig's 8.9 kN is the limit, held to the same rule, so a nonsense range
@@ -78,8 +77,8 @@ TEST(ConverterLimits, EveryPlantKindIsHeldToTheRule) {
                              "examples/scenarios/rths-benchmark-case1.yaml",
                              "examples/scenarios/rths-benchmark-sample-controller-case-1.yaml"};
   for (const char* scenario : scenarios) {
-    const std::string e =
-        study_error(source(scenario), {"servo.converters.force.units_per_volt=1000", "servo.converters.force.saturation_v=1"});
+    const std::string e = study_error(
+        source(scenario), {"servo.converters.force.units_per_volt=1000", "servo.converters.force.saturation_v=1"});
     EXPECT_NE(e.find("experimental[0].limits.max_force_n: not stated, so the rig's"), std::string::npos)
         << scenario << ": " << e;
     EXPECT_NE(e.find("servo.converters.force can read, -1000 to "), std::string::npos) << scenario << ": " << e;
@@ -105,13 +104,15 @@ TEST(ConverterLimits, TheReadingRangesOfAPlantAreItsConvertersRails) {
 TEST(ConverterLimits, AServoNodeFileIsHeldToTheRule) {
   const auto node = source("examples/nodes/rths-benchmark-site.yaml");
   const std::string e = error_of([&] {
-    (void)load_servo_node(node, overrides({"limits.max_force_n=[3000]", "actuator.servo.converters.force.saturation_v=2"}));
+    (void)load_servo_node(node,
+                          overrides({"limits.max_force_n=[3000]", "actuator.servo.converters.force.saturation_v=2"}));
   });
-  EXPECT_NE(e.find("limits[0].max_force_n: 3000 N is not strictly inside what actuator.servo.converters.force can read"),
-            std::string::npos)
+  EXPECT_NE(
+      e.find("limits[0].max_force_n: 3000 N is not strictly inside what actuator.servo.converters.force can read"),
+      std::string::npos)
       << e;
-  const std::string d =
-      error_of([&] { (void)load_servo_node(node, overrides({"actuator.servo.converters.displacement.saturation_v=0.5"})); });
+  const std::string d = error_of(
+      [&] { (void)load_servo_node(node, overrides({"actuator.servo.converters.displacement.saturation_v=0.5"})); });
   EXPECT_NE(d.find("limits[0].max_stroke_m: not stated, so the rig's 0.007 m"), std::string::npos) << d;
   EXPECT_NE(d.find("actuator.servo.converters.displacement"), std::string::npos) << d;
   // As shipped it loads, and its node knows the rails and the rig its measurements must stay inside.
@@ -123,8 +124,8 @@ TEST(ConverterLimits, AServoNodeFileIsHeldToTheRule) {
 TEST(ConverterLimits, ASiteServerFileIsHeldToTheRule) {
   const auto site = source("tests/scenarios/data/reference/site-server.yaml");
   const std::string e = error_of([&] {
-    (void)load_site_server(site,
-                           overrides({"servo.converters.force.units_per_volt=100", "servo.converters.force.saturation_v=1"}));
+    (void)load_site_server(
+        site, overrides({"servo.converters.force.units_per_volt=100", "servo.converters.force.saturation_v=1"}));
   });
   EXPECT_NE(e.find("experimental[0].limits.max_force_n: not stated, so the rig's 156000 N"), std::string::npos) << e;
   EXPECT_NE(e.find("servo.converters.force can read, -100 to 100 N"), std::string::npos) << e;

@@ -94,10 +94,10 @@ struct LimitEvent {
   int channel = 0;
   LimitKind kind = LimitKind::kStroke;
   LimitAction action = LimitAction::kClamp;
-  double commanded_m = 0.0;  // the command the limit saw
-  double applied_m = 0.0;    // the command sent to the actuator
-  double observed = 0.0;     // what exceeded: |x| m, |dx|/T m/s, |F| N or |dx| m
-  double bound = 0.0;        // the limit, in the same unit
+  double commanded_m = 0.0;               // the command the limit saw
+  double applied_m = 0.0;                 // the command sent to the actuator
+  double observed = 0.0;                  // what exceeded: |x| m, |dx|/T m/s, |F| N or |dx| m
+  double bound = 0.0;                     // the limit, in the same unit
   LimitCause cause = LimitCause::kLimit;  // not kLimit: the node faulted on a measurement (action kAbort)
 };
 
