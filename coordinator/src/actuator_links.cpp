@@ -94,6 +94,9 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
         // The rig's envelope is the node's default limit, and its force guard predicts with the
         // stiffest of the specimens' estimates.
         node::limit_to_envelope(config, servo::envelope_of(s.plant));
+        // A reading at or beyond the rig's envelope, or on a converter's rail, faults the node
+        // (the coordinator's limits were held inside the rails when the file was read).
+        node::read_through_converters(config, servo::reading_ranges_of(s.plant));
         for (int i = 0; i < site_channels; ++i) {
           double& k = config.limits[static_cast<std::size_t>(i)].force_guard_stiffness_n_per_m;
           if (k == 0.0) {

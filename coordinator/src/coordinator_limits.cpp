@@ -11,4 +11,12 @@ CoordinatorLimits within_envelope(CoordinatorLimits limits, const servo::Envelop
   return limits;
 }
 
+void require_readable(const CoordinatorLimits& stated, const CoordinatorLimits& effective,
+                      const servo::ReadingRanges& ranges, const std::string& converters_key) {
+  servo::require_readable(effective.max_stroke_m, stated.max_stroke_m == CoordinatorLimits::kNone,
+                          ranges.displacement_m, "max_stroke_m", converters_key + ".displacement", "m");
+  servo::require_readable(effective.max_force_n, stated.max_force_n == CoordinatorLimits::kNone, ranges.force_n,
+                          "max_force_n", converters_key + ".force", "N");
+}
+
 }  // namespace rpsd::coordinator

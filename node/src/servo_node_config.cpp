@@ -155,6 +155,24 @@ void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope)
     tighten_to_rig(l.max_stroke_m, envelope.stroke_m, at + "max_stroke_m", "stroke");
     tighten_to_rig(l.max_force_n, envelope.force_n, at + "max_force_n", "force capacity");
     tighten_to_rig(l.max_velocity_m_per_s, envelope.velocity_m_per_s, at + "max_velocity_m_per_s", "velocity capacity");
+    config.rig[c] = envelope;
+  }
+}
+
+void read_through_converters(ServoNodeConfig& config, const servo::ReadingRanges& ranges) {
+  for (int c = 0; c < config.channels; ++c) config.rails[c] = ranges;
+}
+
+void limit_to_converters(ServoNodeConfig& config, const servo::ReadingRanges& ranges,
+                         const std::string& converters_key) {
+  read_through_converters(config, ranges);
+  for (int c = 0; c < config.channels; ++c) {
+    const ChannelLimits& l = config.limits[c];
+    const std::string at = indexed("limits", c) + ".";
+    servo::require_readable(l.max_stroke_m, l.max_stroke_m == config.rig[c].stroke_m, ranges.displacement_m,
+                            at + "max_stroke_m", converters_key + ".displacement", "m");
+    servo::require_readable(l.max_force_n, l.max_force_n == config.rig[c].force_n, ranges.force_n, at + "max_force_n",
+                            converters_key + ".force", "N");
   }
 }
 

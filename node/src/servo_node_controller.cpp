@@ -57,6 +57,18 @@ const char* run_event_name(RunEvent::Kind kind) {
   return "unknown";
 }
 
+const char* limit_cause_name(LimitCause cause) {
+  switch (cause) {
+    case LimitCause::kLimit:
+      return "limit";
+    case LimitCause::kConverterRail:
+      return "converter_rail";
+    case LimitCause::kRigEnvelope:
+      return "rig_envelope";
+  }
+  return "unknown";
+}
+
 std::uint64_t ServoNodeCounters::dropped_total() const {
   std::uint64_t total = 0;
   for (int v = 0; v < kCommandVerdicts; ++v) {
@@ -117,6 +129,7 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
   commands_began_ = holding_ = safe_state_ = fault_ = false;
   missed_in_row_ = 0;
   limit_was_active_ = {};
+  measurement_was_beyond_ = {};
   change_m_ = {};
   counters_ = ServoNodeCounters{};
   events_.clear();
@@ -408,6 +421,41 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
   return flags;
 }
 
+std::uint32_t ServoNodeController::check_measurement() {
+  // Whatever the actuator (a simulated plant, a hardware adapter) and whatever the limits'
+  // actions: a reading on a converter's rail may stand for any value beyond it, and one at the
+  // rig's stroke or force capacity is an end stop or a rig overloaded. Either faults the node.
+  std::uint32_t flags = transport::kLimitNone;
+  for (int c = 0; c < config_.channels; ++c) {
+    const struct {
+      LimitKind kind;
+      double reading, rig;
+      const servo::ConverterRange& rail;
+    } quantities[2] = {
+        {LimitKind::kStroke, reading_.displacement_m[c], config_.rig[c].stroke_m, config_.rails[c].displacement_m},
+        {LimitKind::kForce, reading_.force_n[c], config_.rig[c].force_n, config_.rails[c].force_n}};
+    for (int q = 0; q < 2; ++q) {
+      const auto& [kind, reading, rig, rail] = quantities[q];
+      const bool on_rail = rail.at_rail(reading);
+      const bool beyond_rig = std::abs(reading) >= rig;
+      if (!on_rail && !beyond_rig) {
+        measurement_was_beyond_[c][q] = false;
+        continue;
+      }
+      flags |= limit_flag(kind);
+      if (!measurement_was_beyond_[c][q]) {
+        measurement_was_beyond_[c][q] = true;
+        ++counters_.limit_activations[static_cast<int>(kind)];
+        const double bound = on_rail ? (reading >= rail.high ? rail.high : -rail.low) : rig;
+        log({counters_.ticks, followed_step_, c, kind, LimitAction::kAbort, target_m_[c], command_m_[c],
+             std::abs(reading), bound, on_rail ? LimitCause::kConverterRail : LimitCause::kRigEnvelope});
+      }
+      latch_fault();
+    }
+  }
+  return flags;
+}
+
 void ServoNodeController::tick(transport::FeedbackSample& out) {
   const int channels = config_.channels;
   out.test_id = config_.test_id;
@@ -424,7 +472,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
 
   choose_target();
   Values applied = command_m_;
-  const std::uint32_t flags = apply_limits(applied);
+  std::uint32_t flags = apply_limits(applied);
 
   const servo::ActuatorStatus status = actuator_.exchange(
       std::span<const double>(applied.data(), static_cast<std::size_t>(channels)), config_.control_period_s, reading_);
@@ -435,6 +483,8 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     ++counters_.actuator_faults;
     latch_fault();
   }
+  // A new measurement faults the node on this tick's feedback if no measurement may be where it is.
+  if (status == servo::ActuatorStatus::kOk) flags |= check_measurement();
   ++counters_.ticks;
   ++ticks_since_accepted_;
 

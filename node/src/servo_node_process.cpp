@@ -49,7 +49,8 @@ nlohmann::json node_summary(const ServoNodeSetup& setup, const ServoNodeControll
                       {"commanded_m", e.commanded_m},
                       {"applied_m", e.applied_m},
                       {"observed", e.observed},
-                      {"bound", e.bound}});
+                      {"bound", e.bound},
+                      {"cause", limit_cause_name(e.cause)}});
   }
   json hold = nullptr;
   if (report.hold_tick >= 0) {

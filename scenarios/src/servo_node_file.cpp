@@ -193,9 +193,14 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
   const auto limits = node_sections::node_file(root, file.parent_path(), f);
   // The rig's envelope is every limit's default, and a limit may only tighten it; the force
   // guard predicts with the simulated specimen's stiffness unless the file gives one.
+  // A simulated actuator's readings come through its converters: every limit (stated or the
+  // rig's) must lie strictly inside what they can read.
   const servo::Envelope envelope = node::envelope_of(f.actuator);
   try {
     node::limit_to_envelope(f.node, envelope);
+    if (const auto* simulated = std::get_if<node::SimulatedActuatorConfig>(&f.actuator)) {
+      node::limit_to_converters(f.node, servo::reading_ranges_of(simulated->plant), "actuator.servo.converters");
+    }
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
     const std::string key = message.substr(message.find('.') + 1, message.find(':') - message.find('.') - 1);

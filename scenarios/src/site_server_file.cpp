@@ -115,7 +115,11 @@ site_server::SiteServerConfig load_site_server(const std::filesystem::path& file
   }
   for (std::size_t i = 0; i < t.experimental.size(); ++i) {
     try {
-      (void)coordinator::within_envelope(t.experimental[i].limits, servo::envelope_of(t.plant), control_period_s);
+      // Inside the rig's envelope, and strictly inside what the converters can read.
+      const coordinator::CoordinatorLimits& stated = t.experimental[i].limits;
+      coordinator::require_readable(stated,
+                                    coordinator::within_envelope(stated, servo::envelope_of(t.plant), control_period_s),
+                                    servo::reading_ranges_of(t.plant), "servo.converters");
     } catch (const std::invalid_argument& e) {
       throw ConfigError(file.string() + ": experimental[" + std::to_string(i) + "].limits." + e.what());
     }

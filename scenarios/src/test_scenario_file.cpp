@@ -64,9 +64,14 @@ coordinator::TestConfig read_test_config(MappingReader& root, const std::filesys
   } catch (const std::invalid_argument& e) {
     throw ConfigError(file.string() + ": servo." + e.what());
   }
+  // And it must lie strictly inside what the converters can read (a reading on a rail may stand
+  // for any value beyond it): a limit left out is the rig's, held to the same rule.
   for (std::size_t i = 0; i < specimens; ++i) {
     try {
-      (void)coordinator::within_envelope(t.experimental[i].limits, servo::envelope_of(t.plant), control_period_s);
+      const coordinator::CoordinatorLimits& stated = t.experimental[i].limits;
+      coordinator::require_readable(stated,
+                                    coordinator::within_envelope(stated, servo::envelope_of(t.plant), control_period_s),
+                                    servo::reading_ranges_of(t.plant), "servo.converters");
     } catch (const std::invalid_argument& e) {
       const std::string message = e.what();
       if (limit_sections[i])

@@ -1,5 +1,7 @@
 #include "rpsd/servo/channel_converters.h"
 
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -40,6 +42,24 @@ void ChannelConverters::validate() const {
       throw std::invalid_argument(std::string(name) + ": " + e.what());
     }
   }
+}
+
+void require_readable(double limit, bool rigs, const ConverterRange& range, const std::string& limit_key,
+                      const std::string& converter_key, const char* unit) {
+  if (range.represents(limit)) return;
+  std::ostringstream message;
+  message << limit_key << ": ";
+  if (!std::isfinite(limit)) {
+    message << "none stated and the rig states none, so no limit at all, which";
+  } else if (rigs) {
+    message << "not stated, so the rig's " << limit << " " << unit << ", which";
+  } else {
+    message << limit << " " << unit;
+  }
+  message << " is not strictly inside what " << converter_key << " can read, " << range.low << " to " << range.high
+          << " " << unit << " (a reading at its rail may stand for any value beyond it): state a limit below "
+          << range.rail_magnitude() << " " << unit << " or widen " << converter_key << "'s range";
+  throw std::invalid_argument(message.str());
 }
 
 ChannelConverters read_channel_converters(config::Source& plant_section) {

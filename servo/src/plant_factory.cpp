@@ -58,6 +58,10 @@ Envelope envelope_of(const PlantConfig& config) {
       config);
 }
 
+ReadingRanges reading_ranges_of(const PlantConfig& config) {
+  return std::visit([](const auto& p) { return p.converters.reading_ranges(); }, config);
+}
+
 double specimen_stiffness_of(const PlantConfig& config) {
   return std::visit(
       [](const auto& p) -> double {

@@ -15,6 +15,30 @@ void require_non_negative(double v, const char* key) {
   require(std::isfinite(v) && v >= 0.0, key, "must be a finite number, zero or positive");
 }
 constexpr int kMaxBits = 30;
+
+// The converter's step and code limits, as doubles to clamp before any integer conversion (no
+// converter: a zero step).
+struct Codes {
+  double step_v = 0.0;
+  double lowest = 0.0, highest = 0.0;
+};
+
+Codes codes_of(const SignalConverterParameters& p) {
+  Codes c;
+  if (p.bits <= 0) return c;
+  const double full_scale_v = p.full_scale_v > 0.0 ? p.full_scale_v : p.saturation_v;
+  c.step_v = 2.0 * full_scale_v / std::ldexp(1.0, p.bits);
+  c.highest = std::ldexp(1.0, p.bits - 1) - 1.0;
+  c.lowest = -std::ldexp(1.0, p.bits - 1);
+  if (p.saturation_v > 0.0) {
+    // The largest step inside the saturation band, on each side.
+    double inside = std::floor(p.saturation_v / c.step_v);
+    while (inside > 0.0 && inside * c.step_v > p.saturation_v) inside -= 1.0;
+    c.highest = std::min(c.highest, inside);
+    c.lowest = std::max(c.lowest, -inside);
+  }
+  return c;
+}
 }  // namespace
 
 void SignalConverterParameters::validate() const {
@@ -34,22 +58,27 @@ void SignalConverterParameters::validate() const {
   }
 }
 
+ConverterRange SignalConverterParameters::range() const {
+  ConverterRange r;
+  if (units_per_volt == 0.0) return r;
+  // The same arithmetic as convert(), so that a clamped reading equals its rail exactly.
+  if (const Codes c = codes_of(*this); c.step_v > 0.0) {
+    r.low = c.lowest * c.step_v * units_per_volt;
+    r.high = c.highest * c.step_v * units_per_volt;
+  } else if (saturation_v > 0.0) {
+    r.low = -saturation_v * units_per_volt;
+    r.high = saturation_v * units_per_volt;
+  }
+  return r;
+}
+
 SignalConverter::SignalConverter(const SignalConverterParameters& parameters)
     : parameters_(parameters), generator_(parameters.seed) {
   parameters_.validate();
-  if (parameters_.bits > 0) {
-    const double full_scale_v = parameters_.full_scale_v > 0.0 ? parameters_.full_scale_v : parameters_.saturation_v;
-    step_v_ = 2.0 * full_scale_v / std::ldexp(1.0, parameters_.bits);
-    highest_code_ = std::ldexp(1.0, parameters_.bits - 1) - 1.0;
-    lowest_code_ = -std::ldexp(1.0, parameters_.bits - 1);
-    if (parameters_.saturation_v > 0.0) {
-      // The largest step inside the saturation band, on each side.
-      double inside = std::floor(parameters_.saturation_v / step_v_);
-      while (inside > 0.0 && inside * step_v_ > parameters_.saturation_v) inside -= 1.0;
-      highest_code_ = std::min(highest_code_, inside);
-      lowest_code_ = std::max(lowest_code_, -inside);
-    }
-  }
+  const Codes c = codes_of(parameters_);
+  step_v_ = c.step_v;
+  lowest_code_ = c.lowest;
+  highest_code_ = c.highest;
 }
 
 void SignalConverter::reseed() {

@@ -124,6 +124,26 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
   EXPECT_EQ(testing::run_steps(free).outcome, StepOutcome::kOk);
 }
 
+// A site's node in this process knows its plant's converters: the SDOF released from 10 mm
+// reads 8 mm on a displacement A/D whose rail is 8 mm (no limit file would pass the reader; this
+// configuration is built by hand), and the node faults on that first reading, whatever the
+// limits say. With a 20 mm rail the same test runs to its end.
+TEST(SiteNode, AReadingOnItsConvertersRailFaultsTheNodeInThisProcess) {
+  const auto run_with_rail = [](double rail_v) {
+    SpecimenSdof sdof;
+    sdof.duration_s = 0.5;
+    servo::ChannelConverters converters;
+    converters.displacement.units_per_volt = 1e-3;  // 1 mm/V
+    converters.displacement.saturation_v = rail_v;
+    sdof.plant = servo::PureDelayParameters{0.004, sdof.stiffness_n_per_m, 8192.0, {}, converters};
+    return testing::run_sdof(sdof);
+  };
+  const testing::SdofRun railed = run_with_rail(8.0);
+  EXPECT_EQ(railed.outcome, StepOutcome::kNodeFault);
+  EXPECT_TRUE(railed.records.empty());  // on the first exchange: no step was taken with it
+  EXPECT_EQ(run_with_rail(20.0).outcome, StepOutcome::kOk);
+}
+
 // One node, two runs of one test id (two coordinators): the node serves the run whose first
 // command it took and says so in its heartbeat; a second run is refused before its first step
 // with its own reason, never taking the first run's measurements for its own; the first goes

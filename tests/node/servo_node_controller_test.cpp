@@ -4,15 +4,20 @@
 // a test asserts exact increments, so that the expected values are exact in binary.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <deque>
 #include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "rpsd/node/controller_emulator.h"
 #include "rpsd/node/servo_node_controller.h"
+#include "rpsd/node/udp_controller_actuator.h"
+#include "rpsd/servo/transfer_function_plant.h"
 
 namespace rpsd::node {
 namespace {
@@ -717,6 +722,130 @@ TEST(ServoNodeController, AHoldBrakesAtTheStopDeceleration) {
   EXPECT_NEAR(moving, v / (a * kPeriod), 1.0);             // 25.6 periods to stop
   EXPECT_EQ(applied.back(), applied[applied.size() - 2]);  // at rest
   EXPECT_NEAR(applied.back() - moving_at_m, v * v / (2 * a), v * kPeriod);  // 0.625 mm on
+}
+
+// What no measurement may reach, whatever the limits' actions (ServoNodeConfig::rails, rig):
+// a reading on an A/D converter's rail may stand for any value beyond it, and the node faults
+// on the tick that brings it, the event saying which rail. Here the stroke limit would only
+// clamp and the force limit only hold.
+TEST(ServoNodeController, AReadingOnAConverterRailFaultsTheNodeWhateverTheLimitsAction) {
+  for (const bool force : {false, true}) {
+    auto c = config();
+    c.actions.stroke = LimitAction::kClamp;
+    c.actions.force = LimitAction::kHold;
+    servo::SignalConverterParameters adc;  // +/-1 V, 10 bits, 0.01 m/V or 1000 N/V
+    adc.units_per_volt = force ? 1000.0 : 0.01;
+    adc.saturation_v = 1.0;
+    adc.bits = 10;
+    servo::ReadingRanges rails;
+    (force ? rails.force_n : rails.displacement_m) = adc.range();
+    read_through_converters(c, rails);
+    const double rail = adc.range().high;  // 511 steps of 2/1024 V: 0.998 V
+    ASSERT_DOUBLE_EQ(rail, (force ? 1000.0 : 0.01) * 511.0 * 2.0 / 1024.0);
+    const double to_rail_m = rail;  // 1 N/m on the load cell: the force reads x
+    Rig rig(c, 1.0);
+    auto& [actuator, node] = rig;
+    FeedbackSample out = send(node, command(1, {0.5 * to_rail_m}));
+    EXPECT_EQ(out.status, transport::kNodeOk) << force;
+    out = send(node, command(2, {to_rail_m}));  // the reading is the rail's: beyond any limit
+    EXPECT_TRUE(node.faulted()) << force;
+    EXPECT_EQ(out.status, transport::kNodeFault | transport::kNodeLimitActive) << force;
+    EXPECT_EQ(out.limit_flags, force ? transport::kLimitForce : transport::kLimitStroke);
+    ASSERT_EQ(node.events().size(), 1u);
+    const LimitEvent& e = node.events()[0];
+    EXPECT_EQ(e.cause, LimitCause::kConverterRail);
+    EXPECT_EQ(e.kind, force ? LimitKind::kForce : LimitKind::kStroke);
+    EXPECT_EQ(e.action, LimitAction::kAbort);
+    EXPECT_EQ(e.bound, rail);
+    EXPECT_EQ(e.tick, 1u);
+    EXPECT_EQ(node.counters().faults, 1u);
+    EXPECT_EQ(node.accept(command(3, {0.0})), CommandVerdict::kNotFollowing);
+    // The negative rail alike, one code further out (-512 steps: two's complement): the
+    // negative of the positive rail is still a reading.
+    Rig other(c, 1.0);
+    EXPECT_EQ(send(other.node, command(1, {-rail})).status, transport::kNodeOk) << force;
+    out = send(other.node, command(2, {adc.range().low}));
+    EXPECT_TRUE(other.node.faulted()) << force;
+    ASSERT_EQ(other.node.events().size(), 1u);
+    EXPECT_EQ(other.node.events()[0].bound, -adc.range().low);
+    EXPECT_EQ(other.node.events()[0].observed, -adc.range().low);
+  }
+}
+
+// A piston measured at the rig's stroke (its end stop) or a load cell at the rig's force
+// capacity faults the node, whatever sent the measurement and whatever the limits' actions:
+// here the command stays inside the stroke while the piston drifts onto the end stop.
+TEST(ServoNodeController, AMeasurementAtOrBeyondTheRigsEnvelopeFaultsTheNode) {
+  auto c = config();
+  c.actions.force = LimitAction::kClamp;
+  limit_to_envelope(c, {0.0625, 2048.0, 100.0});
+  {
+    Rig rig(c);
+    auto& [actuator, node] = rig;
+    send(node, command(1, {0.03125}));
+    actuator.measured_offset_m = 0.03125;  // measured exactly 0.0625: not beyond the stroke limit
+    const FeedbackSample out = send(node, command(2, {0.03125}));
+    EXPECT_TRUE(node.faulted());
+    EXPECT_EQ(out.status, transport::kNodeFault | transport::kNodeLimitActive);
+    EXPECT_EQ(out.limit_flags, transport::kLimitStroke);
+    ASSERT_EQ(node.events().size(), 1u);
+    EXPECT_EQ(node.events()[0].cause, LimitCause::kRigEnvelope);
+    EXPECT_EQ(node.events()[0].observed, 0.0625);
+    EXPECT_EQ(node.events()[0].bound, 0.0625);
+  }
+  {
+    Rig rig(c, 65536.0);  // 0.03125 m reads 2048 N, the rig's force capacity
+    auto& [actuator, node] = rig;
+    FeedbackSample out = send(node, command(1, {0.03}));
+    EXPECT_FALSE(node.faulted());
+    out = send(node, command(2, {0.03125}));
+    EXPECT_TRUE(node.faulted());
+    EXPECT_EQ(out.limit_flags & transport::kLimitForce, transport::kLimitForce);
+    ASSERT_FALSE(node.events().empty());
+    EXPECT_EQ(node.events().back().cause, LimitCause::kRigEnvelope);
+    EXPECT_EQ(node.events().back().kind, LimitKind::kForce);
+  }
+}
+
+// The same through the UDP hardware adapter: an emulated controller whose actuator reads 1.1
+// times its command (a miscalibrated servo loop) drives the piston onto its 50 mm end stop for
+// a command of 47.5 mm, inside every limit. The protocol carries no end-stop flag; the
+// measurement alone faults the node.
+TEST(ServoNodeController, AMeasurementAtTheRigsStrokeFromTheUdpAdapterFaultsTheNode) {
+  servo::TransferFunctionPlantParameters p;
+  p.transfer_function = {servo::Polynomial{1100.0}, servo::Polynomial{1000.0, 1.0}};
+  p.rig = {0.05, 1e6, 100.0};
+  servo::TransferFunctionPlant plant(p);
+  servo::Plant* plants[] = {&plant};
+  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  emulator.start(std::vector<double>{0.0});
+  std::atomic<bool> stop{false};
+  std::thread serving([&] {
+    while (!stop.load()) emulator.serve(0.01);
+  });
+  UdpControllerConfig udp;
+  udp.channels = 1;
+  udp.controller_host = "127.0.0.1";
+  udp.controller_port = emulator.port();
+  udp.local_host = "127.0.0.1";
+  udp.reply_timeout_s = 2.0;  // generous: a loaded machine must not turn into a missed reply
+  UdpControllerActuator actuator(udp);
+  auto c = config();
+  limit_to_envelope(c, p.rig);
+  ServoNodeController node(c, actuator);
+  node.start(std::vector<double>{0.0});
+  FeedbackSample out;
+  std::int64_t step = 1;
+  for (; step <= 400 && !node.faulted(); ++step) out = send(node, command(step, {0.0475}));
+  stop.store(true);
+  serving.join();
+  ASSERT_TRUE(node.faulted()) << out.displacement_m[0];
+  EXPECT_EQ(out.displacement_m[0], 0.05);
+  EXPECT_NE(out.status & transport::kNodeFault, 0u);
+  EXPECT_EQ(node.counters().activations(LimitKind::kStroke), 1u);
+  ASSERT_EQ(node.events().size(), 1u);
+  EXPECT_EQ(node.events()[0].cause, LimitCause::kRigEnvelope);
+  for (const auto& command_m : node.command_m()) EXPECT_LE(command_m, 0.0475);  // never beyond its command
 }
 
 namespace run_identity {

@@ -283,6 +283,42 @@ TEST(SignalConverter, ValidateNamesTheBadKey) {
   expect_rejected(unscaled, "bits");
 }
 
+// range() is what a limit is checked against (docs/safety.md): exactly the readings a clamped
+// input gives, on either side, for saturation alone, a converter inside its saturation band,
+// a two's-complement converter without saturation (one code more below zero), and nothing.
+TEST(SignalConverter, ItsRangeIsExactlyTheReadingOfAClampedInput) {
+  SignalConverterParameters saturation;
+  saturation.units_per_volt = kLoadCellNPerV;
+  saturation.saturation_v = 2.0;
+  SignalConverterParameters full_scale;
+  full_scale.units_per_volt = kLoadCellNPerV;
+  full_scale.bits = 12;
+  full_scale.full_scale_v = 10.0;
+  SignalConverterParameters tiny = displacement_adc();
+  tiny.saturation_v = 1e-300;
+  for (const SignalConverterParameters& p : {saturation, displacement_adc(), full_scale, tiny}) {
+    const ConverterRange r = p.range();
+    SignalConverter c(p);
+    EXPECT_EQ(c.convert(1e12), r.high);
+    EXPECT_TRUE(r.at_rail(c.convert(1e12)));
+    EXPECT_EQ(c.convert(-1e12), r.low);
+    EXPECT_TRUE(r.at_rail(c.convert(-1e12)));
+    EXPECT_FALSE(r.at_rail(c.convert(0.5 * r.high)));
+    EXPECT_TRUE(r.represents(0.5 * r.rail_magnitude()));
+    EXPECT_FALSE(r.represents(r.rail_magnitude()));  // a limit on the rail is not inside it
+  }
+  EXPECT_EQ(saturation.range().high, 2.0 * kLoadCellNPerV);
+  EXPECT_EQ(full_scale.range().high, 2047.0 * 20.0 / 4096.0 * kLoadCellNPerV);
+  EXPECT_EQ(full_scale.range().low, -2048.0 * 20.0 / 4096.0 * kLoadCellNPerV);
+  EXPECT_EQ(full_scale.range().rail_magnitude(), full_scale.range().high);
+  EXPECT_LT(tiny.range().high, 1e-300);  // 1e-300 V: no limit a test could have is inside it
+  EXPECT_FALSE(tiny.range().represents(1e-3));
+  const ConverterRange none = SignalConverterParameters{}.range();
+  EXPECT_FALSE(none.bounded());
+  EXPECT_FALSE(none.at_rail(1e300));
+  EXPECT_TRUE(none.represents(1e300));
+}
+
 TEST(SignalConverter, CounterSeesAllocations) {
   rpsd::testing::begin_counting_allocations();
   auto* p = new int(3);

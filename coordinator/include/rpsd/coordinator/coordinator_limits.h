@@ -5,7 +5,9 @@
 #pragma once
 
 #include <limits>
+#include <string>
 
+#include "rpsd/servo/channel_converters.h"
 #include "rpsd/servo/envelope.h"
 
 namespace rpsd::coordinator {
@@ -23,5 +25,12 @@ struct CoordinatorLimits {
 // stroke of tracking error); a limit beyond the envelope is refused with
 // std::invalid_argument naming the key. Not real-time safe.
 CoordinatorLimits within_envelope(CoordinatorLimits limits, const servo::Envelope& envelope, double control_period_s);
+
+// The limits as within_envelope made them (`stated`: as the file gave them) must lie strictly
+// inside what the channel's converters can read: max_stroke_m inside the displacement's A/D,
+// max_force_n inside the force's. Otherwise std::invalid_argument "max_force_n: ..." naming
+// converters_key's converter too (servo::require_readable). Not real-time safe.
+void require_readable(const CoordinatorLimits& stated, const CoordinatorLimits& effective,
+                      const servo::ReadingRanges& ranges, const std::string& converters_key);
 
 }  // namespace rpsd::coordinator

@@ -5,8 +5,10 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <string>
 
 #include "rpsd/servo/actuator.h"
+#include "rpsd/servo/channel_converters.h"
 #include "rpsd/servo/envelope.h"
 #include "rpsd/transport/messages.h"
 
@@ -82,6 +84,12 @@ struct ServoNodeConfig {
   std::array<double, transport::kMaxChannels> safe_position_m{};  // per channel, within the stroke
   double safe_ramp_velocity_m_per_s = 0.005;                      // at most each channel's max_velocity_m_per_s
   int event_log_capacity = 256;                                   // limit activations kept for after the run
+  // What no measurement of a channel may reach, whatever the limits and their actions: a reading
+  // at or beyond the rig's stroke or force capacity, or on an A/D converter's rail (where it may
+  // stand for any value beyond), faults the node. Infinite: not known (limit_to_envelope and
+  // read_through_converters set them).
+  std::array<servo::Envelope, transport::kMaxChannels> rig{};
+  std::array<servo::ReadingRanges, transport::kMaxChannels> rails{};
 
   // Throws std::invalid_argument naming the field ("limits[1].max_stroke_m: ..."). Not
   // real-time safe.
@@ -92,5 +100,15 @@ struct ServoNodeConfig {
 // envelope's, and a limit beyond the envelope is refused (std::invalid_argument naming
 // limits[c].key): a user may only tighten what the rig can do. Not real-time safe.
 void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope);
+
+// The channels' readings come through these converters: a reading on a rail faults the node.
+// Not real-time safe.
+void read_through_converters(ServoNodeConfig& config, const servo::ReadingRanges& ranges);
+// The same, for a node whose limits are the only ones (a node file): each channel's stroke and
+// force limit must lie strictly inside its converter's range, or std::invalid_argument naming
+// limits[c].key and converters_key's converter ("actuator.servo.converters.force"). Call it after
+// limit_to_envelope. Not real-time safe.
+void limit_to_converters(ServoNodeConfig& config, const servo::ReadingRanges& ranges,
+                         const std::string& converters_key);
 
 }  // namespace rpsd::node

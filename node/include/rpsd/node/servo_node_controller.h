@@ -78,6 +78,15 @@ struct ServoNodeCounters {
   std::uint64_t activations(LimitKind kind) const { return limit_activations[static_cast<int>(kind)]; }
 };
 
+// What a limit event's bound is: one of the node's limits, or what no measurement may reach
+// whatever the limits say (ServoNodeConfig::rig and rails), which faults the node.
+enum class LimitCause : std::uint8_t {
+  kLimit,          // limits[c]: the command or the measurement beyond it
+  kConverterRail,  // a reading on its A/D converter's rail: the true value may be any beyond it
+  kRigEnvelope,    // a measurement at or beyond the rig's stroke or force capacity
+};
+const char* limit_cause_name(LimitCause cause);
+
 // One limit activation: the tick on which a channel's limit began acting.
 struct LimitEvent {
   std::uint64_t tick = 0;  // 0-based tick index since start()
@@ -85,10 +94,11 @@ struct LimitEvent {
   int channel = 0;
   LimitKind kind = LimitKind::kStroke;
   LimitAction action = LimitAction::kClamp;
-  double commanded_m = 0.0;  // the command the limit saw
-  double applied_m = 0.0;    // the command sent to the actuator
-  double observed = 0.0;     // what exceeded: |x| m, |dx|/T m/s, |F| N or |dx| m
-  double bound = 0.0;        // the limit, in the same unit
+  double commanded_m = 0.0;               // the command the limit saw
+  double applied_m = 0.0;                 // the command sent to the actuator
+  double observed = 0.0;                  // what exceeded: |x| m, |dx|/T m/s, |F| N or |dx| m
+  double bound = 0.0;                     // the limit, in the same unit
+  LimitCause cause = LimitCause::kLimit;  // not kLimit: the node faulted on a measurement (action kAbort)
 };
 
 class ServoNodeController {
@@ -150,6 +160,7 @@ class ServoNodeController {
   void log_run(const RunEvent& event);
   void choose_target();
   std::uint32_t apply_limits(Values& applied);
+  std::uint32_t check_measurement();
   void log(const LimitEvent& event);
   void latch_fault();
 
@@ -183,6 +194,8 @@ class ServoNodeController {
   bool safe_state_ = false;
   bool fault_ = false;
   std::array<std::array<bool, kLimitKinds>, transport::kMaxChannels> limit_was_active_{};
+  // Per channel, stroke and force: the measurement was beyond what none may reach last tick.
+  std::array<std::array<bool, 2>, transport::kMaxChannels> measurement_was_beyond_{};
 
   ServoNodeCounters counters_;
   std::vector<LimitEvent> events_;  // capacity reserved at construction, never grown past it

@@ -4,10 +4,19 @@
 // them inside the loop, where its controller reads and writes through them.
 #pragma once
 
+#include <string>
+
 #include "rpsd/config/source.h"
 #include "rpsd/servo/signal_converter.h"
 
 namespace rpsd::servo {
+
+// What a channel's readings can show: the displacement's A/D range in m and the force's in N
+// (their rails; infinite without a converter).
+struct ReadingRanges {
+  ConverterRange displacement_m;
+  ConverterRange force_n;
+};
 
 struct ChannelConverters {
   SignalConverterParameters command;       // D/A, m
@@ -17,7 +26,17 @@ struct ChannelConverters {
   bool any() const;
   // Each converter's own check, its name in the message ("converters.force: ...").
   void validate() const;
+  // The readings' converters' rails (the command's D/A is no reading).
+  ReadingRanges reading_ranges() const { return {displacement.range(), force.range()}; }
 };
+
+// The one rule where a limit meets a converter: a limit on a reading (|value| <= limit) must
+// lie strictly inside what the reading's converter can represent, or a reading at the rail
+// could hide any value beyond the limit. Otherwise std::invalid_argument "limit_key: ..." naming
+// converter_key too, and saying whether the limit was the rig's (`rigs`: none stated). `unit`:
+// "m" or "N". Not real-time safe.
+void require_readable(double limit, bool rigs, const ConverterRange& range, const std::string& limit_key,
+                      const std::string& converter_key, const char* unit);
 
 // The optional `converters` section of a plant: `seed` and `command`, `displacement`, `force`,
 // each converter with its own noise stream (seed, seed + 1, seed + 2). Checked by validate().

@@ -34,6 +34,10 @@ void check_control_period(const PlantConfig& config, double control_period_s);
 
 // The rig the configuration describes (infinite when none was stated: a numerical reference).
 Envelope envelope_of(const PlantConfig& config);
+// What the configuration's A/D converters can read on each channel (every channel has the same):
+// the displacement's range in m and the force's in N, infinite without converters. A reading at
+// a rail faults a node; a limit must lie strictly inside (require_readable).
+ReadingRanges reading_ranges_of(const PlantConfig& config);
 // The stiffness of the specimen the configuration's load cell sees (its initial stiffness).
 double specimen_stiffness_of(const PlantConfig& config);
 

@@ -12,10 +12,30 @@
 // checks downstream see it.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 
 namespace rpsd::servo {
+
+// What a converter can put out, in physical units: its rails, the lowest and highest values it
+// gives (infinite without saturation or converter). A reading at a rail may stand for any value
+// beyond it, so a limit on a reading must lie strictly inside (docs/safety.md).
+struct ConverterRange {
+  double low = -std::numeric_limits<double>::infinity();
+  double high = std::numeric_limits<double>::infinity();
+
+  bool bounded() const { return std::isfinite(low) || std::isfinite(high); }
+  // The reading sits on a rail (a finite one): the true value may be anywhere beyond it.
+  bool at_rail(double reading) const {
+    return (std::isfinite(high) && reading >= high) || (std::isfinite(low) && reading <= low);
+  }
+  // +/- magnitude reads without touching either rail.
+  bool represents(double magnitude) const { return magnitude < high && -magnitude > low; }
+  // The smaller of the two rails' magnitudes.
+  double rail_magnitude() const { return std::fmin(high, -low); }
+};
 
 struct SignalConverterParameters {
   // Sensor or actuator scale, e.g. 7.89e-3 m/V or 1096 N/V; 0: no voltage stages, the signal passes unchanged.
@@ -30,6 +50,9 @@ struct SignalConverterParameters {
   // bits without a full scale or saturation, full_scale_v without bits, a voltage stage without
   // units_per_volt.
   void validate() const;
+  // The rails of a converter of these (valid) parameters: exactly the values convert() gives
+  // when it clamps, and the largest and smallest it can give at all.
+  ConverterRange range() const;
 };
 
 class SignalConverter {
