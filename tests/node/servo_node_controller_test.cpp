@@ -4,20 +4,20 @@
 // a test asserts exact increments, so that the expected values are exact in binary.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
 #include <deque>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "rpsd/node/controller_emulator.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/udp_controller_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
+#include "udp_test_link.h"
 
 namespace rpsd::node {
 namespace {
@@ -817,19 +817,11 @@ TEST(ServoNodeController, AMeasurementAtTheRigsStrokeFromTheUdpAdapterFaultsTheN
   p.rig = {0.05, 1e6, 100.0};
   servo::TransferFunctionPlant plant(p);
   servo::Plant* plants[] = {&plant};
-  ControllerEmulator emulator(plants, {"127.0.0.1", 0});
+  ControllerEmulator emulator(plants, testing::emulator_config());
   emulator.start(std::vector<double>{0.0});
-  std::atomic<bool> stop{false};
-  std::thread serving([&] {
-    while (!stop.load()) emulator.serve(0.01);
-  });
-  UdpControllerConfig udp;
-  udp.channels = 1;
-  udp.controller_host = "127.0.0.1";
-  udp.controller_port = emulator.port();
-  udp.local_host = "127.0.0.1";
-  udp.reply_timeout_s = 2.0;  // generous: a loaded machine must not turn into a missed reply
-  UdpControllerActuator actuator(udp);
+  UdpControllerActuator actuator(testing::adapter_config(emulator, 1));
+  testing::pair(emulator, actuator);
+  std::optional<testing::Serving> serving(std::in_place, emulator);
   auto c = config();
   limit_to_envelope(c, p.rig);
   ServoNodeController node(c, actuator);
@@ -837,8 +829,7 @@ TEST(ServoNodeController, AMeasurementAtTheRigsStrokeFromTheUdpAdapterFaultsTheN
   FeedbackSample out;
   std::int64_t step = 1;
   for (; step <= 400 && !node.faulted(); ++step) out = send(node, command(step, {0.0475}));
-  stop.store(true);
-  serving.join();
+  serving.reset();
   ASSERT_TRUE(node.faulted()) << out.displacement_m[0];
   EXPECT_EQ(out.displacement_m[0], 0.05);
   EXPECT_NE(out.status & transport::kNodeFault, 0u);
