@@ -27,6 +27,9 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
 struct StudyRun {
   RunResult result = RunResult::kCompleted;
   std::string reason;  // why an `rpsd_test` run did not complete (as in its summary.json)
+  // Where the steps taken are recorded: a test's time_history.csv, or for a sweep or a Monte
+  // Carlo batch the folders of its cases (each with its own time_history.csv).
+  std::string recorded_in;
 };
 
 // Runs whichever study the file holds and writes it into dir (created if missing; the
