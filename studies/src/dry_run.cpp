@@ -249,6 +249,29 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
   report.limit_stop = run.limit_stop;
   report.steps = run.steps;
 
+  // The value that stopped the run was never sent or recorded: it belongs in the peaks, so
+  // that its limit shows as reached (margin <= 0), not with the margin of the last step taken.
+  const coordinator::LimitStop& stop = report.limit_stop;
+  if (stop.channel >= 0 && stop.channel < channels) {
+    auto& p = report.channels[static_cast<std::size_t>(stop.channel)];
+    const double v = std::abs(stop.value);
+    switch (stop.kind) {
+      case coordinator::LimitStop::Kind::kStroke:
+        p.peak_command_m = std::max(p.peak_command_m, v);
+        break;
+      case coordinator::LimitStop::Kind::kIncrement:
+        p.peak_increment_m = std::max(p.peak_increment_m, v);
+        break;
+      case coordinator::LimitStop::Kind::kForce:
+        p.peak_force_n = std::max(p.peak_force_n, v);
+        break;
+      case coordinator::LimitStop::Kind::kTrackingError:
+        p.peak_tracking_error_m = std::max(p.peak_tracking_error_m, v);
+        break;
+      default:
+        break;
+    }
+  }
   double delay_sum_ms = 0.0;
   int delays = 0;
   for (int c = 0; c < channels; ++c) {

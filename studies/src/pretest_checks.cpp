@@ -7,6 +7,12 @@
 #include "rpsd/servo/linear_analysis.h"
 
 namespace rpsd::studies {
+namespace {
+
+// A mode this many times above the cut-off is no design: the masses' unit is asked about.
+constexpr double kFarAboveCutoff = 10.0;
+
+}  // namespace
 
 LimitMargin margin_to(std::string limit, double peak, double bound, bool rail) {
   LimitMargin m{std::move(limit), std::abs(peak), bound, 1.0, rail};
@@ -42,12 +48,14 @@ std::vector<std::string> modes_beyond_bandwidth(const std::vector<double>& frequ
   std::vector<std::string> warnings;
   for (std::size_t i = 0; i < frequencies_hz.size(); ++i) {
     if (!(frequencies_hz[i] > cutoff_hz)) continue;
+    // Far above it, the likeliest cause is a unit: tonnes give modes sqrt(1000) = 32 times too high.
+    const bool far = frequencies_hz[i] > kFarAboveCutoff * cutoff_hz;
     char text[400];
     std::snprintf(text, sizeof text,
                   "mode %zu at %.4g Hz lies above the actuator's cut-off frequency of %.4g Hz (servo linear "
-                  "analysis, Eq. 9): the rig cannot follow it; the masses in %s set it (in kg: a mass in tonnes "
-                  "gives modes about 32 times too high)",
-                  i + 1, frequencies_hz[i], cutoff_hz, masses_key.c_str());
+                  "analysis, Eq. 9): the rig cannot follow it; the masses in %s set it%s",
+                  i + 1, frequencies_hz[i], cutoff_hz, masses_key.c_str(),
+                  far ? " (are they in kg? masses in tonnes give modes about 32 times too high)" : "");
     warnings.emplace_back(text);
   }
   return warnings;

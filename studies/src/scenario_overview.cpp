@@ -135,7 +135,11 @@ void print_overview(const ScenarioOverview& o, std::ostream& out) {
                 static_cast<long long>(o.dofs), o.channels.size());
   out << line;
   const auto modes = [&](const char* what, const std::vector<ModeOverview>& list) {
-    out << "  " << what << ":";
+    out << "  " << what;
+    if (!list.empty() && static_cast<Eigen::Index>(list.size()) < o.dofs) {
+      out << ", the lowest " << list.size() << " (sparse eigen-solver)";
+    }
+    out << ":";
     for (std::size_t i = 0; i < list.size(); ++i) {
       std::snprintf(line, sizeof line, "%s %.4g Hz (%.3g %%)", i ? "," : "", list[i].frequency_hz,
                     100.0 * list[i].damping_ratio);

@@ -101,9 +101,10 @@ TEST(SparseModal, RigidBodyModeIsZero) {
   const auto M = linalg::StructuralMatrix::diagonal(Eigen::VectorXd::Constant(n, m));
   const ModalSolution dense = modal_analysis(M, K);
   const ModalSolution sparse = lowest_modes_sparse(M, K, 3);
+  // K - sigma M about a shift just below zero is ill-conditioned: some digits go.
   EXPECT_NEAR(sparse.omega_rad_s[0], 0.0, 1e-3);
-  EXPECT_NEAR(sparse.omega_rad_s[1] / dense.omega_rad_s[1], 1.0, 1e-9);
-  EXPECT_NEAR(sparse.omega_rad_s[2] / dense.omega_rad_s[2], 1.0, 1e-9);
+  EXPECT_NEAR(sparse.omega_rad_s[1] / dense.omega_rad_s[1], 1.0, 1e-7);
+  EXPECT_NEAR(sparse.omega_rad_s[2] / dense.omega_rad_s[2], 1.0, 1e-7);
 }
 
 TEST(SparseModal, RejectsWhatTheDenseSolverRejects) {
