@@ -308,13 +308,12 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
   }
   const bool completed =
       report.outcome == coordinator::StepOutcome::kOk || report.outcome == coordinator::StepOutcome::kRecordEnded;
-  report.within_limits =
-      completed &&
-      std::all_of(report.channels.begin(), report.channels.end(),
-                  [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
-      std::all_of(report.modes.begin(), report.modes.end(),
-                  [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
-      (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
+  report.within_limits = completed &&
+                         std::all_of(report.channels.begin(), report.channels.end(),
+                                     [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
+                         std::all_of(report.modes.begin(), report.modes.end(),
+                                     [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
+                         (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
   return report;
 }
 

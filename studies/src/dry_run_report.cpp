@@ -76,7 +76,9 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
         const LimitMargin& m = c.margins[i];
         char text[96];
         std::snprintf(text, sizeof text, "%s %s %.0f %%%s", i ? "," : "", m.limit.c_str(), 100.0 * m.margin,
-                      m.reached() ? (m.rail ? " AT THE RAIL" : " REACHED") : m.low() ? " LOW" : "");
+                      m.reached() ? (m.rail ? " AT THE RAIL" : " REACHED")
+                      : m.low()   ? " LOW"
+                                  : "");
         out << text;
       }
       out << "\n";
@@ -131,7 +133,8 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
     out << "  servo loop: proportional gain " << *r.p_gain << " of at most " << *r.max_stable_p_gain
         << " (Routh, full linear model): margin x" << *r.max_stable_p_gain / *r.p_gain << "\n";
   }
-  if (r.actuator_cutoff_hz) out << "  actuator: cut-off frequency " << *r.actuator_cutoff_hz << " Hz (linear analysis)\n";
+  if (r.actuator_cutoff_hz)
+    out << "  actuator: cut-off frequency " << *r.actuator_cutoff_hz << " Hz (linear analysis)\n";
   for (const std::string& w : r.warnings) out << "  WARNING: " << w << "\n";
   if (!r.within_limits) {
     out << "  NOT READY: a limit would be exceeded, a converter would reach its rail, a mode would lose its damping, "

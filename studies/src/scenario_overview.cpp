@@ -2,15 +2,15 @@
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
-#include <filesystem>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/plant_factory.h"
-#include "rpsd/substructure/modal.h"
 #include "rpsd/studies/pretest_checks.h"
+#include "rpsd/substructure/modal.h"
 #include "rpsd/substructure/partition.h"
 
 namespace rpsd::studies {
@@ -26,8 +26,8 @@ constexpr Eigen::Index kLowestModesOfLargeModels = 10;
 std::vector<ModeOverview> modes_of(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness,
                                    const linalg::StructuralMatrix& damping) {
   const Eigen::Index n = mass.rows();
-  const substructure::ModalSolution modal = substructure::lowest_modes(
-      mass, stiffness, n > substructure::kMaxDenseEigenDofs ? kLowestModesOfLargeModels : n);
+  const substructure::ModalSolution modal =
+      substructure::lowest_modes(mass, stiffness, n > substructure::kMaxDenseEigenDofs ? kLowestModesOfLargeModels : n);
   std::vector<ModeOverview> modes;
   Eigen::VectorXd c_phi(n);
   for (Eigen::Index i = 0; i < modal.omega_rad_s.size(); ++i) {
@@ -107,7 +107,8 @@ ScenarioOverview overview_of(const coordinator::TestConfig& s) {
                                    const char* unit) {
         if (!(at < bound)) return;
         char text[240];
-        std::snprintf(text, sizeof text, "channel %d: the %s clamps at %.4g %s, inside the %s limit of %.4g %s: "
+        std::snprintf(text, sizeof text,
+                      "channel %d: the %s clamps at %.4g %s, inside the %s limit of %.4g %s: "
                       "the rail is reached first (margin of the limit to the rail %.0f %%)",
                       ch.channel, rail, at * scale, unit, limit, bound * scale, unit, 100.0 * (1.0 - bound / at));
         o.warnings.emplace_back(text);

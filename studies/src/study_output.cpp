@@ -73,8 +73,8 @@ std::string stopped_cases_records(const std::filesystem::path& dir) {
   std::string text = files.front();
   for (std::size_t i = 1; i < std::min(files.size(), kNamed); ++i) text += ", " + files[i];
   if (files.size() > kNamed) {
-    text += " and " + std::to_string(files.size() - kNamed) + " more (" + (dir / "summary.json").string() +
-            " lists them)";
+    text +=
+        " and " + std::to_string(files.size() - kNamed) + " more (" + (dir / "summary.json").string() + " lists them)";
   }
   return text;
 }

@@ -2,10 +2,10 @@
 
 #include "matrix_checks.h"
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -116,14 +116,14 @@ ModalSolution lowest_modes_sparse(const linalg::StructuralMatrix& mass, const li
     try {
       op.set_shift(sigma);
     } catch (const std::invalid_argument&) {
-      throw std::invalid_argument(ctx + "stiffness matrix K - sigma M could not be factorised (sigma = " +
-                                  detail::fmt(sigma) + ")");
+      throw std::invalid_argument(
+          ctx + "stiffness matrix K - sigma M could not be factorised (sigma = " + detail::fmt(sigma) + ")");
     }
   }
   if (op.negative_pivots() > 0) {
-    throw std::invalid_argument(ctx + "stiffness matrix K is not positive semi-definite: " +
-                                std::to_string(op.negative_pivots()) + " mode(s) with omega^2 below " +
-                                detail::fmt(sigma) + " (rad/s)^2");
+    throw std::invalid_argument(
+        ctx + "stiffness matrix K is not positive semi-definite: " + std::to_string(op.negative_pivots()) +
+        " mode(s) with omega^2 below " + detail::fmt(sigma) + " (rad/s)^2");
   }
   Spectra::SparseSymMatProd<double> mass_product(M);
   const Eigen::Index subspace = std::min(n, std::max<Eigen::Index>(2 * count + 1, 20));

@@ -2,8 +2,8 @@
 // margin is what is left to a bound, and a mode above the actuator's cut-off is named with the
 // key of the masses.
 
-#include "rpsd/studies/converter_rails.h"
 #include "rpsd/studies/pretest_checks.h"
+#include "rpsd/studies/converter_rails.h"
 
 #include <gtest/gtest.h>
 
