@@ -21,6 +21,9 @@
 namespace rpsd::studies {
 namespace {
 
+// A model beyond the dense eigen-solver: the stability of its lowest modes.
+constexpr Eigen::Index kLowestModesOfLargeModels = 10;
+
 // Signed delay of measured behind target (negative: ahead), by cross-correlation both ways.
 std::optional<double> signed_delay_ms(const std::vector<double>& target, const std::vector<double>& measured,
                                       double rate_hz) {
@@ -80,8 +83,11 @@ LoopResponse compensated_plant_response(const coordinator::TestConfig& s, double
 std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& test, const coordinator::TestConfig& s) {
   const auto& numerical = test.numerical();
   const auto k = test.partition().with_specimen_stiffness(numerical.initial_stiffness());
-  const substructure::ModalSolution modal = substructure::modal_analysis(numerical.mass(), k);
-  const Eigen::MatrixXd c = numerical.damping().to_dense();
+  // Every mode of a small model, the lowest of a large one (no dense copy of its matrices).
+  const Eigen::Index n = numerical.mass().rows();
+  const substructure::ModalSolution modal = substructure::lowest_modes(
+      numerical.mass(), k, n > substructure::kMaxDenseEigenDofs ? kLowestModesOfLargeModels : n);
+  Eigen::VectorXd c_phi(n);
   std::vector<ModePrediction> modes;
   for (Eigen::Index i = 0; i < modal.omega_rad_s.size(); ++i) {
     const Eigen::VectorXd phi = modal.modes.col(i);
@@ -91,7 +97,8 @@ std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& t
       k_e += phi[e.dof.dof] * phi[e.dof.dof] * e.dof.specimen_stiffness_estimate_n_per_m;
     // The specimen's share acts through the loop's gain and delay at the mode's frequency.
     const LoopResponse loop = compensated_plant_response(s, w);
-    const compensation::DelayedOscillator mode{1.0, phi.dot(c * phi), w * w - k_e, k_e * loop.gain};
+    numerical.damping().multiply(phi, c_phi);
+    const compensation::DelayedOscillator mode{1.0, phi.dot(c_phi), w * w - k_e, k_e * loop.gain};
     ModePrediction m;
     m.loop_gain = loop.gain;
     m.loop_delay_ms = 1e3 * loop.delay_s;

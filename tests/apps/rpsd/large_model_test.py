@@ -3,8 +3,9 @@
 bounded memory: a fixed-free chain of equal springs k and masses m, generated here (never
 committed), whose lowest frequencies are known in closed form,
   w_j = 2 sqrt(k/m) sin((2j - 1) pi / (2 (2n + 1))).
-A dense copy of one matrix alone would take 80 GB; validate must find the modes it prints
-without one (sparse eigen-solver) under `ulimit -v`.
+A dense copy of one matrix alone would take 80 GB; validate must find the modes it prints,
+and the Rayleigh damping through modes 1 and 2, without one (sparse eigen-solver) under
+`ulimit -v`.
 
   large_model_test.py RPSD SCRATCH_DIR"""
 import math
@@ -36,6 +37,8 @@ structure:
   kind: matrix_market
   mass_file: mass.mtx
   stiffness_file: stiffness.mtx
+  damping:
+    rayleigh: {{mode_a: 1, mode_b: 2, damping_ratio_a: 0.02, damping_ratio_b: 0.02}}
 experimental:
   - {{dof: {N - 1}, specimen_stiffness_n_per_m: 1.0e3, restoring_force: stiffness_times_displacement}}
 servo:
@@ -63,6 +66,10 @@ if not line:
     problems.append("no modes of the numerical part printed")
 else:
     printed = [float(f) for f in re.findall(r"([0-9.e+-]+) Hz", line.group(1))]
+    # Rayleigh damping through modes 1 and 2 (found by the sparse solver too) gives 2 % there.
+    ratios = re.findall(r"Hz \(([0-9.e+-]+) %\)", line.group(1))
+    if ratios[:2] != ["2", "2"]:
+        problems.append(f"damping of modes 1 and 2: {ratios[:2]} %, expected 2 % (Rayleigh through them)")
     if len(printed) < 5:
         problems.append(f"{len(printed)} modes printed, expected the lowest 5 at least")
     for j, f in enumerate(printed, start=1):
