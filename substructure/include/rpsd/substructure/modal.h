@@ -9,8 +9,9 @@ namespace rpsd::substructure {
 
 // The eigenproblem is solved densely (Eigen::GeneralizedSelfAdjointEigenSolver, O(n³)).
 // Sparse matrices are converted to dense up to this many DOFs (2000 DOFs: 32 MB per matrix
-// and a few seconds of solve); larger models must give their frequencies directly
-// (RayleighFromFrequencies) as exported by the finite-element program.
+// and a few seconds of solve); a larger model's lowest modes come from the sparse solver
+// (lowest_modes_sparse: validate, the dry run, Rayleigh damping through two modes), and modal
+// damping of every mode stays limited to this size.
 inline constexpr Eigen::Index kMaxDenseEigenDofs = 2000;
 
 struct ModalSolution {
