@@ -254,14 +254,14 @@ StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& d
           run.result = run_monte_carlo_into(dir, file, progress, stop_request);
           if (run.result != RunResult::kCompleted) {
             run.reason = std::string(result_name(run.result)) + ": see " + (dir / "summary.json").string();
+            run.recorded_in = stopped_cases_records(dir);
           }
-          run.recorded_in = stopped_cases_records(dir);
         } else if (!file.sweep.empty()) {
           run.result = run_sweep_into(dir, file, progress, stop_request);
           if (run.result != RunResult::kCompleted) {
             run.reason = std::string(result_name(run.result)) + ": see " + (dir / "summary.json").string();
+            run.recorded_in = stopped_cases_records(dir);
           }
-          run.recorded_in = stopped_cases_records(dir);
         } else {
           const TestHeadline headline = run_test_into(dir, file, study, progress, stop_request);
           run.result = headline.result;
