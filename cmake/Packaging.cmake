@@ -23,5 +23,5 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "gnuplot-nox | gnuplot")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
-    "libeigen3-dev, libyaml-cpp-dev, nlohmann-json3-dev, libcli11-dev, cyclonedds-dev, libssl-dev")
+    "libeigen3-dev, libspectra-dev, libyaml-cpp-dev, nlohmann-json3-dev, libcli11-dev, cyclonedds-dev, libssl-dev")
 include(CPack)

@@ -9,6 +9,7 @@ set -euo pipefail
 packages=(
   build-essential cmake              # compiler and build system
   libeigen3-dev                      # linear algebra (integrators, substructures, servo analysis)
+  libspectra-dev                     # sparse eigen-solver: the lowest modes of large models (header only)
   libyaml-cpp-dev                    # scenario and parameter files
   libcli11-dev                       # the rpsd command line
   nlohmann-json3-dev                 # summary.json and --json output

@@ -42,10 +42,16 @@ struct DryRunNotReady : std::runtime_error {
   DryRunNotReady() : std::runtime_error("the dry run says the test is not ready (see above)") {}
 };
 
+// No servo node answered before the first step of a run (exit code 4): nothing moved.
+struct RunNotReady : std::runtime_error {
+  RunNotReady(const std::string& summary, const std::string& reason)
+      : std::runtime_error("test " + reason + "; " + summary + " says so") {}
+};
+
 // A test that stopped before its end; its files are complete for every step it took.
 struct TestStopped : std::runtime_error {
-  TestStopped(const std::string& csv, const std::string& reason)
-      : std::runtime_error("test " + reason + "; every recorded step is in " + csv) {}
+  TestStopped(const std::string& recorded_in, const std::string& reason)
+      : std::runtime_error("test " + reason + "; every recorded step is in " + recorded_in) {}
 };
 
 // SIGINT or SIGTERM ended a run in order: the step under way finished and was recorded.

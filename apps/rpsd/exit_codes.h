@@ -9,7 +9,7 @@ enum ExitCode : int {
   kExitInternalError = 1,      // a failure that is not the input's: a bug, the OS refused something
   kExitBadInput = 2,           // a file, key, value or option is wrong, or --out holds another run
   kExitStopped = 3,            // the test stopped before its end (limit, run-away, node or link failure)
-  kExitNotReady = 4,           // the dry run says the test is not ready
+  kExitNotReady = 4,           // not ready: the dry run says so, or no servo node answered before the first step
   kExitResultsNotWritten = 5,  // a result file could not be written (full disk, permissions)
   kExitInterrupted = 6,        // SIGINT or SIGTERM ended the run in order
 };

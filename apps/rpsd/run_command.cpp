@@ -166,11 +166,13 @@ void add_run(CLI::App& app) {
       case studies::RunResult::kCompleted:
         return;
       case studies::RunResult::kStopped:
-        throw TestStopped(options->out + "/time_history.csv", run.reason);
+        throw TestStopped(run.recorded_in, run.reason);
       case studies::RunResult::kResultsNotWritten:
         throw studies::ResultsNotWritten(run.reason + "; " + summary + " says what is missing");
       case studies::RunResult::kInterrupted:
         throw RunInterrupted(summary, run.reason);
+      case studies::RunResult::kNotReady:
+        throw RunNotReady(summary, run.reason);
     }
   });
 }

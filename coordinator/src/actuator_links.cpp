@@ -130,11 +130,11 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
     }
   }
   if (!missing.empty()) {
-    throw std::runtime_error(
-        "no servo node answered for site(s) " + missing + " of test " + std::to_string(s.transport.test_id) +
-        " within " + (std::ostringstream() << s.transport.discovery_timeout_s).str() +
-        " s (is `rpsd servo-node` running with the same test_id, site_id and domain, and in mode " +
-        (s.clock.mode == ClockConfig::Mode::kRealTime ? "real_time" : "lock_step") + "?)");
+    throw NoNodeAnswered("no servo node answered for site(s) " + missing + " of test " +
+                         std::to_string(s.transport.test_id) + " within " +
+                         (std::ostringstream() << s.transport.discovery_timeout_s).str() +
+                         " s (is `rpsd servo-node` running with the same test_id, site_id and domain, and in mode " +
+                         (s.clock.mode == ClockConfig::Mode::kRealTime ? "real_time" : "lock_step") + "?)");
   }
 }
 

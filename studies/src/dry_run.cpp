@@ -21,6 +21,9 @@
 namespace rpsd::studies {
 namespace {
 
+// A model beyond the dense eigen-solver: the stability of its lowest modes.
+constexpr Eigen::Index kLowestModesOfLargeModels = 10;
+
 // Signed delay of measured behind target (negative: ahead), by cross-correlation both ways.
 std::optional<double> signed_delay_ms(const std::vector<double>& target, const std::vector<double>& measured,
                                       double rate_hz) {
@@ -80,8 +83,11 @@ LoopResponse compensated_plant_response(const coordinator::TestConfig& s, double
 std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& test, const coordinator::TestConfig& s) {
   const auto& numerical = test.numerical();
   const auto k = test.partition().with_specimen_stiffness(numerical.initial_stiffness());
-  const substructure::ModalSolution modal = substructure::modal_analysis(numerical.mass(), k);
-  const Eigen::MatrixXd c = numerical.damping().to_dense();
+  // Every mode of a small model, the lowest of a large one (no dense copy of its matrices).
+  const Eigen::Index n = numerical.mass().rows();
+  const substructure::ModalSolution modal = substructure::lowest_modes(
+      numerical.mass(), k, n > substructure::kMaxDenseEigenDofs ? kLowestModesOfLargeModels : n);
+  Eigen::VectorXd c_phi(n);
   std::vector<ModePrediction> modes;
   for (Eigen::Index i = 0; i < modal.omega_rad_s.size(); ++i) {
     const Eigen::VectorXd phi = modal.modes.col(i);
@@ -91,7 +97,8 @@ std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& t
       k_e += phi[e.dof.dof] * phi[e.dof.dof] * e.dof.specimen_stiffness_estimate_n_per_m;
     // The specimen's share acts through the loop's gain and delay at the mode's frequency.
     const LoopResponse loop = compensated_plant_response(s, w);
-    const compensation::DelayedOscillator mode{1.0, phi.dot(c * phi), w * w - k_e, k_e * loop.gain};
+    numerical.damping().multiply(phi, c_phi);
+    const compensation::DelayedOscillator mode{1.0, phi.dot(c_phi), w * w - k_e, k_e * loop.gain};
     ModePrediction m;
     m.loop_gain = loop.gain;
     m.loop_delay_ms = 1e3 * loop.delay_s;
@@ -142,6 +149,51 @@ void check_against_node(ChannelPrediction& p) {
                     p.peak_force_n <= n.limits.max_force_n;
 }
 
+// The margin left to every limit of the channel (the coordinator's, the rig's velocity, its
+// node's, the converters' rails), a warning for each below kMarginWarning, and a command that
+// peaks well above its target (a compensator's lead eats the stroke margin).
+void add_margins(ChannelPrediction& p, std::vector<std::string>& warnings) {
+  const double stroke = std::max(p.peak_command_m, p.peak_displacement_m);
+  struct Shown {
+    LimitMargin margin;
+    double scale;
+    const char* unit;
+  };
+  std::vector<Shown> all = {
+      {margin_to("stroke", stroke, p.limits.max_stroke_m), 1e3, "mm"},
+      {margin_to("increment", p.peak_increment_m, p.limits.max_increment_m), 1e3, "mm"},
+      {margin_to("velocity", p.peak_velocity_m_per_s, p.rig_velocity_m_per_s), 1e3, "mm/s"},
+      {margin_to("force", p.peak_force_n, p.limits.max_force_n), 1e-3, "kN"},
+      {margin_to("tracking error", p.peak_tracking_error_m, p.limits.max_tracking_error_m), 1e3, "mm"},
+  };
+  if (p.node) {
+    const NodeCheck& n = *p.node;
+    all.push_back({margin_to("node stroke", p.peak_command_m, n.limits.max_stroke_m), 1e3, "mm"});
+    all.push_back({margin_to("node increment", p.peak_increment_m, n.limits.max_increment_m), 1e3, "mm"});
+    all.push_back(
+        {margin_to("node velocity", n.peak_command_velocity_m_per_s, n.limits.max_velocity_m_per_s), 1e3, "mm/s"});
+    all.push_back({margin_to("node force", p.peak_force_n, n.limits.max_force_n), 1e-3, "kN"});
+  }
+  all.push_back({margin_to("command D/A rail", p.peak_command_m, p.rails.command_m, true), 1e3, "mm"});
+  all.push_back({margin_to("displacement A/D rail", p.peak_displacement_m, p.rails.displacement_m, true), 1e3, "mm"});
+  all.push_back({margin_to("force A/D rail", p.peak_force_n, p.rails.force_n, true), 1e-3, "kN"});
+  const bool leads = p.peak_target_m > 0.0 && p.peak_command_m > (1.0 + kMarginWarning) * p.peak_target_m;
+  char lead[120] = "";
+  if (leads) {
+    std::snprintf(lead, sizeof lead, "; the command peaks %.0f %% above the target (the compensation's lead)",
+                  100.0 * (p.peak_command_m / p.peak_target_m - 1.0));
+  }
+  for (const Shown& s : all) {
+    if (!std::isfinite(s.margin.bound)) continue;
+    p.margins.push_back(s.margin);
+    if (s.margin.rail && s.margin.reached()) p.rail_contact = true;
+    if (s.margin.low()) {
+      warnings.push_back("channel " + std::to_string(p.channel) + ": " + describe(s.margin, s.scale, s.unit) +
+                         (s.margin.limit.find("stroke") != std::string::npos ? lead : ""));
+    }
+  }
+}
+
 }  // namespace
 
 DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<NodeLimits>& nodes) {
@@ -169,6 +221,8 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
     p.site_id = e.site_id;
     // The limits the test runs with: the rig's envelope unless the scenario tightens it.
     p.limits = coordinator::within_envelope(e.limits, servo::envelope_of(s.plant), test.control_period_s());
+    p.rig_velocity_m_per_s = servo::envelope_of(s.plant).velocity_m_per_s;
+    p.rails = converter_rails(s.plant);
   }
   attach_nodes(report, s, nodes);
   Eigen::VectorXd hold(channels);
@@ -183,6 +237,8 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
       p.peak_velocity_m_per_s = std::max(p.peak_velocity_m_per_s, std::abs(r.measured_m[c] - previous_x[c]) / period_s);
       p.peak_increment_m = std::max(p.peak_increment_m, std::abs(r.command_m[c] - previous_command[c]));
       p.peak_force_n = std::max(p.peak_force_n, std::abs(r.measured_force_n[c]));
+      p.peak_target_m = std::max(p.peak_target_m, std::abs(r.target_m[c]));
+      p.peak_tracking_error_m = std::max(p.peak_tracking_error_m, std::abs(r.measured_m[c] - r.target_m[c]));
       previous_x[c] = r.measured_m[c];
       previous_command[c] = r.command_m[c];
       targets[c].push_back(r.target_m[c]);
@@ -200,6 +256,29 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
   report.limit_stop = run.limit_stop;
   report.steps = run.steps;
 
+  // The value that stopped the run was never sent or recorded: it belongs in the peaks, so
+  // that its limit shows as reached (margin <= 0), not with the margin of the last step taken.
+  const coordinator::LimitStop& stop = report.limit_stop;
+  if (stop.channel >= 0 && stop.channel < channels) {
+    auto& p = report.channels[static_cast<std::size_t>(stop.channel)];
+    const double v = std::abs(stop.value);
+    switch (stop.kind) {
+      case coordinator::LimitStop::Kind::kStroke:
+        p.peak_command_m = std::max(p.peak_command_m, v);
+        break;
+      case coordinator::LimitStop::Kind::kIncrement:
+        p.peak_increment_m = std::max(p.peak_increment_m, v);
+        break;
+      case coordinator::LimitStop::Kind::kForce:
+        p.peak_force_n = std::max(p.peak_force_n, v);
+        break;
+      case coordinator::LimitStop::Kind::kTrackingError:
+        p.peak_tracking_error_m = std::max(p.peak_tracking_error_m, v);
+        break;
+      default:
+        break;
+    }
+  }
   double delay_sum_ms = 0.0;
   int delays = 0;
   for (int c = 0; c < channels; ++c) {
@@ -216,6 +295,7 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
       check_against_node(p);
       p.within_limits = p.within_limits && p.node->within_limits;
     }
+    add_margins(p, report.warnings);
   }
   report.residual_delay_ms = delays > 0 ? delay_sum_ms / delays : 0.0;
   report.modes = modes_under_delay(test, s);
@@ -225,14 +305,22 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
     report.p_gain = a.p_gain;
     report.max_stable_p_gain = a.max_stable_p_gain_full_model;
   }
+  report.actuator_cutoff_hz = actuator_cutoff_hz(s.plant);
+  if (report.actuator_cutoff_hz) {
+    std::vector<double> frequencies;
+    for (const auto& m : report.modes) frequencies.push_back(m.frequency_hz);
+    for (auto& w : modes_beyond_bandwidth(frequencies, *report.actuator_cutoff_hz, mass_key(s))) {
+      report.warnings.push_back(std::move(w));
+    }
+  }
   const bool completed =
       report.outcome == coordinator::StepOutcome::kOk || report.outcome == coordinator::StepOutcome::kRecordEnded;
-  report.within_limits =
-      completed &&
-      std::all_of(report.channels.begin(), report.channels.end(), [](const auto& p) { return p.within_limits; }) &&
-      std::all_of(report.modes.begin(), report.modes.end(),
-                  [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
-      (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
+  report.within_limits = completed &&
+                         std::all_of(report.channels.begin(), report.channels.end(),
+                                     [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
+                         std::all_of(report.modes.begin(), report.modes.end(),
+                                     [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
+                         (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
   return report;
 }
 

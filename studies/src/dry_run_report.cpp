@@ -40,6 +40,14 @@ nlohmann::json node_json(const NodeCheck& n) {
           {"within_limits", n.within_limits}};
 }
 
+nlohmann::json margins_json(const std::vector<LimitMargin>& margins) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const LimitMargin& m : margins) {
+    out.push_back({{"limit", m.limit}, {"peak", m.peak}, {"bound", m.bound}, {"margin", m.margin}, {"rail", m.rail}});
+  }
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_name, std::ostream& out) {
@@ -62,6 +70,19 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
     if (c.peak_valve_opening) out << ", servovalve opening " << std::lround(100.0 * *c.peak_valve_opening) << " %";
     if (c.tracking_delay_ms) out << ", tracking delay " << *c.tracking_delay_ms << " ms";
     out << "\n";
+    if (!c.margins.empty()) {
+      out << "    margins:";
+      for (std::size_t i = 0; i < c.margins.size(); ++i) {
+        const LimitMargin& m = c.margins[i];
+        char text[96];
+        std::snprintf(text, sizeof text, "%s %s %.0f %%%s", i ? "," : "", m.limit.c_str(), 100.0 * m.margin,
+                      m.reached() ? (m.rail ? " AT THE RAIL" : " REACHED")
+                      : m.low()   ? " LOW"
+                                  : "");
+        out << text;
+      }
+      out << "\n";
+    }
     if (c.node) {
       const auto& n = *c.node;
       out << "    its node (" << n.node << "): stroke " << versus(c.peak_command_m, n.limits.max_stroke_m, 1e3, "mm")
@@ -83,6 +104,10 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
                           {"max_increment_m", bound(c.limits.max_increment_m)},
                           {"max_force_n", bound(c.limits.max_force_n)}}},
                         {"node_limits", c.node ? node_json(*c.node) : nlohmann::json(nullptr)},
+                        {"peak_target_m", c.peak_target_m},
+                        {"peak_tracking_error_m", c.peak_tracking_error_m},
+                        {"margins", margins_json(c.margins)},
+                        {"rail_contact", c.rail_contact},
                         {"within_limits", c.within_limits}});
   }
   out << "  stability per mode (delay theory with the compensated plant's gain and delay at each mode):\n";
@@ -108,9 +133,18 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
     out << "  servo loop: proportional gain " << *r.p_gain << " of at most " << *r.max_stable_p_gain
         << " (Routh, full linear model): margin x" << *r.max_stable_p_gain / *r.p_gain << "\n";
   }
-  out << (r.within_limits
-              ? "  ready: every peak within its limit and every mode damped\n"
-              : "  NOT READY: a limit would be exceeded, a mode would lose its damping, or the test stopped\n");
+  if (r.actuator_cutoff_hz)
+    out << "  actuator: cut-off frequency " << *r.actuator_cutoff_hz << " Hz (linear analysis)\n";
+  for (const std::string& w : r.warnings) out << "  WARNING: " << w << "\n";
+  if (!r.within_limits) {
+    out << "  NOT READY: a limit would be exceeded, a converter would reach its rail, a mode would lose its damping, "
+           "or the test stopped\n";
+  } else if (r.warnings.empty()) {
+    out << "  ready: every peak within its limit and every mode damped\n";
+  } else {
+    out << "  ready: every peak within its limit and every mode damped, with " << r.warnings.size()
+        << " warning(s) above\n";
+  }
   return {{"scenario", test_name},
           {"steps", r.steps},
           {"steps_planned", r.steps_planned},
@@ -119,6 +153,8 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
           {"modes", modes},
           {"p_gain", maybe(r.p_gain)},
           {"max_stable_p_gain", maybe(r.max_stable_p_gain)},
+          {"actuator_cutoff_hz", maybe(r.actuator_cutoff_hz)},
+          {"warnings", r.warnings},
           {"ready", r.within_limits}};
 }
 

@@ -68,6 +68,7 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
   std::vector<std::vector<double>> per_quantity(names.size());
   RunResult result = RunResult::kCompleted;
   int completed_runs = 0;
+  json left_out = json::array();  // runs whose criteria are partial: not in the statistics
   json runs = json::array();
   for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
     char folder[32];
@@ -89,16 +90,20 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
     for (std::size_t q = 0; q < names.size(); ++q) {
       runs_csv << number(v[q]) << ',';
       criteria[names[q].name] = json_number(v[q]);
-      per_quantity[q].push_back(v[q]);
+      // A stopped or interrupted run's criteria cover only the steps it took: not a result.
+      if (completed) per_quantity[q].push_back(v[q]);
     }
+    if (!completed) left_out.push_back({{"run", i + 1}, {"result", result_name(h.result)}, {"outcome", h.outcome}});
     runs_csv << folder << '\n';
     runs.push_back({{"run", i + 1},
                     {"values", drawn},
                     {"result", result_name(h.result)},
                     {"outcome", h.outcome},
                     {"criteria", criteria},
+                    {"criteria_partial", !completed},
                     {"folder", folder}});
-    if (h.result == RunResult::kInterrupted || h.result == RunResult::kResultsNotWritten) {
+    if (h.result == RunResult::kInterrupted || h.result == RunResult::kResultsNotWritten ||
+        h.result == RunResult::kNotReady) {
       result = h.result;
       break;
     }
@@ -122,6 +127,8 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
                                  {"maximum", json_number(s.maximum)},
                                  {"measures", names[q].measures}};
   }
+  markdown << "\nOver the " << completed_runs << " completed run(s) of " << runs.size() << "; left out (stopped or "
+           << "interrupted, criteria over part of the record only): " << left_out.size() << "\n";
   write_file_whole(dir / "statistics.csv", csv.str());
   write_file_whole(dir / "statistics.md", markdown.str());
   json parameters = json::array();
@@ -140,6 +147,8 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
                      {"completed", result == RunResult::kCompleted},
                      {"runs_planned", mc.runs},
                      {"runs_completed", completed_runs},
+                     {"runs_in_statistics", completed_runs},
+                     {"runs_left_out_of_statistics", left_out},
                      {"seed", mc.seed},
                      {"noise_seed_key", mc.noise_seed_key},
                      {"parameters", parameters},

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <climits>
 #include <cstring>
 #include <string>
 #include <system_error>
@@ -47,9 +48,33 @@ std::string padded(std::string_view text, std::size_t size) {
   return out;
 }
 
+// The longest name rpsd writes inside an output folder, with room to spare: a batch's
+// "run_001/plot_reference_history.csv.partial".
+constexpr std::size_t kLongestNameInside = 64;
+
+// An --out the system cannot hold is the user's input, not a failed write (exit 2, not 5):
+// a name longer than NAME_MAX, or a path with no room left for the files rpsd writes in it.
+void require_a_path_that_fits(const std::filesystem::path& dir) {
+  for (const auto& part : dir) {
+    if (part.native().size() > NAME_MAX) {
+      throw std::invalid_argument("--out " + dir.string().substr(0, 80) + "...: a name in the path is " +
+                                  std::to_string(part.native().size()) + " characters long, more than the " +
+                                  std::to_string(NAME_MAX) + " a file system allows");
+    }
+  }
+  std::error_code ignored;
+  const std::size_t length = std::filesystem::absolute(dir, ignored).native().size();
+  if (length + kLongestNameInside >= PATH_MAX) {
+    throw std::invalid_argument("--out " + dir.string().substr(0, 80) + "...: the path is " + std::to_string(length) +
+                                " characters long; with the files rpsd writes in it, it must stay below " +
+                                std::to_string(PATH_MAX - kLongestNameInside));
+  }
+}
+
 }  // namespace
 
 void prepare_results_folder(const std::filesystem::path& dir, bool replace) {
+  require_a_path_that_fits(dir);
   std::error_code error;
   const auto status = std::filesystem::symlink_status(dir, error);
   if (!std::filesystem::exists(status)) {

@@ -1,14 +1,15 @@
 #include "rpsd/studies/scenario_overview.h"
 
-#include <filesystem>
-
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/plant_factory.h"
+#include "rpsd/studies/pretest_checks.h"
 #include "rpsd/substructure/modal.h"
 #include "rpsd/substructure/partition.h"
 
@@ -17,16 +18,39 @@ namespace {
 
 constexpr double kStandardGravity = 9.80665;
 
+// A model too large for the dense eigen-solver shows its lowest modes, found by the sparse one.
+constexpr Eigen::Index kLowestModesOfLargeModels = 10;
+
+// Every mode of a small model, the lowest of a large one; each one's damping phi' C phi / 2 w
+// from products with C as it is stored (no dense copy of a 100,000-DOF matrix).
 std::vector<ModeOverview> modes_of(const linalg::StructuralMatrix& mass, const linalg::StructuralMatrix& stiffness,
-                                   const Eigen::MatrixXd& damping) {
-  const substructure::ModalSolution modal = substructure::modal_analysis(mass, stiffness);
+                                   const linalg::StructuralMatrix& damping) {
+  const Eigen::Index n = mass.rows();
+  const substructure::ModalSolution modal =
+      substructure::lowest_modes(mass, stiffness, n > substructure::kMaxDenseEigenDofs ? kLowestModesOfLargeModels : n);
   std::vector<ModeOverview> modes;
+  Eigen::VectorXd c_phi(n);
   for (Eigen::Index i = 0; i < modal.omega_rad_s.size(); ++i) {
     const double w = modal.omega_rad_s[i];
     const Eigen::VectorXd phi = modal.modes.col(i);
-    modes.push_back({w / (2.0 * std::numbers::pi), w > 0.0 ? phi.dot(damping * phi) / (2.0 * w) : 0.0});
+    damping.multiply(phi, c_phi);
+    modes.push_back({w / (2.0 * std::numbers::pi), w > 0.0 ? phi.dot(c_phi) / (2.0 * w) : 0.0});
   }
   return modes;
+}
+
+// K has modes of its own only if it is positive definite: Cholesky-like factorisation in the
+// storage it has (a dense copy of a large sparse K would not fit in memory).
+bool positive_definite(const linalg::StructuralMatrix& k) {
+  if (k.is_diagonal()) return (k.diagonal_values().array() > 0.0).all();
+  if (k.is_sparse()) {
+    const Eigen::SimplicialLDLT<linalg::SparseMatrix> ldlt(k.sparse());
+    if (ldlt.info() != Eigen::Success) return false;
+    const Eigen::VectorXd d = ldlt.vectorD();
+    return (d.array() > 1e-12 * d.cwiseAbs().maxCoeff()).all();
+  }
+  const Eigen::MatrixXd& dense = k.dense();
+  return dense.ldlt().isPositive() && dense.fullPivLu().rank() == dense.rows();
 }
 
 }  // namespace
@@ -37,16 +61,14 @@ ScenarioOverview overview_of(const coordinator::TestConfig& s) {
   o.dofs = numerical->dofs();
   substructure::Partition partition;
   partition.configure(coordinator::partition_config(s, o.dofs));
-  const Eigen::MatrixXd c = numerical->damping().to_dense();
   // The whole structure: the numerical part with the specimens' stiffness, damping and mass (as
   // the perfect-actuator reference runs it).
   const auto whole = coordinator::make_numerical_model(s, coordinator::SpecimenShare::kKeptInNumericalPart);
-  o.structure_modes = modes_of(whole->mass(), partition.with_specimen_stiffness(whole->initial_stiffness()),
-                               whole->damping().to_dense());
+  o.structure_modes =
+      modes_of(whole->mass(), partition.with_specimen_stiffness(whole->initial_stiffness()), whole->damping());
   // The numerical part alone has modes only if it carries stiffness of its own everywhere.
-  const Eigen::MatrixXd k = numerical->initial_stiffness().to_dense();
-  if (k.ldlt().isPositive() && k.fullPivLu().rank() == k.rows()) {
-    o.numerical_modes = modes_of(numerical->mass(), numerical->initial_stiffness(), c);
+  if (positive_definite(numerical->initial_stiffness())) {
+    o.numerical_modes = modes_of(numerical->mass(), numerical->initial_stiffness(), numerical->damping());
   }
   o.control_rate_hz = s.control_rate_hz;
   o.duration_s = s.duration_s;
@@ -65,6 +87,7 @@ ScenarioOverview overview_of(const coordinator::TestConfig& s) {
   const double control_period_s =
       1.0 / s.control_rate_hz / integrators::make_integrator(s.integrator)->iterations_per_step();
   const servo::Envelope envelope = servo::envelope_of(s.plant);
+  const ConverterRails rails = converter_rails(s.plant);
   for (const auto& e : s.experimental) {
     ChannelOverview ch;
     ch.channel = e.dof.actuator_channel;
@@ -77,8 +100,32 @@ ScenarioOverview overview_of(const coordinator::TestConfig& s) {
     } else {
       ch.envelope = envelope;
       ch.limits = coordinator::within_envelope(e.limits, envelope, control_period_s);
+      ch.rails = rails;
+      // A limit beyond a rail never acts: the converter clamps the signal first, and the
+      // clamped reading is what the limits see.
+      const auto rail_inside = [&](const char* limit, double bound, const char* rail, double at, double scale,
+                                   const char* unit) {
+        if (!(at < bound)) return;
+        char text[240];
+        std::snprintf(text, sizeof text,
+                      "channel %d: the %s clamps at %.4g %s, inside the %s limit of %.4g %s: "
+                      "the rail is reached first (margin of the limit to the rail %.0f %%)",
+                      ch.channel, rail, at * scale, unit, limit, bound * scale, unit, 100.0 * (1.0 - bound / at));
+        o.warnings.emplace_back(text);
+      };
+      rail_inside("stroke", ch.limits.max_stroke_m, "command D/A", rails.command_m, 1e3, "mm");
+      rail_inside("stroke", ch.limits.max_stroke_m, "displacement A/D", rails.displacement_m, 1e3, "mm");
+      rail_inside("force", ch.limits.max_force_n, "force A/D", rails.force_n, 1e-3, "kN");
     }
     o.channels.push_back(ch);
+  }
+  o.actuator_cutoff_hz = actuator_cutoff_hz(s.plant);
+  if (o.actuator_cutoff_hz && !o.channels.empty()) {
+    std::vector<double> frequencies;
+    for (const auto& m : o.structure_modes) frequencies.push_back(m.frequency_hz);
+    for (auto& w : modes_beyond_bandwidth(frequencies, *o.actuator_cutoff_hz, mass_key(s))) {
+      o.warnings.push_back("the structure with the specimens: " + w);
+    }
   }
   return o;
 }
@@ -89,7 +136,11 @@ void print_overview(const ScenarioOverview& o, std::ostream& out) {
                 static_cast<long long>(o.dofs), o.channels.size());
   out << line;
   const auto modes = [&](const char* what, const std::vector<ModeOverview>& list) {
-    out << "  " << what << ":";
+    out << "  " << what;
+    if (!list.empty() && static_cast<Eigen::Index>(list.size()) < o.dofs) {
+      out << ", the lowest " << list.size() << " (sparse eigen-solver)";
+    }
+    out << ":";
     for (std::size_t i = 0; i < list.size(); ++i) {
       std::snprintf(line, sizeof line, "%s %.4g Hz (%.3g %%)", i ? "," : "", list[i].frequency_hz,
                     100.0 * list[i].damping_ratio);
@@ -129,7 +180,23 @@ void print_overview(const ScenarioOverview& o, std::ostream& out) {
                   servo::describe(c.envelope).c_str(), c.limits.max_stroke_m, c.limits.max_force_n,
                   c.limits.max_increment_m, c.limits.max_tracking_error_m);
     out << line;
+    const ConverterRails& r = c.rails;
+    if (std::isfinite(r.command_m) || std::isfinite(r.displacement_m) || std::isfinite(r.force_n)) {
+      const auto rail = [](double v, double scale, const char* unit) {
+        char text[48];
+        if (std::isfinite(v)) std::snprintf(text, sizeof text, "+/-%.4g %s", v * scale, unit);
+        return std::isfinite(v) ? std::string(text) : std::string("none");
+      };
+      out << "    converter rails: command D/A " << rail(r.command_m, 1e3, "mm") << ", displacement A/D "
+          << rail(r.displacement_m, 1e3, "mm") << ", force A/D " << rail(r.force_n, 1e-3, "kN") << "\n";
+    }
   }
+  if (o.actuator_cutoff_hz) {
+    std::snprintf(line, sizeof line, "  actuator: cut-off frequency %.4g Hz (servo linear analysis)\n",
+                  *o.actuator_cutoff_hz);
+    out << line;
+  }
+  for (const std::string& w : o.warnings) out << "  warning: " << w << "\n";
 }
 
 }  // namespace rpsd::studies

@@ -2,6 +2,7 @@
 
 #include "rpsd/studies/monte_carlo_output.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -53,6 +54,29 @@ std::vector<double> scaled(const std::vector<double>& values, double factor) {
   std::vector<double> out(values);
   for (double& v : out) v *= factor;
   return out;
+}
+
+// The time histories of a batch's cases that did not complete, as they are on disk: a batch
+// folder has no time_history.csv of its own, and a case that never started has none.
+std::string stopped_cases_records(const std::filesystem::path& dir) {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const auto csv = entry.path() / "time_history.csv";
+    std::ifstream in(entry.path() / "summary.json");
+    if (!entry.is_directory() || !in || !std::filesystem::exists(csv)) continue;
+    const json summary = json::parse(in, nullptr, false);
+    if (summary.is_object() && summary.value("result", "") != "completed") files.push_back(csv.string());
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) return "the cases' folders (" + (dir / "summary.json").string() + " lists them)";
+  constexpr std::size_t kNamed = 3;
+  std::string text = files.front();
+  for (std::size_t i = 1; i < std::min(files.size(), kNamed); ++i) text += ", " + files[i];
+  if (files.size() > kNamed) {
+    text +=
+        " and " + std::to_string(files.size() - kNamed) + " more (" + (dir / "summary.json").string() + " lists them)";
+  }
+  return text;
 }
 
 }  // namespace
@@ -228,14 +252,21 @@ StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& d
           write_delay_compensation(dir, file, study, run_delay_compensation(study, dir));
         } else if (file.monte_carlo) {
           run.result = run_monte_carlo_into(dir, file, progress, stop_request);
-          if (run.result != RunResult::kCompleted) run.reason = "see " + (dir / "summary.json").string();
+          if (run.result != RunResult::kCompleted) {
+            run.reason = std::string(result_name(run.result)) + ": see " + (dir / "summary.json").string();
+            run.recorded_in = stopped_cases_records(dir);
+          }
         } else if (!file.sweep.empty()) {
           run.result = run_sweep_into(dir, file, progress, stop_request);
-          if (run.result != RunResult::kCompleted) run.reason = "see " + (dir / "summary.json").string();
+          if (run.result != RunResult::kCompleted) {
+            run.reason = std::string(result_name(run.result)) + ": see " + (dir / "summary.json").string();
+            run.recorded_in = stopped_cases_records(dir);
+          }
         } else {
           const TestHeadline headline = run_test_into(dir, file, study, progress, stop_request);
           run.result = headline.result;
           run.reason = headline.outcome;
+          run.recorded_in = (dir / "time_history.csv").string();
         }
       },
       file.study);

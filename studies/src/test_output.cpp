@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rpsd/coordinator/actuator_links.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/coordinator/test_runs.h"
 #include "rpsd/ground_motion/response_spectrum.h"
@@ -283,6 +284,27 @@ nlohmann::json timing_json(const coordinator::TimingReport& t) {
 
 namespace {
 
+// No node answered before the first step: the summary says so (not "running"), names no file
+// the run did not write, and carries no criteria (there are none to compute).
+TestHeadline not_ready(const std::filesystem::path& dir, const StudyDocument& file, const std::string& why) {
+  TestHeadline headline;
+  headline.result = RunResult::kNotReady;
+  headline.outcome = "not ready: " + why;
+  headline.benchmark.fill(std::nan(""));
+  write_summary(dir / "summary.json", nlohmann::json{{"study", "rpsd_test"},
+                                                     {"scenario", file.name},
+                                                     {"description", file.description},
+                                                     {"result", result_name(RunResult::kNotReady)},
+                                                     {"outcome", headline.outcome},
+                                                     {"completed", false},
+                                                     {"steps", 0},
+                                                     {"benchmark_criteria", nullptr},
+                                                     {"provenance", provenance_json(file)}}
+                                              .dump(2) +
+                                          '\n');
+  return headline;
+}
+
 RunResult result_of(const coordinator::TestRun& test, const coordinator::TestRun& reference) {
   using coordinator::StepOutcome;
   if (test.outcome == StepOutcome::kResultsNotWritten || !test.write_error.empty() || !reference.write_error.empty()) {
@@ -305,6 +327,8 @@ const char* result_name(RunResult r) {
       return "results_not_written";
     case RunResult::kInterrupted:
       return "interrupted";
+    case RunResult::kNotReady:
+      return "not_ready";
   }
   return "stopped";
 }
@@ -330,9 +354,14 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
-  const coordinator::EvaluatedTest run = coordinator::run_test_and_reference(
-      scenario, dir / "time_history.csv", dir / "reference_history.csv",
-      [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request);
+  coordinator::EvaluatedTest run;
+  try {
+    run = coordinator::run_test_and_reference(
+        scenario, dir / "time_history.csv", dir / "reference_history.csv",
+        [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request);
+  } catch (const coordinator::NoNodeAnswered& e) {
+    return not_ready(dir, file, e.what());
+  }
   const coordinator::TestRun& test = run.test;
   const coordinator::Criteria& criteria = run.criteria;
   const RunResult result = result_of(test, run.reference);
@@ -397,6 +426,11 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"channels", channels},
       {"dofs", dofs},
       {"benchmark_criteria", benchmark},
+      // A run that did not complete was measured over the steps it took, against a reference
+      // that went on: its criteria describe that stretch, not the test (J4 near 100 % where
+      // the test stood still). They are kept, marked, and left out of a batch's statistics.
+      {"benchmark_criteria_partial", !completed},
+      {"benchmark_criteria_partial_reason", completed ? json(nullptr) : json(outcome)},
       {"benchmark_criteria_definitions", benchmark_criteria_definitions(criteria)},
       {"energy_error_j", criteria.energy_error_j},
       {"dropped_records", test.dropped_records},
@@ -495,14 +529,16 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
     cases.push_back({{"values", values},
                      {"result", result_name(h.result)},
                      {"completed", completed},
+                     {"criteria_partial", !completed},
                      {"J2_percent", h.j2_percent},
                      {"J4_percent", h.j4_percent},
                      {"peak_displacement_m", h.peak_displacement_m},
                      {"reference_peak_displacement_m", h.reference_peak_displacement_m},
                      {"folder", folder}});
-    // A case stopped by the user or by a failed write ends the sweep; a case stopped by a
-    // limit is a result of the sweep, and the next case runs.
-    if (h.result == RunResult::kInterrupted || h.result == RunResult::kResultsNotWritten) {
+    // A case stopped by the user, by a failed write or by a missing node ends the sweep; a case
+    // stopped by a limit is a result of the sweep, and the next case runs.
+    if (h.result == RunResult::kInterrupted || h.result == RunResult::kResultsNotWritten ||
+        h.result == RunResult::kNotReady) {
       result = h.result;
       break;
     }

@@ -3,6 +3,7 @@
 #include "matrix_checks.h"
 #include "rpsd/substructure/modal.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
@@ -47,7 +48,10 @@ BuiltDamping build_damping(const DampingConfig& config, const linalg::Structural
             throw std::invalid_argument(context + "Rayleigh damping: the two mode numbers are both " +
                                         std::to_string(cfg.mode_a) + "; they must differ");
           }
-          const Eigen::VectorXd w = natural_frequencies_rad_s(M, K);
+          // A model beyond the dense solver's reach needs only its lowest modes, from the sparse one.
+          const Eigen::VectorXd w = n > kMaxDenseEigenDofs
+                                        ? lowest_modes_sparse(M, K, std::max(cfg.mode_a, cfg.mode_b)).omega_rad_s
+                                        : natural_frequencies_rad_s(M, K);
           try {
             return rayleigh(rayleigh_from_frequencies(w[cfg.mode_a - 1], w[cfg.mode_b - 1], cfg.damping_ratio_a,
                                                       cfg.damping_ratio_b),

@@ -9,6 +9,7 @@ Every check that fails is printed; the exit code is 1 if any did."""
 import hashlib
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -109,6 +110,42 @@ def interrupted(signal_number, *settings):
     check(f"after step {steps}," in s.get("outcome", ""), f"the outcome does not name the last step {steps}")
     rows, dropped = data_rows(csv), s.get("dropped_records", 0)
     check(rows + dropped == steps, f"time_history.csv has {rows} rows and {dropped} dropped, summary says {steps} steps")
+    # Criteria over the steps taken against a reference that went on are no result (J4 near
+    # 100 %): they are marked partial, with the reason.
+    check(s.get("benchmark_criteria_partial") is True, "the interrupted run's criteria are not marked partial")
+    check(str(s.get("benchmark_criteria_partial_reason", "")).startswith("interrupted"),
+          f"partial reason: {s.get('benchmark_criteria_partial_reason')!r}")
+
+
+def a_batch_leaves_its_stopped_runs_out_of_its_statistics():
+    # The synthetic record's command peaks near 9.9 mm: a stroke limit drawn about 9.5 mm stops
+    # some runs and not others (this seed: runs 3-6 stop, 1 and 2 complete).
+    out = fresh("monte-carlo-stopped")
+    code, text = rpsd("run", SYNTHETIC, "--out", out, "--set=experimental.0.limits={max_stroke_m: 0.0095}",
+                      "--set=monte_carlo={runs: 6, seed: 7, parameters: "
+                      "[{key: experimental.0.limits.max_stroke_m, standard_deviation: 0.001}]}")
+    check(code == 3, f"exit {code}, expected 3 (a run stopped): {text}")
+    s = summary(out)
+    stopped = [r["run"] for r in s["runs"] if r["result"] != "completed"]
+    completed = [r for r in s["runs"] if r["result"] == "completed"]
+    check(stopped and completed, f"this seed should give stopped and completed runs: stopped {stopped}")
+    # Every file the message names exists (a batch folder has no time_history.csv of its own).
+    named = re.findall(r"(\S+/time_history\.csv)", text.split("every recorded step is in ", 1)[-1])
+    check(len(named) == min(len(stopped), 3) and all(os.path.isfile(f) for f in named),
+          f"the message names {named}; stopped runs {stopped}: {text}")
+    check(s.get("runs_in_statistics") == len(completed), f"runs_in_statistics {s.get('runs_in_statistics')}")
+    check([r["run"] for r in s.get("runs_left_out_of_statistics", [])] == stopped,
+          f"left out: {s.get('runs_left_out_of_statistics')}")
+    j2 = "J2_rms_tracking_error_percent"
+    stats = s["statistics"][j2]
+    values = [r["criteria"][j2] for r in completed]
+    check(stats["runs"] == len(completed) and abs(stats["mean"] - sum(values) / len(values)) < 1e-9 * abs(stats["mean"]),
+          f"{j2} statistics {stats} are not those of the completed runs {values}")
+    for r in s["runs"]:
+        check(r["criteria_partial"] == (r["result"] != "completed"), f"run {r['run']}: criteria_partial")
+        one = summary(os.path.join(out, r["folder"]))
+        check(one.get("benchmark_criteria_partial") == (r["result"] != "completed"),
+              f"{r['folder']}/summary.json: benchmark_criteria_partial {one.get('benchmark_criteria_partial')}")
 
 
 def a_file_that_cannot_grow_ends_the_run_with_exit_5():
@@ -293,6 +330,7 @@ CASES = {
     "sigint_as_fast_as_possible": lambda: interrupted(signal.SIGINT),
     "sigterm_in_real_time": lambda: interrupted(signal.SIGTERM, "--set", "clock.mode=real_time"),
     "file_size_limit_exit_5": a_file_that_cannot_grow_ends_the_run_with_exit_5,
+    "monte_carlo_leaves_stopped_runs_out": a_batch_leaves_its_stopped_runs_out_of_its_statistics,
     "missing_tool_exit_1": a_missing_tool_is_exit_1,
     "summary_provenance": summary_names_the_code_and_every_input,
     "effective_scenario_anywhere": effective_scenario_runs_again_from_anywhere,

@@ -3,12 +3,13 @@
 was printed (stdout and stderr together), the files written and values in JSON files.
 
   run_cli.py --exit N [--prints REGEX]... [--file PATH]... [--json PATH:KEY=VALUE]...
-             [--json-near PATH:KEY=VALUE~TOLERANCE]... [--json-matches PATH:KEY=REGEX]... [--rows PATH=N]... [--fresh DIR] -- COMMAND...
+             [--json-near PATH:KEY=VALUE~TOLERANCE]... [--json-matches PATH:KEY=REGEX]... [--rows PATH=N]... [--absent PATH]... [--fresh DIR] -- COMMAND...
 
 KEY is a dotted path into the JSON document (list items by index). Every check that fails is
 reported; the exit code is 1 if any did."""
 import argparse
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -32,6 +33,7 @@ def main():
     parser.add_argument("--json-matches", action="append", default=[])
     parser.add_argument("--rows", action="append", default=[])
     parser.add_argument("--fresh", action="append", default=[])
+    parser.add_argument("--absent", action="append", default=[])
     parser.add_argument("command", nargs=argparse.REMAINDER)
     args = parser.parse_args()
     command = args.command[1:] if args.command[:1] == ["--"] else args.command
@@ -89,6 +91,9 @@ def main():
                 problems.append(f"{path} has {rows} rows, expected {expected}")
         except OSError as e:
             problems.append(f"{path}: {e.strerror}")
+    for path in args.absent:
+        if os.path.exists(path):
+            problems.append(f"{path} exists, expected none")
     if problems:
         print("command: " + " ".join(command))
         print("output:\n" + output[-4000:])

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,12 +24,19 @@ struct SiteSummary {
   std::vector<int> channels;  // the test's channels this site owns
 };
 
+// No servo node answered for a site before the first step: nothing moved, the test is not
+// ready (summary.json's result not_ready, exit 4), not an internal error.
+class NoNodeAnswered : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class ActuatorLinks {
  public:
   // Builds the sites' links for run `run_id` and puts every actuator at rest at hold_m (one
   // value per channel, in channel order). With perfect_actuator, in-process plants follow
   // their command exactly whatever the transport. DDS: waits for every site's node to be
-  // discovered and throws std::runtime_error naming the missing sites, unless a node refuses
+  // discovered and throws NoNodeAnswered naming the missing sites, unless a node refuses
   // the run (refused()). Not real-time safe.
   ActuatorLinks(const TestConfig& config, double control_period_s, bool perfect_actuator,
                 std::span<const double> hold_m, std::uint64_t run_id);

@@ -1,6 +1,7 @@
 // The pre-test check (`rpsd run --dry-run`): the scenario against its simulated plant, in this
 // process and as fast as possible, before any hardware moves. It predicts each channel's peak
-// stroke, velocity, force and servovalve opening against the coordinator's limits, and the
+// stroke, velocity, force, tracking error and servovalve opening against the coordinator's
+// limits and the converters' rails, with the margin left to each (warned below 10 %), and the
 // stability margin: the servo loop's proportional gain against its Routh bound, and for every
 // structural mode the damping left and the delay margin, from delay theory per mode
 // (s^2 + c s + k_n + g k_e e^{-s tau} = 0, mass-normalised) with the gain g and delay tau of
@@ -18,6 +19,8 @@
 #include "rpsd/coordinator/rpsd_loop.h"
 #include "rpsd/coordinator/test_config.h"
 #include "rpsd/node/servo_node_config.h"
+#include "rpsd/studies/converter_rails.h"
+#include "rpsd/studies/pretest_checks.h"
 
 namespace rpsd::studies {
 
@@ -44,11 +47,19 @@ struct ChannelPrediction {
   std::uint32_t site_id = 1;
   double peak_command_m = 0.0, peak_displacement_m = 0.0, peak_velocity_m_per_s = 0.0, peak_increment_m = 0.0;
   double peak_force_n = 0.0;
+  double peak_target_m = 0.0;                // what the integrator asked for, before compensation
+  double peak_tracking_error_m = 0.0;        // |measured - target|
   std::optional<NodeCheck> node;             // when the site's node file was given
   std::optional<double> peak_valve_opening;  // |x_v| of the servovalve, 0..1 (servo model only)
   std::optional<double> tracking_delay_ms;   // measured lags target by this (negative: leads)
   coordinator::CoordinatorLimits limits;
+  double rig_velocity_m_per_s = servo::Envelope::kNone;  // the rig's envelope
+  ConverterRails rails;
+  // The margin left to every limit: the coordinator's, the rig's velocity, the node's (when
+  // given) and the converters' rails.
+  std::vector<LimitMargin> margins;
   bool within_limits = true;  // within the coordinator's limits (and the node's, when given)
+  bool rail_contact = false;  // a converter reached its rail: the signal was clamped
 };
 
 struct ModePrediction {
@@ -71,7 +82,11 @@ struct DryRunReport {
   // Servo model only: its proportional gain and the largest stable one (eigenvalues of the
   // full linear model with the specimen).
   std::optional<double> p_gain, max_stable_p_gain;
-  bool within_limits = true;  // completed, every peak within its limit, every mode damped
+  std::optional<double> actuator_cutoff_hz;  // servo model only (linear analysis)
+  // A margin below kMarginWarning, a command well above its target, a mode above the cut-off.
+  std::vector<std::string> warnings;
+  // Completed, every peak within its limit, no converter at its rail, every mode damped.
+  bool within_limits = true;
 };
 
 // Runs the scenario's test (not the reference) with its simulated plant, whatever its transport

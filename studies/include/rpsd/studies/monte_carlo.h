@@ -15,7 +15,7 @@ namespace rpsd::studies {
 std::vector<std::vector<double>> draw_monte_carlo(const MonteCarloConfig& config);
 
 struct RunStatistics {
-  int runs = 0;                     // finite values counted (a run that stopped early still counts)
+  int runs = 0;                     // finite values counted (the batch passes only completed runs')
   double mean = 0.0;                // NaN when none
   double standard_deviation = 0.0;  // sample (n - 1); NaN below two
   double minimum = 0.0;

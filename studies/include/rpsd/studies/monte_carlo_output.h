@@ -1,7 +1,8 @@
 // Runs a `monte_carlo:` scenario into an output folder: each run into run_NNN/ as `rpsd run`
 // writes a test, then runs.csv (each run's drawn values, outcome, J1-J9 and the constraint
 // peaks), statistics.csv and statistics.md (mean, standard deviation and extremes of each over
-// the runs) and summary.json. Not real-time safe.
+// the completed runs: a stopped or interrupted run's criteria are partial, kept in runs.csv and
+// its own summary but left out, and summary.json counts them) and summary.json. Not real-time safe.
 #pragma once
 
 #include <atomic>

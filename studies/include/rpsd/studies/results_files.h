@@ -26,7 +26,8 @@ class OutputFolderInUse : public std::invalid_argument {
 // Makes `dir` ready for one run: created when missing; when it holds anything, refused
 // unless `replace`, and then emptied first, but only if rpsd wrote it (it holds a
 // summary.json, effective-scenario.yaml or dry-run.json), so that a mistyped --out never
-// clears someone's home folder.
+// clears someone's home folder. An --out the file system cannot hold (a name longer than
+// NAME_MAX, a path too long for the files written in it) is std::invalid_argument: exit 2.
 void prepare_results_folder(const std::filesystem::path& dir, bool replace);
 
 // Writes `text` to `file`: the old file, if any, stays until the new one is whole on disk.

@@ -1,10 +1,13 @@
 // What rpsd understood of a test scenario, before anything runs (`rpsd validate`): the
-// structure's DOFs, modes and damping (whole, and its numerical part), the steps, the record,
-// and each channel's rig envelope and the limits the test will run with. Builds nothing that
+// structure's DOFs, modes and damping (whole, and its numerical part; a model beyond the dense
+// solver's 2000 DOFs its lowest modes, by the sparse one), the steps, the record, each channel's
+// rig envelope, converter rails and the limits the test will run with, and warnings: modes
+// above the actuator's cut-off, limits beyond a converter's rail. Builds nothing that
 // moves or connects. Not real-time safe.
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -12,6 +15,7 @@
 #include "rpsd/coordinator/coordinator_limits.h"
 #include "rpsd/coordinator/test_config.h"
 #include "rpsd/servo/envelope.h"
+#include "rpsd/studies/converter_rails.h"
 
 namespace rpsd::studies {
 
@@ -28,6 +32,7 @@ struct ChannelOverview {
   servo::Envelope envelope;
   coordinator::CoordinatorLimits limits;  // the envelope unless the scenario tightens it
   std::string opensees;                   // an OpenSees site's address ("host:port, reference :port"); "" otherwise
+  ConverterRails rails;                   // the plant's converters (infinite: none)
 };
 
 struct ScenarioOverview {
@@ -43,6 +48,10 @@ struct ScenarioOverview {
   std::vector<std::string> processing;             // what the scenario did to it, in order
   double record_dt_s = 0.0, record_pga_g = 0.0;    // as the test runs it
   std::vector<ChannelOverview> channels;
+  std::optional<double> actuator_cutoff_hz;  // the servo model's (linear analysis); none for other plants
+  // What deserves a look before the test: a mode above the actuator's cut-off (naming the mass
+  // key), a limit that a converter's rail would pre-empt.
+  std::vector<std::string> warnings;
 };
 
 ScenarioOverview overview_of(const coordinator::TestConfig& test);

@@ -27,6 +27,10 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
 struct StudyRun {
   RunResult result = RunResult::kCompleted;
   std::string reason;  // why an `rpsd_test` run did not complete (as in its summary.json)
+  // Where the steps taken are recorded: a test's time_history.csv, or for a sweep or a Monte
+  // Carlo batch that did not complete the time histories of its cases that did not (files that
+  // exist; a batch folder has none of its own).
+  std::string recorded_in;
 };
 
 // Runs whichever study the file holds and writes it into dir (created if missing; the

@@ -23,8 +23,9 @@ enum class RunResult {
   kStopped,            // a limit, a run-away, a link or node failure: the reason is in summary.json
   kResultsNotWritten,  // a write failed; what could be written says so
   kInterrupted,        // SIGINT or SIGTERM: stopped in order after the step under way
+  kNotReady,           // no servo node answered for a site before the first step: nothing moved
 };
-// summary.json's "result": completed, stopped, results_not_written or interrupted.
+// summary.json's "result": completed, stopped, results_not_written, interrupted or not_ready.
 const char* result_name(RunResult result);
 
 // The headline numbers of one run, for sweep tables.

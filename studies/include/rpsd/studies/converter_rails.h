@@ -1,0 +1,28 @@
+// A channel's converter rails: the largest magnitude each of its converters can represent, in
+// the units of the signal it carries (m, N). Computed here from the converter configuration
+// until servo/ gives a channel's representable range itself; then this file goes. Not
+// real-time safe.
+#pragma once
+
+#include "rpsd/servo/envelope.h"
+#include "rpsd/servo/plant_factory.h"
+#include "rpsd/servo/signal_converter.h"
+
+namespace rpsd::studies {
+
+// The largest |value| the converter can put out: its saturation, or its largest code inside
+// it (two's-complement codes, mid-tread, as SignalConverter rounds); infinite without a
+// voltage stage or without a limit.
+double converter_rail(const servo::SignalConverterParameters& converter);
+
+struct ConverterRails {
+  // The D/A that carries the coordinator's command (infinite when the plant's D/A carries a
+  // servo controller's output instead: feedback_controlled_plant.h).
+  double command_m = servo::Envelope::kNone;
+  double displacement_m = servo::Envelope::kNone;  // the displacement sensor's A/D
+  double force_n = servo::Envelope::kNone;         // the load cell's A/D
+};
+
+ConverterRails converter_rails(const servo::PlantConfig& plant);
+
+}  // namespace rpsd::studies
