@@ -1,7 +1,6 @@
-// A channel's converter rails: the largest magnitude each of its converters can represent, in
-// the units of the signal it carries (m, N). Computed here from the converter configuration
-// until servo/ gives a channel's representable range itself; then this file goes. Not
-// real-time safe.
+// A channel's converter rails as the pre-test checks show them: the largest magnitude each of
+// its converters can represent on both sides, in the units of the signal it carries (m, N),
+// from servo's own ranges (SignalConverterParameters::range). Not real-time safe.
 #pragma once
 
 #include "rpsd/servo/envelope.h"
@@ -10,9 +9,8 @@
 
 namespace rpsd::studies {
 
-// The largest |value| the converter can put out: its saturation, or its largest code inside
-// it (two's-complement codes, mid-tread, as SignalConverter rounds); infinite without a
-// voltage stage or without a limit.
+// The largest |value| the converter represents on both sides (the nearer rail); infinite
+// without a voltage stage or without a limit.
 double converter_rail(const servo::SignalConverterParameters& converter);
 
 struct ConverterRails {
