@@ -34,8 +34,8 @@ void add_loop(const realtime::EmptyLoopFloor& l, bench::Fragment& fragment) {
   fragment.add(
       bench::figure(id + "_wakeup_p999", "  wake-up lateness p99.9", "us", bench::single(l.wakeup.p999_s * 1e6)));
   fragment.add(bench::figure(id + "_wakeup_max", "  wake-up lateness max", "us", bench::single(l.wakeup.max_s * 1e6)));
-  fragment.add(
-      bench::figure(id + "_steal", "  host steal time during the run", "% of CPU time", bench::single(l.steal_percent)));
+  fragment.add(bench::figure(id + "_steal", "  host steal time during the run", "% of CPU time",
+                             bench::single(l.steal_percent)));
   fragment.note(how + ", " + r + " Hz: " + std::to_string(l.cycles) + " cycles, " + std::to_string(l.overruns) +
                 " overruns (" + number(overruns_pct) + " %), " + std::to_string(l.skipped_deadlines) +
                 " deadlines skipped; wake-up p50 " + number(l.wakeup.p50_s * 1e6) + " us, p99 " +
@@ -63,8 +63,7 @@ int main(int argc, char** argv) try {
   const realtime::HostCheckReport report = realtime::check_host(request);
   if (!report.granted.refused.empty())
     fragment.note("real-time request refused, figures are for the default scheduler: " + report.granted.refused);
-  if (!report.cpus_could_be_kept_awake)
-    fragment.note("the CPUs could not be kept awake: " + report.keep_awake_refused);
+  if (!report.cpus_could_be_kept_awake) fragment.note("the CPUs could not be kept awake: " + report.keep_awake_refused);
   for (const auto& loop : report.loops) add_loop(loop, fragment);
   fragment.write(options.out);
   return 0;

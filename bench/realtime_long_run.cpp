@@ -299,10 +299,11 @@ int main(int argc, char** argv) try {
     fragment.add(bench::figure("long_run_rss_change_coordinator_kib",
                                "  coordinator resident set, end of the test less " + format("%g s in", warmup_s), "KiB",
                                bench::single(coord.back() - coord_first)));
-    fragment.note(format("Resident sets %g s in and at the end", warmup_s) + format(" of the test: coordinator %.0f", coord_first) +
-                  format(" -> %.0f KiB, ", coord.back()) + format("node %.0f", node_first) +
-                  format(" -> %.0f KiB; ", nodes.back()) + std::to_string(t_min.size()) +
-                  " one-second samples. Rises: coordinator " + std::to_string(coord_rises.count) +
+    fragment.note(format("Resident sets %g s in and at the end", warmup_s) +
+                  format(" of the test: coordinator %.0f", coord_first) + format(" -> %.0f KiB, ", coord.back()) +
+                  format("node %.0f", node_first) + format(" -> %.0f KiB; ", nodes.back()) +
+                  std::to_string(t_min.size()) + " one-second samples. Rises: coordinator " +
+                  std::to_string(coord_rises.count) +
                   format(" (%.0f KiB in all, the largest %.0f KiB", coord_rises.total_kib, coord_rises.largest_kib) +
                   format(" at minute %.1f), node ", coord_rises.largest_at_min) + std::to_string(node_rises.count) +
                   format(" (%.0f KiB in all); coordinator threads %.0f", node_rises.total_kib, threads_first) +
@@ -345,7 +346,8 @@ int main(int argc, char** argv) try {
       std::to_string(max_age) + " (the default 4 is the hardware safety setting; this VM stalls for up to 0.4 s)" +
       (extra_note.empty() ? "" : "; also" + extra_note) +
       ". "
-      "Memory: VmRSS every second while time_history.csv grew; the slope is fitted " + from + ".");
+      "Memory: VmRSS every second while time_history.csv grew; the slope is fitted " +
+      from + ".");
   if (keep)
     std::fprintf(stderr, "realtime_long_run: kept %s\n", work.c_str());
   else

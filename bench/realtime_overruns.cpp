@@ -164,9 +164,9 @@ int main(int argc, char** argv) try {
           std::vector<std::string>{
               "ip", "netns", "exec", node_ns, rpsd, "servo-node",
               (src / ("examples/nodes/bridge-pier-site-" + std::to_string(site) + ".yaml")).string(), "--set",
-              "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set",
-              "dds.config=" + lab_lan, "--set", "dds.domain_id=" + std::to_string(domain),
-              "--summary", (work / (r + "-node" + std::to_string(site) + ".json")).string()},
+              "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set", "dds.config=" + lab_lan, "--set",
+              "dds.domain_id=" + std::to_string(domain), "--summary",
+              (work / (r + "-node" + std::to_string(site) + ".json")).string()},
           env, work / (r + "-node" + std::to_string(site) + ".log")));
     }
     const std::string load_start = loadavg();

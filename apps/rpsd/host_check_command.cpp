@@ -34,11 +34,11 @@ void print_text(const realtime::HostCheckReport& r) {
   if (r.idle.states.empty()) std::cout << " none listed";
   std::cout << '\n';
   for (const auto& s : r.idle.states) {
-    std::cout << "  " << s.name << ": exit latency " << s.exit_latency_us << " us"
-              << (s.disabled ? ", disabled" : "") << (s.can_be_disabled ? ", can be disabled" : "") << '\n';
+    std::cout << "  " << s.name << ": exit latency " << s.exit_latency_us << " us" << (s.disabled ? ", disabled" : "")
+              << (s.can_be_disabled ? ", can be disabled" : "") << '\n';
   }
-  std::cout << "keeping the CPUs awake (" << realtime::kPmQosDevice << " 0): "
-            << (r.cpus_could_be_kept_awake ? "possible" : "REFUSED: " + r.keep_awake_refused)
+  std::cout << "keeping the CPUs awake (" << realtime::kPmQosDevice
+            << " 0): " << (r.cpus_could_be_kept_awake ? "possible" : "REFUSED: " + r.keep_awake_refused)
             << "; limit in force before: " << r.wake_latency_limit_us << " us\n";
   std::cout << "empty paced loop, " << number("%g", r.request.seconds_per_rate) << " s per rate:\n";
   for (const auto& l : r.loops) {

@@ -21,7 +21,8 @@ HostCheckReport check_host(const HostCheckRequest& request) {
   rt.fifo_priority = request.fifo_priority;
   rt.keep_cpus_awake = false;  // the loops run once free to idle, then kept awake
   report.granted = apply_realtime(rt);
-  for (const int rate : request.rates_hz) report.loops.push_back(measure_empty_loop(rate, request.seconds_per_rate, false));
+  for (const int rate : request.rates_hz)
+    report.loops.push_back(measure_empty_loop(rate, request.seconds_per_rate, false));
   const CpuWakeLatencyHold hold(0);
   report.cpus_could_be_kept_awake = hold.held();
   report.keep_awake_refused = hold.refused();

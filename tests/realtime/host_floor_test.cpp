@@ -56,9 +56,7 @@ TEST(HostFloor, TheTallyCountsEveryCycleAndThePacersOverruns) {
   EXPECT_NEAR(floor.wakeup.p50_s, 6e-6, 1.01e-6);
 }
 
-TEST(HostFloor, NoCyclesIsNoOverrunPercentNotADivisionByZero) {
-  EXPECT_EQ(EmptyLoopFloor{}.overruns_percent(), 0.0);
-}
+TEST(HostFloor, NoCyclesIsNoOverrunPercentNotADivisionByZero) { EXPECT_EQ(EmptyLoopFloor{}.overruns_percent(), 0.0); }
 
 TEST(HostFloor, StealTimeIsTheStolenShareOfTheCpuTimeBetweenTwoReadings) {
   // user nice system idle iowait irq softirq steal guest guest_nice: total 1000, steal 10.

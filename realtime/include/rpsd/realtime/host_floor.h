@@ -61,8 +61,8 @@ EmptyLoopFloor measure_empty_loop(int rate_hz, double seconds, bool cpus_kept_aw
 // One CPU idle state (cpuidle in sysfs) as CPU 0 has it.
 struct IdleState {
   std::string name;
-  int exit_latency_us = -1;     // the time to wake from it
-  bool disabled = false;        // disabled on CPU 0 now
+  int exit_latency_us = -1;      // the time to wake from it
+  bool disabled = false;         // disabled on CPU 0 now
   bool can_be_disabled = false;  // its `disable` file is writable by this process
 };
 struct IdleStates {
