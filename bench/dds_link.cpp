@@ -84,9 +84,9 @@ int main(int argc, char** argv) try {
     return scenarios::load_study(
         options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
         {scenarios::parse_override("ground_motion.pad_after_s=20"),
-         scenarios::parse_override(
-             "transport={kind: " + transport + ", test_id: 7, domain_id: " + std::to_string(domain) +
-             ", dds_config: ../transport/config/loopback.xml, discovery_timeout_s: 20" + more + "}")});
+         scenarios::parse_override("transport={kind: " + transport +
+                                   ", test_id: 7, domain_id: " + std::to_string(domain) +
+                                   ", dds_config: " + config.string() + ", discovery_timeout_s: 20" + more + "}")});
   };
   const auto dds_file = sdof("dds");
   // The same with the coordinator polling for its feedback for up to 1 ms before sleeping.

@@ -65,6 +65,12 @@ int main(int argc, char** argv) try {
   // keeps the scenario's (4, the safety setting). A larger one lets a run outlast this VM's
   // stalls so that its overruns are counted over the whole run; late steps are reported.
   int max_age = 0;
+  // --max-velocity M/S: the coordinator's per-period increment limit at each rate is this
+  // velocity times the period. A stopgap: the scenario's max_increment_m (1 mm) is per period,
+  // so at 2048 Hz and above it exceeds the rig's velocity capacity over one period (1.31 m/s,
+  // examples/servo/paper-mts-244.yaml) and the run is refused. 0.3 m/s is twice the nodes'
+  // own velocity clamp (0.15 m/s), so the limit never acts on a command the nodes would pass.
+  double max_velocity_m_per_s = 0.3;
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
     const std::string& key = options.rest[i];
     const std::string& value = options.rest[i + 1];
@@ -82,6 +88,8 @@ int main(int argc, char** argv) try {
       keep = value == "1";
     else if (key == "--max-feedback-age")
       max_age = std::stoi(value);
+    else if (key == "--max-velocity")
+      max_velocity_m_per_s = std::stod(value);
     else if (key == "--ddsperf")
       ddsperf = value;
     else if (key == "--ddsperf-seconds")
@@ -97,12 +105,15 @@ int main(int argc, char** argv) try {
         "--coordinator-netns and --node-netns are required (bench/realtime-overruns sets them up)");
   }
   if (seconds <= 0.0) throw std::invalid_argument("--seconds: positive");
+  if (!(max_velocity_m_per_s > 0.0)) throw std::invalid_argument("--max-velocity: positive");
   if (ddsperf_seconds < 3) throw std::invalid_argument("--ddsperf-seconds: at least 3");
   bench::Fragment fragment("realtime_overruns", argc, argv);
   bench::install_stop_handlers();
   const auto work = std::filesystem::temp_directory_path() / ("rpsd-bench-rt-" + std::to_string(getpid()));
   std::filesystem::create_directories(work);
   const auto src = std::filesystem::absolute(options.source_dir);
+  // Absolute, so that no scenario or node file's folder decides where it is found.
+  const std::string lab_lan = (src / "transport/config/lab-lan.xml").string();
   // The lab-LAN profile: eth0, the two hosts' addresses as unicast discovery peers.
   const std::vector<std::string> env{"RPSD_DDS_INTERFACE=eth0", "RPSD_DDS_PEER_1=198.18.0.1",
                                      "RPSD_DDS_PEER_2=198.18.0.2", "RPSD_DDS_PEER_3=198.18.0.2"};
@@ -113,6 +124,7 @@ int main(int argc, char** argv) try {
   const std::string pad = format("%g", std::max(0.0, seconds - kRecordSeconds));
   const std::string load_before = loadavg();
   std::string ddsperf_command;
+  std::vector<std::string> did_not_run;  // rates whose run wrote no summary: the step fails
 
   for (const int rate : rates) {
     const std::string r = std::to_string(rate);
@@ -127,7 +139,7 @@ int main(int argc, char** argv) try {
       perf.seconds = ddsperf_seconds;
       perf.rate = r + "Hz";
       perf.env = env;
-      perf.env.push_back("CYCLONEDDS_URI=file://" + (src / "transport/config/lab-lan.xml").string());
+      perf.env.push_back("CYCLONEDDS_URI=file://" + lab_lan);
       perf.pong_prefix = {"ip", "netns", "exec", node_ns};
       perf.ping_prefix = {"ip", "netns", "exec", coord_ns};
       // Under the same host conditions as rpsd's run, whose real-time processes keep the
@@ -152,9 +164,9 @@ int main(int argc, char** argv) try {
           std::vector<std::string>{
               "ip", "netns", "exec", node_ns, rpsd, "servo-node",
               (src / ("examples/nodes/bridge-pier-site-" + std::to_string(site) + ".yaml")).string(), "--set",
-              "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set",
-              "dds.config=../../transport/config/lab-lan.xml", "--set", "dds.domain_id=" + std::to_string(domain),
-              "--summary", (work / (r + "-node" + std::to_string(site) + ".json")).string()},
+              "node.mode=real_time", "--set", "node.control_rate_hz=" + r, "--set", "dds.config=" + lab_lan, "--set",
+              "dds.domain_id=" + std::to_string(domain), "--summary",
+              (work / (r + "-node" + std::to_string(site) + ".json")).string()},
           env, work / (r + "-node" + std::to_string(site) + ".log")));
     }
     const std::string load_start = loadavg();
@@ -170,7 +182,7 @@ int main(int argc, char** argv) try {
                                       "--set",
                                       "transport.kind=dds",
                                       "--set",
-                                      "transport.dds_config=../../transport/config/lab-lan.xml",
+                                      "transport.dds_config=" + lab_lan,
                                       "--set",
                                       "transport.domain_id=" + std::to_string(domain),
                                       "--set",
@@ -181,6 +193,11 @@ int main(int argc, char** argv) try {
                                       "ground_motion.trim=" + trim,
                                       "--set",
                                       "ground_motion.pad_after_s=" + pad};
+    const std::string increment = format("%.6g", max_velocity_m_per_s / rate);
+    for (const char* channel : {"0", "1"}) {
+      run_argv.insert(run_argv.end(),
+                      {"--set", std::string("experimental.") + channel + ".limits.max_increment_m=" + increment});
+    }
     if (max_age > 0)
       run_argv.insert(run_argv.end(), {"--set", "clock.max_feedback_age_periods=" + std::to_string(max_age)});
     bench::ChildProcess run(run_argv, env, work / (r + "-run.log"));
@@ -202,6 +219,7 @@ int main(int argc, char** argv) try {
           "% of cycles", bench::Summary{});
       f.aiming_for(rate == 4096 ? "< 0.1 %" : "runs to completion", false);
       fragment.add(f);
+      did_not_run.push_back(r + " Hz");
       continue;
     }
     const json s = read_json(dir / "summary.json");
@@ -303,7 +321,10 @@ int main(int argc, char** argv) try {
       format("%g", seconds) +
       " s of record (El Centro x 0.1 untrimmed, then free "
       "vibration); nodes examples/nodes/bridge-pier-site-{1,2}.yaml with node.control_rate_hz = the rate "
-      "(their servo model at its own 8192 Hz), clock.max_feedback_age_periods " +
+      "(their servo model at its own 8192 Hz), the coordinator's max_increment_m " +
+      format("%g", max_velocity_m_per_s) +
+      " m/s times the period at each rate (a stopgap: the scenario's 1 mm is per period), "
+      "clock.max_feedback_age_periods " +
       (max_age > 0 ? std::to_string(max_age) + " (the default 4 is the hardware safety setting)"
                    : std::string("as the scenario sets it (4)")) +
       ". Overruns are cycles whose work ended past the next deadline, "
@@ -317,6 +338,12 @@ int main(int argc, char** argv) try {
       "namespace, ping paced at the rate in the coordinator's, 168 bytes): `" +
       ddsperf_command + "`.");
   fragment.write(options.out);
+  if (!did_not_run.empty()) {
+    std::string rates_text;
+    for (const auto& r : did_not_run) rates_text += (rates_text.empty() ? "" : ", ") + r;
+    std::fprintf(stderr, "realtime_overruns: no run at %s (see above)\n", rates_text.c_str());
+    return 1;
+  }
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "realtime_overruns: %s\n", e.what());

@@ -31,6 +31,9 @@ void add_servo_node(CLI::App& app);
 // `rpsd site-server SITE.yaml --out DIR`: the experimental site of an OpenSees model.
 void add_site_server(CLI::App& app);
 
+// `rpsd host-check [--rates ...] [--seconds S] [--json]`: this host's real-time floor.
+void add_host_check(CLI::App& app);
+
 // `rpsd reference [--check FILE]` (hidden): the scenario reference from the readers.
 void add_reference(CLI::App& app);
 

@@ -4,9 +4,11 @@
 //       Google Benchmark JSON (with repetitions) to a fragment: one figure per benchmark,
 //       median and spread over the repetitions.
 //   bench_merge merge --expected bench/figures.json --json REPORT.json --md REPORT.md
-//                     [--date D] [--machine TEXT] [--load-before X] [--load-after Y] FRAGMENT...
+//                     [--require-all 1] [--date D] [--machine TEXT] [--load-before X] [--load-after Y]
+//                     FRAGMENT...
 //       One machine-readable report and one human table; the expected figures that no
-//       fragment carries are listed as missing.
+//       fragment carries are listed as missing. With --require-all 1 a missing figure makes
+//       the exit code 3 (the report is still written): CI's check that no step lost a figure.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -217,6 +219,11 @@ int merge(const std::map<std::string, std::string>& flags, const std::vector<std
   }
   write_text(required(flags, "--md"), md.str());
   std::cout << md.str();
+  if (flag("--require-all") == "1" && !missing.empty()) {
+    std::fprintf(stderr, "bench_merge: %zu expected figure(s) missing (listed under Missing figures)\n",
+                 missing.size());
+    return 3;
+  }
   return 0;
 }
 
