@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The README's first command: installs what is missing, builds rpsd, then runs the main job:
+# The README's first command: installs what is missing, builds rpsd (the command and the libraries
+# it links, not the tests: scripts/test.sh builds those), then runs the main job:
 # an earthquake RPsD test of the paper's structure on the simulated servo rig under a synthetic
 # record, the linear analysis of the seed paper's rig, its Figure 5, 6 and 7 studies, and the RPsD
 # delay-compensation study of its Figure 8 (servo model and ideal delay), into ./results.
@@ -7,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-bash scripts/build.sh
+RPSD_BUILD_TARGETS=rpsd bash scripts/build.sh
 out=${1:-results}
 rig=examples/servo/paper-mts-244.yaml
 echo

@@ -8,6 +8,12 @@
   repo_checks.py doc_links SOURCE_DIR
       Every relative link in a tracked Markdown file points at a file or folder that exists,
       and a link to a heading (#anchor) at a heading that exists.
+  repo_checks.py code_paths SOURCE_DIR
+      Every path of the repository's own that a tracked Markdown file names (a source file,
+      a script, an example: `servo/src/plant_factory.cpp`, `examples/nodes/x.yaml`) exists,
+      so that the docs follow the code when files move. Files a recipe asks the reader to
+      create (`my_*`), patterns (`*`, `<...>`, `...`), output folders and docs/migration.md's
+      old names are not paths of the repository's.
   repo_checks.py readme_example SOURCE_DIR RPSD
       The README's worked example scenario (its first ```yaml block) passes `rpsd validate`,
       read from a folder where the repository's examples/ and data/ are at hand.
@@ -108,6 +114,41 @@ def doc_links(source):
     return problems
 
 
+CODE_PATH = re.compile(r"(?<![\w./-])((?:[A-Za-z0-9_.-]+/)+[A-Za-z0-9_.-]+\.(?:h|cpp|py|sh|yaml|yml|cmake|xml|tcl|"
+                       r"json|idl|txt|AT2|md))(?![\w/])")
+GENERATED = ("build", "results", "bench/results")
+NOT_CHECKED = {"docs/migration.md"}
+
+
+def spellings(path):
+    """A path as written, and the docs' short form of a module's file: `servo/pid_controller.h`
+    for servo/include/rpsd/servo/pid_controller.h, `servo/plant_factory.cpp` for
+    servo/src/plant_factory.cpp."""
+    module, _, rest = path.partition("/")
+    yield path
+    yield f"{module}/include/rpsd/{module}/{rest}"
+    yield f"{module}/src/{rest}"
+
+
+def code_paths(source):
+    problems = []
+    names = tracked_files(source)
+    top = {n.split("/", 1)[0] for n in names if "/" in n}
+    for name in names:
+        if not name.endswith(".md") or name in NOT_CHECKED:
+            continue
+        with open(os.path.join(source, name), encoding="utf-8") as f:
+            lines = f.read().splitlines()
+        for number, line in enumerate(lines, 1):
+            for path in CODE_PATH.findall(line):
+                first = path.split("/", 1)[0]
+                if first not in top or path.startswith(GENERATED) or "/my_" in path or path.split("/")[-1].startswith("my_"):
+                    continue
+                if not any(os.path.exists(os.path.join(source, p)) for p in spellings(path)):
+                    problems.append(f"{name}:{number}: names {path}, which does not exist")
+    return problems
+
+
 def readme_example(source, rpsd):
     with open(os.path.join(source, "README.md"), encoding="utf-8") as f:
         blocks = re.findall(r"^```yaml\n(.*?)^```", f.read(), re.S | re.M)
@@ -127,7 +168,8 @@ def readme_example(source, rpsd):
     return []
 
 
-CASES = {"no_outside_paths": no_outside_paths, "doc_links": doc_links, "readme_example": readme_example}
+CASES = {"no_outside_paths": no_outside_paths, "doc_links": doc_links, "code_paths": code_paths,
+         "readme_example": readme_example}
 
 if __name__ == "__main__":
     case, *args = sys.argv[1:]
