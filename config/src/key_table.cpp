@@ -108,6 +108,12 @@ std::optional<std::vector<double>> KeyTable::optional_numbers(std::string_view k
   return std::nullopt;
 }
 
+std::optional<std::vector<std::string>> KeyTable::optional_texts(std::string_view key, std::string_view meaning,
+                                                                 std::size_t max_count) {
+  add(key, "list of 1 to " + std::to_string(max_count) + " texts", "", "none", "", meaning);
+  return std::nullopt;
+}
+
 std::unique_ptr<Source> KeyTable::optional_section(std::string_view key, std::string_view meaning) {
   add(key, "section", "", "none", "", meaning);
   return std::make_unique<KeyTable>(path_of(key), rows_);

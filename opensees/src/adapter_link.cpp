@@ -16,7 +16,7 @@ AdapterLink::AdapterLink(const AdapterSiteConfig& config, StreamOptions options)
   stream_ = TcpStream::connect(config_.host, config_.port, config_.connect_timeout_s, options);
   const DataSizes sizes = adapter_sizes(config_.dofs);
   const auto wire = sizes.to_wire();
-  if (stream_.write_all(std::as_bytes(std::span<const std::int32_t>(wire))) != IoStatus::kOk) {
+  if (stream_.write_all(std::as_bytes(std::span<const std::int32_t>(wire)), config_.reply_timeout_s) != IoStatus::kOk) {
     throw std::runtime_error("the OpenSees adapter at " + stream_.peer() + " closed the connection at its setup");
   }
   message_size_ = static_cast<std::size_t>(sizes.data_size);
@@ -34,8 +34,11 @@ transport::LinkStatus AdapterLink::send(const transport::CommandSample& command)
   out_[0] = kSetTrialResponse;
   for (int i = 0; i < config_.dofs; ++i) out_[static_cast<std::size_t>(i) + 1] = command.displacement_m[i];
   out_[message_size_] = kGetForce;
-  if (stream_.write_all(std::as_bytes(std::span<const double>(out_))) != IoStatus::kOk) {
-    failure_ = "the OpenSees adapter at " + stream_.peer() + " closed the connection";
+  // Within the reply's deadline: an adapter that stopped reading cannot hold the loop.
+  if (const IoStatus sent = stream_.write_all(std::as_bytes(std::span<const double>(out_)), config_.reply_timeout_s);
+      sent != IoStatus::kOk) {
+    failure_ = "the OpenSees adapter at " + stream_.peer() + " took no command: " + io_status_text(sent);
+    stream_.close();
     return transport::LinkStatus::kPeerLost;
   }
   step_ = command.step;
@@ -71,7 +74,7 @@ void AdapterLink::end_run() {
   ended_ = true;
   std::fill(out_.begin(), out_.end(), 0.0);
   out_[0] = kDie;
-  (void)stream_.write_all(std::as_bytes(std::span<const double>(out_).first(message_size_)));
+  (void)stream_.write_all(std::as_bytes(std::span<const double>(out_).first(message_size_)), config_.reply_timeout_s);
   stream_.close();
 }
 

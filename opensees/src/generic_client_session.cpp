@@ -36,41 +36,55 @@ const char* session_end_name(SessionEnd::Kind kind) {
 GenericClientSession::GenericClientSession(TcpStream stream, SessionOptions options)
     : stream_(std::move(stream)), options_(options) {}
 
-IoStatus GenericClientSession::read_request() {
-  const auto bytes = std::as_writable_bytes(std::span<double>(request_));
-  double waited = 0.0;
-  constexpr double kSlice = 0.1;
-  for (;;) {
-    const IoStatus status = stream_.read_exact(bytes, kSlice, options_.message_timeout_s);
-    if (status != IoStatus::kTimeout) return status;
-    waited += kSlice;
-    if (options_.stop_request && options_.stop_request->load(std::memory_order_relaxed)) return IoStatus::kTimeout;
-    if (waited >= options_.idle_timeout_s) return IoStatus::kTimeout;
+IoStatus GenericClientSession::begin() {
+  if (!begun_) {
+    begun_ = stream_.read_exact(std::as_writable_bytes(std::span<std::int32_t>(wire_)), options_.message_timeout_s,
+                                options_.message_timeout_s, options_.stop);
   }
+  return *begun_;
 }
 
-bool GenericClientSession::reply(std::span<const double> values) {
+IoStatus GenericClientSession::reply(std::span<const double> values) {
   std::fill(reply_.begin(), reply_.end(), 0.0);
   std::copy(values.begin(), values.end(), reply_.begin());
-  return stream_.write_all(std::as_bytes(std::span<const double>(reply_))) == IoStatus::kOk;
+  return stream_.write_all(std::as_bytes(std::span<const double>(reply_)), options_.idle_timeout_s, options_.stop);
 }
 
-bool GenericClientSession::answer_not_a_number() {
+IoStatus GenericClientSession::answer_not_a_number() {
   ++drained_;
-  return stream_.write_all(std::as_bytes(std::span<const double>(nan_reply_))) == IoStatus::kOk;
+  return stream_.write_all(std::as_bytes(std::span<const double>(nan_reply_)), options_.idle_timeout_s, options_.stop);
+}
+
+SessionEnd GenericClientSession::end_of(IoStatus status, bool replying) const {
+  switch (status) {
+    case IoStatus::kStopped:
+      return {SessionEnd::Kind::kInterrupted, "the user asked the server to stop (SIGINT or SIGTERM)"};
+    case IoStatus::kClosed:
+      return {SessionEnd::Kind::kClosed, "the client closed the connection without saying it is done (99)"};
+    case IoStatus::kShort:
+      return {SessionEnd::Kind::kShortMessage,
+              "the client sent a short message: fewer than " + std::to_string(sizes_.data_size) +
+                  " doubles, then closed or went silent for " + std::to_string(options_.message_timeout_s) + " s"};
+    case IoStatus::kTimeout:
+      if (replying) {
+        return {SessionEnd::Kind::kIdle, "the client took no reply for " + std::to_string(options_.idle_timeout_s) +
+                                             " s (it sends requests but does not read the answers)"};
+      }
+      return {SessionEnd::Kind::kIdle, "the client sent nothing for " + std::to_string(options_.idle_timeout_s) + " s"};
+    default:
+      return {SessionEnd::Kind::kIoError, replying ? "the reply could not be sent" : "the connection failed"};
+  }
 }
 
 SessionEnd GenericClientSession::serve(GenericClientSite& site) {
   const int n = options_.basic_dofs;
-  std::array<std::int32_t, 11> wire{};
-  const IoStatus setup = stream_.read_exact(std::as_writable_bytes(std::span<std::int32_t>(wire)),
-                                            options_.message_timeout_s, options_.message_timeout_s);
-  if (setup != IoStatus::kOk) {
+  if (const IoStatus setup = begin(); setup != IoStatus::kOk) {
     stream_.close();
+    if (setup == IoStatus::kStopped) return end_of(setup, false);
     return {setup == IoStatus::kShort ? SessionEnd::Kind::kShortMessage : SessionEnd::Kind::kClosed,
             std::string("the client sent no setup: ") + io_status_text(setup)};
   }
-  sizes_ = DataSizes::from_wire(wire);
+  sizes_ = DataSizes::from_wire(wire_);
   std::optional<SessionEnd> stopped;  // the first reason the site stopped; from then on, every reply is NaN
   if (const std::string wrong = check_client_sizes(sizes_, n); !wrong.empty()) {
     stopped = SessionEnd{SessionEnd::Kind::kWrongSizes, "the client announced " + wrong};
@@ -95,30 +109,16 @@ SessionEnd GenericClientSession::serve(GenericClientSite& site) {
     stream_.close();
     return stopped ? *stopped : end;
   };
+  const auto request_bytes = std::as_writable_bytes(std::span<double>(request_));
   double time_s = 0.0;
 
   for (;;) {
-    const IoStatus status = read_request();
-    if (status != IoStatus::kOk) {
-      if (status == IoStatus::kTimeout && options_.stop_request && options_.stop_request->load()) {
-        if (!stopped) stopped = SessionEnd{SessionEnd::Kind::kInterrupted, "the user asked the server to stop"};
-        continue;  // drained like any stop, until the client finishes or goes idle
-      }
-      switch (status) {
-        case IoStatus::kClosed:
-          return finish({SessionEnd::Kind::kClosed, "the client closed the connection without saying it is done (99)"});
-        case IoStatus::kShort:
-          return finish({SessionEnd::Kind::kShortMessage, "the client sent a short message: fewer than " +
-                                                              std::to_string(sizes_.data_size) +
-                                                              " doubles, then closed or went silent for " +
-                                                              std::to_string(options_.message_timeout_s) + " s"});
-        case IoStatus::kTimeout:
-          return finish({SessionEnd::Kind::kIdle,
-                         "the client sent nothing for " + std::to_string(options_.idle_timeout_s) + " s"});
-        default:
-          return finish({SessionEnd::Kind::kIoError, "the connection failed"});
-      }
-    }
+    // Between every two requests, not only when the client is quiet: a client that sends
+    // back to back would otherwise never let the request be seen.
+    if (options_.stop.requested()) return finish(end_of(IoStatus::kStopped, false));
+    const IoStatus status =
+        stream_.read_exact(request_bytes, options_.idle_timeout_s, options_.message_timeout_s, options_.stop);
+    if (status != IoStatus::kOk) return finish(end_of(status, false));
     ++requests_;
     const double action = request_[0];
     const bool known = action == std::floor(action) && action >= 0.0 && action <= 99.0;
@@ -128,11 +128,11 @@ SessionEnd GenericClientSession::serve(GenericClientSite& site) {
       // Stopped: nothing more reaches the actuators, and every answer is not-a-number until the
       // client finishes (an OpenSees client reads a closed connection forever, so it is not closed).
       if (code != kSetTrialResponse && code != kCommitState) {
-        if (!answer_not_a_number()) return finish({SessionEnd::Kind::kIoError, "the reply could not be sent"});
+        if (const IoStatus sent = answer_not_a_number(); sent != IoStatus::kOk) return finish(end_of(sent, true));
       }
       continue;
     }
-    bool replied = true;
+    IoStatus replied = IoStatus::kOk;
     switch (code) {
       case kSetTrialResponse: {
         const std::size_t used = at_time + static_cast<std::size_t>(sizes_.ctrl_time);
@@ -153,7 +153,6 @@ SessionEnd GenericClientSession::serve(GenericClientSite& site) {
       case kGetForce:
         if (!site.force(std::span<double>(values).first(static_cast<std::size_t>(n)))) {
           stopped = SessionEnd{SessionEnd::Kind::kSiteStopped, "the site stopped"};
-          replied = false;
           break;
         }
         replied = reply(std::span<const double>(values).first(static_cast<std::size_t>(n)));
@@ -189,14 +188,12 @@ SessionEnd GenericClientSession::serve(GenericClientSite& site) {
         stopped = SessionEnd{SessionEnd::Kind::kUnknownAction,
                              "the client sent action " + std::to_string(action) +
                                  ", which the protocol does not have (expected 3, 5-15 or 99)"};
-        replied = false;
     }
     if (stopped && code != kSetTrialResponse && code != kCommitState) {
       // The request this stop interrupted still gets its answer.
-      if (!answer_not_a_number()) return finish({SessionEnd::Kind::kIoError, "the reply could not be sent"});
-    } else if (!replied) {
-      return finish({SessionEnd::Kind::kIoError, "the reply could not be sent"});
+      replied = answer_not_a_number();
     }
+    if (replied != IoStatus::kOk) return finish(end_of(replied, true));
   }
 }
 

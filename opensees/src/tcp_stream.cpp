@@ -8,6 +8,8 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -20,19 +22,26 @@ namespace {
 
 double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-// Waits until fd is readable or the deadline (< 0: none) passes; false on timeout.
-bool wait_readable(int fd, double deadline_s) {
+enum class Wait : std::uint8_t { kReady, kTimeout, kStopped };
+
+// Waits until fd is ready for `events`, the deadline (< 0: none) passes or a stop is
+// requested (the flag read before every poll, the wake descriptor polled beside fd).
+Wait wait_for(int fd, short events, double deadline_s, const StopRequest& stop) {
+  constexpr int kSliceMs = static_cast<int>(kStopCheckIntervalS * 1000.0);
   for (;;) {
+    if (stop.requested()) return Wait::kStopped;
     int timeout_ms = -1;
     if (deadline_s >= 0.0) {
       const double left = deadline_s - now_s();
-      if (left <= 0.0) return false;
+      if (left <= 0.0) return Wait::kTimeout;
       timeout_ms = static_cast<int>(std::ceil(left * 1000.0));
     }
-    pollfd p{fd, POLLIN, 0};
-    const int n = ::poll(&p, 1, timeout_ms);
-    if (n > 0) return true;
-    if (n < 0 && errno != EINTR) return true;  // let recv report the error
+    if (stop.flag != nullptr) timeout_ms = timeout_ms < 0 ? kSliceMs : std::min(timeout_ms, kSliceMs);
+    std::array<pollfd, 2> p{pollfd{fd, events, 0}, pollfd{stop.wake_fd, POLLIN, 0}};
+    const int n = ::poll(p.data(), stop.wake_fd >= 0 ? 2 : 1, timeout_ms);
+    if (n < 0 && errno != EINTR) return Wait::kReady;  // let recv or send report the error
+    if (n > 0 && p[0].revents != 0) return Wait::kReady;
+    if (n > 0 && p[1].revents != 0) return Wait::kStopped;  // only a stop makes it readable
   }
 }
 
@@ -79,6 +88,8 @@ const char* io_status_text(IoStatus status) {
       return "nothing arrived in time";
     case IoStatus::kError:
       return "the connection failed";
+    case IoStatus::kStopped:
+      return "a stop was requested";
   }
   return "unknown";
 }
@@ -87,11 +98,14 @@ TcpStream::TcpStream(int fd, StreamOptions options) : fd_(fd), options_(options)
   if (options_.low_latency) set_low_latency(fd_);
   sockaddr_in a{};
   socklen_t length = sizeof a;
-  if (::getpeername(fd_, reinterpret_cast<sockaddr*>(&a), &length) == 0) peer_ = address_text(a);
+  if (::getpeername(fd_, reinterpret_cast<sockaddr*>(&a), &length) == 0 && a.sin_family == AF_INET) {
+    peer_ = address_text(a);
+    peer_ipv4_ = ntohl(a.sin_addr.s_addr);
+  }
 }
 
 TcpStream::TcpStream(TcpStream&& other) noexcept
-    : fd_(other.fd_), options_(other.options_), peer_(std::move(other.peer_)) {
+    : fd_(other.fd_), options_(other.options_), peer_(std::move(other.peer_)), peer_ipv4_(other.peer_ipv4_) {
   other.fd_ = -1;
 }
 
@@ -101,6 +115,7 @@ TcpStream& TcpStream::operator=(TcpStream&& other) noexcept {
     fd_ = other.fd_;
     options_ = other.options_;
     peer_ = std::move(other.peer_);
+    peer_ipv4_ = other.peer_ipv4_;
     other.fd_ = -1;
   }
   return *this;
@@ -130,13 +145,15 @@ TcpStream TcpStream::connect(const std::string& host, std::uint16_t port, double
                            " s (" + std::strerror(last_error) + ")");
 }
 
-IoStatus TcpStream::read_exact(std::span<std::byte> buffer, double first_byte_timeout_s,
-                               double rest_timeout_s) noexcept {
+IoStatus TcpStream::read_exact(std::span<std::byte> buffer, double first_byte_timeout_s, double rest_timeout_s,
+                               const StopRequest& stop) noexcept {
   if (fd_ < 0) return IoStatus::kError;
   std::size_t done = 0;
   double deadline = first_byte_timeout_s < 0.0 ? -1.0 : now_s() + first_byte_timeout_s;
   while (done < buffer.size()) {
-    if (!wait_readable(fd_, deadline)) return done == 0 ? IoStatus::kTimeout : IoStatus::kShort;
+    const Wait waited = wait_for(fd_, POLLIN, deadline, stop);
+    if (waited == Wait::kStopped) return IoStatus::kStopped;
+    if (waited == Wait::kTimeout) return done == 0 ? IoStatus::kTimeout : IoStatus::kShort;
     const ssize_t n = ::recv(fd_, buffer.data() + done, buffer.size() - done, 0);
     if (n == 0) return done == 0 ? IoStatus::kClosed : IoStatus::kShort;
     if (n < 0) {
@@ -155,23 +172,34 @@ IoStatus TcpStream::read_exact(std::span<std::byte> buffer, double first_byte_ti
   return IoStatus::kOk;
 }
 
-IoStatus TcpStream::write_all(std::span<const std::byte> bytes) noexcept {
+IoStatus TcpStream::write_all(std::span<const std::byte> bytes, double timeout_s, const StopRequest& stop) noexcept {
   if (fd_ < 0) return IoStatus::kError;
+  const double deadline = timeout_s < 0.0 ? -1.0 : now_s() + timeout_s;
   std::size_t done = 0;
   while (done < bytes.size()) {
-    const ssize_t n = ::send(fd_, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return errno == EPIPE || errno == ECONNRESET ? IoStatus::kClosed : IoStatus::kError;
+    // Never blocking in send: a peer that reads nothing fills the socket, and the wait for
+    // room is the one that sees the deadline and the stop.
+    const ssize_t n = ::send(fd_, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL | MSG_DONTWAIT);
+    if (n >= 0) {
+      done += static_cast<std::size_t>(n);
+      continue;
     }
-    done += static_cast<std::size_t>(n);
+    if (errno == EINTR) continue;
+    if (errno == EAGAIN || errno == EWOULDBLOCK) {
+      const Wait waited = wait_for(fd_, POLLOUT, deadline, stop);
+      if (waited == Wait::kStopped) return IoStatus::kStopped;
+      if (waited == Wait::kTimeout) return IoStatus::kTimeout;
+      continue;
+    }
+    return errno == EPIPE || errno == ECONNRESET ? IoStatus::kClosed : IoStatus::kError;
   }
   return IoStatus::kOk;
 }
 
 TcpListener::TcpListener(const std::string& address, std::uint16_t port) {
   const sockaddr_in at = resolve(address, port);
-  fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  // Non-blocking: a connection that is reset between poll and accept4 leaves nothing to wait on.
+  fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   if (fd_ < 0) throw std::runtime_error(std::string("cannot open a TCP socket: ") + std::strerror(errno));
   const int one = 1;
   ::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
@@ -191,10 +219,10 @@ TcpListener::~TcpListener() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-std::optional<TcpStream> TcpListener::accept(double timeout_s, StreamOptions options) {
+std::optional<TcpStream> TcpListener::accept(double timeout_s, StreamOptions options, const StopRequest& stop) {
   const double deadline = timeout_s < 0.0 ? -1.0 : now_s() + timeout_s;
   for (;;) {
-    if (!wait_readable(fd_, deadline)) return std::nullopt;
+    if (wait_for(fd_, POLLIN, deadline, stop) != Wait::kReady) return std::nullopt;
     const int fd = ::accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);
     if (fd >= 0) return TcpStream(fd, options);
     if (errno != EINTR && errno != ECONNABORTED && errno != EAGAIN) {

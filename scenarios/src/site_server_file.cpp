@@ -6,6 +6,7 @@
 #include "physical_ranges.h"
 #include "rpsd/config/input_log.h"
 #include "rpsd/integrators/factory.h"
+#include "rpsd/opensees/client_gate.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
 #include "site_server_sections.h"
@@ -17,17 +18,43 @@ namespace site_server_sections {
 using config::Number;
 using namespace ranges;
 
+// More clients than a lab has OpenSees hosts is a list nobody checked.
+constexpr std::size_t kMaxAllowedClients = 16;
+
 void listen(config::Source& l, site_server::SiteServerConfig& c) {
-  c.listen_address =
-      l.optional_text("address", "the IPv4 address to listen on (default 127.0.0.1)").value_or(c.listen_address);
+  c.listen_address = l.optional_text("address",
+                                     "the IPv4 address to listen on (default 127.0.0.1); any other than loopback "
+                                     "needs allowed_clients")
+                         .value_or(c.listen_address);
   c.listen_port = static_cast<std::uint16_t>(
       l.whole_number_or("port", 0, 65535, 0, "the TCP port of the element's -server (0: any free port, printed)"));
+  c.allowed_clients = l.optional_texts("allowed_clients",
+                                       "the only clients served, by IPv4 address (default: loopback only); any other "
+                                       "peer is closed at once (genericClient has no authentication)",
+                                       kMaxAllowedClients)
+                          .value_or(std::vector<std::string>{});
   c.accept_timeout_s = l.number_or("accept_timeout_s", c.accept_timeout_s,
                                    Number{"s", "the longest wait for OpenSees to connect", 0.0, 86400.0, true});
-  c.idle_timeout_s = l.number_or("idle_timeout_s", c.idle_timeout_s,
-                                 Number{"s", "the longest wait for OpenSees' next request", 0.0, 86400.0, true});
+  c.idle_timeout_s = l.number_or(
+      "idle_timeout_s", c.idle_timeout_s,
+      Number{"s", "the longest wait for OpenSees' next request, or for it to take a reply", 0.0, 86400.0, true});
   c.message_timeout_s = l.number_or("message_timeout_s", c.message_timeout_s,
-                                    Number{"s", "a request's rest, once it has begun", 0.0, 600.0, true});
+                                    Number{"s", "the setup, or a request's rest once it has begun", 0.0, 600.0, true});
+  // Anyone who reaches the port may command the actuators: a server others can reach
+  // serves only the clients the file names.
+  const auto address = opensees::parse_ipv4(c.listen_address);
+  if (!address) l.fail("address", "expected an IPv4 address such as 127.0.0.1, got \"" + c.listen_address + "\"");
+  for (const std::string& client : c.allowed_clients) {
+    if (const std::string problem = opensees::client_address_problem(client); !problem.empty()) {
+      l.fail("allowed_clients", problem);
+    }
+  }
+  if (!opensees::is_loopback(*address) && c.allowed_clients.empty()) {
+    l.fail("address", c.listen_address +
+                          " is not a loopback address, and genericClient has no authentication: anyone who reaches "
+                          "it could command the actuators. Name the OpenSees hosts in listen.allowed_clients "
+                          "(e.g. allowed_clients: [198.18.0.1]), or listen on 127.0.0.1");
+  }
   l.finish();
 }
 

@@ -327,6 +327,20 @@ std::optional<std::vector<double>> MappingReader::optional_numbers(std::string_v
   return numbers(key, spec, max_count);
 }
 
+std::optional<std::vector<std::string>> MappingReader::optional_texts(std::string_view key, std::string_view,
+                                                                      std::size_t max_count) {
+  if (!has(key)) return std::nullopt;
+  const YAML::Node value = list(key, max_count, "texts");
+  std::vector<std::string> result;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    if (!value[i].IsScalar()) {
+      fail_at(value[i], path_of(key) + '[' + std::to_string(i) + ']', "expected a text, got " + describe(value[i]));
+    }
+    result.push_back(value[i].Scalar());
+  }
+  return result;
+}
+
 std::unique_ptr<config::Source> MappingReader::optional_section(std::string_view key, std::string_view meaning) {
   if (!has(key)) return nullptr;
   return section(key, meaning);

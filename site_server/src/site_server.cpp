@@ -74,21 +74,28 @@ bool SiteServer::set_trial(std::span<const double> displacement, std::span<const
                            std::span<const double> acceleration, double time_s) {
   if (stopped_) return false;
   // One command per OpenSees step, at the site's control period: the actuators' dynamics run
-  // on that clock, so a step of another length would test another structure.
+  // on that clock, so a step of another length would test another structure. A trial is of
+  // the step under way (the same time: a repeated or iterated trial) or of the next (one
+  // period later); any other time, backwards included, is refused before it is commanded.
   const double dt = time_s - step_time_s_;
-  const bool new_step = dt > 1e-9 * control_period_s_;
-  if (new_step) {
-    if (std::abs(dt - control_period_s_) > 1e-6 * control_period_s_) {
-      std::ostringstream text;
-      text.precision(9);
+  const double tolerance_s = 1e-6 * control_period_s_;
+  if (std::abs(dt - control_period_s_) <= tolerance_s) {
+    step_time_s_ = time_s;
+  } else if (std::abs(dt) > tolerance_s) {
+    std::ostringstream text;
+    text.precision(9);
+    if (dt < 0.0) {
+      text << "OpenSees' trial time went back " << -dt << " s (from t = " << step_time_s_ << " s to " << time_s
+           << " s): a trial is of the step under way or of the next, " << control_period_s_
+           << " s later (clock.control_rate_hz " << config_.site.control_rate_hz << "); it was not commanded";
+    } else {
       text << "OpenSees stepped " << dt << " s (from t = " << step_time_s_ << " s to " << time_s
            << " s) but the site commands its actuators every " << control_period_s_ << " s (clock.control_rate_hz "
            << config_.site.control_rate_hz << "): give the OpenSees analysis dt = " << control_period_s_
            << " or the site control_rate_hz = " << 1.0 / dt;
-      run_.stop_text = text.str();
-      return stop(coordinator::StepOutcome::kRefused);
     }
-    step_time_s_ = time_s;
+    run_.stop_text = text.str();
+    return stop(coordinator::StepOutcome::kRefused);
   }
   // A trial that moves nothing is not another command: an explicit scheme sends each step's
   // displacements twice (NewmarkExplicit: predictor, then corrector with new velocities;
@@ -175,13 +182,21 @@ void SiteServer::stiffness(std::span<double> matrix) {
 
 void SiteServer::commit() { ++run_.commits; }
 
-SiteRun SiteServer::serve(opensees::TcpStream stream, const std::atomic<bool>* stop_request) {
+opensees::SessionOptions SiteServer::session_options(const opensees::StopRequest& stop) const {
   opensees::SessionOptions options;
   options.basic_dofs = config_.element_dofs;
   options.idle_timeout_s = config_.idle_timeout_s;
   options.message_timeout_s = config_.message_timeout_s;
-  options.stop_request = stop_request;
-  opensees::GenericClientSession session(std::move(stream), options);
+  options.stop = stop;
+  return options;
+}
+
+SiteRun SiteServer::serve(opensees::TcpStream stream, const opensees::StopRequest& stop) {
+  opensees::GenericClientSession session(std::move(stream), session_options(stop));
+  return serve(session);
+}
+
+SiteRun SiteServer::serve(opensees::GenericClientSession& session) {
   // A lock-step exchange with another process: each request wakes this one from idle, which is
   // slow unless the CPUs are kept awake (docs/dds-transport.md; clock.keep_cpus_awake).
   realtime::RealTimeSetupReport awake;

@@ -40,12 +40,17 @@ std::string stop_reason(const SiteRun& run) {
   }
 }
 
+std::string allowed_clients_text(const SiteServerConfig& config) {
+  return opensees::PeerAllowList(config.allowed_clients).text();
+}
+
 void print_site_overview(const SiteServerConfig& c, std::ostream& out) {
   const coordinator::TestConfig& t = c.site;
   const double period_s = 1.0 / t.control_rate_hz;
   const servo::Envelope envelope = servo::envelope_of(t.plant);
   out << "  listens on " << c.listen_address << ":" << c.listen_port << " for an OpenSees genericClient with "
       << c.element_dofs << " basic DOF(s); one command per OpenSees step of " << period_s << " s\n";
+  out << "  clients allowed: " << allowed_clients_text(c) << "\n";
   out << "  sites: " << (t.transport.kind == coordinator::TransportConfig::Kind::kDds ? "over DDS" : "in process")
       << "\n";
   for (std::size_t ch = 0; ch < c.maps.size(); ++ch) {
@@ -66,7 +71,9 @@ nlohmann::json site_summary(const SiteServerConfig& config, const SiteRun& run, 
   summary["name"] = config.name;
   summary["description"] = config.description;
   summary["kind"] = "site_server";
-  summary["outcome"] = kResults[static_cast<int>(result_of(run))];
+  // `result` as a test's summary.json has it; `outcome`, the same word, for earlier readers.
+  summary["result"] = kResults[static_cast<int>(result_of(run))];
+  summary["outcome"] = summary["result"];
   if (result_of(run) != SiteResult::kCompleted) {
     nlohmann::json stopped{{"kind", opensees::session_end_name(run.end.kind)}, {"reason", stop_reason(run)}};
     if (run.limit_stop.kind != coordinator::LimitStop::Kind::kNone) {
@@ -81,7 +88,13 @@ nlohmann::json site_summary(const SiteServerConfig& config, const SiteRun& run, 
     summary["stopped_by"] = stopped;
   }
   summary["client"] = {{"peer", peer}, {"sizes", run.client_sizes}};
-  summary["listen"] = {{"address", config.listen_address}, {"port", port}};
+  // Who could connect, and who was turned away before OpenSees' connection.
+  summary["listen"] = {{"address", config.listen_address},
+                       {"port", port},
+                       {"allowed_clients", allowed_clients_text(config)},
+                       {"refused_connections", run.gate.refused},
+                       {"refused_peers", run.gate.refused_peers},
+                       {"connections_without_setup", run.gate.without_setup}};
   summary["element_dofs"] = config.element_dofs;
   summary["control_rate_hz"] = config.site.control_rate_hz;
   summary["exchanges"] = run.exchanges;

@@ -73,7 +73,7 @@ long allocations_serving(int steps) {
   });
   opensees::TcpStream stream = *listener.accept(5.0);
   testing::begin_counting_allocations();
-  const SiteRun run = site.serve(std::move(stream), nullptr);
+  const SiteRun run = site.serve(std::move(stream), {});
   const long total = testing::end_counting_allocations().total();
   client.get();
   EXPECT_EQ(run.end.kind, opensees::SessionEnd::Kind::kDie);

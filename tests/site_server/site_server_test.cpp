@@ -98,6 +98,37 @@ TEST(SiteServer, AStepOfAnotherLengthStopsTheTestWithBothRates) {
   EXPECT_EQ(site.run().exchanges, 0);
 }
 
+TEST(SiteServer, ATrialTimeThatIsNeitherTheStepsNorTheNextIsRefusedAndNeverCommanded) {
+  const SiteServerConfig config = spring_site(1, {0, -1});
+  SiteServer site(config, scratch_csv("time"));
+  const std::vector<double> zero{0.0}, d1{0.001}, d1_iterated{0.0012}, back{0.002};
+  std::vector<double> force(1);
+  // The step's trial and an iteration of it (the same time, moved): both commanded.
+  ASSERT_TRUE(site.set_trial(d1, zero, zero, kPeriodS));
+  ASSERT_TRUE(site.force(force));
+  ASSERT_TRUE(site.set_trial(d1_iterated, zero, zero, kPeriodS));
+  ASSERT_TRUE(site.force(force));
+  EXPECT_EQ(site.run().exchanges, 2);
+  // Then a period back.
+  EXPECT_FALSE(site.set_trial(back, zero, zero, 0.0));
+  EXPECT_FALSE(site.force(force));
+  EXPECT_THAT(site.run().stop_text, testing::HasSubstr("OpenSees' trial time went back 0.0009765625 s"));
+  EXPECT_EQ(site.run().exchanges, 2);
+  EXPECT_NEAR(site.actuators().simulated_plant(0)->measure().displacement_m, 0.0012, 1e-12);  // held
+}
+
+TEST(SiteServer, TrialTimesRunningBackwardsFromTheStartAreRefused) {
+  const SiteServerConfig config = spring_site(1, {0, -1});
+  SiteServer site(config, scratch_csv("backwards"));
+  const std::vector<double> zero{0.0}, d{0.001};
+  std::vector<double> force(1);
+  EXPECT_FALSE(site.set_trial(d, zero, zero, -kPeriodS));
+  EXPECT_FALSE(site.force(force));
+  EXPECT_THAT(site.run().stop_text, testing::HasSubstr("from t = 0 s to -0.0009765625 s"));
+  EXPECT_EQ(site.run().exchanges, 0);
+  EXPECT_EQ(site.actuators().simulated_plant(0)->measure().displacement_m, 0.0);
+}
+
 TEST(SiteServer, AClientThatLeavesMidStepLeavesTheActuatorWhereItsLastCommandPutIt) {
   const SiteServerConfig config = spring_site(1, {0, -1});
   SiteServer site(config, scratch_csv("leaves"));
@@ -113,7 +144,7 @@ TEST(SiteServer, AClientThatLeavesMidStepLeavesTheActuatorWhereItsLastCommandPut
     // The fourth step's trial, and then the client is gone before asking for its force.
     opensees::test::write_request(c, 256, {opensees::kSetTrialResponse, 0.009, 0.0, 0.0, 4 * kPeriodS});
   });
-  const SiteRun run = site.serve(*listener.accept(5.0), nullptr);
+  const SiteRun run = site.serve(*listener.accept(5.0), {});
   client.get();
   EXPECT_EQ(run.end.kind, opensees::SessionEnd::Kind::kClosed);
   EXPECT_EQ(run.exchanges, 3);

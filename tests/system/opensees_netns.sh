@@ -55,9 +55,11 @@ ip netns exec "$NS_C" "${LAN_ENV[@]}" $RPSD servo-node "$DATA/opensees-sdof-node
   --set dds.config=$LAN_CONFIG --summary "$WORK/node.json" > "$WORK/node.log" 2>&1 &
 NODE_PID=$!
 PIDS+=($NODE_PID)
-# Host B: the site server, listening on B's address (a free port, which it prints).
+# Host B: the site server, listening on B's address (a free port, which it prints) for A's
+# OpenSees only (the file's listen.allowed_clients).
 ip netns exec "$NS_B" "${LAN_ENV[@]}" $RPSD site-server "$DATA/opensees-sdof-site-dds.yaml" --out "$WORK/site" \
-  --set listen.address=$B --set listen.port=0 --set transport.domain_id=$DOMAIN --set transport.dds_config=$LAN_CONFIG \
+  --set listen.address=$B --set "listen.allowed_clients=[$A]" --set listen.port=0 --set transport.domain_id=$DOMAIN \
+  --set transport.dds_config=$LAN_CONFIG \
   > "$WORK/site.log" 2>&1 &
 SITE_PID=$!
 PIDS+=($SITE_PID)

@@ -51,6 +51,8 @@ class KeyTable final : public Source {
   std::optional<std::string> optional_text(std::string_view key, std::string_view meaning) override;
   std::optional<std::vector<double>> optional_numbers(std::string_view key, const Number& spec,
                                                       std::size_t max_count) override;
+  std::optional<std::vector<std::string>> optional_texts(std::string_view key, std::string_view meaning,
+                                                         std::size_t max_count) override;
   std::unique_ptr<Source> optional_section(std::string_view key, std::string_view meaning) override;
   std::string choice_or(std::string_view key, const std::vector<std::string_view>& choices, std::string_view fallback,
                         std::string_view meaning) override;

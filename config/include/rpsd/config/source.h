@@ -62,6 +62,9 @@ class Source {
   virtual std::optional<std::string> optional_text(std::string_view key, std::string_view meaning) = 0;
   virtual std::optional<std::vector<double>> optional_numbers(std::string_view key, const Number& spec,
                                                               std::size_t max_count) = 0;
+  // A non-empty list of at most max_count texts (words, names, addresses), or nullopt.
+  virtual std::optional<std::vector<std::string>> optional_texts(std::string_view key, std::string_view meaning,
+                                                                 std::size_t max_count) = 0;
   virtual std::unique_ptr<Source> optional_section(std::string_view key, std::string_view meaning) = 0;
   // One of `choices`, or `fallback` when the key is left out.
   virtual std::string choice_or(std::string_view key, const std::vector<std::string_view>& choices,

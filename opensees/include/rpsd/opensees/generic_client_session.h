@@ -4,8 +4,9 @@
 // GenericClientSite; the session only speaks the protocol and refuses what does not fit it.
 #pragma once
 
-#include <atomic>
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -53,21 +54,30 @@ const char* session_end_name(SessionEnd::Kind kind);
 
 struct SessionOptions {
   int basic_dofs = 1;
-  double idle_timeout_s = 60.0;                     // the longest wait for the next request
-  double message_timeout_s = 2.0;                   // a request's rest, once its first byte arrived
-  const std::atomic<bool>* stop_request = nullptr;  // checked between requests
+  // The longest wait for the next request, and for the client to take a reply (one that
+  // sends requests but never reads the answers fills the socket and is idle too).
+  double idle_timeout_s = 60.0;
+  double message_timeout_s = 2.0;  // the setup, and a request's rest once its first byte arrived
+  // Read before every request and in every wait: once requested, the session ends at once
+  // (kInterrupted), whatever the client does, and nothing more reaches the site.
+  StopRequest stop;
 };
 
 class GenericClientSession {
  public:
   GenericClientSession(TcpStream stream, SessionOptions options);
 
+  // Reads the client's setup (its 11 sizes) within message_timeout_s. kOk: a session has
+  // begun; anything else: the connection never began one (it closed, stalled, or the stop was
+  // requested). serve() calls it if it was not called. Not real-time safe.
+  IoStatus begin();
+
   // Serves the client until it ends (SessionEnd: the first reason). Once the site has
   // stopped (or the client broke the protocol), nothing more reaches the site and every
   // request is answered with not-a-number until the client says die or leaves: no analysis
   // goes on as if it were a measurement, and OpenSees, which reads a closed connection
-  // forever, is not left hanging. Not real-time safe at the setup;
-  // each request after it allocates nothing.
+  // forever, is not left hanging. A stop request ends the session at once instead, the
+  // connection closed. Not real-time safe at the setup; each request after it allocates nothing.
   SessionEnd serve(GenericClientSite& site);
 
   const DataSizes& sizes() const { return sizes_; }
@@ -77,12 +87,15 @@ class GenericClientSession {
   const std::string& peer() const { return stream_.peer(); }
 
  private:
-  IoStatus read_request();  // waits in slices so that stop_request is seen
-  bool reply(std::span<const double> values);
-  bool answer_not_a_number();  // once stopped: one reply of NaN, counted
+  IoStatus reply(std::span<const double> values);
+  IoStatus answer_not_a_number();  // once stopped: one reply of NaN, counted
+  // The end a failed read or write means (`replying`: the client did not take a reply).
+  SessionEnd end_of(IoStatus status, bool replying) const;
 
   TcpStream stream_;
   SessionOptions options_;
+  std::optional<IoStatus> begun_;  // begin()'s result once called
+  std::array<std::int32_t, 11> wire_{};
   DataSizes sizes_;
   std::vector<double> request_, reply_, nan_reply_;
   std::int64_t requests_ = 0, drained_ = 0;

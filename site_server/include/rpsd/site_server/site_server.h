@@ -5,12 +5,12 @@
 // OpenSees paces the test (lock-step): one command per trial, at the site's control period.
 #pragma once
 
-#include <atomic>
 #include <memory>
 #include <string>
 
 #include "rpsd/coordinator/experimental_exchange.h"
 #include "rpsd/coordinator/recorder.h"
+#include "rpsd/opensees/client_gate.h"
 #include "rpsd/opensees/generic_client_session.h"
 #include "rpsd/site_server/site_server_config.h"
 
@@ -31,6 +31,7 @@ struct SiteRun {
   std::string write_error;  // the records could not be written
   std::string client_sizes;
   std::vector<double> peak_measured_m, peak_force_n;  // per channel
+  opensees::GateReport gate;                          // the connections turned away before OpenSees'
 };
 
 class SiteServer : public opensees::GenericClientSite {
@@ -39,8 +40,12 @@ class SiteServer : public opensees::GenericClientSite {
   SiteServer(const SiteServerConfig& config, const std::filesystem::path& csv);
   ~SiteServer() override;
 
+  // How a session with this site's element is served (its DOFs, the listen section's
+  // timeouts), ended at once by `stop`.
+  opensees::SessionOptions session_options(const opensees::StopRequest& stop) const;
   // Serves one OpenSees client to its end and stops the recorder. Not real-time safe.
-  SiteRun serve(opensees::TcpStream stream, const std::atomic<bool>* stop_request);
+  SiteRun serve(opensees::GenericClientSession& session);
+  SiteRun serve(opensees::TcpStream stream, const opensees::StopRequest& stop);
 
   // opensees::GenericClientSite; each allocates nothing.
   bool set_trial(std::span<const double> displacement, std::span<const double> velocity,

@@ -24,8 +24,11 @@ struct ChannelMap {
 struct SiteServerConfig {
   std::string name;
   std::string description;
-  std::string listen_address = "127.0.0.1";
-  std::uint16_t listen_port = 0;    // 0: a free port, printed at the start
+  std::string listen_address = "127.0.0.1";  // loopback unless allowed_clients names the clients
+  std::uint16_t listen_port = 0;             // 0: a free port, printed at the start
+  // The only peers served (dotted IPv4); none: loopback peers only. genericClient has no
+  // authentication, so the peer's address is the only check there is.
+  std::vector<std::string> allowed_clients;
   double accept_timeout_s = 600.0;  // the longest wait for OpenSees to connect
   double idle_timeout_s = 60.0;     // the longest wait for OpenSees' next request
   double message_timeout_s = 2.0;   // a request's rest, once it has begun

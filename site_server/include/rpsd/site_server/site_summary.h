@@ -16,6 +16,9 @@ SiteResult result_of(const SiteRun& run);
 // Why the run stopped, in one sentence ("" when it completed).
 std::string stop_reason(const SiteRun& run);
 
+// Who may connect: "loopback only (127.0.0.0/8)" or the allowed clients' addresses.
+std::string allowed_clients_text(const SiteServerConfig& config);
+
 // What `rpsd validate SITE.yaml` prints: where it listens, the element, and per channel the
 // DOFs it follows, the rig and the limits in force.
 void print_site_overview(const SiteServerConfig& config, std::ostream& out);
