@@ -5,7 +5,7 @@
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/plant_factory.h"
-#include "test_sections.h"
+#include "hybrid_test_sections.h"
 
 namespace rpsd::scenarios::study_sections {
 namespace {
