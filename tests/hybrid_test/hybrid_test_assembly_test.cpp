@@ -20,7 +20,7 @@ TEST(TestRunner, PerfectActuatorMatchesTheExactPiecewiseLinearSolutionOfTheRecor
   const auto& scenario = std::get<hybrid_test::TestConfig>(file.study);
   ASSERT_TRUE(scenario.ground_motion.has_value());
   const TestRun run = run_test(scenario, {}, true);
-  ASSERT_EQ(run.outcome, StepOutcome::kOk);
+  ASSERT_EQ(run.outcome, coordinator::StepOutcome::kOk);
   double peak = 0.0;
   for (const auto& r : run.records) peak = std::max(peak, std::abs(r.displacement_m[0]));
 
@@ -43,7 +43,7 @@ TEST(TestRunner, EveryRecordedStepIsKeptWhenRunningAsFastAsPossible) {
   EXPECT_EQ(run.dropped_records, 0u);
   EXPECT_EQ(static_cast<std::int64_t>(run.records.size()), run.steps_planned);
   // The benchmark plant with adaptive compensation tracks to a fraction of a percent.
-  const Criteria c = evaluate(scenario, run, run_test(scenario, {}, true));
+  const coordinator::Criteria c = evaluate(scenario, run, run_test(scenario, {}, true));
   EXPECT_LT(c.channels[0].j2_rms_tracking_error_percent, 2.0);
   EXPECT_EQ(c.dofs.size(), 3u);
 }
@@ -64,7 +64,7 @@ TEST(TestRunner, CriteriaComputedAsTheTestRunsEqualThoseFromKeptRecordsBitForBit
   const auto& scenario = std::get<hybrid_test::TestConfig>(file.study);
   const EvaluatedTest streamed = run_test_and_reference(scenario, {}, {});
   const TestRun test = run_test(scenario, {}, false), reference = run_test(scenario, {}, true);
-  const Criteria kept = evaluate(scenario, test, reference);
+  const coordinator::Criteria kept = evaluate(scenario, test, reference);
   EXPECT_TRUE(streamed.test.records.empty());
   EXPECT_EQ(streamed.test.steps, test.steps_planned);
   EXPECT_EQ(streamed.reference.steps, test.steps_planned);
@@ -86,9 +86,9 @@ TEST(TestRunner, CriteriaComputedAsTheTestRunsEqualThoseFromKeptRecordsBitForBit
   expect_same(x.reference_peak_displacement_m, y.reference_peak_displacement_m, "reference peak");
   expect_same(streamed.criteria.energy_error_j, kept.energy_error_j, "energy");
   // And the channel criteria of the Figure 8 study's path agree too.
-  const ChannelCriteria direct = channel_criteria(test.records, 0, scenario.control_rate_hz);
-  expect_same(direct.j1_tracking_delay_ms, b.j1_tracking_delay_ms, "J1 (channel_criteria)");
-  expect_same(direct.j2_rms_tracking_error_percent, b.j2_rms_tracking_error_percent, "J2 (channel_criteria)");
+  const coordinator::ChannelCriteria direct = coordinator::channel_criteria(test.records, 0, scenario.control_rate_hz);
+  expect_same(direct.j1_tracking_delay_ms, b.j1_tracking_delay_ms, "J1 (coordinator::channel_criteria)");
+  expect_same(direct.j2_rms_tracking_error_percent, b.j2_rms_tracking_error_percent, "J2 (coordinator::channel_criteria)");
 }
 
 }  // namespace

@@ -95,7 +95,7 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
   const TestConfig in_process = clamped_sdof();
   const coordinator::testing::SdofRun here = coordinator::testing::run_steps(in_process);
   // The node aborted on a command too fast: the test stopped on its fault.
-  ASSERT_EQ(here.outcome, StepOutcome::kNodeFault);
+  ASSERT_EQ(here.outcome, coordinator::StepOutcome::kNodeFault);
   EXPECT_GT(here.records.size(), 0u);
 
   TestConfig over_dds = in_process;
@@ -110,7 +110,7 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
     there = coordinator::testing::run_steps(over_dds);
     velocity_activations = node.controller().counters().activations(node::LimitKind::kVelocity);
   }
-  EXPECT_EQ(there.outcome, StepOutcome::kNodeFault);
+  EXPECT_EQ(there.outcome, coordinator::StepOutcome::kNodeFault);
   EXPECT_EQ(velocity_activations, 1u);
   ASSERT_EQ(here.records.size(), there.records.size());
   for (std::size_t n = 0; n < here.records.size(); ++n) {
@@ -121,7 +121,7 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
   // Without the node's limit the same test runs to its end.
   TestConfig free = in_process;
   free.site_nodes.clear();
-  EXPECT_EQ(coordinator::testing::run_steps(free).outcome, StepOutcome::kOk);
+  EXPECT_EQ(coordinator::testing::run_steps(free).outcome, coordinator::StepOutcome::kOk);
 }
 
 // A site's node in this process knows its plant's converters: the SDOF released from 10 mm
@@ -139,9 +139,9 @@ TEST(SiteNode, AReadingOnItsConvertersRailFaultsTheNodeInThisProcess) {
     return coordinator::testing::run_sdof(sdof);
   };
   const coordinator::testing::SdofRun railed = run_with_rail(8.0);
-  EXPECT_EQ(railed.outcome, StepOutcome::kNodeFault);
+  EXPECT_EQ(railed.outcome, coordinator::StepOutcome::kNodeFault);
   EXPECT_TRUE(railed.records.empty());  // on the first exchange: no step was taken with it
-  EXPECT_EQ(run_with_rail(20.0).outcome, StepOutcome::kOk);
+  EXPECT_EQ(run_with_rail(20.0).outcome, coordinator::StepOutcome::kOk);
 }
 
 // One node, two runs of one test id (two coordinators): the node serves the run whose first
@@ -158,24 +158,24 @@ TEST(SiteNode, ASecondRunOfOneTestIsRefusedWhileTheFirstRunsAndServedAfterIt) {
   config.clock.realtime.keep_cpus_awake = false;
   DdsNode node(config);
   TestAssembly first(config, {});
-  ASSERT_EQ(first.step(), StepOutcome::kOk);
+  ASSERT_EQ(first.step(), coordinator::StepOutcome::kOk);
   {
     TestAssembly second(config, {});
     EXPECT_NE(second.run_id(), first.run_id());
-    EXPECT_EQ(second.step(), StepOutcome::kRefused);
-    const TestRun refused = second.finish(StepOutcome::kRefused);
+    EXPECT_EQ(second.step(), coordinator::StepOutcome::kRefused);
+    const TestRun refused = second.finish(coordinator::StepOutcome::kRefused);
     EXPECT_EQ(refused.steps, 0);
     EXPECT_EQ(refused.refusal, "site 1 is serving another run (run " + transport::run_id_text(first.run_id()) +
                                    "; this run is " + transport::run_id_text(second.run_id()) +
                                    "): a node serves one run at a time");
   }
-  for (std::int64_t n = 1; n < first.steps_planned(); ++n) ASSERT_EQ(first.step(), StepOutcome::kOk) << n;
-  const TestRun done = first.finish(StepOutcome::kOk);
+  for (std::int64_t n = 1; n < first.steps_planned(); ++n) ASSERT_EQ(first.step(), coordinator::StepOutcome::kOk) << n;
+  const TestRun done = first.finish(coordinator::StepOutcome::kOk);
   EXPECT_EQ(done.steps, first.steps_planned());
   EXPECT_EQ(done.run_id, first.run_id());
   TestAssembly third(config, {});
-  EXPECT_EQ(third.step(), StepOutcome::kOk);
-  third.finish(StepOutcome::kOk);
+  EXPECT_EQ(third.step(), coordinator::StepOutcome::kOk);
+  third.finish(coordinator::StepOutcome::kOk);
   EXPECT_EQ(node.controller().counters().runs, 2u);
 }
 

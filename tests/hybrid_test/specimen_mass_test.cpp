@@ -36,10 +36,10 @@ TEST(SpecimenMass, TestAndReferenceAreTheWholeStructureUnderTheWholeMassesGround
   // be off by tens of percent. The reference is plain integration (0.5 %); the test adds the
   // actuator's 60 us and the inertial force's half period of lag (2 %).
   const TestRun reference = run_test(scenario, {}, true);
-  ASSERT_EQ(reference.outcome, StepOutcome::kOk);
+  ASSERT_EQ(reference.outcome, coordinator::StepOutcome::kOk);
   EXPECT_NEAR(peak_of(reference) / exact_peak, 1.0, 0.005);
   const TestRun test = run_test(scenario, {}, false);
-  ASSERT_EQ(test.outcome, StepOutcome::kOk);
+  ASSERT_EQ(test.outcome, coordinator::StepOutcome::kOk);
   EXPECT_NEAR(peak_of(test) / exact_peak, 1.0, 0.02);
   RecordProperty("test_peak_ratio", std::to_string(peak_of(test) / exact_peak));
 }
