@@ -15,8 +15,8 @@
 #include <stdexcept>
 
 #include "bench_report.h"
-#include "rpsd/hybrid_test/specimen_sdof.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/specimen_sdof.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/study_file.h"
 

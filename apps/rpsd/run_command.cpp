@@ -13,10 +13,10 @@
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/site_server/site_summary.h"
 #include "rpsd/studies/dry_run_report.h"
+#include "rpsd/studies/hybrid_test_output.h"
 #include "rpsd/studies/results_files.h"
 #include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
-#include "rpsd/studies/hybrid_test_output.h"
 #include "stop_signals.h"
 
 namespace rpsd::cli {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <memory>
 
-#include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/coordinator/recorder.h"
+#include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/realtime/pacer.h"
 #include "rpsd/substructure/ground_motion_load.h"
@@ -85,9 +85,9 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
     // The rig's envelope is every limit's default; the reference is numerical: no rig, no limits.
     if (!perfect_actuator) {
       parts.limits.resize(static_cast<std::size_t>(channels));
-      parts.limits[ch] = numerical_site
-                             ? coordinator::CoordinatorLimits{}
-                             : coordinator::within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
+      parts.limits[ch] =
+          numerical_site ? coordinator::CoordinatorLimits{}
+                         : coordinator::within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
     }
     parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};
   }
@@ -148,7 +148,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   p.round_trips.resize(p.actuators->sites().size());
   coordinator::RecorderOptions recording;
   recording.keep_records = options.keep_records;
-  p.recorder = std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);
+  p.recorder =
+      std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);
 }
 
 TestAssembly::~TestAssembly() = default;
@@ -182,7 +183,7 @@ const coordinator::StepRecord& TestAssembly::last_record() const { return parts_
 const coordinator::LimitStop& TestAssembly::limit_stop() const { return parts_->loop->limit_stop(); }
 
 coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordinator::StepRecord&)>& after_step,
-                              const std::function<void(std::int64_t, std::int64_t)>& progress) {
+                                           const std::function<void(std::int64_t, std::int64_t)>& progress) {
   Parts& p = *parts_;
   coordinator::RpsdLoop& loop = *p.loop;
   coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;

@@ -35,7 +35,8 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
   coordinator::CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz, floor_sources(s));
   TestAssembly test(s, {test_csv, false, false, {}, stop_request});
   EvaluatedTest result;
-  coordinator::StepOutcome test_outcome = coordinator::StepOutcome::kOk, reference_outcome = coordinator::StepOutcome::kOk;
+  coordinator::StepOutcome test_outcome = coordinator::StepOutcome::kOk,
+                           reference_outcome = coordinator::StepOutcome::kOk;
 
   if (!test.real_time()) {
     TestAssembly reference(s, {reference_csv, true, false, {}, stop_request});
@@ -46,7 +47,8 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
       if (reference_outcome == coordinator::StepOutcome::kOk) reference_outcome = reference.step();
       if (testing && test_outcome == coordinator::StepOutcome::kOk) {
         sums.add_test(test.last_record());
-        if (reference_outcome == coordinator::StepOutcome::kOk) sums.add_pair(test.last_record(), reference.last_record());
+        if (reference_outcome == coordinator::StepOutcome::kOk)
+          sums.add_pair(test.last_record(), reference.last_record());
       }
       if (test_outcome != coordinator::StepOutcome::kOk && reference_outcome != coordinator::StepOutcome::kOk) break;
       if (progress && (n + 1) % report_every == 0) progress(n + 1, planned);
@@ -79,7 +81,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
 
 coordinator::Criteria evaluate(const TestConfig& s, const TestRun& test, const TestRun& reference) {
   coordinator::CriteriaAccumulator sums(static_cast<int>(s.experimental.size()), static_cast<int>(s.record_dofs.size()),
-                           s.control_rate_hz, floor_sources(s));
+                                        s.control_rate_hz, floor_sources(s));
   const std::size_t pairs = std::min(test.records.size(), reference.records.size());
   for (std::size_t i = 0; i < test.records.size(); ++i) {
     sums.add_test(test.records[i]);

@@ -4,9 +4,9 @@
 #include <set>
 #include <stdexcept>
 
-#include "rpsd/scenarios/ground_motion_section.h"
 #include "hybrid_test_sections.h"
 #include "rpsd/config/key_error.h"
+#include "rpsd/scenarios/ground_motion_section.h"
 
 namespace rpsd::scenarios {
 

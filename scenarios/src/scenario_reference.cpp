@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ground_motion_keys.h"
+#include "hybrid_test_sections.h"
 #include "node_sections.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/config/key_table.h"
@@ -21,7 +22,6 @@
 #include "rpsd/transport/messages.h"
 #include "site_server_sections.h"
 #include "study_sections.h"
-#include "hybrid_test_sections.h"
 
 namespace rpsd::scenarios {
 namespace {

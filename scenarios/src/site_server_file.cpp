@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <set>
 
+#include "hybrid_test_sections.h"
 #include "physical_ranges.h"
 #include "rpsd/config/input_log.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
 #include "site_server_sections.h"
-#include "hybrid_test_sections.h"
 
 namespace rpsd::scenarios {
 namespace site_server_sections {

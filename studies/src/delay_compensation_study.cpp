@@ -12,9 +12,9 @@
 
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/compensation/discrete_phase_lead.h"
-#include "rpsd/hybrid_test/specimen_sdof.h"
-#include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/coordinator/run_criteria.h"
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/specimen_sdof.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/studies/damping_identification.h"

@@ -9,10 +9,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/coordinator/limit_stop_text.h"
-#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/ground_motion/response_spectrum.h"
+#include "rpsd/hybrid_test/actuator_links.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/studies/gnuplot.h"
 #include "rpsd/studies/plot_decimation.h"

@@ -4,8 +4,8 @@
 
 #include "../servo/paper_rig.h"
 #include "allocation_counter.h"
-#include "rpsd/hybrid_test/specimen_sdof.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/specimen_sdof.h"
 
 namespace rpsd::coordinator {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "../servo/paper_rig.h"
-#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/ground_motion/response_spectrum.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::hybrid_test {
@@ -88,7 +88,8 @@ TEST(TestRunner, CriteriaComputedAsTheTestRunsEqualThoseFromKeptRecordsBitForBit
   // And the channel criteria of the Figure 8 study's path agree too.
   const coordinator::ChannelCriteria direct = coordinator::channel_criteria(test.records, 0, scenario.control_rate_hz);
   expect_same(direct.j1_tracking_delay_ms, b.j1_tracking_delay_ms, "J1 (coordinator::channel_criteria)");
-  expect_same(direct.j2_rms_tracking_error_percent, b.j2_rms_tracking_error_percent, "J2 (coordinator::channel_criteria)");
+  expect_same(direct.j2_rms_tracking_error_percent, b.j2_rms_tracking_error_percent,
+              "J2 (coordinator::channel_criteria)");
 }
 
 }  // namespace

@@ -10,10 +10,10 @@
 #include <string>
 #include <thread>
 
+#include "../coordinator/specimen_runs.h"
 #include "rpsd/node/servo_node_loop.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/transport/messages.h"
-#include "../coordinator/specimen_runs.h"
 
 namespace rpsd::hybrid_test {
 namespace {

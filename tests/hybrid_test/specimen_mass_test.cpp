@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "../servo/paper_rig.h"
-#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/ground_motion/response_spectrum.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::hybrid_test {

@@ -67,7 +67,7 @@ class ActuatorLinks {
 
  private:
   std::vector<SiteSummary> sites_;
-  SiteResources shared_;                     // outlives the sites that use it
+  SiteResources shared_;                      // outlives the sites that use it
   std::vector<std::unique_ptr<Site>> built_;  // per site, in sites_' order
   std::unique_ptr<transport::MultiSiteLink> multi_site_;
   std::vector<double> initial_force_n_;

@@ -38,13 +38,13 @@ struct TimingReport {
 
 struct TestRun {
   std::vector<coordinator::StepRecord> records;  // every step, when the run kept them
-  std::int64_t steps = 0;           // steps taken
+  std::int64_t steps = 0;                        // steps taken
   coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
   std::int64_t steps_planned = 0;
   std::uint64_t dropped_records = 0;
   std::string write_error;                // kResultsNotWritten: the file and the system's reason
   std::int64_t feedback_age_periods = 0;  // how old the newest feedback was when it stopped (periods)
-  coordinator::LimitStop limit_stop;                   // the coordinator limit that stopped it, if one did
+  coordinator::LimitStop limit_stop;      // the coordinator limit that stopped it, if one did
   std::uint64_t run_id = 0;               // this run's identity on every command
   std::string refusal;                    // coordinator::StepOutcome::kRefused: which site refused the run and why
   TimingReport timing;
@@ -93,7 +93,7 @@ class TestAssembly {
   // `after_step` (optional) sees each step's record; in real time it runs inside the cycle
   // and must be real-time safe. `progress` as for run_test (as fast as possible only).
   coordinator::StepOutcome run(const std::function<void(const coordinator::StepRecord&)>& after_step,
-                  const std::function<void(std::int64_t, std::int64_t)>& progress);
+                               const std::function<void(std::int64_t, std::int64_t)>& progress);
   // Stops the recorder and ends the run on the sites' nodes; the run's outcome, counts, timing
   // and (if kept) records. Not real-time safe.
   TestRun finish(coordinator::StepOutcome outcome);

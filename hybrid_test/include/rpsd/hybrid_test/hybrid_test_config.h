@@ -30,8 +30,8 @@ namespace rpsd::hybrid_test {
 struct ExperimentalChannel {
   substructure::ExperimentalDof dof;  // DOF, channel, scales, specimen stiffness estimate
   coordinator::RestoringForceSource restoring_force = coordinator::RestoringForceSource::kMeasuredForce;
-  std::uint32_t site_id = 1;  // the servo node (site) that owns the actuator
-  coordinator::CoordinatorLimits limits;   // experimental[i].limits
+  std::uint32_t site_id = 1;              // the servo node (site) that owns the actuator
+  coordinator::CoordinatorLimits limits;  // experimental[i].limits
   // The specimen's own damping (specimen scale), part of the whole structure's: what the
   // numerical part's damping leaves out when the damping is the whole structure's.
   double specimen_damping_n_s_per_m = 0.0;

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <functional>
 
-#include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/coordinator/run_criteria.h"
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
 
 namespace rpsd::hybrid_test {
 

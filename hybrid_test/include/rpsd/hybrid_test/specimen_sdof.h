@@ -19,7 +19,8 @@ struct SpecimenSdof {
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
   compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
   servo::PlantConfig plant = servo::PureDelayParameters{0.0, 700.8e3, 8192.0, {}, {}};
-  coordinator::RestoringForceSource restoring_force = coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
+  coordinator::RestoringForceSource restoring_force =
+      coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
   // Ground acceleration at t = n / control_rate_hz (F = -m a_g); empty: free vibration.
   // With a record the test lasts as long as the record.
   std::vector<double> ground_acceleration_m_per_s2;

@@ -6,8 +6,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "rpsd/config/source.h"
-#include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/ground_motion/record.h"
+#include "rpsd/hybrid_test/hybrid_test_config.h"
 
 namespace rpsd::scenarios {
 
