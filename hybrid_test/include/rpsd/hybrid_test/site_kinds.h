@@ -1,8 +1,8 @@
 // The kinds of site a test reaches its channels through, registered in one place (the list
 // below): a new kind (another controller protocol, a multi-actuator rig) is its own files (a
 // Site naming itself with kName, saying which sites it serves() and building one with make())
-// plus one entry here (CONTRIBUTING.md). The first kind in the list that serves a site builds
-// it, so a catch-all kind comes last.
+// plus one entry here (docs/architecture.md, "Adding a site kind"). The first kind in the
+// list that serves a site builds it, so a catch-all kind comes last.
 #pragma once
 
 #include <memory>
