@@ -15,8 +15,8 @@
 #include <stdexcept>
 
 #include "bench_report.h"
-#include "rpsd/coordinator/specimen_sdof.h"
-#include "rpsd/coordinator/test_assembly.h"
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/specimen_sdof.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/study_file.h"
 
@@ -31,12 +31,12 @@ int main(int argc, char** argv) try {
   bench::Fragment fragment("coordinator_overhead", argc, argv);
   const auto file = scenarios::load_study(options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
                                           {scenarios::parse_override("ground_motion.pad_after_s=20")});
-  const auto& scenario = std::get<coordinator::TestConfig>(file.study);
+  const auto& scenario = std::get<hybrid_test::TestConfig>(file.study);
   const double m = 7080.0, k = 700.8e3, zeta = 0.011;
   const auto& ground = scenario.ground_motion->acceleration_m_per_s2;
   const auto steps = static_cast<std::int64_t>(ground.size()) - 1;
 
-  coordinator::SpecimenSdof setup;
+  hybrid_test::SpecimenSdof setup;
   setup.mass_kg = m;
   setup.damping_ratio = zeta;
   setup.stiffness_n_per_m = k;
@@ -45,11 +45,11 @@ int main(int argc, char** argv) try {
   setup.compensation = scenario.compensation;
   setup.plant = servo::PureDelayParameters{0.0, k, scenario.control_rate_hz, {}, {}};
   setup.ground_acceleration_m_per_s2 = ground;
-  const coordinator::TestConfig config = coordinator::specimen_sdof_test(setup);
+  const hybrid_test::TestConfig config = hybrid_test::specimen_sdof_test(setup);
   const double dt_s = 1.0 / scenario.control_rate_hz;
 
   const auto loop_s = bench::time_trials(options.repetitions, 1, [&] {
-    coordinator::TestAssembly test(config, {});  // keeps no records, as `rpsd run` runs
+    hybrid_test::TestAssembly test(config, {});  // keeps no records, as `rpsd run` runs
     for (std::int64_t n = 0; n < steps; ++n) {
       if (test.step() != coordinator::StepOutcome::kOk) throw std::runtime_error("the loop stopped");
     }

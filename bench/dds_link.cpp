@@ -3,7 +3,7 @@
 //
 // (1) The paper SDOF (examples/scenarios/elcentro-sdof.yaml, El Centro + 20 s of free vibration,
 //     61,429 steps at 1024 Hz) lock-step over DDS: the coordinator built as `rpsd run` builds
-//     it (coordinator::TestAssembly with transport.kind=dds, test 7) in this process, the
+//     it (hybrid_test::TestAssembly with transport.kind=dds, test 7) in this process, the
 //     specimen on a separate `rpsd servo-node` process (examples/nodes/bridge-pier-site-1.yaml:
 //     the same 700.8 kN/m springs on the same MTS 244 servo model, lock_step). Timed: the
 //     steps, from after discovery (building the assembly) to the last feedback; not the
@@ -35,7 +35,7 @@
 #include "bench_report.h"
 #include "child_process.h"
 #include "ddsperf.h"
-#include "rpsd/coordinator/test_runs.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/realtime/cpu_wake_latency.h"
 #include "rpsd/scenarios/study_file.h"
 
@@ -92,19 +92,19 @@ int main(int argc, char** argv) try {
   // The same with the coordinator polling for its feedback for up to 1 ms before sleeping.
   const auto busy_file = sdof("dds", ", busy_wait_s: 0.001");
   const auto local_file = sdof("in_process");
-  const auto& dds_scenario = std::get<coordinator::TestConfig>(dds_file.study);
-  const auto& busy_scenario = std::get<coordinator::TestConfig>(busy_file.study);
-  const auto& local_scenario = std::get<coordinator::TestConfig>(local_file.study);
+  const auto& dds_scenario = std::get<hybrid_test::TestConfig>(dds_file.study);
+  const auto& busy_scenario = std::get<hybrid_test::TestConfig>(busy_file.study);
+  const auto& local_scenario = std::get<hybrid_test::TestConfig>(local_file.study);
   const double simulated_s = dds_scenario.duration_s;
 
   // One lock-step run against a fresh node (its step count starts with the test's).
-  const auto lock_step = [&](const coordinator::TestConfig& scenario) {
+  const auto lock_step = [&](const hybrid_test::TestConfig& scenario) {
     bench::ChildProcess node({rpsd, "servo-node", node_yaml, "--set", "node.mode=lock_step", "--set",
                               "dds.domain_id=" + std::to_string(domain)},
                              {}, work / "node.log");
     LockStepRun r;
     const auto start = bench::Clock::now();
-    coordinator::TestAssembly test(scenario, {});
+    hybrid_test::TestAssembly test(scenario, {});
     r.discovery_s = bench::seconds_since(start);
     const double cpu_start = bench::thread_cpu_s();
     const auto loop_start = bench::Clock::now();
@@ -113,7 +113,7 @@ int main(int argc, char** argv) try {
       outcome = test.step();
     r.wall_s = bench::seconds_since(loop_start);
     r.cpu_s = bench::thread_cpu_s() - cpu_start;
-    const coordinator::TestRun done = test.finish(outcome);
+    const hybrid_test::TestRun done = test.finish(outcome);
     node.stop(SIGTERM, 10.0);
     if (done.steps != done.steps_planned || done.timing.sites.size() != 1) {
       throw std::runtime_error("the lock-step run stopped at step " + std::to_string(done.steps) + " of " +
@@ -127,7 +127,7 @@ int main(int argc, char** argv) try {
 
   // Baseline: the same test in process, as sdof_throughput times it.
   const auto local = bench::time_trials(options.repetitions, 1, [&] {
-    coordinator::TestAssembly test(local_scenario, {});
+    hybrid_test::TestAssembly test(local_scenario, {});
     coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
     for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n)
       outcome = test.step();
@@ -237,7 +237,7 @@ int main(int argc, char** argv) try {
       text, sizeof text,
       "rpsd: %lld lock-step steps per run, %d runs of each variant (default; transport.busy_wait_s = 0.001), "
       "alternating, each against a fresh `%s servo-node %s --set node.mode=lock_step` "
-      "(domain %d, transport/config/loopback.xml); the coordinator is this process (coordinator::TestAssembly, "
+      "(domain %d, transport/config/loopback.xml); the coordinator is this process (hybrid_test::TestAssembly, "
       "as `rpsd run` builds it). The rpsd round trip is the coordinator's command-to-feedback time and includes "
       "the node's plant step (the servo model over one period, RK4 at 8192 Hz: 8 substeps, about 0.7 us) and "
       "both sides' copies; its histogram has 1 us bins (upper edges). Each rpsd figure is the median over runs "

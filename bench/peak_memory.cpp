@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "bench_report.h"
-#include "rpsd/coordinator/test_runs.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace {
@@ -159,13 +159,13 @@ int main(int argc, char** argv) try {
     studies::StudyDocument file;
     return growth_in_child(
         [&] {
-          const auto& s = std::get<coordinator::TestConfig>(file.study);
+          const auto& s = std::get<hybrid_test::TestConfig>(file.study);
           if (keep_records) {
-            const auto test = coordinator::run_test(s, "/dev/null", false);
-            const auto reference = coordinator::run_test(s, "/dev/null", true);
-            coordinator::evaluate(s, test, reference);
+            const auto test = hybrid_test::run_test(s, "/dev/null", false);
+            const auto reference = hybrid_test::run_test(s, "/dev/null", true);
+            hybrid_test::evaluate(s, test, reference);
           } else {
-            coordinator::run_test_and_reference(s, "/dev/null", "/dev/null");
+            hybrid_test::run_test_and_reference(s, "/dev/null", "/dev/null");
           }
         },
         [&] {

@@ -1,5 +1,5 @@
 // As-fast-as-possible throughput of the seed paper's SDOF RPsD test, built exactly as
-// `rpsd run examples/scenarios/elcentro-sdof.yaml` builds it (coordinator::TestAssembly): numerical
+// `rpsd run examples/scenarios/elcentro-sdof.yaml` builds it (hybrid_test::TestAssembly): numerical
 // mass and damping, the 700.8 kN/m specimen on the full nonlinear servo-hydraulic model
 // (RK4 at its internal 8192 Hz), phase-lead compensation, central difference at 1024 Hz,
 // the in-process link and the recorder hand-off to its writer thread.
@@ -21,7 +21,7 @@
 #include <stdexcept>
 
 #include "bench_report.h"
-#include "rpsd/coordinator/test_runs.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 
@@ -40,13 +40,13 @@ int main(int argc, char** argv) try {
   const auto file =
       scenarios::load_study(options.source_dir / "examples/scenarios/elcentro-sdof.yaml",
                             {scenarios::parse_override("ground_motion.pad_after_s=" + std::to_string(kPadSeconds))});
-  const auto& scenario = std::get<coordinator::TestConfig>(file.study);
+  const auto& scenario = std::get<hybrid_test::TestConfig>(file.study);
   const double simulated_s = scenario.duration_s;
   const auto& servo = std::get<servo::ServoSystemParameters>(scenario.plant);
 
   // One untimed run that keeps its records: checks the test completes and gives the command
   // sequence for the baseline.
-  const coordinator::TestRun first = coordinator::run_test(scenario, {}, false);
+  const hybrid_test::TestRun first = hybrid_test::run_test(scenario, {}, false);
   if (first.outcome != coordinator::StepOutcome::kOk && first.outcome != coordinator::StepOutcome::kRecordEnded) {
     throw std::runtime_error("the El Centro test did not complete");
   }
@@ -58,11 +58,11 @@ int main(int argc, char** argv) try {
   // One timed run: build the parts, step to the end, drain the recorder; as `rpsd run` runs
   // the test (no records kept in memory).
   const auto run = [&](const std::filesystem::path& csv) {
-    coordinator::TestAssembly test(scenario, {csv, false, false, {}});
+    hybrid_test::TestAssembly test(scenario, {csv, false, false, {}});
     coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
     for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n)
       outcome = test.step();
-    const coordinator::TestRun done = test.finish(outcome);
+    const hybrid_test::TestRun done = test.finish(outcome);
     if (done.steps != first.steps_planned) throw std::runtime_error("a trial stopped early");
   };
   const auto loop_no_csv_s = bench::time_trials(options.repetitions, 1, [&] { run({}); });
@@ -150,7 +150,7 @@ int main(int argc, char** argv) try {
                 servo.plant_rate_hz, substeps, static_cast<double>(csv_bytes) / 1e6);
   fragment.note(text);
   fragment.note(
-      "Timed per trial: building the parts, every loop step, and draining the recorder (coordinator::TestAssembly, "
+      "Timed per trial: building the parts, every loop step, and draining the recorder (hybrid_test::TestAssembly, "
       "as `rpsd run` runs the test, no records kept in memory); not the reference run, criteria or plots of `rpsd "
       "run`. "
       "Headline: the writer thread drains the queue and writes nothing; the CSV figures format every row "

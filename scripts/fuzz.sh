@@ -47,7 +47,7 @@ fi
 
 # Scenario seeds: the shipped scenarios and the test scenarios.
 mkdir -p "$seeds/scenario" "$build/corpus/scenario"
-cp examples/scenarios/*.yaml tests/coordinator/data/*.yaml "$seeds/scenario/"
+cp examples/scenarios/*.yaml tests/coordinator/data/*.yaml tests/hybrid_test/data/*.yaml "$seeds/scenario/"
 
 status=0
 run() {

@@ -13,10 +13,10 @@
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/site_server/site_summary.h"
 #include "rpsd/studies/dry_run_report.h"
+#include "rpsd/studies/hybrid_test_output.h"
 #include "rpsd/studies/results_files.h"
 #include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
-#include "rpsd/studies/test_output.h"
 #include "stop_signals.h"
 
 namespace rpsd::cli {
@@ -87,7 +87,7 @@ studies::NodeLimits node_limits(const std::string& file) {
 }
 
 // The pre-test check: its table on stdout, its numbers in OUT/dry-run.json; true when ready.
-bool check_before_running(const coordinator::TestConfig& test, const std::string& out,
+bool check_before_running(const hybrid_test::TestConfig& test, const std::string& out,
                           const std::vector<std::string>& node_files) {
   std::vector<studies::NodeLimits> nodes;
   for (const auto& f : node_files) nodes.push_back(node_limits(f));
@@ -139,7 +139,7 @@ void add_run(CLI::App& app) {
     for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
     const auto file = scenarios::load_study(options->scenario, overrides);
     if (options->dry_run) {
-      const auto* test = std::get_if<coordinator::TestConfig>(&file.study);
+      const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
       if (!test) throw CLI::ValidationError("--dry-run", "needs an rpsd_test scenario");
       if (!options->out.empty()) studies::prepare_results_folder(options->out, options->replace);
       if (!check_before_running(*test, options->out, options->node_files)) throw DryRunNotReady();
@@ -150,7 +150,7 @@ void add_run(CLI::App& app) {
     studies::prepare_results_folder(options->out, options->replace);
     double rate_hz = 1024.0;
     const std::atomic<bool>* stop_request = nullptr;
-    if (const auto* test = std::get_if<coordinator::TestConfig>(&file.study)) {
+    if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study)) {
       rate_hz = test->control_rate_hz;
       stop_request = &stop_on_signals();  // tests and sweeps stop in order; the servo studies simply end
     }
@@ -193,7 +193,7 @@ void add_validate(CLI::App& app) {
     }
     const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
     std::cout << options->scenario << ": ok\n";
-    if (const auto* test = std::get_if<coordinator::TestConfig>(&file.study)) {
+    if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study)) {
       if (!file.sweep.empty()) {
         std::cout << "  sweep: " << file.sweep_cases.size() << " cases; the first:\n";
       }

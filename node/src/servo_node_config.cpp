@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rpsd/config/key_error.h"
+
 namespace rpsd::node {
 
 const char* limit_kind_name(LimitKind kind) {
@@ -151,10 +153,13 @@ void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope)
   using servo::tighten_to_rig;
   for (int c = 0; c < config.channels; ++c) {
     ChannelLimits& l = config.limits[c];
-    const std::string at = indexed("limits", c) + ".";
-    tighten_to_rig(l.max_stroke_m, envelope.stroke_m, at + "max_stroke_m", "stroke");
-    tighten_to_rig(l.max_force_n, envelope.force_n, at + "max_force_n", "force capacity");
-    tighten_to_rig(l.max_velocity_m_per_s, envelope.velocity_m_per_s, at + "max_velocity_m_per_s", "velocity capacity");
+    try {
+      tighten_to_rig(l.max_stroke_m, envelope.stroke_m, "max_stroke_m", "stroke");
+      tighten_to_rig(l.max_force_n, envelope.force_n, "max_force_n", "force capacity");
+      tighten_to_rig(l.max_velocity_m_per_s, envelope.velocity_m_per_s, "max_velocity_m_per_s", "velocity capacity");
+    } catch (const config::KeyError& e) {
+      throw e.under(indexed("limits", c));
+    }
     config.rig[c] = envelope;
   }
 }
@@ -168,11 +173,14 @@ void limit_to_converters(ServoNodeConfig& config, const servo::ReadingRanges& ra
   read_through_converters(config, ranges);
   for (int c = 0; c < config.channels; ++c) {
     const ChannelLimits& l = config.limits[c];
-    const std::string at = indexed("limits", c) + ".";
-    servo::require_readable(l.max_stroke_m, l.max_stroke_m == config.rig[c].stroke_m, ranges.displacement_m,
-                            at + "max_stroke_m", converters_key + ".displacement", "m");
-    servo::require_readable(l.max_force_n, l.max_force_n == config.rig[c].force_n, ranges.force_n, at + "max_force_n",
-                            converters_key + ".force", "N");
+    try {
+      servo::require_readable(l.max_stroke_m, l.max_stroke_m == config.rig[c].stroke_m, ranges.displacement_m,
+                              "max_stroke_m", converters_key + ".displacement", "m");
+      servo::require_readable(l.max_force_n, l.max_force_n == config.rig[c].force_n, ranges.force_n, "max_force_n",
+                              converters_key + ".force", "N");
+    } catch (const config::KeyError& e) {
+      throw e.under(indexed("limits", c));
+    }
   }
 }
 

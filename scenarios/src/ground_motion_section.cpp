@@ -140,7 +140,7 @@ gm::GroundMotionRecord load_file(config::Source& r) {
   return gm::read_time_acceleration(file.path, options);
 }
 
-coordinator::GroundMotion read_section(config::Source& r, double step_s) {
+hybrid_test::GroundMotion read_section(config::Source& r, double step_s) {
   gm::GroundMotionRecord record;
   const auto synthetic = ground_motion_keys::synthetic(r);
   const char* source_key = synthetic ? "synthetic" : "file";
@@ -223,7 +223,7 @@ YAML::Node with_record(const YAML::Node& section, const YAML::Node& record) {
   return replaced;
 }
 
-coordinator::GroundMotion read_ground_motion_section(config::Source& section, double step_s) {
+hybrid_test::GroundMotion read_ground_motion_section(config::Source& section, double step_s) {
   try {
     return read_section(section, step_s);
   } catch (const gm::RecordError& e) {

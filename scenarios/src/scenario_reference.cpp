@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ground_motion_keys.h"
+#include "hybrid_test_sections.h"
 #include "node_sections.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/config/key_table.h"
@@ -21,7 +22,6 @@
 #include "rpsd/transport/messages.h"
 #include "site_server_sections.h"
 #include "study_sections.h"
-#include "test_sections.h"
 
 namespace rpsd::scenarios {
 namespace {
@@ -154,7 +154,7 @@ void test_scenario(Document& doc) {
   doc.table("opensees_sites[]",
             listing("opensees_sites[]",
                     [](config::Source& s) {
-                      std::vector<coordinator::ExperimentalChannel> channels;
+                      std::vector<hybrid_test::ExperimentalChannel> channels;
                       (void)ts::opensees_site(s, kListedDofs, 0, channels);
                     }),
             "Numerical sites in remote OpenSees models behind their `adapter` element (docs/opensees.md). "
@@ -171,11 +171,11 @@ void test_scenario(Document& doc) {
     if (!rows.empty()) doc.table("integrator (scheme: " + std::string(name) + ")", rows);
   }
   doc.table("clock", listing("clock", [](config::Source& s) {
-              coordinator::TestConfig t;
+              hybrid_test::TestConfig t;
               ts::clock(s, t);
             }));
   doc.table("transport", listing("transport", [](config::Source& s) {
-              coordinator::TestConfig t;
+              hybrid_test::TestConfig t;
               ts::transport(s, t);
             }));
   kind_tables<compensation::CompensatorKinds>(
@@ -196,7 +196,7 @@ void test_scenario(Document& doc) {
             listing("ground_motion", [](config::Source& s) { (void)gk::processing(s); }),
             "Whatever the scaling, the processed record may peak at no more than 10 g.");
   doc.table("free_vibration", listing("free_vibration", [](config::Source& s) {
-              coordinator::TestConfig t;
+              hybrid_test::TestConfig t;
               ts::free_vibration(s, kListedDofs, t);
             }));
   doc.table("output", listing("output", [](config::Source& s) { (void)ts::record_dofs(s, kListedDofs); }));

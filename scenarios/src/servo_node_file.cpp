@@ -8,6 +8,8 @@
 #include "node_sections.h"
 #include "physical_ranges.h"
 #include "rpsd/config/input_file.h"
+#include "rpsd/config/key_error.h"
+#include "rpsd/node/site_node_setup.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
 
@@ -195,27 +197,24 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
   // guard predicts with the simulated specimen's stiffness unless the file gives one.
   // A simulated actuator's readings come through its converters: every limit (stated or the
   // rig's) must lie strictly inside what they can read.
-  const servo::Envelope envelope = node::envelope_of(f.actuator);
-  try {
-    node::limit_to_envelope(f.node, envelope);
-    if (const auto* simulated = std::get_if<node::SimulatedActuatorConfig>(&f.actuator)) {
-      node::limit_to_converters(f.node, servo::reading_ranges_of(simulated->plant), "actuator.servo.converters");
-    }
-  } catch (const std::invalid_argument& e) {
-    const std::string message = e.what();
-    const std::string key = message.substr(message.find('.') + 1, message.find(':') - message.find('.') - 1);
-    if (limits) limits->fail(key, message);
-    throw ConfigError(file.string() + ": " + message);
+  node::SiteNodeSetup setup{f.node, node::envelope_of(f.actuator), std::nullopt, "actuator.servo.converters", {}};
+  const auto* simulated = std::get_if<node::SimulatedActuatorConfig>(&f.actuator);
+  if (simulated) {
+    setup.converters = servo::reading_ranges_of(simulated->plant);
+    setup.specimen_stiffness_n_per_m.fill(node::stiffest_specimen_n_per_m(simulated->plant, 0.0));
   }
-  if (const auto* simulated = std::get_if<node::SimulatedActuatorConfig>(&f.actuator)) {
+  try {
+    setup.complete();
+  } catch (const config::KeyError& e) {
+    if (limits) limits->fail(e.leaf(), e.what());
+    throw ConfigError(file.string() + ": " + e.what());
+  }
+  f.node = setup.node;
+  if (simulated) {
     try {
       servo::check_control_period(simulated->plant, f.node.control_period_s);
     } catch (const std::invalid_argument& e) {
       throw ConfigError(file.string() + ": actuator.servo." + e.what());
-    }
-    for (int c = 0; c < f.node.channels; ++c) {
-      double& k = f.node.limits[c].force_guard_stiffness_n_per_m;
-      if (k == 0.0) k = servo::specimen_stiffness_of(simulated->plant);
     }
   }
   try {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "hybrid_test_sections.h"
 #include "physical_ranges.h"
 #include "rpsd/config/input_log.h"
 #include "rpsd/integrators/factory.h"
@@ -10,7 +11,6 @@
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
 #include "site_server_sections.h"
-#include "test_sections.h"
 
 namespace rpsd::scenarios {
 namespace site_server_sections {
@@ -59,9 +59,9 @@ void listen(config::Source& l, site_server::SiteServerConfig& c) {
 }
 
 // experimental[i]: a test's channel keys, with basic_dof and relative_to for dof.
-coordinator::ExperimentalChannel channel(config::Source& e, int dofs, std::size_t index, site_server::ChannelMap& map,
+hybrid_test::ExperimentalChannel channel(config::Source& e, int dofs, std::size_t index, site_server::ChannelMap& map,
                                          std::unique_ptr<config::Source>& limits_section) {
-  coordinator::ExperimentalChannel channel;
+  hybrid_test::ExperimentalChannel channel;
   map.basic_dof = static_cast<int>(
       e.whole_number("basic_dof", 0, dofs - 1, "the element's basic DOF the actuator follows (0-based, -dof order)"));
   map.relative_to = static_cast<int>(
@@ -77,7 +77,7 @@ coordinator::ExperimentalChannel channel(config::Source& e, int dofs, std::size_
 void site_file(config::Source& root, site_server::SiteServerConfig& c,
                std::vector<std::unique_ptr<config::Source>>& limit_sections) {
   c.description = root.optional_text("description", "one line for titles and summaries").value_or("");
-  coordinator::TestConfig& t = c.site;
+  hybrid_test::TestConfig& t = c.site;
   t.name = c.name;
   t.description = c.description;
   listen(*root.section("listen", "where OpenSees' genericClient element connects"), c);
@@ -104,7 +104,7 @@ void site_file(config::Source& root, site_server::SiteServerConfig& c,
       *root.section("servo", "every channel's actuator (servo/)"),
       t.experimental.empty() ? 0.0 : t.experimental.front().dof.specimen_stiffness_estimate_n_per_m);
   test_sections::clock(*root.section("clock", "the control rate: one command per OpenSees step"), t);
-  if (t.clock.mode != coordinator::ClockConfig::Mode::kAsFastAsPossible) {
+  if (t.clock.mode != hybrid_test::ClockConfig::Mode::kAsFastAsPossible) {
     root.fail("clock", "OpenSees paces a site server's test: clock.mode must be as_fast_as_possible (lock-step)");
   }
   if (auto transport = root.optional_section("transport", "how the sites are reached (default: in process)")) {
@@ -133,7 +133,7 @@ site_server::SiteServerConfig load_site_server(const std::filesystem::path& file
   c.name = file.stem().string();
   std::vector<std::unique_ptr<config::Source>> limit_sections;
   site_server_sections::site_file(root, c, limit_sections);
-  const coordinator::TestConfig& t = c.site;
+  const hybrid_test::TestConfig& t = c.site;
   const double control_period_s = 1.0 / t.control_rate_hz;
   try {
     servo::check_control_period(t.plant, control_period_s);

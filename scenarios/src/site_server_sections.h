@@ -14,7 +14,7 @@ void site_file(config::Source& root, site_server::SiteServerConfig& c,
                std::vector<std::unique_ptr<config::Source>>& limit_sections);
 void listen(config::Source& l, site_server::SiteServerConfig& c);
 // experimental[i]: a test's channel keys, with basic_dof and relative_to for dof.
-coordinator::ExperimentalChannel channel(config::Source& e, int dofs, std::size_t index, site_server::ChannelMap& map,
+hybrid_test::ExperimentalChannel channel(config::Source& e, int dofs, std::size_t index, site_server::ChannelMap& map,
                                          std::unique_ptr<config::Source>& limits_section);
 
 }  // namespace rpsd::scenarios::site_server_sections

@@ -5,7 +5,7 @@
 
 #include "rpsd/config/input_log.h"
 #include "rpsd/scenarios/ground_motion_section.h"
-#include "rpsd/scenarios/test_scenario_file.h"
+#include "rpsd/scenarios/hybrid_test_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
 #include "rpsd/studies/monte_carlo.h"
 #include "study_sections.h"
@@ -237,7 +237,7 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
         if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
         throw ConfigError(std::string(e.what()) + " (sweep case " + where + ")");
       }
-      result.sweep_cases.push_back(std::get<coordinator::TestConfig>(one.study));
+      result.sweep_cases.push_back(std::get<hybrid_test::TestConfig>(one.study));
       result.sweep_values.push_back(values);
       result.case_yaml.push_back(one.effective_yaml);
     }
@@ -298,7 +298,7 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
       for (const auto& o : overrides) where += (where.empty() ? "" : ", ") + o.key_path + " = " + o.value;
       throw ConfigError(std::string(e.what()) + " (monte_carlo run " + std::to_string(run + 1) + ": " + where + ")");
     }
-    result.sweep_cases.push_back(std::get<coordinator::TestConfig>(one.study));
+    result.sweep_cases.push_back(std::get<hybrid_test::TestConfig>(one.study));
     result.sweep_values.push_back(draws[run]);
     result.case_yaml.push_back(one.effective_yaml);
   }
@@ -353,7 +353,7 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
       if (!sweep_allowed) root.fail("monte_carlo", "given more than once");
       return read_monte_carlo(text, command_line, document, root, file, std::move(result));
     }
-    coordinator::TestConfig scenario = read_test_config(root, file);
+    hybrid_test::TestConfig scenario = read_test_config(root, file);
     scenario.description = result.description;
     result.study = std::move(scenario);
     root.finish();

@@ -1,11 +1,11 @@
 #include "study_sections.h"
 
+#include "hybrid_test_sections.h"
 #include "physical_ranges.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/plant_factory.h"
-#include "test_sections.h"
 
 namespace rpsd::scenarios::study_sections {
 namespace {

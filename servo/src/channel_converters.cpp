@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "rpsd/config/key_error.h"
+
 namespace rpsd::servo {
 namespace {
 
@@ -48,7 +50,6 @@ void require_readable(double limit, bool rigs, const ConverterRange& range, cons
                       const std::string& converter_key, const char* unit) {
   if (range.represents(limit)) return;
   std::ostringstream message;
-  message << limit_key << ": ";
   if (!std::isfinite(limit)) {
     message << "none stated and the rig states none, so no limit at all, which";
   } else if (rigs) {
@@ -59,7 +60,7 @@ void require_readable(double limit, bool rigs, const ConverterRange& range, cons
   message << " is not strictly inside what " << converter_key << " can read, " << range.low << " to " << range.high
           << " " << unit << " (a reading at its rail may stand for any value beyond it): state a limit below "
           << range.rail_magnitude() << " " << unit << " or widen " << converter_key << "'s range";
-  throw std::invalid_argument(message.str());
+  throw config::KeyError(limit_key, message.str());
 }
 
 ChannelConverters read_channel_converters(config::Source& plant_section) {

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rpsd/config/key_error.h"
+
 namespace rpsd::servo {
 
 Envelope Envelope::read(config::Source& section) {
@@ -38,9 +40,9 @@ void tighten_to_rig(double& limit, double rig, const std::string& key, const cha
     limit = rig;
   } else if (limit > rig) {
     std::ostringstream message;
-    message << key << ": " << limit << " is beyond the rig's " << what << " of " << rig
+    message << limit << " is beyond the rig's " << what << " of " << rig
             << " (a limit may only tighten the rig's envelope)";
-    throw std::invalid_argument(message.str());
+    throw config::KeyError(key, message.str());
   }
 }
 

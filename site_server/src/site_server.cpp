@@ -5,14 +5,14 @@
 #include <sstream>
 
 #include "rpsd/compensation/compensator_factory.h"
-#include "rpsd/coordinator/actuator_links.h"
+#include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/servo/envelope.h"
 
 namespace rpsd::site_server {
 
 SiteServer::SiteServer(const SiteServerConfig& config, const std::filesystem::path& csv) : config_(config) {
-  const coordinator::TestConfig& site = config_.site;
+  const hybrid_test::TestConfig& site = config_.site;
   const int channels = static_cast<int>(site.experimental.size());
   const int n = config_.element_dofs;
   control_period_s_ = 1.0 / site.control_rate_hz;
@@ -31,7 +31,7 @@ SiteServer::SiteServer(const SiteServerConfig& config, const std::filesystem::pa
   // At rest at zero: OpenSees starts its analysis from its model's unloaded state.
   targets_ = Eigen::VectorXd::Zero(channels);
   const std::uint64_t run_id = transport::draw_run_id();
-  actuators_ = std::make_unique<coordinator::ActuatorLinks>(
+  actuators_ = std::make_unique<hybrid_test::ActuatorLinks>(
       site, control_period_s_, false, std::span<const double>(targets_.data(), static_cast<std::size_t>(channels)),
       run_id);
   parts.link = &actuators_->link();

@@ -45,13 +45,13 @@ std::string allowed_clients_text(const SiteServerConfig& config) {
 }
 
 void print_site_overview(const SiteServerConfig& c, std::ostream& out) {
-  const coordinator::TestConfig& t = c.site;
+  const hybrid_test::TestConfig& t = c.site;
   const double period_s = 1.0 / t.control_rate_hz;
   const servo::Envelope envelope = servo::envelope_of(t.plant);
   out << "  listens on " << c.listen_address << ":" << c.listen_port << " for an OpenSees genericClient with "
       << c.element_dofs << " basic DOF(s); one command per OpenSees step of " << period_s << " s\n";
   out << "  clients allowed: " << allowed_clients_text(c) << "\n";
-  out << "  sites: " << (t.transport.kind == coordinator::TransportConfig::Kind::kDds ? "over DDS" : "in process")
+  out << "  sites: " << (t.transport.kind == hybrid_test::TransportConfig::Kind::kDds ? "over DDS" : "in process")
       << "\n";
   for (std::size_t ch = 0; ch < c.maps.size(); ++ch) {
     const auto& e = t.experimental[ch];

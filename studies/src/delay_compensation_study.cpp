@@ -12,9 +12,9 @@
 
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/compensation/discrete_phase_lead.h"
-#include "rpsd/coordinator/specimen_sdof.h"
-#include "rpsd/coordinator/test_assembly.h"
-#include "rpsd/coordinator/test_criteria.h"
+#include "rpsd/coordinator/run_criteria.h"
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/specimen_sdof.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/studies/damping_identification.h"
@@ -81,7 +81,7 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
     k.approximate_damping_ratio = compensation::approximate_damping_ratio(oscillator, k.residual_delay_s);
     k.predicted_damping_ratio_loop = compensation::damping_ratio_of(loop_root(study, lead.network, c, dde));
 
-    coordinator::SpecimenSdof sdof;
+    hybrid_test::SpecimenSdof sdof;
     sdof.mass_kg = study.mass_kg;
     sdof.damping_ratio = study.damping_ratio;
     sdof.stiffness_n_per_m = study.stiffness_n_per_m;
@@ -91,9 +91,9 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
     sdof.integrator = study.integrator;
     sdof.compensation = lead;
     sdof.plant = std::visit([](const auto& plant) { return servo::PlantConfig{plant}; }, study.plant);
-    const coordinator::TestConfig config = coordinator::specimen_sdof_test(sdof);
+    const hybrid_test::TestConfig config = hybrid_test::specimen_sdof_test(sdof);
     // The case is evaluated as it runs; nothing is kept but the response.
-    coordinator::TestAssembly test(
+    hybrid_test::TestAssembly test(
         config, {dir.empty() ? dir : dir / delay_case_csv_name(i, k.compensated_delay_s), false, false, {}});
     coordinator::CriteriaAccumulator sums(1, 0, study.control_rate_hz);
     std::vector<double> x;

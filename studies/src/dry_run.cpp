@@ -10,8 +10,8 @@
 
 #include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
-#include "rpsd/coordinator/actuator_links.h"
-#include "rpsd/coordinator/test_runs.h"
+#include "rpsd/hybrid_test/actuator_links.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
@@ -42,7 +42,7 @@ std::optional<double> signed_delay_ms(const std::vector<double>& target, const s
 // gets for a target, one control period per advance (as the loop drives them).
 class CompensatedPlant final : public servo::Plant {
  public:
-  CompensatedPlant(const coordinator::TestConfig& s)
+  CompensatedPlant(const hybrid_test::TestConfig& s)
       : plant_(servo::make_plant(s.plant)),
         compensator_(compensation::make_compensator(s.compensation, 1.0 / s.control_rate_hz)) {}
   void reset(double displacement_m) override {
@@ -69,7 +69,7 @@ class CompensatedPlant final : public servo::Plant {
 struct LoopResponse {
   double gain = 1.0, delay_s = 0.0;
 };
-LoopResponse compensated_plant_response(const coordinator::TestConfig& s, double w_rad_s) {
+LoopResponse compensated_plant_response(const hybrid_test::TestConfig& s, double w_rad_s) {
   CompensatedPlant loop(s);
   servo::SineTest test;
   test.frequency_hz = w_rad_s / (2.0 * M_PI);
@@ -80,7 +80,7 @@ LoopResponse compensated_plant_response(const coordinator::TestConfig& s, double
   return {std::abs(h), -std::arg(h) / w_rad_s};
 }
 
-std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& test, const coordinator::TestConfig& s) {
+std::vector<ModePrediction> modes_under_delay(const hybrid_test::TestAssembly& test, const hybrid_test::TestConfig& s) {
   const auto& numerical = test.numerical();
   const auto k = test.partition().with_specimen_stiffness(numerical.initial_stiffness());
   // Every mode of a small model, the lowest of a large one (no dense copy of its matrices).
@@ -113,7 +113,7 @@ std::vector<ModePrediction> modes_under_delay(const coordinator::TestAssembly& t
 }
 
 // Gives each channel the limits of its site's node; throws when the files do not fit the test.
-void attach_nodes(DryRunReport& report, const coordinator::TestConfig& s, const std::vector<NodeLimits>& nodes) {
+void attach_nodes(DryRunReport& report, const hybrid_test::TestConfig& s, const std::vector<NodeLimits>& nodes) {
   for (const NodeLimits& node : nodes) {
     if (node.test_id != s.transport.test_id) {
       throw std::invalid_argument(node.name + ": node.test_id is " + std::to_string(node.test_id) +
@@ -196,17 +196,17 @@ void add_margins(ChannelPrediction& p, std::vector<std::string>& warnings) {
 
 }  // namespace
 
-DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<NodeLimits>& nodes) {
+DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<NodeLimits>& nodes) {
   if (!original.opensees_sites.empty()) {
     // Each OpenSees adapter serves one run: a dry run would use up the processes the test needs.
     throw std::invalid_argument(
         "a dry run cannot include OpenSees sites (opensees_sites): each adapter serves one run, and the dry run "
         "would use up the OpenSees process the test needs; check the model with `rpsd validate` instead");
   }
-  coordinator::TestConfig s = original;
-  s.transport.kind = coordinator::TransportConfig::Kind::kInProcess;
-  s.clock.mode = coordinator::ClockConfig::Mode::kAsFastAsPossible;
-  coordinator::TestAssembly test(s, {});
+  hybrid_test::TestConfig s = original;
+  s.transport.kind = hybrid_test::TransportConfig::Kind::kInProcess;
+  s.clock.mode = hybrid_test::ClockConfig::Mode::kAsFastAsPossible;
+  hybrid_test::TestAssembly test(s, {});
 
   const int channels = static_cast<int>(s.experimental.size());
   const double period_s = 1.0 / s.control_rate_hz;
@@ -251,7 +251,7 @@ DryRunReport dry_run(const coordinator::TestConfig& original, const std::vector<
     }
   };
   const coordinator::StepOutcome outcome = test.run(watch, {});
-  const coordinator::TestRun run = test.finish(outcome);
+  const hybrid_test::TestRun run = test.finish(outcome);
   report.outcome = run.outcome;
   report.limit_stop = run.limit_stop;
   report.steps = run.steps;

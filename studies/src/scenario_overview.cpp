@@ -55,15 +55,15 @@ bool positive_definite(const linalg::StructuralMatrix& k) {
 
 }  // namespace
 
-ScenarioOverview overview_of(const coordinator::TestConfig& s) {
+ScenarioOverview overview_of(const hybrid_test::TestConfig& s) {
   ScenarioOverview o;
-  const auto numerical = coordinator::make_numerical_model(s);
+  const auto numerical = hybrid_test::make_numerical_model(s);
   o.dofs = numerical->dofs();
   substructure::Partition partition;
-  partition.configure(coordinator::partition_config(s, o.dofs));
+  partition.configure(hybrid_test::partition_config(s, o.dofs));
   // The whole structure: the numerical part with the specimens' stiffness, damping and mass (as
   // the perfect-actuator reference runs it).
-  const auto whole = coordinator::make_numerical_model(s, coordinator::SpecimenShare::kKeptInNumericalPart);
+  const auto whole = hybrid_test::make_numerical_model(s, hybrid_test::SpecimenShare::kKeptInNumericalPart);
   o.structure_modes =
       modes_of(whole->mass(), partition.with_specimen_stiffness(whole->initial_stiffness()), whole->damping());
   // The numerical part alone has modes only if it carries stiffness of its own everywhere.
@@ -94,7 +94,7 @@ ScenarioOverview overview_of(const coordinator::TestConfig& s) {
     ch.dof = e.dof.dof;
     ch.site_id = e.site_id;
     ch.specimen_stiffness_n_per_m = e.dof.specimen_stiffness_estimate_n_per_m;
-    if (const coordinator::OpenSeesSite* site = s.opensees_site(e.site_id)) {
+    if (const hybrid_test::OpenSeesSite* site = s.opensees_site(e.site_id)) {
       ch.opensees = site->adapter.host + ":" + std::to_string(site->adapter.port) +
                     ", reference :" + std::to_string(site->reference_port);
     } else {

@@ -11,13 +11,15 @@
 #include <string>
 
 #include "../servo/paper_rig.h"
-#include "rpsd/coordinator/test_runs.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::coordinator {
 namespace {
 
-coordinator::TestConfig scenario_with_limits(const std::string& limits) {
+using namespace hybrid_test;  // whole runs go through the assembly above the loop
+
+hybrid_test::TestConfig scenario_with_limits(const std::string& limits) {
   std::ifstream in(testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string anchor = "    restoring_force: stiffness_times_displacement\n";
@@ -26,7 +28,7 @@ coordinator::TestConfig scenario_with_limits(const std::string& limits) {
   std::ofstream(path) << text;
   auto file = scenarios::load_study(path);
   std::filesystem::remove(path);
-  return std::get<coordinator::TestConfig>(file.study);
+  return std::get<hybrid_test::TestConfig>(file.study);
 }
 
 TEST(CoordinatorLimits, ACommandBeyondTheStrokeIsNeverSent) {

@@ -15,6 +15,8 @@
 namespace rpsd::coordinator {
 namespace {
 
+using namespace hybrid_test;  // whole runs go through the assembly above the loop
+
 // Delivers each feedback `lag` exchanges late (as a real-time link does when the round
 // trip exceeds the period: the newest sample, with kTimeout), and none at all from
 // exchange `silent_from` on. With `lease_lapsed`, a late answer comes with kPeerLost, as

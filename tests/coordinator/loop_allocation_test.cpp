@@ -4,11 +4,13 @@
 
 #include "../servo/paper_rig.h"
 #include "allocation_counter.h"
-#include "rpsd/coordinator/specimen_sdof.h"
-#include "rpsd/coordinator/test_assembly.h"
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/specimen_sdof.h"
 
 namespace rpsd::coordinator {
 namespace {
+
+using namespace hybrid_test;  // whole runs go through the assembly above the loop
 
 // The whole test as rpsd runs it: loop, in-process servo node (controller, limits, watchdog),
 // simulated actuator, recorder hand-off.

@@ -12,11 +12,13 @@
 #include <filesystem>
 
 #include "../servo/paper_rig.h"
-#include "rpsd/coordinator/test_assembly.h"
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::coordinator {
 namespace {
+
+using namespace hybrid_test;  // whole runs go through the assembly above the loop
 
 // Files this process writes may not grow past `bytes` while it lives; writes beyond fail
 // with EFBIG instead of raising SIGXFSZ.

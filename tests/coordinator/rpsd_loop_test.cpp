@@ -16,6 +16,8 @@
 namespace rpsd::coordinator {
 namespace {
 
+using namespace hybrid_test;  // whole runs go through the assembly above the loop
+
 using studies::IdentifiedDamping;
 using studies::identify_damping;
 using testing::displacements;

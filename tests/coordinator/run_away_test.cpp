@@ -14,6 +14,8 @@
 namespace rpsd::coordinator {
 namespace {
 
+using namespace hybrid_test;  // whole runs go through the assembly above the loop
+
 // Adds the given node flags to the feedback of chosen exchanges.
 class FlaggingLink final : public transport::Link {
  public:

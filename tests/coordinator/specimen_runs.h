@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "rpsd/coordinator/specimen_sdof.h"
-#include "rpsd/coordinator/test_assembly.h"
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/specimen_sdof.h"
 
 namespace rpsd::coordinator::testing {
 
@@ -15,17 +15,17 @@ struct SdofRun {
   LimitStop limit_stop;  // what stopped it, if a limit or a run-away did
 };
 
-inline SdofRun run_steps(const TestConfig& config, AssemblyOptions options = {}) {
+inline SdofRun run_steps(const hybrid_test::TestConfig& config, hybrid_test::AssemblyOptions options = {}) {
   options.keep_records = true;
-  TestAssembly test(config, options);
+  hybrid_test::TestAssembly test(config, options);
   StepOutcome outcome = StepOutcome::kOk;
   for (std::int64_t n = 0; n < test.steps_planned() && outcome == StepOutcome::kOk; ++n) outcome = test.step();
   const LimitStop stop = test.limit_stop();
   return {test.finish(outcome).records, outcome, stop};
 }
 
-inline SdofRun run_sdof(const SpecimenSdof& sdof, AssemblyOptions options = {}) {
-  return run_steps(specimen_sdof_test(sdof), std::move(options));
+inline SdofRun run_sdof(const hybrid_test::SpecimenSdof& sdof, hybrid_test::AssemblyOptions options = {}) {
+  return run_steps(hybrid_test::specimen_sdof_test(sdof), std::move(options));
 }
 
 inline std::vector<double> displacements(const SdofRun& r) {

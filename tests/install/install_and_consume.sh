@@ -7,6 +7,10 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cmake --install "$build_dir" --prefix "$work/prefix" >/dev/null
 test -x "$work/prefix/bin/rpsd"
 test -f "$work/prefix/include/rpsd/servo/servo_hydraulic_plant.h"
+# The test's assembly is its own module (docs/migration.md): its headers, not the old ones.
+test -f "$work/prefix/include/rpsd/hybrid_test/site_kinds.h"
+test ! -e "$work/prefix/include/rpsd/coordinator/test_config.h"
+grep -q "rpsd::hybrid_test" "$work/prefix/lib/cmake/rpsd/rpsdTargets.cmake"
 cmake -S "$source_dir/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer"

@@ -89,14 +89,14 @@ TEST(ConverterLimits, EveryPlantKindIsHeldToTheRule) {
 // benchmark's A/D converters, 18 bits over +/-10 V.
 TEST(ConverterLimits, TheReadingRangesOfAPlantAreItsConvertersRails) {
   const auto study = load_study(kBenchmark);  // its first Monte Carlo run: the converters are not drawn
-  const auto& t = std::get<coordinator::TestConfig>(study.study);
+  const auto& t = std::get<hybrid_test::TestConfig>(study.study);
   const servo::ReadingRanges r = servo::reading_ranges_of(t.plant);
   const double step_v = 20.0 / std::ldexp(1.0, 18);
   EXPECT_EQ(r.force_n.high, 131071.0 * step_v * 1096.0);
   EXPECT_EQ(r.force_n.low, -10.0 * 1096.0);  // -2^17 steps: exactly the saturation's -10 V
   EXPECT_EQ(r.displacement_m.high, 131071.0 * step_v * 7.89e-3);
   const auto paper = load_study(source("examples/scenarios/elcentro-sdof.yaml"));
-  EXPECT_FALSE(servo::reading_ranges_of(std::get<coordinator::TestConfig>(paper.study).plant).force_n.bounded());
+  EXPECT_FALSE(servo::reading_ranges_of(std::get<hybrid_test::TestConfig>(paper.study).plant).force_n.bounded());
 }
 
 // A servo node file: its limits are the only ones there, so each (stated or the rig's) must

@@ -17,13 +17,13 @@ namespace {
 const std::filesystem::path kSplit = testing::source_dir() / "examples/opensees/three-storey-split.yaml";
 const std::filesystem::path kSite = testing::source_dir() / "tests/scenarios/data/reference/site-server.yaml";
 
-const coordinator::TestConfig& test_of(const studies::StudyDocument& d) {
-  return std::get<coordinator::TestConfig>(d.study);
+const hybrid_test::TestConfig& test_of(const studies::StudyDocument& d) {
+  return std::get<hybrid_test::TestConfig>(d.study);
 }
 
 TEST(OpenSeesSites, EachDofOfASiteIsAChannelOfThatSiteAndNeedsNoSpecimenOrServo) {
   const auto d = load_study(kSplit);
-  const coordinator::TestConfig& t = test_of(d);
+  const hybrid_test::TestConfig& t = test_of(d);
   ASSERT_EQ(t.opensees_sites.size(), 1u);
   EXPECT_EQ(t.opensees_sites[0].adapter.dofs, 3);
   EXPECT_EQ(t.opensees_sites[0].reference_port, 8092);

@@ -21,7 +21,7 @@ SiteServerConfig spring_site() {
   c.name = "spring";
   c.element_dofs = 1;
   c.maps = {{0, -1}};
-  coordinator::ExperimentalChannel channel;
+  hybrid_test::ExperimentalChannel channel;
   channel.dof.specimen_stiffness_estimate_n_per_m = 1000.0;
   c.site.experimental = {channel};
   servo::PureDelayParameters plant;

@@ -13,7 +13,7 @@
 #include "../opensees/peer.h"
 #include "rpsd/opensees/protocol.h"
 
-#include "rpsd/coordinator/actuator_links.h"
+#include "rpsd/hybrid_test/actuator_links.h"
 
 namespace rpsd::site_server {
 namespace {
@@ -26,7 +26,7 @@ SiteServerConfig spring_site(int element_dofs, ChannelMap map) {
   c.name = "spring";
   c.element_dofs = element_dofs;
   c.maps = {map};
-  coordinator::ExperimentalChannel channel;
+  hybrid_test::ExperimentalChannel channel;
   channel.dof.dof = map.basic_dof;
   channel.dof.specimen_stiffness_estimate_n_per_m = kSpringNPerM;
   c.site.experimental = {channel};

@@ -15,10 +15,10 @@
 namespace rpsd::studies {
 namespace {
 
-coordinator::TestConfig sdof(std::vector<scenarios::Override> overrides) {
+hybrid_test::TestConfig sdof(std::vector<scenarios::Override> overrides) {
   const auto file =
       scenarios::load_study(testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml", overrides);
-  return std::get<coordinator::TestConfig>(file.study);
+  return std::get<hybrid_test::TestConfig>(file.study);
 }
 
 TEST(DryRun, UncompensatedDelayGivesTheExactDdeRootAndIsNotReady) {
@@ -110,7 +110,7 @@ TEST(DryRun, RefusesNodeFilesThatDoNotFitTheTest) {
 TEST(DryRun, TheServoModelReportsItsValveOpeningAndRouthMargin) {
   const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/two-site-bridge.yaml",
                                           {scenarios::parse_override("ground_motion.trim={end_s: 2}")});
-  const DryRunReport r = dry_run(std::get<coordinator::TestConfig>(file.study));
+  const DryRunReport r = dry_run(std::get<hybrid_test::TestConfig>(file.study));
   ASSERT_TRUE(r.p_gain && r.max_stable_p_gain);
   EXPECT_LT(*r.p_gain, *r.max_stable_p_gain);
   for (const auto& c : r.channels) {

@@ -98,7 +98,7 @@ struct ServoNodeConfig {
 
 // Makes the rig's envelope every channel's limit: a limit left out (infinite) becomes the
 // envelope's, and a limit beyond the envelope is refused (std::invalid_argument naming
-// limits[c].key): a user may only tighten what the rig can do. Not real-time safe.
+// limits[c].key, a config::KeyError): a user may only tighten what the rig can do. Not real-time safe.
 void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope);
 
 // The channels' readings come through these converters: a reading on a rail faults the node.

@@ -32,7 +32,7 @@ struct ChannelConverters {
 
 // The one rule where a limit meets a converter: a limit on a reading (|value| <= limit) must
 // lie strictly inside what the reading's converter can represent, or a reading at the rail
-// could hide any value beyond the limit. Otherwise std::invalid_argument "limit_key: ..." naming
+// could hide any value beyond the limit. Otherwise config::KeyError at limit_key ("limit_key: ...") naming
 // converter_key too, and saying whether the limit was the rig's (`rigs`: none stated). `unit`:
 // "m" or "N". Not real-time safe.
 void require_readable(double limit, bool rigs, const ConverterRange& range, const std::string& limit_key,

@@ -29,7 +29,7 @@ struct Envelope {
 std::string describe(const Envelope& envelope);
 
 // A user's limit against the rig's: none given (infinity) becomes the rig's; one beyond it
-// throws std::invalid_argument naming `key` and the rig's `what` ("stroke"); a tighter one
+// throws config::KeyError (an std::invalid_argument) at `key` and the rig's `what` ("stroke"); a tighter one
 // stands. The one rule for nodes and coordinators alike. Not real-time safe.
 void tighten_to_rig(double& limit, double rig, const std::string& key, const char* what);
 

@@ -14,7 +14,7 @@
 #include "rpsd/opensees/generic_client_session.h"
 #include "rpsd/site_server/site_server_config.h"
 
-namespace rpsd::coordinator {
+namespace rpsd::hybrid_test {
 class ActuatorLinks;
 }
 
@@ -57,7 +57,7 @@ class SiteServer : public opensees::GenericClientSite {
 
   // The run so far, and the actuators (for tests and reports). Not real-time safe.
   const SiteRun& run() const { return run_; }
-  const coordinator::ActuatorLinks& actuators() const { return *actuators_; }
+  const hybrid_test::ActuatorLinks& actuators() const { return *actuators_; }
 
  private:
   bool stop(coordinator::StepOutcome outcome);
@@ -67,7 +67,7 @@ class SiteServer : public opensees::GenericClientSite {
   const SiteServerConfig& config_;
   double control_period_s_ = 0.0;
   std::vector<std::unique_ptr<compensation::CommandCompensator>> compensators_;
-  std::unique_ptr<coordinator::ActuatorLinks> actuators_;
+  std::unique_ptr<hybrid_test::ActuatorLinks> actuators_;
   std::unique_ptr<coordinator::ExperimentalExchange> exchange_;
   std::unique_ptr<coordinator::Recorder> recorder_;
   Eigen::VectorXd targets_, trial_d_, trial_v_, trial_a_, basic_force_;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "rpsd/coordinator/test_config.h"
+#include "rpsd/hybrid_test/hybrid_test_config.h"
 
 namespace rpsd::site_server {
 
@@ -37,7 +37,7 @@ struct SiteServerConfig {
   // The experimental half of a test: experimental (the channels' scales, sites, limits),
   // plant, compensation, control_rate_hz (one command per OpenSees step), clock, transport,
   // run_away, site_nodes. The structure is OpenSees'.
-  coordinator::TestConfig site;
+  hybrid_test::TestConfig site;
   std::vector<std::filesystem::path> input_files;  // what was read, for the summary
 };
 

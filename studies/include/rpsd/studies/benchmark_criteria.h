@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rpsd/coordinator/test_criteria.h"
+#include "rpsd/coordinator/run_criteria.h"
 
 namespace rpsd::studies {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "rpsd/coordinator/rpsd_loop.h"
-#include "rpsd/coordinator/test_config.h"
+#include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/node/servo_node_config.h"
 #include "rpsd/studies/converter_rails.h"
 #include "rpsd/studies/pretest_checks.h"
@@ -93,6 +93,6 @@ struct DryRunReport {
 // and clock say. Throws what building the test throws, and std::invalid_argument naming the
 // node file when a node serves another test, an unknown or repeated site, or another number
 // of channels than the scenario gives its site.
-DryRunReport dry_run(const coordinator::TestConfig& scenario, const std::vector<NodeLimits>& nodes = {});
+DryRunReport dry_run(const hybrid_test::TestConfig& scenario, const std::vector<NodeLimits>& nodes = {});
 
 }  // namespace rpsd::studies

@@ -8,9 +8,9 @@
 #include <atomic>
 #include <filesystem>
 
+#include "rpsd/studies/hybrid_test_output.h"
 #include "rpsd/studies/progress.h"
 #include "rpsd/studies/study_config.h"
-#include "rpsd/studies/test_output.h"
 
 namespace rpsd::studies {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "rpsd/coordinator/test_config.h"
+#include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/servo/plant_factory.h"
 
 namespace rpsd::studies {
@@ -39,7 +39,7 @@ std::optional<double> actuator_cutoff_hz(const servo::PlantConfig& plant);
 
 // The key that sets the structure's masses, for messages: structure.mass_kg,
 // structure.floor_masses_kg or structure.mass_file.
-std::string mass_key(const coordinator::TestConfig& test);
+std::string mass_key(const hybrid_test::TestConfig& test);
 
 // One warning per mode above the actuator's cut-off: the rig cannot follow it, and a mode far
 // above it usually means masses in the wrong unit. Names the mode, its frequency, the cut-off

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "rpsd/coordinator/coordinator_limits.h"
-#include "rpsd/coordinator/test_config.h"
+#include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/servo/envelope.h"
 #include "rpsd/studies/converter_rails.h"
 
@@ -54,7 +54,7 @@ struct ScenarioOverview {
   std::vector<std::string> warnings;
 };
 
-ScenarioOverview overview_of(const coordinator::TestConfig& test);
+ScenarioOverview overview_of(const hybrid_test::TestConfig& test);
 
 // A few lines for a person: one section per part, SI units, frequencies in Hz.
 void print_overview(const ScenarioOverview& overview, std::ostream& out);

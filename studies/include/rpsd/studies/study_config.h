@@ -1,6 +1,6 @@
 // What a study file says, typed (scenarios/ reads it): the servo-system studies of the seed
 // paper (Figures 5, 6 and 7), the RPsD delay-compensation study (Figure 8), or a whole test
-// (coordinator::TestConfig) with an optional sweep over one or two of its keys.
+// (hybrid_test::TestConfig) with an optional sweep over one or two of its keys.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "rpsd/compensation/phase_lead.h"
-#include "rpsd/coordinator/test_config.h"
+#include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_parameters.h"
@@ -61,7 +61,7 @@ struct DelayCompensationStudy {
 };
 
 using Study =
-    std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, coordinator::TestConfig>;
+    std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, hybrid_test::TestConfig>;
 
 // One swept key of an `rpsd_test` scenario and the values it takes (as YAML scalars).
 struct SweepAxis {
@@ -96,7 +96,7 @@ struct StudyDocument {
   // `sweep:` of an rpsd_test scenario (one or two axes; empty when there is none). Every
   // case has been read and checked before anything runs.
   std::vector<SweepAxis> sweep;
-  std::vector<coordinator::TestConfig> sweep_cases;  // the first axis varies fastest
+  std::vector<hybrid_test::TestConfig> sweep_cases;  // the first axis varies fastest
   std::vector<std::vector<double>> sweep_values;     // the axis values of each case
   std::vector<std::string> case_yaml;                // each case's own document (its effective-scenario.yaml)
   // `monte_carlo:` (then sweep is empty, sweep_cases are the runs and sweep_values the drawn

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "rpsd/studies/hybrid_test_output.h"
 #include "rpsd/studies/progress.h"
 #include "rpsd/studies/servo_studies.h"
-#include "rpsd/studies/test_output.h"
 
 namespace rpsd::studies {
 

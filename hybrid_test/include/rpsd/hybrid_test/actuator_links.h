@@ -1,0 +1,79 @@
+// The loop's way to a scenario's actuators, built from the scenario: per site, the site the
+// site factory builds (site_kinds.h: a simulated node in this process, a DDS link to the
+// site's `rpsd servo-node`, an OpenSees adapter), all behind one multi-site link so the loop
+// cannot tell them apart.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rpsd/hybrid_test/hybrid_test_config.h"
+#include "rpsd/hybrid_test/site.h"
+#include "rpsd/servo/plant.h"
+#include "rpsd/transport/dds_link.h"
+#include "rpsd/transport/multi_site_link.h"
+
+namespace rpsd::hybrid_test {
+
+struct SiteSummary {
+  std::uint32_t site_id = 1;
+  std::vector<int> channels;  // the test's channels this site owns
+};
+
+// No servo node answered for a site before the first step: nothing moved, the test is not
+// ready (summary.json's result not_ready, exit 4), not an internal error.
+class NoNodeAnswered : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ActuatorLinks {
+ public:
+  // Builds the sites' links for run `run_id` and puts every actuator at rest at hold_m (one
+  // value per channel, in channel order). With perfect_actuator, in-process plants follow
+  // their command exactly whatever the transport. DDS: waits for every site's node to be
+  // discovered and throws NoNodeAnswered naming the missing sites, unless a node refuses
+  // the run (refused()). Not real-time safe.
+  ActuatorLinks(const TestConfig& config, double control_period_s, bool perfect_actuator,
+                std::span<const double> hold_m, std::uint64_t run_id);
+  // Ends the run on every site (end_run) if it has not been. Not real-time safe.
+  ~ActuatorLinks();
+
+  transport::Link& link() { return *multi_site_; }
+  // The specimen's force at rest, per channel: the simulated load cell, or (over DDS,
+  // before any feedback) the specimen stiffness estimate times the hold position.
+  double initial_force_n(int channel) const { return initial_force_n_[static_cast<std::size_t>(channel)]; }
+  const std::vector<SiteSummary>& sites() const { return sites_; }
+  // Real time: the receive deadline for every DDS site this cycle (0: none).
+  void set_receive_deadline_ns(std::int64_t deadline_ns);
+  bool over_dds() const { return over_dds_; }
+  // The simulated plant of a channel in this process (nullptr over DDS).
+  const servo::Plant* simulated_plant(int channel) const {
+    return plant_of_channel_[static_cast<std::size_t>(channel)];
+  }
+  // Over DDS: messages each site's link refused or found late.
+  std::vector<transport::DdsLinkCounters> dds_counters() const;
+  // A site's node refuses this run (it serves another, or runs at another rate), at the start
+  // or since. Real-time safe.
+  bool refused() const;
+  // Every site's refusal, as sentences ("site 1 is serving another run (...)"). Not real-time safe.
+  std::string refusal_text() const;
+  // Tells every site's node that the run is over, once, so that it may serve the next run at
+  // once. Not real-time safe.
+  void end_run();
+
+ private:
+  std::vector<SiteSummary> sites_;
+  SiteResources shared_;                      // outlives the sites that use it
+  std::vector<std::unique_ptr<Site>> built_;  // per site, in sites_' order
+  std::unique_ptr<transport::MultiSiteLink> multi_site_;
+  std::vector<double> initial_force_n_;
+  std::vector<const servo::Plant*> plant_of_channel_;
+  bool over_dds_ = false;
+  bool ended_ = false;
+};
+
+}  // namespace rpsd::hybrid_test

@@ -1,0 +1,45 @@
+// A site whose servo node is an `rpsd servo-node` in another process (or on another host),
+// reached over DDS; its node applies its own file's limits and rig defaults.
+#pragma once
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "rpsd/hybrid_test/site.h"
+#include "rpsd/hybrid_test/site_setup.h"
+#include "rpsd/transport/dds_link.h"
+
+namespace rpsd::hybrid_test {
+
+class DdsSite final : public Site {
+ public:
+  static constexpr std::string_view kName = "dds";
+  static constexpr std::string_view kSummary = "an `rpsd servo-node` reached over DDS";
+  // transport: dds, except for the perfect-actuator reference (its plants are in process).
+  static bool serves(const TestConfig& test, const SiteSetup& setup) {
+    return test.transport.kind == TransportConfig::Kind::kDds && !setup.perfect_actuator;
+  }
+  // Not real-time safe.
+  static std::unique_ptr<Site> make(const TestConfig& test, const SiteSetup& setup, SiteResources& shared);
+
+  transport::Link& link() override { return *link_; }
+  // Before any feedback: the specimen's stiffness estimate times the hold position.
+  double initial_force_n(std::size_t i) const override { return initial_force_n_[i]; }
+  bool over_dds() const override { return true; }
+  std::optional<transport::DdsLinkCounters> dds_counters() const override { return link_->counters(); }
+  bool wait_for_node(double timeout_s) override { return link_->wait_for_node(timeout_s); }
+  void set_receive_deadline_ns(std::int64_t deadline_ns) override { link_->set_receive_deadline_ns(deadline_ns); }
+  bool refused() const override { return link_->refusal().kind != transport::NodeRefusal::Kind::kNone; }
+  std::string refusal_text() const override { return refused() ? link_->refusal_text() : std::string(); }
+  void end_run() override { link_->end_run(); }
+
+ private:
+  DdsSite(std::unique_ptr<transport::DdsLink> link, std::vector<double> initial_force_n)
+      : link_(std::move(link)), initial_force_n_(std::move(initial_force_n)) {}
+
+  std::unique_ptr<transport::DdsLink> link_;
+  std::vector<double> initial_force_n_;
+};
+
+}  // namespace rpsd::hybrid_test

@@ -1,0 +1,111 @@
+// One test built from its typed configuration: the numerical model, partition, integrator,
+// compensators, the actuators (a lock-step servo node per site in this process, or DDS links
+// to the sites' `rpsd servo-node`s), the loop and its recorder. Building is not real-time
+// safe; stepping is.
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rpsd/coordinator/rpsd_loop.h"
+#include "rpsd/hybrid_test/hybrid_test_config.h"
+#include "rpsd/realtime/latency_histogram.h"
+#include "rpsd/transport/dds_link.h"
+
+namespace rpsd::hybrid_test {
+
+class ActuatorLinks;
+
+// How the clock and the link behaved (real time and/or over DDS).
+struct TimingReport {
+  bool real_time = false;
+  bool over_dds = false;
+  bool memory_locked = false, fifo_granted = false, cpus_kept_awake = false;
+  std::string refused;  // what the OS refused (mlockall, SCHED_FIFO, CPUs kept awake), once
+  std::int64_t cycles = 0, overruns = 0, skipped_deadlines = 0, late_feedback = 0;
+  realtime::LatencySummary jitter;  // wake-up lateness of the paced cycles
+  struct Site {
+    std::uint32_t site_id = 1;
+    realtime::LatencySummary round_trip;  // command-to-feedback, per step
+  };
+  std::vector<Site> sites;
+  std::vector<transport::DdsLinkCounters> dds_counters;  // per site, over DDS
+};
+
+struct TestRun {
+  std::vector<coordinator::StepRecord> records;  // every step, when the run kept them
+  std::int64_t steps = 0;                        // steps taken
+  coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
+  std::int64_t steps_planned = 0;
+  std::uint64_t dropped_records = 0;
+  std::string write_error;                // kResultsNotWritten: the file and the system's reason
+  std::int64_t feedback_age_periods = 0;  // how old the newest feedback was when it stopped (periods)
+  coordinator::LimitStop limit_stop;      // the coordinator limit that stopped it, if one did
+  std::uint64_t run_id = 0;               // this run's identity on every command
+  std::string refusal;                    // coordinator::StepOutcome::kRefused: which site refused the run and why
+  TimingReport timing;
+};
+
+struct AssemblyOptions {
+  std::filesystem::path csv;  // receives every step as it happens (empty: none)
+  // The reference: every plant follows its command exactly, compensation and limits off.
+  bool perfect_actuator = false;
+  bool keep_records = false;  // keep every record in memory for finish()
+  // Optional: a link placed between the loop and the actuators (a network emulation that
+  // delays or loses feedback, for tests).
+  std::function<std::unique_ptr<transport::Link>(transport::Link& actuators)> wrap_link;
+  // Set (from a signal handler, another thread) when the user asks the run to stop: the
+  // step under way finishes and is recorded, the next one returns kInterrupted.
+  const std::atomic<bool>* stop_request = nullptr;
+};
+
+// One run of a test with every part built and started at rest.
+class TestAssembly {
+ public:
+  // The configuration must outlive the assembly (the loop reads its ground motion in place).
+  TestAssembly(const TestConfig& config, const AssemblyOptions& options);
+  ~TestAssembly();
+  TestAssembly(const TestAssembly&) = delete;
+  TestAssembly& operator=(const TestAssembly&) = delete;
+
+  // This run's identity, on every command: no other run carries it.
+  std::uint64_t run_id() const;
+  // Steps in the scenario (its duration, or the record's length if shorter).
+  std::int64_t steps_planned() const;
+  // The test is paced by the real-time clock (the reference never is).
+  bool real_time() const;
+  // The integration step over the integrator's iterations per step.
+  double control_period_s() const;
+  // Steps between two progress reports: about 0.5 s of simulated time.
+  std::int64_t progress_every_steps() const;
+  // One step as fast as possible, recorded (a full recorder queue makes it wait, so nothing
+  // is lost); kRefused without a step when a site's node refused the run at the start.
+  // Real-time safe except for that wait.
+  coordinator::StepOutcome step();
+  const coordinator::StepRecord& last_record() const;
+  // What stopped the loop when step() or run() returned kLimit or kRunAway.
+  const coordinator::LimitStop& limit_stop() const;
+  // Every planned step: as fast as possible, or paced at the control rate in real time.
+  // `after_step` (optional) sees each step's record; in real time it runs inside the cycle
+  // and must be real-time safe. `progress` as for run_test (as fast as possible only).
+  coordinator::StepOutcome run(const std::function<void(const coordinator::StepRecord&)>& after_step,
+                               const std::function<void(std::int64_t, std::int64_t)>& progress);
+  // Stops the recorder and ends the run on the sites' nodes; the run's outcome, counts, timing
+  // and (if kept) records. Not real-time safe.
+  TestRun finish(coordinator::StepOutcome outcome);
+
+  // The parts, for analyses beside the run (the dry run). Not real-time safe.
+  const substructure::NumericalModel& numerical() const;
+  const substructure::Partition& partition() const;
+  const ActuatorLinks& actuators() const;
+
+ private:
+  struct Parts;
+  std::unique_ptr<Parts> parts_;
+};
+
+}  // namespace rpsd::hybrid_test

@@ -1,0 +1,157 @@
+// Everything a test needs, typed (scenarios/ reads a `study: rpsd_test` file into it): the
+// numerical substructure, the experimental channels, the plant, the integrator, the
+// compensator, the excitation, the clock, the transport and the output. The parts are the
+// lower modules' own configuration types; this file only names which is which.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "rpsd/compensation/compensator_factory.h"
+#include "rpsd/coordinator/coordinator_limits.h"
+#include "rpsd/coordinator/restoring_force.h"
+#include "rpsd/integrators/factory.h"
+#include "rpsd/node/servo_node_config.h"
+#include "rpsd/opensees/adapter_link.h"
+#include "rpsd/realtime/realtime_setup.h"
+#include "rpsd/servo/plant_factory.h"
+#include "rpsd/substructure/linear_mdof_model.h"
+#include "rpsd/substructure/partition.h"
+#include "rpsd/substructure/shear_building.h"
+
+namespace rpsd::hybrid_test {
+
+struct ExperimentalChannel {
+  substructure::ExperimentalDof dof;  // DOF, channel, scales, specimen stiffness estimate
+  coordinator::RestoringForceSource restoring_force = coordinator::RestoringForceSource::kMeasuredForce;
+  std::uint32_t site_id = 1;              // the servo node (site) that owns the actuator
+  coordinator::CoordinatorLimits limits;  // experimental[i].limits
+  // The specimen's own damping (specimen scale), part of the whole structure's: what the
+  // numerical part's damping leaves out when the damping is the whole structure's.
+  double specimen_damping_n_s_per_m = 0.0;
+  // The specimen's own mass (specimen scale), part of the structure's: the numerical part
+  // leaves it to the measured force (m_e d2x_m/dt2), and the ground motion still loads it.
+  double specimen_mass_kg = 0.0;
+};
+
+// How the loop is paced.
+struct ClockConfig {
+  enum class Mode { kAsFastAsPossible, kRealTime };
+  Mode mode = Mode::kAsFastAsPossible;
+  // Real time: late feedback is replaced by the newest measurement (counted and flagged)
+  // while that answers a command at most this many control periods old; beyond, the node
+  // is taken for silent and the test stops (a dead node: on the 5th period with 4).
+  int max_feedback_age_periods = 4;
+  realtime::RealTimeRequest realtime;
+};
+
+// Where the actuators are: simulated in this process, or servo nodes reached over DDS.
+struct TransportConfig {
+  enum class Kind { kInProcess, kDds };
+  Kind kind = Kind::kInProcess;
+  std::uint32_t test_id = 1;  // DDS partition: two tests on one network never cross
+  std::uint32_t domain_id = 0;
+  std::filesystem::path dds_config;  // Cyclone XML; empty: CYCLONEDDS_URI or defaults
+  double feedback_timeout_s = 1.0;   // lock-step: longest wait for one step's feedback
+  // Lock-step: poll for the feedback this long before sleeping until it comes (0: never).
+  double busy_wait_s = 0.0;
+  double discovery_timeout_s = 10.0;  // longest wait for every site's node at start
+};
+
+// When a test has run away, beyond the limits of each channel (coordinator_limits.h), a
+// node's stroke or force limit acting and a piston on its end stop: a servovalve fully open
+// for longer than this. A node's rate limits (velocity, increment, acceleration) shape the
+// commands it applies, also after a command that came late or was lost in real time; they
+// are recorded per step (limit_flags), and a command faster than the rig is the coordinator's
+// increment limit's to stop.
+struct RunAwayConfig {
+  double max_valve_saturation_s = 0.25;
+};
+
+// A ground-acceleration record already read and processed to the integration step.
+struct GroundMotion {
+  std::string name;  // file or generator, for titles
+  double dt_s = 0.0;
+  std::vector<double> acceleration_m_per_s2;
+  double record_step_s = 0.0;           // the record's own step, before resampling
+  double record_pga_m_per_s2 = 0.0;     // the record's own peak, before any processing
+  std::vector<std::string> processing;  // what was done to it, in order ("scaled by 0.15", ...)
+};
+
+// A numerical site carried by a remote OpenSees model through its `adapter` element: its
+// basic DOFs are the structure's `dofs`, each an experimental channel of this site whose
+// restoring force is the substructure's (no rig, no compensation). An adapter serves one run,
+// so the perfect-actuator reference that runs beside the test needs a second OpenSees process
+// on reference_port.
+struct OpenSeesSite {
+  opensees::AdapterSiteConfig adapter;  // site id, host, port, DOF count, timeouts
+  std::uint16_t reference_port = 0;
+  // The substructure's initial stiffness between its DOFs (row i, column j: the adapter's
+  // -dof order), for K0; its diagonal is the channels' estimates. Empty: diagonal only.
+  Eigen::MatrixXd stiffness_n_per_m;
+};
+
+struct TestConfig {
+  std::string name;
+  std::string description;
+  std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> structure;
+  std::vector<ExperimentalChannel> experimental;
+  Eigen::VectorXd influence;  // ground-motion influence vector (default: all ones)
+  servo::PlantConfig plant;   // every channel's actuator (each channel gets its own)
+  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
+  compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
+  double control_rate_hz = 1024.0;  // integration step = control period x iterations
+  ClockConfig clock;
+  RunAwayConfig run_away;
+  TransportConfig transport;
+  // Either a ground motion or an initial displacement (free vibration) drives the test.
+  std::optional<GroundMotion> ground_motion;
+  Eigen::VectorXd initial_displacement_m;
+  double duration_s = 0.0;  // free vibration length, or the record's length
+  std::vector<Eigen::Index> record_dofs;
+  // In process: the servo node of a site, by site id (its limits, limit actions and
+  // watchdog; identity, channels and period come from the test). A site without one runs
+  // a node with ServoNodeConfig's defaults.
+  std::map<std::uint32_t, node::ServoNodeConfig> site_nodes;
+  // The damping of the whole structure (numerical part with the specimens' stiffness), when
+  // given: the numerical part's C is it less the specimens' own damping (the structure's own
+  // damping is then none). The RTHS benchmark's 5 % in every mode of the reference building.
+  std::optional<substructure::DampingConfig> whole_structure_damping;
+  // Numerical sites in remote OpenSees processes (their channels are in `experimental`).
+  std::vector<OpenSeesSite> opensees_sites;
+  // The OpenSees site of a site id, or nullptr for a site with an actuator.
+  const OpenSeesSite* opensees_site(std::uint32_t site_id) const {
+    for (const auto& site : opensees_sites)
+      if (site.adapter.site_id == site_id) return &site;
+    return nullptr;
+  }
+};
+
+// The partition of the scenario's structure: its experimental channels, their estimated
+// stiffness (an OpenSees site's whole matrix) and the influence vector.
+substructure::PartitionConfig partition_config(const TestConfig& config, Eigen::Index dofs);
+
+// DOFs of the scenario's structure.
+Eigen::Index structure_dofs(const TestConfig& config);
+
+// Whether the numerical part leaves the specimens' own damping and mass to their measured
+// force (a test), or keeps them (the perfect-actuator reference, whose specimen is k x only:
+// the whole structure).
+enum class SpecimenShare { kLeftToSpecimens, kKeptInNumericalPart };
+
+// The numerical part of the scenario's structure, configured (without the specimens' stiffness).
+// Throws what configuring it throws. Not real-time safe.
+std::unique_ptr<substructure::NumericalModel> make_numerical_model(
+    const TestConfig& config, SpecimenShare share = SpecimenShare::kLeftToSpecimens);
+
+// The whole structure's mass, specimens' included (the structure's as given): what the ground
+// motion loads. Not real-time safe.
+linalg::StructuralMatrix whole_structure_mass(const TestConfig& config);
+
+}  // namespace rpsd::hybrid_test

@@ -1,0 +1,107 @@
+#include "rpsd/hybrid_test/actuator_links.h"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "rpsd/hybrid_test/site_kinds.h"
+
+namespace rpsd::hybrid_test {
+
+ActuatorLinks::~ActuatorLinks() { end_run(); }
+
+ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool perfect_actuator,
+                             std::span<const double> hold_m, std::uint64_t run_id) {
+  const int channels = static_cast<int>(s.experimental.size());
+  initial_force_n_.assign(static_cast<std::size_t>(channels), 0.0);
+  plant_of_channel_.assign(static_cast<std::size_t>(channels), nullptr);
+  // Sites in order of first appearance; each site's channels in the test's channel order.
+  std::map<std::uint32_t, std::size_t> index_of_site;
+  std::vector<const ExperimentalChannel*> by_channel(static_cast<std::size_t>(channels));
+  for (const auto& e : s.experimental) by_channel[static_cast<std::size_t>(e.dof.actuator_channel)] = &e;
+  for (int ch = 0; ch < channels; ++ch) {
+    const std::uint32_t site = by_channel[static_cast<std::size_t>(ch)]->site_id;
+    auto [it, added] = index_of_site.emplace(site, sites_.size());
+    if (added) sites_.push_back({site, {}});
+    sites_[it->second].channels.push_back(ch);
+  }
+
+  std::vector<transport::SiteRoute> routes;
+  for (const SiteSummary& site : sites_) {
+    SiteSetup setup;
+    setup.site_id = site.site_id;
+    setup.channels = site.channels;
+    for (int ch : site.channels) {
+      setup.hold_m.push_back(hold_m[static_cast<std::size_t>(ch)]);
+      setup.stiffness_estimate_n_per_m.push_back(
+          by_channel[static_cast<std::size_t>(ch)]->dof.specimen_stiffness_estimate_n_per_m);
+    }
+    setup.control_period_s = control_period_s;
+    setup.run_id = run_id;
+    setup.perfect_actuator = perfect_actuator;
+    built_.push_back(make_site(s, setup, shared_));
+    Site& built = *built_.back();
+    over_dds_ = over_dds_ || built.over_dds();
+    for (std::size_t i = 0; i < site.channels.size(); ++i) {
+      const auto ch = static_cast<std::size_t>(site.channels[i]);
+      initial_force_n_[ch] = built.initial_force_n(i);
+      plant_of_channel_[ch] = built.simulated_plant(i);
+    }
+    routes.push_back({site.site_id, &built.link(), site.channels});
+  }
+  multi_site_ = std::make_unique<transport::MultiSiteLink>(std::move(routes));
+
+  std::string missing;
+  for (std::size_t i = 0; i < built_.size(); ++i) {
+    if (!built_[i]->wait_for_node(s.transport.discovery_timeout_s)) {
+      // A node that refuses the run ends it at once: the run reports why (refusal_text).
+      if (built_[i]->refused()) return;
+      missing += (missing.empty() ? "" : ", ") + std::to_string(sites_[i].site_id);
+    }
+  }
+  if (!missing.empty()) {
+    throw NoNodeAnswered("no servo node answered for site(s) " + missing + " of test " +
+                         std::to_string(s.transport.test_id) + " within " +
+                         (std::ostringstream() << s.transport.discovery_timeout_s).str() +
+                         " s (is `rpsd servo-node` running with the same test_id, site_id and domain, and in mode " +
+                         (s.clock.mode == ClockConfig::Mode::kRealTime ? "real_time" : "lock_step") + "?)");
+  }
+}
+
+void ActuatorLinks::set_receive_deadline_ns(std::int64_t deadline_ns) {
+  for (auto& site : built_) site->set_receive_deadline_ns(deadline_ns);
+}
+
+bool ActuatorLinks::refused() const {
+  return std::any_of(built_.begin(), built_.end(), [](const auto& site) { return site->refused(); });
+}
+
+std::string ActuatorLinks::refusal_text() const {
+  // The sites' failures first, then the nodes' refusals.
+  std::string text;
+  for (const auto& site : built_) {
+    if (const std::string failure = site->failure(); !failure.empty()) text += (text.empty() ? "" : "; ") + failure;
+  }
+  for (const auto& site : built_) {
+    if (const std::string refusal = site->refusal_text(); !refusal.empty())
+      text += (text.empty() ? "" : "; ") + refusal;
+  }
+  return text;
+}
+
+void ActuatorLinks::end_run() {
+  if (ended_) return;
+  ended_ = true;
+  for (auto& site : built_) site->end_run();
+}
+
+std::vector<transport::DdsLinkCounters> ActuatorLinks::dds_counters() const {
+  std::vector<transport::DdsLinkCounters> counters;
+  for (const auto& site : built_) {
+    if (const auto c = site->dds_counters()) counters.push_back(*c);
+  }
+  return counters;
+}
+
+}  // namespace rpsd::hybrid_test

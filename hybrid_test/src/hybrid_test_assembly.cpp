@@ -1,0 +1,280 @@
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "rpsd/coordinator/recorder.h"
+#include "rpsd/hybrid_test/actuator_links.h"
+#include "rpsd/realtime/latency_histogram.h"
+#include "rpsd/realtime/pacer.h"
+#include "rpsd/substructure/ground_motion_load.h"
+
+namespace rpsd::hybrid_test {
+
+struct TestAssembly::Parts {
+  const TestConfig* config = nullptr;
+  bool real_time = false;
+  std::unique_ptr<substructure::NumericalModel> numerical;
+  substructure::Partition partition;
+  std::unique_ptr<integrators::Integrator> integrator;
+  std::vector<std::unique_ptr<compensation::CommandCompensator>> compensators;
+  std::unique_ptr<ActuatorLinks> actuators;
+  std::unique_ptr<transport::Link> wrapped_link;  // AssemblyOptions::wrap_link around the actuators
+  substructure::GroundMotionLoad ground_load;
+  std::unique_ptr<coordinator::RpsdLoop> loop;
+  std::unique_ptr<coordinator::Recorder> recorder;
+  std::vector<realtime::LatencyHistogram> round_trips;  // per site, its first channel
+  std::int64_t steps_planned = 0;
+  std::int64_t steps = 0;
+  TimingReport timing;
+  realtime::CpuWakeLatencyHold cpus_awake;  // from the start to finish(): real time, or over DDS
+  const std::atomic<bool>* stop_request = nullptr;
+
+  // Counts a step the loop took and hands its record on. Real-time safe.
+  void took_step(const std::function<void(const coordinator::StepRecord&)>& after_step) {
+    ++steps;
+    const coordinator::StepRecord& r = loop->last_record();
+    for (std::size_t i = 0; i < round_trips.size(); ++i) {
+      const int ch = actuators->sites()[i].channels.front();
+      round_trips[i].add(static_cast<std::int64_t>(std::llround(r.round_trip_s[static_cast<std::size_t>(ch)] * 1e9)));
+    }
+    if (after_step) after_step(r);
+  }
+
+  // Why the run stops although its step succeeded: the records cannot be written, or the
+  // user asked it to stop. Real-time safe.
+  coordinator::StepOutcome stop_after_step() const {
+    if (recorder->write_failed()) return coordinator::StepOutcome::kResultsNotWritten;
+    if (stop_request && stop_request->load(std::memory_order_relaxed)) return coordinator::StepOutcome::kInterrupted;
+    return coordinator::StepOutcome::kOk;
+  }
+};
+
+TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) : parts_(std::make_unique<Parts>()) {
+  const bool perfect_actuator = options.perfect_actuator;
+  Parts& p = *parts_;
+  p.config = &s;
+  p.numerical =
+      make_numerical_model(s, perfect_actuator ? SpecimenShare::kKeptInNumericalPart : SpecimenShare::kLeftToSpecimens);
+  const Eigen::Index dofs = p.numerical->dofs();
+  const int channels = static_cast<int>(s.experimental.size());
+
+  p.partition.configure(partition_config(s, dofs));
+
+  p.integrator = integrators::make_integrator(s.integrator);
+  const double dt_s = 1.0 / s.control_rate_hz;
+  p.integrator->configure({p.numerical->mass(), p.numerical->damping(),
+                           p.partition.with_specimen_stiffness(p.numerical->initial_stiffness())},
+                          dt_s);
+  const double control_period_s = dt_s / p.integrator->iterations_per_step();
+
+  coordinator::LoopParts parts;
+  parts.compensators.resize(static_cast<std::size_t>(channels));
+  parts.force_paths.resize(static_cast<std::size_t>(channels));
+  for (const auto& channel : s.experimental) {
+    // The loop wants channel order; the partition numbered the channels 0..n-1.
+    const auto ch = static_cast<std::size_t>(channel.dof.actuator_channel);
+    // An OpenSees site is numerical: no lag to compensate, no rig to limit.
+    const bool numerical_site = s.opensees_site(channel.site_id) != nullptr;
+    p.compensators.push_back(compensation::make_compensator(
+        perfect_actuator || numerical_site ? compensation::CompensatorConfig{compensation::PassThroughParameters{}}
+                                           : s.compensation,
+        control_period_s));
+    parts.compensators[ch] = p.compensators.back().get();
+    // The rig's envelope is every limit's default; the reference is numerical: no rig, no limits.
+    if (!perfect_actuator) {
+      parts.limits.resize(static_cast<std::size_t>(channels));
+      parts.limits[ch] =
+          numerical_site ? coordinator::CoordinatorLimits{}
+                         : coordinator::within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
+    }
+    parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};
+  }
+
+  // Start at rest at the initial displacement, the specimens holding it. The run's identity
+  // is drawn now: no other run, of this test id or any, carries it.
+  Eigen::VectorXd hold(channels);
+  p.partition.extract_commands(s.initial_displacement_m, hold);
+  const std::uint64_t run_id = transport::draw_run_id();
+  p.actuators =
+      std::make_unique<ActuatorLinks>(s, control_period_s, perfect_actuator,
+                                      std::span<const double>(hold.data(), static_cast<std::size_t>(channels)), run_id);
+
+  parts.integrator = p.integrator.get();
+  parts.numerical = p.numerical.get();
+  parts.partition = &p.partition;
+  p.stop_request = options.stop_request;
+  if (options.wrap_link) p.wrapped_link = options.wrap_link(p.actuators->link());
+  parts.link = p.wrapped_link ? p.wrapped_link.get() : &p.actuators->link();
+  parts.recorded_dofs = s.record_dofs;
+  parts.test_id = s.transport.test_id;
+  parts.run_id = run_id;
+  p.real_time = s.clock.mode == ClockConfig::Mode::kRealTime && !perfect_actuator;
+  parts.max_feedback_age_periods = p.real_time ? s.clock.max_feedback_age_periods : 0;
+  parts.stop_on_node_limits = !perfect_actuator;
+  parts.max_valve_saturation_exchanges =
+      perfect_actuator
+          ? 0
+          : std::max(1, static_cast<int>(std::lround(s.run_away.max_valve_saturation_s / control_period_s)));
+  if (s.ground_motion) {
+    p.ground_load.configure(whole_structure_mass(s), s.influence);
+    parts.ground_acceleration_m_per_s2 = s.ground_motion->acceleration_m_per_s2;
+    parts.ground_load = &p.ground_load;
+  }
+  std::vector<double> force0(static_cast<std::size_t>(channels));
+  for (int c = 0; c < channels; ++c) {
+    const coordinator::RestoringForcePath& path = parts.force_paths[static_cast<std::size_t>(c)];
+    force0[static_cast<std::size_t>(c)] = path.source == coordinator::RestoringForceSource::kMeasuredForce
+                                              ? p.actuators->initial_force_n(c)
+                                              : path.stiffness_n_per_m * hold[c];
+  }
+  p.loop = std::make_unique<coordinator::RpsdLoop>(std::move(parts));
+  p.loop->start(s.initial_displacement_m, force0);
+
+  // A paced loop must wake on time, and lock-step over DDS waits one round trip per step whose
+  // wake-ups land on other CPUs; both are slow from an idle state (docs/dds-transport.md).
+  // The CPUs are kept awake until finish(), whichever way the steps are taken. As fast as
+  // possible in process there is no such wake-up, and the CPUs are left alone.
+  if (p.real_time || p.actuators->over_dds()) {
+    realtime::RealTimeSetupReport awake;
+    p.cpus_awake = realtime::hold_cpus_awake(s.clock.realtime, awake);
+    p.timing.cpus_kept_awake = awake.cpus_kept_awake;
+    p.timing.refused = awake.refused;
+  }
+
+  p.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
+  if (p.loop->steps_available() >= 0) p.steps_planned = std::min(p.steps_planned, p.loop->steps_available());
+  p.round_trips.resize(p.actuators->sites().size());
+  coordinator::RecorderOptions recording;
+  recording.keep_records = options.keep_records;
+  p.recorder =
+      std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);
+}
+
+TestAssembly::~TestAssembly() = default;
+
+std::uint64_t TestAssembly::run_id() const { return parts_->loop->run_id(); }
+
+std::int64_t TestAssembly::steps_planned() const { return parts_->steps_planned; }
+
+bool TestAssembly::real_time() const { return parts_->real_time; }
+
+double TestAssembly::control_period_s() const {
+  return 1.0 / parts_->config->control_rate_hz / parts_->integrator->iterations_per_step();
+}
+
+std::int64_t TestAssembly::progress_every_steps() const {
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(0.5 * parts_->config->control_rate_hz));
+}
+
+coordinator::StepOutcome TestAssembly::step() {
+  if (parts_->actuators->refused()) return coordinator::StepOutcome::kRefused;
+  coordinator::StepOutcome outcome = parts_->loop->step(*parts_->recorder);
+  if (outcome == coordinator::StepOutcome::kOk) {
+    parts_->took_step({});
+    outcome = parts_->stop_after_step();
+  }
+  return outcome;
+}
+
+const coordinator::StepRecord& TestAssembly::last_record() const { return parts_->loop->last_record(); }
+
+const coordinator::LimitStop& TestAssembly::limit_stop() const { return parts_->loop->limit_stop(); }
+
+coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordinator::StepRecord&)>& after_step,
+                                           const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  Parts& p = *parts_;
+  coordinator::RpsdLoop& loop = *p.loop;
+  coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
+  if (p.actuators->refused()) return coordinator::StepOutcome::kRefused;
+  if (!p.real_time) {
+    const std::int64_t report_every = progress_every_steps();
+    for (std::int64_t n = 0; n < p.steps_planned; ++n) {
+      outcome = loop.step(*p.recorder);
+      if (outcome != coordinator::StepOutcome::kOk) break;
+      p.took_step(after_step);
+      outcome = p.stop_after_step();
+      if (outcome != coordinator::StepOutcome::kOk) break;
+      if (progress && (n + 1) % report_every == 0) progress(n + 1, p.steps_planned);
+    }
+    return outcome;
+  }
+  // The paced loop: absolute deadlines at the integration step; each cycle may wait for its
+  // feedback until a fraction of the period is left for the integrator and the recorder.
+  TimingReport& timing = p.timing;
+  timing.real_time = true;
+  loop.set_wait_for_recorder(false);  // the paced loop never waits on the writer: it drops and counts
+  const realtime::RealTimeSetupReport granted = realtime::apply_realtime(p.config->clock.realtime);
+  timing.memory_locked = granted.memory_locked;
+  timing.fifo_granted = granted.fifo_granted;
+  timing.refused += granted.refused;
+  const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / p.config->control_rate_hz));
+  realtime::Pacer pacer(period_ns);
+  realtime::LatencyHistogram jitter;
+  // The first exchange may wait the full feedback timeout (the link's first sample, page
+  // faults after mlockall); the clock starts once it is done.
+  if (p.steps_planned > 0) {
+    p.actuators->set_receive_deadline_ns(0);
+    outcome = loop.step(*p.recorder);
+    if (outcome != coordinator::StepOutcome::kOk) return outcome;
+    p.took_step(after_step);
+    outcome = p.stop_after_step();
+    if (outcome != coordinator::StepOutcome::kOk) return outcome;
+  }
+  pacer.start();
+  for (std::int64_t n = 1; n < p.steps_planned; ++n) {
+    const std::int64_t late_ns = pacer.wait_next();
+    jitter.add(late_ns);
+    loop.set_cycle_lateness_ns(late_ns);
+    p.actuators->set_receive_deadline_ns(pacer.current_deadline_ns() + period_ns * 8 / 10);
+    outcome = loop.step(*p.recorder);
+    if (outcome != coordinator::StepOutcome::kOk) break;
+    p.took_step(after_step);
+    outcome = p.stop_after_step();
+    if (outcome != coordinator::StepOutcome::kOk) break;
+  }
+  timing.cycles = pacer.cycles();
+  timing.overruns = pacer.overruns();
+  timing.skipped_deadlines = pacer.skipped_deadlines();
+  timing.jitter = jitter.summary();
+  timing.late_feedback = loop.late_feedback_total();
+  return outcome;
+}
+
+const substructure::NumericalModel& TestAssembly::numerical() const { return *parts_->numerical; }
+const substructure::Partition& TestAssembly::partition() const { return parts_->partition; }
+const ActuatorLinks& TestAssembly::actuators() const { return *parts_->actuators; }
+
+TestRun TestAssembly::finish(coordinator::StepOutcome outcome) {
+  Parts& p = *parts_;
+  p.cpus_awake = {};
+  p.actuators->end_run();
+  TestRun run;
+  run.outcome = outcome;
+  run.run_id = p.loop->run_id();
+  if (outcome == coordinator::StepOutcome::kRefused) run.refusal = p.actuators->refusal_text();
+  run.steps = p.steps;
+  run.steps_planned = p.steps_planned;
+  run.feedback_age_periods = p.loop->feedback_age_periods();
+  run.limit_stop = p.loop->limit_stop();
+  run.dropped_records = p.recorder->dropped();
+  run.records = p.recorder->finish();
+  // The last rows are written when the recorder closes its file: a failure there too means
+  // the results are not whole.
+  if (p.recorder->write_failed()) {
+    run.write_error = p.recorder->write_error();
+    if (outcome == coordinator::StepOutcome::kOk || outcome == coordinator::StepOutcome::kRecordEnded)
+      run.outcome = coordinator::StepOutcome::kResultsNotWritten;
+  }
+  run.timing = p.timing;
+  // Command-to-feedback latency per site (each site's first channel).
+  for (std::size_t i = 0; i < p.round_trips.size(); ++i) {
+    run.timing.sites.push_back({p.actuators->sites()[i].site_id, p.round_trips[i].summary()});
+  }
+  run.timing.over_dds = p.actuators->over_dds();
+  if (p.actuators->over_dds()) run.timing.dds_counters = p.actuators->dds_counters();
+  return run;
+}
+
+}  // namespace rpsd::hybrid_test

@@ -1,0 +1,130 @@
+#include "rpsd/hybrid_test/hybrid_test_config.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace rpsd::hybrid_test {
+
+Eigen::Index structure_dofs(const TestConfig& config) {
+  return std::visit(
+      [](const auto& c) -> Eigen::Index {
+        using C = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>)
+          return c.mass_kg.rows();
+        else
+          return static_cast<Eigen::Index>(c.floor_masses_kg.size());
+      },
+      config.structure);
+}
+
+namespace {
+
+std::unique_ptr<substructure::NumericalModel> configured(
+    const std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig>& structure) {
+  return std::visit(
+      [](const auto& c) -> std::unique_ptr<substructure::NumericalModel> {
+        using C = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
+          auto model = std::make_unique<substructure::LinearMdofModel>();
+          model->configure(c);
+          return model;
+        } else {
+          auto model = std::make_unique<substructure::ShearBuilding>();
+          model->configure(c);
+          return model;
+        }
+      },
+      structure);
+}
+
+// The structure less the specimens' own mass (model units: force scale x displacement scale).
+std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> without_specimen_mass(
+    const TestConfig& config) {
+  auto structure = config.structure;
+  for (const auto& e : config.experimental) {
+    if (e.specimen_mass_kg == 0.0) continue;
+    const double m = e.dof.force_scale * e.dof.displacement_scale * e.specimen_mass_kg;
+    const auto d = e.dof.dof;
+    double left = 0.0;
+    std::visit(
+        [&](auto& c) {
+          using C = std::decay_t<decltype(c)>;
+          if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
+            Eigen::MatrixXd dense = c.mass_kg.to_dense();
+            if (d < dense.rows()) left = dense(d, d) -= m;
+            c.mass_kg = linalg::StructuralMatrix(dense);
+          } else {
+            if (d < static_cast<Eigen::Index>(c.floor_masses_kg.size())) left = c.floor_masses_kg[d] -= m;
+          }
+        },
+        structure);
+    if (!(left > 0.0)) {
+      throw std::invalid_argument("experimental[].specimen_mass_kg: the specimen on DOF " + std::to_string(d) +
+                                  " is heavier than the structure's mass there");
+    }
+  }
+  return structure;
+}
+
+}  // namespace
+
+linalg::StructuralMatrix whole_structure_mass(const TestConfig& config) { return configured(config.structure)->mass(); }
+
+std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config, SpecimenShare share) {
+  const bool left_to_specimens = share == SpecimenShare::kLeftToSpecimens;
+  const bool specimens_own = std::any_of(config.experimental.begin(), config.experimental.end(), [](const auto& e) {
+    return e.specimen_damping_n_s_per_m > 0.0 || e.specimen_mass_kg > 0.0;
+  });
+  if (!config.whole_structure_damping && !specimens_own) return configured(config.structure);
+  auto structure = left_to_specimens ? without_specimen_mass(config) : config.structure;
+  Eigen::MatrixXd c;
+  if (config.whole_structure_damping) {
+    // The whole structure's C, from M and K0 with the specimens' stiffness; the numerical
+    // part keeps it less the specimens' own damping (in model units, as their stiffness).
+    const auto undamped = configured(config.structure);
+    substructure::Partition partition;
+    partition.configure(partition_config(config, undamped->dofs()));
+    const linalg::StructuralMatrix k_whole = partition.with_specimen_stiffness(undamped->initial_stiffness());
+    c = substructure::build_damping(*config.whole_structure_damping, undamped->mass(), k_whole,
+                                    "whole_structure_damping: ")
+            .c.to_dense();
+  } else {
+    // The structure's own damping is the numerical part's; the whole has the specimens' too.
+    c = configured(without_specimen_mass(config))->damping().to_dense();
+  }
+  const double sign =
+      config.whole_structure_damping ? (left_to_specimens ? -1.0 : 0.0) : (left_to_specimens ? 0.0 : 1.0);
+  for (const auto& e : config.experimental) {
+    c(e.dof.dof, e.dof.dof) += sign * e.dof.force_scale * e.dof.displacement_scale * e.specimen_damping_n_s_per_m;
+  }
+  std::visit([&c](auto& s) { s.damping = substructure::DampingMatrix{linalg::StructuralMatrix(c)}; }, structure);
+  return configured(structure);
+}
+
+substructure::PartitionConfig partition_config(const TestConfig& s, Eigen::Index dofs) {
+  substructure::PartitionConfig split;
+  split.dofs = dofs;
+  for (const auto& e : s.experimental) split.experimental.push_back(e.dof);
+  split.influence = s.influence;
+  for (const auto& site : s.opensees_sites) {
+    if (site.stiffness_n_per_m.size() == 0) continue;
+    // The site's channels, in its DOF order.
+    std::vector<Eigen::Index> channels;
+    for (const auto& e : s.experimental) {
+      if (e.site_id == site.adapter.site_id) channels.push_back(e.dof.actuator_channel);
+    }
+    std::sort(channels.begin(), channels.end());
+    for (Eigen::Index i = 0; i < site.stiffness_n_per_m.rows(); ++i) {
+      for (Eigen::Index j = i + 1; j < site.stiffness_n_per_m.cols(); ++j) {
+        if (site.stiffness_n_per_m(i, j) != 0.0) {
+          split.couplings.push_back({channels[static_cast<std::size_t>(i)], channels[static_cast<std::size_t>(j)],
+                                     site.stiffness_n_per_m(i, j)});
+        }
+      }
+    }
+  }
+  return split;
+}
+
+}  // namespace rpsd::hybrid_test

@@ -1,0 +1,15 @@
+// Reads an `rpsd_test` scenario. Every error names the file, line, column and key path.
+#pragma once
+
+#include <filesystem>
+
+#include "rpsd/hybrid_test/hybrid_test_config.h"
+#include "rpsd/scenarios/yaml_reader.h"
+
+namespace rpsd::scenarios {
+
+// Reads the scenario from the document `root` of `file` (paths inside are relative to it).
+// Not real-time safe.
+hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file);
+
+}  // namespace rpsd::scenarios

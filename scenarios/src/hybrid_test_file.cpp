@@ -1,0 +1,123 @@
+#include "rpsd/scenarios/hybrid_test_file.h"
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+#include "hybrid_test_sections.h"
+#include "rpsd/config/key_error.h"
+#include "rpsd/scenarios/ground_motion_section.h"
+
+namespace rpsd::scenarios {
+
+hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file) {
+  namespace sections = test_sections;
+  hybrid_test::TestConfig t;
+  t.name = file.stem().string();
+  sections::Document d = sections::document(root);
+  t.structure = sections::structure(*d.structure);
+  const Eigen::Index dofs = structure_dofs(t);
+
+  std::set<Eigen::Index> used;
+  std::vector<std::unique_ptr<config::Source>> limit_sections(d.experimental.size());
+  for (std::size_t i = 0; i < d.experimental.size(); ++i) {
+    t.experimental.push_back(sections::experimental(*d.experimental[i], dofs, i, limit_sections[i]));
+    if (!used.insert(t.experimental.back().dof.dof).second) d.experimental[i]->fail("dof", "is experimental twice");
+  }
+  std::set<std::uint32_t> specimen_sites;
+  for (const auto& e : t.experimental) specimen_sites.insert(e.site_id);
+  const std::size_t specimens = t.experimental.size();
+  for (auto& o : d.opensees_sites) {
+    const auto first = static_cast<int>(t.experimental.size());
+    t.opensees_sites.push_back(sections::opensees_site(*o, dofs, first, t.experimental));
+    if (t.experimental.size() > static_cast<std::size_t>(transport::kMaxChannels)) {
+      o->fail("dofs", "more than " + std::to_string(transport::kMaxChannels) + " channels in all");
+    }
+    const std::uint32_t id = t.opensees_sites.back().adapter.site_id;
+    if (specimen_sites.count(id) || std::count_if(t.opensees_sites.begin(), t.opensees_sites.end(),
+                                                  [id](const auto& x) { return x.adapter.site_id == id; }) > 1) {
+      o->fail("site", "site " + std::to_string(id) + " is already another site's");
+    }
+    for (std::size_t i = static_cast<std::size_t>(first); i < t.experimental.size(); ++i) {
+      if (!used.insert(t.experimental[i].dof.dof).second) {
+        o->fail("dofs", "DOF " + std::to_string(t.experimental[i].dof.dof) + " is taken by another site or specimen");
+      }
+    }
+  }
+  t.influence = Eigen::VectorXd::Ones(dofs);
+  if (d.influence) {
+    if (static_cast<Eigen::Index>(d.influence->size()) != dofs) root.fail("influence", "needs one value per DOF");
+    t.influence = Eigen::Map<const Eigen::VectorXd>(d.influence->data(), dofs);
+  }
+  // One specimen stiffness for the plants' load cells: the first channel's estimate.
+  if (d.servo) {
+    t.plant = servo::read_plant_config(
+        *d.servo, specimens > 0 ? t.experimental.front().dof.specimen_stiffness_estimate_n_per_m : 0.0);
+  }
+  if (d.integrator) t.integrator = sections::integrator(*d.integrator);
+  // The control rate is read before anything divides by it.
+  sections::clock(*d.clock, t);
+  // A limit may only tighten the rig's envelope.
+  const double control_period_s =
+      1.0 / t.control_rate_hz / integrators::make_integrator(t.integrator)->iterations_per_step();
+  try {
+    servo::check_control_period(t.plant, control_period_s);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(file.string() + ": servo." + e.what());
+  }
+  // And it must lie strictly inside what the converters can read (a reading on a rail may stand
+  // for any value beyond it): a limit left out is the rig's, held to the same rule.
+  for (std::size_t i = 0; i < specimens; ++i) {
+    try {
+      const coordinator::CoordinatorLimits& stated = t.experimental[i].limits;
+      coordinator::require_readable(stated,
+                                    coordinator::within_envelope(stated, servo::envelope_of(t.plant), control_period_s),
+                                    servo::reading_ranges_of(t.plant), "servo.converters");
+    } catch (const config::KeyError& e) {
+      if (limit_sections[i]) limit_sections[i]->fail(e.path(), e.problem());
+      throw ConfigError(file.string() + ": experimental[" + std::to_string(i) + "].limits." + e.what());
+    }
+  }
+  if (d.transport) sections::transport(*d.transport, t);
+  if (!t.opensees_sites.empty() && t.clock.mode == hybrid_test::ClockConfig::Mode::kRealTime) {
+    root.fail("opensees_sites",
+              "an OpenSees site answers when its static step converges: clock.mode as_fast_as_possible");
+  }
+  if (d.compensation) t.compensation = sections::compensation(*d.compensation, control_period_s);
+
+  const double dt_s = 1.0 / t.control_rate_hz;
+  t.initial_displacement_m = Eigen::VectorXd::Zero(dofs);
+  if (d.ground_motion) {
+    t.ground_motion = read_ground_motion_section(*d.ground_motion, dt_s);
+    t.duration_s = dt_s * static_cast<double>(t.ground_motion->acceleration_m_per_s2.size() - 1);
+  } else {
+    sections::free_vibration(*d.free_vibration, dofs, t);
+  }
+  if (d.output) t.record_dofs = sections::record_dofs(*d.output, dofs);
+  if (d.whole_structure_damping) {
+    const bool own = std::visit(
+        [](const auto& c) { return !std::holds_alternative<substructure::Undamped>(c.damping); }, t.structure);
+    if (own) root.fail("whole_structure_damping", "give either structure.damping or whole_structure_damping, not both");
+    t.whole_structure_damping = sections::damping(*d.whole_structure_damping, nullptr);
+    try {
+      (void)hybrid_test::make_numerical_model(t);
+    } catch (const std::invalid_argument& e) {
+      d.whole_structure_damping->fail_section(e.what());
+    }
+  }
+  const bool specimen_masses =
+      std::any_of(t.experimental.begin(), t.experimental.end(), [](const auto& e) { return e.specimen_mass_kg > 0.0; });
+  if (specimen_masses) {
+    try {
+      (void)hybrid_test::make_numerical_model(t);
+    } catch (const std::invalid_argument& e) {
+      root.fail("experimental", e.what());
+    }
+  }
+  if (t.record_dofs.empty()) {
+    for (Eigen::Index i = 0; i < std::min<Eigen::Index>(dofs, 8); ++i) t.record_dofs.push_back(i);
+  }
+  return t;
+}
+
+}  // namespace rpsd::scenarios

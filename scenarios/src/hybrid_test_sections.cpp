@@ -1,0 +1,466 @@
+#include "hybrid_test_sections.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "physical_ranges.h"
+#include "rpsd/compensation/compensator_factory.h"
+#include "rpsd/config/closest_name.h"
+#include "rpsd/config/input_file.h"
+#include "rpsd/config/kind_list.h"
+#include "rpsd/integrators/factory.h"
+#include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/study_file.h"
+#include "rpsd/transport/messages.h"
+
+namespace rpsd::scenarios::test_sections {
+namespace {
+
+using config::Number;
+using namespace ranges;
+
+// An inline matrix (rows, a diagonal or one number) has at most this many rows: larger
+// structures come as Matrix Market files.
+constexpr std::size_t kMaxInlineDofs = 200;
+// The recorder keeps at most 8 DOFs.
+constexpr std::size_t kMaxRecordedDofs = 8;
+// The largest structure a file may describe (the Matrix Market reader's cap).
+constexpr std::size_t kMaxDofs = 100'000;
+
+Eigen::MatrixXd matrix_from_rows(const std::vector<std::vector<double>>& rows) {
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.front().size()));
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t c = 0; c < rows[r].size(); ++c)
+      m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c];
+  return m;
+}
+
+substructure::DampingConfig optional_damping(config::Source& st, const Eigen::MatrixXd* mass) {
+  auto d = st.optional_section("damping", "the structure's damping (none: undamped)");
+  return d ? damping(*d, mass) : substructure::Undamped{};
+}
+
+}  // namespace
+
+Document document(config::Source& root) {
+  Document d;
+  d.structure = root.section("structure", "the numerical substructure");
+  // A test may be numerical apart from OpenSees sites: then it needs no specimen, and no servo.
+  // A listing (has() says no to everything, "structure" included) lists both lists.
+  const bool listing = !root.has("structure");
+  if (root.has("opensees_sites") || listing) {
+    d.opensees_sites = root.sections("opensees_sites", transport::kMaxChannels,
+                                     "numerical sites: remote OpenSees models behind an adapter element");
+  }
+  if (d.opensees_sites.empty() || root.has("experimental") || listing) {
+    d.experimental =
+        root.sections("experimental", transport::kMaxChannels, "the DOFs a specimen takes, one per channel");
+  }
+  d.influence = root.optional_numbers(
+      "influence", Number::between(-1.0, 1.0, "", "each DOF's share of the ground acceleration (default: all 1)"),
+      kMaxDofs);
+  d.servo = d.experimental.empty() ? root.optional_section("servo", "every channel's actuator (servo/)")
+                                   : root.section("servo", "every channel's actuator (servo/)");
+  d.integrator = root.optional_section("integrator", "the time-stepping scheme (default: central_difference)");
+  d.clock = root.section("clock", "how the test is paced");
+  d.transport = root.optional_section("transport", "how the sites are reached (default: in process)");
+  d.compensation = root.optional_section("compensation", "the delay compensator (default: none)");
+  d.ground_motion = root.optional_section("ground_motion", "the record that drives the test");
+  d.free_vibration = root.optional_section("free_vibration", "or: a free vibration from given displacements");
+  d.output = root.optional_section("output", "what is recorded");
+  d.whole_structure_damping = root.optional_section(
+      "whole_structure_damping",
+      "the damping of the whole structure (numerical part and specimens); the numerical part gets it less the "
+      "specimens' own");
+  if ((d.ground_motion != nullptr) == (d.free_vibration != nullptr)) {
+    root.fail(d.ground_motion ? "free_vibration" : "ground_motion",
+              "give exactly one of ground_motion or free_vibration");
+  }
+  return d;
+}
+
+substructure::LinearMdofConfig linear_structure(config::Source& st) {
+  substructure::LinearMdofConfig c;
+  const Eigen::MatrixXd m =
+      matrix_from_rows(st.matrix("mass_kg", Number{"kg", "the mass matrix", 0.0, kMaxMassKg}, kMaxInlineDofs));
+  const Eigen::MatrixXd k = matrix_from_rows(
+      st.matrix("stiffness_n_per_m", Number{"N/m", "the stiffness matrix", 0.0, kMaxStiffnessNPerM}, kMaxInlineDofs));
+  c.damping = optional_damping(st, &m);
+  if (m.rows() != k.rows() || m.cols() != k.cols()) st.fail("stiffness_n_per_m", "must have the size of mass_kg");
+  c.mass_kg = linalg::StructuralMatrix(m);
+  c.stiffness_n_per_m = linalg::StructuralMatrix(k);
+  return c;
+}
+
+MatrixMarketStructure matrix_market_structure(config::Source& st) {
+  MatrixMarketStructure s;
+  s.files.mass_file = st.relative_file("mass_file", "M, a Matrix Market file (relative to this file)");
+  s.files.stiffness_file = st.relative_file("stiffness_file", "K, a Matrix Market file");
+  if (auto c = st.optional_relative_file("damping_file", "C, a Matrix Market file (or damping:)"))
+    s.files.damping_file = *c;
+  s.damping = optional_damping(st, nullptr);
+  return s;
+}
+
+substructure::ShearBuildingConfig shear_building(config::Source& st) {
+  substructure::ShearBuildingConfig c;
+  c.floor_masses_kg = st.numbers("floor_masses_kg", Number{"kg", "each floor's mass, bottom up", 0.0, kMaxMassKg, true},
+                                 kMaxInlineDofs);
+  for (auto& s : st.sections("stories", kMaxInlineDofs, "each story's spring, bottom up")) {
+    c.story_springs.push_back(story(*s));
+  }
+  c.damping = optional_damping(st, nullptr);
+  if (c.story_springs.size() != c.floor_masses_kg.size()) st.fail("stories", "needs one story per floor mass");
+  return c;
+}
+
+Structure structure(config::Source& st) {
+  const std::string kind =
+      st.choice("kind", {"linear", "matrix_market", "shear_building"}, "the numerical substructure");
+  Structure result;
+  try {
+    if (kind == "linear") {
+      substructure::LinearMdofConfig c = linear_structure(st);
+      st.finish();
+      substructure::LinearMdofModel probe;
+      probe.configure(c);  // validates: symmetric, positive definite, sizes
+      result = std::move(c);
+    } else if (kind == "matrix_market") {
+      MatrixMarketStructure s = matrix_market_structure(st);
+      st.finish();
+      auto c = substructure::linear_config_from_matrix_market(s.files, s.damping);
+      substructure::LinearMdofModel probe;
+      probe.configure(c);
+      result = std::move(c);
+    } else {
+      substructure::ShearBuildingConfig c = shear_building(st);
+      st.finish();
+      substructure::ShearBuilding probe;
+      probe.configure(c);
+      result = std::move(c);
+    }
+  } catch (const std::invalid_argument& e) {
+    st.fail("kind", e.what());
+  } catch (const std::runtime_error& e) {
+    if (dynamic_cast<const ConfigError*>(&e)) throw;
+    st.fail("kind", e.what());
+  }
+  return result;
+}
+
+substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* mass) {
+  substructure::DampingConfig result = substructure::Undamped{};
+  const Number ratio = Number::between(0.0, 1.0, "", "fraction of critical damping");
+  auto rayleigh = d.optional_section("rayleigh", "Rayleigh damping fitted to two modes");
+  if (rayleigh) {
+    substructure::RayleighFromModes modes;
+    modes.mode_a = static_cast<int>(rayleigh->whole_number("mode_a", 1, 100000, "the first mode (1: the lowest)"));
+    modes.mode_b = static_cast<int>(rayleigh->whole_number("mode_b", 1, 100000, "the second mode"));
+    modes.damping_ratio_a = rayleigh->number("damping_ratio_a", ratio);
+    modes.damping_ratio_b = rayleigh->number("damping_ratio_b", ratio);
+    rayleigh->finish();
+    result = modes;
+  }
+  auto modal = d.optional_section("modal", "classical damping with a ratio per mode");
+  if (modal) {
+    const auto ratios = modal->numbers(
+        "damping_ratios", Number::between(0.0, 1.0, "", "each mode's fraction of critical (one: every mode)"), 100000);
+    modal->finish();
+    result = substructure::ModalDamping{ratios};
+  }
+  // C = a0 M + a1 K0 as OpenSees' `rayleigh a0 0 a1 0` gives it: the same C when a model is
+  // split between rpsd and OpenSees, where damping fitted to this part's modes would differ.
+  auto coefficients = d.optional_section("rayleigh_coefficients", "Rayleigh damping given by its coefficients");
+  if (coefficients) {
+    substructure::RayleighCoefficients c;
+    c.a0_per_s = coefficients->number_or("a0_per_s", 0.0, Number::between(0.0, 1e4, "1/s", "C = a0 M + a1 K0: a0"));
+    c.a1_s = coefficients->number_or("a1_s", 0.0, Number::between(0.0, 10.0, "s", "C = a0 M + a1 K0: a1"));
+    coefficients->finish();
+    result = c;
+  }
+  // One DOF: c = 2 zeta sqrt(k m); the stiffness is the structure's total (numerical plus
+  // the experimental estimate), given here explicitly.
+  const auto zeta = d.optional_number("damping_ratio", Number::between(0.0, 1.0, "", "one DOF: fraction of critical"));
+  const auto k = d.optional_number("of_stiffness_n_per_m", Number{"N/m", "one DOF: the stiffness the ratio refers to",
+                                                                  0.0, kMaxStiffnessNPerM, true});
+  d.finish();
+  if (rayleigh && zeta) d.fail("rayleigh", "give either rayleigh or damping_ratio, not both");
+  if (static_cast<int>(rayleigh != nullptr) + static_cast<int>(coefficients != nullptr) +
+          static_cast<int>(modal != nullptr) + static_cast<int>(zeta.has_value()) >
+      1) {
+    d.fail(modal ? "modal" : "rayleigh_coefficients",
+           "give one of rayleigh, rayleigh_coefficients, modal or damping_ratio");
+  }
+  if (zeta && !k) d.fail("damping_ratio", "needs of_stiffness_n_per_m, the stiffness it refers to");
+  if (k && !zeta) d.fail("of_stiffness_n_per_m", "only with damping_ratio");
+  if (zeta) {
+    if (!mass || mass->rows() != 1)
+      d.fail("damping_ratio", "a single damping ratio needs a one-DOF structure; use rayleigh");
+    result = substructure::DampingMatrix{
+        linalg::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, 2.0 * *zeta * std::sqrt(*k * (*mass)(0, 0))))};
+  }
+  return result;
+}
+
+substructure::StorySpringConfig story(config::Source& s) {
+  const std::string kind =
+      s.choice("kind", std::vector<std::string_view>(kStoryKinds.begin(), kStoryKinds.end()), "the story's spring");
+  return story_of_kind(s, kind);
+}
+
+substructure::StorySpringConfig story_of_kind(config::Source& s, std::string_view kind) {
+  substructure::StorySpringConfig spring;
+  const Number stiffness{"N/m", "the initial stiffness", 0.0, kMaxStiffnessNPerM, true};
+  const Number post_yield = Number::between(0.0, 1.0, "", "post-yield over initial stiffness");
+  if (kind == "linear") {
+    spring = substructure::LinearSpringConfig{s.number("stiffness_n_per_m", stiffness)};
+  } else if (kind == "bilinear") {
+    substructure::BilinearSpringConfig b;
+    b.stiffness_n_per_m = s.number("stiffness_n_per_m", stiffness);
+    b.yield_force_n = s.number("yield_force_n", Number{"N", "the yield force", 0.0, kMaxForceN, true});
+    b.post_yield_ratio = s.number("post_yield_ratio", post_yield);
+    spring = b;
+  } else {
+    // beta and gamma in 1/m^n: 1e6 is a yield displacement of a micrometre.
+    substructure::BoucWenSpringConfig b;
+    b.stiffness_n_per_m = s.number("stiffness_n_per_m", stiffness);
+    b.post_yield_ratio = s.number("post_yield_ratio", post_yield);
+    b.A = s.number_or("A", b.A, Number{"", "Bouc-Wen A", 0.0, 100.0, true});
+    b.beta = s.number("beta", Number::between(0.0, 1e6, "1/m^n", "Bouc-Wen beta"));
+    b.gamma = s.number("gamma", Number::between(-1e6, 1e6, "1/m^n", "Bouc-Wen gamma (beta + gamma > 0)"));
+    b.n = s.number_or("n", b.n, Number::between(1.0, 20.0, "", "Bouc-Wen n, the sharpness of yielding"));
+    spring = b;
+  }
+  s.finish();
+  return spring;
+}
+
+coordinator::CoordinatorLimits limits(config::Source& l) {
+  coordinator::CoordinatorLimits c;
+  c.max_stroke_m = l.number_or("max_stroke_m", c.max_stroke_m,
+                               Number{"m", "|command| (default: the rig's stroke)", 0.0, kMaxDisplacementM, true});
+  c.max_increment_m =
+      l.number_or("max_increment_m", c.max_increment_m,
+                  Number{"m", "|command change| per control period (default: the rig's velocity over one period)", 0.0,
+                         kMaxDisplacementM, true});
+  c.max_force_n =
+      l.number_or("max_force_n", c.max_force_n,
+                  Number{"N", "|measured force| (default: the rig's force capacity)", 0.0, kMaxForceN, true});
+  c.max_tracking_error_m =
+      l.number_or("max_tracking_error_m", c.max_tracking_error_m,
+                  Number{"m", "|target - measured| before the test counts as run away (default: half the stroke)", 0.0,
+                         kMaxDisplacementM, true});
+  l.finish();
+  return c;
+}
+
+void specimen_channel(config::Source& e, std::size_t index, hybrid_test::ExperimentalChannel& channel,
+                      std::unique_ptr<config::Source>& limits_section) {
+  channel.dof.actuator_channel = e.whole_number_or("channel", 0, transport::kMaxChannels - 1, static_cast<long>(index),
+                                                   "the actuator channel (default: i)");
+  // Similitude scales of a reduced-size specimen: 1:1000 geometry, forces down to 1e-6.
+  channel.dof.displacement_scale = e.number_or(
+      "displacement_scale", 1.0, Number::between(1e-3, 1e3, "", "specimen displacement per model displacement"));
+  channel.dof.force_scale =
+      e.number_or("force_scale", 1.0, Number::between(1e-6, 1e6, "", "model force per specimen force"));
+  channel.dof.specimen_stiffness_estimate_n_per_m =
+      e.number("specimen_stiffness_n_per_m",
+               Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen's estimated stiffness"));
+  channel.specimen_damping_n_s_per_m =
+      e.number_or("specimen_damping_n_s_per_m", 0.0,
+                  Number::between(0.0, 1e9, "N s/m", "the specimen's own damping (taken from the whole structure's)"));
+  channel.specimen_mass_kg =
+      e.number_or("specimen_mass_kg", 0.0,
+                  Number::between(0.0, 1e9, "kg",
+                                  "the specimen's own mass (taken from the structure's; the ground motion loads it)"));
+  const std::string source = e.choice("restoring_force", {"measured_force", "stiffness_times_displacement"},
+                                      "what the structure takes as the specimen's force");
+  channel.restoring_force = source == "measured_force"
+                                ? coordinator::RestoringForceSource::kMeasuredForce
+                                : coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
+  channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1, "the site's node"));
+  limits_section = e.optional_section("limits", "the coordinator's limits on this channel (only tighter than the rig)");
+  if (limits_section) channel.limits = limits(*limits_section);
+}
+
+hybrid_test::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
+                                              std::unique_ptr<config::Source>& limits_section) {
+  hybrid_test::ExperimentalChannel channel;
+  channel.dof.dof = e.whole_number("dof", 0, dofs - 1, "the structure's DOF the specimen takes (0-based)");
+  specimen_channel(e, index, channel, limits_section);
+  e.finish();
+  return channel;
+}
+
+hybrid_test::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, int first_channel,
+                                        std::vector<hybrid_test::ExperimentalChannel>& channels) {
+  hybrid_test::OpenSeesSite site;
+  opensees::AdapterSiteConfig& a = site.adapter;
+  a.site_id = static_cast<std::uint32_t>(o.whole_number("site", 1, 1'000'000, "the site's id (not a specimen's)"));
+  a.host = o.optional_text("host", "the host of the OpenSees process (default 127.0.0.1)").value_or(a.host);
+  a.port = static_cast<std::uint16_t>(o.whole_number("port", 1, 65535, "the adapter element's port"));
+  site.reference_port = static_cast<std::uint16_t>(o.whole_number(
+      "reference_port", 1, 65535, "a second OpenSees process of the same model, for the perfect-actuator reference"));
+  const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "", "a DOF of the structure (0-based)");
+  const std::vector<double> listed = o.numbers("dofs", dof, static_cast<std::size_t>(transport::kMaxChannels));
+  const auto stiffness = o.matrix(
+      "stiffness_n_per_m",
+      Number::between(-kMaxStiffnessNPerM, kMaxStiffnessNPerM, "N/m",
+                      "the substructure's initial stiffness over its DOFs (rows, or a diagonal), for K0 and the modes"),
+      static_cast<std::size_t>(transport::kMaxChannels));
+  a.connect_timeout_s = o.number_or("connect_timeout_s", a.connect_timeout_s,
+                                    Number{"s", "the longest wait for the adapter to listen", 0.0, 3600.0, true});
+  a.reply_timeout_s = o.number_or("reply_timeout_s", a.reply_timeout_s,
+                                  Number{"s", "the longest wait for one step's forces", 0.0, 3600.0, true});
+  o.finish();
+  if (site.reference_port == a.port) o.fail("reference_port", "must differ from port: an adapter serves one run");
+  a.dofs = static_cast<int>(listed.size());
+  if (stiffness.size() != listed.size()) o.fail("stiffness_n_per_m", "needs one row per DOF in dofs");
+  site.stiffness_n_per_m = matrix_from_rows(stiffness);
+  if (!site.stiffness_n_per_m.isApprox(site.stiffness_n_per_m.transpose()) ||
+      (site.stiffness_n_per_m.diagonal().array() < 0.0).any()) {
+    o.fail("stiffness_n_per_m", "must be symmetric with no negative diagonal entry");
+  }
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    if (listed[i] != std::floor(listed[i])) o.fail("dofs", "expected whole DOF numbers");
+    hybrid_test::ExperimentalChannel channel;
+    channel.dof.dof = static_cast<Eigen::Index>(listed[i]);
+    channel.dof.actuator_channel = first_channel + static_cast<int>(i);
+    channel.dof.specimen_stiffness_estimate_n_per_m =
+        site.stiffness_n_per_m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+    channel.restoring_force = coordinator::RestoringForceSource::kMeasuredForce;
+    channel.site_id = a.site_id;
+    channels.push_back(channel);
+  }
+  return site;
+}
+
+std::vector<std::string_view> integrator_names() { return integrators::scheme_names(); }
+
+void check_integrator_name(config::Source& r, std::string_view key) {
+  if (!r.has(key)) return;
+  const std::string name = r.text(key, "the time-stepping scheme");
+  if (default_integrator(name)) return;
+  const std::vector<std::string_view> names = integrator_names();
+  r.fail(key,
+         "unknown integrator \"" + name + "\"; expected " + config::listed(names) + config::did_you_mean(name, names));
+}
+
+void integrator_parameters(config::Source& r, integrators::IntegratorConfig& config) {
+  const Number rho = Number::between(0.0, 1.0, "", "spectral radius at infinite frequency");
+  const Number alpha = Number::between(-1.0 / 3.0, 0.0, "", "numerical damping alpha");
+  if (auto* kr = std::get_if<integrators::KolayRiclesAlphaParams>(&config))
+    kr->rho_inf = r.number_or("rho_inf", kr->rho_inf, rho);
+  if (auto* ga = std::get_if<integrators::GeneralizedAlphaParams>(&config))
+    ga->rho_inf = r.number_or("rho_inf", ga->rho_inf, rho);
+  if (auto* hht = std::get_if<integrators::HhtAlphaParams>(&config))
+    hht->alpha = r.number_or("alpha", hht->alpha, alpha);
+  if (auto* os = std::get_if<integrators::AlphaOsParams>(&config)) os->alpha = r.number_or("alpha", os->alpha, alpha);
+}
+
+integrators::IntegratorConfig integrator(config::Source& r) {
+  check_integrator_name(r, "scheme");
+  const std::string scheme = r.choice("scheme", integrator_names(), "the time-stepping scheme");
+  integrators::IntegratorConfig config = *default_integrator(scheme);
+  integrator_parameters(r, config);
+  r.finish();
+  try {
+    integrators::make_integrator(config);
+  } catch (const std::invalid_argument& e) {
+    r.fail("scheme", e.what());
+  }
+  return config;
+}
+
+void clock(config::Source& c, hybrid_test::TestConfig& t) {
+  const std::string mode =
+      c.choice("mode", {"as_fast_as_possible", "real_time"}, "lock-step as fast as the sites answer, or paced");
+  t.clock.mode = mode == "real_time" ? hybrid_test::ClockConfig::Mode::kRealTime
+                                     : hybrid_test::ClockConfig::Mode::kAsFastAsPossible;
+  t.control_rate_hz = c.number(
+      "control_rate_hz", Number::between(kMinControlRateHz, kMaxControlRateHz, "Hz", "integration steps per second"));
+  t.clock.max_feedback_age_periods = static_cast<int>(c.whole_number_or(
+      "max_feedback_age_periods", 1, 1000, t.clock.max_feedback_age_periods, "how stale a feedback may be"));
+  t.clock.realtime.lock_memory =
+      c.boolean_or("lock_memory", t.clock.realtime.lock_memory, "mlockall the process (real time)");
+  t.clock.realtime.fifo_priority = static_cast<int>(
+      c.whole_number_or("fifo_priority", 0, 99, t.clock.realtime.fifo_priority, "SCHED_FIFO priority, 0: none"));
+  t.clock.realtime.keep_cpus_awake =
+      c.boolean_or("keep_cpus_awake", t.clock.realtime.keep_cpus_awake, "hold /dev/cpu_dma_latency at 0");
+  c.finish();
+}
+
+void transport(config::Source& r, hybrid_test::TestConfig& t) {
+  const std::string kind = r.choice("kind", {"in_process", "dds"}, "sites in this process, or over DDS");
+  t.transport.kind =
+      kind == "dds" ? hybrid_test::TransportConfig::Kind::kDds : hybrid_test::TransportConfig::Kind::kInProcess;
+  t.transport.test_id = static_cast<std::uint32_t>(
+      r.whole_number_or("test_id", 1, 4'000'000'000L, t.transport.test_id, "the test the nodes must serve"));
+  t.transport.domain_id =
+      static_cast<std::uint32_t>(r.whole_number_or("domain_id", 0, 232, t.transport.domain_id, "the DDS domain"));
+  const auto config = r.optional_relative_file("dds_config", "a Cyclone DDS XML file (relative to this file)");
+  t.transport.feedback_timeout_s =
+      r.number_or("feedback_timeout_s", t.transport.feedback_timeout_s,
+                  Number{"s", "lock-step: the longest wait for one step's feedback", 0.0, 60.0, true});
+  t.transport.discovery_timeout_s =
+      r.number_or("discovery_timeout_s", t.transport.discovery_timeout_s,
+                  Number{"s", "the longest wait for every site's node at the start", 0.0, 600.0, true});
+  t.transport.busy_wait_s =
+      r.number_or("busy_wait_s", t.transport.busy_wait_s,
+                  Number::between(0.0, 0.01, "s", "lock-step: spin this long for feedback before sleeping"));
+  r.finish();
+  if (config) {
+    t.transport.dds_config = *config;
+    try {
+      config::check_input_file(t.transport.dds_config, config::kMaxYamlFileBytes, "DDS configuration");
+    } catch (const config::InputFileError& e) {
+      r.fail("dds_config", e.what());
+    }
+  }
+  if (t.transport.busy_wait_s > 0.0 && t.clock.mode == hybrid_test::ClockConfig::Mode::kRealTime) {
+    r.fail("busy_wait_s",
+           "lock-step only (clock.mode as_fast_as_possible): a real-time loop must not spin on a core its "
+           "own receive thread may need");
+  }
+}
+
+compensation::CompensatorConfig compensation(config::Source& r, double control_period_s) {
+  using Kinds = compensation::CompensatorKinds;
+  const std::string kind = r.choice("kind", Kinds::names(), "the compensator (compensation/)");
+  compensation::CompensatorConfig config;
+  try {
+    config = *Kinds::read(kind, r);
+    r.finish();
+    compensation::make_compensator(config, control_period_s);
+  } catch (const std::invalid_argument& e) {
+    // The compensator's own checks (a design that cannot work at this control rate).
+    r.fail("kind", e.what());
+  }
+  return config;
+}
+
+void free_vibration(config::Source& f, Eigen::Index dofs, hybrid_test::TestConfig& t) {
+  const auto d0 =
+      f.numbers("initial_displacement_m",
+                Number::between(-kMaxDisplacementM, kMaxDisplacementM, "m", "each DOF's displacement at t = 0"),
+                static_cast<std::size_t>(dofs));
+  t.duration_s = f.number("duration_s", Number{"s", "how long the test runs", 0.0, kMaxDurationS, true});
+  f.finish();
+  if (static_cast<Eigen::Index>(d0.size()) != dofs) f.fail("initial_displacement_m", "needs one value per DOF");
+  t.initial_displacement_m = Eigen::Map<const Eigen::VectorXd>(d0.data(), dofs);
+  if (t.duration_s * t.control_rate_hz > kMaxSteps) f.fail("duration_s", "more than 1e9 steps");
+}
+
+std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs) {
+  // A longer list than the recorder keeps is refused before its items are read.
+  const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "", "a DOF to record (0-based)");
+  std::vector<Eigen::Index> result;
+  for (double d : output.numbers("record_dofs", dof, kMaxRecordedDofs)) {
+    if (d != std::floor(d)) output.fail("record_dofs", "expected whole DOF numbers");
+    result.push_back(static_cast<Eigen::Index>(d));
+  }
+  output.finish();
+  return result;
+}
+
+}  // namespace rpsd::scenarios::test_sections

@@ -1,0 +1,82 @@
+// The sections of an rpsd_test scenario, each read from a config::Source: the scenario
+// reader (test_scenario_file.cpp) composes them, and the scenario reference lists their keys
+// by running each on a config::KeyTable. Each reads all its keys before it checks how they
+// fit together, so that a listing stopped by such a check has listed every key.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "rpsd/config/source.h"
+#include "rpsd/hybrid_test/hybrid_test_config.h"
+#include "rpsd/substructure/matrix_market.h"
+
+namespace rpsd::scenarios::test_sections {
+
+// The document's own keys; every section is a handle, read afterwards in order.
+struct Document {
+  std::unique_ptr<config::Source> structure;
+  std::vector<std::unique_ptr<config::Source>> experimental;  // empty when only OpenSees sites take DOFs
+  std::vector<std::unique_ptr<config::Source>> opensees_sites;
+  std::optional<std::vector<double>> influence;
+  std::unique_ptr<config::Source> servo;
+  std::unique_ptr<config::Source> integrator;
+  std::unique_ptr<config::Source> clock;
+  std::unique_ptr<config::Source> transport;
+  std::unique_ptr<config::Source> compensation;
+  std::unique_ptr<config::Source> ground_motion;
+  std::unique_ptr<config::Source> free_vibration;
+  std::unique_ptr<config::Source> output;
+  std::unique_ptr<config::Source> whole_structure_damping;
+};
+Document document(config::Source& root);
+
+// `structure:` by its kind, checked (a model is configured from it); files relative to the
+// section's file (config::Source::relative_file).
+using Structure = std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig>;
+Structure structure(config::Source& st);
+// Each kind's keys, unchecked.
+substructure::LinearMdofConfig linear_structure(config::Source& st);
+struct MatrixMarketStructure {
+  substructure::MatrixMarketModelFiles files;
+  substructure::DampingConfig damping;
+};
+MatrixMarketStructure matrix_market_structure(config::Source& st);
+substructure::ShearBuildingConfig shear_building(config::Source& st);
+// `damping:`; `mass` is the structure's when it is known (a single ratio needs it).
+substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* mass);
+inline constexpr std::array<std::string_view, 3> kStoryKinds = {"linear", "bilinear", "bouc_wen"};
+substructure::StorySpringConfig story(config::Source& s);
+substructure::StorySpringConfig story_of_kind(config::Source& s, std::string_view kind);
+
+// experimental[i]; its `limits:` handle is left in `limits` for the envelope check.
+hybrid_test::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
+                                              std::unique_ptr<config::Source>& limits);
+coordinator::CoordinatorLimits limits(config::Source& l);
+// A specimen channel's own keys (channel, scales, stiffness, restoring force, site, limits),
+// whatever says which DOF it takes; the caller finishes the section.
+void specimen_channel(config::Source& e, std::size_t index, hybrid_test::ExperimentalChannel& channel,
+                      std::unique_ptr<config::Source>& limits_section);
+// opensees_sites[i]: the site, and one channel per DOF it carries (channels from `first_channel`).
+hybrid_test::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, int first_channel,
+                                        std::vector<hybrid_test::ExperimentalChannel>& channels);
+
+integrators::IntegratorConfig integrator(config::Source& r);
+// The keys of one scheme (rho_inf, alpha) into its default parameters.
+void integrator_parameters(config::Source& r, integrators::IntegratorConfig& config);
+std::vector<std::string_view> integrator_names();
+// An unknown scheme at `key` is refused with every name and a did-you-mean (a listing, whose
+// has() says no, lists nothing here: the choice that follows lists the key).
+void check_integrator_name(config::Source& r, std::string_view key);
+
+void clock(config::Source& c, hybrid_test::TestConfig& t);
+void transport(config::Source& r, hybrid_test::TestConfig& t);
+compensation::CompensatorConfig compensation(config::Source& r, double control_period_s);
+void free_vibration(config::Source& f, Eigen::Index dofs, hybrid_test::TestConfig& t);
+std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs);
+
+}  // namespace rpsd::scenarios::test_sections

@@ -1,0 +1,199 @@
+// rpsd_test scenarios: typed values, located errors, --set overrides.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "../servo/paper_rig.h"
+#include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/study_file.h"
+#include "rpsd/servo/plant_factory.h"
+
+namespace rpsd::scenarios {
+namespace {
+
+std::filesystem::path example() { return testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml"; }
+
+std::string error_of(const std::vector<Override>& overrides) {
+  try {
+    load_study(example(), overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error";
+  return {};
+}
+
+TEST(TestScenarioFile, ReadsTheTypedScenario) {
+  const auto file = load_study(example());
+  const auto& t = std::get<hybrid_test::TestConfig>(file.study);
+  EXPECT_EQ(structure_dofs(t), 1);
+  ASSERT_EQ(t.experimental.size(), 1u);
+  EXPECT_DOUBLE_EQ(t.experimental[0].dof.specimen_stiffness_estimate_n_per_m, 700.8e3);
+  EXPECT_EQ(t.experimental[0].restoring_force, coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement);
+  EXPECT_DOUBLE_EQ(std::get<servo::PureDelayParameters>(t.plant).delay_s, 0.005);
+  const auto& comp = std::get<compensation::PolynomialExtrapolationParameters>(t.compensation);
+  EXPECT_EQ(comp.order, 3);
+  EXPECT_DOUBLE_EQ(t.control_rate_hz, 1024.0);
+  EXPECT_DOUBLE_EQ(t.initial_displacement_m[0], 0.01);
+  EXPECT_DOUBLE_EQ(t.duration_s, 5.0);
+  // c = 2 zeta sqrt(k m)
+  const auto& linear = std::get<substructure::LinearMdofConfig>(t.structure);
+  const auto& c = std::get<substructure::DampingMatrix>(linear.damping).c;
+  EXPECT_NEAR(c.coeff(0, 0), 2.0 * 0.011 * std::sqrt(700.8e3 * 7080.0), 1e-9);
+}
+
+TEST(TestScenarioFile, OverridesReplaceValuesAndAreSavedInTheEffectiveScenario) {
+  const auto file =
+      load_study(example(), {parse_override("servo.delay_s=0.02"), parse_override("clock.control_rate_hz=2048")});
+  const auto& t = std::get<hybrid_test::TestConfig>(file.study);
+  EXPECT_DOUBLE_EQ(std::get<servo::PureDelayParameters>(t.plant).delay_s, 0.02);
+  EXPECT_DOUBLE_EQ(t.control_rate_hz, 2048.0);
+  EXPECT_NE(file.effective_yaml.find("delay_s: 0.02"), std::string::npos) << file.effective_yaml;
+}
+
+// A real-time run keeps the CPUs out of slow idle states unless the scenario says not to.
+TEST(TestScenarioFile, KeepingTheCpusAwakeIsOnUnlessTurnedOff) {
+  EXPECT_TRUE(std::get<hybrid_test::TestConfig>(load_study(example()).study).clock.realtime.keep_cpus_awake);
+  EXPECT_FALSE(
+      std::get<hybrid_test::TestConfig>(load_study(example(), {parse_override("clock.keep_cpus_awake=false")}).study)
+          .clock.realtime.keep_cpus_awake);
+  EXPECT_NE(error_of({parse_override("clock.keep_cpus_awake=sometimes")}).find("clock.keep_cpus_awake"),
+            std::string::npos);
+}
+
+TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
+  EXPECT_NE(error_of({parse_override("experimental.0.dof=3")})
+                .find("experimental[0].dof: expected a whole number from 0 to 0"),
+            std::string::npos);
+  EXPECT_NE(error_of({parse_override("servo.kind=hydraulic")})
+                .find("servo.kind: expected servo_model, ideal_delay, transfer_function or feedback_controlled, got "
+                      "\"hydraulic\""),
+            std::string::npos);
+  EXPECT_NE(
+      error_of({parse_override("clock.mode=sometimes")}).find("clock.mode: expected as_fast_as_possible or real_time"),
+      std::string::npos);
+  EXPECT_NE(error_of({parse_override("clock.fifo_priority=120")}).find("clock.fifo_priority"), std::string::npos);
+  EXPECT_NE(error_of({parse_override("experimental.0.site=0")}).find("experimental[0].site"), std::string::npos);
+  EXPECT_NE(
+      error_of({parse_override("integrator.scheme=euler")})
+          .find("integrator.scheme: unknown integrator \"euler\"; expected central_difference, newmark, hht_alpha, "
+                "generalized_alpha, alpha_os, chang, chen_ricles or kolay_ricles_alpha"),
+      std::string::npos);
+  EXPECT_NE(error_of({parse_override("experimental.0.restoring_force=guess")}).find("experimental[0].restoring_force"),
+            std::string::npos);
+  EXPECT_NE(error_of({parse_override("structure.colour=red")}).find("structure.colour: unknown key"),
+            std::string::npos);
+  // A key --set creates is checked like any other, and the error names the override.
+  EXPECT_NE(error_of({parse_override("nothing.here=1")}).find("--set (nothing.here=1): nothing: unknown key"),
+            std::string::npos);
+  // An error in a value the command line gave names the override, not a line of the file.
+  Override second = parse_override("compensation.order=7");
+  second.origin = "--set #2";
+  EXPECT_EQ(error_of({parse_override("clock.mode=as_fast_as_possible"), second}),
+            "--set #2 (compensation.order=7): compensation.order: expected a whole number from 0 to 3, got \"7\"");
+  // An error in the file keeps file:line:column (a phase lead needs its ratio_a).
+  EXPECT_TRUE(std::regex_search(
+      error_of({parse_override("compensation.kind=phase_lead")}),
+      std::regex(R"(sdof-free-vibration\.yaml:23:3: compensation\.ratio_a: required key is missing)")))
+      << error_of({parse_override("compensation.kind=phase_lead")});
+}
+
+// The lock-step busy wait: read as given, refused with a real-time clock (a spinning loop
+// could starve its own receive thread), negative or beyond 10 ms.
+TEST(TestScenarioFile, BusyWaitIsForLockStepOnly) {
+  const auto file = load_study(example(), {parse_override("transport={kind: dds, busy_wait_s: 0.0002}")});
+  EXPECT_DOUBLE_EQ(std::get<hybrid_test::TestConfig>(file.study).transport.busy_wait_s, 0.0002);
+  EXPECT_DOUBLE_EQ(std::get<hybrid_test::TestConfig>(load_study(example()).study).transport.busy_wait_s, 0.0);
+  EXPECT_NE(
+      error_of({parse_override("transport={kind: dds, busy_wait_s: 0.0002}"), parse_override("clock.mode=real_time")})
+          .find("transport.busy_wait_s: lock-step only"),
+      std::string::npos);
+  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: -1}")}).find("transport.busy_wait_s"),
+            std::string::npos);
+  EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: 0.5}")})
+                .find("transport.busy_wait_s: expected a number 0 to 0.01"),
+            std::string::npos);
+}
+
+TEST(TestScenarioFile, OverrideNeedsAnEqualsSign) { EXPECT_THROW(parse_override("servo.delay_s"), ConfigError); }
+
+}  // namespace
+}  // namespace rpsd::scenarios
+
+namespace rpsd::scenarios {
+namespace {
+
+TEST(SweepFile, EveryCaseIsReadWithItsValuesFirstAxisFastest) {
+  const auto file = load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof-compensation-sweep.yaml");
+  ASSERT_EQ(file.sweep.size(), 2u);
+  EXPECT_EQ(file.sweep[0].key_path, "compensation.delay_s");
+  ASSERT_EQ(file.sweep[0].values.size(), 4u);
+  EXPECT_DOUBLE_EQ(file.sweep[0].values[0], 0.08);
+  EXPECT_DOUBLE_EQ(file.sweep[0].values[3], 0.11);
+  ASSERT_EQ(file.sweep_cases.size(), 8u);
+  for (std::size_t c = 0; c < 8; ++c) {
+    const auto& lead = std::get<compensation::DiscretePhaseLeadParameters>(file.sweep_cases[c].compensation).network;
+    // The design rule (a - 1) T = delay holds with the case's own values.
+    EXPECT_NEAR((lead.ratio_a - 1.0) * lead.time_constant_s, file.sweep_values[c][0], 1e-12);
+    EXPECT_DOUBLE_EQ(lead.ratio_a, file.sweep_values[c][1]);
+    EXPECT_DOUBLE_EQ(file.sweep_values[c][0], file.sweep[0].values[c % 4]);
+  }
+}
+
+// The sweep's effective document names its files by absolute path, keeps its sweep, and read
+// from another folder gives the same cases.
+TEST(SweepFile, ItsEffectiveDocumentReadsTheSameFromAnotherFolder) {
+  const auto sweep = load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof-compensation-sweep.yaml");
+  const std::string servo = (testing::source_dir() / "examples/servo/paper-mts-244.yaml").lexically_normal().string();
+  EXPECT_NE(sweep.effective_yaml.find("parameters: " + servo), std::string::npos) << sweep.effective_yaml;
+  const auto again =
+      parse_study(sweep.effective_yaml, std::filesystem::temp_directory_path() / "elsewhere" / "effective.yaml");
+  ASSERT_EQ(again.sweep_cases.size(), sweep.sweep_cases.size());
+  EXPECT_EQ(servo::envelope_of(again.sweep_cases.back().plant).force_n,
+            servo::envelope_of(sweep.sweep_cases.back().plant).force_n);
+  EXPECT_EQ(again.sweep_cases.back().ground_motion->acceleration_m_per_s2,
+            sweep.sweep_cases.back().ground_motion->acceleration_m_per_s2);
+}
+
+TEST(SweepFile, ABadCaseIsNamedBeforeAnythingRuns) {
+  try {
+    load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof-compensation-sweep.yaml",
+               {parse_override("sweep.1.values=[10, 0.5]")});
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("(sweep case compensation.delay_s = 0.08, compensation.ratio_a = 0.5)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rpsd::scenarios
+
+namespace rpsd::scenarios {
+namespace {
+
+// Found by the scenario fuzz target: a second `sweep:` key made every case sweep again.
+TEST(ScenarioText, RepeatedKeysAreRejectedWithTheirLine) {
+  const std::string text =
+      "study: rpsd_test\nsweep:\n  - {key: servo.delay_s, values: [0.01]}\nsweep:\n  - {key: servo.delay_s, values: "
+      "[0.02]}\n";
+  try {
+    parse_study(text, testing::source_dir() / "examples/scenarios/inline.yaml");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("inline.yaml:4:1: sweep: given more than once"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(ScenarioText, DeepNestingIsASyntaxErrorNotACrash) {
+  const std::string text = "study: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
+  EXPECT_THROW(parse_study(text, "deep.yaml"), ConfigError);
+}
+
+}  // namespace
+}  // namespace rpsd::scenarios
