@@ -8,7 +8,9 @@ Monte Carlo batch cut to its first 3 runs, and, when the environment names the O
 interpreter (OPENSEES), every site-server file of examples/opensees/ under its genericClient
 model. It prints one line per file written (CSV, JSON, YAML, Markdown, gnuplot scripts): its
 path and the SHA-256 of its content, with the keys that change from run to run left out of
-every JSON file (timing, provenance, run_id, the server's port and its client's address). Two digests
+every JSON file (timing, provenance, run_id, the server's port and its client's address) and the
+checkout's own path written as <repo> (summaries and effective scenarios name their input files
+by absolute path). Two digests
 taken before and after a change are compared with diff: no line may differ.
 """
 import hashlib
@@ -33,8 +35,8 @@ def stripped(value):
     return value
 
 
-def digest_file(path):
-    data = path.read_bytes()
+def digest_file(path, repo):
+    data = path.read_bytes().replace(str(repo).encode(), b"<repo>")
     if path.suffix == ".json":
         data = json.dumps(stripped(json.loads(data)), sort_keys=True).encode()
     return hashlib.sha256(data).hexdigest()
@@ -103,7 +105,7 @@ def main():
     for name, code in sorted(codes.items()):
         print(f"exit {name} {code}")
     for path in sorted(p for p in out.rglob("*") if p.is_file() and p.suffix in DIGESTED):
-        print(f"{digest_file(path)}  {path.relative_to(out)}")
+        print(f"{digest_file(path, repo)}  {path.relative_to(out)}")
 
 
 if __name__ == "__main__":
