@@ -1,11 +1,13 @@
 #include "rpsd/scenarios/site_server_file.h"
 
 #include <algorithm>
+#include <memory>
 #include <set>
 
 #include "hybrid_test_sections.h"
 #include "physical_ranges.h"
 #include "rpsd/config/input_log.h"
+#include "rpsd/config/key_error.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/opensees/client_gate.h"
 #include "rpsd/scenarios/config_error.h"
@@ -90,12 +92,14 @@ void site_file(config::Source& root, site_server::SiteServerConfig& c,
   std::set<long> used;
   for (std::size_t i = 0; i < channels.size(); ++i) {
     site_server::ChannelMap map;
-    t.experimental.push_back(channel(*channels[i], c.element_dofs, i, map, limit_sections[i]));
+    std::unique_ptr<config::Source> limits;
+    t.experimental.push_back(channel(*channels[i], c.element_dofs, i, map, limits));
     const auto ch = static_cast<long>(t.experimental.back().dof.actuator_channel);
     if (ch >= static_cast<long>(channels.size()) || !used.insert(ch).second) {
       channels[i]->fail("channel", "channels must be 0 to " + std::to_string(channels.size() - 1) + ", each once");
     }
     c.maps[static_cast<std::size_t>(ch)] = map;
+    limit_sections[static_cast<std::size_t>(ch)] = std::move(limits);  // in channel order, as experimental will be
   }
   // Channel order, as the exchange wants it.
   std::sort(t.experimental.begin(), t.experimental.end(),
@@ -147,7 +151,8 @@ site_server::SiteServerConfig load_site_server(const std::filesystem::path& file
       coordinator::require_readable(stated,
                                     coordinator::within_envelope(stated, servo::envelope_of(t.plant), control_period_s),
                                     servo::reading_ranges_of(t.plant), "servo.converters");
-    } catch (const std::invalid_argument& e) {
+    } catch (const config::KeyError& e) {
+      if (i < limit_sections.size() && limit_sections[i]) limit_sections[i]->fail(e.path(), e.problem());
       throw ConfigError(file.string() + ": experimental[" + std::to_string(i) + "].limits." + e.what());
     }
   }
