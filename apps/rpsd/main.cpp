@@ -10,9 +10,9 @@
 #include "rpsd/build_info/build_info.h"
 #include "rpsd/commands.h"
 #include "rpsd/ground_motion/record_error.h"
+#include "rpsd/output/results_files.h"
 #include "rpsd/realtime/large_blocks.h"
 #include "rpsd/scenarios/config_error.h"
-#include "rpsd/studies/results_files.h"
 
 int main(int argc, char** argv) {
   using namespace rpsd::cli;
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   } catch (const RunNotReady& e) {
     std::cerr << "rpsd: " << e.what() << '\n';
     return kExitNotReady;
-  } catch (const rpsd::studies::ResultsNotWritten& e) {
+  } catch (const rpsd::output::ResultsNotWritten& e) {
     std::cerr << "rpsd: error: results not written: " << e.what() << '\n';
     return kExitResultsNotWritten;
   } catch (const RunInterrupted& e) {
@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
     return kExitInterrupted;
   } catch (const std::invalid_argument& e) {
     // Inputs that do not fit together (a node file for another test, an integrator option
-    // it does not take, an --out folder in use: studies::OutputFolderInUse).
+    // it does not take, an --out folder in use: output::OutputFolderInUse).
     std::cerr << "rpsd: error: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const std::exception& e) {

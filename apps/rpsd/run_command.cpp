@@ -8,13 +8,13 @@
 #include <memory>
 
 #include "rpsd/commands.h"
+#include "rpsd/output/results_files.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/scenarios/site_server_file.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/site_server/site_summary.h"
 #include "rpsd/studies/dry_run_report.h"
 #include "rpsd/studies/hybrid_test_output.h"
-#include "rpsd/studies/results_files.h"
 #include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
 #include "stop_signals.h"
@@ -93,7 +93,7 @@ bool check_before_running(const hybrid_test::TestConfig& test, const std::string
   for (const auto& f : node_files) nodes.push_back(node_limits(f));
   const studies::DryRunReport report = studies::dry_run(test, nodes);
   const nlohmann::json numbers = studies::report_dry_run(report, test.name, std::cout);
-  if (!out.empty()) studies::write_file_whole(std::filesystem::path(out) / "dry-run.json", numbers.dump(2) + '\n');
+  if (!out.empty()) output::write_file_whole(std::filesystem::path(out) / "dry-run.json", numbers.dump(2) + '\n');
   return report.within_limits;
 }
 
@@ -141,13 +141,13 @@ void add_run(CLI::App& app) {
     if (options->dry_run) {
       const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
       if (!test) throw CLI::ValidationError("--dry-run", "needs an rpsd_test scenario");
-      if (!options->out.empty()) studies::prepare_results_folder(options->out, options->replace);
+      if (!options->out.empty()) output::prepare_results_folder(options->out, options->replace);
       if (!check_before_running(*test, options->out, options->node_files)) throw DryRunNotReady();
       return;
     }
     if (!options->node_files.empty()) throw CLI::ValidationError("--node", "only with --dry-run");
     if (options->out.empty()) throw CLI::ValidationError("--out", "required (except with --dry-run)");
-    studies::prepare_results_folder(options->out, options->replace);
+    output::prepare_results_folder(options->out, options->replace);
     double rate_hz = 1024.0;
     const std::atomic<bool>* stop_request = nullptr;
     if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study)) {
@@ -168,7 +168,7 @@ void add_run(CLI::App& app) {
       case studies::RunResult::kStopped:
         throw TestStopped(run.recorded_in, run.reason);
       case studies::RunResult::kResultsNotWritten:
-        throw studies::ResultsNotWritten(run.reason + "; " + summary + " says what is missing");
+        throw output::ResultsNotWritten(run.reason + "; " + summary + " says what is missing");
       case studies::RunResult::kInterrupted:
         throw RunInterrupted(summary, run.reason);
       case studies::RunResult::kNotReady:

@@ -12,10 +12,10 @@
 #include "rpsd/commands.h"
 #include "rpsd/opensees/client_gate.h"
 #include "rpsd/opensees/tcp_stream.h"
+#include "rpsd/output/results_files.h"
 #include "rpsd/scenarios/site_server_file.h"
 #include "rpsd/site_server/site_server.h"
 #include "rpsd/site_server/site_summary.h"
-#include "rpsd/studies/results_files.h"
 #include "stop_signals.h"
 
 namespace rpsd::cli {
@@ -38,7 +38,7 @@ void write_failure_summary(const std::filesystem::path& file, const site_server:
                                {"outcome", "stopped"},
                                {"stopped_by", {{"kind", "server_failed"}, {"reason", reason}}},
                                {"exchanges", 0}};
-  studies::write_summary(file, summary.dump(2) + '\n');
+  output::write_summary(file, summary.dump(2) + '\n');
 }
 
 site_server::SiteRun wait_and_serve(const site_server::SiteServerConfig& config, opensees::TcpListener& listener,
@@ -73,10 +73,10 @@ void serve(const SiteServerOptions& options) {
   const site_server::SiteServerConfig config =
       scenarios::load_site_server(options.file, parse_overrides(options.overrides));
   const std::filesystem::path out = options.out;
-  studies::prepare_results_folder(out, options.replace);
+  output::prepare_results_folder(out, options.replace);
   const std::filesystem::path summary_file = out / "summary.json";
-  studies::reserve_summary(summary_file,
-                           R"json({"kind": "site_server", "result": "running", "outcome": "running (or killed)"})json");
+  output::reserve_summary(summary_file,
+                          R"json({"kind": "site_server", "result": "running", "outcome": "running (or killed)"})json");
 
   site_server::SiteRun run;
   std::string peer;
@@ -98,7 +98,7 @@ void serve(const SiteServerOptions& options) {
     run.peak_measured_m.assign(config.maps.size(), 0.0);
     run.peak_force_n.assign(config.maps.size(), 0.0);
   }
-  studies::write_summary(summary_file, site_server::site_summary(config, run, peer, port).dump(2) + '\n');
+  output::write_summary(summary_file, site_server::site_summary(config, run, peer, port).dump(2) + '\n');
   std::cout << "rpsd site-server: " << run.exchanges << " steps -> " << summary_file.string() << std::endl;
   switch (site_server::result_of(run)) {
     case site_server::SiteResult::kCompleted:
@@ -109,7 +109,7 @@ void serve(const SiteServerOptions& options) {
       throw RunInterrupted(summary_file.string(),
                            site_server::stop_reason(run) + "; nothing was commanded after it, and the actuators hold");
     case site_server::SiteResult::kResultsNotWritten:
-      throw studies::ResultsNotWritten(run.write_error + "; " + summary_file.string() + " says what is missing");
+      throw output::ResultsNotWritten(run.write_error + "; " + summary_file.string() + " says what is missing");
   }
 }
 

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "rpsd/coordinator/csv_number.h"
+#include "rpsd/output/csv_number.h"
 
 namespace rpsd::coordinator {
 
@@ -15,7 +15,7 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
       channels_(channels),
       dofs_(dofs),
       keep_records_(options.keep_records),
-      row_(static_cast<std::size_t>(64 + (kG10MaxChars + 1) * (10 + 7 * channels + 4 * dofs))) {
+      row_(static_cast<std::size_t>(64 + (output::kG10MaxChars + 1) * (10 + 7 * channels + 4 * dofs))) {
   if (channels > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
     throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
   }
@@ -121,7 +121,7 @@ void Recorder::write_row(const StepRecord& r) {
   char* out = row;
   const auto put = [&](double v) {
     *out++ = ',';
-    out = format_g10(out, v);
+    out = output::format_g10(out, v);
   };
   out = std::to_chars(out, end, r.step).ptr;
   put(r.time_s);

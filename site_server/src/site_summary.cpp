@@ -1,9 +1,9 @@
 #include "rpsd/site_server/site_summary.h"
 
 #include "rpsd/coordinator/limit_stop_text.h"
+#include "rpsd/output/provenance.h"
 #include "rpsd/servo/envelope.h"
 #include "rpsd/servo/plant_factory.h"
-#include "rpsd/studies/provenance.h"
 
 namespace rpsd::site_server {
 
@@ -110,7 +110,7 @@ nlohmann::json site_summary(const SiteServerConfig& config, const SiteRun& run, 
                         {"peak_force_n", run.peak_force_n[ch]}});
   }
   summary["channels"] = channels;
-  summary["provenance"] = studies::provenance_json(config.input_files);
+  summary["provenance"] = output::provenance_json(config.input_files);
   return summary;
 }
 

@@ -15,12 +15,12 @@
 #include "rpsd/coordinator/run_criteria.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/specimen_sdof.h"
+#include "rpsd/output/gnuplot.h"
+#include "rpsd/output/provenance.h"
+#include "rpsd/output/results_files.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/studies/damping_identification.h"
-#include "rpsd/studies/gnuplot.h"
-#include "rpsd/studies/provenance.h"
-#include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
 namespace {
@@ -163,7 +163,7 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
   const json summary = {
       {"study", "rpsd_delay_compensation"},
       {"scenario", file.name},
-      {"provenance", provenance_json(file)},
+      {"provenance", output::provenance_json(file.input_files)},
       {"plant", ideal ? "ideal_delay" : "servo_model"},
       {"structure",
        {{"mass_kg", study.mass_kg},
@@ -176,7 +176,7 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
                          integrators::describe(study.integrator)},
       {"phase_lead_ratio_a", study.phase_lead_ratio_a},
       {"cases", entries}};
-  write_file_whole(dir / "summary.json", summary.dump(2) + '\n');
+  output::write_file_whole(dir / "summary.json", summary.dump(2) + '\n');
 
   // Table for the damping plot.
   {
@@ -188,7 +188,7 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
             << ',' << k.predicted_damping_ratio << ',' << k.approximate_damping_ratio << ','
             << k.predicted_damping_ratio_loop << '\n';
     }
-    write_file_whole(dir / "damping.csv", table.str());
+    output::write_file_whole(dir / "damping.csv", table.str());
   }
   // Panels (a) under- and (b) over-compensation: every case of each kind, displacement / d0.
   const auto panel = [&](bool under) {
@@ -204,23 +204,24 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
     }
     return plots.empty() ? std::string("plot 0 notitle\n") : plots + "\n";
   };
-  render_png(dir / "delay_compensation.png",
-             "set multiplot layout 3,1 title '" + file.name + (ideal ? " (ideal delay plant)" : " (servo model)") +
-                 ": RPsD free vibration with phase-lead delay compensation (cf. paper Figure 8)'\n"
-                 "set datafile separator ','\nset grid\nset key outside right\nset xlabel 'time (s)'\n"
-                 "set ylabel 'x / x_0'\nset yrange [-5:5]\n"
-                 "set title '(a) under-compensated: compensated delay < actuator delay'\n" +
-                 panel(true) +
-                 "set title '(b) over-compensated: compensated delay > actuator delay'\nset yrange [-1.2:1.2]\n" +
-                 panel(false) +
-                 "set title '(c) effective damping ratio against residual delay'\nset autoscale y\n"
-                 "set xlabel 'residual delay (ms)'\nset ylabel 'damping ratio'\n"
-                 "plot 'damping.csv' using 1:3 with points pt 7 ps 1.2 title 'identified from RPsD response', \\\n"
-                 "     '' using 1:4 with linespoints lw 2 pt 6 title 'exact root, m s^2+cs+k e^{-s tau}', \\\n"
-                 "     '' using 1:5 with lines lw 1 dt 2 title 'zeta - omega_n tau / 2', \\\n"
-                 "     '' using 1:6 with linespoints lw 1 pt 4 title 'root with G_c(s) G_a(s)'\n"
-                 "unset multiplot\n",
-             1100, 1200);
+  output::render_png(
+      dir / "delay_compensation.png",
+      "set multiplot layout 3,1 title '" + file.name + (ideal ? " (ideal delay plant)" : " (servo model)") +
+          ": RPsD free vibration with phase-lead delay compensation (cf. paper Figure 8)'\n"
+          "set datafile separator ','\nset grid\nset key outside right\nset xlabel 'time (s)'\n"
+          "set ylabel 'x / x_0'\nset yrange [-5:5]\n"
+          "set title '(a) under-compensated: compensated delay < actuator delay'\n" +
+          panel(true) +
+          "set title '(b) over-compensated: compensated delay > actuator delay'\nset yrange [-1.2:1.2]\n" +
+          panel(false) +
+          "set title '(c) effective damping ratio against residual delay'\nset autoscale y\n"
+          "set xlabel 'residual delay (ms)'\nset ylabel 'damping ratio'\n"
+          "plot 'damping.csv' using 1:3 with points pt 7 ps 1.2 title 'identified from RPsD response', \\\n"
+          "     '' using 1:4 with linespoints lw 2 pt 6 title 'exact root, m s^2+cs+k e^{-s tau}', \\\n"
+          "     '' using 1:5 with lines lw 1 dt 2 title 'zeta - omega_n tau / 2', \\\n"
+          "     '' using 1:6 with linespoints lw 1 pt 4 title 'root with G_c(s) G_a(s)'\n"
+          "unset multiplot\n",
+      1100, 1200);
 }
 
 }  // namespace rpsd::studies

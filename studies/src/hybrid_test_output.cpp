@@ -13,11 +13,11 @@
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
+#include "rpsd/output/gnuplot.h"
+#include "rpsd/output/plot_decimation.h"
+#include "rpsd/output/provenance.h"
+#include "rpsd/output/results_files.h"
 #include "rpsd/realtime/latency_json.h"
-#include "rpsd/studies/gnuplot.h"
-#include "rpsd/studies/plot_decimation.h"
-#include "rpsd/studies/provenance.h"
-#include "rpsd/studies/results_files.h"
 #include "rpsd/transport/messages.h"
 
 namespace rpsd::studies {
@@ -60,31 +60,32 @@ struct PlottedTables {
 
 PlottedTables plotted_tables(const std::filesystem::path& dir, int first_dof_column, int dofs, bool drifts) {
   constexpr std::size_t kBuckets = 1100;  // one per pixel column of the widest plot
-  const auto column = [](int c) { return [c](const CsvRow& row) { return row.at(c - 1); }; };
-  std::vector<PlottedQuantity> dof_columns;
+  const auto column = [](int c) { return [c](const output::CsvRow& row) { return row.at(c - 1); }; };
+  std::vector<output::PlottedQuantity> dof_columns;
   for (int d = 0; d < dofs; ++d) dof_columns.push_back(column(first_dof_column + 4 * d));
   for (int d = 1; drifts && d < dofs; ++d) {
     const int upper = first_dof_column + 4 * d - 1, lower = upper - 4;
-    dof_columns.push_back([=](const CsvRow& row) { return row.at(upper) - row.at(lower); });
+    dof_columns.push_back([=](const output::CsvRow& row) { return row.at(upper) - row.at(lower); });
   }
-  std::vector<PlottedQuantity> drawn = dof_columns;
+  std::vector<output::PlottedQuantity> drawn = dof_columns;
   for (int c : {3, 4, 5, 6, 8}) drawn.push_back(column(c));
-  drawn.push_back([](const CsvRow& row) { return row.at(5) - row.at(3); });  // measured - target
+  drawn.push_back([](const output::CsvRow& row) { return row.at(5) - row.at(3); });  // measured - target
   PlottedTables names{"time_history.csv", "reference_history.csv", "plot_zoom.csv"};
-  const auto decimate = [&](std::string& name, const CsvTable& table, const std::vector<PlottedQuantity>& quantities) {
+  const auto decimate = [&](std::string& name, const output::RecordedCsv& table,
+                            const std::vector<output::PlottedQuantity>& quantities) {
     const std::string decimated = "plot_" + name;
-    if (write_rows_keeping_peaks(table, dir / decimated, quantities, kBuckets)) {
+    if (output::write_rows_keeping_peaks(table, dir / decimated, quantities, kBuckets)) {
       name = decimated;
     } else {
       std::filesystem::remove(dir / decimated);  // a shorter run's redraw must not draw an older one's
     }
   };
   {
-    const CsvTable test = read_csv_table(dir / names.test);
-    if (!write_rows_around_peak(test, dir / names.zoom, column(4), column(2), 0.5)) names.zoom.clear();
+    const output::RecordedCsv test = output::read_csv_table(dir / names.test);
+    if (!output::write_rows_around_peak(test, dir / names.zoom, column(4), column(2), 0.5)) names.zoom.clear();
     decimate(names.test, test, drawn);
   }
-  decimate(names.reference, read_csv_table(dir / names.reference), dof_columns);
+  decimate(names.reference, output::read_csv_table(dir / names.reference), dof_columns);
   return names;
 }
 
@@ -157,22 +158,22 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
     script += "plot '" + th + "' using 2:3 with lines lw 1 notitle\n";
   }
   script += "unset multiplot\n";
-  render_png(dir / "test.png", script, 1100, 300 * panels + 100);
-  render_png(dir / "response.png", dof_panels(title, t, first_dof_column, dof_numbers, drifts), drifts ? 1400 : 1100,
-             260 * dofs + 80);
+  output::render_png(dir / "test.png", script, 1100, 300 * panels + 100);
+  output::render_png(dir / "response.png", dof_panels(title, t, first_dof_column, dof_numbers, drifts),
+                     drifts ? 1400 : 1100, 260 * dofs + 80);
 
   if (has_record) {
-    render_png(dir / "record.png",
-               "set datafile separator ','\nset grid\nset multiplot layout 2,1 title '" + title +
-                   ": ground motion as applied'\n"
-                   "set xlabel 'time (s)'\nset ylabel 'acceleration (m/s^2)'\n"
-                   "plot '" +
-                   th +
-                   "' using 2:3 with lines lw 1 notitle\n"
-                   "set logscale x\nset xlabel 'period (s)'\nset ylabel 'pseudo-acceleration (m/s^2)'\n"
-                   "set title '5 % damped response spectrum'\n"
-                   "plot 'spectrum.csv' using 1:2 with lines lw 2 notitle\nunset multiplot\n",
-               1000, 800);
+    output::render_png(dir / "record.png",
+                       "set datafile separator ','\nset grid\nset multiplot layout 2,1 title '" + title +
+                           ": ground motion as applied'\n"
+                           "set xlabel 'time (s)'\nset ylabel 'acceleration (m/s^2)'\n"
+                           "plot '" +
+                           th +
+                           "' using 2:3 with lines lw 1 notitle\n"
+                           "set logscale x\nset xlabel 'period (s)'\nset ylabel 'pseudo-acceleration (m/s^2)'\n"
+                           "set title '5 % damped response spectrum'\n"
+                           "plot 'spectrum.csv' using 1:2 with lines lw 2 notitle\nunset multiplot\n",
+                       1000, 800);
   }
 }
 
@@ -191,7 +192,7 @@ void write_spectrum(const std::filesystem::path& dir, const hybrid_test::GroundM
     out << spectrum.periods_s[i] << ',' << spectrum.pseudo_acceleration_m_per_s2[i] << ',' << spectrum.displacement_m[i]
         << '\n';
   }
-  write_file_whole(dir / "spectrum.csv", out.str());
+  output::write_file_whole(dir / "spectrum.csv", out.str());
 }
 
 nlohmann::json ground_motion_json(const hybrid_test::GroundMotion& motion) {
@@ -291,17 +292,17 @@ TestHeadline not_ready(const std::filesystem::path& dir, const StudyDocument& fi
   headline.result = RunResult::kNotReady;
   headline.outcome = "not ready: " + why;
   headline.benchmark.fill(std::nan(""));
-  write_summary(dir / "summary.json", nlohmann::json{{"study", "rpsd_test"},
-                                                     {"scenario", file.name},
-                                                     {"description", file.description},
-                                                     {"result", result_name(RunResult::kNotReady)},
-                                                     {"outcome", headline.outcome},
-                                                     {"completed", false},
-                                                     {"steps", 0},
-                                                     {"benchmark_criteria", nullptr},
-                                                     {"provenance", provenance_json(file)}}
-                                              .dump(2) +
-                                          '\n');
+  output::write_summary(dir / "summary.json", nlohmann::json{{"study", "rpsd_test"},
+                                                             {"scenario", file.name},
+                                                             {"description", file.description},
+                                                             {"result", result_name(RunResult::kNotReady)},
+                                                             {"outcome", headline.outcome},
+                                                             {"completed", false},
+                                                             {"steps", 0},
+                                                             {"benchmark_criteria", nullptr},
+                                                             {"provenance", output::provenance_json(file.input_files)}}
+                                                      .dump(2) +
+                                                  '\n');
   return headline;
 }
 
@@ -340,17 +341,18 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
     if (progress) progress({phase, case_number, cases, done, planned});
   };
   std::filesystem::create_directories(dir);
-  reserve_summary(dir / "summary.json", nlohmann::json{{"study", "rpsd_test"},
-                                                       {"scenario", file.name},
-                                                       {"result", "running"},
-                                                       {"outcome", "running (or killed before it could finish)"},
-                                                       {"completed", false}}
-                                                .dump(2) +
-                                            '\n');
+  output::reserve_summary(dir / "summary.json",
+                          nlohmann::json{{"study", "rpsd_test"},
+                                         {"scenario", file.name},
+                                         {"result", "running"},
+                                         {"outcome", "running (or killed before it could finish)"},
+                                         {"completed", false}}
+                                  .dump(2) +
+                              '\n');
   // A case of a batch writes its own document, with its values, never the batch's.
   const bool one_of_a_batch = case_number >= 1 && case_number <= file.case_yaml.size();
-  write_file_whole(dir / "effective-scenario.yaml",
-                   one_of_a_batch ? file.case_yaml[case_number - 1] : file.effective_yaml);
+  output::write_file_whole(dir / "effective-scenario.yaml",
+                           one_of_a_batch ? file.case_yaml[case_number - 1] : file.effective_yaml);
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
@@ -438,7 +440,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"clock", scenario.clock.mode == hybrid_test::ClockConfig::Mode::kRealTime ? "real_time" : "as_fast_as_possible"},
       {"transport", scenario.transport.kind == hybrid_test::TransportConfig::Kind::kDds ? "dds" : "in_process"},
       {"timing", timing_json(test.timing)},
-      {"provenance", provenance_json(file)},
+      {"provenance", output::provenance_json(file.input_files)},
   };
   std::vector<int> dof_numbers;
   for (auto d : scenario.record_dofs) dof_numbers.push_back(static_cast<int>(d));
@@ -456,13 +458,13 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
   // (too few steps, no gnuplot) is reported and `rpsd plot` redraws it; summary.json comes
   // last, so that it describes every file beside it.
   try {
-    write_file_whole(dir / "plot.json", plot_info.dump(2) + '\n');
+    output::write_file_whole(dir / "plot.json", plot_info.dump(2) + '\n');
     report("plots", 0, 0);
     if (test.steps >= 2) draw(dir, plot_info);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
   }
-  write_summary(dir / "summary.json", summary.dump(2) + '\n');
+  output::write_summary(dir / "summary.json", summary.dump(2) + '\n');
   TestHeadline headline;
   headline.result = result;
   headline.outcome = outcome;
@@ -501,9 +503,10 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
                          const std::atomic<bool>* stop_request) {
   using nlohmann::json;
   std::filesystem::create_directories(dir);
-  reserve_summary(dir / "summary.json",
-                  json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"result", "running"}}.dump(2) + '\n');
-  write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
+  output::reserve_summary(
+      dir / "summary.json",
+      json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"result", "running"}}.dump(2) + '\n');
+  output::write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
   json cases = json::array();
   std::ostringstream table;
   for (const auto& axis : file.sweep) table << axis.key_path << ',';
@@ -543,12 +546,12 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
       break;
     }
   }
-  write_file_whole(dir / "sweep.csv", table.str());
+  output::write_file_whole(dir / "sweep.csv", table.str());
   json axes = json::array();
   for (const auto& axis : file.sweep) axes.push_back({{"key", axis.key_path}, {"values", axis.values}});
   const json summary{{"study", "rpsd_test_sweep"},
                      {"scenario", file.name},
-                     {"provenance", provenance_json(file)},
+                     {"provenance", output::provenance_json(file.input_files)},
                      {"result", result_name(result)},
                      {"cases_planned", file.sweep_cases.size()},
                      {"axes", axes},
@@ -575,16 +578,17 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& 
   }
   if (progress) progress({"sweep plots", file.sweep_cases.size(), file.sweep_cases.size(), 0, 0});
   try {
-    render_png(dir / "sweep.png",
-               "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot "
-               "layout 2,1 title '" +
-                   file.name + ": sweep of " + file.sweep[0].key_path + "'\nset xlabel '" + file.sweep[0].key_path +
-                   "'\n" + plots + "unset multiplot\n",
-               1000, 800);
+    output::render_png(
+        dir / "sweep.png",
+        "set termoption noenhanced\nset datafile separator ','\nset grid\nset key outside right\nset multiplot "
+        "layout 2,1 title '" +
+            file.name + ": sweep of " + file.sweep[0].key_path + "'\nset xlabel '" + file.sweep[0].key_path + "'\n" +
+            plots + "unset multiplot\n",
+        1000, 800);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
   }
-  write_summary(dir / "summary.json", summary.dump(2) + '\n');
+  output::write_summary(dir / "summary.json", summary.dump(2) + '\n');
   return result;
 }
 
@@ -609,7 +613,7 @@ std::vector<std::filesystem::path> plot_folder(const std::filesystem::path& dir)
   const bool test = std::filesystem::exists(dir / "plot.json");
   if (test) plot_test(dir);
   for (const auto& gp : scripts) {
-    if (!test) rerender(gp);
+    if (!test) output::rerender(gp);
     drawn.push_back(std::filesystem::path(gp).replace_extension(".png"));
   }
   if (drawn.empty()) throw std::invalid_argument(dir.string() + ": no plots to draw; is this a folder rpsd wrote?");

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "rpsd/output/provenance.h"
+#include "rpsd/output/results_files.h"
 #include "rpsd/studies/benchmark_criteria.h"
 #include "rpsd/studies/monte_carlo.h"
-#include "rpsd/studies/provenance.h"
-#include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
 namespace {
@@ -54,10 +54,10 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
   using nlohmann::json;
   const MonteCarloConfig& mc = *file.monte_carlo;
   std::filesystem::create_directories(dir);
-  reserve_summary(
+  output::reserve_summary(
       dir / "summary.json",
       json{{"study", "rpsd_test_monte_carlo"}, {"scenario", file.name}, {"result", "running"}}.dump(2) + '\n');
-  write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
+  output::write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
   const std::vector<Quantity> names = quantities();
   std::ostringstream runs_csv;
   runs_csv << "run,";
@@ -108,7 +108,7 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
       break;
     }
   }
-  write_file_whole(dir / "runs.csv", runs_csv.str());
+  output::write_file_whole(dir / "runs.csv", runs_csv.str());
 
   std::ostringstream csv, markdown;
   csv << "quantity,runs,mean,standard_deviation,minimum,maximum,measures\n";
@@ -129,8 +129,8 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
   }
   markdown << "\nOver the " << completed_runs << " completed run(s) of " << runs.size() << "; left out (stopped or "
            << "interrupted, criteria over part of the record only): " << left_out.size() << "\n";
-  write_file_whole(dir / "statistics.csv", csv.str());
-  write_file_whole(dir / "statistics.md", markdown.str());
+  output::write_file_whole(dir / "statistics.csv", csv.str());
+  output::write_file_whole(dir / "statistics.md", markdown.str());
   json parameters = json::array();
   for (std::size_t p = 0; p < mc.parameters.size(); ++p) {
     const auto& m = mc.parameters[p];
@@ -154,8 +154,8 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
                      {"parameters", parameters},
                      {"statistics", statistics},
                      {"runs", runs},
-                     {"provenance", provenance_json(file)}};
-  write_summary(dir / "summary.json", summary.dump(2) + '\n');
+                     {"provenance", output::provenance_json(file.input_files)}};
+  output::write_summary(dir / "summary.json", summary.dump(2) + '\n');
   return result;
 }
 

@@ -10,12 +10,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rpsd/output/csv_table.h"
+#include "rpsd/output/gnuplot.h"
+#include "rpsd/output/provenance.h"
+#include "rpsd/output/results_files.h"
 #include "rpsd/servo/linear_analysis.h"
-#include "rpsd/studies/csv_table.h"
 #include "rpsd/studies/delay_compensation_study.h"
-#include "rpsd/studies/gnuplot.h"
-#include "rpsd/studies/provenance.h"
-#include "rpsd/studies/results_files.h"
 
 namespace rpsd::studies {
 namespace {
@@ -38,8 +38,8 @@ json servo_json(const servo::ServoSystemParameters& p) {
 
 // DIR/summary.json of a study, with where it came from.
 void write_summary_json(const std::filesystem::path& dir, const StudyDocument& file, json summary) {
-  summary["provenance"] = provenance_json(file);
-  write_file_whole(dir / "summary.json", summary.dump(2) + '\n');
+  summary["provenance"] = output::provenance_json(file.input_files);
+  output::write_file_whole(dir / "summary.json", summary.dump(2) + '\n');
 }
 
 template <typename Row, typename Getter>
@@ -83,7 +83,7 @@ std::string stopped_cases_records(const std::filesystem::path& dir) {
 
 void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& file, const SineSweepStudy& study,
                       const SineSweepResult& r) {
-  CsvTable()
+  output::CsvTable()
       .column("time_s", r.time_s)
       .column("sweep_frequency_hz", r.frequency_hz)
       .column("command_mm", scaled(r.command_m, 1e3))
@@ -91,7 +91,7 @@ void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& fil
       .column("force_kn", scaled(r.force_n, 1e-3))
       .column("spool_opening", r.spool_opening)
       .write(dir / "time_history.csv");
-  CsvTable()
+  output::CsvTable()
       .column("frequency_hz", pick(r.curve, [](auto& c) { return c.frequency_hz; }))
       .column("sweep_amplitude_ratio", pick(r.curve, [](auto& c) { return c.sweep.amplitude_ratio; }))
       .column("sweep_phase_deg", pick(r.curve, [](auto& c) { return c.sweep.phase_deg; }))
@@ -123,26 +123,26 @@ void write_sine_sweep(const std::filesystem::path& dir, const StudyDocument& fil
                       {"max_spool_opening", r.max_spool_opening},
                       {"peak_force_kn", 1e-3 * r.peak_force_n},
                       {"comparison", report}});
-  render_png(dir / "sine_sweep.png",
-             "set multiplot layout 2,1 title '" + file.name + ": " +
-                 std::to_string(1e3 * study.amplitude_m).substr(0, 4) +
-                 " mm sine sweep through the nonlinear servo model (cf. paper Figure 5)'\n"
-                 "set datafile separator ','\nset grid\nset key top right\n"
-                 "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\n"
-                 "plot 'time_history.csv' using 1:3 with lines lw 1 lc rgb '#999999' title 'command', \\\n"
-                 "     '' using 1:4 with lines lw 1 lc rgb '#c0392b' title 'measured (simulated)'\n"
-                 "set xlabel 'frequency (Hz)'\nset ylabel 'amplitude ratio'\nset yrange [0:1.1]\n"
-                 "plot 'sweep_response.csv' using 1:2 with points pt 7 ps 0.6 lc rgb '#c0392b' title 'simulated sweep "
-                 "(3-cycle fit)', \\\n"
-                 "     '' using 1:4 with lines lw 2 lc rgb '#2c3e50' title 'Eq. 8', \\\n"
-                 "     '' using 1:6 with lines lw 1 dt 2 lc rgb '#27ae60' title 'Eq. 8 with servovalve (Eq. 2)', \\\n"
-                 "     '' using 1:8 with lines lw 1 dt 3 lc rgb '#8e44ad' title 'first order (Eq. 9)'\n"
-                 "unset multiplot\n");
+  output::render_png(
+      dir / "sine_sweep.png",
+      "set multiplot layout 2,1 title '" + file.name + ": " + std::to_string(1e3 * study.amplitude_m).substr(0, 4) +
+          " mm sine sweep through the nonlinear servo model (cf. paper Figure 5)'\n"
+          "set datafile separator ','\nset grid\nset key top right\n"
+          "set xlabel 'time (s)'\nset ylabel 'displacement (mm)'\n"
+          "plot 'time_history.csv' using 1:3 with lines lw 1 lc rgb '#999999' title 'command', \\\n"
+          "     '' using 1:4 with lines lw 1 lc rgb '#c0392b' title 'measured (simulated)'\n"
+          "set xlabel 'frequency (Hz)'\nset ylabel 'amplitude ratio'\nset yrange [0:1.1]\n"
+          "plot 'sweep_response.csv' using 1:2 with points pt 7 ps 0.6 lc rgb '#c0392b' title 'simulated sweep "
+          "(3-cycle fit)', \\\n"
+          "     '' using 1:4 with lines lw 2 lc rgb '#2c3e50' title 'Eq. 8', \\\n"
+          "     '' using 1:6 with lines lw 1 dt 2 lc rgb '#27ae60' title 'Eq. 8 with servovalve (Eq. 2)', \\\n"
+          "     '' using 1:8 with lines lw 1 dt 3 lc rgb '#8e44ad' title 'first order (Eq. 9)'\n"
+          "unset multiplot\n");
 }
 
 void write_frequency_response(const std::filesystem::path& dir, const StudyDocument& file,
                               const FrequencyResponseStudy& study, const std::vector<FrequencyResponseRow>& rows) {
-  CsvTable table;
+  output::CsvTable table;
   table.column("frequency_hz", pick(rows, [](auto& r) { return r.frequency_hz; }));
   const auto add = [&](const std::string& name, auto member) {
     table.column(name + "_amplitude_ratio", pick(rows, [&](auto& r) { return (r.*member).amplitude_ratio; }));
@@ -180,7 +180,7 @@ void write_frequency_response(const std::filesystem::path& dir, const StudyDocum
          {"max_phase_lead_deg", study.phase_lead.max_phase_lead_rad() * 180.0 / std::numbers::pi}}},
        {"eq8_peak", {{"frequency_hz", peak->frequency_hz}, {"amplitude_ratio", peak->eq8.amplitude_ratio}}},
        {"at", points}});
-  render_png(
+  output::render_png(
       dir / "frequency_response.png",
       "set multiplot layout 2,1 title '" + file.name +
           ": frequency response with amplitude compensation (cf. paper Figure 6)'\n"
@@ -200,7 +200,7 @@ void write_frequency_response(const std::filesystem::path& dir, const StudyDocum
 
 void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file, const MaxGainStudy& study,
                     const std::vector<MaxGainRow>& rows) {
-  CsvTable()
+  output::CsvTable()
       .column("attached_mass_kg", pick(rows, [](auto& r) { return r.mass_kg; }))
       .column("max_p_gain_routh_eq8", pick(rows, [](auto& r) { return r.max_p_gain_routh; }))
       .column("max_p_gain_full_model_eigenvalues", pick(rows, [](auto& r) { return r.max_p_gain_full_model; }))
@@ -223,7 +223,7 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
   std::snprintf(point, sizeof point,
                 "set label 1 'operating gain %.3f' at first %g, first %g point pt 7 ps 1.2 offset 1,1\n",
                 p.controller.proportional_gain, p.specimen.mass_kg, p.controller.proportional_gain);
-  render_png(
+  output::render_png(
       dir / "max_gain.png",
       "set title '" + file.name +
           ": largest stable P gain vs attached mass (cf. paper Figure 7)'\n"

@@ -19,7 +19,8 @@ done
 ! grep -q -- "-dev" <<< "$depends" || fail "Depends names a -dev package: $depends"
 contents=$(dpkg-deb -c "$deb" | awk '{print $6}')
 for path in ./usr/bin/rpsd ./usr/include/rpsd/servo/plant_factory.h ./usr/lib/cmake/rpsd/rpsdConfig.cmake \
-  ./usr/lib/librpsd_servo.a ./usr/share/rpsd/examples/scenarios/elcentro-sdof.yaml \
+  ./usr/lib/librpsd_servo.a ./usr/include/rpsd/output/results_files.h ./usr/lib/librpsd_output.a \
+  ./usr/share/rpsd/examples/scenarios/elcentro-sdof.yaml \
   ./usr/share/rpsd/examples/servo/paper-mts-244.yaml ./usr/share/rpsd/data/ground-motions/I-ELC180.AT2 \
   ./usr/share/rpsd/data/ground-motions/README.md ./usr/share/rpsd/transport/config/loopback.xml \
   ./usr/share/doc/rpsd/README.md ./usr/share/doc/rpsd/safety.md ./usr/share/doc/rpsd/LICENSE; do

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the built tree into a temporary prefix, then configures, builds and runs a
-# separate project that does find_package(rpsd) and links rpsd::servo.
+# separate project that does find_package(rpsd) and links rpsd::servo and rpsd::output.
 set -euo pipefail
 build_dir=$1; source_dir=$2
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -11,6 +11,9 @@ test -f "$work/prefix/include/rpsd/servo/servo_hydraulic_plant.h"
 test -f "$work/prefix/include/rpsd/hybrid_test/site_kinds.h"
 test ! -e "$work/prefix/include/rpsd/coordinator/test_config.h"
 grep -q "rpsd::hybrid_test" "$work/prefix/lib/cmake/rpsd/rpsdTargets.cmake"
+# The result writers are their own module too: output/, not studies/.
+test -f "$work/prefix/include/rpsd/output/results_files.h"
+test ! -e "$work/prefix/include/rpsd/studies/results_files.h"
 cmake -S "$source_dir/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer"

@@ -1,7 +1,9 @@
-// Builds against the installed rpsd::servo and prints the paper rig's cut-off frequency for
-// a parameter set written in code.
+// Builds against the installed rpsd::servo and rpsd::output and prints the paper rig's cut-off
+// frequency for a parameter set written in code, also as a results CSV would write it.
 #include <cstdio>
+#include <string>
 
+#include "rpsd/output/csv_number.h"
 #include "rpsd/servo/linear_analysis.h"
 
 int main() {
@@ -14,6 +16,9 @@ int main() {
   p.sensors.lvdt_gain_v_per_m = 78.74;
   p.specimen.mass_kg = 7080.0;
   p.specimen.stiffness.initial_n_per_m = 700.8e3;
-  std::printf("cutoff_frequency_hz %.3f\n", rpsd::servo::analyze(p).cutoff_frequency_hz);
+  const double cutoff_hz = rpsd::servo::analyze(p).cutoff_frequency_hz;
+  char csv[rpsd::output::kG10MaxChars];
+  const std::string as_csv(csv, rpsd::output::format_g10(csv, cutoff_hz));
+  std::printf("cutoff_frequency_hz %.3f (in a results CSV: %s)\n", cutoff_hz, as_csv.c_str());
   return 0;
 }

@@ -1,4 +1,4 @@
-#include "rpsd/studies/plot_decimation.h"
+#include "rpsd/output/plot_decimation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "rpsd/studies/results_files.h"
+#include "rpsd/output/results_files.h"
 
-namespace rpsd::studies {
+namespace rpsd::output {
 namespace {
 
 CsvRow parse_row(const std::string& line) {
@@ -55,10 +55,10 @@ std::vector<std::size_t> rows_keeping_peaks(const std::vector<CsvRow>& rows, con
   return kept;
 }
 
-CsvTable read_csv_table(const std::filesystem::path& file) {
+RecordedCsv read_csv_table(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file.string() + ": cannot be read");
-  CsvTable table;
+  RecordedCsv table;
   std::getline(in, table.header);
   std::string line;
   while (std::getline(in, line)) {
@@ -71,7 +71,7 @@ CsvTable read_csv_table(const std::filesystem::path& file) {
 
 namespace {
 
-void write_lines(const CsvTable& table, const std::vector<std::size_t>& kept, const std::filesystem::path& to) {
+void write_lines(const RecordedCsv& table, const std::vector<std::size_t>& kept, const std::filesystem::path& to) {
   std::string text = table.header + '\n';
   for (std::size_t r : kept) text += table.lines[r] + '\n';
   write_file_whole(to, text);
@@ -79,7 +79,7 @@ void write_lines(const CsvTable& table, const std::vector<std::size_t>& kept, co
 
 }  // namespace
 
-bool write_rows_keeping_peaks(const CsvTable& table, const std::filesystem::path& to,
+bool write_rows_keeping_peaks(const RecordedCsv& table, const std::filesystem::path& to,
                               const std::vector<PlottedQuantity>& drawn, std::size_t buckets) {
   // A short row (an interrupted write) would be read past its end: draw it whole instead.
   if (table.rows.size() <= 4 * buckets || !table.rectangular) return false;
@@ -87,7 +87,7 @@ bool write_rows_keeping_peaks(const CsvTable& table, const std::filesystem::path
   return true;
 }
 
-bool write_rows_around_peak(const CsvTable& table, const std::filesystem::path& to, const PlottedQuantity& quantity,
+bool write_rows_around_peak(const RecordedCsv& table, const std::filesystem::path& to, const PlottedQuantity& quantity,
                             const PlottedQuantity& time, double half_window) {
   if (table.rows.empty() || !table.rectangular) return false;
   std::size_t peak = 0;
@@ -101,4 +101,4 @@ bool write_rows_around_peak(const CsvTable& table, const std::filesystem::path& 
   return true;
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string_view>
 
-namespace rpsd::studies {
+namespace rpsd::output {
 
 // A result file could not be written (a full disk, no permission): exit code 5.
 class ResultsNotWritten : public std::runtime_error {
@@ -42,4 +42,4 @@ inline constexpr std::size_t kSummaryReservedBytes = 64 * 1024;
 void reserve_summary(const std::filesystem::path& file, std::string_view running_text);
 void write_summary(const std::filesystem::path& file, std::string_view text);
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -1,4 +1,4 @@
-#include "rpsd/studies/provenance.h"
+#include "rpsd/output/provenance.h"
 
 #include <openssl/evp.h>
 
@@ -10,7 +10,7 @@
 
 #include "rpsd/build_info/build_info.h"
 
-namespace rpsd::studies {
+namespace rpsd::output {
 
 std::string sha256_of_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -37,8 +37,6 @@ std::string sha256_of_file(const std::filesystem::path& file) {
   return hex;
 }
 
-nlohmann::json provenance_json(const StudyDocument& document) { return provenance_json(document.input_files); }
-
 nlohmann::json provenance_json(const std::vector<std::filesystem::path>& input_files) {
   nlohmann::json inputs = nlohmann::json::array();
   for (const auto& file : input_files) {
@@ -48,4 +46,4 @@ nlohmann::json provenance_json(const std::vector<std::filesystem::path>& input_f
   return {{"rpsd", {{"version", build_info::version()}, {"commit", build_info::commit()}}}, {"inputs", inputs}};
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

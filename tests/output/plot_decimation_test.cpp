@@ -1,4 +1,4 @@
-#include "rpsd/studies/plot_decimation.h"
+#include "rpsd/output/plot_decimation.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-namespace rpsd::studies {
+namespace rpsd::output {
 namespace {
 
 const PlottedQuantity kSecond = [](const CsvRow& row) { return row.at(1); };
@@ -86,7 +86,7 @@ TEST(PlotDecimation, TheZoomHoldsTheRowsAroundTheLargestMagnitude) {
   ASSERT_TRUE(write_rows_around_peak(
       read_csv_table(dir / "zoom-source.csv"), dir / "zoom.csv", kSecond, [](const CsvRow& r) { return r.at(0); },
       0.25));
-  const CsvTable zoom = read_csv_table(dir / "zoom.csv");
+  const RecordedCsv zoom = read_csv_table(dir / "zoom.csv");
   ASSERT_EQ(zoom.rows.size(), 5u);  // 5.8, 5.9, 6.0, 6.1, 6.2 s
   EXPECT_NEAR(zoom.rows.front()[0], 5.8, 1e-12);
   EXPECT_EQ(zoom.rows[2][1], -3.0);
@@ -94,4 +94,4 @@ TEST(PlotDecimation, TheZoomHoldsTheRowsAroundTheLargestMagnitude) {
 }
 
 }  // namespace
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

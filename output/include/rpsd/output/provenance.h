@@ -8,17 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "rpsd/studies/study_config.h"
-
-namespace rpsd::studies {
+namespace rpsd::output {
 
 // The SHA-256 of a file's bytes, as 64 lowercase hex digits. Throws std::runtime_error naming
 // the file when it cannot be read.
 std::string sha256_of_file(const std::filesystem::path& file);
 
-// {"rpsd": {"version", "commit"}, "inputs": [{"file", "sha256"}, ...]}
-nlohmann::json provenance_json(const StudyDocument& document);
-// The same for any list of files read (a site-server file).
+// {"rpsd": {"version", "commit"}, "inputs": [{"file", "sha256"}, ...]} for the files a run
+// read (a scenario and what it names, a site-server file).
 nlohmann::json provenance_json(const std::vector<std::filesystem::path>& input_files);
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace rpsd::studies {
+namespace rpsd::output {
 
 // One row of a CSV table's numbers, as parsed.
 using CsvRow = std::vector<double>;
@@ -21,24 +21,25 @@ using PlottedQuantity = std::function<double(const CsvRow&)>;
 std::vector<std::size_t> rows_keeping_peaks(const std::vector<CsvRow>& rows, const std::vector<PlottedQuantity>& drawn,
                                             std::size_t buckets);
 
-// A CSV table as written by the recorder: its header, and each row's text and numbers.
-struct CsvTable {
+// A CSV table as written by the recorder: its header, and each row's text and numbers. (Not
+// csv_table.h's CsvTable, which builds a table to write.)
+struct RecordedCsv {
   std::string header;
   std::vector<std::string> lines;
   std::vector<CsvRow> rows;
   bool rectangular = true;  // every row as long as the first (an interrupted write is not)
 };
-CsvTable read_csv_table(const std::filesystem::path& file);
+RecordedCsv read_csv_table(const std::filesystem::path& file);
 
 // Writes `to`: the header and the rows kept. Returns false, writing nothing, when the table
 // has no more than 4 rows per bucket (drawing it whole is cheap) or is not rectangular.
-bool write_rows_keeping_peaks(const CsvTable& table, const std::filesystem::path& to,
+bool write_rows_keeping_peaks(const RecordedCsv& table, const std::filesystem::path& to,
                               const std::vector<PlottedQuantity>& drawn, std::size_t buckets);
 
 // Writes `to`: the header and every row within `half_window` (in `time` units) of the row
 // where `quantity` is largest in magnitude: the zoom that shows the phase lag at the peak.
 // Returns false, writing nothing, for an empty or ragged table.
-bool write_rows_around_peak(const CsvTable& table, const std::filesystem::path& to, const PlottedQuantity& quantity,
+bool write_rows_around_peak(const RecordedCsv& table, const std::filesystem::path& to, const PlottedQuantity& quantity,
                             const PlottedQuantity& time, double half_window);
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

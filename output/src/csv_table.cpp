@@ -1,13 +1,13 @@
-#include "rpsd/studies/csv_table.h"
+#include "rpsd/output/csv_table.h"
 
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
-#include "rpsd/studies/results_files.h"
+#include "rpsd/output/results_files.h"
 
-namespace rpsd::studies {
+namespace rpsd::output {
 
 CsvTable& CsvTable::column(std::string name, std::vector<double> values) {
   if (!columns_.empty() && values.size() != columns_.front().size()) {
@@ -34,4 +34,4 @@ void CsvTable::write(const std::filesystem::path& file) const {
   write_file_whole(file, out.str());
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -1,4 +1,4 @@
-#include "rpsd/studies/results_files.h"
+#include "rpsd/output/results_files.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -10,7 +10,7 @@
 #include <string>
 #include <system_error>
 
-namespace rpsd::studies {
+namespace rpsd::output {
 namespace {
 
 [[noreturn]] void not_written(const std::filesystem::path& file, int error) {
@@ -149,4 +149,4 @@ void write_summary(const std::filesystem::path& file, std::string_view text) {
   if (::close(fd) != 0 || !written) not_written(file, written ? errno : error);
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -1,13 +1,13 @@
-#include "rpsd/studies/gnuplot.h"
+#include "rpsd/output/gnuplot.h"
 
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
-#include "rpsd/studies/results_files.h"
+#include "rpsd/output/results_files.h"
 
-namespace rpsd::studies {
+namespace rpsd::output {
 
 void render_png(const std::filesystem::path& png, const std::string& script, int width_px, int height_px) {
   std::filesystem::path gp = png;
@@ -27,4 +27,4 @@ void rerender(const std::filesystem::path& gp) {
   if (std::system(command.c_str()) != 0) throw std::runtime_error("gnuplot failed on " + gp.string());
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

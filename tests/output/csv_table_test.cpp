@@ -4,9 +4,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "rpsd/studies/csv_table.h"
+#include "rpsd/output/csv_table.h"
 
-namespace rpsd::studies {
+namespace rpsd::output {
 namespace {
 
 TEST(CsvTable, WritesHeaderWithUnitsAndRows) {
@@ -26,4 +26,4 @@ TEST(CsvTable, RejectsColumnsOfDifferentLength) {
 }
 
 }  // namespace
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -10,9 +10,9 @@
 #include <random>
 #include <string>
 
-#include "rpsd/coordinator/csv_number.h"
+#include "rpsd/output/csv_number.h"
 
-namespace rpsd::coordinator {
+namespace rpsd::output {
 namespace {
 
 std::string printf_g10(double v) {
@@ -101,4 +101,4 @@ TEST(CsvNumber, WritesWhatPrintfWritesForMillionsOfSeededValues) {
 }
 
 }  // namespace
-}  // namespace rpsd::coordinator
+}  // namespace rpsd::output

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace rpsd::studies {
+namespace rpsd::output {
 
 class CsvTable {
  public:
@@ -20,4 +20,4 @@ class CsvTable {
   std::vector<std::vector<double>> columns_;
 };
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -1,5 +1,5 @@
 // An output folder holds one run's files, and each file is whole or absent.
-#include "rpsd/studies/results_files.h"
+#include "rpsd/output/results_files.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-namespace rpsd::studies {
+namespace rpsd::output {
 namespace {
 
 namespace fs = std::filesystem;
@@ -104,4 +104,4 @@ TEST_F(ResultsFolder, TheReservedSummaryIsValidJsonOfTheReservedSize) {
 }
 
 }  // namespace
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -3,7 +3,7 @@
 // (timings: docs/realtime.md).
 #pragma once
 
-namespace rpsd::coordinator {
+namespace rpsd::output {
 
 // Room format_g10 needs: sign, 10 digits, point, exponent.
 inline constexpr int kG10MaxChars = 24;
@@ -14,4 +14,4 @@ inline constexpr int kG10MaxChars = 24;
 // std::to_chars, which is printf-exact. Real-time safe.
 char* format_g10(char* out, double v);
 
-}  // namespace rpsd::coordinator
+}  // namespace rpsd::output

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-namespace rpsd::studies {
+namespace rpsd::output {
 
 // Writes `<png without extension>.gp` (terminal and output lines prepended to `script`)
 // and runs gnuplot on it from the PNG's folder. Throws std::runtime_error if gnuplot is
@@ -15,4 +15,4 @@ void render_png(const std::filesystem::path& png, const std::string& script, int
 // Runs gnuplot on a script render_png wrote (or a user edited), from its folder.
 void rerender(const std::filesystem::path& gp);
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -1,12 +1,12 @@
 // The SHA-256 of input files against the standard's test vectors (FIPS 180-2, appendix B).
-#include "rpsd/studies/provenance.h"
+#include "rpsd/output/provenance.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <fstream>
 
-namespace rpsd::studies {
+namespace rpsd::output {
 namespace {
 
 std::string sha256_of_text(const std::string& text) {
@@ -37,4 +37,4 @@ TEST(Provenance, AFileThatCannotBeReadIsNamed) {
 }
 
 }  // namespace
-}  // namespace rpsd::studies
+}  // namespace rpsd::output

@@ -1,4 +1,4 @@
-#include "rpsd/coordinator/csv_number.h"
+#include "rpsd/output/csv_number.h"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
-namespace rpsd::coordinator {
+namespace rpsd::output {
 namespace {
 
 __extension__ typedef unsigned __int128 Uint128;
@@ -95,4 +95,4 @@ char* format_g10(char* out, double v) {
   return out;
 }
 
-}  // namespace rpsd::coordinator
+}  // namespace rpsd::output
