@@ -151,7 +151,12 @@ void test_scenario(Document& doc) {
   kind_tables<servo::PlantKinds>(doc, "servo", "the plant",
                                  [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s, 1.0); },
                                  {"servo.parameters (file)"});
-  doc.table("integrator", listing("integrator", [](config::Source& s) { (void)ts::integrator(s); }));
+  std::string schemes = "The schemes:";
+  integrators::IntegratorKinds::for_each([&schemes](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    schemes += std::string("\n- `") + std::string(Kind::kName) + "`: " + std::string(Kind::kSummary);
+  });
+  doc.table("integrator", listing("integrator", [](config::Source& s) { (void)ts::integrator(s); }), schemes);
   integrators::IntegratorKinds::for_each([&doc](auto kind) {
     using Kind = typename decltype(kind)::type;
     const auto rows = listing("integrator", [](config::Source& s) { (void)Kind::read(s); });
