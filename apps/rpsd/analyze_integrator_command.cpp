@@ -1,7 +1,10 @@
 #include "rpsd/commands.h"
 
+#include "rpsd/config/key_table.h"
+#include "rpsd/config/kind_list.h"
 #include "rpsd/integrators/amplification.h"
 #include "rpsd/integrators/factory.h"
+#include "rpsd/scenarios/yaml_reader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +16,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace rpsd::cli {
@@ -22,45 +26,56 @@ namespace ri = rpsd::integrators;
 
 struct Options {
   std::string name;
-  std::optional<double> rho_inf;
-  std::optional<double> alpha;
+  // As written, read by the scheme's own parameters like a scenario's integrator keys.
+  std::optional<std::string> rho_inf;
+  std::optional<std::string> alpha;
   std::vector<double> omega_dt;
   double damping = 0.0;
   bool json = false;
 };
 
-// The scenario's names (integrator.scheme), with - or _ alike; newmark is newmark_average.
-constexpr const char* kNames =
-    "central_difference, newmark (newmark_average), newmark_linear, hht_alpha, generalized_alpha, alpha_os, "
-    "chang, chen_ricles, kolay_ricles_alpha";
-
-std::string normalized(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return c == '_' ? '-' : static_cast<char>(std::tolower(c)); });
-  return s;
+// "central_difference, newmark, ...; or: cd, newmark_average, ..." (- and _ alike).
+std::string every_spelling() {
+  return config::listed(ri::IntegratorKinds::names()) + "; or: " + config::listed(ri::integrator_aliases());
 }
 
-// Scheme names as researchers write them, with the parameters the options may set.
+// The schemes whose parameters read `key` (from their listing), for a message.
+std::vector<std::string_view> schemes_reading(std::string_view key) {
+  std::vector<std::string_view> names;
+  ri::IntegratorKinds::for_each([&](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    config::KeyTable table;
+    (void)Kind::read(table);
+    for (const auto& row : table.rows())
+      if (row.path == key) names.push_back(Kind::kName);
+  });
+  return names;
+}
+
+// The scheme a spelling names, with --rho-inf and --alpha read by its parameters' read()
+// (their range checked there), as if they were its scenario keys.
 ri::IntegratorConfig config_from(const Options& o) {
-  const std::string n = normalized(o.name);
-  const bool takes_rho =
-      n == "generalized-alpha" || n == "ga" || n == "kr-alpha" || n == "kolay-ricles-alpha" || n == "kr";
-  const bool takes_alpha = n == "hht" || n == "hht-alpha" || n == "alpha-os";
-  if (o.rho_inf && !takes_rho)
-    throw std::invalid_argument("--rho-inf applies to generalized-alpha and kr-alpha, not '" + o.name + "'");
-  if (o.alpha && !takes_alpha) throw std::invalid_argument("--alpha applies to hht and alpha-os, not '" + o.name + "'");
-  if (n == "central-difference" || n == "cd") return ri::CentralDifferenceParams{};
-  if (n == "newmark" || n == "newmark-average" || n == "average-acceleration")
-    return ri::NewmarkParams::average_acceleration();
-  if (n == "newmark-linear" || n == "linear-acceleration") return ri::NewmarkParams::linear_acceleration();
-  if (n == "hht" || n == "hht-alpha") return ri::HhtAlphaParams{o.alpha.value_or(-0.1), {}};
-  if (n == "alpha-os") return ri::AlphaOsParams{o.alpha.value_or(-1.0 / 6.0)};
-  if (n == "generalized-alpha" || n == "ga") return ri::GeneralizedAlphaParams{o.rho_inf.value_or(0.8), {}};
-  if (n == "chang") return ri::ChangParams{};
-  if (n == "cr" || n == "chen-ricles") return ri::ChenRiclesParams{};
-  if (n == "kr-alpha" || n == "kolay-ricles-alpha" || n == "kr")
-    return ri::KolayRiclesAlphaParams{o.rho_inf.value_or(0.8)};
-  throw std::invalid_argument("unknown integrator '" + o.name + "'; expected one of: " + kNames);
+  std::optional<ri::IntegratorConfig> spelled = ri::integrator_from_spelling(o.name);
+  if (!spelled)
+    throw std::invalid_argument("unknown integrator '" + o.name + "'; expected one of: " + every_spelling());
+  const std::string_view scheme = ri::integrator_name(*spelled);
+  YAML::Node keys(YAML::NodeType::Map);
+  auto overrides = std::make_shared<std::vector<scenarios::OverrideNode>>();
+  for (const auto& [option, key, value] :
+       {std::tuple{"--rho-inf", "rho_inf", o.rho_inf}, {"--alpha", "alpha", o.alpha}}) {
+    if (!value) continue;
+    const std::vector<std::string_view> takers = schemes_reading(key);
+    if (std::find(takers.begin(), takers.end(), scheme) == takers.end())
+      throw std::invalid_argument(std::string(option) + " applies to " + config::listed(takers) + ", not '" + o.name +
+                                  "'");
+    keys[key] = *value;
+    overrides->push_back({keys[key], std::string(option) + " " + *value});
+  }
+  if (keys.size() == 0) return *spelled;  // an alias's own parameters (newmark_linear)
+  scenarios::MappingReader reader(keys, "rpsd analyze integrator", "", overrides);
+  ri::IntegratorConfig config = *ri::IntegratorKinds::read(scheme, reader);
+  reader.finish();
+  return config;
 }
 
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
@@ -144,11 +159,13 @@ void add_analyze_integrator_command(CLI::App& analyze) {
   auto* cmd = analyze.add_subcommand("integrator",
                                      "Spectral radius, period ratio, numerical damping and stability limit of a "
                                      "time integrator (amplification matrix of an SDOF)");
-  cmd->add_option("name", opts->name, std::string("scheme: ") + kNames)->required();
-  auto* rho = cmd->add_option("--rho-inf", opts->rho_inf,
-                              "spectral radius at infinity, [0, 1] (generalized-alpha, kr-alpha; "
-                              "default 0.8)");
-  auto* alpha = cmd->add_option("--alpha", opts->alpha, "alpha in [-1/3, 0] (hht default -0.1, alpha-os default -1/6)");
+  cmd->add_option("name", opts->name, "scheme: " + every_spelling())->required();
+  auto* rho = cmd->add_option(
+      "--rho-inf", opts->rho_inf,
+      "spectral radius at infinity, [0, 1] (" + config::listed(schemes_reading("rho_inf")) + "; default 0.8)");
+  auto* alpha = cmd->add_option("--alpha", opts->alpha,
+                                "alpha in [-1/3, 0] (" + config::listed(schemes_reading("alpha")) +
+                                    "; hht_alpha default -0.1, alpha_os default -1/6)");
   rho->excludes(alpha);
   alpha->excludes(rho);
   cmd->add_option("--omega-dt", opts->omega_dt, "comma-separated list of Omega = omega*dt")->delimiter(',')->required();

@@ -1,10 +1,24 @@
 #include "rpsd/integrators/alpha_os.h"
 
+#include <sstream>
+
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace rpsd::integrators {
+
+AlphaOsParams AlphaOsParams::read(config::Source& section) {
+  AlphaOsParams p;
+  p.alpha = section.number_or("alpha", p.alpha, alpha_range());
+  return p;
+}
+
+std::string AlphaOsParams::describe() const {
+  std::ostringstream s;
+  s << "alpha=" << alpha;
+  return s.str();
+}
 
 void validate(const AlphaOsParams& p) {
   if (!(p.alpha >= -1.0 / 3.0 - 1e-12 && p.alpha <= 0.0))
@@ -21,8 +35,6 @@ OperatorSplittingCoefficients os_coefficients(const AlphaOsParams& p) {
 
 AlphaOs::AlphaOs(const AlphaOsParams& p) : OperatorSplittingEngine(os_coefficients(p)) {}
 
-SchemeInfo AlphaOs::info() const {
-  return {Scheme::kAlphaOs, "alpha_os", true, std::numeric_limits<double>::infinity()};
-}
+SchemeInfo AlphaOs::info() const { return {AlphaOsParams::kName, true, std::numeric_limits<double>::infinity()}; }
 
 }  // namespace rpsd::integrators

@@ -2,6 +2,6 @@
 
 namespace rpsd::integrators {
 
-SchemeInfo CentralDifference::info() const { return {Scheme::kCentralDifference, "central_difference", true, 2.0}; }
+SchemeInfo CentralDifference::info() const { return {CentralDifferenceParams::kName, true, 2.0}; }
 
 }  // namespace rpsd::integrators

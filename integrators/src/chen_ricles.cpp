@@ -4,8 +4,6 @@
 
 namespace rpsd::integrators {
 
-SchemeInfo ChenRicles::info() const {
-  return {Scheme::kChenRicles, "chen_ricles", true, std::numeric_limits<double>::infinity()};
-}
+SchemeInfo ChenRicles::info() const { return {ChenRiclesParams::kName, true, std::numeric_limits<double>::infinity()}; }
 
 }  // namespace rpsd::integrators

@@ -1,9 +1,17 @@
 #include "rpsd/integrators/fixed_iteration_implicit_engine.h"
 
+#include <sstream>
+
 #include <stdexcept>
 #include <string>
 
 namespace rpsd::integrators {
+
+std::string describe(const FixedIterationOptions& options) {
+  std::ostringstream s;
+  s << " iterations=" << options.iterations << " poly_order=" << options.poly_order;
+  return s.str();
+}
 
 void validate(const FixedIterationOptions& o) {
   if (o.iterations < 1 || o.iterations > 100)

@@ -1,11 +1,25 @@
 #include "rpsd/integrators/generalized_alpha.h"
 
+#include <sstream>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace rpsd::integrators {
+
+GeneralizedAlphaParams GeneralizedAlphaParams::read(config::Source& section) {
+  GeneralizedAlphaParams p;
+  p.rho_inf = section.number_or("rho_inf", p.rho_inf, rho_inf_range());
+  return p;
+}
+
+std::string GeneralizedAlphaParams::describe() const {
+  std::ostringstream s;
+  s << "rho_inf=" << rho_inf << integrators::describe(fixed_iteration);
+  return s.str();
+}
 
 AlphaParameters chung_hulbert_parameters(double rho_inf) {
   if (!(rho_inf >= 0.0 && rho_inf <= 1.0))
@@ -32,7 +46,7 @@ GeneralizedAlpha::GeneralizedAlpha(const GeneralizedAlphaParams& p)
     : FixedIterationImplicitEngine(ga_coefficients(p), p.fixed_iteration) {}
 
 SchemeInfo GeneralizedAlpha::info() const {
-  return {Scheme::kGeneralizedAlpha, "generalized_alpha", false, std::numeric_limits<double>::infinity()};
+  return {GeneralizedAlphaParams::kName, false, std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace rpsd::integrators

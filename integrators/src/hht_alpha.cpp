@@ -1,11 +1,25 @@
 #include "rpsd/integrators/hht_alpha.h"
 
+#include <sstream>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace rpsd::integrators {
+
+HhtAlphaParams HhtAlphaParams::read(config::Source& section) {
+  HhtAlphaParams p;
+  p.alpha = section.number_or("alpha", p.alpha, alpha_range());
+  return p;
+}
+
+std::string HhtAlphaParams::describe() const {
+  std::ostringstream s;
+  s << "alpha=" << alpha << integrators::describe(fixed_iteration);
+  return s.str();
+}
 
 void validate(const HhtAlphaParams& p) {
   if (!(p.alpha >= -1.0 / 3.0 - 1e-12 && p.alpha <= 0.0))
@@ -23,8 +37,6 @@ ImplicitCoefficients hht_coefficients(const HhtAlphaParams& p) {
 
 HhtAlpha::HhtAlpha(const HhtAlphaParams& p) : FixedIterationImplicitEngine(hht_coefficients(p), p.fixed_iteration) {}
 
-SchemeInfo HhtAlpha::info() const {
-  return {Scheme::kHhtAlpha, "hht_alpha", false, std::numeric_limits<double>::infinity()};
-}
+SchemeInfo HhtAlpha::info() const { return {HhtAlphaParams::kName, false, std::numeric_limits<double>::infinity()}; }
 
 }  // namespace rpsd::integrators

@@ -1,11 +1,26 @@
 #include "rpsd/integrators/newmark.h"
 
+#include <sstream>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace rpsd::integrators {
+
+Aliases<NewmarkParams> NewmarkParams::aliases() {
+  return {{"newmark_average", average_acceleration()},
+          {"average_acceleration", average_acceleration()},
+          {"newmark_linear", linear_acceleration()},
+          {"linear_acceleration", linear_acceleration()}};
+}
+
+std::string NewmarkParams::describe() const {
+  std::ostringstream s;
+  s << "beta=" << beta << " gamma=" << gamma << integrators::describe(fixed_iteration);
+  return s.str();
+}
 
 void validate(const NewmarkParams& p) {
   if (!(p.beta > 0.0) || !std::isfinite(p.beta))
@@ -32,8 +47,6 @@ const NewmarkParams& checked(const NewmarkParams& p) {
 Newmark::Newmark(const NewmarkParams& p)
     : FixedIterationImplicitEngine({0.0, 0.0, checked(p).beta, p.gamma}, p.fixed_iteration), p_(p) {}
 
-SchemeInfo Newmark::info() const {
-  return {Scheme::kNewmark, "newmark", false, newmark_stability_limit(p_.beta, p_.gamma)};
-}
+SchemeInfo Newmark::info() const { return {NewmarkParams::kName, false, newmark_stability_limit(p_.beta, p_.gamma)}; }
 
 }  // namespace rpsd::integrators

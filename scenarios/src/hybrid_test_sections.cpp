@@ -11,6 +11,9 @@
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/study_file.h"
+#include "rpsd/substructure/damping_models.h"
+#include "rpsd/substructure/reading_ranges.h"
+#include "rpsd/substructure/structure_kinds.h"
 #include "rpsd/transport/messages.h"
 
 namespace rpsd::scenarios::test_sections {
@@ -19,9 +22,11 @@ namespace {
 using config::Number;
 using namespace ranges;
 
-// An inline matrix (rows, a diagonal or one number) has at most this many rows: larger
-// structures come as Matrix Market files.
-constexpr std::size_t kMaxInlineDofs = 200;
+// The substructure's readers (structures, story springs, damping) bound what these do.
+static_assert(substructure::ranges::kMaxStiffnessNPerM == kMaxStiffnessNPerM);
+static_assert(substructure::ranges::kMaxForceN == kMaxForceN);
+static_assert(substructure::ranges::kMaxMassKg == kMaxMassKg);
+
 // The recorder keeps at most 8 DOFs.
 constexpr std::size_t kMaxRecordedDofs = 8;
 // The largest structure a file may describe (the Matrix Market reader's cap).
@@ -33,11 +38,6 @@ Eigen::MatrixXd matrix_from_rows(const std::vector<std::vector<double>>& rows) {
     for (std::size_t c = 0; c < rows[r].size(); ++c)
       m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c];
   return m;
-}
-
-substructure::DampingConfig optional_damping(config::Source& st, const Eigen::MatrixXd* mass) {
-  auto d = st.optional_section("damping", "the structure's damping (none: undamped)");
-  return d ? damping(*d, mass) : substructure::Undamped{};
 }
 
 }  // namespace
@@ -79,66 +79,14 @@ Document document(config::Source& root) {
   return d;
 }
 
-substructure::LinearMdofConfig linear_structure(config::Source& st) {
-  substructure::LinearMdofConfig c;
-  const Eigen::MatrixXd m =
-      matrix_from_rows(st.matrix("mass_kg", Number{"kg", "the mass matrix", 0.0, kMaxMassKg}, kMaxInlineDofs));
-  const Eigen::MatrixXd k = matrix_from_rows(
-      st.matrix("stiffness_n_per_m", Number{"N/m", "the stiffness matrix", 0.0, kMaxStiffnessNPerM}, kMaxInlineDofs));
-  c.damping = optional_damping(st, &m);
-  if (m.rows() != k.rows() || m.cols() != k.cols()) st.fail("stiffness_n_per_m", "must have the size of mass_kg");
-  c.mass_kg = linalg::StructuralMatrix(m);
-  c.stiffness_n_per_m = linalg::StructuralMatrix(k);
-  return c;
-}
-
-MatrixMarketStructure matrix_market_structure(config::Source& st) {
-  MatrixMarketStructure s;
-  s.files.mass_file = st.relative_file("mass_file", "M, a Matrix Market file (relative to this file)");
-  s.files.stiffness_file = st.relative_file("stiffness_file", "K, a Matrix Market file");
-  if (auto c = st.optional_relative_file("damping_file", "C, a Matrix Market file (or damping:)"))
-    s.files.damping_file = *c;
-  s.damping = optional_damping(st, nullptr);
-  return s;
-}
-
-substructure::ShearBuildingConfig shear_building(config::Source& st) {
-  substructure::ShearBuildingConfig c;
-  c.floor_masses_kg = st.numbers("floor_masses_kg", Number{"kg", "each floor's mass, bottom up", 0.0, kMaxMassKg, true},
-                                 kMaxInlineDofs);
-  for (auto& s : st.sections("stories", kMaxInlineDofs, "each story's spring, bottom up")) {
-    c.story_springs.push_back(story(*s));
-  }
-  c.damping = optional_damping(st, nullptr);
-  if (c.story_springs.size() != c.floor_masses_kg.size()) st.fail("stories", "needs one story per floor mass");
-  return c;
-}
-
 Structure structure(config::Source& st) {
-  const std::string kind =
-      st.choice("kind", {"linear", "matrix_market", "shear_building"}, "the numerical substructure");
+  using Kinds = substructure::StructureKinds;
+  const std::string kind = st.choice("kind", Kinds::names(), "the numerical substructure");
   Structure result;
   try {
-    if (kind == "linear") {
-      substructure::LinearMdofConfig c = linear_structure(st);
-      st.finish();
-      substructure::LinearMdofModel probe;
-      probe.configure(c);  // validates: symmetric, positive definite, sizes
-      result = std::move(c);
-    } else if (kind == "matrix_market") {
-      MatrixMarketStructure s = matrix_market_structure(st);
-      st.finish();
-      auto c = substructure::linear_config_from_matrix_market(s.files, s.damping);
-      substructure::LinearMdofModel probe;
-      probe.configure(c);
-      result = std::move(c);
-    } else {
-      substructure::ShearBuildingConfig c = shear_building(st);
-      st.finish();
-      substructure::ShearBuilding probe;
-      probe.configure(c);
-      result = std::move(c);
-    }
+    const Kinds::Variant read = *Kinds::read(kind, st);
+    st.finish();
+    result = std::visit([](const auto& k) { return k.model(); }, read);
   } catch (const std::invalid_argument& e) {
     st.fail("kind", e.what());
   } catch (const std::runtime_error& e) {
@@ -149,90 +97,7 @@ Structure structure(config::Source& st) {
 }
 
 substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* mass) {
-  substructure::DampingConfig result = substructure::Undamped{};
-  const Number ratio = Number::between(0.0, 1.0, "", "fraction of critical damping");
-  auto rayleigh = d.optional_section("rayleigh", "Rayleigh damping fitted to two modes");
-  if (rayleigh) {
-    substructure::RayleighFromModes modes;
-    modes.mode_a = static_cast<int>(rayleigh->whole_number("mode_a", 1, 100000, "the first mode (1: the lowest)"));
-    modes.mode_b = static_cast<int>(rayleigh->whole_number("mode_b", 1, 100000, "the second mode"));
-    modes.damping_ratio_a = rayleigh->number("damping_ratio_a", ratio);
-    modes.damping_ratio_b = rayleigh->number("damping_ratio_b", ratio);
-    rayleigh->finish();
-    result = modes;
-  }
-  auto modal = d.optional_section("modal", "classical damping with a ratio per mode");
-  if (modal) {
-    const auto ratios = modal->numbers(
-        "damping_ratios", Number::between(0.0, 1.0, "", "each mode's fraction of critical (one: every mode)"), 100000);
-    modal->finish();
-    result = substructure::ModalDamping{ratios};
-  }
-  // C = a0 M + a1 K0 as OpenSees' `rayleigh a0 0 a1 0` gives it: the same C when a model is
-  // split between rpsd and OpenSees, where damping fitted to this part's modes would differ.
-  auto coefficients = d.optional_section("rayleigh_coefficients", "Rayleigh damping given by its coefficients");
-  if (coefficients) {
-    substructure::RayleighCoefficients c;
-    c.a0_per_s = coefficients->number_or("a0_per_s", 0.0, Number::between(0.0, 1e4, "1/s", "C = a0 M + a1 K0: a0"));
-    c.a1_s = coefficients->number_or("a1_s", 0.0, Number::between(0.0, 10.0, "s", "C = a0 M + a1 K0: a1"));
-    coefficients->finish();
-    result = c;
-  }
-  // One DOF: c = 2 zeta sqrt(k m); the stiffness is the structure's total (numerical plus
-  // the experimental estimate), given here explicitly.
-  const auto zeta = d.optional_number("damping_ratio", Number::between(0.0, 1.0, "", "one DOF: fraction of critical"));
-  const auto k = d.optional_number("of_stiffness_n_per_m", Number{"N/m", "one DOF: the stiffness the ratio refers to",
-                                                                  0.0, kMaxStiffnessNPerM, true});
-  d.finish();
-  if (rayleigh && zeta) d.fail("rayleigh", "give either rayleigh or damping_ratio, not both");
-  if (static_cast<int>(rayleigh != nullptr) + static_cast<int>(coefficients != nullptr) +
-          static_cast<int>(modal != nullptr) + static_cast<int>(zeta.has_value()) >
-      1) {
-    d.fail(modal ? "modal" : "rayleigh_coefficients",
-           "give one of rayleigh, rayleigh_coefficients, modal or damping_ratio");
-  }
-  if (zeta && !k) d.fail("damping_ratio", "needs of_stiffness_n_per_m, the stiffness it refers to");
-  if (k && !zeta) d.fail("of_stiffness_n_per_m", "only with damping_ratio");
-  if (zeta) {
-    if (!mass || mass->rows() != 1)
-      d.fail("damping_ratio", "a single damping ratio needs a one-DOF structure; use rayleigh");
-    result = substructure::DampingMatrix{
-        linalg::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, 2.0 * *zeta * std::sqrt(*k * (*mass)(0, 0))))};
-  }
-  return result;
-}
-
-substructure::StorySpringConfig story(config::Source& s) {
-  const std::string kind =
-      s.choice("kind", std::vector<std::string_view>(kStoryKinds.begin(), kStoryKinds.end()), "the story's spring");
-  return story_of_kind(s, kind);
-}
-
-substructure::StorySpringConfig story_of_kind(config::Source& s, std::string_view kind) {
-  substructure::StorySpringConfig spring;
-  const Number stiffness{"N/m", "the initial stiffness", 0.0, kMaxStiffnessNPerM, true};
-  const Number post_yield = Number::between(0.0, 1.0, "", "post-yield over initial stiffness");
-  if (kind == "linear") {
-    spring = substructure::LinearSpringConfig{s.number("stiffness_n_per_m", stiffness)};
-  } else if (kind == "bilinear") {
-    substructure::BilinearSpringConfig b;
-    b.stiffness_n_per_m = s.number("stiffness_n_per_m", stiffness);
-    b.yield_force_n = s.number("yield_force_n", Number{"N", "the yield force", 0.0, kMaxForceN, true});
-    b.post_yield_ratio = s.number("post_yield_ratio", post_yield);
-    spring = b;
-  } else {
-    // beta and gamma in 1/m^n: 1e6 is a yield displacement of a micrometre.
-    substructure::BoucWenSpringConfig b;
-    b.stiffness_n_per_m = s.number("stiffness_n_per_m", stiffness);
-    b.post_yield_ratio = s.number("post_yield_ratio", post_yield);
-    b.A = s.number_or("A", b.A, Number{"", "Bouc-Wen A", 0.0, 100.0, true});
-    b.beta = s.number("beta", Number::between(0.0, 1e6, "1/m^n", "Bouc-Wen beta"));
-    b.gamma = s.number("gamma", Number::between(-1e6, 1e6, "1/m^n", "Bouc-Wen gamma (beta + gamma > 0)"));
-    b.n = s.number_or("n", b.n, Number::between(1.0, 20.0, "", "Bouc-Wen n, the sharpness of yielding"));
-    spring = b;
-  }
-  s.finish();
-  return spring;
+  return substructure::read_damping(d, mass);
 }
 
 coordinator::CoordinatorLimits limits(config::Source& l) {
@@ -335,34 +200,21 @@ hybrid_test::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, in
   return site;
 }
 
-std::vector<std::string_view> integrator_names() { return integrators::scheme_names(); }
+std::vector<std::string_view> integrator_names() { return integrators::IntegratorKinds::names(); }
 
 void check_integrator_name(config::Source& r, std::string_view key) {
   if (!r.has(key)) return;
   const std::string name = r.text(key, "the time-stepping scheme");
-  if (default_integrator(name)) return;
+  if (integrators::default_integrator_config(name)) return;
   const std::vector<std::string_view> names = integrator_names();
   r.fail(key,
          "unknown integrator \"" + name + "\"; expected " + config::listed(names) + config::did_you_mean(name, names));
 }
 
-void integrator_parameters(config::Source& r, integrators::IntegratorConfig& config) {
-  const Number rho = Number::between(0.0, 1.0, "", "spectral radius at infinite frequency");
-  const Number alpha = Number::between(-1.0 / 3.0, 0.0, "", "numerical damping alpha");
-  if (auto* kr = std::get_if<integrators::KolayRiclesAlphaParams>(&config))
-    kr->rho_inf = r.number_or("rho_inf", kr->rho_inf, rho);
-  if (auto* ga = std::get_if<integrators::GeneralizedAlphaParams>(&config))
-    ga->rho_inf = r.number_or("rho_inf", ga->rho_inf, rho);
-  if (auto* hht = std::get_if<integrators::HhtAlphaParams>(&config))
-    hht->alpha = r.number_or("alpha", hht->alpha, alpha);
-  if (auto* os = std::get_if<integrators::AlphaOsParams>(&config)) os->alpha = r.number_or("alpha", os->alpha, alpha);
-}
-
 integrators::IntegratorConfig integrator(config::Source& r) {
   check_integrator_name(r, "scheme");
   const std::string scheme = r.choice("scheme", integrator_names(), "the time-stepping scheme");
-  integrators::IntegratorConfig config = *default_integrator(scheme);
-  integrator_parameters(r, config);
+  integrators::IntegratorConfig config = *integrators::IntegratorKinds::read(scheme, r);
   r.finish();
   try {
     integrators::make_integrator(config);

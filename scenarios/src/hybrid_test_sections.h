@@ -13,7 +13,8 @@
 
 #include "rpsd/config/source.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
-#include "rpsd/substructure/matrix_market.h"
+#include "rpsd/substructure/damping_models.h"
+#include "rpsd/substructure/structure_kinds.h"
 
 namespace rpsd::scenarios::test_sections {
 
@@ -35,23 +36,13 @@ struct Document {
 };
 Document document(config::Source& root);
 
-// `structure:` by its kind, checked (a model is configured from it); files relative to the
-// section's file (config::Source::relative_file).
-using Structure = std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig>;
+// `structure:` by its kind (substructure::StructureKinds), checked (a model is configured
+// from it); files relative to the section's file (config::Source::relative_file).
+using Structure = substructure::StructureModel;
 Structure structure(config::Source& st);
-// Each kind's keys, unchecked.
-substructure::LinearMdofConfig linear_structure(config::Source& st);
-struct MatrixMarketStructure {
-  substructure::MatrixMarketModelFiles files;
-  substructure::DampingConfig damping;
-};
-MatrixMarketStructure matrix_market_structure(config::Source& st);
-substructure::ShearBuildingConfig shear_building(config::Source& st);
-// `damping:`; `mass` is the structure's when it is known (a single ratio needs it).
+// `damping:` (substructure::DampingModels); `mass` is the structure's when it is known (a
+// single ratio needs it).
 substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* mass);
-inline constexpr std::array<std::string_view, 3> kStoryKinds = {"linear", "bilinear", "bouc_wen"};
-substructure::StorySpringConfig story(config::Source& s);
-substructure::StorySpringConfig story_of_kind(config::Source& s, std::string_view kind);
 
 // experimental[i]; its `limits:` handle is left in `limits` for the envelope check.
 hybrid_test::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
@@ -66,8 +57,6 @@ hybrid_test::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, in
                                         std::vector<hybrid_test::ExperimentalChannel>& channels);
 
 integrators::IntegratorConfig integrator(config::Source& r);
-// The keys of one scheme (rho_inf, alpha) into its default parameters.
-void integrator_parameters(config::Source& r, integrators::IntegratorConfig& config);
 std::vector<std::string_view> integrator_names();
 // An unknown scheme at `key` is refused with every name and a did-you-mean (a listing, whose
 // has() says no, lists nothing here: the choice that follows lists the key).

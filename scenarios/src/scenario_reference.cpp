@@ -116,23 +116,12 @@ void test_scenario(Document& doc) {
               study_sections::study_kind(s, description);
               (void)ts::document(s);
             }));
-  doc.table("structure (kind: linear)",
-            listing("structure", [](config::Source& s) { (void)ts::structure(s); }, {"structure.damping"}));
-  doc.table(
-      "structure (kind: matrix_market)",
-      listing("structure", [](config::Source& s) { (void)ts::matrix_market_structure(s); }, {"structure.damping"}),
-      "Regular files of at most 256 MB, at most 100000 rows and columns.");
-  doc.table("structure (kind: shear_building)",
-            listing("structure", [](config::Source& s) { (void)ts::shear_building(s); },
-                    {"structure.damping", "structure.stories[]"}));
-  for (std::string_view kind : ts::kStoryKinds) {
-    doc.table("structure.stories[] (kind: " + std::string(kind) + ")",
-              listing("structure.stories[]", [kind](config::Source& s) {
-                s.choice("kind", std::vector<std::string_view>(ts::kStoryKinds.begin(), ts::kStoryKinds.end()),
-                         "the story's spring");
-                (void)ts::story_of_kind(s, kind);
-              }));
-  }
+  kind_tables<substructure::StructureKinds>(doc, "structure", "the numerical substructure",
+                                            [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s); },
+                                            {"structure.damping", "structure.stories[]"});
+  kind_tables<substructure::StorySpringKinds>(
+      doc, "structure.stories[]", "the story's spring",
+      [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s); });
   doc.table("structure.damping",
             listing("structure.damping",
                     [](config::Source& s) {
@@ -162,14 +151,17 @@ void test_scenario(Document& doc) {
   kind_tables<servo::PlantKinds>(doc, "servo", "the plant",
                                  [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s, 1.0); },
                                  {"servo.parameters (file)"});
-  doc.table("integrator", listing("integrator", [](config::Source& s) { (void)ts::integrator(s); }));
-  for (std::string_view name : ts::integrator_names()) {
-    const auto rows = listing("integrator", [name](config::Source& s) {
-      auto config = *default_integrator(name);
-      ts::integrator_parameters(s, config);
-    });
-    if (!rows.empty()) doc.table("integrator (scheme: " + std::string(name) + ")", rows);
-  }
+  std::string schemes = "The schemes:";
+  integrators::IntegratorKinds::for_each([&schemes](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    schemes += std::string("\n- `") + std::string(Kind::kName) + "`: " + std::string(Kind::kSummary);
+  });
+  doc.table("integrator", listing("integrator", [](config::Source& s) { (void)ts::integrator(s); }), schemes);
+  integrators::IntegratorKinds::for_each([&doc](auto kind) {
+    using Kind = typename decltype(kind)::type;
+    const auto rows = listing("integrator", [](config::Source& s) { (void)Kind::read(s); });
+    if (!rows.empty()) doc.table("integrator (scheme: " + std::string(Kind::kName) + ")", rows);
+  });
   doc.table("clock", listing("clock", [](config::Source& s) {
               hybrid_test::TestConfig t;
               ts::clock(s, t);

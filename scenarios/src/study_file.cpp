@@ -13,27 +13,7 @@
 namespace rpsd::scenarios {
 
 std::optional<integrators::IntegratorConfig> default_integrator(std::string_view name) {
-  const auto scheme = integrators::parse_scheme(name);
-  if (!scheme) return std::nullopt;
-  switch (*scheme) {
-    case integrators::Scheme::kCentralDifference:
-      return integrators::CentralDifferenceParams{};
-    case integrators::Scheme::kNewmark:
-      return integrators::NewmarkParams{};
-    case integrators::Scheme::kHhtAlpha:
-      return integrators::HhtAlphaParams{};
-    case integrators::Scheme::kGeneralizedAlpha:
-      return integrators::GeneralizedAlphaParams{};
-    case integrators::Scheme::kAlphaOs:
-      return integrators::AlphaOsParams{};
-    case integrators::Scheme::kChang:
-      return integrators::ChangParams{};
-    case integrators::Scheme::kChenRicles:
-      return integrators::ChenRiclesParams{};
-    case integrators::Scheme::kKolayRiclesAlpha:
-      return integrators::KolayRiclesAlphaParams{};
-  }
-  return std::nullopt;
+  return integrators::default_integrator_config(name);
 }
 
 std::vector<double> log_spaced(double start, double stop, int points) {

@@ -121,9 +121,9 @@ studies::DelayCompensationStudy delay_compensation(config::Source& root) {
       root.number_or("abort_amplitude_factor", s.abort_amplitude_factor,
                      Number::between(1.0, 1e3, "", "a run stops once it grows this many times its start"));
   test_sections::check_integrator_name(root, "integrator");
-  const std::string scheme = root.choice_or("integrator", test_sections::integrator_names(),
-                                            integrators::scheme_name(integrators::scheme_of(s.integrator)),
-                                            "the time-stepping scheme (default parameters)");
+  const std::string scheme =
+      root.choice_or("integrator", test_sections::integrator_names(), integrators::integrator_name(s.integrator),
+                     "the time-stepping scheme (default parameters)");
   s.integrator = *default_integrator(scheme);
   {
     const auto compensation = root.section("compensation", "the phase-lead runs");

@@ -172,8 +172,8 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
         {"natural_frequency_hz", std::sqrt(study.stiffness_n_per_m / study.mass_kg) / (2.0 * std::numbers::pi)}}},
       {"initial_displacement_m", study.initial_displacement_m},
       {"control_rate_hz", study.control_rate_hz},
-      {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(study.integrator))) + " " +
-                         integrators::describe(study.integrator)},
+      {"integrator",
+       std::string(integrators::integrator_name(study.integrator)) + " " + integrators::describe(study.integrator)},
       {"phase_lead_ratio_a", study.phase_lead_ratio_a},
       {"cases", entries}};
   output::write_file_whole(dir / "summary.json", summary.dump(2) + '\n');

@@ -421,7 +421,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
       {"steps", test.steps},
       {"steps_planned", test.steps_planned},
       {"control_rate_hz", scenario.control_rate_hz},
-      {"integrator", std::string(integrators::scheme_name(integrators::scheme_of(scenario.integrator))) + " " +
+      {"integrator", std::string(integrators::integrator_name(scenario.integrator)) + " " +
                          integrators::describe(scenario.integrator)},
       {"compensation", std::string(compensation::compensator_name(scenario.compensation))},
       {"ground_motion", scenario.ground_motion ? ground_motion_json(*scenario.ground_motion) : json(nullptr)},

@@ -9,17 +9,8 @@
 namespace rpsd::substructure {
 
 StorySpring::StorySpring(const StorySpringConfig& config)
-    : law_(std::visit(
-          [](const auto& c) -> std::variant<LinearSpring, BilinearSpring, BoucWenSpring> {
-            using C = std::decay_t<decltype(c)>;
-            if constexpr (std::is_same_v<C, LinearSpringConfig>)
-              return LinearSpring(c);
-            else if constexpr (std::is_same_v<C, BilinearSpringConfig>)
-              return BilinearSpring(c);
-            else
-              return BoucWenSpring(c);
-          },
-          config)) {}
+    : law_(std::visit([](const auto& c) -> StorySpringLaw { return typename std::decay_t<decltype(c)>::Spring(c); },
+                      config)) {}
 
 void ShearBuilding::configure(const ShearBuildingConfig& config) {
   const std::string ctx = "shear building: ";

@@ -1,6 +1,7 @@
 #include "rpsd/substructure/bilinear_spring.h"
 #include "rpsd/substructure/bouc_wen_spring.h"
 #include "rpsd/substructure/linear_spring.h"
+#include "rpsd/substructure/reading_ranges.h"
 
 #include "matrix_checks.h"
 
@@ -10,6 +11,49 @@
 #include <string>
 
 namespace rpsd::substructure {
+
+using config::Number;
+
+namespace {
+
+Number initial_stiffness_range() { return {"N/m", "the initial stiffness", 0.0, ranges::kMaxStiffnessNPerM, true}; }
+Number post_yield_range() { return Number::between(0.0, 1.0, "", "post-yield over initial stiffness"); }
+
+}  // namespace
+
+LinearSpringConfig LinearSpringConfig::read(config::Source& s) {
+  return LinearSpringConfig{s.number("stiffness_n_per_m", initial_stiffness_range())};
+}
+
+BilinearSpringConfig BilinearSpringConfig::read(config::Source& s) {
+  BilinearSpringConfig b;
+  b.stiffness_n_per_m = s.number("stiffness_n_per_m", initial_stiffness_range());
+  b.yield_force_n = s.number("yield_force_n", Number{"N", "the yield force", 0.0, ranges::kMaxForceN, true});
+  b.post_yield_ratio = s.number("post_yield_ratio", post_yield_range());
+  return b;
+}
+
+BoucWenSpringConfig BoucWenSpringConfig::example() {
+  BoucWenSpringConfig b;
+  b.stiffness_n_per_m = 5.0e7;
+  b.post_yield_ratio = 0.05;
+  b.n = 2.0;
+  b.beta = b.gamma = 1.0 / (2.0 * 0.01 * 0.01);
+  return b;
+}
+
+BoucWenSpringConfig BoucWenSpringConfig::read(config::Source& s) {
+  // beta and gamma in 1/m^n: 1e6 is a yield displacement of a micrometre.
+  BoucWenSpringConfig b;
+  b.stiffness_n_per_m = s.number("stiffness_n_per_m", initial_stiffness_range());
+  b.post_yield_ratio = s.number("post_yield_ratio", post_yield_range());
+  b.A = s.number_or("A", b.A, Number{"", "Bouc-Wen A", 0.0, 100.0, true});
+  b.beta = s.number("beta", Number::between(0.0, 1e6, "1/m^n", "Bouc-Wen beta"));
+  b.gamma = s.number("gamma", Number::between(-1e6, 1e6, "1/m^n", "Bouc-Wen gamma (beta + gamma > 0)"));
+  b.n = s.number_or("n", b.n, Number::between(1.0, 20.0, "", "Bouc-Wen n, the sharpness of yielding"));
+  return b;
+}
+
 namespace {
 
 void require(bool ok, const std::string& spring, const std::string& what, double got) {

@@ -1,6 +1,7 @@
 // Zero heap allocations on the stepping path: this binary replaces the global operator
 // new/delete AND the C allocation functions (Eigen allocates with malloc, not new), counts
-// calls while a flag is set, and runs 10,000 steps of a 500-DOF sparse model per scheme.
+// calls while a flag is set, and runs 10,000 steps of a 500-DOF sparse model per scheme: every
+// scheme of IntegratorKinds with its default parameters, and the typed suite's configurations.
 #include "rpsd/integrators/factory.h"
 #include "rpsd/substructure/frame_model.h"
 #include "scheme_traits.h"
@@ -10,6 +11,7 @@
 #include <cstdlib>
 
 #include "allocation_counter.h"
+#include "kind_types.h"
 
 namespace rpsd::integrators::test {
 namespace {
@@ -20,6 +22,11 @@ using substructure::permuted;
 template <class T>
 class ZeroAllocation : public ::testing::Test {};
 TYPED_TEST_SUITE(ZeroAllocation, Schemes, SchemeNames);
+
+// Every registered kind, so that a new scheme is covered without a line here.
+template <class Kind>
+class EveryKindZeroAllocation : public ::testing::Test {};
+TYPED_TEST_SUITE(EveryKindZeroAllocation, rpsd::testing::KindTypes<IntegratorKinds>::type, rpsd::testing::KindNames);
 
 // Counts allocations over `steps` hybrid steps with R = K d; sanity-checks the counter.
 long allocations_over_steps(Integrator& integrator, const StructuralMatrices& model,
@@ -90,6 +97,15 @@ TYPED_TEST(ZeroAllocation, Dense60Dof) {
   auto integrator = make_integrator(TypeParam::config());
   const Eigen::MatrixXd M = model.mass, C = model.damping, K = model.stiffness;
   EXPECT_EQ(allocations_over_steps(*integrator, StructuralMatrices::dense(M, C, K), model.stiffness, 2000), 0);
+}
+
+TYPED_TEST(EveryKindZeroAllocation, SparseLumpedMass500DofDefaultParameters) {
+  const auto model = make_frame_model(500, 2.0 * 2.0 * 3.14159 * 4096.0 / 6.3);  // Omega_max < 1
+  auto integrator = make_integrator(TypeParam{});
+  EXPECT_EQ(integrator->info().name, TypeParam::kName);
+  EXPECT_EQ(allocations_over_steps(*integrator, StructuralMatrices::sparse(model.mass, model.damping, model.stiffness),
+                                   model.stiffness, 2000),
+            0);
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ TEST(OracleTable, SpectralRadiusPeriodRatioAndDampingTo1e3) {
       for (const auto& c : row.cells) {
         const auto p = analyze_amplification(config, c.omega_dt, 0.0);
         const std::string where =
-            row.name + " [" + std::string(scheme_name(scheme_of(config))) + "] Omega=" + std::to_string(c.omega_dt);
+            row.name + " [" + std::string(integrator_name(config)) + "] Omega=" + std::to_string(c.omega_dt);
         EXPECT_NEAR(p.spectral_radius, c.rho, 1e-3) << where;
         ASSERT_TRUE(p.oscillatory) << where;
         EXPECT_NEAR(p.period_ratio, c.period_ratio, 1e-3) << where;
@@ -79,7 +79,7 @@ TEST(OracleTable, ClosedForms) {
     bool found = false;
     for (const auto& l : p.eigenvalues)
       if (std::abs(l - std::complex<double>(0.6, 0.8)) < 1e-12) found = true;
-    EXPECT_TRUE(found) << scheme_name(scheme_of(c));
+    EXPECT_TRUE(found) << integrator_name(c);
   }
   // rho_inf: the spectral radius tends to it as Omega -> infinity (slowly: about 2e-3 away
   // at Omega = 1e4 for rho_inf = 0).

@@ -117,7 +117,7 @@ TEST(DenseAndSparse, GiveTheSameTrajectory) {
       hybrid_step(*sparse, frame.stiffness, z, r);
     }
     EXPECT_LT((dense->displacement() - sparse->displacement()).norm(), 1e-9 * dense->displacement().norm() + 1e-15)
-        << scheme_name(scheme_of(c));
+        << integrator_name(c);
   }
 }
 

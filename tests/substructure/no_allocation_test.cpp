@@ -1,6 +1,6 @@
 // Zero heap allocations on the real-time path: restoring_force / commit / tangent_stiffness
-// of a 500-DOF sparse and a 200-DOF dense linear model and of 50-story Bouc–Wen and
-// bilinear buildings, with the partition and the ground-motion load, over many steps.
+// of a 500-DOF sparse and a 200-DOF dense linear model and of a 50-story building of every
+// story spring kind, with the partition and the ground-motion load, over many steps.
 //
 // This binary replaces the global operator new/delete and the C allocation functions
 // (malloc, calloc, realloc, aligned variants; glibc allows replacing them and exports the
@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "allocation_counter.h"
+#include "kind_types.h"
 
 namespace rpsd::substructure {
 namespace {
@@ -178,23 +179,18 @@ void run_building(ShearBuilding& b) {
   EXPECT_TRUE(std::isfinite(check));
 }
 
-TEST(NoAllocation, BoucWenBuilding50Stories) {
-  BoucWenSpringConfig bw;
-  bw.stiffness_n_per_m = 5.0e7;
-  bw.post_yield_ratio = 0.05;
-  bw.n = 2.0;
-  bw.beta = bw.gamma = 1.0 / (2.0 * 0.01 * 0.01);  // z_max = 1 cm
+// Every story spring of StorySpringKinds, with its example(): a new kind is covered here
+// without a new line.
+template <class Kind>
+class EveryStorySpring : public ::testing::Test {};
+TYPED_TEST_SUITE(EveryStorySpring, rpsd::testing::KindTypes<StorySpringKinds>::type, rpsd::testing::KindNames);
+
+TYPED_TEST(EveryStorySpring, Building50Stories) {
   for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
     ShearBuilding b;
-    b.configure(building(50, bw, storage));
+    b.configure(building(50, TypeParam::example(), storage));
     run_building(b);
   }
-}
-
-TEST(NoAllocation, BilinearBuilding50Stories) {
-  ShearBuilding b;
-  b.configure(building(50, BilinearSpringConfig{5.0e7, 5.0e5, 0.05}, linalg::MatrixStorage::kSparse));
-  run_building(b);
 }
 
 }  // namespace

@@ -3,11 +3,23 @@
 // OpenSees/OpenFresco: x+ = x + dt v + dt^2/2 a (the command);
 // (M + dt/2 C) a+ = F+ - R(x+) - C (v + dt/2 a); v+ = v + dt/2 (a + a+).
 // Stable for omega_max dt <= 2 (damping treated implicitly in velocity).
+#include <string>
+
+#include "rpsd/integrators/integrator_kind.h"
 #include "rpsd/integrators/operator_splitting_engine.h"
 
 namespace rpsd::integrators {
 
-struct CentralDifferenceParams {};
+class CentralDifference;
+
+struct CentralDifferenceParams {
+  static constexpr std::string_view kName = "central_difference";  // integrator.scheme in a scenario
+  static constexpr std::string_view kSummary = "explicit Newmark (beta = 0, gamma = 1/2), stable for omega dt <= 2";
+  using Integrator = CentralDifference;
+  static CentralDifferenceParams read(config::Source&) { return {}; }
+  static Aliases<CentralDifferenceParams> aliases() { return {{"cd", {}}}; }
+  std::string describe() const { return "beta=0 gamma=0.5"; }
+};
 
 class CentralDifference final : public OperatorSplittingEngine {
  public:

@@ -4,11 +4,22 @@
 //   x+ = x + beta1 dt v + beta2 dt^2 a                       <- the command
 //   (M + dt/2 C) a+ = F+ - R(x+) - C (v + dt/2 a),  v+ = v + dt/2 (a + a+)
 // Its eigenvalues equal those of average acceleration on linear systems.
+#include <string>
+
 #include "rpsd/integrators/integrator.h"
+#include "rpsd/integrators/integrator_kind.h"
 
 namespace rpsd::integrators {
 
-struct ChangParams {};
+class Chang;
+
+struct ChangParams {
+  static constexpr std::string_view kName = "chang";
+  static constexpr std::string_view kSummary = "Chang's explicit unconditionally stable method";
+  using Integrator = Chang;
+  static ChangParams read(config::Source&) { return {}; }
+  std::string describe() const { return "(none)"; }
+};
 
 class Chang final : public Integrator {
  public:

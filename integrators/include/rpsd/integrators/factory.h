@@ -1,5 +1,17 @@
+// Every integrator rpsd knows, registered in one place (the list below): a new scheme is its
+// own header and source (its parameters naming themselves with kName, reading their keys with
+// read(), describing themselves and naming the Integrator they configure) plus one entry here
+// (CONTRIBUTING.md). The scenario reader, the studies, `rpsd analyze integrator`, the scenario
+// reference and the summaries follow from the list.
 #pragma once
-// Typed configuration of a scheme (which scheme plus its parameters) and the factory.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rpsd/config/kind_list.h"
 #include "rpsd/integrators/alpha_os.h"
 #include "rpsd/integrators/central_difference.h"
 #include "rpsd/integrators/chang.h"
@@ -10,29 +22,30 @@
 #include "rpsd/integrators/kolay_ricles_alpha.h"
 #include "rpsd/integrators/newmark.h"
 
-#include <memory>
-#include <optional>
-#include <string>
-#include <string_view>
-#include <variant>
-#include <vector>
-
 namespace rpsd::integrators {
 
-using IntegratorConfig = std::variant<CentralDifferenceParams, NewmarkParams, HhtAlphaParams, GeneralizedAlphaParams,
-                                      AlphaOsParams, ChangParams, ChenRiclesParams, KolayRiclesAlphaParams>;
+using IntegratorKinds = config::KindList<CentralDifferenceParams, NewmarkParams, HhtAlphaParams, GeneralizedAlphaParams,
+                                         AlphaOsParams, ChangParams, ChenRiclesParams, KolayRiclesAlphaParams>;
+using IntegratorConfig = IntegratorKinds::Variant;
 
-Scheme scheme_of(const IntegratorConfig& config);
-// Stable lower-case name: central_difference, newmark, hht_alpha, ...
-std::string_view scheme_name(Scheme scheme);
-std::optional<Scheme> parse_scheme(std::string_view name);
-// Every scheme's name, in the order above (for messages listing them).
-std::vector<std::string_view> scheme_names();
+// The scheme's stable lower-case name (its kName): central_difference, newmark, ...
+inline std::string_view integrator_name(const IntegratorConfig& config) noexcept { return config::kind_name(config); }
+
+// The scheme named `name` with its default parameters; nullopt for no scheme of that name.
+std::optional<IntegratorConfig> default_integrator_config(std::string_view name);
+
+// The scheme a command-line spelling names, with the parameters the spelling stands for:
+// a kName or an alias, - and _ alike, any case. nullopt for none.
+std::optional<IntegratorConfig> integrator_from_spelling(std::string_view spelling);
+// Every alias, in the list's order (for messages).
+std::vector<std::string_view> integrator_aliases();
 
 // Not real-time safe. Validates the parameters (throws std::invalid_argument).
 std::unique_ptr<Integrator> make_integrator(const IntegratorConfig& config);
 
 // Human-readable parameter summary, e.g. "rho_inf=0.8".
-std::string describe(const IntegratorConfig& config);
+inline std::string describe(const IntegratorConfig& config) {
+  return std::visit([](const auto& p) { return p.describe(); }, config);
+}
 
 }  // namespace rpsd::integrators

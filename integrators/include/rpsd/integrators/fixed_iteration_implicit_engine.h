@@ -12,6 +12,7 @@
 // full Newton update, so every command is one an actuator can follow.
 #include "rpsd/integrators/integrator.h"
 
+#include <string>
 #include <vector>
 
 namespace rpsd::integrators {
@@ -21,6 +22,8 @@ struct FixedIterationOptions {
   int iterations = 2;
   int poly_order = 1;
 };
+// " iterations=2 poly_order=1", the end of a scheme's describe().
+std::string describe(const FixedIterationOptions& options);
 
 struct ImplicitCoefficients {
   double alpha_m = 0.0;

@@ -3,11 +3,23 @@
 //   (1-am) M a+ + am M a + (1-af)(C v+ + R+) + af (C v + R) = (1-af) F+ + af F
 //   am = (2 rho_inf - 1)/(rho_inf + 1), af = rho_inf/(rho_inf + 1),
 //   gamma = 1/2 - am + af, beta = (1 - am + af)^2 / 4 = 1/(1 + rho_inf)^2.
+#include <string>
+
 #include "rpsd/integrators/fixed_iteration_implicit_engine.h"
+#include "rpsd/integrators/integrator_kind.h"
 
 namespace rpsd::integrators {
 
+class GeneralizedAlpha;
+
 struct GeneralizedAlphaParams {
+  static constexpr std::string_view kName = "generalized_alpha";
+  static constexpr std::string_view kSummary = "generalized-alpha (Chung & Hulbert), fixed iterations per step";
+  using Integrator = GeneralizedAlpha;
+  static GeneralizedAlphaParams read(config::Source& section);  // rho_inf
+  static Aliases<GeneralizedAlphaParams> aliases() { return {{"ga", {}}}; }
+  std::string describe() const;
+
   double rho_inf = 0.8;
   FixedIterationOptions fixed_iteration{};
 };

@@ -25,20 +25,8 @@
 
 namespace rpsd::integrators {
 
-enum class Scheme {
-  kCentralDifference,
-  kNewmark,
-  kHhtAlpha,
-  kGeneralizedAlpha,
-  kAlphaOs,
-  kChang,
-  kChenRicles,
-  kKolayRiclesAlpha,
-};
-
 struct SchemeInfo {
-  Scheme scheme;
-  std::string_view name;
+  std::string_view name;  // its parameters' kName
   // The first command of a step depends only on the state at t (no force of the step).
   bool explicit_in_displacement;
   // Omega = omega*dt above which the scheme is unstable on a linear undamped system;

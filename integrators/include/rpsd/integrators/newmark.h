@@ -2,11 +2,23 @@
 // Implicit Newmark beta-gamma with a fixed number of iterations per step.
 // Unconditionally stable for 2 beta >= gamma >= 1/2; otherwise (gamma >= 1/2) stable
 // for omega dt <= (gamma/2 - beta)^(-1/2), e.g. 2 sqrt(3) for linear acceleration.
+#include <string>
+
 #include "rpsd/integrators/fixed_iteration_implicit_engine.h"
+#include "rpsd/integrators/integrator_kind.h"
 
 namespace rpsd::integrators {
 
+class Newmark;
+
 struct NewmarkParams {
+  static constexpr std::string_view kName = "newmark";
+  static constexpr std::string_view kSummary = "implicit Newmark (average acceleration), fixed iterations per step";
+  using Integrator = Newmark;
+  static NewmarkParams read(config::Source&) { return {}; }
+  static Aliases<NewmarkParams> aliases();
+  std::string describe() const;
+
   double beta = 0.25;
   double gamma = 0.5;
   FixedIterationOptions fixed_iteration{};

@@ -7,9 +7,21 @@
 // The update is the 1-D return mapping with plastic modulus H = α k0 / (1 − α); it is exact
 // for any increment size because every branch is linear.
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 namespace rpsd::substructure {
 
+class BilinearSpring;
+
 struct BilinearSpringConfig {
+  static constexpr std::string_view kName = "bilinear";
+  static constexpr std::string_view kSummary = "elastic-plastic with linear kinematic hardening";
+  using Spring = BilinearSpring;
+  static BilinearSpringConfig read(config::Source& section);
+  static BilinearSpringConfig example() { return {5.0e7, 5.0e5, 0.05}; }  // yields at 1 cm
+
   double stiffness_n_per_m = 0.0;  // k0 > 0
   double yield_force_n = 0.0;      // fy > 0
   double post_yield_ratio = 0.0;   // α in [0, 1); 0 is elastic-perfectly-plastic

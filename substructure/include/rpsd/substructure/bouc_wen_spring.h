@@ -5,9 +5,21 @@
 // the work per trial for real-time use.
 // Derivation and accuracy: docs/substructures.md
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 namespace rpsd::substructure {
 
+class BoucWenSpring;
+
 struct BoucWenSpringConfig {
+  static constexpr std::string_view kName = "bouc_wen";
+  static constexpr std::string_view kSummary = "Bouc-Wen smooth hysteresis, integrated by RK4 in sub-steps";
+  using Spring = BoucWenSpring;
+  static BoucWenSpringConfig read(config::Source& section);
+  static BoucWenSpringConfig example();  // z_max = 1 cm, n = 2
+
   double stiffness_n_per_m = 0.0;  // k0 > 0
   double post_yield_ratio = 0.0;   // α in [0, 1)
   double A = 1.0;                  // > 0

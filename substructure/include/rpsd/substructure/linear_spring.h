@@ -1,9 +1,22 @@
 #pragma once
 // Linear elastic spring F = k u.
 
+#include <string_view>
+
+#include "rpsd/config/source.h"
+
 namespace rpsd::substructure {
 
+class LinearSpring;
+
 struct LinearSpringConfig {
+  static constexpr std::string_view kName = "linear";  // a story's kind in a scenario
+  static constexpr std::string_view kSummary = "a linear elastic spring, F = k u";
+  using Spring = LinearSpring;
+  static LinearSpringConfig read(config::Source& section);
+  // A typical story of a laboratory-scale building (the allocation tests run every kind's).
+  static LinearSpringConfig example() { return {5.0e7}; }
+
   double stiffness_n_per_m = 0.0;  // > 0
 };
 

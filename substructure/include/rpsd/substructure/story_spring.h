@@ -1,7 +1,10 @@
 #pragma once
 // A story spring of a shear building: one of the spring laws, held by value (no per-spring
-// heap object, no virtual call).
+// heap object, no virtual call). Every law is registered in one place, the list below: a new
+// one is its own header and source (its config naming itself with kName, reading its keys
+// with read() and naming the Spring it configures) plus one entry here (CONTRIBUTING.md).
 
+#include "rpsd/config/kind_list.h"
 #include "rpsd/substructure/bilinear_spring.h"
 #include "rpsd/substructure/bouc_wen_spring.h"
 #include "rpsd/substructure/linear_spring.h"
@@ -10,7 +13,17 @@
 
 namespace rpsd::substructure {
 
-using StorySpringConfig = std::variant<LinearSpringConfig, BilinearSpringConfig, BoucWenSpringConfig>;
+using StorySpringKinds = config::KindList<LinearSpringConfig, BilinearSpringConfig, BoucWenSpringConfig>;
+using StorySpringConfig = StorySpringKinds::Variant;
+
+// The spring laws of a list of configs, by value.
+template <class List>
+struct SpringLaws;
+template <class... Configs>
+struct SpringLaws<config::KindList<Configs...>> {
+  using type = std::variant<typename Configs::Spring...>;
+};
+using StorySpringLaw = SpringLaws<StorySpringKinds>::type;
 
 class StorySpring {
  public:
@@ -37,10 +50,10 @@ class StorySpring {
     return std::visit([](const auto& s) { return s.committed_force(); }, law_);
   }
   // The concrete law, for recording its internal variables.
-  [[nodiscard]] const std::variant<LinearSpring, BilinearSpring, BoucWenSpring>& law() const noexcept { return law_; }
+  [[nodiscard]] const StorySpringLaw& law() const noexcept { return law_; }
 
  private:
-  std::variant<LinearSpring, BilinearSpring, BoucWenSpring> law_;
+  StorySpringLaw law_;
 };
 
 }  // namespace rpsd::substructure

@@ -1,0 +1,50 @@
+// The kinds of numerical substructure a scenario's `structure:` may be, registered in one
+// place (the list below): each names itself (`structure.kind`), reads its keys and makes the
+// model configuration it describes, checked by configuring a model from it.
+#pragma once
+
+#include <string_view>
+#include <variant>
+
+#include "rpsd/config/kind_list.h"
+#include "rpsd/config/source.h"
+#include "rpsd/substructure/linear_mdof_model.h"
+#include "rpsd/substructure/matrix_market.h"
+#include "rpsd/substructure/shear_building.h"
+
+namespace rpsd::substructure {
+
+// What a structure kind makes: a linear model or a shear building.
+using StructureModel = std::variant<LinearMdofConfig, ShearBuildingConfig>;
+
+struct LinearStructure {
+  static constexpr std::string_view kName = "linear";
+  static constexpr std::string_view kSummary = "M and K in the file: rows, a diagonal or one number, at most 200 DOFs";
+  static LinearStructure read(config::Source& structure);
+  // Throws std::invalid_argument when no model can be configured from it. Not real-time safe.
+  StructureModel model() const;
+  LinearMdofConfig config;
+};
+
+struct MatrixMarketStructure {
+  static constexpr std::string_view kName = "matrix_market";
+  static constexpr std::string_view kSummary =
+      "M and K (and C) from Matrix Market files: regular files of at most 256 MB, at most 100000 rows and columns";
+  static MatrixMarketStructure read(config::Source& structure);
+  // Reads the files (std::runtime_error when one cannot be read) and checks the model.
+  StructureModel model() const;
+  MatrixMarketModelFiles files;
+  DampingConfig damping = Undamped{};
+};
+
+struct ShearBuildingStructure {
+  static constexpr std::string_view kName = "shear_building";
+  static constexpr std::string_view kSummary = "floor masses and one story spring per floor, bottom up";
+  static ShearBuildingStructure read(config::Source& structure);
+  StructureModel model() const;
+  ShearBuildingConfig config;
+};
+
+using StructureKinds = config::KindList<LinearStructure, MatrixMarketStructure, ShearBuildingStructure>;
+
+}  // namespace rpsd::substructure
