@@ -8,13 +8,13 @@
 #include <memory>
 
 #include "rpsd/commands.h"
+#include "rpsd/hybrid_test/hybrid_test_output.h"
 #include "rpsd/output/results_files.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/scenarios/site_server_file.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/site_server/site_summary.h"
 #include "rpsd/studies/dry_run_report.h"
-#include "rpsd/hybrid_test/hybrid_test_output.h"
 #include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
 #include "stop_signals.h"

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "rpsd/output/provenance.h"
-#include "rpsd/output/results_files.h"
 #include "rpsd/hybrid_test/benchmark_criteria.h"
 #include "rpsd/hybrid_test/monte_carlo.h"
+#include "rpsd/output/provenance.h"
+#include "rpsd/output/results_files.h"
 
 namespace rpsd::hybrid_test {
 namespace {
@@ -49,8 +49,8 @@ nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(
 
 }  // namespace
 
-RunResult run_monte_carlo_into(const std::filesystem::path& dir, const TestDocument& file,
-                               const ProgressSink& progress, const std::atomic<bool>* stop_request) {
+RunResult run_monte_carlo_into(const std::filesystem::path& dir, const TestDocument& file, const ProgressSink& progress,
+                               const std::atomic<bool>* stop_request) {
   using nlohmann::json;
   const MonteCarloConfig& mc = *file.monte_carlo;
   std::filesystem::create_directories(dir);

@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "rpsd/config/input_log.h"
+#include "rpsd/hybrid_test/monte_carlo.h"
 #include "rpsd/scenarios/ground_motion_section.h"
 #include "rpsd/scenarios/hybrid_test_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
-#include "rpsd/hybrid_test/monte_carlo.h"
 #include "study_sections.h"
 
 namespace rpsd::scenarios {

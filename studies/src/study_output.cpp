@@ -235,8 +235,8 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
       900, 600);
 }
 
-StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir, const hybrid_test::ProgressSink& progress,
-                       const std::atomic<bool>* stop_request) {
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
+                       const hybrid_test::ProgressSink& progress, const std::atomic<bool>* stop_request) {
   StudyRun run;
   std::filesystem::create_directories(dir);
   std::visit(
@@ -263,7 +263,8 @@ StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& d
             run.recorded_in = stopped_cases_records(dir);
           }
         } else {
-          const hybrid_test::TestHeadline headline = hybrid_test::run_test_into(dir, file, study, progress, stop_request);
+          const hybrid_test::TestHeadline headline =
+              hybrid_test::run_test_into(dir, file, study, progress, stop_request);
           run.result = headline.result;
           run.reason = headline.outcome;
           run.recorded_in = (dir / "time_history.csv").string();

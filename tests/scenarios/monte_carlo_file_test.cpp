@@ -5,10 +5,10 @@
 #include <filesystem>
 
 #include "../servo/paper_rig.h"
+#include "rpsd/hybrid_test/monte_carlo.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/plant_factory.h"
-#include "rpsd/hybrid_test/monte_carlo.h"
 
 namespace rpsd::scenarios {
 namespace {

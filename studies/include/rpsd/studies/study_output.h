@@ -36,7 +36,7 @@ struct StudyRun {
 // Runs whichever study the file holds and writes it into dir (created if missing; the
 // command line first makes sure it is empty: prepare_results_folder). A test that stopped still has every step it took
 // on disk. `stop_request` (optional): set by a signal handler to end a test or sweep in order.
-StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir, const hybrid_test::ProgressSink& progress = {},
-                       const std::atomic<bool>* stop_request = nullptr);
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
+                       const hybrid_test::ProgressSink& progress = {}, const std::atomic<bool>* stop_request = nullptr);
 
 }  // namespace rpsd::studies
