@@ -8,13 +8,13 @@
 #include <memory>
 
 #include "rpsd/commands.h"
+#include "rpsd/hybrid_test/hybrid_test_output.h"
 #include "rpsd/output/results_files.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/scenarios/site_server_file.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/site_server/site_summary.h"
 #include "rpsd/studies/dry_run_report.h"
-#include "rpsd/studies/hybrid_test_output.h"
 #include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
 #include "stop_signals.h"
@@ -38,7 +38,7 @@ struct RunOptions {
 class ProgressBar {
  public:
   explicit ProgressBar(double control_rate_hz) : rate_hz_(control_rate_hz), start_(Clock::now()), case_start_(start_) {}
-  void operator()(const studies::ProgressReport& r) {
+  void operator()(const hybrid_test::ProgressReport& r) {
     if (!isatty(STDERR_FILENO)) return;
     const auto now = Clock::now();
     if (r.case_number != case_number_) case_number_ = r.case_number, case_start_ = now;
@@ -158,20 +158,20 @@ void add_run(CLI::App& app) {
     {
       ProgressBar bar(rate_hz);
       run = studies::run_and_write(
-          file, options->out, [&bar](const studies::ProgressReport& r) { bar(r); }, stop_request);
+          file, options->out, [&bar](const hybrid_test::ProgressReport& r) { bar(r); }, stop_request);
     }
     const std::string summary = options->out + "/summary.json";
     std::cout << "rpsd run: " << file.name << " -> " << summary << "\n";
     switch (run.result) {
-      case studies::RunResult::kCompleted:
+      case hybrid_test::RunResult::kCompleted:
         return;
-      case studies::RunResult::kStopped:
+      case hybrid_test::RunResult::kStopped:
         throw TestStopped(run.recorded_in, run.reason);
-      case studies::RunResult::kResultsNotWritten:
+      case hybrid_test::RunResult::kResultsNotWritten:
         throw output::ResultsNotWritten(run.reason + "; " + summary + " says what is missing");
-      case studies::RunResult::kInterrupted:
+      case hybrid_test::RunResult::kInterrupted:
         throw RunInterrupted(summary, run.reason);
-      case studies::RunResult::kNotReady:
+      case hybrid_test::RunResult::kNotReady:
         throw RunNotReady(summary, run.reason);
     }
   });
@@ -212,7 +212,7 @@ void add_plot(CLI::App& app) {
   auto* plot = app.add_subcommand("plot", "Redraw the plots of a folder rpsd wrote (a test, a sweep, a study)");
   plot->add_option("dir", *dir, "Output folder of `rpsd run`")->required()->check(CLI::ExistingDirectory);
   plot->callback([dir] {
-    const auto drawn = studies::plot_folder(*dir);
+    const auto drawn = hybrid_test::plot_folder(*dir);
     std::cout << "rpsd plot: " << drawn.size() << " plots in " << *dir << "\n";
   });
 }

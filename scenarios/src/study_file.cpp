@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "rpsd/config/input_log.h"
+#include "rpsd/hybrid_test/monte_carlo.h"
 #include "rpsd/scenarios/ground_motion_section.h"
 #include "rpsd/scenarios/hybrid_test_file.h"
 #include "rpsd/scenarios/yaml_reader.h"
-#include "rpsd/studies/monte_carlo.h"
 #include "study_sections.h"
 
 namespace rpsd::scenarios {
@@ -253,13 +253,13 @@ std::optional<double> number_at(const YAML::Node& root, const std::string& key_p
 studies::StudyDocument read_monte_carlo(const std::string& text, const std::vector<Override>& command_line,
                                         YAML::Node document, MappingReader& root, const std::filesystem::path& file,
                                         studies::StudyDocument result) {
-  studies::MonteCarloConfig config = study_sections::monte_carlo(root);
+  hybrid_test::MonteCarloConfig config = study_sections::monte_carlo(root);
   for (auto& p : config.parameters) {
     const auto nominal = number_at(document, p.key_path);
     if (!nominal) root.fail("monte_carlo", "parameters: " + p.key_path + " is not a number in this scenario");
     p.nominal = *nominal;
   }
-  const auto draws = studies::draw_monte_carlo(config);
+  const auto draws = hybrid_test::draw_monte_carlo(config);
   for (int run = 0; run < config.runs; ++run) {
     std::vector<Override> overrides;
     for (std::size_t i = 0; i < config.parameters.size(); ++i) {

@@ -150,8 +150,8 @@ studies::DelayCompensationStudy delay_compensation(config::Source& root) {
 
 namespace {
 
-studies::SweepAxis sweep_axis(config::Source& axis) {
-  studies::SweepAxis a;
+hybrid_test::SweepAxis sweep_axis(config::Source& axis) {
+  hybrid_test::SweepAxis a;
   a.key_path = axis.text("key", "the swept key's path (a.b.0.c)");
   // The swept key's own reader checks each value's range, case by case.
   const Number value = Number::any("", "a value of the swept key");
@@ -172,18 +172,18 @@ studies::SweepAxis sweep_axis(config::Source& axis) {
 
 }  // namespace
 
-std::vector<studies::SweepAxis> sweep(config::Source& root) {
-  std::vector<studies::SweepAxis> axes;
+std::vector<hybrid_test::SweepAxis> sweep(config::Source& root) {
+  std::vector<hybrid_test::SweepAxis> axes;
   for (auto& axis : root.sections("sweep", 2, "one or two keys to sweep, each with values or a range")) {
     axes.push_back(sweep_axis(*axis));
   }
   return axes;
 }
 
-studies::MonteCarloConfig monte_carlo(config::Source& root) {
-  using P = studies::MonteCarloParameter;
+hybrid_test::MonteCarloConfig monte_carlo(config::Source& root) {
+  using P = hybrid_test::MonteCarloParameter;
   const auto section = root.section("monte_carlo", "seeded runs with perturbed parameters");
-  studies::MonteCarloConfig m;
+  hybrid_test::MonteCarloConfig m;
   m.runs = static_cast<int>(section->whole_number("runs", 2, 1000, "how many perturbed runs"));
   m.seed = static_cast<std::uint64_t>(section->whole_number("seed", 0, 2'000'000'000, "the generator's seed"));
   m.noise_seed_key =

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rpsd/config/source.h"
+#include "rpsd/hybrid_test/test_document.h"
 #include "rpsd/studies/study_config.h"
 
 namespace rpsd::scenarios::study_sections {
@@ -26,8 +27,8 @@ studies::MaxGainStudy max_gain(config::Source& root, config::Source& servo);
 studies::DelayCompensationStudy delay_compensation(config::Source& root);
 
 // `sweep:`, one or two axes.
-std::vector<studies::SweepAxis> sweep(config::Source& root);
+std::vector<hybrid_test::SweepAxis> sweep(config::Source& root);
 // `monte_carlo:` (the nominal values are filled in by the caller, from the document).
-studies::MonteCarloConfig monte_carlo(config::Source& root);
+hybrid_test::MonteCarloConfig monte_carlo(config::Source& root);
 
 }  // namespace rpsd::scenarios::study_sections

@@ -1,6 +1,6 @@
 #include "rpsd/studies/study_output.h"
 
-#include "rpsd/studies/monte_carlo_output.h"
+#include "rpsd/hybrid_test/monte_carlo_output.h"
 
 #include <algorithm>
 #include <cmath>
@@ -235,8 +235,8 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
       900, 600);
 }
 
-StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir, const ProgressSink& progress,
-                       const std::atomic<bool>* stop_request) {
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
+                       const hybrid_test::ProgressSink& progress, const std::atomic<bool>* stop_request) {
   StudyRun run;
   std::filesystem::create_directories(dir);
   std::visit(
@@ -251,19 +251,20 @@ StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& d
         } else if constexpr (std::is_same_v<Study, DelayCompensationStudy>) {
           write_delay_compensation(dir, file, study, run_delay_compensation(study, dir));
         } else if (file.monte_carlo) {
-          run.result = run_monte_carlo_into(dir, file, progress, stop_request);
-          if (run.result != RunResult::kCompleted) {
-            run.reason = std::string(result_name(run.result)) + ": see " + (dir / "summary.json").string();
+          run.result = hybrid_test::run_monte_carlo_into(dir, file, progress, stop_request);
+          if (run.result != hybrid_test::RunResult::kCompleted) {
+            run.reason = std::string(hybrid_test::result_name(run.result)) + ": see " + (dir / "summary.json").string();
             run.recorded_in = stopped_cases_records(dir);
           }
         } else if (!file.sweep.empty()) {
-          run.result = run_sweep_into(dir, file, progress, stop_request);
-          if (run.result != RunResult::kCompleted) {
-            run.reason = std::string(result_name(run.result)) + ": see " + (dir / "summary.json").string();
+          run.result = hybrid_test::run_sweep_into(dir, file, progress, stop_request);
+          if (run.result != hybrid_test::RunResult::kCompleted) {
+            run.reason = std::string(hybrid_test::result_name(run.result)) + ": see " + (dir / "summary.json").string();
             run.recorded_in = stopped_cases_records(dir);
           }
         } else {
-          const TestHeadline headline = run_test_into(dir, file, study, progress, stop_request);
+          const hybrid_test::TestHeadline headline =
+              hybrid_test::run_test_into(dir, file, study, progress, stop_request);
           run.result = headline.result;
           run.reason = headline.outcome;
           run.recorded_in = (dir / "time_history.csv").string();

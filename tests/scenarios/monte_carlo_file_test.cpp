@@ -5,10 +5,10 @@
 #include <filesystem>
 
 #include "../servo/paper_rig.h"
+#include "rpsd/hybrid_test/monte_carlo.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/plant_factory.h"
-#include "rpsd/studies/monte_carlo.h"
 
 namespace rpsd::scenarios {
 namespace {
@@ -20,13 +20,13 @@ std::filesystem::path case1() {
 TEST(MonteCarloFile, EachRunIsTheScenarioWithItsDrawnPlantAndItsOwnNoiseSeed) {
   const auto file = load_study(case1(), {parse_override("monte_carlo.runs=4")});
   ASSERT_TRUE(file.monte_carlo);
-  const studies::MonteCarloConfig& mc = *file.monte_carlo;
+  const hybrid_test::MonteCarloConfig& mc = *file.monte_carlo;
   ASSERT_EQ(mc.parameters.size(), 4u);
   EXPECT_EQ(mc.parameters[0].key_path, "servo.rths_benchmark_model.a3_per_s");
   EXPECT_EQ(mc.parameters[0].nominal, 3.3);  // the file's value is the mean
   EXPECT_EQ(mc.parameters[3].spread, 5.0e4);
   ASSERT_EQ(file.sweep_cases.size(), 4u);
-  const auto draws = studies::draw_monte_carlo(mc);
+  const auto draws = hybrid_test::draw_monte_carlo(mc);
   for (std::size_t run = 0; run < 4; ++run) {
     SCOPED_TRACE(run);
     EXPECT_EQ(file.sweep_values[run], draws[run]);

@@ -1,17 +1,14 @@
 // What a study file says, typed (scenarios/ reads it): the servo-system studies of the seed
 // paper (Figures 5, 6 and 7), the RPsD delay-compensation study (Figure 8), or a whole test
-// (hybrid_test::TestConfig) with an optional sweep over one or two of its keys.
+// (hybrid_test::TestConfig) with an optional sweep or Monte Carlo batch (hybrid_test/test_document.h).
 #pragma once
 
-#include <cstdint>
-#include <filesystem>
-#include <optional>
-#include <string>
 #include <variant>
 #include <vector>
 
 #include "rpsd/compensation/phase_lead.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
+#include "rpsd/hybrid_test/test_document.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_parameters.h"
@@ -63,45 +60,10 @@ struct DelayCompensationStudy {
 using Study =
     std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, hybrid_test::TestConfig>;
 
-// One swept key of an `rpsd_test` scenario and the values it takes (as YAML scalars).
-struct SweepAxis {
-  std::string key_path;
-  std::vector<double> values;
-};
-
-// `monte_carlo:` of an rpsd_test scenario: each run is the scenario with the named keys drawn
-// about their values in the file (monte_carlo.h).
-struct MonteCarloParameter {
-  enum class Distribution { kNormal, kUniform };
-  std::string key_path;
-  Distribution distribution = Distribution::kNormal;
-  double nominal = 0.0;  // the scenario's own value
-  double spread = 0.0;   // standard deviation (normal) or half width (uniform), > 0
-};
-struct MonteCarloConfig {
-  int runs = 0;
-  std::uint64_t seed = 0;
-  std::vector<MonteCarloParameter> parameters;
-  std::string noise_seed_key;  // optional: each run gets its own seed there (seed + run number)
-};
-
-struct StudyDocument {
-  std::string name;            // the file's stem, for titles
-  std::string description;     // optional `description:` text
-  Study study;                 // for a sweep: the first case
-  std::string effective_yaml;  // the document as read, with --set overrides applied
-  // Every file read to build it, in the order read: the scenario, parameter files, records,
-  // matrices (for the SHA-256 of each in summary.json).
-  std::vector<std::filesystem::path> input_files;
-  // `sweep:` of an rpsd_test scenario (one or two axes; empty when there is none). Every
-  // case has been read and checked before anything runs.
-  std::vector<SweepAxis> sweep;
-  std::vector<hybrid_test::TestConfig> sweep_cases;  // the first axis varies fastest
-  std::vector<std::vector<double>> sweep_values;     // the axis values of each case
-  std::vector<std::string> case_yaml;                // each case's own document (its effective-scenario.yaml)
-  // `monte_carlo:` (then sweep is empty, sweep_cases are the runs and sweep_values the drawn
-  // parameter values of each).
-  std::optional<MonteCarloConfig> monte_carlo;
+// A study file: the test document's parts (name, provenance, sweep or Monte Carlo batch;
+// hybrid_test/test_document.h) and which study it holds (for a sweep: the first case).
+struct StudyDocument : hybrid_test::TestDocument {
+  Study study;
 };
 
 }  // namespace rpsd::studies

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "rpsd/studies/hybrid_test_output.h"
-#include "rpsd/studies/progress.h"
+#include "rpsd/hybrid_test/hybrid_test_output.h"
+#include "rpsd/hybrid_test/progress.h"
 #include "rpsd/studies/servo_studies.h"
 
 namespace rpsd::studies {
@@ -25,7 +25,7 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
                     const std::vector<MaxGainRow>& rows);
 
 struct StudyRun {
-  RunResult result = RunResult::kCompleted;
+  hybrid_test::RunResult result = hybrid_test::RunResult::kCompleted;
   std::string reason;  // why an `rpsd_test` run did not complete (as in its summary.json)
   // Where the steps taken are recorded: a test's time_history.csv, or for a sweep or a Monte
   // Carlo batch that did not complete the time histories of its cases that did not (files that
@@ -36,7 +36,7 @@ struct StudyRun {
 // Runs whichever study the file holds and writes it into dir (created if missing; the
 // command line first makes sure it is empty: prepare_results_folder). A test that stopped still has every step it took
 // on disk. `stop_request` (optional): set by a signal handler to end a test or sweep in order.
-StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir, const ProgressSink& progress = {},
-                       const std::atomic<bool>* stop_request = nullptr);
+StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
+                       const hybrid_test::ProgressSink& progress = {}, const std::atomic<bool>* stop_request = nullptr);
 
 }  // namespace rpsd::studies

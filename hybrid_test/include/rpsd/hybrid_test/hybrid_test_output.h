@@ -12,10 +12,10 @@
 #include <functional>
 #include <vector>
 
-#include "rpsd/studies/progress.h"
-#include "rpsd/studies/study_config.h"
+#include "rpsd/hybrid_test/progress.h"
+#include "rpsd/hybrid_test/test_document.h"
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 
 // Outcome of a whole run, for the exit code.
 enum class RunResult {
@@ -46,7 +46,7 @@ struct TestHeadline {
 // `progress` (optional) hears of each phase (the test and its reference with their steps,
 // then the plots), as case `case_number` of `cases` of a sweep. `stop_request`: as in
 // hybrid_test::AssemblyOptions. The folder must be ready (prepare_results_folder).
-TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
+TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument& file,
                            const hybrid_test::TestConfig& scenario, const ProgressSink& progress = {},
                            const std::atomic<bool>* stop_request = nullptr, std::size_t case_number = 1,
                            std::size_t cases = 1);
@@ -54,7 +54,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument
 // Runs every case of a sweep into dir/case_NN/ and writes the table across the cases
 // (sweep.csv, summary.json, sweep.png): kStopped if any case stopped; an interruption or a
 // failed write ends the sweep after the case under way.
-RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file, const ProgressSink& progress = {},
+RunResult run_sweep_into(const std::filesystem::path& dir, const TestDocument& file, const ProgressSink& progress = {},
                          const std::atomic<bool>* stop_request = nullptr);
 
 // Redraws the plots of a finished test folder from its CSV files.
@@ -65,4 +65,4 @@ void plot_test(const std::filesystem::path& dir);
 // the PNGs drawn; throws std::invalid_argument naming the folder if it holds none.
 std::vector<std::filesystem::path> plot_folder(const std::filesystem::path& dir);
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

@@ -1,4 +1,4 @@
-#include "rpsd/studies/monte_carlo_output.h"
+#include "rpsd/hybrid_test/monte_carlo_output.h"
 
 #include <cmath>
 #include <cstdio>
@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "rpsd/hybrid_test/benchmark_criteria.h"
+#include "rpsd/hybrid_test/monte_carlo.h"
 #include "rpsd/output/provenance.h"
 #include "rpsd/output/results_files.h"
-#include "rpsd/studies/benchmark_criteria.h"
-#include "rpsd/studies/monte_carlo.h"
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 namespace {
 
 // What the table summarises per run: J1-J9, then channel 0's peaks for the constraints.
@@ -49,8 +49,8 @@ nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(
 
 }  // namespace
 
-RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocument& file,
-                               const ProgressSink& progress, const std::atomic<bool>* stop_request) {
+RunResult run_monte_carlo_into(const std::filesystem::path& dir, const TestDocument& file, const ProgressSink& progress,
+                               const std::atomic<bool>* stop_request) {
   using nlohmann::json;
   const MonteCarloConfig& mc = *file.monte_carlo;
   std::filesystem::create_directories(dir);
@@ -159,4 +159,4 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocu
   return result;
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <string>
 
-#include "rpsd/studies/benchmark_criteria.h"
+#include "rpsd/hybrid_test/benchmark_criteria.h"
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 namespace {
 
 coordinator::Criteria distinct_criteria(std::size_t floors) {
@@ -46,4 +46,4 @@ TEST(BenchmarkCriteria, EachNameSaysWhatItMeasuresAndAMissingFloorIsLeftOut) {
 }
 
 }  // namespace
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

@@ -1,6 +1,6 @@
-#include "rpsd/studies/hybrid_test_output.h"
+#include "rpsd/hybrid_test/hybrid_test_output.h"
 
-#include "rpsd/studies/benchmark_criteria.h"
+#include "rpsd/hybrid_test/benchmark_criteria.h"
 
 #include <cmath>
 #include <cstdio>
@@ -20,7 +20,7 @@
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/transport/messages.h"
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 namespace {
 
 const char* outcome_text(coordinator::StepOutcome o) {
@@ -287,7 +287,7 @@ namespace {
 
 // No node answered before the first step: the summary says so (not "running"), names no file
 // the run did not write, and carries no criteria (there are none to compute).
-TestHeadline not_ready(const std::filesystem::path& dir, const StudyDocument& file, const std::string& why) {
+TestHeadline not_ready(const std::filesystem::path& dir, const TestDocument& file, const std::string& why) {
   TestHeadline headline;
   headline.result = RunResult::kNotReady;
   headline.outcome = "not ready: " + why;
@@ -334,7 +334,7 @@ const char* result_name(RunResult r) {
   return "stopped";
 }
 
-TestHeadline run_test_into(const std::filesystem::path& dir, const StudyDocument& file,
+TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument& file,
                            const hybrid_test::TestConfig& scenario, const ProgressSink& progress,
                            const std::atomic<bool>* stop_request, std::size_t case_number, std::size_t cases) {
   const auto report = [&](std::string_view phase, std::int64_t done, std::int64_t planned) {
@@ -499,7 +499,7 @@ std::string logscale(const char* axis, const std::vector<double>& values) {
 
 }  // namespace
 
-RunResult run_sweep_into(const std::filesystem::path& dir, const StudyDocument& file, const ProgressSink& progress,
+RunResult run_sweep_into(const std::filesystem::path& dir, const TestDocument& file, const ProgressSink& progress,
                          const std::atomic<bool>* stop_request) {
   using nlohmann::json;
   std::filesystem::create_directories(dir);
@@ -620,4 +620,4 @@ std::vector<std::filesystem::path> plot_folder(const std::filesystem::path& dir)
   return drawn;
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

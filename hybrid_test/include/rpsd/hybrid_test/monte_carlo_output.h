@@ -8,15 +8,15 @@
 #include <atomic>
 #include <filesystem>
 
-#include "rpsd/studies/hybrid_test_output.h"
-#include "rpsd/studies/progress.h"
-#include "rpsd/studies/study_config.h"
+#include "rpsd/hybrid_test/hybrid_test_output.h"
+#include "rpsd/hybrid_test/progress.h"
+#include "rpsd/hybrid_test/test_document.h"
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 
 // kStopped if any run stopped (a run stopped by a limit is still a result, and the next one
 // runs); an interruption or a failed write ends the batch after the run under way.
-RunResult run_monte_carlo_into(const std::filesystem::path& dir, const StudyDocument& file,
+RunResult run_monte_carlo_into(const std::filesystem::path& dir, const TestDocument& file,
                                const ProgressSink& progress = {}, const std::atomic<bool>* stop_request = nullptr);
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

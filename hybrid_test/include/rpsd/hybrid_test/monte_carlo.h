@@ -7,9 +7,9 @@
 #include <span>
 #include <vector>
 
-#include "rpsd/studies/study_config.h"
+#include "rpsd/hybrid_test/test_document.h"
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 
 // values[run][parameter]. Normal: nominal + spread N(0, 1); uniform: nominal + spread U(-1, 1).
 std::vector<std::vector<double>> draw_monte_carlo(const MonteCarloConfig& config);
@@ -25,4 +25,4 @@ struct RunStatistics {
 // Over the finite values (NaN ones, e.g. a J1 that could not be found, are left out).
 RunStatistics run_statistics(std::span<const double> values);
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

@@ -12,7 +12,7 @@
 
 #include "rpsd/coordinator/run_criteria.h"
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 
 struct BenchmarkCriterion {
   std::string_view number;    // "J4"
@@ -31,4 +31,4 @@ nlohmann::json benchmark_criteria_json(const coordinator::Criteria& criteria);
 // {"J1": {"name": ..., "measures": ...}, ...} for the same criteria.
 nlohmann::json benchmark_criteria_definitions(const coordinator::Criteria& criteria);
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

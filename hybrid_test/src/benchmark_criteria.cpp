@@ -1,9 +1,9 @@
-#include "rpsd/studies/benchmark_criteria.h"
+#include "rpsd/hybrid_test/benchmark_criteria.h"
 
 #include <cmath>
 #include <string>
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 
 const std::array<BenchmarkCriterion, kBenchmarkCriteria> kBenchmarkCriterionList = {{
     {"J1", "J1_tracking_delay_ms",
@@ -65,4 +65,4 @@ nlohmann::json benchmark_criteria_definitions(const coordinator::Criteria& crite
   return out;
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

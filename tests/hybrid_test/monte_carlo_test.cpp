@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "rpsd/studies/monte_carlo.h"
+#include "rpsd/hybrid_test/monte_carlo.h"
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 namespace {
 
 using Distribution = MonteCarloParameter::Distribution;
@@ -74,4 +74,4 @@ TEST(MonteCarlo, StatisticsAreTheSampleMeanDeviationAndExtremesOfTheFiniteValues
 }
 
 }  // namespace
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

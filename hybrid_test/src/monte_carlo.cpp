@@ -1,11 +1,11 @@
-#include "rpsd/studies/monte_carlo.h"
+#include "rpsd/hybrid_test/monte_carlo.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 
 std::vector<std::vector<double>> draw_monte_carlo(const MonteCarloConfig& config) {
   std::mt19937_64 generator(config.seed);
@@ -47,4 +47,4 @@ RunStatistics run_statistics(std::span<const double> values) {
   return s;
 }
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test

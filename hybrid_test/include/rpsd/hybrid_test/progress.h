@@ -7,7 +7,7 @@
 #include <functional>
 #include <string_view>
 
-namespace rpsd::studies {
+namespace rpsd::hybrid_test {
 
 struct ProgressReport {
   std::string_view phase;  // "test", "plots", "sweep table"
@@ -17,4 +17,4 @@ struct ProgressReport {
 
 using ProgressSink = std::function<void(const ProgressReport&)>;
 
-}  // namespace rpsd::studies
+}  // namespace rpsd::hybrid_test
