@@ -10,28 +10,11 @@
 #     then served to its end: `completed`, A's steps only, C named in summary.json.
 # The clients are tests/site_server/generic_client.py. Needs root; otherwise exit 77 (skipped).
 source "$(dirname "$0")/lib.sh"
-if [ "$(id -u)" -ne 0 ]; then
-  echo "SKIP: network namespaces need root"
-  exit 77
-fi
 trap 'exit 143' TERM
 trap 'exit 130' INT
-TAG=$$
-NS_SWITCH=site-sw-$TAG NS_A=site-a-$TAG NS_B=site-b-$TAG NS_C=site-c-$TAG
-NETNS_CLEANUP="for n in $NS_A $NS_B $NS_C $NS_SWITCH; do ip netns pids \$n 2>/dev/null | xargs -r kill -9 2>/dev/null; ip netns del \$n 2>/dev/null || true; done"
-ip netns add $NS_SWITCH
-ip -n $NS_SWITCH link add br0 type bridge
-ip -n $NS_SWITCH link set br0 up
-host=1
-for ns in $NS_A $NS_B $NS_C; do
-  ip netns add $ns
-  ip link add eth0 netns $ns type veth peer name port$host netns $NS_SWITCH
-  ip -n $ns addr add 198.18.0.$host/24 dev eth0
-  ip -n $ns link set eth0 up
-  ip -n $ns link set lo up
-  ip -n $NS_SWITCH link set port$host master br0 up
-  host=$((host + 1))
-done
+# The three hosts and their switch (netns.sh; it skips without root): A, B, C as .1, .2, .3.
+source "$(dirname "$0")/netns.sh"
+NS_A=$NS_COORD NS_B=$NS_SITE1 NS_C=$NS_SITE2
 A=198.18.0.1 B=198.18.0.2 C=198.18.0.3
 SITE=$SRC/examples/opensees/sdof-site-perfect.yaml
 CLIENT=$SRC/tests/site_server/generic_client.py
