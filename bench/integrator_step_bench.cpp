@@ -60,14 +60,14 @@ void run_steps(benchmark::State& state, const IntegratorConfig& config, bool den
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::vector<Case> main_cases{{"kr_alpha", KolayRiclesAlphaParams{0.8}},
-                                     {"central_difference", CentralDifferenceParams{}}};
-  const std::vector<Case> other_cases{{"chen_ricles", ChenRiclesParams{}},
-                                      {"chang", ChangParams{}},
-                                      {"alpha_os", AlphaOsParams{}},
-                                      {"hht_alpha_2iter", HhtAlphaParams{-0.1, {2, 1}}},
-                                      {"generalized_alpha_2iter", GeneralizedAlphaParams{0.8, {2, 1}}},
-                                      {"newmark_average_2iter", NewmarkParams{0.25, 0.5, {2, 1}}}};
+  const std::vector<Case> main_cases{{"kr_alpha", KolayRiclesAlphaParameters{0.8}},
+                                     {"central_difference", CentralDifferenceParameters{}}};
+  const std::vector<Case> other_cases{{"chen_ricles", ChenRiclesParameters{}},
+                                      {"chang", ChangParameters{}},
+                                      {"alpha_os", AlphaOsParameters{}},
+                                      {"hht_alpha_2iter", HhtAlphaParameters{-0.1, {2, 1}}},
+                                      {"generalized_alpha_2iter", GeneralizedAlphaParameters{0.8, {2, 1}}},
+                                      {"newmark_average_2iter", NewmarkParameters{0.25, 0.5, {2, 1}}}};
   const std::vector<int> sparse_sizes{10, 100, 1000, 2000, 10000};
   const std::vector<int> dense_sizes{10, 100, 1000, 2000};
 
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   }
   // Consistent (non-diagonal) mass: KR-alpha then also solves with M every step.
   auto* kc = benchmark::RegisterBenchmark("sparse_consistent_mass/kr_alpha", [](benchmark::State& st) {
-    run_steps<Eigen::SparseMatrix<double, Eigen::RowMajor>>(st, KolayRiclesAlphaParams{0.8}, false, true);
+    run_steps<Eigen::SparseMatrix<double, Eigen::RowMajor>>(st, KolayRiclesAlphaParameters{0.8}, false, true);
   });
   kc->Arg(2000)->Arg(10000)->Unit(benchmark::kMicrosecond);
   for (const auto& c : other_cases) {

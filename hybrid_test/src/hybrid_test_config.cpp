@@ -10,7 +10,7 @@ Eigen::Index structure_dofs(const TestConfig& config) {
   return std::visit(
       [](const auto& c) -> Eigen::Index {
         using C = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>)
+        if constexpr (std::is_same_v<C, substructure::LinearMdofParameters>)
           return c.mass_kg.rows();
         else
           return static_cast<Eigen::Index>(c.floor_masses_kg.size());
@@ -21,11 +21,11 @@ Eigen::Index structure_dofs(const TestConfig& config) {
 namespace {
 
 std::unique_ptr<substructure::NumericalModel> configured(
-    const std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig>& structure) {
+    const std::variant<substructure::LinearMdofParameters, substructure::ShearBuildingParameters>& structure) {
   return std::visit(
       [](const auto& c) -> std::unique_ptr<substructure::NumericalModel> {
         using C = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
+        if constexpr (std::is_same_v<C, substructure::LinearMdofParameters>) {
           auto model = std::make_unique<substructure::LinearMdofModel>();
           model->configure(c);
           return model;
@@ -39,7 +39,7 @@ std::unique_ptr<substructure::NumericalModel> configured(
 }
 
 // The structure less the specimens' own mass (model units: force scale x displacement scale).
-std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> without_specimen_mass(
+std::variant<substructure::LinearMdofParameters, substructure::ShearBuildingParameters> without_specimen_mass(
     const TestConfig& config) {
   auto structure = config.structure;
   for (const auto& e : config.experimental) {
@@ -50,7 +50,7 @@ std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> 
     std::visit(
         [&](auto& c) {
           using C = std::decay_t<decltype(c)>;
-          if constexpr (std::is_same_v<C, substructure::LinearMdofConfig>) {
+          if constexpr (std::is_same_v<C, substructure::LinearMdofParameters>) {
             Eigen::MatrixXd dense = c.mass_kg.to_dense();
             if (d < dense.rows()) left = dense(d, d) -= m;
             c.mass_kg = linalg::StructuralMatrix(dense);

@@ -446,7 +446,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   for (auto d : scenario.record_dofs) dof_numbers.push_back(static_cast<int>(d));
   bool from_the_ground_up = true;  // DOFs 0, 1, ... n-1: a storey's drift is one less the next
   for (std::size_t i = 0; i < dof_numbers.size(); ++i) from_the_ground_up &= dof_numbers[i] == static_cast<int>(i);
-  const bool storey_drifts = std::holds_alternative<substructure::ShearBuildingConfig>(scenario.structure) &&
+  const bool storey_drifts = std::holds_alternative<substructure::ShearBuildingParameters>(scenario.structure) &&
                              from_the_ground_up && dof_numbers.size() > 1;
   const json plot_info = {{"title", file.name},
                           {"channels", scenario.experimental.size()},

@@ -9,7 +9,7 @@ TestConfig specimen_sdof_test(const SpecimenSdof& sdof) {
   const double m = sdof.mass_kg, k = sdof.stiffness_n_per_m;
   TestConfig t;
   t.name = "specimen-sdof";
-  substructure::LinearMdofConfig model;
+  substructure::LinearMdofParameters model;
   model.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, m));
   model.stiffness_n_per_m = linalg::StructuralMatrix(Eigen::MatrixXd::Zero(1, 1));  // the spring is the specimen
   model.damping = substructure::DampingMatrix{

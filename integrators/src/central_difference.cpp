@@ -2,6 +2,6 @@
 
 namespace rpsd::integrators {
 
-SchemeInfo CentralDifference::info() const { return {CentralDifferenceParams::kName, true, 2.0}; }
+SchemeInfo CentralDifference::info() const { return {CentralDifferenceParameters::kName, true, 2.0}; }
 
 }  // namespace rpsd::integrators

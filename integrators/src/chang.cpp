@@ -4,7 +4,7 @@
 
 namespace rpsd::integrators {
 
-SchemeInfo Chang::info() const { return {ChangParams::kName, true, std::numeric_limits<double>::infinity()}; }
+SchemeInfo Chang::info() const { return {ChangParameters::kName, true, std::numeric_limits<double>::infinity()}; }
 
 void Chang::on_configure() {
   const double dt = dt_s_;

@@ -4,6 +4,8 @@
 
 namespace rpsd::integrators {
 
-SchemeInfo ChenRicles::info() const { return {ChenRiclesParams::kName, true, std::numeric_limits<double>::infinity()}; }
+SchemeInfo ChenRicles::info() const {
+  return {ChenRiclesParameters::kName, true, std::numeric_limits<double>::infinity()};
+}
 
 }  // namespace rpsd::integrators

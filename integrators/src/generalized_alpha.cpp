@@ -9,13 +9,13 @@
 
 namespace rpsd::integrators {
 
-GeneralizedAlphaParams GeneralizedAlphaParams::read(config::Source& section) {
-  GeneralizedAlphaParams p;
+GeneralizedAlphaParameters GeneralizedAlphaParameters::read(config::Source& section) {
+  GeneralizedAlphaParameters p;
   p.rho_inf = section.number_or("rho_inf", p.rho_inf, rho_inf_range());
   return p;
 }
 
-std::string GeneralizedAlphaParams::describe() const {
+std::string GeneralizedAlphaParameters::describe() const {
   std::ostringstream s;
   s << "rho_inf=" << rho_inf << integrators::describe(fixed_iteration);
   return s.str();
@@ -29,24 +29,24 @@ AlphaParameters chung_hulbert_parameters(double rho_inf) {
   return {am, af, 0.5 - am + af, 1.0 / ((1.0 + rho_inf) * (1.0 + rho_inf))};
 }
 
-void validate(const GeneralizedAlphaParams& p) {
+void validate(const GeneralizedAlphaParameters& p) {
   (void)chung_hulbert_parameters(p.rho_inf);
   validate(p.fixed_iteration);
 }
 
 namespace {
-ImplicitCoefficients ga_coefficients(const GeneralizedAlphaParams& p) {
+ImplicitCoefficients ga_coefficients(const GeneralizedAlphaParameters& p) {
   validate(p);
   const auto c = chung_hulbert_parameters(p.rho_inf);
   return {c.alpha_m, c.alpha_f, c.beta, c.gamma};
 }
 }  // namespace
 
-GeneralizedAlpha::GeneralizedAlpha(const GeneralizedAlphaParams& p)
+GeneralizedAlpha::GeneralizedAlpha(const GeneralizedAlphaParameters& p)
     : FixedIterationImplicitEngine(ga_coefficients(p), p.fixed_iteration) {}
 
 SchemeInfo GeneralizedAlpha::info() const {
-  return {GeneralizedAlphaParams::kName, false, std::numeric_limits<double>::infinity()};
+  return {GeneralizedAlphaParameters::kName, false, std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace rpsd::integrators

@@ -8,31 +8,32 @@
 
 namespace rpsd::integrators {
 
-KolayRiclesAlphaParams KolayRiclesAlphaParams::read(config::Source& section) {
-  KolayRiclesAlphaParams p;
+KolayRiclesAlphaParameters KolayRiclesAlphaParameters::read(config::Source& section) {
+  KolayRiclesAlphaParameters p;
   p.rho_inf = section.number_or("rho_inf", p.rho_inf, rho_inf_range());
   return p;
 }
 
-std::string KolayRiclesAlphaParams::describe() const {
+std::string KolayRiclesAlphaParameters::describe() const {
   std::ostringstream s;
   s << "rho_inf=" << rho_inf;
   return s.str();
 }
 
-void validate(const KolayRiclesAlphaParams& p) { (void)chung_hulbert_parameters(p.rho_inf); }
+void validate(const KolayRiclesAlphaParameters& p) { (void)chung_hulbert_parameters(p.rho_inf); }
 
 namespace {
-ModelBasedCoefficients kr_coefficients(const KolayRiclesAlphaParams& p) {
+ModelBasedCoefficients kr_coefficients(const KolayRiclesAlphaParameters& p) {
   const auto c = chung_hulbert_parameters(p.rho_inf);
   return {c.alpha_m, c.alpha_f, c.gamma, c.beta};
 }
 }  // namespace
 
-KolayRiclesAlpha::KolayRiclesAlpha(const KolayRiclesAlphaParams& p) : ModelBasedExplicitEngine(kr_coefficients(p)) {}
+KolayRiclesAlpha::KolayRiclesAlpha(const KolayRiclesAlphaParameters& p)
+    : ModelBasedExplicitEngine(kr_coefficients(p)) {}
 
 SchemeInfo KolayRiclesAlpha::info() const {
-  return {KolayRiclesAlphaParams::kName, true, std::numeric_limits<double>::infinity()};
+  return {KolayRiclesAlphaParameters::kName, true, std::numeric_limits<double>::infinity()};
 }
 
 }  // namespace rpsd::integrators

@@ -9,20 +9,20 @@
 
 namespace rpsd::integrators {
 
-Aliases<NewmarkParams> NewmarkParams::aliases() {
+Aliases<NewmarkParameters> NewmarkParameters::aliases() {
   return {{"newmark_average", average_acceleration()},
           {"average_acceleration", average_acceleration()},
           {"newmark_linear", linear_acceleration()},
           {"linear_acceleration", linear_acceleration()}};
 }
 
-std::string NewmarkParams::describe() const {
+std::string NewmarkParameters::describe() const {
   std::ostringstream s;
   s << "beta=" << beta << " gamma=" << gamma << integrators::describe(fixed_iteration);
   return s.str();
 }
 
-void validate(const NewmarkParams& p) {
+void validate(const NewmarkParameters& p) {
   if (!(p.beta > 0.0) || !std::isfinite(p.beta))
     throw std::invalid_argument("newmark.beta must be > 0 (beta = 0 is central difference), got " +
                                 std::to_string(p.beta));
@@ -38,15 +38,17 @@ double newmark_stability_limit(double beta, double gamma) {
 }
 
 namespace {
-const NewmarkParams& checked(const NewmarkParams& p) {
+const NewmarkParameters& checked(const NewmarkParameters& p) {
   validate(p);
   return p;
 }
 }  // namespace
 
-Newmark::Newmark(const NewmarkParams& p)
+Newmark::Newmark(const NewmarkParameters& p)
     : FixedIterationImplicitEngine({0.0, 0.0, checked(p).beta, p.gamma}, p.fixed_iteration), p_(p) {}
 
-SchemeInfo Newmark::info() const { return {NewmarkParams::kName, false, newmark_stability_limit(p_.beta, p_.gamma)}; }
+SchemeInfo Newmark::info() const {
+  return {NewmarkParameters::kName, false, newmark_stability_limit(p_.beta, p_.gamma)};
+}
 
 }  // namespace rpsd::integrators

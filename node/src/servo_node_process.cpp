@@ -159,7 +159,7 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   log << "rpsd servo-node: test " << setup.node.test_id << " site " << setup.node.site_id << ", " << setup.node.channels
       << " channel(s), " << (loop.real_time ? "real time" : "lock-step") << " at " << 1.0 / setup.node.control_period_s
       << " Hz" << std::endl;
-  if (const auto* udp = std::get_if<UdpControllerConfig>(&setup.actuator)) {
+  if (const auto* udp = std::get_if<UdpControllerParameters>(&setup.actuator)) {
     log << "rpsd servo-node: " << describe_link(*udp) << std::endl;
   }
   const ServoNodeLoopReport report = run_servo_node_loop(controller, endpoint, loop, stop);
@@ -172,7 +172,7 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   nlohmann::json summary = node_summary(setup, controller, report);
   if (const auto* udp = dynamic_cast<const UdpControllerActuator*>(actuator.actuator.get())) {
     const UdpControllerCounters& u = udp->counters();
-    summary["udp_link"] = {{"protocol_version", std::get<UdpControllerConfig>(setup.actuator).protocol_version},
+    summary["udp_link"] = {{"protocol_version", std::get<UdpControllerParameters>(setup.actuator).protocol_version},
                            {"commands_sent", u.commands_sent},
                            {"replies", u.replies},
                            {"missed_replies", u.missed_replies},

@@ -14,7 +14,7 @@ using udp_protocol::ControllerReply;
 using udp_protocol::ControllerStatus;
 using udp_protocol::PacketStatus;
 
-void UdpControllerConfig::validate() const {
+void UdpControllerParameters::validate() const {
   if (channels < 1 || channels > transport::kMaxChannels) {
     throw std::invalid_argument("channels: must be between 1 and " + std::to_string(transport::kMaxChannels) +
                                 ", got " + std::to_string(channels));
@@ -41,7 +41,7 @@ void UdpControllerConfig::validate() const {
 }
 
 namespace {
-Ipv4Endpoint validated_local(const UdpControllerConfig& config) {
+Ipv4Endpoint validated_local(const UdpControllerParameters& config) {
   config.validate();
   return Ipv4Endpoint::parse(config.local_host, config.local_port, "local_host");
 }
@@ -49,7 +49,7 @@ Ipv4Endpoint validated_local(const UdpControllerConfig& config) {
 constexpr std::array<std::byte, udp_protocol::kNonceBytes> kNoNonce{};
 }  // namespace
 
-UdpControllerActuator::UdpControllerActuator(const UdpControllerConfig& config)
+UdpControllerActuator::UdpControllerActuator(const UdpControllerParameters& config)
     : config_(config),
       controller_(Ipv4Endpoint::parse(config.controller_host, config.controller_port, "controller_host")),
       socket_(validated_local(config)),
@@ -232,8 +232,8 @@ servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> co
   return servo::ActuatorStatus::kOk;
 }
 
-UdpControllerConfig UdpControllerConfig::read(config::Source& section, int channels) {
-  UdpControllerConfig u;
+UdpControllerParameters UdpControllerParameters::read(config::Source& section, int channels) {
+  UdpControllerParameters u;
   u.channels = channels;
   u.controller_host = section.text("host", "the controller's address (dotted IPv4)");
   u.controller_port = static_cast<std::uint16_t>(section.whole_number("port", 1, 65535, "the controller's UDP port"));
@@ -275,7 +275,7 @@ UdpControllerConfig UdpControllerConfig::read(config::Source& section, int chann
   return u;
 }
 
-std::string describe_link(const UdpControllerConfig& config) {
+std::string describe_link(const UdpControllerParameters& config) {
   const std::string controller = config.controller_host + ":" + std::to_string(config.controller_port);
   if (config.protocol_version == udp_protocol::kVersion1) {
     return "UDP controller " + controller +
@@ -285,7 +285,7 @@ std::string describe_link(const UdpControllerConfig& config) {
   return "UDP controller " + controller + ", protocol version 2 (HMAC-SHA-256, key " + config.key_file + ")";
 }
 
-OwnedActuator UdpControllerConfig::make(const UdpControllerConfig& config, int) {
+OwnedActuator UdpControllerParameters::make(const UdpControllerParameters& config, int) {
   OwnedActuator owned;
   owned.actuator = std::make_unique<UdpControllerActuator>(config);
   return owned;

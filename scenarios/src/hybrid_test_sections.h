@@ -38,7 +38,7 @@ Document document(config::Source& root);
 
 // `structure:` by its kind (substructure::StructureKinds), checked (a model is configured
 // from it); files relative to the section's file (config::Source::relative_file).
-using Structure = substructure::StructureModel;
+using Structure = substructure::StructureConfig;
 Structure structure(config::Source& st);
 // `damping:` (substructure::DampingModels); `mass` is the structure's when it is known (a
 // single ratio needs it).

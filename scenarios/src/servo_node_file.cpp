@@ -198,7 +198,7 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
   // A simulated actuator's readings come through its converters: every limit (stated or the
   // rig's) must lie strictly inside what they can read.
   node::SiteNodeSetup setup{f.node, node::envelope_of(f.actuator), std::nullopt, "actuator.servo.converters", {}};
-  const auto* simulated = std::get_if<node::SimulatedActuatorConfig>(&f.actuator);
+  const auto* simulated = std::get_if<node::SimulatedActuatorParameters>(&f.actuator);
   if (simulated) {
     setup.converters = servo::reading_ranges_of(simulated->plant);
     setup.specimen_stiffness_n_per_m.fill(node::stiffest_specimen_n_per_m(simulated->plant, 0.0));

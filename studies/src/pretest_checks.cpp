@@ -38,8 +38,8 @@ std::optional<double> actuator_cutoff_hz(const servo::PlantConfig& plant) {
 }
 
 std::string mass_key(const hybrid_test::TestConfig& test) {
-  if (std::holds_alternative<substructure::ShearBuildingConfig>(test.structure)) return "structure.floor_masses_kg";
-  const auto& linear = std::get<substructure::LinearMdofConfig>(test.structure);
+  if (std::holds_alternative<substructure::ShearBuildingParameters>(test.structure)) return "structure.floor_masses_kg";
+  const auto& linear = std::get<substructure::LinearMdofParameters>(test.structure);
   return linear.mass_source.empty() ? "structure.mass_kg" : "structure.mass_file (" + linear.mass_source + ")";
 }
 

@@ -11,7 +11,7 @@ std::string label(const std::string& name, const std::string& source) {
 
 }  // namespace
 
-void LinearMdofModel::configure(const LinearMdofConfig& config) {
+void LinearMdofModel::configure(const LinearMdofParameters& config) {
   const std::string ctx = "linear MDOF model: ";
   const std::string m = ctx + label("mass matrix M", config.mass_source);
   const std::string k = ctx + label("stiffness matrix K", config.stiffness_source);

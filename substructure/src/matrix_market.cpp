@@ -216,8 +216,8 @@ linalg::SparseMatrix load_square_matrix_market(const std::filesystem::path& file
   return A;
 }
 
-LinearMdofConfig linear_config_from_matrix_market(const MatrixMarketModelFiles& files, DampingConfig damping) {
-  LinearMdofConfig cfg;
+LinearMdofParameters linear_config_from_matrix_market(const MatrixMarketModelFiles& files, DampingConfig damping) {
+  LinearMdofParameters cfg;
   linalg::SparseMatrix M = load_square_matrix_market(files.mass_file, std::nullopt);
   const Eigen::Index n = M.rows();
   auto sized = [&](const std::filesystem::path& p) {

@@ -12,7 +12,7 @@ StorySpring::StorySpring(const StorySpringConfig& config)
     : law_(std::visit([](const auto& c) -> StorySpringLaw { return typename std::decay_t<decltype(c)>::Spring(c); },
                       config)) {}
 
-void ShearBuilding::configure(const ShearBuildingConfig& config) {
+void ShearBuilding::configure(const ShearBuildingParameters& config) {
   const std::string ctx = "shear building: ";
   const std::size_t n = config.floor_masses_kg.size();
   if (n == 0) throw std::invalid_argument(ctx + "floor_masses_kg is empty; a building needs at least one floor");
@@ -40,7 +40,7 @@ void ShearBuilding::configure(const ShearBuildingConfig& config) {
 
   const auto N = static_cast<Eigen::Index>(n);
   const linalg::MatrixStorage storage = config.storage.value_or(
-      n <= ShearBuildingConfig::kDenseFloorLimit ? linalg::MatrixStorage::kDense : linalg::MatrixStorage::kSparse);
+      n <= ShearBuildingParameters::kDenseFloorLimit ? linalg::MatrixStorage::kDense : linalg::MatrixStorage::kSparse);
   linalg::StructuralMatrix M, K;
   if (storage == linalg::MatrixStorage::kDense) {
     Eigen::MatrixXd m = Eigen::MatrixXd::Zero(N, N);

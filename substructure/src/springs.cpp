@@ -21,20 +21,20 @@ Number post_yield_range() { return Number::between(0.0, 1.0, "", "post-yield ove
 
 }  // namespace
 
-LinearSpringConfig LinearSpringConfig::read(config::Source& s) {
-  return LinearSpringConfig{s.number("stiffness_n_per_m", initial_stiffness_range())};
+LinearSpringParameters LinearSpringParameters::read(config::Source& s) {
+  return LinearSpringParameters{s.number("stiffness_n_per_m", initial_stiffness_range())};
 }
 
-BilinearSpringConfig BilinearSpringConfig::read(config::Source& s) {
-  BilinearSpringConfig b;
+BilinearSpringParameters BilinearSpringParameters::read(config::Source& s) {
+  BilinearSpringParameters b;
   b.stiffness_n_per_m = s.number("stiffness_n_per_m", initial_stiffness_range());
   b.yield_force_n = s.number("yield_force_n", Number{"N", "the yield force", 0.0, ranges::kMaxForceN, true});
   b.post_yield_ratio = s.number("post_yield_ratio", post_yield_range());
   return b;
 }
 
-BoucWenSpringConfig BoucWenSpringConfig::example() {
-  BoucWenSpringConfig b;
+BoucWenSpringParameters BoucWenSpringParameters::example() {
+  BoucWenSpringParameters b;
   b.stiffness_n_per_m = 5.0e7;
   b.post_yield_ratio = 0.05;
   b.n = 2.0;
@@ -42,9 +42,9 @@ BoucWenSpringConfig BoucWenSpringConfig::example() {
   return b;
 }
 
-BoucWenSpringConfig BoucWenSpringConfig::read(config::Source& s) {
+BoucWenSpringParameters BoucWenSpringParameters::read(config::Source& s) {
   // beta and gamma in 1/m^n: 1e6 is a yield displacement of a micrometre.
-  BoucWenSpringConfig b;
+  BoucWenSpringParameters b;
   b.stiffness_n_per_m = s.number("stiffness_n_per_m", initial_stiffness_range());
   b.post_yield_ratio = s.number("post_yield_ratio", post_yield_range());
   b.A = s.number_or("A", b.A, Number{"", "Bouc-Wen A", 0.0, 100.0, true});
@@ -66,13 +66,13 @@ double sign(double x) noexcept { return (x > 0.0) - (x < 0.0); }
 
 // ---------------------------------------------------------------- linear
 
-LinearSpring::LinearSpring(const LinearSpringConfig& c) : k_(c.stiffness_n_per_m) {
+LinearSpring::LinearSpring(const LinearSpringParameters& c) : k_(c.stiffness_n_per_m) {
   require(std::isfinite(k_) && k_ > 0.0, "linear spring", "stiffness_n_per_m must be positive", k_);
 }
 
 // ---------------------------------------------------------------- bilinear
 
-BilinearSpring::BilinearSpring(const BilinearSpringConfig& c)
+BilinearSpring::BilinearSpring(const BilinearSpringParameters& c)
     : k0_(c.stiffness_n_per_m), fy_(c.yield_force_n), alpha_(c.post_yield_ratio), H_(0.0) {
   const std::string s = "bilinear spring";
   require(std::isfinite(k0_) && k0_ > 0.0, s, "stiffness_n_per_m must be positive", k0_);
@@ -109,7 +109,7 @@ void BilinearSpring::commit() noexcept { committed_ = trial_; }
 
 // ---------------------------------------------------------------- Bouc–Wen
 
-BoucWenSpring::BoucWenSpring(const BoucWenSpringConfig& c)
+BoucWenSpring::BoucWenSpring(const BoucWenSpringParameters& c)
     : k0_(c.stiffness_n_per_m),
       alpha_(c.post_yield_ratio),
       A_(c.A),

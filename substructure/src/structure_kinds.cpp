@@ -44,7 +44,7 @@ LinearStructure LinearStructure::read(config::Source& st) {
   return s;
 }
 
-StructureModel LinearStructure::model() const {
+StructureConfig LinearStructure::model() const {
   LinearMdofModel probe;
   probe.configure(config);  // validates: symmetric, positive definite, sizes
   return config;
@@ -60,8 +60,8 @@ MatrixMarketStructure MatrixMarketStructure::read(config::Source& st) {
   return s;
 }
 
-StructureModel MatrixMarketStructure::model() const {
-  LinearMdofConfig c = linear_config_from_matrix_market(files, damping);
+StructureConfig MatrixMarketStructure::model() const {
+  LinearMdofParameters c = linear_config_from_matrix_market(files, damping);
   LinearMdofModel probe;
   probe.configure(c);
   return c;
@@ -69,7 +69,7 @@ StructureModel MatrixMarketStructure::model() const {
 
 ShearBuildingStructure ShearBuildingStructure::read(config::Source& st) {
   ShearBuildingStructure s;
-  ShearBuildingConfig& c = s.config;
+  ShearBuildingParameters& c = s.config;
   c.floor_masses_kg = st.numbers(
       "floor_masses_kg", Number{"kg", "each floor's mass, bottom up", 0.0, ranges::kMaxMassKg, true}, kMaxInlineDofs);
   for (auto& story : st.sections("stories", kMaxInlineDofs, "each story's spring, bottom up")) {
@@ -82,7 +82,7 @@ ShearBuildingStructure ShearBuildingStructure::read(config::Source& st) {
   return s;
 }
 
-StructureModel ShearBuildingStructure::model() const {
+StructureConfig ShearBuildingStructure::model() const {
   ShearBuilding probe;
   probe.configure(config);
   return config;

@@ -145,14 +145,14 @@ TEST(ContributingRecipes, PlantCarriesWhatEveryPlantCarriesAndAdvances) {
 }
 
 TEST(ContributingRecipes, IntegratorReadsRegistersAndSteps) {
-  using Kinds = Appended<integrators::IntegratorKinds, integrators::recipe::MySchemeParams>::type;
+  using Kinds = Appended<integrators::IntegratorKinds, integrators::recipe::MySchemeParameters>::type;
   ASSERT_TRUE(lists<Kinds>("my_scheme"));
   config::KeyTable table("integrator");
   const auto config = Kinds::read("my_scheme", table);
   ASSERT_TRUE(config.has_value());
   ASSERT_EQ(table.rows().size(), 1U);
   EXPECT_EQ(table.rows()[0].path, "integrator.alpha");
-  const auto& p = std::get<integrators::recipe::MySchemeParams>(*config);
+  const auto& p = std::get<integrators::recipe::MySchemeParameters>(*config);
   EXPECT_EQ(p.alpha, -0.1);
   EXPECT_FALSE(p.describe().empty());
   std::unique_ptr<integrators::Integrator> scheme = std::make_unique<integrators::recipe::MyScheme>(p);
@@ -173,21 +173,21 @@ TEST(ContributingRecipes, IntegratorReadsRegistersAndSteps) {
 }
 
 TEST(ContributingRecipes, StorySpringReadsRegistersAndTakesATrial) {
-  using Kinds = Appended<substructure::StorySpringKinds, substructure::recipe::MySpringConfig>::type;
+  using Kinds = Appended<substructure::StorySpringKinds, substructure::recipe::MySpringParameters>::type;
   ASSERT_TRUE(lists<Kinds>("my_spring"));
   config::KeyTable table("structure.stories[]");
   const auto config = Kinds::read("my_spring", table);
   ASSERT_TRUE(config.has_value());
   ASSERT_EQ(table.rows().size(), 1U);
   EXPECT_EQ(table.rows()[0].path, "structure.stories[].stiffness_n_per_m");
-  const auto example = substructure::recipe::MySpringConfig::example();
+  const auto example = substructure::recipe::MySpringParameters::example();
   // The law by value, as StorySpring holds it for a list.
   typename substructure::SpringLaws<Kinds>::type law = substructure::recipe::MySpring(example);
   const double force = std::visit([](auto& s) { return s.trial(1e-3); }, law);
   std::visit([](auto& s) { s.commit(); }, law);
   EXPECT_DOUBLE_EQ(force, example.stiffness_n_per_m * 1e-3);
   EXPECT_DOUBLE_EQ(std::visit([](const auto& s) { return s.committed_force(); }, law), force);
-  substructure::recipe::MySpringConfig bad;
+  substructure::recipe::MySpringParameters bad;
   EXPECT_THROW(substructure::recipe::MySpring{bad}, std::invalid_argument);
 }
 
@@ -225,7 +225,7 @@ TEST(ContributingRecipes, StructureKindReadsRegistersAndRestores) {
   Kind sdof;
   sdof.mass_kg = 1e3;
   sdof.stiffness_n_per_m = 1e6;
-  const auto model = std::get<substructure::LinearMdofConfig>(sdof.model());
+  const auto model = std::get<substructure::LinearMdofParameters>(sdof.model());
   substructure::LinearMdofModel structure;
   structure.configure(model);
   Eigen::VectorXd r(1);

@@ -53,8 +53,9 @@ TEST(LoopAllocation, NoAllocationPerStep) {
       // The benchmark's phase lead G_T = 50.8 (s + 168.6) / (s + 8570), Tustin.
       compensation::LtiFilterParameters{{{50.8, 8564.88}, {1.0, 8570.0}}, 0.0},
   };
-  const integrators::IntegratorConfig integrators[] = {
-      integrators::CentralDifferenceParams{}, integrators::KolayRiclesAlphaParams{}, integrators::HhtAlphaParams{}};
+  const integrators::IntegratorConfig integrators[] = {integrators::CentralDifferenceParameters{},
+                                                       integrators::KolayRiclesAlphaParameters{},
+                                                       integrators::HhtAlphaParameters{}};
   for (const auto& compensator : compensators) {
     for (const auto& integrator : integrators) {
       setup.compensation = compensator;

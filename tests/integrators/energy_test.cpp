@@ -16,7 +16,7 @@ TEST(AverageAcceleration, ConservesEnergyInUndampedFreeVibration) {
   const Eigen::Matrix3d M = 1000.0 * Eigen::Matrix3d::Identity();
   for (int iterations : {1, 3}) {
     for (double dt : {1.0 / 4096.0, 0.01, 0.2}) {  // omega_max dt = 0.06, 2.4, 48
-      auto p = NewmarkParams::average_acceleration();
+      auto p = NewmarkParameters::average_acceleration();
       p.fixed_iteration = {iterations, 1};
       auto integrator = make_integrator(p);
       integrator->configure(StructuralMatrices::dense(M, Eigen::Matrix3d::Zero(), K), dt);

@@ -240,19 +240,19 @@ TEST(SchemeParameters, RejectsOutOfRangeValues) {
       EXPECT_THAT(e.what(), HasSubstr(text));
     }
   };
-  expect_error(HhtAlphaParams{-0.5, {}}, "hht_alpha.alpha must be in [-1/3, 0]");
-  expect_error(HhtAlphaParams{0.1, {}}, "hht_alpha.alpha must be in [-1/3, 0]");
-  expect_error(AlphaOsParams{-0.4}, "alpha_os.alpha must be in [-1/3, 0]");
-  expect_error(GeneralizedAlphaParams{1.5, {}}, "rho_inf must be in [0, 1]");
-  expect_error(KolayRiclesAlphaParams{-0.1}, "rho_inf must be in [0, 1]");
-  expect_error(NewmarkParams{0.0, 0.5, {}}, "newmark.beta must be > 0");
-  expect_error(NewmarkParams{0.25, 0.4, {}}, "newmark.gamma must be >= 0.5");
-  expect_error(NewmarkParams{0.25, 0.5, {0, 1}}, "iterations must be in [1, 100]");
-  expect_error(GeneralizedAlphaParams{0.5, {2, 4}}, "poly_order must be 1, 2 or 3");
+  expect_error(HhtAlphaParameters{-0.5, {}}, "hht_alpha.alpha must be in [-1/3, 0]");
+  expect_error(HhtAlphaParameters{0.1, {}}, "hht_alpha.alpha must be in [-1/3, 0]");
+  expect_error(AlphaOsParameters{-0.4}, "alpha_os.alpha must be in [-1/3, 0]");
+  expect_error(GeneralizedAlphaParameters{1.5, {}}, "rho_inf must be in [0, 1]");
+  expect_error(KolayRiclesAlphaParameters{-0.1}, "rho_inf must be in [0, 1]");
+  expect_error(NewmarkParameters{0.0, 0.5, {}}, "newmark.beta must be > 0");
+  expect_error(NewmarkParameters{0.25, 0.4, {}}, "newmark.gamma must be >= 0.5");
+  expect_error(NewmarkParameters{0.25, 0.5, {0, 1}}, "iterations must be in [1, 100]");
+  expect_error(GeneralizedAlphaParameters{0.5, {2, 4}}, "poly_order must be 1, 2 or 3");
 }
 
 TEST(StepSequence, MisuseIsReportedNotThrown) {
-  auto integrator = make_integrator(KolayRiclesAlphaParams{});
+  auto integrator = make_integrator(KolayRiclesAlphaParameters{});
   const Eigen::VectorXd one = Eigen::VectorXd::Ones(1);
   EXPECT_EQ(integrator->begin_step(one), StepStatus::kNotInitialized);
   integrator->configure(
@@ -284,7 +284,7 @@ namespace {
 TEST(FixedIterations, CommandsAreInterpolatedTowardsTheImplicitSolution) {
   for (int order : {1, 2}) {
     const int N = 4;
-    auto integrator = make_integrator(HhtAlphaParams{-0.1, {N, order}});
+    auto integrator = make_integrator(HhtAlphaParameters{-0.1, {N, order}});
     const double k = 400.0;
     integrator->configure(
         StructuralMatrices::dense(Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd::Constant(1, 1, 0.5),

@@ -12,13 +12,13 @@ namespace rpsd::integrators::test {
 
 struct CentralDifferenceScheme {
   static constexpr const char* name = "central_difference";
-  static IntegratorConfig config() { return CentralDifferenceParams{}; }
+  static IntegratorConfig config() { return CentralDifferenceParameters{}; }
   static constexpr double stability_limit = 2.0;
 };
 struct NewmarkAverageScheme {
   static constexpr const char* name = "newmark_average";
   static IntegratorConfig config() {
-    auto p = NewmarkParams::average_acceleration();
+    auto p = NewmarkParameters::average_acceleration();
     p.fixed_iteration = {1, 1};
     return p;
   }
@@ -27,7 +27,7 @@ struct NewmarkAverageScheme {
 struct NewmarkLinearScheme {
   static constexpr const char* name = "newmark_linear";
   static IntegratorConfig config() {
-    auto p = NewmarkParams::linear_acceleration();
+    auto p = NewmarkParameters::linear_acceleration();
     p.fixed_iteration = {2, 1};
     return p;
   }
@@ -35,32 +35,32 @@ struct NewmarkLinearScheme {
 };
 struct HhtScheme {
   static constexpr const char* name = "hht_alpha";
-  static IntegratorConfig config() { return HhtAlphaParams{-0.1, {3, 2}}; }
+  static IntegratorConfig config() { return HhtAlphaParameters{-0.1, {3, 2}}; }
   static constexpr double stability_limit = std::numeric_limits<double>::infinity();
 };
 struct GeneralizedAlphaScheme {
   static constexpr const char* name = "generalized_alpha";
-  static IntegratorConfig config() { return GeneralizedAlphaParams{0.8, {2, 3}}; }
+  static IntegratorConfig config() { return GeneralizedAlphaParameters{0.8, {2, 3}}; }
   static constexpr double stability_limit = std::numeric_limits<double>::infinity();
 };
 struct AlphaOsScheme {
   static constexpr const char* name = "alpha_os";
-  static IntegratorConfig config() { return AlphaOsParams{-1.0 / 6.0}; }
+  static IntegratorConfig config() { return AlphaOsParameters{-1.0 / 6.0}; }
   static constexpr double stability_limit = std::numeric_limits<double>::infinity();
 };
 struct ChangScheme {
   static constexpr const char* name = "chang";
-  static IntegratorConfig config() { return ChangParams{}; }
+  static IntegratorConfig config() { return ChangParameters{}; }
   static constexpr double stability_limit = std::numeric_limits<double>::infinity();
 };
 struct ChenRiclesScheme {
   static constexpr const char* name = "chen_ricles";
-  static IntegratorConfig config() { return ChenRiclesParams{}; }
+  static IntegratorConfig config() { return ChenRiclesParameters{}; }
   static constexpr double stability_limit = std::numeric_limits<double>::infinity();
 };
 struct KolayRiclesAlphaScheme {
   static constexpr const char* name = "kolay_ricles_alpha";
-  static IntegratorConfig config() { return KolayRiclesAlphaParams{0.5}; }
+  static IntegratorConfig config() { return KolayRiclesAlphaParameters{0.5}; }
   static constexpr double stability_limit = std::numeric_limits<double>::infinity();
 };
 

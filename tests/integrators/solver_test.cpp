@@ -92,7 +92,7 @@ TEST(MaxNaturalFrequency, CentralDifferenceCheckOnLargeSparseModel) {
   SymmetricSolver ms;
   ms.factorize(M, "mass");
   const double w = max_natural_frequency_rad_s(M, linalg::StructuralMatrix(frame.stiffness).compacted(), ms);
-  auto cd = make_integrator(CentralDifferenceParams{});
+  auto cd = make_integrator(CentralDifferenceParameters{});
   EXPECT_THROW(cd->configure(m, 1.02 * 2.0 / w), std::invalid_argument);
   EXPECT_NO_THROW(cd->configure(m, 0.98 * 2.0 / w));
 }
@@ -100,10 +100,11 @@ TEST(MaxNaturalFrequency, CentralDifferenceCheckOnLargeSparseModel) {
 TEST(DenseAndSparse, GiveTheSameTrajectory) {
   const auto frame = make_frame_model(90, 2000.0, true);
   const Eigen::MatrixXd M = frame.mass, C = frame.damping, K = frame.stiffness;
-  for (const IntegratorConfig& c : {IntegratorConfig{CentralDifferenceParams{}}, IntegratorConfig{NewmarkParams{}},
-                                    IntegratorConfig{HhtAlphaParams{}}, IntegratorConfig{GeneralizedAlphaParams{}},
-                                    IntegratorConfig{AlphaOsParams{}}, IntegratorConfig{ChangParams{}},
-                                    IntegratorConfig{ChenRiclesParams{}}, IntegratorConfig{KolayRiclesAlphaParams{}}}) {
+  for (const IntegratorConfig& c :
+       {IntegratorConfig{CentralDifferenceParameters{}}, IntegratorConfig{NewmarkParameters{}},
+        IntegratorConfig{HhtAlphaParameters{}}, IntegratorConfig{GeneralizedAlphaParameters{}},
+        IntegratorConfig{AlphaOsParameters{}}, IntegratorConfig{ChangParameters{}},
+        IntegratorConfig{ChenRiclesParameters{}}, IntegratorConfig{KolayRiclesAlphaParameters{}}}) {
     auto dense = make_integrator(c);
     auto sparse = make_integrator(c);
     dense->configure(StructuralMatrices::dense(M, C, K), 1e-3);

@@ -89,7 +89,7 @@ TEST(UdpControllerActuator, ReproducesTheInProcessActuatorBitForBit) {
 TEST(UdpControllerActuator, MissingRepliesGiveNoReplyThenALatchedFault) {
   IdealController ideal;
   auto& [plant, plants, emulator] = ideal;
-  UdpControllerConfig config = adapter_config(emulator, 1);
+  UdpControllerParameters config = adapter_config(emulator, 1);
   config.reply_timeout_s = 0.01;
   config.max_missed_replies = 2;
   UdpControllerActuator adapter(config);
@@ -128,7 +128,7 @@ TEST(UdpControllerActuator, MissingRepliesGiveNoReplyThenALatchedFault) {
 TEST(UdpControllerActuator, StaleRepliesAreDrainedAndCounted) {
   IdealController ideal;
   auto& [plant, plants, emulator] = ideal;
-  UdpControllerConfig config = adapter_config(emulator, 1);
+  UdpControllerParameters config = adapter_config(emulator, 1);
   config.reply_timeout_s = 0.01;
   UdpControllerActuator adapter(config);
   pair(emulator, adapter);
@@ -192,7 +192,7 @@ TEST(UdpControllerActuator, StartRefusesAnAbsentMismatchedOrDisplacedController)
   const double zero[] = {0.0}, zeros[] = {0.0, 0.0}, away[] = {0.01};
   emulator.start(zero);
 
-  UdpControllerConfig config = adapter_config(emulator, 1);
+  UdpControllerParameters config = adapter_config(emulator, 1);
   config.start_timeout_s = 0.2;
   UdpControllerActuator silent(config);
   pair(emulator, silent);
@@ -213,7 +213,7 @@ TEST(UdpControllerActuator, StartRefusesAnAbsentMismatchedOrDisplacedController)
 }
 
 TEST(UdpControllerActuator, ConfigErrorsNameTheField) {
-  const auto message = [](UdpControllerConfig config) -> std::string {
+  const auto message = [](UdpControllerParameters config) -> std::string {
     try {
       config.validate();
     } catch (const std::invalid_argument& e) {
@@ -221,7 +221,7 @@ TEST(UdpControllerActuator, ConfigErrorsNameTheField) {
     }
     return "";
   };
-  UdpControllerConfig good;
+  UdpControllerParameters good;
   good.controller_port = 5000;
   good.key = testing::test_key();
   EXPECT_EQ(message(good), "");

@@ -90,7 +90,7 @@ TEST_F(LinkFiles, VersionTwoIsTheDefaultAndNeedsAKeyFile) {
   const std::string e = error_of([&] { (void)scenarios::load_controller_emulator(emulator_file("")); });
   EXPECT_NE(e.find("udp.key_file: protocol version 2 (the default) needs the key"), std::string::npos) << e;
   const auto setup = scenarios::load_servo_node(node_file("  key_file: lab.key\n"));
-  const auto& udp = std::get<UdpControllerConfig>(setup.actuator);
+  const auto& udp = std::get<UdpControllerParameters>(setup.actuator);
   EXPECT_EQ(udp.protocol_version, 2);
   EXPECT_EQ(udp.key.size(), 32u);
   EXPECT_NE(describe_link(udp).find("protocol version 2 (HMAC-SHA-256, key " + key_.string() + ")"), std::string::npos);
@@ -99,7 +99,7 @@ TEST_F(LinkFiles, VersionTwoIsTheDefaultAndNeedsAKeyFile) {
 
 TEST_F(LinkFiles, VersionOneOnlyWhenTheFileSaysSoAndThenTheStartLineWarns) {
   const auto setup = scenarios::load_servo_node(node_file("  protocol_version: 1\n"));
-  const auto& udp = std::get<UdpControllerConfig>(setup.actuator);
+  const auto& udp = std::get<UdpControllerParameters>(setup.actuator);
   EXPECT_EQ(udp.protocol_version, 1);
   EXPECT_NE(describe_link(udp).find("WARNING: the link is unauthenticated"), std::string::npos) << describe_link(udp);
   // A key with version 1 would suggest a protection that is not there.

@@ -208,7 +208,7 @@ TEST(UdpLinkSecurity, ADatagramOfAnotherSessionIsRefused) {
 
 TEST(UdpLinkSecurity, AnotherKeyIsRefusedAndMovesNothing) {
   Rig rig(udp_protocol::kVersion2, test_key(1));
-  UdpControllerConfig config = adapter_config(rig.emulator, 1, test_key(2));
+  UdpControllerParameters config = adapter_config(rig.emulator, 1, test_key(2));
   config.start_timeout_s = 0.3;
   UdpControllerActuator node(config);
   pair(rig.emulator, node);
@@ -266,7 +266,7 @@ class HandMadeController {
 
 TEST(UdpLinkSecurity, TheNodeRefusesRepliesOfAnotherSessionOrKey) {
   HandMadeController controller;
-  UdpControllerConfig config;
+  UdpControllerParameters config;
   config.channels = 1;
   config.controller_port = controller.port();
   config.local_host = "127.0.0.1";

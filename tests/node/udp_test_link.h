@@ -29,9 +29,9 @@ inline ControllerEmulatorConfig emulator_config(int version = udp_protocol::kVer
   return config;
 }
 
-inline UdpControllerConfig adapter_config(const ControllerEmulator& emulator, int channels,
-                                          const std::vector<std::byte>& key = test_key()) {
-  UdpControllerConfig config;
+inline UdpControllerParameters adapter_config(const ControllerEmulator& emulator, int channels,
+                                              const std::vector<std::byte>& key = test_key()) {
+  UdpControllerParameters config;
   config.channels = channels;
   config.controller_host = "127.0.0.1";
   config.controller_port = emulator.port();

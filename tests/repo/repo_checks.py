@@ -168,8 +168,39 @@ def readme_example(source, rpsd):
     return []
 
 
+# A type a file or a caller fills in ends in the suffix of its role (docs/architecture.md, House
+# style): Parameters, Config, Options or Setup; a deprecated alias keeps an old name.
+OTHER_SUFFIX = re.compile(r"\b(?:struct|class|using)\s+([A-Z]\w*(?:Params|Settings|Spec|Conf|Cfg|Opts|Args))\b(?!\s*\[\[deprecated)")
+KIND_LIST = re.compile(r"using\s+(\w+)\s*=\s*(?:config::)?KindList<([^>]*)>")
+
+
+def type_suffixes(source):
+    problems = []
+    for name in tracked_files(source):
+        if not name.endswith((".h", ".cpp")):
+            continue
+        with open(os.path.join(source, name), encoding="utf-8") as f:
+            text = f.read()
+        for number, line in enumerate(text.splitlines(), 1):
+            for match in OTHER_SUFFIX.finditer(line):
+                problems.append(f"{name}:{number}: {match.group(1)} ends in none of the roles' suffixes")
+        for match in KIND_LIST.finditer(text):
+            # A list's entry is a kind's values (…Parameters), or a kind that builds its part
+            # itself, named by the list's noun: SiteKinds' DdsSite, DampingModels' ModalModel.
+            line = text[text.rfind("\n", 0, match.start()) + 1:match.start()]
+            if line.lstrip().startswith("//") or "..." in match.group(2):
+                continue  # an example in a comment, or a template's own pack
+            last_word = re.findall(r"[A-Z][a-z]*", match.group(1))[-1].removesuffix("s")
+            nouns = ("Parameters", match.group(1).removesuffix("Kinds"), last_word)
+            for entry in (e.strip() for e in match.group(2).split(",")):
+                if re.fullmatch(r"[A-Z]\w*", entry) and not entry.endswith(nouns):
+                    number = text.count("\n", 0, match.start()) + 1
+                    problems.append(f"{name}:{number}: {entry} in {match.group(1)} ends in none of {nouns}")
+    return problems
+
+
 CASES = {"no_outside_paths": no_outside_paths, "doc_links": doc_links, "code_paths": code_paths,
-         "readme_example": readme_example}
+         "readme_example": readme_example, "type_suffixes": type_suffixes}
 
 if __name__ == "__main__":
     case, *args = sys.argv[1:]

@@ -40,7 +40,7 @@ TEST(TestScenarioFile, ReadsTheTypedScenario) {
   EXPECT_DOUBLE_EQ(t.initial_displacement_m[0], 0.01);
   EXPECT_DOUBLE_EQ(t.duration_s, 5.0);
   // c = 2 zeta sqrt(k m)
-  const auto& linear = std::get<substructure::LinearMdofConfig>(t.structure);
+  const auto& linear = std::get<substructure::LinearMdofParameters>(t.structure);
   const auto& c = std::get<substructure::DampingMatrix>(linear.damping).c;
   EXPECT_NEAR(c.coeff(0, 0), 2.0 * 0.011 * std::sqrt(700.8e3 * 7080.0), 1e-9);
 }

@@ -49,9 +49,9 @@ TYPED_TEST(EveryIntegratorKind, IsAScenariosSchemeWithItsDefaultParameters) {
 
 TEST(IntegratorKinds, ASchemeReadsItsOwnKeysAndNoOther) {
   const auto t = test_with({"integrator={scheme: generalized_alpha, rho_inf: 0.6}"});
-  EXPECT_DOUBLE_EQ(std::get<integrators::GeneralizedAlphaParams>(t.integrator).rho_inf, 0.6);
+  EXPECT_DOUBLE_EQ(std::get<integrators::GeneralizedAlphaParameters>(t.integrator).rho_inf, 0.6);
   const auto hht = test_with({"integrator={scheme: hht_alpha, alpha: -0.2}"});
-  EXPECT_DOUBLE_EQ(std::get<integrators::HhtAlphaParams>(hht.integrator).alpha, -0.2);
+  EXPECT_DOUBLE_EQ(std::get<integrators::HhtAlphaParameters>(hht.integrator).alpha, -0.2);
   EXPECT_NE(error_of({"integrator={scheme: chang, rho_inf: 0.6}"}).find("integrator.rho_inf: unknown key"),
             std::string::npos);
   EXPECT_NE(error_of({"integrator={scheme: kolay_ricles_alpha, rho_inf: 1.5}"}).find("integrator.rho_inf"),
@@ -70,9 +70,9 @@ TEST(StorySpringKinds, AShearBuildingReadsEachStorysKind) {
   const auto t = test_with(
       {"structure={kind: shear_building, floor_masses_kg: [7080], stories: [{kind: bilinear, stiffness_n_per_m: 1e6, "
        "yield_force_n: 1e3, post_yield_ratio: 0.1}]}"});
-  const auto& building = std::get<substructure::ShearBuildingConfig>(t.structure);
+  const auto& building = std::get<substructure::ShearBuildingParameters>(t.structure);
   ASSERT_EQ(building.story_springs.size(), 1U);
-  EXPECT_DOUBLE_EQ(std::get<substructure::BilinearSpringConfig>(building.story_springs[0]).yield_force_n, 1e3);
+  EXPECT_DOUBLE_EQ(std::get<substructure::BilinearSpringParameters>(building.story_springs[0]).yield_force_n, 1e3);
 }
 
 TEST(StructureKinds, AnUnknownKindListsEveryKind) {
@@ -93,7 +93,7 @@ TEST(DampingModels, TwoModelsAreRefusedNamingEveryModel) {
 TEST(DampingModels, EachModelGivesItsDamping) {
   const auto t = test_with({"structure.damping={rayleigh_coefficients: {a0_per_s: 0.1, a1_s: 0.002}}"});
   const auto& c =
-      std::get<substructure::RayleighCoefficients>(std::get<substructure::LinearMdofConfig>(t.structure).damping);
+      std::get<substructure::RayleighCoefficients>(std::get<substructure::LinearMdofParameters>(t.structure).damping);
   EXPECT_DOUBLE_EQ(c.a0_per_s, 0.1);
   EXPECT_DOUBLE_EQ(c.a1_s, 0.002);
   EXPECT_NE(error_of({"structure.damping={damping_ratio: 0.02}"}).find("needs of_stiffness_n_per_m"),

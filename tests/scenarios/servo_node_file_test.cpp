@@ -34,7 +34,7 @@ namespace {
 
 TEST(ServoNodeFile, ANodeRunsTheBenchmarksControllerAndConvertersAndTheRigIsItsDefaultLimit) {
   const node::ServoNodeSetup file = load_servo_node(testing::source_dir() / "examples/nodes/rths-benchmark-site.yaml");
-  const auto& simulated = std::get<node::SimulatedActuatorConfig>(file.actuator);
+  const auto& simulated = std::get<node::SimulatedActuatorParameters>(file.actuator);
   const auto& plant = std::get<servo::FeedbackControlledPlantParameters>(simulated.plant);
   ASSERT_TRUE(plant.controller);
   EXPECT_EQ(plant.controller->proportional, 2.0);

@@ -17,10 +17,10 @@ namespace {
 
 constexpr double k0 = 1.0e6, z_max = 0.01;
 
-BoucWenSpringConfig params(double n, double beta_share, double alpha = 0.05, double A = 1.0) {
+BoucWenSpringParameters params(double n, double beta_share, double alpha = 0.05, double A = 1.0) {
   // β + γ = A / z_maxⁿ so that z_max = 0.01 m; beta_share = β / (β + γ).
   const double c = A / std::pow(z_max, n);
-  BoucWenSpringConfig p;
+  BoucWenSpringParameters p;
   p.stiffness_n_per_m = k0;
   p.post_yield_ratio = alpha;
   p.A = A;
@@ -38,7 +38,7 @@ double z_exact(double n, double A, double c, double u) {
 TEST(BoucWen, MonotonicLoadingMatchesClosedForms) {
   for (double n : {1.0, 2.0}) {
     for (double A : {1.0, 1.5}) {
-      BoucWenSpringConfig p = params(n, 0.5, 0.05, A);
+      BoucWenSpringParameters p = params(n, 0.5, 0.05, A);
       BoucWenSpring s(p);
       const double c = p.beta + p.gamma, zm = std::pow(A / c, 1.0 / n);
       EXPECT_NEAR(s.z_max_m(), zm, 1e-15);
@@ -66,7 +66,7 @@ TEST(BoucWen, MonotonicLoadingMatchesClosedForms) {
 TEST(BoucWen, LargeIncrementsAreSubStepped) {
   // One trial of 3 z_max from rest must match the closed form as well as fine stepping does.
   for (double n : {1.0, 2.0}) {
-    BoucWenSpringConfig p = params(n, 0.5);
+    BoucWenSpringParameters p = params(n, 0.5);
     BoucWenSpring s(p);
     s.trial(0.03);
     EXPECT_GT(s.last_substeps(), 1);
@@ -76,7 +76,7 @@ TEST(BoucWen, LargeIncrementsAreSubStepped) {
 
 TEST(BoucWen, InitialStiffness) {
   for (double A : {1.0, 0.8, 1.5}) {
-    BoucWenSpringConfig p = params(2.0, 0.5, 0.1, A);
+    BoucWenSpringParameters p = params(2.0, 0.5, 0.1, A);
     BoucWenSpring s(p);
     EXPECT_DOUBLE_EQ(s.initial_stiffness(), k0 * (0.1 + 0.9 * A));
     const double u = 1e-9 * z_max;  // z ≈ A u for u ≪ z_max
@@ -167,18 +167,18 @@ TEST(BoucWen, TrialsDoNotChangeTheCommittedState) {
 
 TEST(BoucWen, RejectsBadParameters) {
   auto bad = [](auto mutate) {
-    BoucWenSpringConfig p = params(2.0, 0.5);
+    BoucWenSpringParameters p = params(2.0, 0.5);
     mutate(p);
     EXPECT_THROW(BoucWenSpring{p}, std::invalid_argument);
   };
-  bad([](BoucWenSpringConfig& p) { p.stiffness_n_per_m = 0.0; });
-  bad([](BoucWenSpringConfig& p) { p.post_yield_ratio = 1.0; });
-  bad([](BoucWenSpringConfig& p) { p.A = 0.0; });
-  bad([](BoucWenSpringConfig& p) { p.beta = -1.0; });
-  bad([](BoucWenSpringConfig& p) { p.gamma = -p.beta; });  // β + γ = 0: unbounded z
-  bad([](BoucWenSpringConfig& p) { p.n = 0.5; });
-  bad([](BoucWenSpringConfig& p) { p.max_substeps = 0; });
-  bad([](BoucWenSpringConfig& p) { p.substep_ratio = 0.0; });
+  bad([](BoucWenSpringParameters& p) { p.stiffness_n_per_m = 0.0; });
+  bad([](BoucWenSpringParameters& p) { p.post_yield_ratio = 1.0; });
+  bad([](BoucWenSpringParameters& p) { p.A = 0.0; });
+  bad([](BoucWenSpringParameters& p) { p.beta = -1.0; });
+  bad([](BoucWenSpringParameters& p) { p.gamma = -p.beta; });  // β + γ = 0: unbounded z
+  bad([](BoucWenSpringParameters& p) { p.n = 0.5; });
+  bad([](BoucWenSpringParameters& p) { p.max_substeps = 0; });
+  bad([](BoucWenSpringParameters& p) { p.substep_ratio = 0.0; });
 }
 
 }  // namespace

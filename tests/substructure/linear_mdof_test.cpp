@@ -13,8 +13,8 @@
 namespace rpsd::substructure {
 namespace {
 
-LinearMdofConfig benchmark_config(linalg::MatrixStorage storage) {
-  LinearMdofConfig cfg;
+LinearMdofParameters benchmark_config(linalg::MatrixStorage storage) {
+  LinearMdofParameters cfg;
   cfg.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_mass())).converted(storage);
   cfg.stiffness_n_per_m =
       linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_stiffness())).converted(storage);
@@ -22,7 +22,7 @@ LinearMdofConfig benchmark_config(linalg::MatrixStorage storage) {
 }
 
 // Runs configure and returns the exception message ("" if it did not throw).
-std::string configure_error(const LinearMdofConfig& cfg) {
+std::string configure_error(const LinearMdofParameters& cfg) {
   LinearMdofModel m;
   try {
     m.configure(cfg);
@@ -66,7 +66,7 @@ TEST(LinearMdof, RestoringForceIsThePublishedStiffnessColumns) {
 }
 
 TEST(LinearMdof, ExplicitDampingMatrix) {
-  LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
+  LinearMdofParameters cfg = benchmark_config(linalg::MatrixStorage::kDense);
   Eigen::MatrixXd C = 0.01 * test::benchmark_case1_stiffness();
   cfg.damping = DampingMatrix{linalg::StructuralMatrix(C)};
   LinearMdofModel model;
@@ -79,7 +79,7 @@ TEST(LinearMdof, ExplicitDampingMatrix) {
 
 TEST(LinearMdof, RejectsNonSymmetricMass) {
   for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
-    LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
+    LinearMdofParameters cfg = benchmark_config(linalg::MatrixStorage::kDense);
     Eigen::MatrixXd M = test::benchmark_case1_mass();
     M(0, 1) = 5.0;
     cfg.mass_kg = linalg::StructuralMatrix(M).converted(storage);
@@ -91,7 +91,7 @@ TEST(LinearMdof, RejectsNonSymmetricMass) {
 
 TEST(LinearMdof, RejectsNonPositiveDefiniteMass) {
   for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
-    LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
+    LinearMdofParameters cfg = benchmark_config(linalg::MatrixStorage::kDense);
     Eigen::MatrixXd M = test::benchmark_case1_mass();
     M(0, 1) = M(1, 0) = 2000.0;  // positive diagonal, eigenvalue 1000 − 2000 < 0
     cfg.mass_kg = linalg::StructuralMatrix(M).converted(storage);
@@ -107,7 +107,7 @@ TEST(LinearMdof, RejectsNonPositiveDefiniteMass) {
 }
 
 TEST(LinearMdof, RejectsMismatchedAndMalformedMatrices) {
-  LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
+  LinearMdofParameters cfg = benchmark_config(linalg::MatrixStorage::kDense);
   cfg.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)));
   EXPECT_CONTAINS(configure_error(cfg), "stiffness matrix K is 3x3 but mass matrix M is 2x2");
 
@@ -137,7 +137,7 @@ TEST(LinearMdof, RejectsMismatchedAndMalformedMatrices) {
 }
 
 TEST(LinearMdof, RejectsBadRayleighModes) {
-  LinearMdofConfig cfg = benchmark_config(linalg::MatrixStorage::kDense);
+  LinearMdofParameters cfg = benchmark_config(linalg::MatrixStorage::kDense);
   cfg.damping = RayleighFromModes{1, 4, 0.05, 0.05};
   EXPECT_CONTAINS(configure_error(cfg), "mode number 4 is out of range 1..3");
   cfg.damping = RayleighFromModes{0, 2, 0.05, 0.05};
@@ -149,7 +149,7 @@ TEST(LinearMdof, RejectsBadRayleighModes) {
 TEST(LinearMdof, FailedConfigureKeepsThePreviousModel) {
   LinearMdofModel model;
   model.configure(benchmark_config(linalg::MatrixStorage::kDense));
-  LinearMdofConfig bad = benchmark_config(linalg::MatrixStorage::kDense);
+  LinearMdofParameters bad = benchmark_config(linalg::MatrixStorage::kDense);
   bad.damping = RayleighFromModes{1, 7, 0.05, 0.05};
   EXPECT_THROW(model.configure(bad), std::invalid_argument);
   EXPECT_EQ(model.dofs(), 3);

@@ -105,7 +105,7 @@ TEST_F(MatrixMarket, RoundTripThroughEigenSaveMarket) {
 }
 
 TEST_F(MatrixMarket, BenchmarkModelFromFiles) {
-  const LinearMdofConfig cfg = linear_config_from_matrix_market(
+  const LinearMdofParameters cfg = linear_config_from_matrix_market(
       {write("m.mtx", kBenchmarkM), write("k.mtx", kBenchmarkK), std::nullopt}, RayleighFromModes{1, 2, 0.05, 0.05});
   LinearMdofModel model;
   model.configure(cfg);
@@ -114,7 +114,7 @@ TEST_F(MatrixMarket, BenchmarkModelFromFiles) {
   const Eigen::VectorXd w = natural_frequencies_rad_s(model.mass(), model.initial_stiffness());
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(w[i] / (2.0 * std::numbers::pi), test::kBenchmarkCase1FrequenciesHz[i], 5e-4);
   // With a damping file instead.
-  const LinearMdofConfig with_c = linear_config_from_matrix_market(
+  const LinearMdofParameters with_c = linear_config_from_matrix_market(
       {write("m2.mtx", kBenchmarkM), write("k2.mtx", kBenchmarkK), write("c.mtx", kBenchmarkM)});
   model.configure(with_c);
   EXPECT_EQ(model.damping().to_dense(), Eigen::MatrixXd(test::benchmark_case1_mass()));
@@ -195,7 +195,7 @@ TEST_F(MatrixMarket, ConfigureErrorsNameTheFile) {
   // A mass file that parses but is not symmetric: the model's message names the file.
   const fs::path m = write(
       "m_bad.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 4\n1 1 1000\n2 2 1000\n3 3 1000\n1 2 10\n");
-  const LinearMdofConfig cfg = linear_config_from_matrix_market({m, write("k.mtx", kBenchmarkK), std::nullopt});
+  const LinearMdofParameters cfg = linear_config_from_matrix_market({m, write("k.mtx", kBenchmarkK), std::nullopt});
   LinearMdofModel model;
   const std::string msg = error_of([&] { model.configure(cfg); });
   EXPECT_CONTAINS(msg, "mass matrix M (from file '" + m.string() + "') is not symmetric");

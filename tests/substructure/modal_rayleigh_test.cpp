@@ -108,7 +108,7 @@ ModalDamping modal_damping(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, c
 }
 
 TEST(Rayleigh, BenchmarkCase1ModalDampingMatchesAnalyticCurve) {
-  LinearMdofConfig cfg;
+  LinearMdofParameters cfg;
   cfg.mass_kg = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_mass()));
   cfg.stiffness_n_per_m = linalg::StructuralMatrix(Eigen::MatrixXd(test::benchmark_case1_stiffness()));
   cfg.damping = RayleighFromModes{1, 2, 0.05, 0.05};  // ζ = 5 % as in the benchmark
@@ -146,7 +146,7 @@ TEST(Rayleigh, EveryModeOfATenStoryBuildingFollowsTheCurve) {
     if (i + 1 < N) K(i, i + 1) = K(i + 1, i) = -k_above;
   }
   for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
-    LinearMdofConfig cfg;
+    LinearMdofParameters cfg;
     cfg.mass_kg = linalg::StructuralMatrix(M).converted(storage);
     cfg.stiffness_n_per_m = linalg::StructuralMatrix(K).converted(storage);
     cfg.damping = RayleighFromModes{1, 3, 0.02, 0.04};

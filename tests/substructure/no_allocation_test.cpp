@@ -58,7 +58,7 @@ TEST(NoAllocation, TheCounterSeesAllocations) {
 
 // A 500-DOF model banded like a 2-D frame (half-bandwidth 15, bandwidth about 30),
 // diagonally dominant so that it is positive definite.
-LinearMdofConfig banded_model(Eigen::Index n, Eigen::Index half_band) {
+LinearMdofParameters banded_model(Eigen::Index n, Eigen::Index half_band) {
   std::vector<Eigen::Triplet<double>> kt, mt;
   for (Eigen::Index i = 0; i < n; ++i) {
     mt.emplace_back(i, i, 500.0 + (i % 7) * 10.0);
@@ -74,7 +74,7 @@ LinearMdofConfig banded_model(Eigen::Index n, Eigen::Index half_band) {
   linalg::SparseMatrix K(n, n), M(n, n);
   K.setFromTriplets(kt.begin(), kt.end());
   M.setFromTriplets(mt.begin(), mt.end());
-  LinearMdofConfig c;
+  LinearMdofParameters c;
   c.mass_kg = linalg::StructuralMatrix(std::move(M));
   c.stiffness_n_per_m = linalg::StructuralMatrix(std::move(K));
   c.damping = RayleighFromModes{1, 5, 0.05, 0.05};
@@ -125,7 +125,7 @@ TEST(NoAllocation, SparseLinearModel500Dofs) {
 
 TEST(NoAllocation, DenseLinearModel) {
   // Dense storage: the GEMV products must not allocate either.
-  LinearMdofConfig cfg = banded_model(200, 15);
+  LinearMdofParameters cfg = banded_model(200, 15);
   cfg.mass_kg = cfg.mass_kg.converted(linalg::MatrixStorage::kDense);
   cfg.stiffness_n_per_m = cfg.stiffness_n_per_m.converted(linalg::MatrixStorage::kDense);
   LinearMdofModel model;
@@ -149,8 +149,8 @@ TEST(NoAllocation, DenseLinearModel) {
   EXPECT_TRUE(std::isfinite(check));
 }
 
-ShearBuildingConfig building(int floors, const StorySpringConfig& spring, linalg::MatrixStorage storage) {
-  ShearBuildingConfig c;
+ShearBuildingParameters building(int floors, const StorySpringConfig& spring, linalg::MatrixStorage storage) {
+  ShearBuildingParameters c;
   c.floor_masses_kg.assign(static_cast<std::size_t>(floors), 5.0e4);
   c.story_springs.assign(static_cast<std::size_t>(floors), spring);
   c.damping = RayleighFromModes{1, 3, 0.05, 0.05};

@@ -119,9 +119,9 @@ TEST(Partition, RejectsBadConfigurations) {
 }
 
 TEST(GroundMotionLoad, ShearBuildingIsMinusMassTimesAcceleration) {
-  ShearBuildingConfig c;
+  ShearBuildingParameters c;
   c.floor_masses_kg = {1.0e3, 2.0e3, 3.0e3};
-  c.story_springs = {LinearSpringConfig{1e6}, LinearSpringConfig{1e6}, LinearSpringConfig{1e6}};
+  c.story_springs = {LinearSpringParameters{1e6}, LinearSpringParameters{1e6}, LinearSpringParameters{1e6}};
   ShearBuilding b;
   b.configure(c);
   GroundMotionLoad g;

@@ -14,10 +14,10 @@ namespace {
 #define EXPECT_CONTAINS(haystack, needle) \
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
 
-ShearBuildingConfig linear_building(std::vector<double> m, std::vector<double> k) {
-  ShearBuildingConfig c;
+ShearBuildingParameters linear_building(std::vector<double> m, std::vector<double> k) {
+  ShearBuildingParameters c;
   c.floor_masses_kg = std::move(m);
-  for (double ki : k) c.story_springs.emplace_back(LinearSpringConfig{ki});
+  for (double ki : k) c.story_springs.emplace_back(LinearSpringParameters{ki});
   return c;
 }
 
@@ -27,7 +27,7 @@ TEST(ShearBuilding, StiffnessMatchesHandAssembledTridiagonal) {
   K_hand << 7, -3, 0, 0, -3, 5, -2, 0, 0, -2, 3, -1, 0, 0, -1, 1;
   K_hand *= 1e6;
   for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
-    ShearBuildingConfig c = linear_building({1e3, 2e3, 3e3, 4e3}, {4e6, 3e6, 2e6, 1e6});
+    ShearBuildingParameters c = linear_building({1e3, 2e3, 3e3, 4e3}, {4e6, 3e6, 2e6, 1e6});
     c.storage = storage;
     ShearBuilding b;
     b.configure(c);
@@ -62,9 +62,9 @@ TEST(ShearBuilding, TwoStoryFrequenciesMatchClosedForm) {
 }
 
 TEST(ShearBuilding, RayleighDampingUsesInitialStiffness) {
-  ShearBuildingConfig c = linear_building({1e3, 1e3, 1e3}, {3e6, 2e6, 1e6});
-  c.story_springs[0] = BilinearSpringConfig{3e6, 3e4, 0.1};     // initial stiffness still 3e6
-  c.damping = RayleighFromFrequencies{10.0, 30.0, 0.05, 0.05};  // a0 = 0.75, a1 = 0.0025
+  ShearBuildingParameters c = linear_building({1e3, 1e3, 1e3}, {3e6, 2e6, 1e6});
+  c.story_springs[0] = BilinearSpringParameters{3e6, 3e4, 0.1};  // initial stiffness still 3e6
+  c.damping = RayleighFromFrequencies{10.0, 30.0, 0.05, 0.05};   // a0 = 0.75, a1 = 0.0025
   ShearBuilding b;
   b.configure(c);
   const Eigen::MatrixXd expected = 0.75 * b.mass().to_dense() + 0.0025 * b.initial_stiffness().to_dense();
@@ -74,9 +74,9 @@ TEST(ShearBuilding, RayleighDampingUsesInitialStiffness) {
 TEST(ShearBuilding, BilinearFirstStoryYieldsAndTangentFollows) {
   const double k1 = 2e6, fy = 2e4, alpha = 0.1, k2 = 1e6;
   for (linalg::MatrixStorage storage : {linalg::MatrixStorage::kDense, linalg::MatrixStorage::kSparse}) {
-    ShearBuildingConfig c;
+    ShearBuildingParameters c;
     c.floor_masses_kg = {1e3, 1e3};
-    c.story_springs = {BilinearSpringConfig{k1, fy, alpha}, LinearSpringConfig{k2}};
+    c.story_springs = {BilinearSpringParameters{k1, fy, alpha}, LinearSpringParameters{k2}};
     c.storage = storage;
     ShearBuilding b;
     b.configure(c);
@@ -105,9 +105,9 @@ TEST(ShearBuilding, BilinearFirstStoryYieldsAndTangentFollows) {
 }
 
 TEST(ShearBuilding, TrialTwiceWithoutCommitGivesTheSameForces) {
-  ShearBuildingConfig c;
+  ShearBuildingParameters c;
   c.floor_masses_kg = {1e3, 1e3, 1e3};
-  BoucWenSpringConfig bw;
+  BoucWenSpringParameters bw;
   bw.stiffness_n_per_m = 1e6;
   bw.post_yield_ratio = 0.05;
   bw.beta = bw.gamma = 1.0 / (2.0 * 1e-4);  // n = 2, z_max = 10 mm
@@ -128,7 +128,7 @@ TEST(ShearBuilding, TrialTwiceWithoutCommitGivesTheSameForces) {
 }
 
 TEST(ShearBuilding, RejectsBadInput) {
-  auto error = [](const ShearBuildingConfig& c) -> std::string {
+  auto error = [](const ShearBuildingParameters& c) -> std::string {
     ShearBuilding b;
     try {
       b.configure(c);
@@ -142,8 +142,8 @@ TEST(ShearBuilding, RejectsBadInput) {
   EXPECT_CONTAINS(error(linear_building({1e3, -5.0}, {1e6, 1e6})), "floor 2: mass must be positive, got -5 kg");
   EXPECT_CONTAINS(error(linear_building({1e3, 1e3}, {1e6, -2e6})),
                   "story 2: linear spring: stiffness_n_per_m must be positive, got -2000000");
-  ShearBuildingConfig c = linear_building({1e3, 1e3}, {1e6, 1e6});
-  c.story_springs[0] = BilinearSpringConfig{1e6, -1.0, 0.1};
+  ShearBuildingParameters c = linear_building({1e3, 1e3}, {1e6, 1e6});
+  c.story_springs[0] = BilinearSpringParameters{1e6, -1.0, 0.1};
   EXPECT_CONTAINS(error(c), "story 1: bilinear spring: yield_force_n must be positive");
   c = linear_building({1e3, 1e3}, {1e6, 1e6});
   c.damping = RayleighFromModes{1, 3, 0.05, 0.05};

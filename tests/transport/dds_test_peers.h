@@ -42,7 +42,7 @@ inline DdsNodeEndpointConfig node_config(std::uint32_t test, std::uint32_t site)
 // true once the link has found it and it serves no other run at the link's rate.
 inline bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, std::uint32_t site,
                     double timeout_s = 10.0, std::uint64_t serving_run_id = 0,
-                    double control_period_s = DdsQosSettings{}.control_period_s) {
+                    double control_period_s = DdsQosConfig{}.control_period_s) {
   std::atomic<bool> done{false};
   std::thread announcer([&] {
     NodeHeartbeat h;

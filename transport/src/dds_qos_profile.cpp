@@ -8,7 +8,7 @@ namespace {
 
 dds_duration_t seconds(double s) { return static_cast<dds_duration_t>(std::llround(s * 1e9)); }
 
-DdsQos stream_qos(const DdsQosSettings& s, dds_reliability_kind_t reliability) {
+DdsQos stream_qos(const DdsQosConfig& s, dds_reliability_kind_t reliability) {
   DdsQos q;
   dds_qset_reliability(q.get(), reliability, DDS_MSECS(1));
   dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, s.history_depth);
@@ -20,14 +20,14 @@ DdsQos stream_qos(const DdsQosSettings& s, dds_reliability_kind_t reliability) {
 
 }  // namespace
 
-DdsQos stream_writer_qos(const DdsQosSettings& s) {
+DdsQos stream_writer_qos(const DdsQosConfig& s) {
   return stream_qos(s, s.newest_only ? DDS_RELIABILITY_BEST_EFFORT : DDS_RELIABILITY_RELIABLE);
 }
-DdsQos stream_reader_qos(const DdsQosSettings& s) {
+DdsQos stream_reader_qos(const DdsQosConfig& s) {
   return stream_qos(s, s.newest_only ? DDS_RELIABILITY_BEST_EFFORT : DDS_RELIABILITY_RELIABLE);
 }
 
-DdsQos heartbeat_qos(const DdsQosSettings& s) {
+DdsQos heartbeat_qos(const DdsQosConfig& s) {
   DdsQos q;
   dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_MSECS(10));
   dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, 1);

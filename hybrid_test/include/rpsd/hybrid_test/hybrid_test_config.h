@@ -100,11 +100,11 @@ struct OpenSeesSite {
 struct TestConfig {
   std::string name;
   std::string description;
-  std::variant<substructure::LinearMdofConfig, substructure::ShearBuildingConfig> structure;
+  std::variant<substructure::LinearMdofParameters, substructure::ShearBuildingParameters> structure;
   std::vector<ExperimentalChannel> experimental;
   Eigen::VectorXd influence;  // ground-motion influence vector (default: all ones)
   servo::PlantConfig plant;   // every channel's actuator (each channel gets its own)
-  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
+  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParameters{};
   compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
   double control_rate_hz = 1024.0;  // integration step = control period x iterations
   ClockConfig clock;

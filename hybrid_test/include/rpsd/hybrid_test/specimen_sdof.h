@@ -16,7 +16,7 @@ struct SpecimenSdof {
   double initial_displacement_m = 0.01;  // free vibration from here
   double control_rate_hz = 1024.0;
   double duration_s = 10.0;
-  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
+  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParameters{};
   compensation::CompensatorConfig compensation = compensation::PassThroughParameters{};
   servo::PlantConfig plant = servo::PureDelayParameters{0.0, 700.8e3, 8192.0, {}, {}};
   coordinator::RestoringForceSource restoring_force =

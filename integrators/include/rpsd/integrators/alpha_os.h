@@ -12,21 +12,22 @@ namespace rpsd::integrators {
 
 class AlphaOs;
 
-struct AlphaOsParams {
+struct AlphaOsParameters {
   static constexpr std::string_view kName = "alpha_os";
   static constexpr std::string_view kSummary = "alpha operator splitting (Combescure & Pegon), K0 as the implicit part";
   using Integrator = AlphaOs;
-  static AlphaOsParams read(config::Source& section);  // alpha
+  static AlphaOsParameters read(config::Source& section);  // alpha
   std::string describe() const;
 
   double alpha = -1.0 / 6.0;
 };
+using AlphaOsParams [[deprecated("renamed AlphaOsParameters (docs/migration.md)")]] = AlphaOsParameters;
 
-void validate(const AlphaOsParams& p);
+void validate(const AlphaOsParameters& p);
 
 class AlphaOs final : public OperatorSplittingEngine {
  public:
-  explicit AlphaOs(const AlphaOsParams& p = {});
+  explicit AlphaOs(const AlphaOsParameters& p = {});
   SchemeInfo info() const override;
 };
 

@@ -12,18 +12,20 @@ namespace rpsd::integrators {
 
 class CentralDifference;
 
-struct CentralDifferenceParams {
+struct CentralDifferenceParameters {
   static constexpr std::string_view kName = "central_difference";  // integrator.scheme in a scenario
   static constexpr std::string_view kSummary = "explicit Newmark (beta = 0, gamma = 1/2), stable for omega dt <= 2";
   using Integrator = CentralDifference;
-  static CentralDifferenceParams read(config::Source&) { return {}; }
-  static Aliases<CentralDifferenceParams> aliases() { return {{"cd", {}}}; }
+  static CentralDifferenceParameters read(config::Source&) { return {}; }
+  static Aliases<CentralDifferenceParameters> aliases() { return {{"cd", {}}}; }
   std::string describe() const { return "beta=0 gamma=0.5"; }
 };
+using CentralDifferenceParams [[deprecated("renamed CentralDifferenceParameters (docs/migration.md)")]] =
+    CentralDifferenceParameters;
 
 class CentralDifference final : public OperatorSplittingEngine {
  public:
-  explicit CentralDifference(const CentralDifferenceParams& = {}) : OperatorSplittingEngine({0.0, 0.0, 0.5}) {}
+  explicit CentralDifference(const CentralDifferenceParameters& = {}) : OperatorSplittingEngine({0.0, 0.0, 0.5}) {}
   SchemeInfo info() const override;
 };
 

@@ -13,17 +13,18 @@ namespace rpsd::integrators {
 
 class Chang;
 
-struct ChangParams {
+struct ChangParameters {
   static constexpr std::string_view kName = "chang";
   static constexpr std::string_view kSummary = "Chang's explicit unconditionally stable method";
   using Integrator = Chang;
-  static ChangParams read(config::Source&) { return {}; }
+  static ChangParameters read(config::Source&) { return {}; }
   std::string describe() const { return "(none)"; }
 };
+using ChangParams [[deprecated("renamed ChangParameters (docs/migration.md)")]] = ChangParameters;
 
 class Chang final : public Integrator {
  public:
-  explicit Chang(const ChangParams& = {}) {}
+  explicit Chang(const ChangParameters& = {}) {}
   SchemeInfo info() const override;
 
  private:

@@ -11,18 +11,19 @@ namespace rpsd::integrators {
 
 class ChenRicles;
 
-struct ChenRiclesParams {
+struct ChenRiclesParameters {
   static constexpr std::string_view kName = "chen_ricles";
   static constexpr std::string_view kSummary = "CR, the Chen-Ricles explicit method";
   using Integrator = ChenRicles;
-  static ChenRiclesParams read(config::Source&) { return {}; }
-  static Aliases<ChenRiclesParams> aliases() { return {{"cr", {}}}; }
+  static ChenRiclesParameters read(config::Source&) { return {}; }
+  static Aliases<ChenRiclesParameters> aliases() { return {{"cr", {}}}; }
   std::string describe() const { return "(none)"; }
 };
+using ChenRiclesParams [[deprecated("renamed ChenRiclesParameters (docs/migration.md)")]] = ChenRiclesParameters;
 
 class ChenRicles final : public ModelBasedExplicitEngine {
  public:
-  explicit ChenRicles(const ChenRiclesParams& = {}) : ModelBasedExplicitEngine({0.0, 0.0, 0.5, 0.25}) {}
+  explicit ChenRicles(const ChenRiclesParameters& = {}) : ModelBasedExplicitEngine({0.0, 0.0, 0.5, 0.25}) {}
   SchemeInfo info() const override;
 };
 

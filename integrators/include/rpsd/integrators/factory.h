@@ -24,8 +24,9 @@
 
 namespace rpsd::integrators {
 
-using IntegratorKinds = config::KindList<CentralDifferenceParams, NewmarkParams, HhtAlphaParams, GeneralizedAlphaParams,
-                                         AlphaOsParams, ChangParams, ChenRiclesParams, KolayRiclesAlphaParams>;
+using IntegratorKinds =
+    config::KindList<CentralDifferenceParameters, NewmarkParameters, HhtAlphaParameters, GeneralizedAlphaParameters,
+                     AlphaOsParameters, ChangParameters, ChenRiclesParameters, KolayRiclesAlphaParameters>;
 using IntegratorConfig = IntegratorKinds::Variant;
 
 // The scheme's stable lower-case name (its kName): central_difference, newmark, ...

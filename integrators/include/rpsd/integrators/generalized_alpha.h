@@ -12,17 +12,19 @@ namespace rpsd::integrators {
 
 class GeneralizedAlpha;
 
-struct GeneralizedAlphaParams {
+struct GeneralizedAlphaParameters {
   static constexpr std::string_view kName = "generalized_alpha";
   static constexpr std::string_view kSummary = "generalized-alpha (Chung & Hulbert), fixed iterations per step";
   using Integrator = GeneralizedAlpha;
-  static GeneralizedAlphaParams read(config::Source& section);  // rho_inf
-  static Aliases<GeneralizedAlphaParams> aliases() { return {{"ga", {}}}; }
+  static GeneralizedAlphaParameters read(config::Source& section);  // rho_inf
+  static Aliases<GeneralizedAlphaParameters> aliases() { return {{"ga", {}}}; }
   std::string describe() const;
 
   double rho_inf = 0.8;
   FixedIterationOptions fixed_iteration{};
 };
+using GeneralizedAlphaParams [[deprecated("renamed GeneralizedAlphaParameters (docs/migration.md)")]] =
+    GeneralizedAlphaParameters;
 
 // The Chung-Hulbert parameter set for a spectral radius at infinity rho_inf.
 struct AlphaParameters {
@@ -31,11 +33,11 @@ struct AlphaParameters {
 // Throws std::invalid_argument unless rho_inf in [0, 1].
 AlphaParameters chung_hulbert_parameters(double rho_inf);
 
-void validate(const GeneralizedAlphaParams& p);
+void validate(const GeneralizedAlphaParameters& p);
 
 class GeneralizedAlpha final : public FixedIterationImplicitEngine {
  public:
-  explicit GeneralizedAlpha(const GeneralizedAlphaParams& p = {});
+  explicit GeneralizedAlpha(const GeneralizedAlphaParameters& p = {});
   SchemeInfo info() const override;
 };
 

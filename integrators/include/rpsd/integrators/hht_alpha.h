@@ -12,24 +12,25 @@ namespace rpsd::integrators {
 
 class HhtAlpha;
 
-struct HhtAlphaParams {
+struct HhtAlphaParameters {
   static constexpr std::string_view kName = "hht_alpha";
   static constexpr std::string_view kSummary = "HHT-alpha, fixed iterations per step";
   using Integrator = HhtAlpha;
-  static HhtAlphaParams read(config::Source& section);  // alpha
-  static Aliases<HhtAlphaParams> aliases() { return {{"hht", {}}}; }
+  static HhtAlphaParameters read(config::Source& section);  // alpha
+  static Aliases<HhtAlphaParameters> aliases() { return {{"hht", {}}}; }
   std::string describe() const;
 
   double alpha = -0.1;
   FixedIterationOptions fixed_iteration{};
 };
+using HhtAlphaParams [[deprecated("renamed HhtAlphaParameters (docs/migration.md)")]] = HhtAlphaParameters;
 
 // Throws std::invalid_argument unless alpha in [-1/3, 0] and the options are valid.
-void validate(const HhtAlphaParams& p);
+void validate(const HhtAlphaParameters& p);
 
 class HhtAlpha final : public FixedIterationImplicitEngine {
  public:
-  explicit HhtAlpha(const HhtAlphaParams& p = {});
+  explicit HhtAlpha(const HhtAlphaParameters& p = {});
   SchemeInfo info() const override;
 };
 

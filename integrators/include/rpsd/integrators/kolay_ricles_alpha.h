@@ -10,22 +10,24 @@ namespace rpsd::integrators {
 
 class KolayRiclesAlpha;
 
-struct KolayRiclesAlphaParams {
+struct KolayRiclesAlphaParameters {
   static constexpr std::string_view kName = "kolay_ricles_alpha";
   static constexpr std::string_view kSummary = "KR-alpha, the Kolay-Ricles explicit method";
   using Integrator = KolayRiclesAlpha;
-  static KolayRiclesAlphaParams read(config::Source& section);  // rho_inf
-  static Aliases<KolayRiclesAlphaParams> aliases() { return {{"kr_alpha", {}}, {"kr", {}}}; }
+  static KolayRiclesAlphaParameters read(config::Source& section);  // rho_inf
+  static Aliases<KolayRiclesAlphaParameters> aliases() { return {{"kr_alpha", {}}, {"kr", {}}}; }
   std::string describe() const;
 
   double rho_inf = 0.8;
 };
+using KolayRiclesAlphaParams [[deprecated("renamed KolayRiclesAlphaParameters (docs/migration.md)")]] =
+    KolayRiclesAlphaParameters;
 
-void validate(const KolayRiclesAlphaParams& p);
+void validate(const KolayRiclesAlphaParameters& p);
 
 class KolayRiclesAlpha final : public ModelBasedExplicitEngine {
  public:
-  explicit KolayRiclesAlpha(const KolayRiclesAlphaParams& p = {});
+  explicit KolayRiclesAlpha(const KolayRiclesAlphaParameters& p = {});
   SchemeInfo info() const override;
 };
 

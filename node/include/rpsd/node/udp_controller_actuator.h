@@ -26,12 +26,12 @@ namespace rpsd::node {
 
 struct OwnedActuator;
 
-struct UdpControllerConfig {
+struct UdpControllerParameters {
   static constexpr std::string_view kName = "udp_controller";
   static constexpr std::string_view kSummary =
       "a hardware controller that closes the servo loop itself, on UDP (docs/udp-controller-protocol.md)";
-  static UdpControllerConfig read(config::Source& section, int channels);
-  static OwnedActuator make(const UdpControllerConfig& config, int channels);
+  static UdpControllerParameters read(config::Source& section, int channels);
+  static OwnedActuator make(const UdpControllerParameters& config, int channels);
   servo::Envelope envelope() const { return rig; }
 
   int channels = 1;                           // must equal the controller's
@@ -56,6 +56,8 @@ struct UdpControllerConfig {
   // Throws std::invalid_argument naming the field. Not real-time safe.
   void validate() const;
 };
+using UdpControllerConfig [[deprecated("renamed UdpControllerParameters (docs/migration.md)")]] =
+    UdpControllerParameters;
 
 struct UdpControllerCounters {
   std::uint64_t commands_sent = 0;
@@ -75,7 +77,7 @@ class UdpControllerActuator final : public servo::Actuator {
  public:
   // Validates the config and binds the local socket (throws std::invalid_argument or
   // std::runtime_error). Not real-time safe.
-  explicit UdpControllerActuator(const UdpControllerConfig& config);
+  explicit UdpControllerActuator(const UdpControllerParameters& config);
 
   int channels() const override { return config_.channels; }
 
@@ -109,7 +111,7 @@ class UdpControllerActuator final : public servo::Actuator {
   // Sends the encoded packet; counts it or the error.
   bool send_packet() noexcept;
 
-  UdpControllerConfig config_;
+  UdpControllerParameters config_;
   Ipv4Endpoint controller_;
   UdpSocket socket_;
   UdpControllerCounters counters_;
@@ -127,6 +129,6 @@ class UdpControllerActuator final : public servo::Actuator {
 
 // One line for a node's start: the controller, the protocol and, for version 1, that nothing
 // on the link is authenticated.
-std::string describe_link(const UdpControllerConfig& config);
+std::string describe_link(const UdpControllerParameters& config);
 
 }  // namespace rpsd::node

@@ -50,7 +50,7 @@ struct DelayCompensationStudy {
   double control_rate_hz = 1024.0;  // integration step = control period
   double duration_s = 8.0;
   double abort_amplitude_factor = 10.0;
-  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParams{};
+  integrators::IntegratorConfig integrator = integrators::CentralDifferenceParameters{};
   // The actuator: the seed paper's servo-hydraulic model, or an ideal pure delay.
   std::variant<servo::ServoSystemParameters, servo::PureDelayParameters> plant;
   double phase_lead_ratio_a = 5.0;

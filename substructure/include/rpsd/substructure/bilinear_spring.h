@@ -15,22 +15,24 @@ namespace rpsd::substructure {
 
 class BilinearSpring;
 
-struct BilinearSpringConfig {
+struct BilinearSpringParameters {
   static constexpr std::string_view kName = "bilinear";
   static constexpr std::string_view kSummary = "elastic-plastic with linear kinematic hardening";
   using Spring = BilinearSpring;
-  static BilinearSpringConfig read(config::Source& section);
-  static BilinearSpringConfig example() { return {5.0e7, 5.0e5, 0.05}; }  // yields at 1 cm
+  static BilinearSpringParameters read(config::Source& section);
+  static BilinearSpringParameters example() { return {5.0e7, 5.0e5, 0.05}; }  // yields at 1 cm
 
   double stiffness_n_per_m = 0.0;  // k0 > 0
   double yield_force_n = 0.0;      // fy > 0
   double post_yield_ratio = 0.0;   // α in [0, 1); 0 is elastic-perfectly-plastic
 };
+using BilinearSpringConfig [[deprecated("renamed BilinearSpringParameters (docs/migration.md)")]] =
+    BilinearSpringParameters;
 
 class BilinearSpring {
  public:
   // Throws std::invalid_argument naming the bad parameter. Not real-time safe.
-  explicit BilinearSpring(const BilinearSpringConfig& config);
+  explicit BilinearSpring(const BilinearSpringParameters& config);
 
   // Force at trial deformation u, from the committed state. Real-time safe.
   double trial(double deformation_m) noexcept;

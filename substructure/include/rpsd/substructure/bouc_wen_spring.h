@@ -13,12 +13,12 @@ namespace rpsd::substructure {
 
 class BoucWenSpring;
 
-struct BoucWenSpringConfig {
+struct BoucWenSpringParameters {
   static constexpr std::string_view kName = "bouc_wen";
   static constexpr std::string_view kSummary = "Bouc-Wen smooth hysteresis, integrated by RK4 in sub-steps";
   using Spring = BoucWenSpring;
-  static BoucWenSpringConfig read(config::Source& section);
-  static BoucWenSpringConfig example();  // z_max = 1 cm, n = 2
+  static BoucWenSpringParameters read(config::Source& section);
+  static BoucWenSpringParameters example();  // z_max = 1 cm, n = 2
 
   double stiffness_n_per_m = 0.0;  // k0 > 0
   double post_yield_ratio = 0.0;   // α in [0, 1)
@@ -29,11 +29,13 @@ struct BoucWenSpringConfig {
   double substep_ratio = 0.05;     // h_max · L, in (0, 1]
   int max_substeps = 100;          // ≥ 1
 };
+using BoucWenSpringConfig [[deprecated("renamed BoucWenSpringParameters (docs/migration.md)")]] =
+    BoucWenSpringParameters;
 
 class BoucWenSpring {
  public:
   // Throws std::invalid_argument naming the bad parameter. Not real-time safe.
-  explicit BoucWenSpring(const BoucWenSpringConfig& config);
+  explicit BoucWenSpring(const BoucWenSpringParameters& config);
 
   // Force at trial deformation u, from the committed state. Real-time safe.
   double trial(double deformation_m) noexcept;

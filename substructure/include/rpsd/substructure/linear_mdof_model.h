@@ -10,7 +10,7 @@
 
 namespace rpsd::substructure {
 
-struct LinearMdofConfig {
+struct LinearMdofParameters {
   linalg::StructuralMatrix mass_kg;            // symmetric positive definite
   linalg::StructuralMatrix stiffness_n_per_m;  // symmetric, no negative diagonal entry
   DampingConfig damping = Undamped{};
@@ -19,12 +19,13 @@ struct LinearMdofConfig {
   std::string stiffness_source;
   std::string damping_source;
 };
+using LinearMdofConfig [[deprecated("renamed LinearMdofParameters (docs/migration.md)")]] = LinearMdofParameters;
 
 class LinearMdofModel final : public NumericalModel {
  public:
   // Validates sizes, finiteness, symmetry of M and K, positive definiteness of M, the sign
   // of K's diagonal, and builds C. Throws std::invalid_argument. Not real-time safe.
-  void configure(const LinearMdofConfig& config);
+  void configure(const LinearMdofParameters& config);
 
   [[nodiscard]] Eigen::Index dofs() const noexcept override { return K_.rows(); }
   [[nodiscard]] const linalg::StructuralMatrix& mass() const noexcept override { return M_; }

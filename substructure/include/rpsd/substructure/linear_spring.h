@@ -9,21 +9,22 @@ namespace rpsd::substructure {
 
 class LinearSpring;
 
-struct LinearSpringConfig {
+struct LinearSpringParameters {
   static constexpr std::string_view kName = "linear";  // a story's kind in a scenario
   static constexpr std::string_view kSummary = "a linear elastic spring, F = k u";
   using Spring = LinearSpring;
-  static LinearSpringConfig read(config::Source& section);
+  static LinearSpringParameters read(config::Source& section);
   // A typical story of a laboratory-scale building (the allocation tests run every kind's).
-  static LinearSpringConfig example() { return {5.0e7}; }
+  static LinearSpringParameters example() { return {5.0e7}; }
 
   double stiffness_n_per_m = 0.0;  // > 0
 };
+using LinearSpringConfig [[deprecated("renamed LinearSpringParameters (docs/migration.md)")]] = LinearSpringParameters;
 
 class LinearSpring {
  public:
   // Throws std::invalid_argument for a non-positive or non-finite stiffness. Not real-time safe.
-  explicit LinearSpring(const LinearSpringConfig& config);
+  explicit LinearSpring(const LinearSpringParameters& config);
 
   // Force at trial deformation u (from the committed state). Real-time safe.
   double trial(double deformation_m) noexcept {

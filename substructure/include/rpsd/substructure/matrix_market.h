@@ -32,7 +32,7 @@ struct MatrixMarketModelFiles {
 // The model matrices are stored sparse. The returned config still goes through
 // LinearMdofModel::configure, whose messages name the files through the *_source fields.
 // Not real-time safe.
-[[nodiscard]] LinearMdofConfig linear_config_from_matrix_market(const MatrixMarketModelFiles& files,
-                                                                DampingConfig damping = Undamped{});
+[[nodiscard]] LinearMdofParameters linear_config_from_matrix_market(const MatrixMarketModelFiles& files,
+                                                                    DampingConfig damping = Undamped{});
 
 }  // namespace rpsd::substructure

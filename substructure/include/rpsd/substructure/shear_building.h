@@ -15,7 +15,7 @@
 
 namespace rpsd::substructure {
 
-struct ShearBuildingConfig {
+struct ShearBuildingParameters {
   std::vector<double> floor_masses_kg;           // floor 1 (lowest) first; each > 0
   std::vector<StorySpringConfig> story_springs;  // story 1 (ground to floor 1) first
   DampingConfig damping = Undamped{};            // Rayleigh forms use the initial stiffness
@@ -23,12 +23,14 @@ struct ShearBuildingConfig {
   std::optional<linalg::MatrixStorage> storage;
   static constexpr std::size_t kDenseFloorLimit = 64;
 };
+using ShearBuildingConfig [[deprecated("renamed ShearBuildingParameters (docs/migration.md)")]] =
+    ShearBuildingParameters;
 
 class ShearBuilding final : public NumericalModel {
  public:
   // Validates the masses, the spring parameters (messages name the story, 1-based) and the
   // damping, and sizes every buffer. Throws std::invalid_argument. Not real-time safe.
-  void configure(const ShearBuildingConfig& config);
+  void configure(const ShearBuildingParameters& config);
 
   [[nodiscard]] Eigen::Index dofs() const noexcept override { return static_cast<Eigen::Index>(springs_.size()); }
   [[nodiscard]] const linalg::StructuralMatrix& mass() const noexcept override { return M_; }

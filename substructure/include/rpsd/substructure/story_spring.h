@@ -13,7 +13,7 @@
 
 namespace rpsd::substructure {
 
-using StorySpringKinds = config::KindList<LinearSpringConfig, BilinearSpringConfig, BoucWenSpringConfig>;
+using StorySpringKinds = config::KindList<LinearSpringParameters, BilinearSpringParameters, BoucWenSpringParameters>;
 using StorySpringConfig = StorySpringKinds::Variant;
 
 // The spring laws of a list of configs, by value.

@@ -15,15 +15,16 @@
 namespace rpsd::substructure {
 
 // What a structure kind makes: a linear model or a shear building.
-using StructureModel = std::variant<LinearMdofConfig, ShearBuildingConfig>;
+using StructureConfig = std::variant<LinearMdofParameters, ShearBuildingParameters>;
+using StructureModel [[deprecated("renamed StructureConfig (docs/migration.md)")]] = StructureConfig;
 
 struct LinearStructure {
   static constexpr std::string_view kName = "linear";
   static constexpr std::string_view kSummary = "M and K in the file: rows, a diagonal or one number, at most 200 DOFs";
   static LinearStructure read(config::Source& structure);
   // Throws std::invalid_argument when no model can be configured from it. Not real-time safe.
-  StructureModel model() const;
-  LinearMdofConfig config;
+  StructureConfig model() const;
+  LinearMdofParameters config;
 };
 
 struct MatrixMarketStructure {
@@ -32,7 +33,7 @@ struct MatrixMarketStructure {
       "M and K (and C) from Matrix Market files: regular files of at most 256 MB, at most 100000 rows and columns";
   static MatrixMarketStructure read(config::Source& structure);
   // Reads the files (std::runtime_error when one cannot be read) and checks the model.
-  StructureModel model() const;
+  StructureConfig model() const;
   MatrixMarketModelFiles files;
   DampingConfig damping = Undamped{};
 };
@@ -41,8 +42,8 @@ struct ShearBuildingStructure {
   static constexpr std::string_view kName = "shear_building";
   static constexpr std::string_view kSummary = "floor masses and one story spring per floor, bottom up";
   static ShearBuildingStructure read(config::Source& structure);
-  StructureModel model() const;
-  ShearBuildingConfig config;
+  StructureConfig model() const;
+  ShearBuildingParameters config;
 };
 
 using StructureKinds = config::KindList<LinearStructure, MatrixMarketStructure, ShearBuildingStructure>;

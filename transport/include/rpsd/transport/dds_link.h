@@ -29,7 +29,7 @@ struct DdsLinkConfig {
   std::uint32_t site_id = 1;
   std::uint64_t run_id = 0;  // this run's (0: the link draws one)
   int channels = 1;
-  DdsQosSettings qos;
+  DdsQosConfig qos;
   double feedback_timeout_s = 1.0;  // longest wait for one step's feedback
   // Lock-step only: poll the reader this long before sleeping on the waitset, so the feedback is
   // picked up without this thread being woken, at the cost of a busy core while the node works.

@@ -14,7 +14,7 @@ namespace rpsd::transport {
 struct DdsNodeEndpointConfig {
   std::uint32_t test_id = 1;
   std::uint32_t site_id = 1;
-  DdsQosSettings qos;
+  DdsQosConfig qos;
 };
 
 class DdsNodeEndpoint {

@@ -14,18 +14,19 @@
 
 namespace rpsd::transport {
 
-struct DdsQosSettings {
+struct DdsQosConfig {
   double control_period_s = 1.0 / 1024.0;
   double liveliness_lease_s = 1.0;  // L
   int history_depth = 8;
   // Real time: readers take what arrives and writers never send repairs (best effort both).
   bool newest_only = false;
 };
+using DdsQosSettings [[deprecated("renamed DdsQosConfig (docs/migration.md)")]] = DdsQosConfig;
 
 // Command and feedback writers and readers: reliable, or best effort with newest_only.
-DdsQos stream_writer_qos(const DdsQosSettings& s);
-DdsQos stream_reader_qos(const DdsQosSettings& s);
-DdsQos heartbeat_qos(const DdsQosSettings& s);
+DdsQos stream_writer_qos(const DdsQosConfig& s);
+DdsQos stream_reader_qos(const DdsQosConfig& s);
+DdsQos heartbeat_qos(const DdsQosConfig& s);
 // Publisher/subscriber QoS carrying the partition of one site of one test.
 DdsQos site_partition_qos(std::uint32_t test_id, std::uint32_t site_id);
 std::string site_partition_name(std::uint32_t test_id, std::uint32_t site_id);

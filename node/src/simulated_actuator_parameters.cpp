@@ -1,17 +1,17 @@
-#include "rpsd/node/simulated_actuator_config.h"
+#include "rpsd/node/simulated_actuator_parameters.h"
 
 #include "rpsd/servo/simulated_actuator.h"
 
 namespace rpsd::node {
 
-SimulatedActuatorConfig SimulatedActuatorConfig::read(config::Source& section, int) {
+SimulatedActuatorParameters SimulatedActuatorParameters::read(config::Source& section, int) {
   const double k =
       section.number_or("specimen_stiffness_n_per_m", 0.0,
                         config::Number::between(0.0, 1e13, "N/m", "the specimen the load cell sees: F = k x"));
   return {servo::read_plant_config(*section.section("servo", "each channel's plant"), k)};
 }
 
-OwnedActuator SimulatedActuatorConfig::make(const SimulatedActuatorConfig& config, int channels) {
+OwnedActuator SimulatedActuatorParameters::make(const SimulatedActuatorParameters& config, int channels) {
   OwnedActuator owned;
   owned.plants = servo::make_plants(config.plant, channels);
   owned.actuator = std::make_unique<servo::SimulatedActuator>(owned.plants.pointers);
