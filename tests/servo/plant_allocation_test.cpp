@@ -1,0 +1,91 @@
+// Every plant kind registered in PlantKinds advances and measures without allocating: a
+// node's control loop steps them every period. A typed suite over the list, so a new kind is
+// covered without a new test line as soon as its default parameters make a working plant
+// (example_of below gives parameters where the defaults do not).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "allocation_counter.h"
+#include "kind_types.h"
+#include "paper_rig.h"
+#include "rpsd/servo/benchmark_transfer_system.h"
+#include "rpsd/servo/plant_factory.h"
+
+namespace rpsd::servo {
+namespace {
+
+constexpr double kDt = 1.0 / 4096.0;
+
+// The RTHS benchmark's nominal G_xu (Silva et al. 2020), as the closed loop's plant.
+TransferFunctionPlantParameters benchmark_plant() {
+  BenchmarkTransferSystem b;
+  b.gain = 1.0261;
+  b.a1_beta0 = 2.1283e13;
+  b.a2 = 4.2297e6;
+  b.a3_per_s = 3.3;
+  b.beta1_per_s = 425.0;
+  b.beta2_per_s2 = 9.9976e4;
+  b.specimen_mass_kg = 29.13;
+  b.specimen_stiffness_n_per_m = 1.19e6;
+  TransferFunctionPlantParameters p;
+  p.transfer_function = b.transfer_function();
+  p.specimen_stiffness_n_per_m = b.specimen_stiffness_n_per_m;
+  return p;
+}
+
+template <class Kind>
+Kind example_of() {
+  return Kind{};
+}
+template <>
+ServoSystemParameters example_of() {
+  return rpsd::testing::paper_rig();
+}
+template <>
+PureDelayParameters example_of() {
+  PureDelayParameters p;
+  p.delay_s = 0.013;
+  p.specimen_stiffness_n_per_m = 2e5;
+  return p;
+}
+template <>
+TransferFunctionPlantParameters example_of() {
+  return benchmark_plant();
+}
+template <>
+FeedbackControlledPlantParameters example_of() {
+  FeedbackControlledPlantParameters p;
+  p.plant = benchmark_plant();
+  p.controller = PidGains{2.0, 95.0, 0.0, 0.0};  // the benchmark's sample G_C = 2 + 95/s
+  return p;
+}
+
+template <class Kind>
+class EveryPlantKind : public ::testing::Test {};
+TYPED_TEST_SUITE(EveryPlantKind, rpsd::testing::KindTypes<PlantKinds>::type, rpsd::testing::KindNames);
+
+TYPED_TEST(EveryPlantKind, AdvanceAndMeasureAllocateNothing) {
+  std::unique_ptr<Plant> plant;
+  ASSERT_NO_THROW(plant = make_plant(example_of<TypeParam>()))
+      << "give example_of<" << TypeParam::kName << "> working parameters";
+  plant->reset(0.0);
+  double previous = 0.0, moved = 0.0, check = 0.0;
+  rpsd::testing::begin_counting_allocations();
+  for (int n = 1; n <= 8192; ++n) {  // 2 s of a 2 Hz, 5 mm sine
+    const double command = 0.005 * std::sin(2.0 * std::numbers::pi * 2.0 * n * kDt);
+    plant->advance(previous, command, kDt);
+    previous = command;
+    const PlantMeasurement m = plant->measure();
+    moved = std::max(moved, std::abs(m.displacement_m));
+    check += m.force_n;
+  }
+  EXPECT_EQ(rpsd::testing::end_counting_allocations().total(), 0);
+  EXPECT_TRUE(std::isfinite(check));
+  EXPECT_GT(moved, 0.002);  // the plant followed the command: the stepping path really ran
+}
+
+}  // namespace
+}  // namespace rpsd::servo
