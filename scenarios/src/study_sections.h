@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "rpsd/config/source.h"
-#include "rpsd/hybrid_test/test_document.h"
+#include "rpsd/hybrid_test/hybrid_test_document.h"
 #include "rpsd/studies/study_config.h"
 
 namespace rpsd::scenarios::study_sections {

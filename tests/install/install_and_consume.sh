@@ -16,7 +16,7 @@ test -f "$work/prefix/include/rpsd/output/results_files.h"
 test ! -e "$work/prefix/include/rpsd/studies/results_files.h"
 # A test's output and its Monte Carlo batch belong to the test's assembly, not studies/.
 test -f "$work/prefix/include/rpsd/hybrid_test/hybrid_test_output.h"
-test -f "$work/prefix/include/rpsd/hybrid_test/test_document.h"
+test -f "$work/prefix/include/rpsd/hybrid_test/hybrid_test_document.h"
 test ! -e "$work/prefix/include/rpsd/studies/monte_carlo_output.h"
 cmake -S "$source_dir/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null

@@ -199,8 +199,16 @@ def type_suffixes(source):
     return problems
 
 
+def production_names(source):
+    """No source file outside tests/, bench/ and fuzz/ is named test_*: a test's name says a test."""
+    return [f"{name}: a production file named test_*" for name in tracked_files(source)
+            if name.endswith((".h", ".cpp")) and os.path.basename(name).startswith("test_")
+            and name.split("/", 1)[0] not in ("tests", "bench", "fuzz")]
+
+
 CASES = {"no_outside_paths": no_outside_paths, "doc_links": doc_links, "code_paths": code_paths,
-         "readme_example": readme_example, "type_suffixes": type_suffixes}
+         "readme_example": readme_example, "type_suffixes": type_suffixes,
+         "production_names": production_names}
 
 if __name__ == "__main__":
     case, *args = sys.argv[1:]

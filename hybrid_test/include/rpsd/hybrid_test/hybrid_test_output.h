@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "rpsd/hybrid_test/progress.h"
-#include "rpsd/hybrid_test/test_document.h"
+#include "rpsd/hybrid_test/hybrid_test_document.h"
 
 namespace rpsd::hybrid_test {
 

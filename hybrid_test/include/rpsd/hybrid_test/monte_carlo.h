@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "rpsd/hybrid_test/test_document.h"
+#include "rpsd/hybrid_test/hybrid_test_document.h"
 
 namespace rpsd::hybrid_test {
 

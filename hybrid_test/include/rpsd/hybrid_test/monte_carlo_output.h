@@ -10,7 +10,7 @@
 
 #include "rpsd/hybrid_test/hybrid_test_output.h"
 #include "rpsd/hybrid_test/progress.h"
-#include "rpsd/hybrid_test/test_document.h"
+#include "rpsd/hybrid_test/hybrid_test_document.h"
 
 namespace rpsd::hybrid_test {
 

@@ -1,6 +1,6 @@
 // What a study file says, typed (scenarios/ reads it): the servo-system studies of the seed
 // paper (Figures 5, 6 and 7), the RPsD delay-compensation study (Figure 8), or a whole test
-// (hybrid_test::TestConfig) with an optional sweep or Monte Carlo batch (hybrid_test/test_document.h).
+// (hybrid_test::TestConfig) with an optional sweep or Monte Carlo batch (hybrid_test/hybrid_test_document.h).
 #pragma once
 
 #include <variant>
@@ -8,7 +8,7 @@
 
 #include "rpsd/compensation/phase_lead.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
-#include "rpsd/hybrid_test/test_document.h"
+#include "rpsd/hybrid_test/hybrid_test_document.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/pure_delay_plant.h"
 #include "rpsd/servo/servo_parameters.h"
@@ -61,7 +61,7 @@ using Study =
     std::variant<SineSweepStudy, FrequencyResponseStudy, MaxGainStudy, DelayCompensationStudy, hybrid_test::TestConfig>;
 
 // A study file: the test document's parts (name, provenance, sweep or Monte Carlo batch;
-// hybrid_test/test_document.h) and which study it holds (for a sweep: the first case).
+// hybrid_test/hybrid_test_document.h) and which study it holds (for a sweep: the first case).
 struct StudyDocument : hybrid_test::TestDocument {
   Study study;
 };
