@@ -24,4 +24,32 @@ const char* limit_stop_name(LimitStop::Kind kind) {
   return "unknown";
 }
 
+const char* step_outcome_name(StepOutcome outcome) {
+  switch (outcome) {
+    case StepOutcome::kOk:
+      return "ok";
+    case StepOutcome::kRecordEnded:
+      return "record_ended";
+    case StepOutcome::kLinkFailure:
+      return "link_failure";
+    case StepOutcome::kIntegratorError:
+      return "integrator_error";
+    case StepOutcome::kNodeFault:
+      return "node_fault";
+    case StepOutcome::kNonFinite:
+      return "non_finite";
+    case StepOutcome::kLimit:
+      return "limit";
+    case StepOutcome::kRunAway:
+      return "run_away";
+    case StepOutcome::kResultsNotWritten:
+      return "results_not_written";
+    case StepOutcome::kInterrupted:
+      return "interrupted";
+    case StepOutcome::kRefused:
+      return "refused";
+  }
+  return "unknown";
+}
+
 }  // namespace rpsd::coordinator

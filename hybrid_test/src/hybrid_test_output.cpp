@@ -398,16 +398,26 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
                     {"peak_error_vs_reference_percent", dc.peak_error_percent}});
   }
   const json benchmark = benchmark_criteria_json(criteria);
-  // What stopped a test that did not complete, for scripts: which limit, where, how far.
+  // What stopped a test that did not complete, for scripts: its kind (a limit, a node's fault,
+  // a lost link, the user...), the reason in words, where; for a limit which, how far.
   json stopped_by = nullptr;
-  if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
-    const coordinator::LimitStop& l = test.limit_stop;
-    stopped_by = {{"limit", coordinator::limit_stop_name(l.kind)},
-                  {"channel", l.channel},
-                  {"value", l.value},
-                  {"bound", l.bound},
-                  {"step", test.steps + 1},
-                  {"time_s", static_cast<double>(test.steps + 1) / scenario.control_rate_hz}};
+  if (!completed) {
+    // A run that reached its end and still did not complete lost its results on the way.
+    const bool ran_to_end =
+        test.outcome == coordinator::StepOutcome::kOk || test.outcome == coordinator::StepOutcome::kRecordEnded;
+    const bool after_step = ran_to_end || test.outcome == coordinator::StepOutcome::kInterrupted;
+    const auto step = static_cast<std::int64_t>(after_step ? test.steps : test.steps + 1);
+    stopped_by = {{"kind", ran_to_end ? "results_not_written" : coordinator::step_outcome_name(test.outcome)},
+                  {"reason", outcome},
+                  {"step", step},
+                  {"time_s", static_cast<double>(step) / scenario.control_rate_hz}};
+    if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
+      const coordinator::LimitStop& l = test.limit_stop;
+      stopped_by["limit"] = coordinator::limit_stop_name(l.kind);
+      stopped_by["channel"] = l.channel;
+      stopped_by["value"] = l.value;
+      stopped_by["bound"] = l.bound;
+    }
   }
   const json summary = {
       {"study", "rpsd_test"},

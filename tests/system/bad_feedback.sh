@@ -15,8 +15,10 @@
 #   holds a NaN answer (the link holds one even when newer answers came with it), at most
 #   RT_AGE periods later.
 # Results: every step before the detecting one is recorded (1..n-1), and
-#   no recorded measurement is one of the bad samples' 1 m. Run lock-step (as fast as
-#   possible) and in real time at 1024 Hz.
+#   no recorded measurement is one of the bad samples' 1 m; summary.json's stopped_by says
+#   kind non_finite at that step. Run lock-step (as fast as possible) and in real time at
+#   1024 Hz. Then, lock-step, site 2's node reports a fault from step 300 on (its status
+#   flag): the test stops there, exit 3, stopped_by kind node_fault at step 301.
 source "$(dirname "$0")/lib.sh"
 FAULT_NODE=${RPSD_FAULT_NODE:?path to rpsd_fault_node}
 for mode in lock_step real_time; do
@@ -52,6 +54,8 @@ for mode in lock_step real_time; do
       || fail "real time: NaN sent with step $sent, stopped at step $stop"
   fi
   every_step_recorded "$out"
+  [ "$(json "$out/summary.json" "j['stopped_by']['kind'], j['stopped_by']['step']")" = "non_finite $stop" ] \
+    || fail "$mode: stopped_by $(json "$out/summary.json" "j['stopped_by']"), expected kind non_finite at step $stop"
   [ "$(json "$out/summary.json" "j['steps']")" = $((stop - 1)) ] || fail "$mode: $(json "$out/summary.json" "j['steps']") steps, expected $((stop - 1))"
   [ "$(column "$out" measured_m_ch1 'max(abs(x) for x in v) < 0.1')" = True ] || fail "$mode: a bad sample's measurement was used"
   m="j['timing']['sites'][1]['messages']"
@@ -78,4 +82,23 @@ for mode in lock_step real_time; do
   fi
   echo "$mode: exit 3 at step $stop (NaN), $((stop - 1)) steps recorded; site 2 sent faults with command steps $faults; coordinator: $(json "$out/summary.json" "$m")"
 done
-echo "PASS: bad feedback dropped and counted by reason, the NaN stops the test with every step before it recorded"
+
+# A node's fault flag stops the test at the step that carries it, and says so.
+out="$WORK/node_fault"
+$FAULT_NODE --domain $DOMAIN --dds-config "$SRC/transport/config/loopback.xml" --real-time 0 \
+  --summary "$WORK/fault-node.json" --node-fault 300 > "$WORK/fault-node.log" 2>&1 &
+fault=$!
+PIDS+=($fault)
+set +e
+run_bridge "$out" --set transport.kind=dds --set clock.mode=as_fast_as_possible > "$WORK/run-node-fault.log" 2>&1
+code=$?
+set -e
+kill -TERM $fault
+wait $fault || true
+cat "$WORK/run-node-fault.log"
+[ $code = 3 ] || fail "node fault: exit code $code, expected 3"
+[ "$(json "$out/summary.json" "j['result'], j['stopped_by']['kind'], j['stopped_by']['step']")" = "stopped node_fault 301" ] \
+  || fail "node fault: summary $(json "$out/summary.json" "j['result'], j['stopped_by']"), expected stopped, node_fault at step 301"
+every_step_recorded "$out"
+echo "node fault: exit 3, stopped_by $(json "$out/summary.json" "j['stopped_by']")"
+echo "PASS: bad feedback dropped and counted by reason, the NaN stops the test with every step before it recorded, a node's fault stops it and summary.json names each"

@@ -10,6 +10,8 @@
 //   --late S           the answer to step S only after --late-ms milliseconds
 //   --nan S            a NaN displacement in the answer to step S and in every answer after it
 //                      (a failed transducer stays failed)
+//   --node-fault S     the node's fault flag in the answer to step S and in every answer after
+//                      it (a node that has faulted stays faulted)
 //
 // Each fault comes with the first command at or after its step S: in real time commands are
 // best effort and the one of step S may be lost.
@@ -65,7 +67,7 @@ struct SiteCounts {
   std::cerr << "rpsd_fault_node: " << problem
             << "\nusage: rpsd_fault_node --domain N --dds-config FILE [--test ID] [--faulty-site ID] [--duration S]"
                " [--summary FILE] [--late-ms MS] [--wrong-test S] [--wrong-site S] [--wrong-channels S] [--older S]"
-               " [--duplicate S] [--late S] [--nan S]\n";
+               " [--duplicate S] [--late S] [--nan S] [--node-fault S]\n";
   std::exit(2);
 }
 
@@ -92,7 +94,7 @@ Options parse(int argc, char** argv) {
     else if (flag == "--late-ms")
       o.late_ms = std::stod(value);
     else if (flag == "--wrong-test" || flag == "--wrong-site" || flag == "--wrong-channels" || flag == "--older" ||
-             flag == "--duplicate" || flag == "--late" || flag == "--nan") {
+             flag == "--duplicate" || flag == "--late" || flag == "--nan" || flag == "--node-fault") {
       o.fault_step[flag.substr(2)] = std::stoll(value);
     } else {
       usage("unknown option " + flag);
@@ -115,6 +117,7 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
     return hit;
   };
   bool transducer_failed = false;
+  bool node_faulted = false;
   if (o.real_time) rpsd::realtime::apply_realtime({});
   CommandSample c;
   // Heartbeats as a servo node sends them: the coordinator starts once one says the node
@@ -170,6 +173,8 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
       }
       if (at("nan", c.step)) transducer_failed = true;
       if (transducer_failed) f.displacement_m[0] = std::numeric_limits<double>::quiet_NaN();
+      if (at("node-fault", c.step)) node_faulted = true;
+      if (node_faulted) f.status |= rpsd::transport::kNodeFault;
       node.publish(f);
       ++counts.answers;
       if (at("duplicate", c.step)) node.publish(f);

@@ -40,5 +40,7 @@ enum class StepOutcome : std::uint8_t {
   kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)
   kRefused,            // a site's node serves another run, or runs at another rate (the link says which)
 };
+// The outcome's name for scripts (summary.json's stopped_by.kind): "node_fault", "limit", ...
+const char* step_outcome_name(StepOutcome outcome);
 
 }  // namespace rpsd::coordinator
