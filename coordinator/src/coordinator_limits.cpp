@@ -9,8 +9,9 @@ CoordinatorLimits within_envelope(CoordinatorLimits limits, const servo::Envelop
   servo::tighten_to_rig(limits.max_force_n, envelope.force_n, "max_force_n", "force capacity");
   if (limits.max_velocity_m_per_s != CoordinatorLimits::kNone) {
     if (limits.max_increment_m != CoordinatorLimits::kNone) {
-      throw config::KeyError("max_velocity_m_per_s",
-                             "give max_increment_m (per control period) or max_velocity_m_per_s (per second), not both");
+      throw config::KeyError(
+          "max_velocity_m_per_s",
+          "give max_increment_m (per control period) or max_velocity_m_per_s (per second), not both");
     }
     servo::tighten_to_rig(limits.max_velocity_m_per_s, envelope.velocity_m_per_s, "max_velocity_m_per_s",
                           "velocity capacity");

@@ -106,8 +106,8 @@ coordinator::CoordinatorLimits limits(config::Source& l) {
                                Number{"m", "|command| (default: the rig's stroke)", 0.0, kMaxDisplacementM, true});
   // A limit per period means another speed at another rate: it may be stated per second instead.
   if (l.has("max_increment_m") && l.has("max_velocity_m_per_s")) {
-    l.fail("max_velocity_m_per_s", "give max_increment_m (per control period) or max_velocity_m_per_s (per second), "
-                                   "not both");
+    l.fail("max_velocity_m_per_s",
+           "give max_increment_m (per control period) or max_velocity_m_per_s (per second), not both");
   }
   c.max_increment_m =
       l.number_or("max_increment_m", c.max_increment_m,

@@ -64,7 +64,8 @@ void print_site_overview(const SiteServerConfig& c, std::ostream& out) {
         << servo::describe(envelope) << "; limits: stroke " << l.max_stroke_m << " m, force " << l.max_force_n
         << " N, increment " << l.max_increment_m << " m";
     // An increment stated per second shows what it gives at the site's step.
-    if (std::isfinite(l.max_velocity_m_per_s)) out << " (" << l.max_velocity_m_per_s << " m/s at " << 1.0 / period_s << " Hz)";
+    if (std::isfinite(l.max_velocity_m_per_s))
+      out << " (" << l.max_velocity_m_per_s << " m/s at " << 1.0 / period_s << " Hz)";
     out << ", tracking error " << l.max_tracking_error_m << " m\n";
   }
 }

@@ -76,8 +76,8 @@ TEST(ServoNodeEnvelope, AnIncrementGivenPerPeriodAndPerSecondIsRefusedWithFileLi
 
 TEST(ServoNodeEnvelope, AnIncrementPerSecondBeyondTheRigsVelocityIsRefusedWithItsKey) {
   // The paper's MTS 244 moves at most 1.31 m/s; at 4096 Hz, 2 m/s would be 0.49 mm per period.
-  const std::string e = error_of(pier_node(), {parse_override("limits.max_increment_m_per_s=[2.0]"),
-                                               parse_override("node.control_rate_hz=4096")});
+  const std::string e = error_of(
+      pier_node(), {parse_override("limits.max_increment_m_per_s=[2.0]"), parse_override("node.control_rate_hz=4096")});
   EXPECT_NE(e.find("limits.max_increment_m_per_s"), std::string::npos) << e;
   EXPECT_NE(e.find("beyond the rig's velocity capacity"), std::string::npos) << e;
 }

@@ -14,8 +14,8 @@ namespace rpsd::coordinator {
 
 struct CoordinatorLimits {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  double max_stroke_m = kNone;          // |command|
-  double max_increment_m = kNone;       // |command change| per control period
+  double max_stroke_m = kNone;     // |command|
+  double max_increment_m = kNone;  // |command change| per control period
   // The same limit stated per second, so that it means the same at any control rate: give it
   // or max_increment_m, not both; within_envelope makes max_increment_m this times the period.
   double max_velocity_m_per_s = kNone;

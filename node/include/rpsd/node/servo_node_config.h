@@ -43,10 +43,10 @@ std::uint32_t limit_flag(LimitKind kind);
 // tightened: limit_to_envelope).
 struct ChannelLimits {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  double max_stroke_m = kNone;               // |command| and |measured displacement|
-  double max_velocity_m_per_s = kNone;       // |command change| / control period
-  double max_force_n = kNone;                // |measured force|, and the force a command may ask for
-  double max_increment_m = kNone;            // |command change| from one applied command to the next
+  double max_stroke_m = kNone;          // |command| and |measured displacement|
+  double max_velocity_m_per_s = kNone;  // |command change| / control period
+  double max_force_n = kNone;           // |measured force|, and the force a command may ask for
+  double max_increment_m = kNone;       // |command change| from one applied command to the next
   // The increment limit stated per second, so that it means the same at any control rate (its
   // action stays the increment's): limit_to_envelope makes max_increment_m this times the
   // control period. A file gives it or max_increment_m, not both.
