@@ -104,11 +104,8 @@ coordinator::CoordinatorLimits limits(config::Source& l) {
   coordinator::CoordinatorLimits c;
   c.max_stroke_m = l.number_or("max_stroke_m", c.max_stroke_m,
                                Number{"m", "|command| (default: the rig's stroke)", 0.0, kMaxDisplacementM, true});
-  // A limit per period means another speed at another rate: it may be stated per second instead.
-  if (l.has("max_increment_m") && l.has("max_velocity_m_per_s")) {
-    l.fail("max_velocity_m_per_s",
-           "give max_increment_m (per control period) or max_velocity_m_per_s (per second), not both");
-  }
+  // A limit per period means another speed at another rate: it may be stated per second instead
+  // (both given: refused by coordinator::within_envelope, at this key's line).
   c.max_increment_m =
       l.number_or("max_increment_m", c.max_increment_m,
                   Number{"m", "|command change| per control period (default: the rig's velocity over one period)", 0.0,
