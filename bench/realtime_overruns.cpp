@@ -65,12 +65,6 @@ int main(int argc, char** argv) try {
   // keeps the scenario's (4, the safety setting). A larger one lets a run outlast this VM's
   // stalls so that its overruns are counted over the whole run; late steps are reported.
   int max_age = 0;
-  // --max-velocity M/S: the coordinator's per-period increment limit at each rate is this
-  // velocity times the period. A stopgap: the scenario's max_increment_m (1 mm) is per period,
-  // so at 2048 Hz and above it exceeds the rig's velocity capacity over one period (1.31 m/s,
-  // examples/servo/paper-mts-244.yaml) and the run is refused. 0.3 m/s is twice the nodes'
-  // own velocity clamp (0.15 m/s), so the limit never acts on a command the nodes would pass.
-  double max_velocity_m_per_s = 0.3;
   for (std::size_t i = 0; i + 1 < options.rest.size(); i += 2) {
     const std::string& key = options.rest[i];
     const std::string& value = options.rest[i + 1];
@@ -88,8 +82,6 @@ int main(int argc, char** argv) try {
       keep = value == "1";
     else if (key == "--max-feedback-age")
       max_age = std::stoi(value);
-    else if (key == "--max-velocity")
-      max_velocity_m_per_s = std::stod(value);
     else if (key == "--ddsperf")
       ddsperf = value;
     else if (key == "--ddsperf-seconds")
@@ -105,7 +97,6 @@ int main(int argc, char** argv) try {
         "--coordinator-netns and --node-netns are required (bench/realtime-overruns sets them up)");
   }
   if (seconds <= 0.0) throw std::invalid_argument("--seconds: positive");
-  if (!(max_velocity_m_per_s > 0.0)) throw std::invalid_argument("--max-velocity: positive");
   if (ddsperf_seconds < 3) throw std::invalid_argument("--ddsperf-seconds: at least 3");
   bench::Fragment fragment("realtime_overruns", argc, argv);
   bench::install_stop_handlers();
@@ -193,11 +184,6 @@ int main(int argc, char** argv) try {
                                       "ground_motion.trim=" + trim,
                                       "--set",
                                       "ground_motion.pad_after_s=" + pad};
-    const std::string increment = format("%.6g", max_velocity_m_per_s / rate);
-    for (const char* channel : {"0", "1"}) {
-      run_argv.insert(run_argv.end(),
-                      {"--set", std::string("experimental.") + channel + ".limits.max_increment_m=" + increment});
-    }
     if (max_age > 0)
       run_argv.insert(run_argv.end(), {"--set", "clock.max_feedback_age_periods=" + std::to_string(max_age)});
     bench::ChildProcess run(run_argv, env, work / (r + "-run.log"));
@@ -321,10 +307,8 @@ int main(int argc, char** argv) try {
       format("%g", seconds) +
       " s of record (El Centro x 0.1 untrimmed, then free "
       "vibration); nodes examples/nodes/bridge-pier-site-{1,2}.yaml with node.control_rate_hz = the rate "
-      "(their servo model at its own 8192 Hz), the coordinator's max_increment_m " +
-      format("%g", max_velocity_m_per_s) +
-      " m/s times the period at each rate (a stopgap: the scenario's 1 mm is per period), "
-      "clock.max_feedback_age_periods " +
+      "(their servo model at its own 8192 Hz), the limits as the files give them (per second, the same at each "
+      "rate), clock.max_feedback_age_periods " +
       (max_age > 0 ? std::to_string(max_age) + " (the default 4 is the hardware safety setting)"
                    : std::string("as the scenario sets it (4)")) +
       ". Overruns are cycles whose work ended past the next deadline, "

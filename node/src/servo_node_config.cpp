@@ -104,6 +104,8 @@ void ServoNodeConfig::validate() const {
     if (!(l.max_force_n > 0.0)) fail(at + "max_force_n", "must be positive (infinity: no limit)", l.max_force_n);
     if (!(l.max_increment_m > 0.0))
       fail(at + "max_increment_m", "must be positive (infinity: no limit)", l.max_increment_m);
+    if (!(l.max_increment_m_per_s > 0.0))
+      fail(at + "max_increment_m_per_s", "must be positive (infinity: no limit)", l.max_increment_m_per_s);
     if (!(l.max_acceleration_m_per_s2 > 0.0)) {
       fail(at + "max_acceleration_m_per_s2", "must be positive (infinity: no limit)", l.max_acceleration_m_per_s2);
     }
@@ -157,6 +159,12 @@ void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope)
       tighten_to_rig(l.max_stroke_m, envelope.stroke_m, "max_stroke_m", "stroke");
       tighten_to_rig(l.max_force_n, envelope.force_n, "max_force_n", "force capacity");
       tighten_to_rig(l.max_velocity_m_per_s, envelope.velocity_m_per_s, "max_velocity_m_per_s", "velocity capacity");
+      // Per second: the same increment at any rate the node runs at (left out, no increment limit).
+      if (l.max_increment_m_per_s != ChannelLimits::kNone) {
+        tighten_to_rig(l.max_increment_m_per_s, envelope.velocity_m_per_s, "max_increment_m_per_s",
+                       "velocity capacity");
+        l.max_increment_m = l.max_increment_m_per_s * config.control_period_s;
+      }
     } catch (const config::KeyError& e) {
       throw e.under(indexed("limits", c));
     }

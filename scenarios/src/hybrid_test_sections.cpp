@@ -104,10 +104,18 @@ coordinator::CoordinatorLimits limits(config::Source& l) {
   coordinator::CoordinatorLimits c;
   c.max_stroke_m = l.number_or("max_stroke_m", c.max_stroke_m,
                                Number{"m", "|command| (default: the rig's stroke)", 0.0, kMaxDisplacementM, true});
+  // A limit per period means another speed at another rate: it may be stated per second instead
+  // (both given: refused by coordinator::within_envelope, at this key's line).
   c.max_increment_m =
       l.number_or("max_increment_m", c.max_increment_m,
                   Number{"m", "|command change| per control period (default: the rig's velocity over one period)", 0.0,
                          kMaxDisplacementM, true});
+  c.max_velocity_m_per_s =
+      l.number_or("max_velocity_m_per_s", c.max_velocity_m_per_s,
+                  Number{"m/s",
+                         "or: |command change| per second, max_increment_m being this times the control period at the "
+                         "rate the test runs",
+                         0.0, kMaxVelocityMPerS, true});
   c.max_force_n =
       l.number_or("max_force_n", c.max_force_n,
                   Number{"N", "|measured force| (default: the rig's force capacity)", 0.0, kMaxForceN, true});

@@ -110,8 +110,17 @@ void limits(config::Source& r, node::ServoNodeSetup& f) {
   const auto velocity =
       per_channel(r, "max_velocity_m_per_s", n, kNone, limit("m/s", "|command velocity|", kMaxVelocityMPerS));
   const auto force = per_channel(r, "max_force_n", n, kNone, limit("N", "|force|", kMaxForceN));
+  // A limit per period means another speed at another rate: it may be stated per second instead.
+  if (r.has("max_increment_m") && r.has("max_increment_m_per_s")) {
+    r.fail("max_increment_m_per_s",
+           "give max_increment_m (per control period) or max_increment_m_per_s (per second), not both");
+  }
   const auto increment =
       per_channel(r, "max_increment_m", n, kNone, limit("m", "|command change| per period", kMaxDisplacementM));
+  const auto increment_per_s = per_channel(
+      r, "max_increment_m_per_s", n, kNone,
+      limit("m/s", "or: the increment limit per second, max_increment_m being this times the node's control period",
+            kMaxVelocityMPerS));
   const auto acceleration = per_channel(r, "max_acceleration_m_per_s2", n, kNone,
                                         limit("m/s^2", "|command acceleration|", kMaxAccelerationMPerS2));
   const auto guard =
@@ -120,7 +129,8 @@ void limits(config::Source& r, node::ServoNodeSetup& f) {
   const auto stop = per_channel(r, "stop_deceleration_m_per_s2", n, kNone,
                                 limit("m/s^2", "how hard a hold or an abort brakes", kMaxAccelerationMPerS2));
   for (int c = 0; c < n; ++c) {
-    f.node.limits[c] = {stroke[c], velocity[c], force[c], increment[c], acceleration[c], guard[c], stop[c]};
+    f.node.limits[c] = {stroke[c],          velocity[c],     force[c], increment[c],
+                        increment_per_s[c], acceleration[c], guard[c], stop[c]};
   }
   if (auto actions = r.optional_section("actions", "what each limit does when it acts")) {
     f.node.actions.stroke = limit_action(*actions, "stroke", f.node.actions.stroke);

@@ -1,5 +1,7 @@
 #include "rpsd/site_server/site_summary.h"
 
+#include <cmath>
+
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/output/provenance.h"
 #include "rpsd/servo/envelope.h"
@@ -60,7 +62,11 @@ void print_site_overview(const SiteServerConfig& c, std::ostream& out) {
     if (c.maps[ch].relative_to >= 0) out << " minus basic DOF " << c.maps[ch].relative_to;
     out << ", site " << e.site_id << ", specimen " << e.dof.specimen_stiffness_estimate_n_per_m << " N/m; rig "
         << servo::describe(envelope) << "; limits: stroke " << l.max_stroke_m << " m, force " << l.max_force_n
-        << " N, increment " << l.max_increment_m << " m, tracking error " << l.max_tracking_error_m << " m\n";
+        << " N, increment " << l.max_increment_m << " m";
+    // An increment stated per second shows what it gives at the site's step.
+    if (std::isfinite(l.max_velocity_m_per_s))
+      out << " (" << l.max_velocity_m_per_s << " m/s at " << 1.0 / period_s << " Hz)";
+    out << ", tracking error " << l.max_tracking_error_m << " m\n";
   }
 }
 

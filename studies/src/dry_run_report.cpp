@@ -30,10 +30,20 @@ std::string versus(double value, double limit, double scale, const char* unit) {
   return text;
 }
 
+// A limit stated per second, beside the per-period figure it gives at the rate the test (or
+// the node) runs at: " (1 m/s at 1024 Hz)". Empty for a limit stated per period.
+std::string per_second(double velocity_m_per_s, double increment_m) {
+  if (!std::isfinite(velocity_m_per_s) || !(increment_m > 0.0)) return "";
+  char text[64];
+  std::snprintf(text, sizeof text, " (%.3g m/s at %.6g Hz)", velocity_m_per_s, velocity_m_per_s / increment_m);
+  return text;
+}
+
 nlohmann::json node_json(const NodeCheck& n) {
   return {{"file", n.node},
           {"max_stroke_m", bound(n.limits.max_stroke_m)},
           {"max_increment_m", bound(n.limits.max_increment_m)},
+          {"max_increment_m_per_s", bound(n.limits.max_increment_m_per_s)},
           {"max_velocity_m_per_s", bound(n.limits.max_velocity_m_per_s)},
           {"max_force_n", bound(n.limits.max_force_n)},
           {"peak_command_velocity_m_per_s", n.peak_command_velocity_m_per_s},
@@ -64,7 +74,8 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
   for (const auto& c : r.channels) {
     out << "  channel " << c.channel << " (site " << c.site_id << "): stroke "
         << versus(std::max(c.peak_command_m, c.peak_displacement_m), c.limits.max_stroke_m, 1e3, "mm") << ", increment "
-        << versus(c.peak_increment_m, c.limits.max_increment_m, 1e3, "mm") << ", force "
+        << versus(c.peak_increment_m, c.limits.max_increment_m, 1e3, "mm")
+        << per_second(c.limits.max_velocity_m_per_s, c.limits.max_increment_m) << ", force "
         << versus(c.peak_force_n, c.limits.max_force_n, 1e-3, "kN") << ", velocity " << c.peak_velocity_m_per_s * 1e3
         << " mm/s";
     if (c.peak_valve_opening) out << ", servovalve opening " << std::lround(100.0 * *c.peak_valve_opening) << " %";
@@ -86,7 +97,8 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
     if (c.node) {
       const auto& n = *c.node;
       out << "    its node (" << n.node << "): stroke " << versus(c.peak_command_m, n.limits.max_stroke_m, 1e3, "mm")
-          << ", increment " << versus(c.peak_increment_m, n.limits.max_increment_m, 1e3, "mm") << ", velocity "
+          << ", increment " << versus(c.peak_increment_m, n.limits.max_increment_m, 1e3, "mm")
+          << per_second(n.limits.max_increment_m_per_s, n.limits.max_increment_m) << ", velocity "
           << versus(n.peak_command_velocity_m_per_s, n.limits.max_velocity_m_per_s, 1e3, "mm/s") << ", force "
           << versus(c.peak_force_n, n.limits.max_force_n, 1e-3, "kN") << "\n";
     }
@@ -102,6 +114,7 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
                         {"limits",
                          {{"max_stroke_m", bound(c.limits.max_stroke_m)},
                           {"max_increment_m", bound(c.limits.max_increment_m)},
+                          {"max_velocity_m_per_s", bound(c.limits.max_velocity_m_per_s)},
                           {"max_force_n", bound(c.limits.max_force_n)}}},
                         {"node_limits", c.node ? node_json(*c.node) : nlohmann::json(nullptr)},
                         {"peak_target_m", c.peak_target_m},

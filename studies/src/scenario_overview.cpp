@@ -131,7 +131,7 @@ ScenarioOverview overview_of(const hybrid_test::TestConfig& s) {
 }
 
 void print_overview(const ScenarioOverview& o, std::ostream& out) {
-  char line[256];
+  char line[384];
   std::snprintf(line, sizeof line, "  structure: %lld DOF(s), %zu experimental channel(s)\n",
                 static_cast<long long>(o.dofs), o.channels.size());
   out << line;
@@ -173,12 +173,18 @@ void print_overview(const ScenarioOverview& o, std::ostream& out) {
       out << line;
       continue;
     }
+    // An increment stated per second shows what it gives at the test's rate.
+    char per_second[64] = "";
+    if (std::isfinite(c.limits.max_velocity_m_per_s)) {
+      std::snprintf(per_second, sizeof per_second, " (%.6g m/s at %.6g Hz)", c.limits.max_velocity_m_per_s,
+                    c.limits.max_velocity_m_per_s / c.limits.max_increment_m);
+    }
     std::snprintf(line, sizeof line,
                   "  channel %d: DOF %lld, site %u, specimen %.6g N/m; rig %s; limits: stroke %.6g m, force %.6g N, "
-                  "increment %.6g m, tracking error %.6g m\n",
+                  "increment %.6g m%s, tracking error %.6g m\n",
                   c.channel, static_cast<long long>(c.dof), c.site_id, c.specimen_stiffness_n_per_m,
                   servo::describe(c.envelope).c_str(), c.limits.max_stroke_m, c.limits.max_force_n,
-                  c.limits.max_increment_m, c.limits.max_tracking_error_m);
+                  c.limits.max_increment_m, per_second, c.limits.max_tracking_error_m);
     out << line;
     const ConverterRails& r = c.rails;
     if (std::isfinite(r.command_m) || std::isfinite(r.displacement_m) || std::isfinite(r.force_n)) {

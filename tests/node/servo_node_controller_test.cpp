@@ -146,6 +146,9 @@ TEST(ServoNodeController, ConfigErrorsNameTheField) {
   c.limits[0].max_increment_m = 0.0;
   EXPECT_EQ(config_error(c).rfind("limits[0].max_increment_m:", 0), 0u);
   c = config();
+  c.limits[0].max_increment_m_per_s = -0.1;
+  EXPECT_EQ(config_error(c).rfind("limits[0].max_increment_m_per_s:", 0), 0u);
+  c = config();
   c.command_timeout_periods = 0;
   EXPECT_EQ(config_error(c).rfind("command_timeout_periods:", 0), 0u);
   // The watchdog's timeout is bounded: a rate of 1e-300 Hz would stretch it to never.
@@ -354,6 +357,39 @@ TEST(ServoNodeController, IncrementClampAndTheTighterOfTheTwoRateLimits) {
   send(node, command(7, {0.003, 0.003}));
   EXPECT_EQ(actuator.last(0), 0.003);
   EXPECT_EQ(actuator.last(1), 7 * 0.0001220703125);
+}
+
+// The increment limit stated per second (max_increment_m_per_s) is the increment limit at the
+// node's own rate: limit_to_envelope makes it v T, and it then clamps and aborts exactly as
+// max_increment_m does, flagged as the increment (its action, not the velocity's).
+TEST(ServoNodeController, AnIncrementPerSecondActsAsTheIncrementAtTheNodesOwnRate) {
+  for (const double rate_hz : {1024.0, 2048.0, 4096.0}) {
+    auto c = config();
+    c.control_period_s = 1.0 / rate_hz;
+    c.limits[0].max_increment_m_per_s = 0.5;  // 2^-1 m/s: 2^-11, 2^-12, 2^-13 m per period
+    limit_to_envelope(c, servo::Envelope{0.127, 156.0e3, 1.31});
+    const double increment_m = 0.5 / rate_hz;
+    EXPECT_EQ(c.limits[0].max_increment_m, increment_m) << rate_hz;
+    {
+      Rig rig(c);
+      auto& [actuator, node] = rig;
+      // 1 m/s asked: beyond the increment, within the rig's velocity capacity (1.31 m/s).
+      const FeedbackSample out = send(node, command(1, {1.0 / rate_hz}));
+      EXPECT_EQ(actuator.last(), increment_m) << rate_hz;
+      EXPECT_EQ(out.limit_flags, transport::kLimitIncrement) << rate_hz;
+      EXPECT_EQ(node.events()[0].bound, increment_m) << rate_hz;
+      send(node, command(2, {2.0 * increment_m}));  // within one period's reach: applied as sent
+      EXPECT_EQ(actuator.last(), 2.0 * increment_m) << rate_hz;
+    }
+    c.actions.increment = LimitAction::kAbort;
+    Rig rig(c);
+    auto& [actuator, node] = rig;
+    send(node, command(1, {increment_m}));
+    const FeedbackSample out = send(node, command(2, {3.5 * increment_m}));
+    EXPECT_EQ(actuator.last(), increment_m) << rate_hz;
+    EXPECT_TRUE(node.faulted()) << rate_hz;
+    EXPECT_EQ(out.limit_flags, transport::kLimitIncrement) << rate_hz;
+  }
 }
 
 TEST(ServoNodeController, VelocityHoldAndIncrementAbort) {

@@ -77,5 +77,22 @@ TEST(SiteServerFile, ALimitBeyondTheRigIsRefused) {
               ::testing::ThrowsMessage<ConfigError>(::testing::HasSubstr("max_stroke_m")));
 }
 
+// A site file's coordinator limits take the per-second increment as a scenario's do: held to
+// the rig's velocity capacity (1 m/s here), never beside the per-period key.
+TEST(SiteServerFile, AnIncrementPerSecondIsHeldToTheRigAndNeverBesideThePerPeriodOne) {
+  const auto c = load_site_server(kSite, {parse_override("experimental.0.limits.max_velocity_m_per_s=0.5")});
+  EXPECT_EQ(c.site.experimental[0].limits.max_velocity_m_per_s, 0.5);
+  EXPECT_THAT([] { (void)load_site_server(kSite, {parse_override("experimental.0.limits.max_velocity_m_per_s=1.5")}); },
+              ::testing::ThrowsMessage<ConfigError>(::testing::HasSubstr(
+                  "experimental[0].limits.max_velocity_m_per_s: 1.5 is beyond the rig's velocity capacity of 1")));
+  EXPECT_THAT(
+      [] {
+        (void)load_site_server(kSite, {parse_override("experimental.0.limits={max_velocity_m_per_s: 0.5, "
+                                                      "max_increment_m: 0.0001}")});
+      },
+      ::testing::ThrowsMessage<ConfigError>(
+          ::testing::HasSubstr("experimental[0].limits.max_velocity_m_per_s: give max_increment_m")));
+}
+
 }  // namespace
 }  // namespace rpsd::scenarios

@@ -48,6 +48,40 @@ TEST(ServoNodeEnvelope, ALimitBeyondTheEnvelopeIsRefusedWithItsKey) {
   EXPECT_NE(f.find("limits.max_force_n"), std::string::npos) << f;
 }
 
+// The increment limit stated per second is the same speed at the node's own rate, whatever
+// node.control_rate_hz is set to; it may only tighten the rig's velocity capacity, and the
+// per-period key beside it is refused (which would the node obey?).
+TEST(ServoNodeEnvelope, AnIncrementPerSecondIsTheIncrementAtTheNodesOwnRate) {
+  for (const int rate_hz : {1024, 2048, 4096}) {
+    const auto node = load_servo_node(pier_node(), {parse_override("limits.max_increment_m_per_s=[0.5]"),
+                                                    parse_override("node.control_rate_hz=" + std::to_string(rate_hz))});
+    EXPECT_EQ(node.node.limits[0].max_increment_m_per_s, 0.5) << rate_hz;
+    EXPECT_EQ(node.node.limits[0].max_increment_m, 0.5 / rate_hz) << rate_hz;
+  }
+  // The shipped file states it per second (1 m/s): 0.98 mm per period at its 1024 Hz.
+  EXPECT_DOUBLE_EQ(load_servo_node(pier_node(), {}).node.limits[0].max_increment_m, 1.0 / 1024);
+  // Today's per-period key works as before.
+  const auto per_period = load_servo_node(
+      pier_node(), {parse_override("limits={max_increment_m: [0.002]}"), parse_override("node.control_rate_hz=4096")});
+  EXPECT_EQ(per_period.node.limits[0].max_increment_m, 0.002);
+}
+
+TEST(ServoNodeEnvelope, AnIncrementGivenPerPeriodAndPerSecondIsRefusedWithFileLineAndKey) {
+  const std::string e = error_of(pier_node(), {parse_override("limits.max_increment_m=[0.001]")});
+  EXPECT_NE(e.find("bridge-pier-site-1.yaml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("yaml:30:"), std::string::npos) << e;  // the line of max_increment_m_per_s
+  EXPECT_NE(e.find("limits.max_increment_m_per_s"), std::string::npos) << e;
+  EXPECT_NE(e.find("not both"), std::string::npos) << e;
+}
+
+TEST(ServoNodeEnvelope, AnIncrementPerSecondBeyondTheRigsVelocityIsRefusedWithItsKey) {
+  // The paper's MTS 244 moves at most 1.31 m/s; at 4096 Hz, 2 m/s would be 0.49 mm per period.
+  const std::string e = error_of(
+      pier_node(), {parse_override("limits.max_increment_m_per_s=[2.0]"), parse_override("node.control_rate_hz=4096")});
+  EXPECT_NE(e.find("limits.max_increment_m_per_s"), std::string::npos) << e;
+  EXPECT_NE(e.find("beyond the rig's velocity capacity"), std::string::npos) << e;
+}
+
 TEST(ServoNodeEnvelope, AHardwareNodeThatStatesNoRigIsRefused) {
   const auto file = std::filesystem::temp_directory_path() / ("rpsd-udp-node-" + std::to_string(getpid()) + ".yaml");
   std::ofstream(file) << "node: {test_id: 7, site_id: 1, mode: lock_step, control_rate_hz: 1024}\n"

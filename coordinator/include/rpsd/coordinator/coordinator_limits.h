@@ -14,8 +14,11 @@ namespace rpsd::coordinator {
 
 struct CoordinatorLimits {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  double max_stroke_m = kNone;          // |command|
-  double max_increment_m = kNone;       // |command change| per control period
+  double max_stroke_m = kNone;     // |command|
+  double max_increment_m = kNone;  // |command change| per control period
+  // The same limit stated per second, so that it means the same at any control rate: give it
+  // or max_increment_m, not both; within_envelope makes max_increment_m this times the period.
+  double max_velocity_m_per_s = kNone;
   double max_force_n = kNone;           // |measured force|
   double max_tracking_error_m = kNone;  // |target - measured|: beyond it the test has run away
 };
@@ -23,7 +26,8 @@ struct CoordinatorLimits {
 // The limits of a channel on a rig: a limit left out (infinite) becomes the envelope's (the
 // stroke, the force capacity, the velocity capacity over one control period, and half the
 // stroke of tracking error); a limit beyond the envelope is refused with
-// std::invalid_argument naming the key. Not real-time safe.
+// std::invalid_argument naming the key. A max_velocity_m_per_s given becomes max_increment_m at
+// control_period_s (and is kept, for reports); both given are refused. Not real-time safe.
 CoordinatorLimits within_envelope(CoordinatorLimits limits, const servo::Envelope& envelope, double control_period_s);
 
 // The limits as within_envelope made them (`stated`: as the file gave them) must lie strictly

@@ -43,10 +43,14 @@ std::uint32_t limit_flag(LimitKind kind);
 // tightened: limit_to_envelope).
 struct ChannelLimits {
   static constexpr double kNone = std::numeric_limits<double>::infinity();
-  double max_stroke_m = kNone;               // |command| and |measured displacement|
-  double max_velocity_m_per_s = kNone;       // |command change| / control period
-  double max_force_n = kNone;                // |measured force|, and the force a command may ask for
-  double max_increment_m = kNone;            // |command change| from one applied command to the next
+  double max_stroke_m = kNone;          // |command| and |measured displacement|
+  double max_velocity_m_per_s = kNone;  // |command change| / control period
+  double max_force_n = kNone;           // |measured force|, and the force a command may ask for
+  double max_increment_m = kNone;       // |command change| from one applied command to the next
+  // The increment limit stated per second, so that it means the same at any control rate (its
+  // action stays the increment's): limit_to_envelope makes max_increment_m this times the
+  // control period. A file gives it or max_increment_m, not both.
+  double max_increment_m_per_s = kNone;
   double max_acceleration_m_per_s2 = kNone;  // |change of command change| / control period^2
   // The stiffness the force guard predicts with (an upper bound of the specimen's): a command
   // is kept where F_measured + k (x_command - x_measured) stays within max_force_n. 0: no guard.
@@ -98,7 +102,9 @@ struct ServoNodeConfig {
 
 // Makes the rig's envelope every channel's limit: a limit left out (infinite) becomes the
 // envelope's, and a limit beyond the envelope is refused (std::invalid_argument naming
-// limits[c].key, a config::KeyError): a user may only tighten what the rig can do. Not real-time safe.
+// limits[c].key, a config::KeyError): a user may only tighten what the rig can do. A stated
+// max_increment_m_per_s, held to the rig's velocity capacity, becomes max_increment_m at the
+// node's control period. Not real-time safe.
 void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope);
 
 // The channels' readings come through these converters: a reading on a rail faults the node.
