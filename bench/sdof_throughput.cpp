@@ -16,10 +16,8 @@
 // loop costs on top of the plant it drives. Loop and plant trials alternate, and the ratio
 // reported is the median of the pairs' ratios, with their spread.
 //
-// The instructions behind the ratio (load-independent, unlike the clock):
-//   valgrind --tool=callgrind --toggle-collect='*loop_trial*' --toggle-collect='*plant_trial*'
-//            build/bench/sdof_throughput --repetitions 1 --out /dev/null    (one command line)
-//   callgrind_annotate --inclusive=yes callgrind.out.PID
+// The instructions behind the ratio, which do not depend on the load: bench/sdof-instructions
+// (callgrind on loop_trial and plant_trial).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
