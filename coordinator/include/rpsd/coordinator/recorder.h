@@ -58,9 +58,9 @@ class Recorder {
   void check_stream();  // writer thread: a failed write becomes write_failed()
 
   // How long the writer idles on an empty queue. Each wake-up may take a core from the loop
-  // (on two cores, 200 us polls preempted it ~170 times in a 60 ms run, 1 ms ~47 times; the
-  // plant alone ~9); 1 ms is still a quarter of the time the fastest loop needs to fill
-  // the queue (4096 records at about 1 us a step as fast as possible; 1 s at 4096 Hz).
+  // (on two cores, polls every 200 us preempted the as-fast-as-possible SDOF loop ~170 times
+  // a run, every 1 ms ~47; the plant alone ~9: docs/performance.md). 1 ms is a quarter of
+  // the time that loop needs to fill the queue (4096 records at ~1 us a step; 1 s at 4096 Hz).
   static constexpr std::chrono::milliseconds kIdlePoll{1};
 
   realtime::SpscQueue<StepRecord> queue_;
