@@ -83,7 +83,10 @@ void Recorder::run() {
         check_stream();
         since_flush = 0;
       }
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      // Idle until the next poll, or until finish() asks for the last drain. The loop never
+      // touches the lock: it only fills the queue.
+      std::unique_lock lock(wake_mutex_);
+      wake_.wait_for(lock, kIdlePoll, [this] { return stopping_.load(std::memory_order_acquire); });
     }
   }
   if (csv_.is_open()) {
@@ -93,7 +96,11 @@ void Recorder::run() {
 }
 
 std::vector<StepRecord> Recorder::finish() {
-  stopping_.store(true, std::memory_order_release);
+  {
+    const std::lock_guard lock(wake_mutex_);
+    stopping_.store(true, std::memory_order_release);
+  }
+  wake_.notify_one();
   if (writer_.joinable()) writer_.join();
   finished_ = true;
   return std::move(records_);

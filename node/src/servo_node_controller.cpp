@@ -325,7 +325,8 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
     LimitKind kind;
     double observed, bound;
   };
-  std::array<Violation, transport::kMaxChannels * kLimitKinds * 2> violations{};
+  // Only the first `count` entries are ever read: no need to clear 3 KB on every tick.
+  std::array<Violation, transport::kMaxChannels * kLimitKinds * 2> violations;
   int count = 0;
   std::array<bool, kLimitKinds> kind_acted{};
   bool hold = false, ramp = false, abort = false;

@@ -5,9 +5,12 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -54,6 +57,12 @@ class Recorder {
   void run();
   void check_stream();  // writer thread: a failed write becomes write_failed()
 
+  // How long the writer idles on an empty queue. Each wake-up may take a core from the loop
+  // (on two cores, polls every 200 us preempted the as-fast-as-possible SDOF loop ~170 times
+  // a run, every 1 ms ~47; the plant alone ~9: docs/performance.md). 1 ms is a quarter of
+  // the time that loop needs to fill the queue (4096 records at ~1 us a step; 1 s at 4096 Hz).
+  static constexpr std::chrono::milliseconds kIdlePoll{1};
+
   realtime::SpscQueue<StepRecord> queue_;
   std::filesystem::path csv_path_;
   std::ofstream csv_;
@@ -62,6 +71,8 @@ class Recorder {
   std::vector<char> row_;  // one CSV row, built by the writer thread
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};
+  std::mutex wake_mutex_;  // the writer's idle wait and finish() only, never the loop
+  std::condition_variable wake_;
   std::atomic<std::uint64_t> dropped_{0};
   std::string write_error_;  // set by the writer thread before write_failed_
   std::atomic<bool> write_failed_{false};
