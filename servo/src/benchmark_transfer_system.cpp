@@ -23,11 +23,12 @@ BenchmarkTransferSystem BenchmarkTransferSystem::read(config::Source& section) {
       "specimen_damping_ratio", Number::between(0.0, 1.0, "", "or: zeta_e, c_e = 2 zeta_e sqrt(k_e m_e)"));
   b.specimen_stiffness_n_per_m =
       section.number("specimen_stiffness_n_per_m", Number::positive("N/m", "specimen stiffness k_e"));
-  if (damping.has_value() == ratio.has_value()) {
+  // Neither: refused in a file (a listing, whose has() says no to every key, lists on).
+  if ((damping && ratio) || (!damping && !ratio && section.has("gain"))) {
     section.fail("specimen_damping_n_s_per_m", "give exactly one of specimen_damping_n_s_per_m or specimen_damping_ratio");
   }
   b.specimen_damping_n_s_per_m =
-      ratio ? 2.0 * *ratio * std::sqrt(b.specimen_stiffness_n_per_m * b.specimen_mass_kg) : *damping;
+      ratio ? 2.0 * *ratio * std::sqrt(b.specimen_stiffness_n_per_m * b.specimen_mass_kg) : damping.value_or(0.0);
   section.finish();
   return b;
 }
