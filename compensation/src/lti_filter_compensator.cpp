@@ -88,9 +88,9 @@ LtiFilterParameters LtiFilterParameters::read(config::Source& section) {
                         config::Number::between(0.0, 1e4, "Hz", "Tustin exact at this frequency (0: plain Tustin)"));
   p.input_step_m = section.number_or(
       "input_step_m", 0.0, config::Number::between(0.0, 1.0, "m", "the target rounded to this step first (0: none)"));
-  p.input_saturation_m = section.number_or(
-      "input_saturation_m", 0.0,
-      config::Number::between(0.0, 1e3, "m", "the target clamped to +/- this first (0: none)"));
+  p.input_saturation_m =
+      section.number_or("input_saturation_m", 0.0,
+                        config::Number::between(0.0, 1e3, "m", "the target clamped to +/- this first (0: none)"));
   return p;
 }
 

@@ -65,7 +65,7 @@ Structure without_included_stiffness(const TestConfig& config) {
     char text[64];
     std::snprintf(text, sizeof text, "%.6g", lowest);
     throw std::invalid_argument(
-        "experimental[].specimen: the numerical part's stiffness K_N = K - K_E (the structure's less the "
+        "the numerical part's stiffness K_N = K - K_E (the structure's less the "
         "specimens') is not positive definite (smallest eigenvalue " +
         std::string(text) + " N/m): a specimen takes more stiffness than the structure has there");
   }

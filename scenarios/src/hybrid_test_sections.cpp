@@ -141,9 +141,10 @@ void specimen_channel(config::Source& e, std::size_t index, hybrid_test::Experim
   channel.dof.specimen_stiffness_estimate_n_per_m = stiffness.value_or(0.0);
   channel.specimen_damping_n_s_per_m = damping.value_or(0.0);
   channel.specimen_mass_kg = mass.value_or(0.0);
-  const auto own = e.optional_section(
-      "specimen", "or: the specimen's own k_e, c_e, m_e, all taken from the structure, which is then the whole "
-                  "reference structure (K_N = K - K_E, C_N = C - C_E, M_N = M - M_E)");
+  const auto own =
+      e.optional_section("specimen",
+                         "or: the specimen's own k_e, c_e, m_e, all taken from the structure, which is then the whole "
+                         "reference structure (K_N = K - K_E, C_N = C - C_E, M_N = M - M_E)");
   if (own) {
     channel.dof.specimen_stiffness_estimate_n_per_m =
         own->number("stiffness_n_per_m", Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen's k_e"));

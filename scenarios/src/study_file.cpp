@@ -261,8 +261,8 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
     for (const auto& also : p.also_key_paths) {
       const auto value = number_at(document, also);
       if (!value || *value != p.nominal) {
-        root.fail("monte_carlo", "parameters: " + also + " takes " + p.key_path + "'s draw, so the scenario must give it " +
-                                     number_text(p.nominal) + " too");
+        root.fail("monte_carlo", "parameters: " + also + " takes " + p.key_path +
+                                     "'s draw, so the scenario must give it " + number_text(p.nominal) + " too");
       }
     }
   }

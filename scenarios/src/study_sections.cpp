@@ -193,8 +193,8 @@ hybrid_test::MonteCarloConfig monte_carlo(config::Source& root) {
     P p;
     p.key_path = item->text("key", "the perturbed key's path (a.b.0.c); the file's value is the mean");
     p.also_key_paths =
-        item->optional_texts("also_keys", "further keys set to the same drawn value (the file gives each the key's value)",
-                             8)
+        item->optional_texts("also_keys",
+                             "further keys set to the same drawn value (the file gives each the key's value)", 8)
             .value_or(std::vector<std::string>{});
     const std::string kind = item->choice_or("distribution", {"normal", "uniform"}, "normal", "the distribution");
     if (kind == "normal") {

@@ -35,10 +35,11 @@ bool ChannelConverters::any() const {
 }
 
 void ChannelConverters::validate() const {
-  const std::pair<const char*, const SignalConverterParameters*> named[] = {
-      {"converters.command", &command},     {"converters.displacement", &displacement},
-      {"converters.force", &force},         {"converters.reference", &reference},
-      {"converters.error", &error}};
+  const std::pair<const char*, const SignalConverterParameters*> named[] = {{"converters.command", &command},
+                                                                            {"converters.displacement", &displacement},
+                                                                            {"converters.force", &force},
+                                                                            {"converters.reference", &reference},
+                                                                            {"converters.error", &error}};
   for (const auto& [name, converter] : named) {
     try {
       converter->validate();

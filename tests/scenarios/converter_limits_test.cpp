@@ -52,9 +52,10 @@ TEST(ConverterLimits, AForceLimitItsConverterCannotReadIsRefusedNamingBothKeys) 
             std::string::npos)
       << e;
   // Strictly inside: a limit below the rail stands.
-  EXPECT_EQ(study_error(kBenchmark, {"experimental.0.limits.max_force_n=2000", "servo.converters.force.units_per_volt=1096",
-                                     "servo.converters.force.bits=18", "servo.converters.force.saturation_v=2"}),
-            "");
+  EXPECT_EQ(
+      study_error(kBenchmark, {"experimental.0.limits.max_force_n=2000", "servo.converters.force.units_per_volt=1096",
+                               "servo.converters.force.bits=18", "servo.converters.force.saturation_v=2"}),
+      "");
 }
 
 // No limit stated: the rig's 8.9 kN is the limit, held to the same rule, so a nonsense range
@@ -65,8 +66,8 @@ TEST(ConverterLimits, TheRigsDefaultLimitIsHeldToTheSameRule) {
                    "what servo.converters.force can read"),
             std::string::npos)
       << e;
-  const std::string d = study_error(
-      kBenchmark, {"servo.converters.displacement.units_per_volt=7.89e-3", "servo.converters.displacement.saturation_v=0.5"});
+  const std::string d = study_error(kBenchmark, {"servo.converters.displacement.units_per_volt=7.89e-3",
+                                                 "servo.converters.displacement.saturation_v=0.5"});
   EXPECT_NE(d.find("experimental[0].limits.max_stroke_m: not stated, so the rig's 0.007 m"), std::string::npos) << d;
   EXPECT_NE(d.find("servo.converters.displacement"), std::string::npos) << d;
   // As shipped, the released chain: the measurements have no rail at all.
@@ -92,10 +93,11 @@ TEST(ConverterLimits, EveryPlantKindIsHeldToTheRule) {
 // volts, 18 bits over +/-10 V, reads to its rails; the shipped benchmark's released chain has
 // none on either measurement.
 TEST(ConverterLimits, TheReadingRangesOfAPlantAreItsConvertersRails) {
-  const auto study = load_study(
-      kBenchmark, overrides({"servo.converters.force.units_per_volt=1096", "servo.converters.force.saturation_v=10",
-                             "servo.converters.force.bits=18", "servo.converters.displacement.units_per_volt=7.89e-3",
-                             "servo.converters.displacement.saturation_v=10", "servo.converters.displacement.bits=18"}));
+  const auto study =
+      load_study(kBenchmark,
+                 overrides({"servo.converters.force.units_per_volt=1096", "servo.converters.force.saturation_v=10",
+                            "servo.converters.force.bits=18", "servo.converters.displacement.units_per_volt=7.89e-3",
+                            "servo.converters.displacement.saturation_v=10", "servo.converters.displacement.bits=18"}));
   const auto& t = std::get<hybrid_test::TestConfig>(study.study);
   const servo::ReadingRanges r = servo::reading_ranges_of(t.plant);
   const double step_v = 20.0 / std::ldexp(1.0, 18);

@@ -237,7 +237,8 @@ TEST(FeedbackControlledPlant, TheReferenceAndErrorConvertersActInsideTheLoop) {
   coarse.full_scale_v = 8e-3;
   const double target = 0.4e-3;  // below half a 1 mm step
   EXPECT_NEAR(settle(sample_controller_loop(), target), target, 1e-6);
-  for (SignalConverterParameters ChannelConverters::*which : {&ChannelConverters::reference, &ChannelConverters::error}) {
+  for (SignalConverterParameters ChannelConverters::*which :
+       {&ChannelConverters::reference, &ChannelConverters::error}) {
     FeedbackControlledPlantParameters p = sample_controller_loop();
     p.converters.*which = coarse;
     EXPECT_EQ(settle(p, target), 0.0);

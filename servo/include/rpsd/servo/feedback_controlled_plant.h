@@ -62,7 +62,7 @@ class FeedbackControlledPlant final : public Plant {
   ConvertedPlant converted_;  // the plant behind the converters; the D/A holds with a controller
   std::optional<PidController> controller_;
   SignalConverter reference_, error_;  // the loop's own signals (pass-through unless stated)
-  double holding_output_ = 0.0;  // the controller's output that holds the last reset
+  double holding_output_ = 0.0;        // the controller's output that holds the last reset
 };
 
 }  // namespace rpsd::servo
