@@ -1,5 +1,6 @@
 #include "rpsd/compensation/lti_filter_compensator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,8 @@ namespace rpsd::compensation {
 void LtiFilterParameters::validate(double dt_s) const {
   detail::require_positive("lti filter: dt_s", dt_s);
   detail::require_non_negative("lti filter: prewarp_frequency_hz", prewarp_frequency_hz);
+  detail::require_non_negative("lti filter: input_step_m", input_step_m);
+  detail::require_non_negative("lti filter: input_saturation_m", input_saturation_m);
   (void)tustin(transfer_function, dt_s, prewarp_frequency_hz);  // proper, finite, below Nyquist
   for (const auto& pole : polynomial_roots(transfer_function.denominator)) {
     if (!(pole.real() < 0.0)) {
@@ -41,6 +44,14 @@ void LtiFilterCompensator::configure(double dt_s) {
   reset(0.0);
 }
 
+double LtiFilterCompensator::quantised_input(double target_m) const noexcept {
+  if (!std::isfinite(target_m)) return target_m;
+  const double limit = parameters_.input_saturation_m, step = parameters_.input_step_m;
+  double x = limit > 0.0 ? std::clamp(target_m, -limit, limit) : target_m;
+  if (step > 0.0) x = step * std::round(x / step);  // halves away from zero, as the converters
+  return x;
+}
+
 void LtiFilterCompensator::reset(double initial_displacement_m) noexcept {
   // The steady state of a constant input x: y = G(0) x, s_i = sum_{k >= i} (b_k x - a_k y).
   const auto& b = coefficients_.b;
@@ -48,7 +59,7 @@ void LtiFilterCompensator::reset(double initial_displacement_m) noexcept {
   double b_sum = 0.0, a_sum = 0.0;
   for (double v : b) b_sum += v;
   for (double v : a) a_sum += v;
-  const double x = initial_displacement_m, y = b_sum / a_sum * x;
+  const double x = quantised_input(initial_displacement_m), y = b_sum / a_sum * x;
   double tail = 0.0;
   for (std::size_t i = state_.size(); i >= 1; --i) {
     tail += b[i] * x - a[i] * y;
@@ -56,7 +67,8 @@ void LtiFilterCompensator::reset(double initial_displacement_m) noexcept {
   }
 }
 
-double LtiFilterCompensator::command(double target_m) noexcept {
+double LtiFilterCompensator::command(double target) noexcept {
+  const double target_m = quantised_input(target);
   const auto& b = coefficients_.b;
   const auto& a = coefficients_.a;
   const std::size_t n = state_.size();
@@ -74,6 +86,11 @@ LtiFilterParameters LtiFilterParameters::read(config::Source& section) {
   p.prewarp_frequency_hz =
       section.number_or("prewarp_frequency_hz", 0.0,
                         config::Number::between(0.0, 1e4, "Hz", "Tustin exact at this frequency (0: plain Tustin)"));
+  p.input_step_m = section.number_or(
+      "input_step_m", 0.0, config::Number::between(0.0, 1.0, "m", "the target rounded to this step first (0: none)"));
+  p.input_saturation_m =
+      section.number_or("input_saturation_m", 0.0,
+                        config::Number::between(0.0, 1e3, "m", "the target clamped to +/- this first (0: none)"));
   return p;
 }
 

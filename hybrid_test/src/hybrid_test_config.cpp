@@ -1,6 +1,9 @@
 #include "rpsd/hybrid_test/hybrid_test_config.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -38,10 +41,40 @@ std::unique_ptr<substructure::NumericalModel> configured(
       structure);
 }
 
-// The structure less the specimens' own mass (model units: force scale x displacement scale).
-std::variant<substructure::LinearMdofParameters, substructure::ShearBuildingParameters> without_specimen_mass(
-    const TestConfig& config) {
+using Structure = substructure::StructureConfig;
+
+// The structure less the stiffness of the specimens it includes (model units), K_N = K - K_E,
+// refused unless K_N stays positive definite: a numerical part that could not stand alone.
+Structure without_included_stiffness(const TestConfig& config) {
   auto structure = config.structure;
+  if (std::none_of(config.experimental.begin(), config.experimental.end(),
+                   [](const auto& e) { return e.stiffness_in_structure; }))
+    return structure;
+  auto* linear = std::get_if<substructure::LinearMdofParameters>(&structure);
+  if (linear == nullptr) {
+    throw std::invalid_argument(
+        "experimental[].specimen: the structure must be the whole reference structure's matrices (kind linear)");
+  }
+  Eigen::MatrixXd k = linear->stiffness_n_per_m.to_dense();
+  for (const auto& e : config.experimental) {
+    if (!e.stiffness_in_structure || e.dof.dof >= k.rows()) continue;
+    k(e.dof.dof, e.dof.dof) -= e.dof.force_scale * e.dof.displacement_scale * e.dof.specimen_stiffness_estimate_n_per_m;
+  }
+  const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(k, Eigen::EigenvaluesOnly).eigenvalues()(0);
+  if (!(lowest > 0.0)) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.6g", lowest);
+    throw std::invalid_argument(
+        "the numerical part's stiffness K_N = K - K_E (the structure's less the "
+        "specimens') is not positive definite (smallest eigenvalue " +
+        std::string(text) + " N/m): a specimen takes more stiffness than the structure has there");
+  }
+  linear->stiffness_n_per_m = linalg::StructuralMatrix(k).converted(linear->stiffness_n_per_m.storage());
+  return structure;
+}
+
+// The structure less the specimens' own mass (model units: force scale x displacement scale).
+Structure without_specimen_mass(const TestConfig& config, Structure structure) {
   for (const auto& e : config.experimental) {
     if (e.specimen_mass_kg == 0.0) continue;
     const double m = e.dof.force_scale * e.dof.displacement_scale * e.specimen_mass_kg;
@@ -76,13 +109,14 @@ std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestCon
   const bool specimens_own = std::any_of(config.experimental.begin(), config.experimental.end(), [](const auto& e) {
     return e.specimen_damping_n_s_per_m > 0.0 || e.specimen_mass_kg > 0.0;
   });
-  if (!config.whole_structure_damping && !specimens_own) return configured(config.structure);
-  auto structure = left_to_specimens ? without_specimen_mass(config) : config.structure;
+  const Structure numerical = without_included_stiffness(config);
+  if (!config.whole_structure_damping && !specimens_own) return configured(numerical);
+  auto structure = left_to_specimens ? without_specimen_mass(config, numerical) : numerical;
   Eigen::MatrixXd c;
   if (config.whole_structure_damping) {
     // The whole structure's C, from M and K0 with the specimens' stiffness; the numerical
     // part keeps it less the specimens' own damping (in model units, as their stiffness).
-    const auto undamped = configured(config.structure);
+    const auto undamped = configured(numerical);
     substructure::Partition partition;
     partition.configure(partition_config(config, undamped->dofs()));
     const linalg::StructuralMatrix k_whole = partition.with_specimen_stiffness(undamped->initial_stiffness());
@@ -91,7 +125,7 @@ std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestCon
             .c.to_dense();
   } else {
     // The structure's own damping is the numerical part's; the whole has the specimens' too.
-    c = configured(without_specimen_mass(config))->damping().to_dense();
+    c = configured(without_specimen_mass(config, numerical))->damping().to_dense();
   }
   const double sign =
       config.whole_structure_damping ? (left_to_specimens ? -1.0 : 0.0) : (left_to_specimens ? 0.0 : 1.0);

@@ -139,6 +139,7 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const TestDocum
                           {"distribution", normal ? "normal" : "uniform"},
                           {"nominal", m.nominal},
                           {normal ? "standard_deviation" : "half_width", m.spread}});
+    if (!m.also_key_paths.empty()) parameters.back()["also_keys"] = m.also_key_paths;
   }
   const json summary{{"study", "rpsd_test_monte_carlo"},
                      {"scenario", file.name},

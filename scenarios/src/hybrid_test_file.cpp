@@ -94,6 +94,17 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
     sections::free_vibration(*d.free_vibration, dofs, t);
   }
   if (d.output) t.record_dofs = sections::record_dofs(*d.output, dofs);
+  // A specimen stated as `specimen:` is taken from the structure: K_N = K - K_E and M_N = M - M_E
+  // must stand on their own (make_numerical_model refuses them otherwise).
+  for (std::size_t i = 0; i < specimens; ++i) {
+    if (!t.experimental[i].stiffness_in_structure) continue;
+    try {
+      (void)hybrid_test::make_numerical_model(t);
+    } catch (const std::invalid_argument& e) {
+      d.experimental[i]->fail("specimen", e.what());
+    }
+    break;
+  }
   if (d.whole_structure_damping) {
     const bool own = std::visit(
         [](const auto& c) { return !std::holds_alternative<substructure::Undamped>(c.damping); }, t.structure);

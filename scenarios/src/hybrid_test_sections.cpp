@@ -136,16 +136,37 @@ void specimen_channel(config::Source& e, std::size_t index, hybrid_test::Experim
       "displacement_scale", 1.0, Number::between(1e-3, 1e3, "", "specimen displacement per model displacement"));
   channel.dof.force_scale =
       e.number_or("force_scale", 1.0, Number::between(1e-6, 1e6, "", "model force per specimen force"));
-  channel.dof.specimen_stiffness_estimate_n_per_m =
-      e.number("specimen_stiffness_n_per_m",
-               Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen's estimated stiffness"));
-  channel.specimen_damping_n_s_per_m =
-      e.number_or("specimen_damping_n_s_per_m", 0.0,
-                  Number::between(0.0, 1e9, "N s/m", "the specimen's own damping (taken from the whole structure's)"));
-  channel.specimen_mass_kg =
-      e.number_or("specimen_mass_kg", 0.0,
-                  Number::between(0.0, 1e9, "kg",
-                                  "the specimen's own mass (taken from the structure's; the ground motion loads it)"));
+  const auto stiffness = e.optional_number(
+      "specimen_stiffness_n_per_m",
+      Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen's estimated stiffness (or: specimen)"));
+  const auto damping = e.optional_number(
+      "specimen_damping_n_s_per_m",
+      Number::between(0.0, 1e9, "N s/m", "the specimen's own damping (taken from the whole structure's; default 0)"));
+  const auto mass = e.optional_number(
+      "specimen_mass_kg", Number::between(0.0, 1e9, "kg",
+                                          "the specimen's own mass (taken from the structure's; the ground motion "
+                                          "loads it; default 0)"));
+  channel.dof.specimen_stiffness_estimate_n_per_m = stiffness.value_or(0.0);
+  channel.specimen_damping_n_s_per_m = damping.value_or(0.0);
+  channel.specimen_mass_kg = mass.value_or(0.0);
+  const auto own =
+      e.optional_section("specimen",
+                         "or: the specimen's own k_e, c_e, m_e, all taken from the structure, which is then the whole "
+                         "reference structure (K_N = K - K_E, C_N = C - C_E, M_N = M - M_E)");
+  if (own) {
+    channel.dof.specimen_stiffness_estimate_n_per_m =
+        own->number("stiffness_n_per_m", Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the specimen's k_e"));
+    channel.specimen_mass_kg = own->number_or("mass_kg", 0.0, Number::between(0.0, 1e9, "kg", "the specimen's m_e"));
+    const auto c = own->optional_number("damping_n_s_per_m", Number::between(0.0, 1e9, "N s/m", "the specimen's c_e"));
+    const auto zeta = own->optional_number(
+        "damping_ratio", Number::between(0.0, 1.0, "", "or: c_e = 2 damping_ratio sqrt(k_e m_e), following k_e"));
+    if (c && zeta) own->fail("damping_ratio", "give either damping_n_s_per_m or damping_ratio, not both");
+    channel.specimen_damping_n_s_per_m =
+        zeta ? 2.0 * *zeta * std::sqrt(channel.dof.specimen_stiffness_estimate_n_per_m * channel.specimen_mass_kg)
+             : c.value_or(0.0);
+    channel.stiffness_in_structure = true;
+    own->finish();
+  }
   const std::string source = e.choice("restoring_force", {"measured_force", "stiffness_times_displacement"},
                                       "what the structure takes as the specimen's force");
   channel.restoring_force = source == "measured_force"
@@ -154,6 +175,11 @@ void specimen_channel(config::Source& e, std::size_t index, hybrid_test::Experim
   channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1, "the site's node"));
   limits_section = e.optional_section("limits", "the coordinator's limits on this channel (only tighter than the rig)");
   if (limits_section) channel.limits = limits(*limits_section);
+  // Checked after every key is read, so that a listing lists them all.
+  if (own && (stiffness || damping || mass)) {
+    e.fail("specimen", "give the specimen either as specimen: or as the specimen_* keys, not both");
+  }
+  if (!own && !stiffness) e.fail("specimen_stiffness_n_per_m", "required (or give the specimen as specimen:)");
 }
 
 hybrid_test::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,

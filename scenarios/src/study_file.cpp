@@ -258,6 +258,13 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
     const auto nominal = number_at(document, p.key_path);
     if (!nominal) root.fail("monte_carlo", "parameters: " + p.key_path + " is not a number in this scenario");
     p.nominal = *nominal;
+    for (const auto& also : p.also_key_paths) {
+      const auto value = number_at(document, also);
+      if (!value || *value != p.nominal) {
+        root.fail("monte_carlo", "parameters: " + also + " takes " + p.key_path +
+                                     "'s draw, so the scenario must give it " + number_text(p.nominal) + " too");
+      }
+    }
   }
   const auto draws = hybrid_test::draw_monte_carlo(config);
   for (int run = 0; run < config.runs; ++run) {
@@ -265,6 +272,9 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
     for (std::size_t i = 0; i < config.parameters.size(); ++i) {
       overrides.push_back(
           {config.parameters[i].key_path, number_text(draws[run][i]), "monte_carlo", Override::Kind::kSet});
+      for (const auto& also : config.parameters[i].also_key_paths) {
+        overrides.push_back({also, number_text(draws[run][i]), "monte_carlo", Override::Kind::kSet});
+      }
     }
     if (!config.noise_seed_key.empty()) {
       overrides.push_back({config.noise_seed_key, std::to_string(config.seed + static_cast<std::uint64_t>(run) + 1),

@@ -192,6 +192,10 @@ hybrid_test::MonteCarloConfig monte_carlo(config::Source& root) {
   for (auto& item : section->sections("parameters", 20, "the perturbed keys and their distributions")) {
     P p;
     p.key_path = item->text("key", "the perturbed key's path (a.b.0.c); the file's value is the mean");
+    p.also_key_paths =
+        item->optional_texts("also_keys",
+                             "further keys set to the same drawn value (the file gives each the key's value)", 8)
+            .value_or(std::vector<std::string>{});
     const std::string kind = item->choice_or("distribution", {"normal", "uniform"}, "normal", "the distribution");
     if (kind == "normal") {
       p.distribution = P::Distribution::kNormal;
@@ -201,8 +205,13 @@ hybrid_test::MonteCarloConfig monte_carlo(config::Source& root) {
       p.spread = item->number("half_width", Number::positive("", "in the key's unit"));
     }
     item->finish();
-    if (p.key_path.rfind("monte_carlo", 0) == 0 || p.key_path == "study" || p.key_path == m.noise_seed_key)
-      item->fail("key", "cannot perturb this key");
+    const auto forbidden = [&m](const std::string& key) {
+      return key.rfind("monte_carlo", 0) == 0 || key == "study" || key == m.noise_seed_key;
+    };
+    if (forbidden(p.key_path)) item->fail("key", "cannot perturb this key");
+    for (const auto& also : p.also_key_paths) {
+      if (forbidden(also) || also == p.key_path) item->fail("also_keys", "cannot perturb " + also + " with it");
+    }
     m.parameters.push_back(std::move(p));
   }
   if (m.parameters.empty()) section->fail("parameters", "name at least one key to perturb");

@@ -35,8 +35,11 @@ bool ChannelConverters::any() const {
 }
 
 void ChannelConverters::validate() const {
-  const std::pair<const char*, const SignalConverterParameters*> named[] = {
-      {"converters.command", &command}, {"converters.displacement", &displacement}, {"converters.force", &force}};
+  const std::pair<const char*, const SignalConverterParameters*> named[] = {{"converters.command", &command},
+                                                                            {"converters.displacement", &displacement},
+                                                                            {"converters.force", &force},
+                                                                            {"converters.reference", &reference},
+                                                                            {"converters.error", &error}};
   for (const auto& [name, converter] : named) {
     try {
       converter->validate();
@@ -72,6 +75,8 @@ ChannelConverters read_channel_converters(config::Source& plant_section) {
   c.command = read_converter(*section, "command", "m", seed);
   c.displacement = read_converter(*section, "displacement", "m", seed + 1);
   c.force = read_converter(*section, "force", "N", seed + 2);
+  c.reference = read_converter(*section, "reference", "m", seed + 3);
+  c.error = read_converter(*section, "error", "m", seed + 4);
   section->finish();
   return c;
 }

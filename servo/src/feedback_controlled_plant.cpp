@@ -71,6 +71,9 @@ void FeedbackControlledPlantParameters::validate() const {
     }
   }
   converters.validate();
+  if (!controller && converters.any_in_loop()) {
+    throw std::invalid_argument("converters: reference and error are a controller's signals: give a controller");
+  }
 }
 
 void FeedbackControlledPlantParameters::validate_for_period(double control_period_s) const {
@@ -85,13 +88,17 @@ void FeedbackControlledPlantParameters::validate_for_period(double control_perio
 FeedbackControlledPlant::FeedbackControlledPlant(const FeedbackControlledPlantParameters& parameters)
     : parameters_(parameters),
       converted_(std::make_unique<TransferFunctionPlant>(parameters.plant), parameters.converters,
-                 parameters.controller ? ConvertedPlant::Output::kHold : ConvertedPlant::Output::kRamp) {
+                 parameters.controller ? ConvertedPlant::Output::kHold : ConvertedPlant::Output::kRamp),
+      reference_(parameters.converters.reference),
+      error_(parameters.converters.error) {
   parameters_.validate();
   reset(0.0);
 }
 
 void FeedbackControlledPlant::reset(double displacement_m) {
   converted_.reset(displacement_m);
+  reference_.reseed();
+  error_.reseed();
   holding_output_ = displacement_m / parameters_.plant.transfer_function.static_gain();
   if (controller_) controller_->reset(holding_output_);
 }
@@ -109,7 +116,7 @@ void FeedbackControlledPlant::advance(double command_start_m, double command_end
     controller_.emplace(*parameters_.controller, duration_s);
     controller_->reset(holding_output_);
   }
-  const double error = command_end_m - converted_.measure().displacement_m;
+  const double error = error_.convert(reference_.convert(command_end_m) - converted_.measure().displacement_m);
   const double u = controller_->update(error, -converted_.command_limit(), converted_.command_limit());
   converted_.advance(u, u, duration_s);
 }

@@ -4,6 +4,7 @@
 #include "rpsd/servo/servo_hydraulic_plant.h"
 
 #include <stdexcept>
+#include <type_traits>
 
 namespace rpsd::servo {
 
@@ -27,6 +28,12 @@ PlantConfig read_plant_config(config::Source& section, double specimen_stiffness
   std::visit(
       [&section](auto& p) {
         p.converters = read_channel_converters(section);
+        // Only a servo loop has a reference and an error of its own to convert (a listing, whose
+        // has() says no to every key, lists on).
+        if (!std::is_same_v<std::decay_t<decltype(p)>, FeedbackControlledPlantParameters> &&
+            p.converters.any_in_loop() && section.has("kind")) {
+          section.fail("converters", "reference and error: only a servo loop (kind feedback_controlled) has them");
+        }
         try {
           p.converters.validate();
         } catch (const std::invalid_argument& e) {

@@ -18,8 +18,8 @@ MonteCarloConfig benchmark_like(int runs, std::uint64_t seed) {
   MonteCarloConfig c;
   c.runs = runs;
   c.seed = seed;
-  c.parameters = {{"servo.a3_per_s", Distribution::kNormal, 3.3, 1.3},
-                  {"servo.k", Distribution::kUniform, 1.19e6, 5e4}};
+  c.parameters = {{"servo.a3_per_s", Distribution::kNormal, 3.3, 1.3, {}},
+                  {"servo.k", Distribution::kUniform, 1.19e6, 5e4, {}}};
   return c;
 }
 

@@ -45,14 +45,17 @@ std::string study_error(const std::filesystem::path& file, std::initializer_list
 // times 1096 N/V = 2191.98 N (and -131072 steps below zero), below the 3000 N limit.
 TEST(ConverterLimits, AForceLimitItsConverterCannotReadIsRefusedNamingBothKeys) {
   const std::string e =
-      study_error(kBenchmark, {"experimental.0.limits.max_force_n=3000", "servo.converters.force.saturation_v=2"});
+      study_error(kBenchmark, {"experimental.0.limits.max_force_n=3000", "servo.converters.force.units_per_volt=1096",
+                               "servo.converters.force.bits=18", "servo.converters.force.saturation_v=2"});
   EXPECT_NE(e.find("experimental[0].limits.max_force_n: 3000 N is not strictly inside what servo.converters.force "
                    "can read, -2192 to 2191.98 N"),
             std::string::npos)
       << e;
   // Strictly inside: a limit below the rail stands.
   EXPECT_EQ(
-      study_error(kBenchmark, {"experimental.0.limits.max_force_n=2000", "servo.converters.force.saturation_v=2"}), "");
+      study_error(kBenchmark, {"experimental.0.limits.max_force_n=2000", "servo.converters.force.units_per_volt=1096",
+                               "servo.converters.force.bits=18", "servo.converters.force.saturation_v=2"}),
+      "");
 }
 
 // No limit stated: the rig's 8.9 kN is the limit, held to the same rule, so a nonsense range
@@ -63,10 +66,11 @@ TEST(ConverterLimits, TheRigsDefaultLimitIsHeldToTheSameRule) {
                    "what servo.converters.force can read"),
             std::string::npos)
       << e;
-  const std::string d = study_error(kBenchmark, {"servo.converters.displacement.saturation_v=0.5"});
+  const std::string d = study_error(kBenchmark, {"servo.converters.displacement.units_per_volt=7.89e-3",
+                                                 "servo.converters.displacement.saturation_v=0.5"});
   EXPECT_NE(d.find("experimental[0].limits.max_stroke_m: not stated, so the rig's 0.007 m"), std::string::npos) << d;
   EXPECT_NE(d.find("servo.converters.displacement"), std::string::npos) << d;
-  // As shipped: +/-10 V, 10960 N and 78.9 mm, beyond the rig's 8.9 kN and 7 mm.
+  // As shipped, the released chain: the measurements have no rail at all.
   EXPECT_EQ(study_error(kBenchmark, {}), "");
 }
 
@@ -85,16 +89,23 @@ TEST(ConverterLimits, EveryPlantKindIsHeldToTheRule) {
   }
 }
 
-// The range a dry run compares its predictions with (servo::reading_ranges_of): the shipped
-// benchmark's A/D converters, 18 bits over +/-10 V.
+// The range a dry run compares its predictions with (servo::reading_ranges_of): a chain in
+// volts, 18 bits over +/-10 V, reads to its rails; the shipped benchmark's released chain has
+// none on either measurement.
 TEST(ConverterLimits, TheReadingRangesOfAPlantAreItsConvertersRails) {
-  const auto study = load_study(kBenchmark);  // its first Monte Carlo run: the converters are not drawn
+  const auto study =
+      load_study(kBenchmark,
+                 overrides({"servo.converters.force.units_per_volt=1096", "servo.converters.force.saturation_v=10",
+                            "servo.converters.force.bits=18", "servo.converters.displacement.units_per_volt=7.89e-3",
+                            "servo.converters.displacement.saturation_v=10", "servo.converters.displacement.bits=18"}));
   const auto& t = std::get<hybrid_test::TestConfig>(study.study);
   const servo::ReadingRanges r = servo::reading_ranges_of(t.plant);
   const double step_v = 20.0 / std::ldexp(1.0, 18);
   EXPECT_EQ(r.force_n.high, 131071.0 * step_v * 1096.0);
   EXPECT_EQ(r.force_n.low, -10.0 * 1096.0);  // -2^17 steps: exactly the saturation's -10 V
   EXPECT_EQ(r.displacement_m.high, 131071.0 * step_v * 7.89e-3);
+  const auto shipped = load_study(kBenchmark);
+  EXPECT_FALSE(servo::reading_ranges_of(std::get<hybrid_test::TestConfig>(shipped.study).plant).force_n.bounded());
   const auto paper = load_study(source("examples/scenarios/elcentro-sdof.yaml"));
   EXPECT_FALSE(servo::reading_ranges_of(std::get<hybrid_test::TestConfig>(paper.study).plant).force_n.bounded());
 }

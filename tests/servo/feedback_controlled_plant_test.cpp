@@ -221,5 +221,46 @@ TEST(FeedbackControlledPlant, ADerivativeFilterShorterThanHalfThePeriodIsRefused
   }
 }
 
+// The loop's own signals through their converters (the benchmark's released chain rounds the
+// reference and the error): a reference below half a step rounds to zero and the loop holds
+// still, where without the converter it follows; the same for the error.
+TEST(FeedbackControlledPlant, TheReferenceAndErrorConvertersActInsideTheLoop) {
+  const auto settle = [](FeedbackControlledPlantParameters p, double target_m) {
+    FeedbackControlledPlant plant(p);
+    for (int k = 0; k < 4096; ++k) plant.advance(target_m, target_m, 1.0 / kRateHz);
+    return plant.measure().displacement_m;
+  };
+  SignalConverterParameters coarse;  // 1 mm steps, +/-5 mm
+  coarse.units_per_volt = 1.0;
+  coarse.saturation_v = 5e-3;
+  coarse.bits = 4;
+  coarse.full_scale_v = 8e-3;
+  const double target = 0.4e-3;  // below half a 1 mm step
+  EXPECT_NEAR(settle(sample_controller_loop(), target), target, 1e-6);
+  for (SignalConverterParameters ChannelConverters::*which :
+       {&ChannelConverters::reference, &ChannelConverters::error}) {
+    FeedbackControlledPlantParameters p = sample_controller_loop();
+    p.converters.*which = coarse;
+    EXPECT_EQ(settle(p, target), 0.0);
+    // A target beyond the rail is clamped: the loop settles at most at the rail's 5 mm.
+    if (which == &ChannelConverters::reference) {
+      EXPECT_NEAR(settle(p, 6e-3), 5e-3, 1e-6);
+    }
+  }
+}
+
+TEST(FeedbackControlledPlant, OnlyAServoLoopHasReferenceAndErrorConverters) {
+  try {
+    (void)read_servo(
+        "kind: transfer_function\nnumerator_descending: [1]\ndenominator_descending: [0.01, 1]\n"
+        "rig: {stroke_m: 0.007, force_n: 8900, velocity_m_per_s: 0.3}\n"
+        "converters: {error: {units_per_volt: 1, saturation_v: 3.8}}\n");
+    FAIL() << "accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("converters"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("only a servo loop"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rpsd::servo

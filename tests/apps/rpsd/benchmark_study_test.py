@@ -56,17 +56,21 @@ def monte_carlo_statistics_are_those_of_its_runs():
                               ("minimum", min(values)), ("maximum", max(values))]:
             got = float(row[key])
             check(math.isclose(got, expected, rel_tol=1e-12, abs_tol=1e-15), f"{name} {key}: {got} != {expected}")
-    # Each run's own folder holds that run, its drawn k_e in its effective scenario.
+    # Each run's own folder holds that run, its drawn k_e in its effective scenario: in the plant
+    # and in the partition alike (monte_carlo also_keys).
     for r in runs:
         with open(os.path.join(folder, r["folder"], "summary.json")) as f:
             one = json.load(f)
         check(math.isclose(one["benchmark_criteria"]["J2"], float(r["J2_rms_tracking_error_percent"]),
                            rel_tol=1e-8), f"{r['folder']}: J2 differs from runs.csv")
         with open(os.path.join(folder, r["folder"], "effective-scenario.yaml")) as f:
-            servo = yaml.safe_load(f)["servo"]
-        k = float(r["servo.rths_benchmark_model.specimen_stiffness_n_per_m"])
+            scenario = yaml.safe_load(f)
+        servo = scenario["servo"]
+        k = float(r["experimental.0.specimen.stiffness_n_per_m"])
         check(float(servo["rths_benchmark_model"]["specimen_stiffness_n_per_m"]) == k,
-              f"{r['folder']}: drawn k_e {k} not in its scenario")
+              f"{r['folder']}: drawn k_e {k} not in its plant")
+        check(float(scenario["experimental"][0]["specimen"]["stiffness_n_per_m"]) == k,
+              f"{r['folder']}: drawn k_e {k} not in its partition")
         check(int(servo["converters"]["seed"]) == 2021 + int(r["run"]), f"{r['folder']}: its own noise seed")
     draws = [float(r["servo.rths_benchmark_model.a3_per_s"]) for r in runs]
     check(len(set(draws)) == 4, "every run draws its own a3")

@@ -24,6 +24,11 @@ struct LtiFilterParameters {
 
   ContinuousTransferFunction transfer_function;
   double prewarp_frequency_hz = 0.0;  // 0: plain Tustin; > 0: exact at this frequency
+  // The target as the filter receives it: clamped to +/- input_saturation_m, then rounded to
+  // the nearest multiple of input_step_m (0: neither), as the RTHS benchmark's released model
+  // quantises y_n (2^-18, +/-3.8) before G_T. A non-finite target passes unchanged.
+  double input_step_m = 0.0;
+  double input_saturation_m = 0.0;
 
   // Throws std::invalid_argument unless the transfer function is proper, its poles lie in
   // the open left half-plane (a stable filter with a finite DC gain) and the pre-warping
@@ -47,6 +52,8 @@ class LtiFilterCompensator final : public CommandCompensator {
   const DiscreteFilterCoefficients& coefficients() const { return coefficients_; }
 
  private:
+  double quantised_input(double target_m) const noexcept;
+
   LtiFilterParameters parameters_;
   DiscreteFilterCoefficients coefficients_;
   std::vector<double> state_;  // direct form II transposed

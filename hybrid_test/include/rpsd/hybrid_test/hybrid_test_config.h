@@ -38,6 +38,10 @@ struct ExperimentalChannel {
   // The specimen's own mass (specimen scale), part of the structure's: the numerical part
   // leaves it to the measured force (m_e d2x_m/dt2), and the ground motion still loads it.
   double specimen_mass_kg = 0.0;
+  // The structure's stiffness includes this specimen's (experimental[].specimen: the structure
+  // is the whole reference building), so the numerical part's is K_N = K - K_E: a drawn k_e
+  // changes the partition too, and K_N + K_E stays the reference building's.
+  bool stiffness_in_structure = false;
 };
 
 // How the loop is paced.

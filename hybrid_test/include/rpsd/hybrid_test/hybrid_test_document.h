@@ -27,6 +27,10 @@ struct MonteCarloParameter {
   Distribution distribution = Distribution::kNormal;
   double nominal = 0.0;  // the scenario's own value
   double spread = 0.0;   // standard deviation (normal) or half width (uniform), > 0
+  // Further keys that take the same drawn value in each run (one property stated in two
+  // places, e.g. the specimen's k_e in the partition and in the plant); the file gives each
+  // the key's own value.
+  std::vector<std::string> also_key_paths;
 };
 struct MonteCarloConfig {
   int runs = 0;

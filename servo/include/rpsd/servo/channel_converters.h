@@ -22,8 +22,16 @@ struct ChannelConverters {
   SignalConverterParameters command;       // D/A, m
   SignalConverterParameters displacement;  // displacement sensor and A/D, m
   SignalConverterParameters force;         // load cell and A/D, N
+  // A servo loop's own signals (feedback_controlled only): the command as its controller
+  // receives it (the reference r, e.g. G_T's output) and the tracking error r - x_m fed to
+  // the controller, each in m; the RTHS benchmark quantises and saturates both.
+  SignalConverterParameters reference;
+  SignalConverterParameters error;
 
+  // Any of command, displacement and force (the converters of any plant).
   bool any() const;
+  // The reference's or the error's converter is stated.
+  bool any_in_loop() const { return reference.units_per_volt > 0.0 || error.units_per_volt > 0.0; }
   // Each converter's own check, its name in the message ("converters.force: ...").
   void validate() const;
   // The readings' converters' rails (the command's D/A is no reading).
@@ -39,7 +47,8 @@ void require_readable(double limit, bool rigs, const ConverterRange& range, cons
                       const std::string& converter_key, const char* unit);
 
 // The optional `converters` section of a plant: `seed` and `command`, `displacement`, `force`,
-// each converter with its own noise stream (seed, seed + 1, seed + 2). Checked by validate().
+// `reference`, `error`, each converter with its own noise stream (seed, seed + 1, ... seed + 4).
+// Checked by validate().
 ChannelConverters read_channel_converters(config::Source& plant_section);
 
 }  // namespace rpsd::servo

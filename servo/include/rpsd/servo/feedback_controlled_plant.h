@@ -50,8 +50,9 @@ class FeedbackControlledPlant final : public Plant {
   // At rest holding displacement_m: the plant at the equilibrium of u = x / G_xu(0), the
   // integral carrying that u, the noise restarted from its seeds. Real-time safe.
   void reset(double displacement_m) override;
-  // One control period: the controller acts on the target at its end (command_end_m) and the
-  // displacement measured at its start, and its output is held for duration_s. Real-time safe.
+  // One control period: the controller acts on the target at its end (command_end_m, through
+  // the reference converter) less the displacement measured at its start (through the error
+  // converter), and its output is held for duration_s. Real-time safe.
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   // The converted readings; valve_saturated: the controller's output or its D/A at a limit.
   PlantMeasurement measure() const override;
@@ -60,7 +61,8 @@ class FeedbackControlledPlant final : public Plant {
   FeedbackControlledPlantParameters parameters_;
   ConvertedPlant converted_;  // the plant behind the converters; the D/A holds with a controller
   std::optional<PidController> controller_;
-  double holding_output_ = 0.0;  // the controller's output that holds the last reset
+  SignalConverter reference_, error_;  // the loop's own signals (pass-through unless stated)
+  double holding_output_ = 0.0;        // the controller's output that holds the last reset
 };
 
 }  // namespace rpsd::servo
