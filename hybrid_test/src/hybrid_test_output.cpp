@@ -382,6 +382,10 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
                         {"J1_tracking_delay_ms",
                          std::isfinite(cc.j1_tracking_delay_ms) ? json(cc.j1_tracking_delay_ms) : json(nullptr)},
                         {"J2_rms_tracking_error_percent", cc.j2_rms_tracking_error_percent},
+                        // rpsd's own signed delay beside the benchmark's J1 (negative: x_m leads).
+                        {"tracking_delay_ms",
+                         std::isfinite(cc.tracking_delay_ms) ? json(cc.tracking_delay_ms) : json(nullptr)},
+                        {"tracking_delay_at_window_edge", cc.tracking_delay_at_window_edge},
                         {"J3_peak_tracking_error_percent", cc.j3_peak_tracking_error_percent},
                         {"final_tracking_indicator_m2", cc.final_tracking_indicator_m2},
                         {"peak_measured_m", cc.peak_measured_m},

@@ -126,7 +126,8 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
     const coordinator::ChannelCriteria criteria = sums.channel(0);
     k.tracking_rms_error_percent = criteria.j2_rms_tracking_error_percent;
     k.tracking_peak_error_percent = criteria.j3_peak_tracking_error_percent;
-    k.tracking_delay_s = 1e-3 * criteria.j1_tracking_delay_ms;
+    k.tracking_delay_s = 1e-3 * criteria.tracking_delay_ms;
+    k.tracking_delay_at_window_edge = criteria.tracking_delay_at_window_edge;
     k.final_tracking_indicator_m2 = criteria.final_tracking_indicator_m2;
     k.energy_balance_error_j = sums.criteria().energy_error_j;
     cases.push_back(k);
@@ -154,7 +155,9 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
                        {"stopped_by", k.stopped_by.empty() ? nlohmann::json(nullptr) : nlohmann::json(k.stopped_by)},
                        {"tracking_rms_error_percent", k.tracking_rms_error_percent},
                        {"tracking_peak_error_percent", k.tracking_peak_error_percent},
-                       {"tracking_delay_ms", 1e3 * k.tracking_delay_s},
+                       {"tracking_delay_ms", std::isfinite(k.tracking_delay_s) ? json(1e3 * k.tracking_delay_s)
+                                                                               : json(nullptr)},
+                       {"tracking_delay_at_window_edge", k.tracking_delay_at_window_edge},
                        {"final_tracking_indicator_m2", k.final_tracking_indicator_m2},
                        {"energy_balance_error_j", k.energy_balance_error_j},
                        {"time_history", delay_case_csv_name(i, k.compensated_delay_s)}});

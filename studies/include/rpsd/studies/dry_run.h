@@ -52,6 +52,7 @@ struct ChannelPrediction {
   std::optional<NodeCheck> node;             // when the site's node file was given
   std::optional<double> peak_valve_opening;  // |x_v| of the servovalve, 0..1 (servo model only)
   std::optional<double> tracking_delay_ms;   // measured lags target by this (negative: leads)
+  bool tracking_delay_at_window_edge = false;  // at +-200 ms: the true delay may lie beyond
   coordinator::CoordinatorLimits limits;
   double rig_velocity_m_per_s = servo::Envelope::kNone;  // the rig's envelope
   ConverterRails rails;
