@@ -1,5 +1,6 @@
 #include "rpsd/compensation/cross_correlation_delay.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -29,20 +30,27 @@ double measure_value(CorrelationMeasure measure, const LagSums& s, double measur
   return cov / std::sqrt(var_m * var_t);
 }
 
-// Picks the maximum of values[0..max_lag] and refines it. Real-time safe.
+// Picks the maximum of values[min_lag..max_lag] and refines it. From 0 (the benchmark's J1)
+// it is the first maximum. A window on both sides of 0 is scanned outwards from 0 and a lag
+// further out must beat the best by more than rounding: a periodic signal correlates equally
+// a period away, and the delay is the peak nearest 0. Real-time safe.
 template <typename ValueAt>
 DelayEstimate pick_peak(int min_lag, int max_lag, bool refine, ValueAt value_at) {
   DelayEstimate e;
+  const double tolerance = min_lag < 0 ? 1e-9 : 0.0;  // relative
   double best = 0.0;
   bool found = false;
-  int best_lag = min_lag;
-  for (int j = min_lag; j <= max_lag; ++j) {
-    const double v = value_at(j);
-    if (!std::isfinite(v)) return e;  // a flat segment: Pearson undefined
-    if (!found || v > best) {
-      best = v;
-      best_lag = j;
-      found = true;
+  int best_lag = 0;
+  for (int reach = 0; reach <= std::max(-min_lag, max_lag); ++reach) {
+    for (const int j : {-reach, reach}) {
+      if (j < min_lag || j > max_lag || (reach == 0 && found)) continue;
+      const double v = value_at(j);
+      if (!std::isfinite(v)) return e;  // a flat segment: Pearson undefined
+      if (!found || v > best + tolerance * std::abs(best)) {
+        best = v;
+        best_lag = j;
+        found = true;
+      }
     }
   }
   e.valid = true;

@@ -101,12 +101,9 @@ ChannelCriteria CriteriaAccumulator::channel(int c) const {
   ChannelCriteria cc;
   cc.j1_tracking_delay_ms = cc.tracking_delay_ms = std::nan("");
   if (const auto j1 = s.j1.estimate(); j1.valid) cc.j1_tracking_delay_ms = 1e3 * j1.lag_samples / control_rate_hz_;
-  if (test_steps_ > 2 * static_cast<std::int64_t>(max_lag_samples_)) {
-    const auto delay = s.delay.estimate();
-    if (delay.valid) {
-      cc.tracking_delay_ms = 1e3 * delay.delay_samples / control_rate_hz_;
-      cc.tracking_delay_at_window_edge = delay.at_boundary;
-    }
+  if (const auto delay = s.delay.estimate(); delay.valid) {
+    cc.tracking_delay_ms = 1e3 * delay.delay_samples / control_rate_hz_;
+    cc.tracking_delay_at_window_edge = delay.at_boundary;
   }
   cc.j2_rms_tracking_error_percent = s.target2 > 0.0 ? 100.0 * std::sqrt(s.error2 / s.target2) : 0.0;
   cc.j3_peak_tracking_error_percent = s.peak_target > 0.0 ? 100.0 * s.peak_error / s.peak_target : 0.0;

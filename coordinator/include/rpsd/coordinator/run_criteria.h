@@ -21,8 +21,9 @@ struct ChannelCriteria {
   // maximises sum_k x_m(k + j) y_n(k), in ms.
   double j1_tracking_delay_ms = 0.0;
   // rpsd's own: the signed lag of measured behind target, interpolated between samples,
-  // searched over +-200 ms (negative: the measurement leads); NaN until the record is
-  // longer than the window. At the window's edge the true delay may lie beyond it.
+  // searched over +-200 ms (negative: the measurement leads), the peak nearest 0 where a
+  // periodic signal has several; NaN until the record is longer than the window. At the
+  // window's edge the true delay may lie beyond it.
   double tracking_delay_ms = 0.0;
   bool tracking_delay_at_window_edge = false;
   double j2_rms_tracking_error_percent = 0.0;
@@ -58,8 +59,8 @@ struct FloorSource {
 
 class CriteriaAccumulator {
  public:
-  // J1 searches 0..49 samples; the signed tracking delay +-200 ms and is NaN for a record not
-  // longer than twice that.
+  // J1 searches 0..49 samples (NaN for 51 samples or fewer); the signed tracking delay
+  // +-200 ms = +-L samples (NaN for 2 L + 2 samples or fewer).
   // `floors`: one per recorded DOF (empty: every one numerical). Not real-time safe.
   CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz, std::vector<FloorSource> floors = {});
 
