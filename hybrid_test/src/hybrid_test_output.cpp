@@ -479,6 +479,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
     headline.peak_measured_m = c0.peak_measured_m;
     headline.peak_measured_force_n = c0.peak_measured_force_n;
     headline.peak_command_velocity_m_per_s = c0.peak_command_velocity_m_per_s;
+    headline.tracking_delay_ms = c0.tracking_delay_ms;
   }
   if (!criteria.dofs.empty()) {
     headline.j4_percent = criteria.dofs[0].rms_error_percent;

@@ -20,12 +20,6 @@ struct ChannelCriteria {
   // J1 as the benchmark defines it: the whole-sample lag in 0..49 samples (at any rate) that
   // maximises sum_k x_m(k + j) y_n(k), in ms.
   double j1_tracking_delay_ms = 0.0;
-  // rpsd's own: the signed lag of measured behind target, interpolated between samples,
-  // searched over +-200 ms (negative: the measurement leads), the peak nearest 0 where a
-  // periodic signal has several; NaN until the record is longer than the window. At the
-  // window's edge the true delay may lie beyond it.
-  double tracking_delay_ms = 0.0;
-  bool tracking_delay_at_window_edge = false;
   double j2_rms_tracking_error_percent = 0.0;
   double j3_peak_tracking_error_percent = 0.0;
   double final_tracking_indicator_m2 = 0.0;
@@ -35,6 +29,12 @@ struct ChannelCriteria {
   double peak_measured_m = 0.0;
   double peak_measured_force_n = 0.0;
   double peak_command_velocity_m_per_s = 0.0;
+  // rpsd's own: the signed lag of measured behind target, interpolated between samples,
+  // searched over +-200 ms (negative: the measurement leads), the peak nearest 0 where a
+  // periodic signal has several; NaN until the record is longer than the window. At the
+  // window's edge the true delay may lie beyond it.
+  double tracking_delay_ms = 0.0;
+  bool tracking_delay_at_window_edge = false;
 };
 
 struct DofCriteria {
