@@ -68,9 +68,9 @@ TEST(LoopTiming, EachTimingIsTheOneDofLoopSolvedByHand) {
     const SdofRun r = run(s, timing);
     ASSERT_EQ(r.outcome, StepOutcome::kOk);
     const auto hand = by_hand(s, timing, static_cast<int>(r.records.size()));
-    const auto other = by_hand(
-        s, timing == LoopTiming::kEndOfStep ? LoopTiming::kTargetNowForceDelayed : LoopTiming::kEndOfStep,
-        static_cast<int>(r.records.size()));
+    const auto other =
+        by_hand(s, timing == LoopTiming::kEndOfStep ? LoopTiming::kTargetNowForceDelayed : LoopTiming::kEndOfStep,
+                static_cast<int>(r.records.size()));
     for (std::size_t n = 0; n < hand.size(); ++n) {
       // 1e-12 of x0: the same arithmetic in another order, rounding only.
       ASSERT_NEAR(r.records[n].displacement_m[0], hand[n].displacement_m, 1e-12 * s.initial_displacement_m) << n;

@@ -84,7 +84,8 @@ int j1_by_definition(const std::vector<StepRecord>& r) {
   double best = 0.0;
   for (int j = 0; j <= 49; ++j) {
     double sum = 0.0;
-    for (std::size_t k = 49; k < r.size(); ++k) sum += r[k].measured_m[0] * r[k - static_cast<std::size_t>(j)].target_m[0];
+    for (std::size_t k = 49; k < r.size(); ++k)
+      sum += r[k].measured_m[0] * r[k - static_cast<std::size_t>(j)].target_m[0];
     if (j == 0 || sum > best) {
       best = sum;
       best_lag = j;
@@ -158,8 +159,7 @@ TEST(TestCriteria, TheTrackingDelayIsNanUntilTheRecordIsLongerThanTwiceTheLagSea
   EXPECT_TRUE(std::isnan(evaluate_channel(short_records, 1, 0).tracking_delay_ms));
   EXPECT_TRUE(std::isfinite(evaluate_channel(delayed(803), 1, 0).tracking_delay_ms));
   // J1 (0..49 samples) is found long before, as its definition gives it.
-  EXPECT_EQ(evaluate_channel(short_records, 1, 0).j1_tracking_delay_ms,
-            j1_by_definition(short_records) * kMsPerSample);
+  EXPECT_EQ(evaluate_channel(short_records, 1, 0).j1_tracking_delay_ms, j1_by_definition(short_records) * kMsPerSample);
   // Half a sample (0.25 ms) over 401 products: not whole half-periods, and the second
   // harmonic left over moves the refined peak by a fraction of a sample.
   EXPECT_NEAR(evaluate_channel(delayed(1201), 1, 0).tracking_delay_ms, 20 * kMsPerSample, 0.5 * kMsPerSample);

@@ -7,8 +7,8 @@
 #pragma once
 
 #include <array>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <vector>

@@ -29,7 +29,7 @@ struct DelayCompensationCase {
   double tracking_peak_error_percent = 0.0;  // J3
   double tracking_delay_s = 0.0;             // signed, interpolated cross-correlation lag (run_criteria.h)
   bool tracking_delay_at_window_edge = false;  // the lag search's edge: the true delay may lie beyond
-  double energy_balance_error_j = 0.0;       // input - (kinetic + damping + restoring) at the end
+  double energy_balance_error_j = 0.0;         // input - (kinetic + damping + restoring) at the end
   double final_tracking_indicator_m2 = 0.0;
   std::int64_t steps = 0;  // steps taken (fewer when aborted on amplitude)
 };
