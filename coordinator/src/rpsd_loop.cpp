@@ -102,6 +102,8 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   for (int it = 0; it < iterations; ++it) {
     const Eigen::VectorXd& d = integrator.target_displacement();
     partition.extract_commands(d, targets_);
+    // The benchmark's timing (loop_timing.h): send the step before's target and feed the
+    // exchange before's force, then hold this step's for the next.
     const bool benchmark_timing = parts_.timing == LoopTiming::kTargetNowForceDelayed;
     const double time_s = static_cast<double>(exchange_.exchanges() + 1) * integrator.dt_s() / iterations;
     const Eigen::VectorXd& command_targets = benchmark_timing ? held_targets_ : targets_;
