@@ -1,5 +1,6 @@
 #include "rpsd/compensation/cross_correlation_delay.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -29,25 +30,34 @@ double measure_value(CorrelationMeasure measure, const LagSums& s, double measur
   return cov / std::sqrt(var_m * var_t);
 }
 
-// Picks the maximum of values[0..max_lag] and refines it. Real-time safe.
+// Picks the maximum of values[min_lag..max_lag] and refines it. From 0 (the benchmark's J1)
+// it is the first maximum. A window on both sides of 0 is scanned outwards from 0 and a lag
+// further out must beat the best by more than rounding: a periodic signal correlates equally
+// a period away, and the delay is the peak nearest 0. Real-time safe.
 template <typename ValueAt>
-DelayEstimate pick_peak(int max_lag, bool refine, ValueAt value_at) {
+DelayEstimate pick_peak(int min_lag, int max_lag, bool refine, ValueAt value_at) {
   DelayEstimate e;
+  const double tolerance = min_lag < 0 ? 1e-9 : 0.0;  // relative
   double best = 0.0;
-  int best_lag = -1;
-  for (int j = 0; j <= max_lag; ++j) {
-    const double v = value_at(j);
-    if (!std::isfinite(v)) return e;  // a flat segment: Pearson undefined
-    if (best_lag < 0 || v > best) {
-      best = v;
-      best_lag = j;
+  bool found = false;
+  int best_lag = 0;
+  for (int reach = 0; reach <= std::max(-min_lag, max_lag); ++reach) {
+    for (const int j : {-reach, reach}) {
+      if (j < min_lag || j > max_lag || (reach == 0 && found)) continue;
+      const double v = value_at(j);
+      if (!std::isfinite(v)) return e;  // a flat segment: Pearson undefined
+      if (!found || v > best + tolerance * std::abs(best)) {
+        best = v;
+        best_lag = j;
+        found = true;
+      }
     }
   }
   e.valid = true;
   e.lag_samples = best_lag;
   e.delay_samples = best_lag;
   e.peak = best;
-  e.at_boundary = best_lag == 0 || best_lag == max_lag;
+  e.at_boundary = best_lag == min_lag || best_lag == max_lag;
   if (refine && !e.at_boundary) {
     const double minus = value_at(best_lag - 1);
     const double plus = value_at(best_lag + 1);
@@ -59,6 +69,7 @@ DelayEstimate pick_peak(int max_lag, bool refine, ValueAt value_at) {
 
 void validate_options(const CrossCorrelationOptions& o, const std::string& what) {
   if (o.max_lag_samples < 1) detail::fail(what + ": max_lag_samples", "must be >= 1", o.max_lag_samples);
+  if (o.min_lag_samples > 0) detail::fail(what + ": min_lag_samples", "must be <= 0", o.min_lag_samples);
 }
 
 }  // namespace
@@ -71,9 +82,10 @@ DelayEstimate cross_correlation_delay(std::span<const double> target_m, std::spa
     throw std::invalid_argument(what + ": target and measured lengths differ (" + std::to_string(target_m.size()) +
                                 " vs " + std::to_string(measured_m.size()) + ")");
   }
-  const auto lag = static_cast<std::size_t>(options.max_lag_samples);
+  const auto lag = static_cast<std::size_t>(options.max_lag_samples - options.min_lag_samples);
   if (target_m.size() < lag + 3) {
-    detail::fail(what + ": record length", "must exceed max_lag_samples + 2 = " + std::to_string(lag + 2),
+    detail::fail(what + ": record length",
+                 "must exceed max_lag_samples - min_lag_samples + 2 = " + std::to_string(lag + 2),
                  static_cast<double>(target_m.size()));
   }
   CrossCorrelationAccumulator sums(options);
@@ -82,10 +94,12 @@ DelayEstimate cross_correlation_delay(std::span<const double> target_m, std::spa
 }
 
 CrossCorrelationAccumulator::CrossCorrelationAccumulator(const CrossCorrelationOptions& options)
-    : options_(options), lag_(0) {
+    : options_(options), lag_(0), lead_(0) {
   validate_options(options, "cross-correlation accumulator");
-  lag_ = static_cast<std::size_t>(options.max_lag_samples);
+  lag_ = static_cast<std::size_t>(options.max_lag_samples - options.min_lag_samples);
+  lead_ = static_cast<std::size_t>(-options.min_lag_samples);
   recent_targets_.assign(2 * (lag_ + 1), 0.0);
+  recent_measured_.assign(lead_ + 1, 0.0);
   product_sum_.assign(lag_ + 1, 0.0);
   if (options.measure == CorrelationMeasure::kPearson) {
     target_sum_.assign(lag_ + 1, 0.0);
@@ -93,14 +107,17 @@ CrossCorrelationAccumulator::CrossCorrelationAccumulator(const CrossCorrelationO
   }
 }
 
-void CrossCorrelationAccumulator::add(double target_m, double measured_m) noexcept {
-  // Over the whole record the sums run over k = max_lag .. N-1, so that every lag has the
-  // same W = N - max_lag products: S(j) += x_m(k) x_t(k - j).
+void CrossCorrelationAccumulator::add(double target_m, double new_measured_m) noexcept {
+  // Over the whole record the sums run over k = span .. N-1 (span = max_lag - min_lag), so
+  // that every lag has the same W = N - span products: S(j) += x_m(k - lead) x_t(k - lead - j),
+  // lead = -min_lag, so that a lag down to min_lag finds its target already added.
   const std::size_t slot = count_ % (lag_ + 1);
   recent_targets_[slot] = recent_targets_[slot + lag_ + 1] = target_m;
+  recent_measured_[count_ % (lead_ + 1)] = new_measured_m;
+  const double measured_m = recent_measured_[(count_ + 1) % (lead_ + 1)];  // x_m(k - lead)
   ++count_;
   if (count_ <= lag_) return;
-  const double* t = recent_targets_.data() + slot + 1;  // t[i] = x_t(k - (max_lag - i))
+  const double* t = recent_targets_.data() + slot + 1;  // t[i] = x_t(k - (span - i)), lag max_lag - i
   for (std::size_t i = 0; i <= lag_; ++i) product_sum_[i] += measured_m * t[i];
   if (!target_sum_.empty()) {
     for (std::size_t i = 0; i <= lag_; ++i) {
@@ -116,8 +133,8 @@ DelayEstimate CrossCorrelationAccumulator::estimate() const noexcept {
   if (count_ < lag_ + 3) return DelayEstimate{};
   const double w = static_cast<double>(count_ - lag_);
   const bool pearson = !target_sum_.empty();
-  return pick_peak(options_.max_lag_samples, options_.subsample_refinement, [&](int j) {
-    const std::size_t i = lag_ - static_cast<std::size_t>(j);
+  return pick_peak(options_.min_lag_samples, options_.max_lag_samples, options_.subsample_refinement, [&](int j) {
+    const auto i = static_cast<std::size_t>(options_.max_lag_samples - j);
     const LagSums s{product_sum_[i], pearson ? target_sum_[i] : 0.0, pearson ? target_square_sum_[i] : 0.0};
     return measure_value(options_.measure, s, measured_sum_, measured_square_sum_, w);
   });
@@ -125,6 +142,10 @@ DelayEstimate CrossCorrelationAccumulator::estimate() const noexcept {
 
 void CrossCorrelationDelayParameters::validate() const {
   validate_options(options, "cross-correlation delay estimator");
+  if (options.min_lag_samples != 0) {
+    detail::fail("cross-correlation delay estimator: min_lag_samples", "must be 0 (lags from 0 only)",
+                 options.min_lag_samples);
+  }
   if (window_samples < 3)
     detail::fail("cross-correlation delay estimator: window_samples", "must be >= 3", window_samples);
 }
@@ -215,7 +236,7 @@ void CrossCorrelationDelayEstimator::refresh_one() noexcept {
 DelayEstimate CrossCorrelationDelayEstimator::estimate() const noexcept {
   if (!ready()) return DelayEstimate{};
   const double w = static_cast<double>(window_);
-  return pick_peak(max_lag_, parameters_.options.subsample_refinement, [&](int j) {
+  return pick_peak(0, max_lag_, parameters_.options.subsample_refinement, [&](int j) {
     const auto u = static_cast<std::size_t>(j);
     return measure_value(parameters_.options.measure, LagSums{product_sum_[u], target_sum_[u], target_square_sum_[u]},
                          measured_sum_, measured_square_sum_, w);

@@ -48,7 +48,12 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)), exchange_(exchan
   for (auto* v : {&force_, &restoring_, &previous_d_, &previous_v_, &previous_r_, &previous_f_, &work_a_, &work_b_}) {
     *v = Eigen::VectorXd::Zero(dofs_);
   }
-  targets_ = Eigen::VectorXd::Zero(channels_);
+  targets_ = held_targets_ = held_forces_ = Eigen::VectorXd::Zero(channels_);
+  if (parts_.timing == LoopTiming::kTargetNowForceDelayed && parts_.integrator->iterations_per_step() != 1) {
+    throw std::invalid_argument(
+        "RpsdLoop: loop timing target_now_force_delayed needs one exchange per step; the integrator takes " +
+        std::to_string(parts_.integrator->iterations_per_step()));
+  }
 }
 
 std::int64_t RpsdLoop::steps_available() const {
@@ -62,6 +67,8 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
   }
   parts_.partition->extract_commands(d0, targets_);
   exchange_.start(targets_, specimen_force0_n);
+  held_targets_ = targets_;
+  held_forces_ = exchange_.specimen_forces();
   parts_.numerical->restoring_force(d0, restoring_);
   parts_.partition->add_forces(exchange_.specimen_forces(), restoring_);
   parts_.numerical->commit();
@@ -95,11 +102,21 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   for (int it = 0; it < iterations; ++it) {
     const Eigen::VectorXd& d = integrator.target_displacement();
     partition.extract_commands(d, targets_);
+    // The benchmark's timing (loop_timing.h): send the step before's target and feed the
+    // exchange before's force, then hold this step's for the next.
+    const bool benchmark_timing = parts_.timing == LoopTiming::kTargetNowForceDelayed;
     const double time_s = static_cast<double>(exchange_.exchanges() + 1) * integrator.dt_s() / iterations;
-    if (const StepOutcome outcome = exchange_.exchange(targets_, time_s); outcome != StepOutcome::kOk) return outcome;
+    const Eigen::VectorXd& command_targets = benchmark_timing ? held_targets_ : targets_;
+    if (const StepOutcome outcome = exchange_.exchange(command_targets, time_s); outcome != StepOutcome::kOk) {
+      return outcome;
+    }
     oldest_age_this_step_ = std::max(oldest_age_this_step_, exchange_.feedback_age_periods());
     numerical.restoring_force(d, restoring_);
-    partition.add_forces(exchange_.specimen_forces(), restoring_);
+    partition.add_forces(benchmark_timing ? held_forces_ : exchange_.specimen_forces(), restoring_);
+    if (benchmark_timing) {
+      held_targets_ = targets_;
+      held_forces_ = exchange_.specimen_forces();
+    }
     if (integrator.set_measured_restoring_force(restoring_) != integrators::StepStatus::kOk) {
       return StepOutcome::kIntegratorError;
     }

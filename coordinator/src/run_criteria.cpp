@@ -9,9 +9,22 @@
 namespace rpsd::coordinator {
 namespace {
 
-compensation::CrossCorrelationOptions delay_options(int max_lag_samples) {
+// The benchmark's J1: lags 0..49 whole samples, the released code's definition, kept in
+// samples at any control rate (docs/benchmark.md).
+constexpr int kBenchmarkJ1MaxLagSamples = 49;
+
+compensation::CrossCorrelationOptions j1_options() {
+  compensation::CrossCorrelationOptions options;
+  options.max_lag_samples = kBenchmarkJ1MaxLagSamples;
+  options.subsample_refinement = false;
+  return options;
+}
+
+// rpsd's signed delay: +-max_lag_samples, refined between samples.
+compensation::CrossCorrelationOptions signed_delay_options(int max_lag_samples) {
   compensation::CrossCorrelationOptions options;
   options.max_lag_samples = max_lag_samples;
+  options.min_lag_samples = -max_lag_samples;
   return options;
 }
 
@@ -19,7 +32,7 @@ compensation::CrossCorrelationOptions delay_options(int max_lag_samples) {
 
 CriteriaAccumulator::CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz,
                                          std::vector<FloorSource> floors)
-    : max_lag_samples_(static_cast<int>(0.2 * control_rate_hz)),  // up to 200 ms
+    : max_lag_samples_(std::max(1, static_cast<int>(0.2 * control_rate_hz))),  // +-200 ms
       control_rate_hz_(control_rate_hz),
       dofs_(static_cast<std::size_t>(recorded_dofs)),
       floors_(std::move(floors)) {
@@ -32,13 +45,15 @@ CriteriaAccumulator::CriteriaAccumulator(int channels, int recorded_dofs, double
   }
   channels_.reserve(static_cast<std::size_t>(channels));
   for (int c = 0; c < channels; ++c)
-    channels_.push_back({compensation::CrossCorrelationAccumulator(delay_options(max_lag_samples_))});
+    channels_.push_back({compensation::CrossCorrelationAccumulator(j1_options()),
+                         compensation::CrossCorrelationAccumulator(signed_delay_options(max_lag_samples_))});
 }
 
 void CriteriaAccumulator::add_test(const StepRecord& r) {
   for (std::size_t c = 0; c < channels_.size(); ++c) {
     ChannelSums& s = channels_[c];
     const double target = r.target_m[c], measured = r.measured_m[c];
+    s.j1.add(target, measured);
     s.delay.add(target, measured);
     const double e = measured - target;
     s.error2 += e * e;
@@ -84,10 +99,11 @@ void CriteriaAccumulator::add_pair(std::span<const double> test_displacement_m, 
 ChannelCriteria CriteriaAccumulator::channel(int c) const {
   const ChannelSums& s = channels_[static_cast<std::size_t>(c)];
   ChannelCriteria cc;
-  cc.j1_tracking_delay_ms = std::nan("");
-  if (test_steps_ > 2 * static_cast<std::int64_t>(max_lag_samples_)) {
-    const auto j1 = s.delay.estimate();
-    if (j1.valid) cc.j1_tracking_delay_ms = 1e3 * j1.delay_samples / control_rate_hz_;
+  cc.j1_tracking_delay_ms = cc.tracking_delay_ms = std::nan("");
+  if (const auto j1 = s.j1.estimate(); j1.valid) cc.j1_tracking_delay_ms = 1e3 * j1.lag_samples / control_rate_hz_;
+  if (const auto delay = s.delay.estimate(); delay.valid) {
+    cc.tracking_delay_ms = 1e3 * delay.delay_samples / control_rate_hz_;
+    cc.tracking_delay_at_window_edge = delay.at_boundary;
   }
   cc.j2_rms_tracking_error_percent = s.target2 > 0.0 ? 100.0 * std::sqrt(s.error2 / s.target2) : 0.0;
   cc.j3_peak_tracking_error_percent = s.peak_target > 0.0 ? 100.0 * s.peak_error / s.peak_target : 0.0;

@@ -7,7 +7,9 @@ namespace rpsd::hybrid_test {
 
 const std::array<BenchmarkCriterion, kBenchmarkCriteria> kBenchmarkCriterionList = {{
     {"J1", "J1_tracking_delay_ms",
-     "lag of the measured displacement x_m behind its target y_n (channel 0), by cross-correlation, ms"},
+     "lag of the measured displacement x_m behind its target y_n (channel 0): the whole-sample lag in 0..49 "
+     "samples maximising their cross-correlation, ms (the benchmark's; rpsd's signed tracking_delay_ms is per "
+     "channel)"},
     {"J2", "J2_rms_tracking_error_percent", "RMS of x_m - y_n over the RMS of y_n (channel 0), %"},
     {"J3", "J3_peak_tracking_error_percent", "peak of |x_m - y_n| over the peak of |y_n| (channel 0), %"},
     {"J4", "J4_rms_error_floor_1_percent",

@@ -113,6 +113,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   p.real_time = s.clock.mode == ClockConfig::Mode::kRealTime && !perfect_actuator;
   parts.max_feedback_age_periods = p.real_time ? s.clock.max_feedback_age_periods : 0;
   parts.stop_on_node_limits = !perfect_actuator;
+  // The reference is the whole structure integrated on its own: no loop to time.
+  parts.timing = perfect_actuator ? coordinator::LoopTiming::kEndOfStep : s.clock.loop_timing;
   parts.max_valve_saturation_exchanges =
       perfect_actuator
           ? 0

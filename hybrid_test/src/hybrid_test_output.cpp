@@ -378,15 +378,19 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   json channels = json::array();
   for (std::size_t c = 0; c < criteria.channels.size(); ++c) {
     const auto& cc = criteria.channels[c];
-    channels.push_back({{"channel", c},
-                        {"J1_tracking_delay_ms",
-                         std::isfinite(cc.j1_tracking_delay_ms) ? json(cc.j1_tracking_delay_ms) : json(nullptr)},
-                        {"J2_rms_tracking_error_percent", cc.j2_rms_tracking_error_percent},
-                        {"J3_peak_tracking_error_percent", cc.j3_peak_tracking_error_percent},
-                        {"final_tracking_indicator_m2", cc.final_tracking_indicator_m2},
-                        {"peak_measured_m", cc.peak_measured_m},
-                        {"peak_measured_force_n", cc.peak_measured_force_n},
-                        {"peak_command_velocity_m_per_s", cc.peak_command_velocity_m_per_s}});
+    channels.push_back(
+        {{"channel", c},
+         {"J1_tracking_delay_ms",
+          std::isfinite(cc.j1_tracking_delay_ms) ? json(cc.j1_tracking_delay_ms) : json(nullptr)},
+         {"J2_rms_tracking_error_percent", cc.j2_rms_tracking_error_percent},
+         // rpsd's own signed delay beside the benchmark's J1 (negative: x_m leads).
+         {"tracking_delay_ms", std::isfinite(cc.tracking_delay_ms) ? json(cc.tracking_delay_ms) : json(nullptr)},
+         {"tracking_delay_at_window_edge", cc.tracking_delay_at_window_edge},
+         {"J3_peak_tracking_error_percent", cc.j3_peak_tracking_error_percent},
+         {"final_tracking_indicator_m2", cc.final_tracking_indicator_m2},
+         {"peak_measured_m", cc.peak_measured_m},
+         {"peak_measured_force_n", cc.peak_measured_force_n},
+         {"peak_command_velocity_m_per_s", cc.peak_command_velocity_m_per_s}});
   }
   json dofs = json::array();
   for (std::size_t d = 0; d < criteria.dofs.size(); ++d) {
@@ -485,6 +489,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
     headline.peak_measured_m = c0.peak_measured_m;
     headline.peak_measured_force_n = c0.peak_measured_force_n;
     headline.peak_command_velocity_m_per_s = c0.peak_command_velocity_m_per_s;
+    headline.tracking_delay_ms = c0.tracking_delay_ms;
   }
   if (!criteria.dofs.empty()) {
     headline.j4_percent = criteria.dofs[0].rms_error_percent;

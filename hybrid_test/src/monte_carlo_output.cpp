@@ -27,6 +27,8 @@ std::vector<Quantity> quantities() {
   q.push_back({"peak_measured_m", "peak |x_m| of channel 0 (stroke), m"});
   q.push_back({"peak_measured_force_n", "peak measured force of channel 0, N"});
   q.push_back({"peak_command_velocity_m_per_s", "peak rate of change of channel 0's command, m/s"});
+  q.push_back({"tracking_delay_ms",
+               "rpsd's signed tracking delay of channel 0 (interpolated, +-200 ms; negative: x_m leads), ms"});
   return q;
 }
 
@@ -35,6 +37,7 @@ std::vector<double> values_of(const TestHeadline& h) {
   v.push_back(h.peak_measured_m);
   v.push_back(h.peak_measured_force_n);
   v.push_back(h.peak_command_velocity_m_per_s);
+  v.push_back(h.tracking_delay_ms);
   return v;
 }
 

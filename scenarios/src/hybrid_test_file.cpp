@@ -58,8 +58,13 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
   // The control rate is read before anything divides by it.
   sections::clock(*d.clock, t);
   // A limit may only tighten the rig's envelope.
-  const double control_period_s =
-      1.0 / t.control_rate_hz / integrators::make_integrator(t.integrator)->iterations_per_step();
+  const int iterations = integrators::make_integrator(t.integrator)->iterations_per_step();
+  const double control_period_s = 1.0 / t.control_rate_hz / iterations;
+  if (t.clock.loop_timing == coordinator::LoopTiming::kTargetNowForceDelayed && iterations != 1) {
+    d.clock->fail("loop_timing", "target_now_force_delayed holds one command and one force per step; integrator " +
+                                     std::string(integrators::integrator_name(t.integrator)) + " exchanges " +
+                                     std::to_string(iterations) + " times a step (use an explicit scheme)");
+  }
   try {
     servo::check_control_period(t.plant, control_period_s);
   } catch (const std::invalid_argument& e) {

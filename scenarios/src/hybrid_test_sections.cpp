@@ -267,6 +267,12 @@ void clock(config::Source& c, hybrid_test::TestConfig& t) {
       "control_rate_hz", Number::between(kMinControlRateHz, kMaxControlRateHz, "Hz", "integration steps per second"));
   t.clock.max_feedback_age_periods = static_cast<int>(c.whole_number_or(
       "max_feedback_age_periods", 1, 1000, t.clock.max_feedback_age_periods, "how stale a feedback may be"));
+  const std::vector<std::string_view> timings(coordinator::kLoopTimingNames.begin(),
+                                              coordinator::kLoopTimingNames.end());
+  t.clock.loop_timing = *coordinator::loop_timing_named(
+      c.choice_or("loop_timing", timings, coordinator::loop_timing_name(t.clock.loop_timing),
+                  "end_of_step: command y_n(t+dt), feed this exchange's force (rpsd); target_now_force_delayed: "
+                  "command y_n(t), feed the previous exchange's force (the RTHS benchmark's loop)"));
   t.clock.realtime.lock_memory =
       c.boolean_or("lock_memory", t.clock.realtime.lock_memory, "mlockall the process (real time)");
   t.clock.realtime.fifo_priority = static_cast<int>(

@@ -111,6 +111,11 @@ void site_file(config::Source& root, site_server::SiteServerConfig& c,
   if (t.clock.mode != hybrid_test::ClockConfig::Mode::kAsFastAsPossible) {
     root.fail("clock", "OpenSees paces a site server's test: clock.mode must be as_fast_as_possible (lock-step)");
   }
+  if (t.clock.loop_timing != coordinator::LoopTiming::kEndOfStep) {
+    root.fail("clock",
+              "OpenSees integrates a site server's test and times its own loop: clock.loop_timing must be "
+              "end_of_step (or left out)");
+  }
   if (auto transport = root.optional_section("transport", "how the sites are reached (default: in process)")) {
     test_sections::transport(*transport, t);
   }

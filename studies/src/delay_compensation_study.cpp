@@ -126,7 +126,8 @@ std::vector<DelayCompensationCase> run_delay_compensation(const DelayCompensatio
     const coordinator::ChannelCriteria criteria = sums.channel(0);
     k.tracking_rms_error_percent = criteria.j2_rms_tracking_error_percent;
     k.tracking_peak_error_percent = criteria.j3_peak_tracking_error_percent;
-    k.tracking_delay_s = 1e-3 * criteria.j1_tracking_delay_ms;
+    k.tracking_delay_s = 1e-3 * criteria.tracking_delay_ms;
+    k.tracking_delay_at_window_edge = criteria.tracking_delay_at_window_edge;
     k.final_tracking_indicator_m2 = criteria.final_tracking_indicator_m2;
     k.energy_balance_error_j = sums.criteria().energy_error_j;
     cases.push_back(k);
@@ -140,24 +141,26 @@ void write_delay_compensation(const std::filesystem::path& dir, const StudyDocum
   json entries = json::array();
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const auto& k = cases[i];
-    entries.push_back({{"compensated_delay_ms", 1e3 * k.compensated_delay_s},
-                       {"actuator_delay_ms", 1e3 * k.actuator_delay_s},
-                       {"compensator_lead_ms", 1e3 * k.compensator_lead_s},
-                       {"residual_delay_ms", 1e3 * k.residual_delay_s},
-                       {"identified_damping_ratio", k.identified_damping_ratio},
-                       {"identified_frequency_hz", k.identified_frequency_hz},
-                       {"predicted_damping_ratio", k.predicted_damping_ratio},
-                       {"approximate_damping_ratio", k.approximate_damping_ratio},
-                       {"predicted_damping_ratio_loop", k.predicted_damping_ratio_loop},
-                       {"stable", k.stable},
-                       {"aborted_on_amplitude", k.aborted_on_amplitude},
-                       {"stopped_by", k.stopped_by.empty() ? nlohmann::json(nullptr) : nlohmann::json(k.stopped_by)},
-                       {"tracking_rms_error_percent", k.tracking_rms_error_percent},
-                       {"tracking_peak_error_percent", k.tracking_peak_error_percent},
-                       {"tracking_delay_ms", 1e3 * k.tracking_delay_s},
-                       {"final_tracking_indicator_m2", k.final_tracking_indicator_m2},
-                       {"energy_balance_error_j", k.energy_balance_error_j},
-                       {"time_history", delay_case_csv_name(i, k.compensated_delay_s)}});
+    entries.push_back(
+        {{"compensated_delay_ms", 1e3 * k.compensated_delay_s},
+         {"actuator_delay_ms", 1e3 * k.actuator_delay_s},
+         {"compensator_lead_ms", 1e3 * k.compensator_lead_s},
+         {"residual_delay_ms", 1e3 * k.residual_delay_s},
+         {"identified_damping_ratio", k.identified_damping_ratio},
+         {"identified_frequency_hz", k.identified_frequency_hz},
+         {"predicted_damping_ratio", k.predicted_damping_ratio},
+         {"approximate_damping_ratio", k.approximate_damping_ratio},
+         {"predicted_damping_ratio_loop", k.predicted_damping_ratio_loop},
+         {"stable", k.stable},
+         {"aborted_on_amplitude", k.aborted_on_amplitude},
+         {"stopped_by", k.stopped_by.empty() ? nlohmann::json(nullptr) : nlohmann::json(k.stopped_by)},
+         {"tracking_rms_error_percent", k.tracking_rms_error_percent},
+         {"tracking_peak_error_percent", k.tracking_peak_error_percent},
+         {"tracking_delay_ms", std::isfinite(k.tracking_delay_s) ? json(1e3 * k.tracking_delay_s) : json(nullptr)},
+         {"tracking_delay_at_window_edge", k.tracking_delay_at_window_edge},
+         {"final_tracking_indicator_m2", k.final_tracking_indicator_m2},
+         {"energy_balance_error_j", k.energy_balance_error_j},
+         {"time_history", delay_case_csv_name(i, k.compensated_delay_s)}});
   }
   const bool ideal = std::holds_alternative<servo::PureDelayParameters>(study.plant);
   const json summary = {

@@ -24,18 +24,18 @@ namespace {
 // A model beyond the dense eigen-solver: the stability of its lowest modes.
 constexpr Eigen::Index kLowestModesOfLargeModels = 10;
 
-// Signed delay of measured behind target (negative: ahead), by cross-correlation both ways.
-std::optional<double> signed_delay_ms(const std::vector<double>& target, const std::vector<double>& measured,
-                                      double rate_hz) {
+// Signed delay of measured behind target (negative: ahead), searched over +-200 ms as the
+// run's summary does (coordinator/run_criteria.h), with the Pearson coefficient.
+std::optional<compensation::DelayEstimate> signed_delay(const std::vector<double>& target,
+                                                        const std::vector<double>& measured, double rate_hz) {
   compensation::CrossCorrelationOptions options;
-  options.max_lag_samples = static_cast<int>(0.2 * rate_hz);
+  options.max_lag_samples = std::max(1, static_cast<int>(0.2 * rate_hz));
+  options.min_lag_samples = -options.max_lag_samples;
   options.measure = compensation::CorrelationMeasure::kPearson;
   if (static_cast<int>(target.size()) <= 2 * options.max_lag_samples + 2) return std::nullopt;
-  const auto lag = compensation::cross_correlation_delay(target, measured, options);
-  const auto lead = compensation::cross_correlation_delay(measured, target, options);
-  if (!lag.valid && !lead.valid) return std::nullopt;
-  const bool lags = lag.valid && (!lead.valid || lag.peak >= lead.peak);
-  return 1e3 * (lags ? lag.delay_samples : -lead.delay_samples) / rate_hz;
+  const auto delay = compensation::cross_correlation_delay(target, measured, options);
+  if (!delay.valid) return std::nullopt;
+  return delay;
 }
 
 // The compensator and the simulated plant in series, seen as one plant: what the specimen
@@ -283,7 +283,10 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
   int delays = 0;
   for (int c = 0; c < channels; ++c) {
     auto& p = report.channels[static_cast<std::size_t>(c)];
-    p.tracking_delay_ms = signed_delay_ms(targets[c], measured[c], s.control_rate_hz);
+    if (const auto delay = signed_delay(targets[c], measured[c], s.control_rate_hz)) {
+      p.tracking_delay_ms = 1e3 * delay->delay_samples / s.control_rate_hz;
+      p.tracking_delay_at_window_edge = delay->at_boundary;
+    }
     if (p.tracking_delay_ms) {
       delay_sum_ms += *p.tracking_delay_ms;
       ++delays;

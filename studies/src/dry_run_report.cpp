@@ -79,7 +79,10 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
         << versus(c.peak_force_n, c.limits.max_force_n, 1e-3, "kN") << ", velocity " << c.peak_velocity_m_per_s * 1e3
         << " mm/s";
     if (c.peak_valve_opening) out << ", servovalve opening " << std::lround(100.0 * *c.peak_valve_opening) << " %";
-    if (c.tracking_delay_ms) out << ", tracking delay " << *c.tracking_delay_ms << " ms";
+    if (c.tracking_delay_ms) {
+      out << ", tracking delay " << *c.tracking_delay_ms << " ms";
+      if (c.tracking_delay_at_window_edge) out << " (at the +-200 ms search's edge: may lie beyond)";
+    }
     out << "\n";
     if (!c.margins.empty()) {
       out << "    margins:";
@@ -111,6 +114,7 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
                         {"peak_force_n", c.peak_force_n},
                         {"peak_valve_opening", maybe(c.peak_valve_opening)},
                         {"tracking_delay_ms", maybe(c.tracking_delay_ms)},
+                        {"tracking_delay_at_window_edge", c.tracking_delay_at_window_edge},
                         {"limits",
                          {{"max_stroke_m", bound(c.limits.max_stroke_m)},
                           {"max_increment_m", bound(c.limits.max_increment_m)},

@@ -71,6 +71,7 @@ ScenarioOverview overview_of(const hybrid_test::TestConfig& s) {
     o.numerical_modes = modes_of(numerical->mass(), numerical->initial_stiffness(), numerical->damping());
   }
   o.control_rate_hz = s.control_rate_hz;
+  o.loop_timing = std::string(coordinator::loop_timing_name(s.clock.loop_timing));
   o.duration_s = s.duration_s;
   o.steps = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
   if (s.ground_motion) {
@@ -150,8 +151,8 @@ void print_overview(const ScenarioOverview& o, std::ostream& out) {
   };
   modes("modes with the specimens (frequency, damping)", o.structure_modes);
   modes("modes of the numerical part alone", o.numerical_modes);
-  std::snprintf(line, sizeof line, "  time: %lld steps at %g Hz, %.6g s\n", static_cast<long long>(o.steps),
-                o.control_rate_hz, o.duration_s);
+  std::snprintf(line, sizeof line, "  time: %lld steps at %g Hz, %.6g s, loop timing %s\n",
+                static_cast<long long>(o.steps), o.control_rate_hz, o.duration_s, o.loop_timing.c_str());
   out << line;
   if (o.has_record) {
     std::snprintf(line, sizeof line, "  record: %s, PGA %.4g g, step %.6g s\n", o.record.c_str(), o.source_pga_g,

@@ -161,6 +161,25 @@ TEST(CrossCorrelationDelay, AccumulatorEqualsTheWholeRecordBitForBitAtEveryLengt
   EXPECT_EQ(e.peak, by_definition[static_cast<std::size_t>(e.lag_samples)]);
 }
 
+TEST(CrossCorrelationDelay, ASearchBelowZeroFindsALeadAsANegativeLag) {
+  // Lags -49..49: each lag sums the same W = N - 98 products; a measurement ahead of its
+  // target by d samples peaks at -d, refined as a delay is; one behind at +d.
+  CrossCorrelationOptions both_ways;
+  both_ways.min_lag_samples = -49;
+  for (double d : {-30.75, -12.0, -0.4, 0.0, 17.0, 47.9}) {
+    const Records r = delayed(d, kWindow + 98);
+    const DelayEstimate e = cross_correlation_delay(r.target, r.measured, both_ways);
+    ASSERT_TRUE(e.valid);
+    EXPECT_EQ(e.lag_samples, static_cast<int>(std::lround(d))) << d;
+    EXPECT_NEAR(e.delay_samples, d, 1e-4) << d;
+    EXPECT_FALSE(e.at_boundary) << d;
+  }
+  const Records ahead = delayed(-60.0, kWindow + 98);
+  const DelayEstimate e = cross_correlation_delay(ahead.target, ahead.measured, both_ways);
+  EXPECT_TRUE(e.at_boundary);
+  EXPECT_EQ(e.lag_samples, -49);
+}
+
 TEST(CrossCorrelationDelay, RejectsBadInput) {
   std::vector<double> a(100), b(99);
   EXPECT_THROW(cross_correlation_delay(a, b), std::invalid_argument);
@@ -170,6 +189,14 @@ TEST(CrossCorrelationDelay, RejectsBadInput) {
   p.options.max_lag_samples = 0;
   CrossCorrelationDelayEstimator e;
   EXPECT_THROW(e.configure(p), std::invalid_argument);
+  // The search's lower end is at most 0; the sliding window searches from 0 only.
+  CrossCorrelationOptions above_zero;
+  above_zero.min_lag_samples = 1;
+  std::vector<double> long_record(200);
+  EXPECT_THROW(cross_correlation_delay(long_record, long_record, above_zero), std::invalid_argument);
+  CrossCorrelationDelayParameters both_ways;
+  both_ways.options.min_lag_samples = -10;
+  EXPECT_THROW(e.configure(both_ways), std::invalid_argument);
 }
 
 }  // namespace

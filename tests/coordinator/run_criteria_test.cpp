@@ -3,9 +3,11 @@
 // from sines with a known delay, amplitude error or offset.
 //
 // The signals: a sine of period P = 400 samples (5 Hz at 2000 Hz), N = 4000 samples (ten
-// periods). J1 searches 0..400 samples and sums over the last W = N - 400 = 3600 samples,
-// nine whole periods, so with x_t = A sin(theta k), x_m = A sin(theta (k - d)) its product
-// sum is exactly S(j) = (W A^2 / 2) cos(theta (j - d)): the second harmonic sums to zero.
+// periods). The signed tracking delay searches -400..400 samples and sums over the last
+// W = N - 800 = 3200 samples, eight whole periods, so with x_t = A sin(theta k),
+// x_m = A sin(theta (k - d)) its product sum is exactly S(j) = (W A^2 / 2) cos(theta (j - d)):
+// the second harmonic sums to zero. J1, the benchmark's, searches 0..49 whole samples over
+// W = N - 49 products, not whole periods, which moves S(j) by a ripple far below a sample's step.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -66,11 +68,30 @@ ChannelCriteria evaluate_channel(const std::vector<StepRecord>& records, int cha
   EXPECT_EQ(whole.channels.size(), static_cast<std::size_t>(channels));
   for (const ChannelCriteria& b : {whole.channels[static_cast<std::size_t>(c)], kept}) {
     expect_same(a.j1_tracking_delay_ms, b.j1_tracking_delay_ms, "J1");
+    expect_same(a.tracking_delay_ms, b.tracking_delay_ms, "tracking delay");
+    EXPECT_EQ(a.tracking_delay_at_window_edge, b.tracking_delay_at_window_edge);
     expect_same(a.j2_rms_tracking_error_percent, b.j2_rms_tracking_error_percent, "J2");
     expect_same(a.j3_peak_tracking_error_percent, b.j3_peak_tracking_error_percent, "J3");
     expect_same(a.final_tracking_indicator_m2, b.final_tracking_indicator_m2, "TI");
   }
   return a;
+}
+
+// The benchmark's J1 written out: the first j in 0..49 maximising
+// sum_{k=49}^{N-1} x_m(k) x_t(k - j), in samples (channel 0).
+int j1_by_definition(const std::vector<StepRecord>& r) {
+  int best_lag = 0;
+  double best = 0.0;
+  for (int j = 0; j <= 49; ++j) {
+    double sum = 0.0;
+    for (std::size_t k = 49; k < r.size(); ++k)
+      sum += r[k].measured_m[0] * r[k - static_cast<std::size_t>(j)].target_m[0];
+    if (j == 0 || sum > best) {
+      best = sum;
+      best_lag = j;
+    }
+  }
+  return best_lag;
 }
 
 // A pure delay of d samples on a sine: e = x_m - x_t = -2 A sin(theta d / 2) cos(theta (k - d / 2)),
@@ -87,9 +108,12 @@ TEST(TestCriteria, J1IsAWholeSampleDelayOfASineInMillisecondsAndJ2J3FollowTheDel
   for (int c = 0; c < 2; ++c) {
     SCOPED_TRACE(c);
     const ChannelCriteria cc = evaluate_channel(records, 2, c);
-    // 1e-9 ms: S(j) is exact up to rounding of 3600-term sums, which the parabola's
+    // J1 is a whole number of samples: exactly the delay.
+    EXPECT_EQ(cc.j1_tracking_delay_ms, delay[c] * kMsPerSample);
+    // 1e-9 ms: S(j) is exact up to rounding of 3200-term sums, which the parabola's
     // 1 / curvature ~ 1 / theta^2 amplifies to ~1e-12 ms (seen); far below a sample (0.5 ms).
-    EXPECT_NEAR(cc.j1_tracking_delay_ms, delay[c] * kMsPerSample, 1e-9);
+    EXPECT_NEAR(cc.tracking_delay_ms, delay[c] * kMsPerSample, 1e-9);
+    EXPECT_FALSE(cc.tracking_delay_at_window_edge);
     // 1e-9 relative: the closed forms are exact over whole periods, only rounding remains.
     EXPECT_LT(relative(cc.j2_rms_tracking_error_percent, delay_error_percent(delay[c])), 1e-9);
     // The peak of |cos(theta (k - d / 2))| falls on a sample for even d (k = d / 2); for odd d
@@ -99,7 +123,7 @@ TEST(TestCriteria, J1IsAWholeSampleDelayOfASineInMillisecondsAndJ2J3FollowTheDel
   }
 }
 
-TEST(TestCriteria, J1RefinesAFractionalDelayByTheParabolaThroughThePeakAndItsNeighbours) {
+TEST(TestCriteria, TheTrackingDelayRefinesAFractionalDelayByTheParabolaThroughThePeakAndItsNeighbours) {
   // With S(j) proportional to cos(theta (j - d)) and n the nearest whole lag, the parabola's
   // vertex is n + tan(theta (d - n)) / (2 tan(theta / 2)), within 1e-5 samples of d here.
   const double delay[] = {20.3, 20.7, 133.5};
@@ -113,24 +137,86 @@ TEST(TestCriteria, J1RefinesAFractionalDelayByTheParabolaThroughThePeakAndItsNei
     const ChannelCriteria cc = evaluate_channel(records, 3, c);
     // 1e-9 ms: rounding only, as for a whole-sample delay (above); tight enough to tell the
     // vertex from the true delay, which differ by up to 2e-6 ms here.
-    EXPECT_NEAR(cc.j1_tracking_delay_ms, vertex * kMsPerSample, 1e-9);
+    EXPECT_NEAR(cc.tracking_delay_ms, vertex * kMsPerSample, 1e-9);
     // 1e-5 samples: the vertex's bias, |delta| theta^2 / 12 ~ 1e-5 samples at most here.
-    EXPECT_NEAR(cc.j1_tracking_delay_ms, delay[c] * kMsPerSample, 1e-5 * kMsPerSample);
+    EXPECT_NEAR(cc.tracking_delay_ms, delay[c] * kMsPerSample, 1e-5 * kMsPerSample);
+    // J1 (the benchmark's) is the nearest whole sample, and 49 where the delay lies beyond.
+    EXPECT_EQ(cc.j1_tracking_delay_ms, std::min(n, 49.0) * kMsPerSample);
     // 1e-9 relative: RMS over whole periods is exact for any delay.
     EXPECT_LT(relative(cc.j2_rms_tracking_error_percent, delay_error_percent(delay[c])), 1e-9);
   }
 }
 
-TEST(TestCriteria, J1IsNanUntilTheRecordIsLongerThanTwiceTheLagSearch) {
-  // The search runs to 200 ms = 400 samples; J1 needs more than 800 samples.
+TEST(TestCriteria, TheTrackingDelayIsNanUntilTheRecordIsLongerThanTwiceTheLagSearch) {
+  // The search runs over +-200 ms = +-400 samples; the delay needs more than 802 samples (the
+  // 800 the window spans, and three products for a peak and its neighbours).
+  const auto delayed = [](int samples) {
+    return channel_records(
+        1, samples, [](int, int k) { return 0.01 * std::sin(kTheta * k); },
+        [](int, int k) { return 0.01 * std::sin(kTheta * (k - 20)); });
+  };
+  const auto short_records = delayed(802);
+  EXPECT_TRUE(std::isnan(evaluate_channel(short_records, 1, 0).tracking_delay_ms));
+  EXPECT_TRUE(std::isfinite(evaluate_channel(delayed(803), 1, 0).tracking_delay_ms));
+  // J1 (0..49 samples) is found long before, as its definition gives it.
+  EXPECT_EQ(evaluate_channel(short_records, 1, 0).j1_tracking_delay_ms, j1_by_definition(short_records) * kMsPerSample);
+  // Half a sample (0.25 ms) over 401 products: not whole half-periods, and the second
+  // harmonic left over moves the refined peak by a fraction of a sample.
+  EXPECT_NEAR(evaluate_channel(delayed(1201), 1, 0).tracking_delay_ms, 20 * kMsPerSample, 0.5 * kMsPerSample);
+}
+
+TEST(TestCriteria, AMeasurementAheadOfItsTargetHasANegativeTrackingDelayAndAJ1OfZero) {
+  // x_m leads by 7 samples = 3.5 ms: the signed delay is -3.5 ms inside its window; J1,
+  // which searches 0..49 only, sits at its edge, 0 (the over-compensated two-storey test).
   const auto records = channel_records(
-      1, 801, [](int, int k) { return 0.01 * std::sin(kTheta * k); },
+      1, kSamples, [](int, int k) { return 0.01 * std::sin(kTheta * k); },
+      [](int, int k) { return 0.01 * std::sin(kTheta * (k + 7)); });
+  const ChannelCriteria cc = evaluate_channel(records, 1, 0);
+  EXPECT_NEAR(cc.tracking_delay_ms, -3.5, 1e-9);  // rounding only, as above
+  EXPECT_FALSE(cc.tracking_delay_at_window_edge);
+  EXPECT_EQ(cc.j1_tracking_delay_ms, 0.0);
+}
+
+TEST(TestCriteria, ATrackingDelayBeyondTheWindowIsFlaggedAtItsEdge) {
+  // A slow sine (period 4000 samples) 500 samples late, 250 ms, beyond the 200 ms window, and
+  // its mirror 500 samples early: S(j) = cos(theta (j - d)) is largest at the window's near edge.
+  constexpr int kSlowPeriod = 4000;
+  const double theta = 2.0 * std::numbers::pi / kSlowPeriod;
+  for (int shift : {500, -500}) {
+    SCOPED_TRACE(shift);
+    const auto records = channel_records(
+        1, 3 * kSlowPeriod + 800, [&](int, int k) { return 0.01 * std::sin(theta * k); },
+        [&](int, int k) { return 0.01 * std::sin(theta * (k - shift)); });
+    const ChannelCriteria cc = evaluate_channel(records, 1, 0);
+    EXPECT_TRUE(cc.tracking_delay_at_window_edge);
+    EXPECT_EQ(cc.tracking_delay_ms, (shift > 0 ? 400 : -400) * kMsPerSample);
+  }
+  // Inside the window, no flag (the sine of the other tests, 20 samples late).
+  const auto inside = channel_records(
+      1, kSamples, [](int, int k) { return 0.01 * std::sin(kTheta * k); },
       [](int, int k) { return 0.01 * std::sin(kTheta * (k - 20)); });
-  const std::vector<StepRecord> short_records(records.begin(), records.end() - 1);
-  EXPECT_TRUE(std::isnan(evaluate_channel(short_records, 1, 0).j1_tracking_delay_ms));
-  // Half a sample (0.25 ms): 401 products are not whole half-periods, and the second harmonic
-  // left over moves the refined peak by ~0.1 sample.
-  EXPECT_NEAR(evaluate_channel(records, 1, 0).j1_tracking_delay_ms, 20 * kMsPerSample, 0.5 * kMsPerSample);
+  EXPECT_FALSE(evaluate_channel(inside, 1, 0).tracking_delay_at_window_edge);
+}
+
+TEST(TestCriteria, J1IsTheBenchmarksWholeSampleLagAt4096Hz) {
+  // At the benchmark's 4096 Hz: 7 samples late is 7 / 4096 s; 7.4 samples reads 7, 7.6 reads
+  // 8 (the nearest whole sample); 60 samples, beyond its 0..49, reads 49.
+  constexpr double kRate = 4096.0;
+  const double theta = 2.0 * std::numbers::pi / 512.0;  // 8 Hz
+  const double delay[] = {7.0, 7.4, 7.6, 60.0};
+  const double expected[] = {7.0, 7.0, 8.0, 49.0};
+  for (int c = 0; c < 4; ++c) {
+    SCOPED_TRACE(delay[c]);
+    CriteriaAccumulator sums(1, 0, kRate);
+    StepRecord r;
+    r.channels = 1;
+    for (int k = 0; k < 49 + 4096; ++k) {  // J1 sums 4096 products: eight whole periods
+      r.target_m[0] = 0.01 * std::sin(theta * k);
+      r.measured_m[0] = 0.01 * std::sin(theta * (k - delay[c]));
+      sums.add_test(r);
+    }
+    EXPECT_EQ(sums.channel(0).j1_tracking_delay_ms, 1e3 * expected[c] / kRate);
+  }
 }
 
 TEST(TestCriteria, J2AndJ3OfAnAmplitudeErrorAreItsPercentage) {
@@ -148,8 +234,11 @@ TEST(TestCriteria, J2AndJ3OfAnAmplitudeErrorAreItsPercentage) {
     // 1e-9 relative: exact up to rounding.
     EXPECT_LT(relative(cc.j2_rms_tracking_error_percent, 100.0 * std::abs(error[c])), 1e-9);
     EXPECT_LT(relative(cc.j3_peak_tracking_error_percent, 100.0 * std::abs(error[c])), 1e-9);
-    // No delay: the correlation peaks at lag 0, the boundary, which is kept unrefined.
+    // No delay: J1's correlation peaks at lag 0, its edge; the signed delay's in the middle of
+    // its window, where S(j) is even about 0 and the parabola's vertex is 0 (rounding only).
     EXPECT_EQ(cc.j1_tracking_delay_ms, 0.0);
+    EXPECT_NEAR(cc.tracking_delay_ms, 0.0, 1e-9);
+    EXPECT_FALSE(cc.tracking_delay_at_window_edge);
   }
 }
 
@@ -171,8 +260,12 @@ TEST(TestCriteria, J2IsARawRmsRatioAndJ3DividesByThePeakOfTheTarget) {
             1e-9);
   EXPECT_LT(relative(cc.j3_peak_tracking_error_percent, delay_error_percent(delay) * amplitude / (offset + amplitude)),
             1e-9);
-  // The offset adds W B^2 to every lag's product sum alike: J1 is unchanged (1e-9 ms as above).
-  EXPECT_NEAR(cc.j1_tracking_delay_ms, delay * kMsPerSample, 1e-9);
+  // The offset adds W B^2 to every lag's product sum alike: the delay is unchanged (1e-9 ms as
+  // above). J1's W = N - 49 products are not whole periods: the offset's cross terms move its
+  // peak, and it is the argmax its definition gives, summed here directly.
+  EXPECT_NEAR(cc.tracking_delay_ms, delay * kMsPerSample, 1e-9);
+  EXPECT_EQ(cc.j1_tracking_delay_ms, j1_by_definition(records) * kMsPerSample);
+  EXPECT_NE(j1_by_definition(records), delay);  // the case is not trivial
 }
 
 TEST(TestCriteria, TheFinalTrackingIndicatorIsTheLastRecordsValue) {

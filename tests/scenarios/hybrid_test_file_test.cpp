@@ -8,6 +8,7 @@
 
 #include "../servo/paper_rig.h"
 #include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/site_server_file.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/plant_factory.h"
 
@@ -116,6 +117,36 @@ TEST(TestScenarioFile, BusyWaitIsForLockStepOnly) {
   EXPECT_NE(error_of({parse_override("transport={kind: dds, busy_wait_s: 0.5}")})
                 .find("transport.busy_wait_s: expected a number 0 to 0.01"),
             std::string::npos);
+}
+
+// clock.loop_timing: rpsd's end of step unless the benchmark's is named; the benchmark's holds
+// one command a step, so an integrator that exchanges more often is refused by name, and a
+// site server, whose loop OpenSees times, takes rpsd's only.
+TEST(TestScenarioFile, LoopTimingIsEndOfStepUnlessTheBenchmarksIsNamed) {
+  const auto timing = [](const std::vector<Override>& overrides) {
+    return std::get<hybrid_test::TestConfig>(load_study(example(), overrides).study).clock.loop_timing;
+  };
+  EXPECT_EQ(timing({}), coordinator::LoopTiming::kEndOfStep);
+  EXPECT_EQ(timing({parse_override("clock.loop_timing=target_now_force_delayed")}),
+            coordinator::LoopTiming::kTargetNowForceDelayed);
+  EXPECT_EQ(timing({parse_override("clock.loop_timing=end_of_step")}), coordinator::LoopTiming::kEndOfStep);
+  const std::string unknown = error_of({parse_override("clock.loop_timing=benchmark")});
+  EXPECT_NE(unknown.find("clock.loop_timing: expected end_of_step or target_now_force_delayed"), std::string::npos)
+      << unknown;
+  const std::string iterative = error_of(
+      {parse_override("clock.loop_timing=target_now_force_delayed"), parse_override("integrator.scheme=newmark")});
+  EXPECT_NE(iterative.find("clock.loop_timing: target_now_force_delayed holds one command and one force per step; "
+                           "integrator newmark exchanges 2 times a step"),
+            std::string::npos)
+      << iterative;
+  const auto site = testing::source_dir() / "tests/scenarios/data/reference/site-server.yaml";
+  EXPECT_NO_THROW(load_site_server(site, {}));
+  try {
+    load_site_server(site, {parse_override("clock.loop_timing=target_now_force_delayed")});
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("clock.loop_timing must be end_of_step"), std::string::npos) << e.what();
+  }
 }
 
 TEST(TestScenarioFile, OverrideNeedsAnEqualsSign) { EXPECT_THROW(parse_override("servo.delay_s"), ConfigError); }

@@ -1,7 +1,8 @@
-// Tracking delay by cross-correlation (RTHS benchmark criterion J1): the shift j in [0, max_lag]
-// samples that maximises the correlation of the measured displacement j samples later with the
-// target, S(j) = sum_k x_m(k + j) x_t(k) (or the Pearson coefficient), every lag over the same W
-// products, optionally refined to a fraction of a sample. Offline, streaming and sliding-window forms.
+// Tracking delay by cross-correlation (RTHS benchmark criterion J1): the shift j in
+// [min_lag, max_lag] samples that maximises the correlation of the measured displacement j
+// samples later with the target, S(j) = sum_k x_m(k + j) x_t(k) (or the Pearson coefficient),
+// every lag over the same W products, optionally refined to a fraction of a sample. A negative
+// lag is a measurement that leads its target. Offline, streaming and sliding-window forms.
 // Derivation and sources: docs/compensation.md
 #pragma once
 
@@ -17,12 +18,15 @@ struct DelayEstimate {
   bool valid = false;          // false until enough samples, or for a flat/degenerate signal
   int lag_samples = 0;         // the maximising integer shift
   double delay_samples = 0.0;  // refined (or equal to lag_samples)
-  bool at_boundary = false;    // the maximum is at 0 or max_lag: the true delay may lie outside
+  bool at_boundary = false;    // the maximum is at min_lag or max_lag: the true delay may lie outside
   double peak = 0.0;           // S or the Pearson coefficient at lag_samples
 };
 
 struct CrossCorrelationOptions {
   int max_lag_samples = 49;  // the benchmark searches 0..49 samples at 4096 Hz
+  // The search's other end, <= 0: below zero the measurement may lead its target. The
+  // sliding-window estimator searches from 0 only.
+  int min_lag_samples = 0;
   CorrelationMeasure measure = CorrelationMeasure::kProductSum;
   bool subsample_refinement = true;
 };
@@ -49,9 +53,11 @@ class CrossCorrelationAccumulator {
 
  private:
   CrossCorrelationOptions options_;
-  std::size_t lag_;
-  // The last max_lag + 1 targets, stored twice so that x_t(k - max_lag .. k) is contiguous.
-  std::vector<double> recent_targets_;
+  std::size_t lag_;   // the span max_lag - min_lag
+  std::size_t lead_;  // -min_lag: each measurement meets the targets up to lead_ samples after it
+  // The last span + 1 targets, stored twice so that x_t(k - span .. k) is contiguous, and the
+  // last lead + 1 measurements.
+  std::vector<double> recent_targets_, recent_measured_;
   // Per lag, in reverse order (index max_lag - j), so the inner loop runs forward.
   std::vector<double> product_sum_, target_sum_, target_square_sum_;
   double measured_sum_ = 0.0, measured_square_sum_ = 0.0;

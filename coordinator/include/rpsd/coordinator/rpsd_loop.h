@@ -6,6 +6,8 @@
 //     compensator[ch].observe(target[ch], x_measured[ch])
 //     integrator.set_measured_restoring_force(R_num(d) + scatter(R_exp))  R_exp: measured force, or k x_measured
 //   integrator.end_step(); numerical.commit(); energy balance; record
+// Under LoopTiming::kTargetNowForceDelayed (the RTHS benchmark's) the command is the previous
+// step's target and R_exp the previous exchange's force (loop_timing.h).
 // The parts are configured by the caller and only borrowed. step() is real-time safe: no allocation, no locks,
 // no exceptions; problems come back as StepOutcome.
 #pragma once
@@ -19,6 +21,7 @@
 #include "rpsd/compensation/command_compensator.h"
 #include "rpsd/coordinator/coordinator_limits.h"
 #include "rpsd/coordinator/experimental_exchange.h"
+#include "rpsd/coordinator/loop_timing.h"
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/coordinator/restoring_force.h"
 #include "rpsd/integrators/integrator.h"
@@ -58,6 +61,9 @@ struct LoopParts {
   // end stop, a servovalve fully open for longer than this many exchanges in a row.
   bool stop_on_node_limits = false;
   int max_valve_saturation_exchanges = 0;  // 0: not checked
+  // Which target a step commands and which force it feeds back (loop_timing.h); the
+  // benchmark's timing needs an integrator with one exchange per step.
+  LoopTiming timing = LoopTiming::kEndOfStep;
 };
 
 class RpsdLoop {
@@ -100,6 +106,8 @@ class RpsdLoop {
   int channels_ = 0;
   Eigen::Index dofs_ = 0;
   Eigen::VectorXd force_, targets_, restoring_;
+  // kTargetNowForceDelayed: the target of the step before, and the force of the exchange before.
+  Eigen::VectorXd held_targets_, held_forces_;
   Eigen::VectorXd previous_d_, previous_v_, previous_r_, previous_f_, work_a_, work_b_;
   StepRecord record_;
   std::int64_t step_ = 0;

@@ -17,7 +17,9 @@
 namespace rpsd::coordinator {
 
 struct ChannelCriteria {
-  double j1_tracking_delay_ms = 0.0;  // cross-correlation lag of measured behind target
+  // J1 as the benchmark defines it: the whole-sample lag in 0..49 samples (at any rate) that
+  // maximises sum_k x_m(k + j) y_n(k), in ms.
+  double j1_tracking_delay_ms = 0.0;
   double j2_rms_tracking_error_percent = 0.0;
   double j3_peak_tracking_error_percent = 0.0;
   double final_tracking_indicator_m2 = 0.0;
@@ -27,6 +29,12 @@ struct ChannelCriteria {
   double peak_measured_m = 0.0;
   double peak_measured_force_n = 0.0;
   double peak_command_velocity_m_per_s = 0.0;
+  // rpsd's own: the signed lag of measured behind target, interpolated between samples,
+  // searched over +-200 ms (negative: the measurement leads), the peak nearest 0 where a
+  // periodic signal has several; NaN until the record is longer than the window. At the
+  // window's edge the true delay may lie beyond it.
+  double tracking_delay_ms = 0.0;
+  bool tracking_delay_at_window_edge = false;
 };
 
 struct DofCriteria {
@@ -51,7 +59,8 @@ struct FloorSource {
 
 class CriteriaAccumulator {
  public:
-  // J1 searches lags up to 200 ms and is NaN for a record not longer than twice that.
+  // J1 searches 0..49 samples (NaN for 51 samples or fewer); the signed tracking delay
+  // +-200 ms = +-L samples (NaN for 2 L + 2 samples or fewer).
   // `floors`: one per recorded DOF (empty: every one numerical). Not real-time safe.
   CriteriaAccumulator(int channels, int recorded_dofs, double control_rate_hz, std::vector<FloorSource> floors = {});
 
@@ -73,7 +82,8 @@ class CriteriaAccumulator {
 
  private:
   struct ChannelSums {
-    compensation::CrossCorrelationAccumulator delay;
+    compensation::CrossCorrelationAccumulator j1;     // the benchmark's: 0..49 whole samples
+    compensation::CrossCorrelationAccumulator delay;  // rpsd's: signed, interpolated
     double error2 = 0.0, target2 = 0.0, peak_error = 0.0, peak_target = 0.0, final_tracking_indicator_m2 = 0.0;
     double peak_measured = 0.0, peak_force = 0.0, peak_velocity = 0.0, last_command = 0.0;
   };

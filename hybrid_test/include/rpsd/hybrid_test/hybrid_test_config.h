@@ -15,6 +15,7 @@
 
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/coordinator/coordinator_limits.h"
+#include "rpsd/coordinator/loop_timing.h"
 #include "rpsd/coordinator/restoring_force.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/node/servo_node_config.h"
@@ -52,6 +53,10 @@ struct ClockConfig {
   // while that answers a command at most this many control periods old; beyond, the node
   // is taken for silent and the test stops (a dead node: on the 5th period with 4).
   int max_feedback_age_periods = 4;
+  // Which target a step commands and which force it feeds back: rpsd's end of step, or the
+  // RTHS benchmark's target now with the force a sample late (coordinator/loop_timing.h).
+  // The perfect-actuator reference is the structure integrated whole, in rpsd's timing.
+  coordinator::LoopTiming loop_timing = coordinator::LoopTiming::kEndOfStep;
   realtime::RealTimeRequest realtime;
 };
 

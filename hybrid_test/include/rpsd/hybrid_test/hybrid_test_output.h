@@ -8,6 +8,7 @@
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <vector>
@@ -41,6 +42,7 @@ struct TestHeadline {
   double peak_measured_m = 0.0;
   double peak_measured_force_n = 0.0;
   double peak_command_velocity_m_per_s = 0.0;
+  double tracking_delay_ms = std::nan("");  // channel 0's signed delay (ChannelCriteria), NaN if none
 };
 
 // `progress` (optional) hears of each phase (the test and its reference with their steps,

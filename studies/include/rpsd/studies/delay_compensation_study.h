@@ -27,8 +27,9 @@ struct DelayCompensationCase {
   std::string stopped_by;                    // the limit or run-away rule that ended an unstable case ("" if none did)
   double tracking_rms_error_percent = 0.0;   // J2 between target and measured
   double tracking_peak_error_percent = 0.0;  // J3
-  double tracking_delay_s = 0.0;             // J1: cross-correlation of measured against target
-  double energy_balance_error_j = 0.0;       // input - (kinetic + damping + restoring) at the end
+  double tracking_delay_s = 0.0;             // signed, interpolated cross-correlation lag (run_criteria.h)
+  bool tracking_delay_at_window_edge = false;  // the lag search's edge: the true delay may lie beyond
+  double energy_balance_error_j = 0.0;         // input - (kinetic + damping + restoring) at the end
   double final_tracking_indicator_m2 = 0.0;
   std::int64_t steps = 0;  // steps taken (fewer when aborted on amplitude)
 };

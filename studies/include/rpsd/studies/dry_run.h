@@ -47,11 +47,12 @@ struct ChannelPrediction {
   std::uint32_t site_id = 1;
   double peak_command_m = 0.0, peak_displacement_m = 0.0, peak_velocity_m_per_s = 0.0, peak_increment_m = 0.0;
   double peak_force_n = 0.0;
-  double peak_target_m = 0.0;                // what the integrator asked for, before compensation
-  double peak_tracking_error_m = 0.0;        // |measured - target|
-  std::optional<NodeCheck> node;             // when the site's node file was given
-  std::optional<double> peak_valve_opening;  // |x_v| of the servovalve, 0..1 (servo model only)
-  std::optional<double> tracking_delay_ms;   // measured lags target by this (negative: leads)
+  double peak_target_m = 0.0;                  // what the integrator asked for, before compensation
+  double peak_tracking_error_m = 0.0;          // |measured - target|
+  std::optional<NodeCheck> node;               // when the site's node file was given
+  std::optional<double> peak_valve_opening;    // |x_v| of the servovalve, 0..1 (servo model only)
+  std::optional<double> tracking_delay_ms;     // measured lags target by this (negative: leads)
+  bool tracking_delay_at_window_edge = false;  // at +-200 ms: the true delay may lie beyond
   coordinator::CoordinatorLimits limits;
   double rig_velocity_m_per_s = servo::Envelope::kNone;  // the rig's envelope
   ConverterRails rails;

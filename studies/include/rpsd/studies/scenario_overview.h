@@ -40,6 +40,7 @@ struct ScenarioOverview {
   std::vector<ModeOverview> structure_modes;  // numerical part with the specimens' stiffness
   std::vector<ModeOverview> numerical_modes;  // numerical part alone (empty: no stiffness of its own)
   double control_rate_hz = 0.0;
+  std::string loop_timing;  // clock.loop_timing's name
   std::int64_t steps = 0;
   double duration_s = 0.0;
   bool has_record = false;
