@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rpsd/substructure/structure_kinds.h"
+
 namespace rpsd::hybrid_test {
 
 Eigen::Index structure_dofs(const TestConfig& config) {
