@@ -15,6 +15,7 @@
 #include "rpsd/servo/harmonic_fit.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/servo/simulated_frequency_response.h"
+#include "rths_benchmark_plant.h"
 
 namespace rpsd::servo {
 namespace {
@@ -22,21 +23,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kRateHz = 4096.0;
 
-// The benchmark's nominal transfer system (Silva et al. 2020, F1_input_file.m); c_e from its
-// damping ratio 0.0097: 2 zeta sqrt(k m).
-BenchmarkTransferSystem nominal() {
-  BenchmarkTransferSystem b;
-  b.gain = 1.0261;
-  b.a1_beta0 = 2.1283e13;
-  b.a2 = 4.2297e6;
-  b.a3_per_s = 3.3;
-  b.beta1_per_s = 425.0;
-  b.beta2_per_s2 = 9.9976e4;
-  b.specimen_mass_kg = 29.13;
-  b.specimen_stiffness_n_per_m = 1.19e6;
-  b.specimen_damping_n_s_per_m = 2.0 * 0.0097 * std::sqrt(1.19e6 * 29.13);
-  return b;
-}
+BenchmarkTransferSystem nominal() { return rpsd::testing::rths_benchmark_nominal(); }
 
 FeedbackControlledPlantParameters sample_controller_loop() {
   FeedbackControlledPlantParameters p;

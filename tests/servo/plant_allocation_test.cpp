@@ -11,8 +11,8 @@
 #include "allocation_counter.h"
 #include "kind_types.h"
 #include "paper_rig.h"
-#include "rpsd/servo/benchmark_transfer_system.h"
 #include "rpsd/servo/plant_factory.h"
+#include "rths_benchmark_plant.h"
 
 namespace rpsd::servo {
 namespace {
@@ -21,15 +21,7 @@ constexpr double kDt = 1.0 / 4096.0;
 
 // The RTHS benchmark's nominal G_xu (Silva et al. 2020), as the closed loop's plant.
 TransferFunctionPlantParameters benchmark_plant() {
-  BenchmarkTransferSystem b;
-  b.gain = 1.0261;
-  b.a1_beta0 = 2.1283e13;
-  b.a2 = 4.2297e6;
-  b.a3_per_s = 3.3;
-  b.beta1_per_s = 425.0;
-  b.beta2_per_s2 = 9.9976e4;
-  b.specimen_mass_kg = 29.13;
-  b.specimen_stiffness_n_per_m = 1.19e6;
+  const BenchmarkTransferSystem b = rpsd::testing::rths_benchmark_nominal();
   TransferFunctionPlantParameters p;
   p.transfer_function = b.transfer_function();
   p.specimen_stiffness_n_per_m = b.specimen_stiffness_n_per_m;

@@ -21,6 +21,24 @@
 #   flag): the test stops there, exit 3, stopped_by kind node_fault at step 301.
 source "$(dirname "$0")/lib.sh"
 FAULT_NODE=${RPSD_FAULT_NODE:?path to rpsd_fault_node}
+# run_against_fault_node NAME OUT "FAULT-NODE OPTIONS" RUN OPTIONS...: the bridge over DDS
+# against rpsd_fault_node; sets code to rpsd run's exit code and shows its log.
+run_against_fault_node() {
+  local name=$1 out=$2 faults=$3
+  shift 3
+  # shellcheck disable=SC2086 # the fault node's options are words
+  $FAULT_NODE --domain $DOMAIN --dds-config "$SRC/transport/config/loopback.xml" --summary "$WORK/fault-$name.json" \
+    $faults > "$WORK/fault-$name.log" 2>&1 &
+  local fault=$!
+  PIDS+=($fault)
+  set +e
+  run_bridge "$out" --set transport.kind=dds "$@" > "$WORK/run-$name.log" 2>&1
+  code=$?
+  set -e
+  kill -TERM $fault
+  wait $fault || true
+  cat "$WORK/run-$name.log"
+}
 for mode in lock_step real_time; do
   out="$WORK/$mode"
   # Lock-step waits for every step's feedback; in real time, a step goes on with feedback up
@@ -30,18 +48,8 @@ for mode in lock_step real_time; do
   else
     nan=2048 clock=real_time rt=1 age=(--set clock.max_feedback_age_periods=$RT_AGE)
   fi
-  $FAULT_NODE --domain $DOMAIN --dds-config "$SRC/transport/config/loopback.xml" --real-time $rt --summary "$WORK/fault-$mode.json" \
-    --wrong-test 100 --wrong-site 200 --wrong-channels 300 --older 400 --duplicate 500 --late 1500 --late-ms 3 \
-    --nan $nan > "$WORK/fault-$mode.log" 2>&1 &
-  fault=$!
-  PIDS+=($fault)
-  set +e
-  run_bridge "$out" --set transport.kind=dds --set clock.mode=$clock "${age[@]}" > "$WORK/run-$mode.log" 2>&1
-  code=$?
-  set -e
-  kill -TERM $fault
-  wait $fault || true
-  cat "$WORK/run-$mode.log"
+  run_against_fault_node $mode "$out" "--real-time $rt --wrong-test 100 --wrong-site 200 --wrong-channels 300 --older 400 --duplicate 500 --late 1500 --late-ms 3 --nan $nan" \
+    --set clock.mode=$clock "${age[@]}"
   [ $code = 3 ] || fail "$mode: exit code $code, expected 3"
   # The command step the first NaN answered (0-based), and the step that stopped on it (1-based).
   sent=$(json "$WORK/fault-$mode.json" "j['sites']['2']['fault_sent_at_step'].get('nan', 'none')")
@@ -85,17 +93,7 @@ done
 
 # A node's fault flag stops the test at the step that carries it, and says so.
 out="$WORK/node_fault"
-$FAULT_NODE --domain $DOMAIN --dds-config "$SRC/transport/config/loopback.xml" --real-time 0 \
-  --summary "$WORK/fault-node.json" --node-fault 300 > "$WORK/fault-node.log" 2>&1 &
-fault=$!
-PIDS+=($fault)
-set +e
-run_bridge "$out" --set transport.kind=dds --set clock.mode=as_fast_as_possible > "$WORK/run-node-fault.log" 2>&1
-code=$?
-set -e
-kill -TERM $fault
-wait $fault || true
-cat "$WORK/run-node-fault.log"
+run_against_fault_node node-fault "$out" "--real-time 0 --node-fault 300" --set clock.mode=as_fast_as_possible
 [ $code = 3 ] || fail "node fault: exit code $code, expected 3"
 [ "$(json "$out/summary.json" "j['result'], j['stopped_by']['kind'], j['stopped_by']['step']")" = "stopped node_fault 301" ] \
   || fail "node fault: summary $(json "$out/summary.json" "j['result'], j['stopped_by']"), expected stopped, node_fault at step 301"
