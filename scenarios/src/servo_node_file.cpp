@@ -198,8 +198,7 @@ void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f) {
 }  // namespace node_sections
 
 node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
-  YAML::Node document = load_yaml_document(file, overrides);
-  MappingReader root(document, file.string(), "");
+  MappingReader root = load_root_reader(file, overrides);
   node::ServoNodeSetup f;
   f.name = file.stem().string();
   const auto limits = node_sections::node_file(root, file.parent_path(), f);
@@ -237,8 +236,7 @@ node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const st
 
 node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::path& file,
                                                        const std::vector<Override>& overrides) {
-  YAML::Node document = load_yaml_document(file, overrides);
-  MappingReader root(document, file.string(), "");
+  MappingReader root = load_root_reader(file, overrides);
   node::ControllerEmulatorSetup f;
   f.name = file.stem().string();
   node_sections::emulator_file(root, f);

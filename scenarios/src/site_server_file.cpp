@@ -136,8 +136,7 @@ site_server::SiteServerConfig load_site_server(const std::filesystem::path& file
                                                const std::vector<Override>& overrides) {
   config::InputLog inputs;
   config::InputLog::note(file);
-  YAML::Node document = load_yaml_document(file, overrides);
-  MappingReader root(document, file.string(), "");
+  MappingReader root = load_root_reader(file, overrides);
   site_server::SiteServerConfig c;
   c.name = file.stem().string();
   std::vector<std::unique_ptr<config::Source>> limit_sections;

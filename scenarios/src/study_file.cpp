@@ -308,6 +308,12 @@ YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vect
   return document;
 }
 
+MappingReader load_root_reader(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  YAML::Node document = parse_yaml_text(read_config_text(file), file.string());
+  const OverrideNodes nodes = apply_overrides(document, overrides);
+  return MappingReader(document, file.string(), "", nodes);
+}
+
 studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   config::InputLog inputs;  // the scenario first, then every file it names (records, matrices, ...)
   studies::StudyDocument document = parse_study(read_config_text(file), file, overrides);

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rpsd/scenarios/yaml_reader.h"
+
 #include "rpsd/integrators/factory.h"
 #include "rpsd/studies/study_config.h"
 
@@ -32,6 +34,9 @@ Override parse_override(const std::string& text);
 std::string read_config_text(const std::filesystem::path& file);
 // A configuration file parsed, with the overrides applied (ConfigError with file and line).
 YAML::Node load_yaml_document(const std::filesystem::path& file, const std::vector<Override>& overrides);
+// The same file's root reader: an error in a value an override gave names the override
+// ("--set #2 (key=value)"), one in the file names the file, line and column.
+MappingReader load_root_reader(const std::filesystem::path& file, const std::vector<Override>& overrides);
 
 // The default-parameter integrator for a scheme name (central_difference, newmark, hht_alpha,
 // generalized_alpha, alpha_os, chang, chen_ricles, kolay_ricles_alpha); nullopt if unknown.
