@@ -67,26 +67,33 @@ run fuzz_at2 at2 -dict=fuzz/at2.dict -max_len=16384
 run fuzz_text_readers text
 # Short inputs keep every case fast: a long matrix would only measure dense algebra.
 run fuzz_scenario scenario -max_len=2048
-# Datagrams from the network: valid commands, queries and replies (docs/udp-controller-protocol.md),
+# Datagrams from the network: valid commands, queries and replies of both versions
+# (docs/udp-controller-protocol.md),
 # little-endian, so the fuzzer starts past the magic, size and version checks and mutates the
 # fields the decoders judge (channel count, flags, period, non-finite values).
 mkdir -p "$seeds/udp" "$build/corpus/udp"
 python3 - "$seeds/udp" <<'PY'
 import struct, sys
 out = sys.argv[1]
-def command(channels, flags, sequence, period, values):
+def command(channels, flags, sequence, period, values, version=1):
     values = list(values) + [0.0] * (8 - len(values))
-    return b"RPSC" + struct.pack("<HBBQd8d", 1, channels, flags, sequence, period, *values)
-def reply(channels, status, sequence, displacements, forces):
+    return b"RPSC" + struct.pack("<HBBQd8d", version, channels, flags, sequence, period, *values)
+def reply(channels, status, sequence, displacements, forces, version=1):
     d = list(displacements) + [0.0] * (8 - len(displacements))
     f = list(forces) + [0.0] * (8 - len(forces))
-    return b"RPSR" + struct.pack("<HBBQ8d8d", 1, channels, status, sequence, *d, *f)
+    return b"RPSR" + struct.pack("<HBBQ8d8d", version, channels, status, sequence, *d, *f)
+# Version 2's content before its tag: the packet, then the session's two 16-byte nonces (the
+# target tags it with its test key, so the fuzzer reaches past the tag check).
+session = bytes(range(32))
 seeds = {
     "command-1ch": command(1, 0, 1, 1 / 1024, [0.001]),
     "command-8ch": command(8, 0, 2**40, 1 / 4096, [0.001 * c for c in range(8)]),
     "query": command(2, 1, 7, 0.0, []),
     "reply-ok": reply(1, 0, 1, [0.001], [700.8]),
     "reply-fault": reply(3, 1, 9, [0.0, 0.01, -0.01], [1.0, -2.0, 3.0]),
+    "v2-command": command(2, 0, 3, 1 / 2048, [0.002, -0.002], version=2) + session,
+    "v2-hello": command(1, 2, 0, 0.0, [], version=2) + bytes(16) + bytes(16),
+    "v2-reply": reply(2, 0, 3, [0.002, -0.002], [10.0, -10.0], version=2) + session,
 }
 for name, packet in seeds.items():
     open(f"{out}/{name}", "wb").write(packet)
