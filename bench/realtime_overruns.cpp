@@ -350,16 +350,6 @@ int main(int argc, char** argv) try {
       fragment.note(r + " Hz: ddsperf on the same link failed: " + std::string(e.what()));
     }
     const std::string perf_id = "realtime_ddsperf_round_trip_" + r + "hz_us";
-    if (!perf_p50.empty()) {
-      fragment.add(bench::figure(perf_id,
-                                 "  ddsperf on the same link, ping at " + r + " Hz, p50 (median of per-second values)",
-                                 "us", bench::summarize(perf_p50)));
-      fragment.add(bench::figure("realtime_ddsperf_round_trip_p99_" + r + "hz_us", "  the same, p99", "us",
-                                 bench::summarize(perf_p99)));
-      fragment.add(bench::figure("realtime_ddsperf_round_trip_max_" + r + "hz_us", "  the same, max (largest second)",
-                                 "us", bench::summarize(perf_max)));
-    }
-
     for (const Configuration& test : tests) {
       if (!test.rates.empty() && std::find(test.rates.begin(), test.rates.end(), rate) == test.rates.end()) continue;
       const std::string key = test.tag + r;  // names this run's files
@@ -487,6 +477,15 @@ int main(int argc, char** argv) try {
                     (m.sched_fifo ? "" : ", no SCHED_FIFO (" + m.refused + ")") +
                     (m.cpus_awake ? ", CPUs kept awake" : ", CPUs free to idle") + ";" + node_text +
                     " load average at start " + load_start + ", at end " + load_end + ".");
+    }
+    if (!perf_p50.empty()) {
+      fragment.add(bench::figure(
+          perf_id, "ddsperf on the same link, ping at " + r + " Hz: round trip p50 (median of per-second values)", "us",
+          bench::summarize(perf_p50)));
+      fragment.add(bench::figure("realtime_ddsperf_round_trip_p99_" + r + "hz_us", "  the same, p99", "us",
+                                 bench::summarize(perf_p99)));
+      fragment.add(bench::figure("realtime_ddsperf_round_trip_max_" + r + "hz_us", "  the same, max (largest second)",
+                                 "us", bench::summarize(perf_max)));
     }
   }
   if (keep)
