@@ -123,12 +123,14 @@ TEST(ConverterLimits, AServoNodeFileIsHeldToTheRule) {
       std::string::npos)
       << e;
   const std::string d = error_of(
-      [&] { (void)load_servo_node(node, overrides({"actuator.servo.converters.displacement.saturation_v=0.5"})); });
+      [&] { (void)load_servo_node(node, overrides({"actuator.servo.converters.displacement.saturation_v=0.005"})); });
   EXPECT_NE(d.find("limits[0].max_stroke_m: not stated, so the rig's 0.007 m"), std::string::npos) << d;
   EXPECT_NE(d.find("actuator.servo.converters.displacement"), std::string::npos) << d;
-  // As shipped it loads, and its node knows the rails and the rig its measurements must stay inside.
-  const auto setup = load_servo_node(node);
-  EXPECT_EQ(setup.node.rails[0].force_n.high, 131071.0 * 20.0 / std::ldexp(1.0, 18) * 1096.0);
+  // As shipped it loads (the released chain: no rail on the measurements), and its node knows
+  // the rails given and the rig its measurements must stay inside.
+  EXPECT_FALSE(load_servo_node(node).node.rails[0].force_n.bounded());
+  const auto setup = load_servo_node(node, overrides({"actuator.servo.converters.force.saturation_v=9000"}));
+  EXPECT_EQ(setup.node.rails[0].force_n.high, 9000.0);
   EXPECT_EQ(setup.node.rig[0].stroke_m, 0.007);
 }
 

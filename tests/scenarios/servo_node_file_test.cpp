@@ -1,11 +1,14 @@
 // rpsd servo-node files: the real-time requests a node makes of its host.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "../servo/paper_rig.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/servo_node_file.h"
+#include "rpsd/servo/plant_factory.h"
+#include "rpsd/servo/signal_converter.h"
 
 namespace rpsd::scenarios {
 namespace {
@@ -38,8 +41,13 @@ TEST(ServoNodeFile, ANodeRunsTheBenchmarksControllerAndConvertersAndTheRigIsItsD
   const auto& plant = std::get<servo::FeedbackControlledPlantParameters>(simulated.plant);
   ASSERT_TRUE(plant.controller);
   EXPECT_EQ(plant.controller->proportional, 2.0);
-  EXPECT_EQ(plant.converters.force.units_per_volt, 1096.0);
+  // The released chain, as the case scenarios have it: unit gains, 2^-18 steps on the reference,
+  // the error and the command, no rail on the force.
+  EXPECT_EQ(plant.converters.force.units_per_volt, 1.0);
   EXPECT_EQ(plant.converters.command.saturation_v, 3.8);
+  EXPECT_EQ(servo::SignalConverter(plant.converters.reference).step_units(), std::ldexp(1.0, -18));
+  EXPECT_EQ(servo::SignalConverter(plant.converters.error).step_units(), std::ldexp(1.0, -18));
+  EXPECT_FALSE(servo::reading_ranges_of(simulated.plant).force_n.bounded());
   EXPECT_EQ(plant.plant.specimen_mass_kg, 29.13);
   // No limits given: the rig's envelope (the benchmark's +/-7 mm, 8.9 kN).
   EXPECT_EQ(file.node.limits[0].max_stroke_m, 0.007);
