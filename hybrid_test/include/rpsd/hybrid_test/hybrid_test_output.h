@@ -13,8 +13,8 @@
 #include <functional>
 #include <vector>
 
-#include "rpsd/hybrid_test/progress.h"
 #include "rpsd/hybrid_test/hybrid_test_document.h"
+#include "rpsd/hybrid_test/progress.h"
 
 namespace rpsd::hybrid_test {
 

@@ -8,9 +8,9 @@
 #include <atomic>
 #include <filesystem>
 
+#include "rpsd/hybrid_test/hybrid_test_document.h"
 #include "rpsd/hybrid_test/hybrid_test_output.h"
 #include "rpsd/hybrid_test/progress.h"
-#include "rpsd/hybrid_test/hybrid_test_document.h"
 
 namespace rpsd::hybrid_test {
 
