@@ -9,6 +9,7 @@
 #include "rpsd/config/input_file.h"
 #include "rpsd/config/kind_list.h"
 #include "rpsd/integrators/factory.h"
+#include "rpsd/linalg/dense_from_rows.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/substructure/damping_models.h"
@@ -31,14 +32,6 @@ static_assert(substructure::ranges::kMaxMassKg == kMaxMassKg);
 constexpr std::size_t kMaxRecordedDofs = 8;
 // The largest structure a file may describe (the Matrix Market reader's cap).
 constexpr std::size_t kMaxDofs = 100'000;
-
-Eigen::MatrixXd matrix_from_rows(const std::vector<std::vector<double>>& rows) {
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.front().size()));
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    for (std::size_t c = 0; c < rows[r].size(); ++c)
-      m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c];
-  return m;
-}
 
 }  // namespace
 
@@ -215,7 +208,7 @@ hybrid_test::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, in
   if (site.reference_port == a.port) o.fail("reference_port", "must differ from port: an adapter serves one run");
   a.dofs = static_cast<int>(listed.size());
   if (stiffness.size() != listed.size()) o.fail("stiffness_n_per_m", "needs one row per DOF in dofs");
-  site.stiffness_n_per_m = matrix_from_rows(stiffness);
+  site.stiffness_n_per_m = linalg::dense_from_rows(stiffness);
   if (!site.stiffness_n_per_m.isApprox(site.stiffness_n_per_m.transpose()) ||
       (site.stiffness_n_per_m.diagonal().array() < 0.0).any()) {
     o.fail("stiffness_n_per_m", "must be symmetric with no negative diagonal entry");

@@ -3,6 +3,7 @@
 #include <utility>
 #include <vector>
 
+#include "rpsd/linalg/dense_from_rows.h"
 #include "rpsd/substructure/damping_models.h"
 #include "rpsd/substructure/reading_ranges.h"
 #include "rpsd/substructure/story_spring.h"
@@ -16,14 +17,6 @@ using config::Number;
 // structures come as Matrix Market files.
 constexpr std::size_t kMaxInlineDofs = 200;
 
-Eigen::MatrixXd matrix_from_rows(const std::vector<std::vector<double>>& rows) {
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.front().size()));
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    for (std::size_t c = 0; c < rows[r].size(); ++c)
-      m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c];
-  return m;
-}
-
 DampingConfig optional_damping(config::Source& st, const Eigen::MatrixXd* mass) {
   auto d = st.optional_section("damping", "the structure's damping (none: undamped)");
   return d ? read_damping(*d, mass) : DampingConfig{Undamped{}};
@@ -33,9 +26,9 @@ DampingConfig optional_damping(config::Source& st, const Eigen::MatrixXd* mass) 
 
 LinearStructure LinearStructure::read(config::Source& st) {
   LinearStructure s;
-  const Eigen::MatrixXd m =
-      matrix_from_rows(st.matrix("mass_kg", Number{"kg", "the mass matrix", 0.0, ranges::kMaxMassKg}, kMaxInlineDofs));
-  const Eigen::MatrixXd k = matrix_from_rows(st.matrix(
+  const Eigen::MatrixXd m = linalg::dense_from_rows(
+      st.matrix("mass_kg", Number{"kg", "the mass matrix", 0.0, ranges::kMaxMassKg}, kMaxInlineDofs));
+  const Eigen::MatrixXd k = linalg::dense_from_rows(st.matrix(
       "stiffness_n_per_m", Number{"N/m", "the stiffness matrix", 0.0, ranges::kMaxStiffnessNPerM}, kMaxInlineDofs));
   s.config.damping = optional_damping(st, &m);
   if (m.rows() != k.rows() || m.cols() != k.cols()) st.fail("stiffness_n_per_m", "must have the size of mass_kg");
