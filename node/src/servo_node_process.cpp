@@ -159,9 +159,8 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   log << "rpsd servo-node: test " << setup.node.test_id << " site " << setup.node.site_id << ", " << setup.node.channels
       << " channel(s), " << (loop.real_time ? "real time" : "lock-step") << " at " << 1.0 / setup.node.control_period_s
       << " Hz" << std::endl;
-  if (const auto* udp = std::get_if<UdpControllerParameters>(&setup.actuator)) {
-    log << "rpsd servo-node: " << describe_link(*udp) << std::endl;
-  }
+  const auto* link = dynamic_cast<const ActuatorLinkReport*>(actuator.actuator.get());
+  if (link != nullptr) log << "rpsd servo-node: " << link->describe_link() << std::endl;
   const ServoNodeLoopReport report = run_servo_node_loop(controller, endpoint, loop, stop);
   if (!report.granted.refused.empty()) log << "rpsd servo-node: " << report.granted.refused;
   const auto& c = controller.counters();
@@ -170,19 +169,7 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
       << " commands applied, " << dropped_text(c) << ", " << report.overruns << " overruns"
       << (controller.faulted() ? ", FAULTED" : "") << std::endl;
   nlohmann::json summary = node_summary(setup, controller, report);
-  if (const auto* udp = dynamic_cast<const UdpControllerActuator*>(actuator.actuator.get())) {
-    const UdpControllerCounters& u = udp->counters();
-    summary["udp_link"] = {{"protocol_version", std::get<UdpControllerParameters>(setup.actuator).protocol_version},
-                           {"commands_sent", u.commands_sent},
-                           {"replies", u.replies},
-                           {"missed_replies", u.missed_replies},
-                           {"stale_replies", u.stale_replies},
-                           {"bad_replies", u.bad_replies},
-                           {"foreign_datagrams", u.foreign_datagrams},
-                           {"unauthenticated_replies", u.unauthenticated_replies},
-                           {"other_session_replies", u.other_session_replies},
-                           {"controller_faults", u.controller_faults}};
-  }
+  if (link != nullptr) summary[std::string(link->summary_key())] = link->link_summary();
   return summary;
 }
 

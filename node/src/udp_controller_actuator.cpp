@@ -292,3 +292,23 @@ OwnedActuator UdpControllerParameters::make(const UdpControllerParameters& confi
 }
 
 }  // namespace rpsd::node
+
+namespace rpsd::node {
+
+std::string UdpControllerActuator::describe_link() const { return node::describe_link(config_); }
+
+nlohmann::json UdpControllerActuator::link_summary() const {
+  const UdpControllerCounters& u = counters_;
+  return {{"protocol_version", config_.protocol_version},
+          {"commands_sent", u.commands_sent},
+          {"replies", u.replies},
+          {"missed_replies", u.missed_replies},
+          {"stale_replies", u.stale_replies},
+          {"bad_replies", u.bad_replies},
+          {"foreign_datagrams", u.foreign_datagrams},
+          {"unauthenticated_replies", u.unauthenticated_replies},
+          {"other_session_replies", u.other_session_replies},
+          {"controller_faults", u.controller_faults}};
+}
+
+}  // namespace rpsd::node

@@ -17,6 +17,7 @@
 #include "rpsd/config/source.h"
 #include "rpsd/servo/envelope.h"
 
+#include "rpsd/node/actuator_link_report.h"
 #include "rpsd/node/udp_authenticator.h"
 #include "rpsd/node/udp_controller_protocol.h"
 #include "rpsd/node/udp_socket.h"
@@ -73,7 +74,7 @@ struct UdpControllerCounters {
   std::uint64_t controller_faults = 0;  // replies with status kFault
 };
 
-class UdpControllerActuator final : public servo::Actuator {
+class UdpControllerActuator final : public servo::Actuator, public ActuatorLinkReport {
  public:
   // Validates the config and binds the local socket (throws std::invalid_argument or
   // std::runtime_error). Not real-time safe.
@@ -96,6 +97,9 @@ class UdpControllerActuator final : public servo::Actuator {
                                  servo::ActuatorReading& reading) override;
 
   const UdpControllerCounters& counters() const { return counters_; }
+  std::string_view summary_key() const override { return "udp_link"; }
+  std::string describe_link() const override;
+  nlohmann::json link_summary() const override;
   std::uint16_t local_port() const { return socket_.local_port(); }
   const Ipv4Endpoint& controller() const { return controller_; }
 
