@@ -90,6 +90,15 @@ std::string ActuatorLinks::refusal_text() const {
   return text;
 }
 
+std::string ActuatorLinks::node_fault_text() {
+  std::string text;
+  for (std::size_t i = 0; i < built_.size(); ++i) {
+    if (const std::string said = built_[i]->node_fault_text(); !said.empty())
+      text += (text.empty() ? "" : "; ") + ("site " + std::to_string(sites_[i].site_id) + ": ") + said;
+  }
+  return text;
+}
+
 void ActuatorLinks::end_run() {
   if (ended_) return;
   ended_ = true;

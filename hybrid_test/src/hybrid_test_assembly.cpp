@@ -251,8 +251,10 @@ const ActuatorLinks& TestAssembly::actuators() const { return *parts_->actuators
 TestRun TestAssembly::finish(coordinator::StepOutcome outcome) {
   Parts& p = *parts_;
   p.cpus_awake = {};
-  p.actuators->end_run();
   TestRun run;
+  // Asked before the run ends: the node's heartbeat still names this run's fault.
+  if (outcome == coordinator::StepOutcome::kNodeFault) run.node_fault = p.actuators->node_fault_text();
+  p.actuators->end_run();
   run.outcome = outcome;
   run.run_id = p.loop->run_id();
   if (outcome == coordinator::StepOutcome::kRefused) run.refusal = p.actuators->refusal_text();

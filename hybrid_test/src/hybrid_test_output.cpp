@@ -240,6 +240,7 @@ std::string describe_outcome(const hybrid_test::TestConfig& s, const hybrid_test
   if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
     text += " (" + coordinator::describe_limit_stop(test.limit_stop) + ")";
   }
+  if (!test.node_fault.empty()) text += ": " + test.node_fault;
   if (!test.write_error.empty()) text += " (" + test.write_error + ")";
   return text;
 }
@@ -422,6 +423,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
       stopped_by["value"] = l.value;
       stopped_by["bound"] = l.bound;
     }
+    // A node's fault in its own words, or those of the lab controller behind it.
+    if (!test.node_fault.empty()) stopped_by["node_says"] = test.node_fault;
   }
   const json summary = {
       {"study", "rpsd_test"},

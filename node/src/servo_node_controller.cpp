@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -127,6 +128,7 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
   run_events_.clear();
   run_events_not_logged_ = 0;
   commands_began_ = holding_ = safe_state_ = fault_ = false;
+  fault_text_ = {};
   missed_in_row_ = 0;
   limit_was_active_ = {};
   measurement_was_beyond_ = {};
@@ -471,6 +473,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     return;
   }
 
+  const bool faulted_before = fault_;
   choose_target();
   Values applied = command_m_;
   std::uint32_t flags = apply_limits(applied);
@@ -483,9 +486,12 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
   if (status == servo::ActuatorStatus::kFault) {
     ++counters_.actuator_faults;
     latch_fault();
+    if (!faulted_before) keep_fault_text(actuator_.fault_text());
   }
   // A new measurement faults the node on this tick's feedback if no measurement may be where it is.
   if (status == servo::ActuatorStatus::kOk) flags |= check_measurement();
+  if (fault_ && !faulted_before && fault_text_[0] == '\0' && !events_.empty() && events_not_logged_ == 0)
+    describe_fault(events_.back());
   ++counters_.ticks;
   ++ticks_since_accepted_;
 
@@ -509,6 +515,18 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     ++counters_.valve_saturated_ticks;
   }
   out.limit_flags = flags;
+}
+
+void ServoNodeController::keep_fault_text(std::string_view text) noexcept {
+  const std::size_t n = std::min(text.size(), fault_text_.size() - 1);
+  std::copy_n(text.data(), n, fault_text_.begin());
+  fault_text_[n] = '\0';
+}
+
+void ServoNodeController::describe_fault(const LimitEvent& e) noexcept {
+  // snprintf into a fixed buffer: no allocation on the control path.
+  std::snprintf(fault_text_.data(), fault_text_.size(), "%s %s on channel %d: %g beyond %g", limit_kind_name(e.kind),
+                limit_cause_name(e.cause), e.channel, e.observed, e.bound);
 }
 
 }  // namespace rpsd::node

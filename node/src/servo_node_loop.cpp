@@ -47,6 +47,7 @@ transport::NodeHeartbeat heartbeat(const ServoNodeController& controller, const 
   h.dropped_messages = static_cast<std::int64_t>(controller.counters().dropped_total());
   h.control_period_s = controller.config().control_period_s;
   h.serving_run_id = controller.serving_run();
+  if (controller.faulted()) h.fault_text = controller.fault_text();
   return h;
 }
 
@@ -113,10 +114,16 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
     if (controller.accept(command) == CommandVerdict::kAccepted) last_run_command_ns = now_ns;
   };
   // Between ticks: the heartbeat, and a run whose coordinator fell silent frees the node.
+  bool fault_announced = false;
   const auto between_ticks = [&](std::int64_t now_ns) {
     const std::uint64_t served = controller.serving_run();
     if (served != 0 && now_ns - last_run_command_ns > release_after_ns) controller.release_run();
     announce_if_changed(served, now_ns);
+    // A fault is announced at once too: the coordinator that stops on it reports what it was.
+    if (controller.faulted() && !fault_announced) {
+      fault_announced = true;
+      next_heartbeat_ns = now_ns;
+    }
     maybe_heartbeat(now_ns);
   };
 

@@ -187,6 +187,7 @@ void UdpControllerActuator::start(std::span<const double> initial_displacement_m
   }
   consecutive_missed_ = 0;
   link_fault_ = false;
+  fault_text_ = {};
 }
 
 servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> command_m, double period_s,
@@ -208,12 +209,14 @@ servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> co
   const bool answered = send_packet() && await(command.sequence, deadline_s, reply);
   if (answered && reply.channels != channels) {
     ++counters_.bad_replies;
+    fault_text_ = "the controller answered for another channel count";
     return servo::ActuatorStatus::kFault;
   }
   if (!answered) {
     ++counters_.missed_replies;
     if (++consecutive_missed_ > config_.max_missed_replies) {
       link_fault_ = true;
+      fault_text_ = "the UDP controller stopped answering (more than max_missed_replies periods in a row)";
       return servo::ActuatorStatus::kFault;
     }
     return servo::ActuatorStatus::kNoReply;
@@ -227,6 +230,7 @@ servo::ActuatorStatus UdpControllerActuator::exchange(std::span<const double> co
   reading.fresh = true;
   if (reply.status != ControllerStatus::kOk) {
     ++counters_.controller_faults;
+    fault_text_ = "the UDP controller reports a fault";
     return servo::ActuatorStatus::kFault;
   }
   return servo::ActuatorStatus::kOk;

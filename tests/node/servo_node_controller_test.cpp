@@ -51,6 +51,7 @@ class IdealActuator final : public servo::Actuator {
     reading.fresh = true;
     return status;
   }
+  std::string_view fault_text() const noexcept override { return fault_words; }
   double last(int channel = 0) const { return commands.back()[channel]; }
 
   std::vector<double> started_at;
@@ -58,6 +59,7 @@ class IdealActuator final : public servo::Actuator {
   std::vector<double> periods;
   std::deque<servo::ActuatorStatus> script;  // statuses to return, then kOk
   double measured_offset_m = 0.0;            // a piston that drifts from its command (a fault)
+  std::string fault_words;                   // what it says when it faults
 
  private:
   int channels_;
@@ -654,6 +656,34 @@ TEST(ServoNodeController, ActuatorNoReplyKeepsTheLastMeasurementAndAFaultLatches
   EXPECT_EQ(actuator.last(), 0.003);  // the command it had when the fault came, held
   EXPECT_EQ(node.counters().actuator_faults, 1u);
   EXPECT_EQ(node.counters().faults, 1u);
+}
+
+// What latched the fault travels in the node's heartbeat: the actuator's own words (a lab
+// controller's refusal), the first ones only; or the measurement that faulted the node.
+TEST(ServoNodeController, KeepsWhatFaultedItTheActuatorsWordsOrTheMeasurement) {
+  auto c = config();
+  {
+    Rig rig(c);
+    auto& [actuator, node] = rig;
+    send(node, command(1, {0.001}));
+    EXPECT_EQ(std::string(node.fault_text().data()), "");
+    actuator.fault_words = "ERROR\tproposal refused: x displacement beyond the site's limit";
+    actuator.script = {servo::ActuatorStatus::kFault};
+    send(node, command(2, {0.002}));
+    actuator.fault_words = "a later word";
+    actuator.script = {servo::ActuatorStatus::kFault};
+    idle(node);
+    EXPECT_EQ(std::string(node.fault_text().data()), "ERROR\tproposal refused: x displacement beyond the site's limit");
+    node.start(std::array{0.0});
+    EXPECT_EQ(std::string(node.fault_text().data()), "");
+  }
+  limit_to_envelope(c, {0.0625, 2048.0, 100.0});
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  actuator.measured_offset_m = 0.0625;
+  send(node, command(1, {0.0}));
+  ASSERT_TRUE(node.faulted());
+  EXPECT_EQ(std::string(node.fault_text().data()), "stroke rig_envelope on channel 0: 0.0625 beyond 0.0625");
 }
 
 TEST(ServoNodeController, TheEventLogKeepsTheFirstActivationsAndCountsTheRest) {

@@ -18,7 +18,8 @@
 #   no recorded measurement is one of the bad samples' 1 m; summary.json's stopped_by says
 #   kind non_finite at that step. Run lock-step (as fast as possible) and in real time at
 #   1024 Hz. Then, lock-step, site 2's node reports a fault from step 300 on (its status
-#   flag): the test stops there, exit 3, stopped_by kind node_fault at step 301.
+#   flag, and its heartbeat with what faulted it): the test stops there, exit 3, stopped_by
+#   kind node_fault at step 301, its node_says the node's words.
 source "$(dirname "$0")/lib.sh"
 FAULT_NODE=${RPSD_FAULT_NODE:?path to rpsd_fault_node}
 # run_against_fault_node NAME OUT "FAULT-NODE OPTIONS" RUN OPTIONS...: the bridge over DDS
@@ -97,6 +98,10 @@ run_against_fault_node node-fault "$out" "--real-time 0 --node-fault 300" --set 
 [ $code = 3 ] || fail "node fault: exit code $code, expected 3"
 [ "$(json "$out/summary.json" "j['result'], j['stopped_by']['kind'], j['stopped_by']['step']")" = "stopped node_fault 301" ] \
   || fail "node fault: summary $(json "$out/summary.json" "j['result'], j['stopped_by']"), expected stopped, node_fault at step 301"
+# What faulted the node, in the words its heartbeat gives, reaches the summary and the outcome.
+[ "$(json "$out/summary.json" "j['stopped_by']['node_says']")" = "site 2: the lab controller says: proposal refused (rpsd_fault_node)" ] \
+  || fail "node fault: stopped_by $(json "$out/summary.json" "j['stopped_by']"), expected node_says with the node's words"
+grep -q "proposal refused (rpsd_fault_node)" <<< "$(json "$out/summary.json" "j['outcome']")" || fail "node fault: the outcome does not say what the node said"
 every_step_recorded "$out"
 echo "node fault: exit 3, stopped_by $(json "$out/summary.json" "j['stopped_by']")"
 echo "PASS: bad feedback dropped and counted by reason, the NaN stops the test with every step before it recorded, a node's fault stops it and summary.json names each"

@@ -22,6 +22,7 @@
 // It writes what it sent (answers, and the command step each fault came with) as JSON to
 // --summary when it stops
 // (SIGTERM/SIGINT or --duration). Used by tests/system/bad_feedback.sh.
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdint>
@@ -32,6 +33,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -173,7 +175,14 @@ void serve(rpsd::transport::DdsNodeEndpoint& node, std::uint32_t site, const Opt
       }
       if (at("nan", c.step)) transducer_failed = true;
       if (transducer_failed) f.displacement_m[0] = std::numeric_limits<double>::quiet_NaN();
-      if (at("node-fault", c.step)) node_faulted = true;
+      if (at("node-fault", c.step) && !node_faulted) {
+        // As a servo node does: the fault and its words in a heartbeat at once.
+        node_faulted = true;
+        heartbeat.state = rpsd::transport::NodeHeartbeat::kFaulted;
+        const std::string_view words = "the lab controller says: proposal refused (rpsd_fault_node)";
+        std::copy(words.begin(), words.end(), heartbeat.fault_text.begin());
+        node.publish_heartbeat(heartbeat);
+      }
       if (node_faulted) f.status |= rpsd::transport::kNodeFault;
       node.publish(f);
       ++counts.answers;

@@ -57,6 +57,10 @@ bool DdsLink::node_reports_matched() {
   // Only the newest counts: an older heartbeat may name a run the node has since ended.
   if (heard) {
     node_matched_ = newest.coordinator_matched;
+    if (newest.state == NodeHeartbeat::kFaulted && newest.fault_text[0] != '\0') {
+      std::ranges::copy(newest.fault_text, node_fault_text_.begin());
+      node_fault_text_.back() = '\0';
+    }
     if (!same_period(newest.control_period_s, config_.qos.control_period_s)) {
       refuse(NodeRefusal::Kind::kRateMismatch, 0, newest.control_period_s);
     } else if (newest.serving_run_id != 0 && newest.serving_run_id != config_.run_id) {
@@ -75,6 +79,16 @@ bool DdsLink::wait_for_node(double timeout_s) {
     dds_sleepfor(DDS_MSECS(10));
   }
   return refusal_.kind == NodeRefusal::Kind::kNone;
+}
+
+std::string DdsLink::node_fault_text(double wait_s) {
+  const std::int64_t until = realtime::monotonic_now_ns() + static_cast<std::int64_t>(wait_s * 1e9);
+  for (;;) {
+    node_reports_matched();
+    if (node_fault_text_[0] != '\0' || realtime::monotonic_now_ns() > until) break;
+    dds_sleepfor(DDS_MSECS(10));
+  }
+  return std::string(node_fault_text_.data());
 }
 
 std::string DdsLink::refusal_text() const {

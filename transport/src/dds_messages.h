@@ -55,6 +55,9 @@ inline void copy_heartbeat(const NodeHeartbeat& in, rpsd_dds_NodeHeartbeat& out)
   out.control_period_s = in.control_period_s;
   out.coordinator_matched = in.coordinator_matched;
   out.serving_run_id = in.serving_run_id;
+  static_assert(sizeof(out.fault_text) == kFaultTextBytes);
+  std::ranges::copy(in.fault_text, std::begin(out.fault_text));
+  out.fault_text[kFaultTextBytes - 1] = '\0';
 }
 
 }  // namespace rpsd::transport

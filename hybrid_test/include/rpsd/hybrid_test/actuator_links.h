@@ -61,6 +61,9 @@ class ActuatorLinks {
   bool refused() const;
   // Every site's refusal, as sentences ("site 1 is serving another run (...)"). Not real-time safe.
   std::string refusal_text() const;
+  // After a node fault: what each faulted node says faulted it ("site 1: ..."), joined by
+  // "; "; empty when none says. Not real-time safe.
+  std::string node_fault_text();
   // Tells every site's node that the run is over, once, so that it may serve the next run at
   // once. Not real-time safe.
   void end_run();

@@ -47,6 +47,7 @@ struct TestRun {
   coordinator::LimitStop limit_stop;      // the coordinator limit that stopped it, if one did
   std::uint64_t run_id = 0;               // this run's identity on every command
   std::string refusal;                    // coordinator::StepOutcome::kRefused: which site refused the run and why
+  std::string node_fault;                 // kNodeFault: what the faulted nodes say faulted them ("site 1: ...")
   TimingReport timing;
 };
 

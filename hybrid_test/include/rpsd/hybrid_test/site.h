@@ -43,6 +43,9 @@ class Site {
   // it did not. Not real-time safe.
   virtual std::string refusal_text() const { return {}; }
   virtual std::string failure() const { return {}; }
+  // After the run stopped on a node fault: what faulted the site's node, as it says (a lab
+  // controller's own words when it gave any); empty when it says nothing. Not real-time safe.
+  virtual std::string node_fault_text() { return {}; }
   // Tells the site's node that the run is over. Not real-time safe.
   virtual void end_run() {}
 };

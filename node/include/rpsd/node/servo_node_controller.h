@@ -146,6 +146,9 @@ class ServoNodeController {
   // runs, the last run.
   std::int64_t newest_accepted_step() const { return last_accepted_step_; }
   bool faulted() const { return fault_; }
+  // What latched the fault: the actuator's words (a lab controller's refusal, a silent
+  // target) or the limit that aborted; empty when not faulted. NUL-terminated.
+  const std::array<char, transport::kFaultTextBytes>& fault_text() const { return fault_text_; }
   bool holding() const { return holding_; }
   bool in_safe_state() const { return safe_state_; }
   // The command sent to the actuator on the last tick (the initial displacement before).
@@ -163,6 +166,8 @@ class ServoNodeController {
   std::uint32_t check_measurement();
   void log(const LimitEvent& event);
   void latch_fault();
+  void keep_fault_text(std::string_view text) noexcept;
+  void describe_fault(const LimitEvent& e) noexcept;
 
   ServoNodeConfig config_;
   servo::Actuator& actuator_;
@@ -193,6 +198,7 @@ class ServoNodeController {
   bool holding_ = false;
   bool safe_state_ = false;
   bool fault_ = false;
+  std::array<char, transport::kFaultTextBytes> fault_text_{};
   std::array<std::array<bool, kLimitKinds>, transport::kMaxChannels> limit_was_active_{};
   // Per channel, stroke and force: the measurement was beyond what none may reach last tick.
   std::array<std::array<bool, 2>, transport::kMaxChannels> measurement_was_beyond_{};

@@ -96,6 +96,7 @@ class UdpControllerActuator final : public servo::Actuator, public ActuatorLinkR
   servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s,
                                  servo::ActuatorReading& reading) override;
 
+  std::string_view fault_text() const noexcept override { return fault_text_; }
   const UdpControllerCounters& counters() const { return counters_; }
   std::string_view summary_key() const override { return "udp_link"; }
   std::string describe_link() const override;
@@ -129,6 +130,7 @@ class UdpControllerActuator final : public servo::Actuator, public ActuatorLinkR
   std::uint64_t sequence_ = 0;
   int consecutive_missed_ = 0;
   bool link_fault_ = false;
+  std::string_view fault_text_;  // a literal: set on the control path without allocation
 };
 
 // One line for a node's start: the controller, the protocol and, for version 1, that nothing

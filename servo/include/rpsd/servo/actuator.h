@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 namespace rpsd::servo {
 
@@ -46,6 +47,11 @@ class Actuator {
   // that period in `reading`. On kNoReply the values in `reading` are left untouched and
   // reading.fresh is false. Real-time safe: no allocation, no locks, no exceptions.
   virtual ActuatorStatus exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) = 0;
+
+  // After a kFault: what failed, in the lab controller's own words when it gave any ("the
+  // target stopped answering", a site's refusal); empty when there is nothing to add. The
+  // view stays valid until the next exchange() or start(). Real-time safe.
+  virtual std::string_view fault_text() const noexcept { return {}; }
 };
 
 }  // namespace rpsd::servo

@@ -79,6 +79,11 @@ class DdsLink final : public Link {
   // real-time safe.
   std::string refusal_text() const;
 
+  // What faulted the site's node, as its heartbeat says (the lab controller's own words when
+  // it gave any), waiting up to wait_s for a heartbeat that says it; empty when none did. A
+  // node announces its fault at once. Not real-time safe.
+  std::string node_fault_text(double wait_s);
+
   // Tells the node the run is over, so that it may serve another at once (a node also frees
   // itself after a silence); nothing when no command was sent. Not real-time safe.
   void end_run();
@@ -109,7 +114,8 @@ class DdsLink final : public Link {
   DdsEntity heartbeat_subscriber_, heartbeat_reader_;
   bool node_matched_ = false;
   NodeRefusal refusal_;
-  std::uint64_t node_writer_ = 0;  // the writer of the first feedback of this run (0: none yet)
+  std::array<char, kFaultTextBytes> node_fault_text_{};  // from the newest faulted heartbeat
+  std::uint64_t node_writer_ = 0;                        // the writer of the first feedback of this run (0: none yet)
   std::int64_t sent_step_ = -1;
   std::int64_t sent_at_ns_ = 0;
   std::int64_t receive_deadline_ns_ = 0;

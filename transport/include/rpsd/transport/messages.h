@@ -10,6 +10,8 @@
 namespace rpsd::transport {
 
 inline constexpr int kMaxChannels = 8;
+// Room for a node's fault in its heartbeat (NodeHeartbeat::fault_text).
+inline constexpr std::size_t kFaultTextBytes = 160;
 
 // Displacement commands for one control step.
 struct CommandSample {
@@ -90,6 +92,9 @@ struct NodeHeartbeat {
   // discovery done on the node's side too). Filled in by DdsNodeEndpoint::publish_heartbeat.
   bool coordinator_matched = false;
   std::uint64_t serving_run_id = 0;  // the run the node serves (0: none)
+  // kFaulted: what faulted the node (the lab controller's own words when it gave any),
+  // NUL-terminated and cut to fit; empty otherwise.
+  std::array<char, kFaultTextBytes> fault_text{};
 };
 
 // A new run's identity: 64 random bits from std::random_device, never 0 (which means no run).
