@@ -9,6 +9,7 @@
 
 #include "rpsd/commands.h"
 #include "rpsd/hybrid_test/hybrid_test_output.h"
+#include "rpsd/node/servo_node_overview.h"
 #include "rpsd/output/results_files.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/scenarios/site_server_file.h"
@@ -180,7 +181,7 @@ void add_run(CLI::App& app) {
 void add_validate(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   auto* validate = app.add_subcommand("validate", "Check a scenario without running it");
-  validate->add_option("scenario", options->scenario, "Scenario file, or a site-server file (YAML)")
+  validate->add_option("scenario", options->scenario, "Scenario file, a site-server file or a servo node's file (YAML)")
       ->required()
       ->check(CLI::ExistingFile);
   validate->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
@@ -189,6 +190,12 @@ void add_validate(CLI::App& app) {
       const auto site = scenarios::load_site_server(options->scenario, parse_overrides(options->overrides));
       std::cout << options->scenario << ": ok (a site-server file)\n";
       site_server::print_site_overview(site, std::cout);
+      return;
+    }
+    if (scenarios::is_servo_node_file(options->scenario)) {
+      const auto node = scenarios::load_servo_node(options->scenario, parse_overrides(options->overrides));
+      std::cout << options->scenario << ": ok (a servo node's file)\n";
+      node::print_node_overview(node, std::cout);
       return;
     }
     const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));

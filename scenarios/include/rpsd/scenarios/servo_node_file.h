@@ -17,6 +17,10 @@ namespace rpsd::scenarios {
 // Throws ConfigError naming file:line:column and the key path.
 node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
 
+// A servo node's file (top-level `node` and `actuator`, no `study`): what `rpsd validate`
+// checks as one. Throws ConfigError for a file that is not YAML.
+bool is_servo_node_file(const std::filesystem::path& file);
+
 node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::path& file,
                                                        const std::vector<Override>& overrides = {});
 
