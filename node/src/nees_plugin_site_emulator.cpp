@@ -263,8 +263,10 @@ void PluginSiteEmulator::handle(const std::string& text) {
   const std::vector<std::string> f = split_tabs(line);
   const std::string& command = f[0];
   ++counters_.requests;
-  if (config_.fault == PluginSiteFault::kStopAnswering &&
-      counters_.executes >= static_cast<std::uint64_t>(config_.fault_after_steps)) {
+  // Silent from the first proposal after the steps it executes normally.
+  silent_ = silent_ || (config_.fault == PluginSiteFault::kStopAnswering && command == "propose" &&
+                        counters_.executes >= static_cast<std::uint64_t>(config_.fault_after_steps));
+  if (silent_) {
     ++counters_.unanswered;
     return;
   }

@@ -38,7 +38,7 @@ struct PluginSiteControlPoint {
 // Misbehaviour on purpose, for tests and rehearsals of a failure.
 enum class PluginSiteFault : std::uint8_t {
   kNone,
-  kStopAnswering,     // reads every request and answers none
+  kStopAnswering,     // reads every request from the next proposal on and answers none
   kGarbage,           // answers get-control-point with values that are no numbers
   kOverlong,          // answers get-control-point with a line of 64 KiB
   kWrongTransaction,  // answers get-control-point with another transaction
@@ -116,6 +116,7 @@ class PluginSiteEmulator {
   std::array<std::uint8_t, 4> node_address_{};
   std::optional<TcpStream> session_;
   bool opened_ = false;
+  bool silent_ = false;  // PluginSiteFault::kStopAnswering has begun
   std::string proposed_, executed_;  // transactions
   std::vector<double> proposed_m_, command_m_;
   servo::ActuatorReading reading_;
