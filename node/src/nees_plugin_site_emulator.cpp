@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 
 namespace rpsd::node {
@@ -48,7 +49,7 @@ int PluginSiteConfig::channels() const {
   return n;
 }
 
-PluginSiteConfig PluginSiteConfig::read(config::Source& s) {
+PluginSiteConfig PluginSiteConfig::read(config::Source& s, std::vector<std::unique_ptr<config::Source>>& dof_sections) {
   PluginSiteConfig c;
   c.bind_host = s.optional_text("bind_host", "the address it listens on (default: 127.0.0.1)").value_or(c.bind_host);
   c.port = static_cast<std::uint16_t>(s.whole_number("port", 1, 65535, "the TCP port its plugin listens on"));
@@ -68,11 +69,15 @@ PluginSiteConfig PluginSiteConfig::read(config::Source& s) {
       dof.displacement_per_si = d->number_or("displacement_per_si", 1.0,
                                              {"", "the site's unit of displacement per m", 0.0, 1.0e9, true});
       dof.force_per_si = d->number_or("force_per_si", 1.0, {"", "the site's unit of force per N", 0.0, 1.0e9, true});
-      if (limits.size() != 2 || !(limits[0] < limits[1])) d->fail("limits", "give [lowest, highest], lowest first");
-      dof.lower_limit = limits[0];
-      dof.upper_limit = limits[1];
+      if (limits.size() == 2) {
+        dof.lower_limit = limits[0];
+        dof.upper_limit = limits[1];
+      } else {
+        dof.lower_limit = dof.upper_limit = 0.0;  // refused below
+      }
       d->finish();
       point.dofs.push_back(dof);
+      dof_sections.push_back(std::move(d));
     }
     p->finish();
     c.control_points.push_back(point);
@@ -89,17 +94,27 @@ PluginSiteConfig PluginSiteConfig::read(config::Source& s) {
     fault->finish();
   }
   s.finish();
-  if (c.channels() > servo::kMaxChannels) {
+  return c;
+}
+
+void PluginSiteConfig::check(config::Source& s, std::vector<std::unique_ptr<config::Source>>& dof_sections) const {
+  std::size_t n = 0;
+  for (const auto& point : control_points) {
+    for (const auto& dof : point.dofs) {
+      if (!(dof.lower_limit < dof.upper_limit)) dof_sections[n]->fail("limits", "give [lowest, highest], lowest first");
+      ++n;
+    }
+  }
+  if (channels() > servo::kMaxChannels) {
     s.fail("control_points", "at most " + std::to_string(servo::kMaxChannels) + " dofs in all");
   }
-  for (const auto& [key, host] : {std::pair{"bind_host", c.bind_host}, std::pair{"node_host", c.node_host}}) {
+  for (const auto& [key, host] : {std::pair{"bind_host", bind_host}, std::pair{"node_host", node_host}}) {
     try {
       Ipv4Endpoint::parse(host, 0, key);
     } catch (const std::invalid_argument& e) {
       s.fail(key, e.what());
     }
   }
-  return c;
 }
 
 PluginSiteEmulator::PluginSiteEmulator(std::span<servo::Plant* const> plants, const PluginSiteConfig& config)

@@ -241,7 +241,10 @@ void node_file(Document& doc) {
   doc.table("The file's own keys",
             listing("", [site](config::Source& s) mutable { ns::plugin_site_file(s, site); },
                     {"plugin_site", "actuator"}));
-  doc.table("plugin_site", listing("plugin_site", [](config::Source& s) { (void)node::PluginSiteConfig::read(s); }));
+  doc.table("plugin_site", listing("plugin_site", [](config::Source& s) {
+              std::vector<std::unique_ptr<config::Source>> dofs;
+              (void)node::PluginSiteConfig::read(s, dofs);
+            }));
   doc.table("actuator",
             listing("actuator", [&site](config::Source& s) { ns::plugin_site_actuator(s, site); }, {"actuator.servo"}),
             "One actuator per dof, in the order of the control points; `actuator.servo` takes a scenario's `servo` "

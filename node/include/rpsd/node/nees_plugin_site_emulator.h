@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -54,8 +55,12 @@ struct PluginSiteConfig {
   long fault_after_steps = 0;  // steps executed normally before the fault
 
   int channels() const;  // the dofs of every control point, in order
-  // The keys of a plugin_site section. Not real-time safe.
-  static PluginSiteConfig read(config::Source& site);
+  // The keys of a plugin_site section; each dof's section goes to `dof_sections`, for check().
+  // Not real-time safe.
+  static PluginSiteConfig read(config::Source& site, std::vector<std::unique_ptr<config::Source>>& dof_sections);
+  // Then, once every key of the file is read (so that a listing of the keys has seen them
+  // all): the limits, the dof count and the addresses, failing at the key.
+  void check(config::Source& site, std::vector<std::unique_ptr<config::Source>>& dof_sections) const;
 };
 
 struct PluginSiteCounters {
