@@ -235,7 +235,7 @@ void node_file(Document& doc) {
             listing("actuator", [&e](config::Source& s) { ns::emulator_actuator(s, e); }, {"actuator.servo"}),
             "`actuator.servo` takes a scenario's `servo` keys.");
   doc.heading(2, "Plugin site emulator file (`rpsd plugin-site-emulator`)",
-              "A NEES/LabVIEW plugin site in software (docs/lab-controllers.md): its control points, their limits "
+              "A NEES/LabVIEW plugin site in software (docs/lab-controllers-plugin.md): its control points, their limits "
               "and the simulated actuators behind them.");
   node::PluginSiteEmulatorSetup site;
   doc.table("The file's own keys",

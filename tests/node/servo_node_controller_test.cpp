@@ -17,6 +17,7 @@
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/udp_controller_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
+#include "nees_plugin_test_site.h"
 #include "udp_test_link.h"
 
 namespace rpsd::node {
@@ -873,6 +874,36 @@ TEST(ServoNodeController, AMeasurementAtTheRigsStrokeFromTheUdpAdapterFaultsTheN
   ASSERT_EQ(node.events().size(), 1u);
   EXPECT_EQ(node.events()[0].cause, LimitCause::kRigEnvelope);
   for (const auto& command_m : node.command_m()) EXPECT_LE(command_m, 0.0475);  // never beyond its command
+}
+
+// The same from a NEES plugin site, whose protocol carries no end-stop flag either.
+TEST(ServoNodeController, AMeasurementAtTheRigsStrokeFromThePluginAdapterFaultsTheNode) {
+  servo::TransferFunctionPlantParameters p;
+  p.transfer_function = {servo::Polynomial{1100.0}, servo::Polynomial{1000.0, 1.0}};
+  p.rig = {0.05, 1e6, 100.0};
+  servo::TransferFunctionPlant plant(p);
+  servo::Plant* plants[] = {&plant};
+  PluginSiteConfig site_config;
+  site_config.step_duration_s = 1.0 / 1024.0;
+  site_config.control_points = {{"MDL-00-01", {{"x", "translation", -1.0, 1.0, 1.0, 1.0}}}};
+  PluginSiteEmulator site(plants, site_config);
+  site.start(std::vector<double>{0.0});
+  const testing::ServingSite serving(site);
+  NeesPluginActuator actuator(testing::plugin_adapter_config(
+      site, {{"MDL-00-01", nees_plugin::Axis::kX, nees_plugin::Motion::kTranslation, 1.0, 1.0}}));
+  auto c = config();
+  limit_to_envelope(c, p.rig);
+  ServoNodeController node(c, actuator);
+  node.start(std::vector<double>{0.0});
+  FeedbackSample out;
+  std::int64_t step = 1;
+  for (; step <= 400 && !node.faulted(); ++step) out = send(node, command(step, {0.0475}));
+  ASSERT_TRUE(node.faulted()) << out.displacement_m[0];
+  EXPECT_NEAR(out.displacement_m[0], 0.05, 1e-12);  // the end stop, through %.10E
+  EXPECT_NE(out.status & transport::kNodeFault, 0u);
+  ASSERT_EQ(node.events().size(), 1u);
+  EXPECT_EQ(node.events()[0].cause, LimitCause::kRigEnvelope);
+  EXPECT_EQ(actuator.failed_side(), "none");  // the link is whole: the node faulted on what it read
 }
 
 namespace run_identity {

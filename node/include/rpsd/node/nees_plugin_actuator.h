@@ -39,7 +39,7 @@ struct NeesPluginChannel {
 struct NeesPluginParameters {
   static constexpr std::string_view kName = "nees_plugin";
   static constexpr std::string_view kSummary =
-      "a NEES/LabVIEW plugin site, OpenFresco's ECLabVIEW protocol over TCP (docs/lab-controllers.md)";
+      "a NEES/LabVIEW plugin site, OpenFresco's ECLabVIEW protocol over TCP (docs/lab-controllers-plugin.md)";
   static NeesPluginParameters read(config::Source& section, int channels);
   static OwnedActuator make(const NeesPluginParameters& config, int channels);
   servo::Envelope envelope() const { return rig; }
