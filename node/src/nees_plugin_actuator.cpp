@@ -117,8 +117,8 @@ void NeesPluginParameters::validate() const {
       throw std::invalid_argument(at + "displacement_per_si and force_per_si: must be positive");
     for (std::size_t d = 0; d < c; ++d) {
       if (channel_map[d].control_point == m.control_point && channel_map[d].axis == m.axis) {
-        throw std::invalid_argument(at + "axis: channel " + std::to_string(d) + " is already " + m.control_point +
-                                    " " + std::string(np::axis_word(m.axis)));
+        throw std::invalid_argument(at + "axis: channel " + std::to_string(d) + " is already " + m.control_point + " " +
+                                    std::string(np::axis_word(m.axis)));
       }
     }
   }
@@ -314,8 +314,8 @@ bool NeesPluginActuator::transact(std::span<const double> command_m, double dead
 
 void NeesPluginActuator::throw_start_failure(const std::string& what) const {
   std::ostringstream message;
-  message << "NeesPluginActuator: the site at " << site_.to_string() << " " << what << " ("
-          << failure_name(failure_) << " at " << stage_name(failed_stage_) << ")";
+  message << "NeesPluginActuator: the site at " << site_.to_string() << " " << what << " (" << failure_name(failure_)
+          << " at " << stage_name(failed_stage_) << ")";
   if (site_message_size_ > 0) message << ": \"" << site_message() << "\"";
   throw std::runtime_error(message.str());
 }
@@ -386,12 +386,12 @@ NeesPluginParameters NeesPluginParameters::read(config::Source& section, int cha
   p.channels = channels;
   p.host = section.text("host", "the site's address (dotted IPv4): the only peer the node talks to");
   p.port = static_cast<std::uint16_t>(section.whole_number("port", 1, 65535, "the site's TCP port (its plugin's)"));
-  p.local_host = section.optional_text("local_host", "the node's address to connect from (dotted IPv4)")
-                     .value_or(p.local_host);
+  p.local_host =
+      section.optional_text("local_host", "the node's address to connect from (dotted IPv4)").value_or(p.local_host);
   p.local_port = static_cast<std::uint16_t>(
       section.whole_number_or("local_port", 0, 65535, 0, "the node's port to connect from (0: any free one)"));
-  p.session_name = section.optional_text("session_name", "the name open-session and close-session give")
-                       .value_or(p.session_name);
+  p.session_name =
+      section.optional_text("session_name", "the name open-session and close-session give").value_or(p.session_name);
   const auto parameters = section.optional_texts(
       "parameters", "set-parameter lines sent at start, each its fields separated by spaces ([none]: none)", 16);
   auto maps = section.sections("channel_map", servo::kMaxChannels, "each channel's control point at the site");
@@ -402,9 +402,9 @@ NeesPluginParameters NeesPluginParameters::read(config::Source& section, int cha
     const std::string motion = map->choice_or("motion", {"translation", "rotation"}, "translation",
                                               "translation: displacement and force; rotation: rotation and moment");
     m.motion = motion == "rotation" ? np::Motion::kRotation : np::Motion::kTranslation;
-    m.displacement_per_si = map->number_or(
-        "displacement_per_si", 1.0,
-        {"", "the site's unit of displacement per m, of rotation per rad (1000: mm)", 0.0, 1.0e9, true});
+    m.displacement_per_si =
+        map->number_or("displacement_per_si", 1.0,
+                       {"", "the site's unit of displacement per m, of rotation per rad (1000: mm)", 0.0, 1.0e9, true});
     m.force_per_si = map->number_or(
         "force_per_si", 1.0, {"", "the site's unit of force per N, of moment per N m (0.001: kN)", 0.0, 1.0e9, true});
     map->finish();
@@ -418,9 +418,9 @@ NeesPluginParameters NeesPluginParameters::read(config::Source& section, int cha
   p.start_tolerance_m =
       section.number_or("start_tolerance_m", p.start_tolerance_m,
                         Number::between(0.0, 1.0, "m", "largest |measured - initial| displacement at start"));
-  p.start_tolerance_rad = section.number_or(
-      "start_tolerance_rad", p.start_tolerance_rad,
-      Number::between(0.0, 3.2, "rad", "largest |measured - initial| rotation at start"));
+  p.start_tolerance_rad =
+      section.number_or("start_tolerance_rad", p.start_tolerance_rad,
+                        Number::between(0.0, 3.2, "rad", "largest |measured - initial| rotation at start"));
   const auto rig = section.optional_section("rig", "what the rig behind the site can do (required)");
   if (!rig) {
     section.fail("rig", "a hardware node must state its rig's envelope: rig: {stroke_m, force_n, velocity_m_per_s}");
@@ -439,8 +439,8 @@ NeesPluginParameters NeesPluginParameters::read(config::Source& section, int cha
     }
   }
   if (static_cast<int>(maps.size()) != channels) {
-    section.fail("channel_map", "one entry per channel (" + std::to_string(channels) + "), got " +
-                                    std::to_string(maps.size()));
+    section.fail("channel_map",
+                 "one entry per channel (" + std::to_string(channels) + "), got " + std::to_string(maps.size()));
   }
   for (std::size_t c = 0; c < maps.size(); ++c) {
     const NeesPluginChannel& m = p.channel_map[c];
@@ -485,8 +485,8 @@ std::string NeesPluginActuator::describe_link() const {
   for (int c = 0; c < config_.channels; ++c) {
     const auto& m = config_.channel_map[c];
     const bool rotation = m.motion == np::Motion::kRotation;
-    line << (c > 0 ? ", " : "") << "channel " << c << " = " << m.control_point << " " << np::axis_word(m.axis)
-         << " at " << initial_.displacement_m[c] << (rotation ? " rad, " : " m, ") << initial_.force_n[c]
+    line << (c > 0 ? ", " : "") << "channel " << c << " = " << m.control_point << " " << np::axis_word(m.axis) << " at "
+         << initial_.displacement_m[c] << (rotation ? " rad, " : " m, ") << initial_.force_n[c]
          << (rotation ? " N m" : " N");
   }
   line << "; the protocol carries no authentication: the node talks to this one address only";
@@ -531,8 +531,8 @@ nlohmann::json NeesPluginActuator::link_summary() const {
           {"initial_reading",
            {{"displacement", std::vector<double>(initial_.displacement_m.begin(),
                                                  initial_.displacement_m.begin() + static_cast<long>(channels))},
-            {"force", std::vector<double>(initial_.force_n.begin(),
-                                          initial_.force_n.begin() + static_cast<long>(channels))}}},
+            {"force",
+             std::vector<double>(initial_.force_n.begin(), initial_.force_n.begin() + static_cast<long>(channels))}}},
           {"failed_side", failed_side()},
           {"failure", failure_name(failure_)},
           {"failed_stage", stage_name(failed_stage_)},

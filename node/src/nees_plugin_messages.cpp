@@ -72,8 +72,8 @@ void LineWriter::number(double value) noexcept {
   // printf's %.10E: one digit, ten decimals, an upper-case E and a signed exponent of at least
   // two digits, as to_chars writes it in lower case.
   std::array<char, 32> text{};
-  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), value,
-                                          std::chars_format::scientific, 10);
+  const auto [end, error] =
+      std::to_chars(text.data(), text.data() + text.size(), value, std::chars_format::scientific, 10);
   if (error != std::errc{}) {
     failed_ = true;
     return;

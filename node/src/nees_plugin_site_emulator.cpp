@@ -66,8 +66,8 @@ PluginSiteConfig PluginSiteConfig::read(config::Source& s, std::vector<std::uniq
                                 "translation: displacement and force; rotation: rotation and moment");
       const auto limits = d->numbers(
           "limits", config::Number::any("", "the lowest and highest displacement it accepts, in the site's units"), 2);
-      dof.displacement_per_si = d->number_or("displacement_per_si", 1.0,
-                                             {"", "the site's unit of displacement per m", 0.0, 1.0e9, true});
+      dof.displacement_per_si =
+          d->number_or("displacement_per_si", 1.0, {"", "the site's unit of displacement per m", 0.0, 1.0e9, true});
       dof.force_per_si = d->number_or("force_per_si", 1.0, {"", "the site's unit of force per N", 0.0, 1.0e9, true});
       if (limits.size() == 2) {
         dof.lower_limit = limits[0];
@@ -85,8 +85,7 @@ PluginSiteConfig PluginSiteConfig::read(config::Source& s, std::vector<std::uniq
   if (auto fault = s.optional_section("fault", "misbehave on purpose after some steps (rehearsing a failure)")) {
     const std::string kind =
         fault->choice("kind", {"stop_answering", "garbage", "overlong", "wrong_transaction"}, "how it misbehaves");
-    c.fault_after_steps =
-        fault->whole_number_or("after_steps", 0, 1'000'000'000L, 0, "steps executed normally first");
+    c.fault_after_steps = fault->whole_number_or("after_steps", 0, 1'000'000'000L, 0, "steps executed normally first");
     c.fault = kind == "stop_answering" ? PluginSiteFault::kStopAnswering
               : kind == "garbage"      ? PluginSiteFault::kGarbage
               : kind == "overlong"     ? PluginSiteFault::kOverlong
@@ -191,16 +190,15 @@ void PluginSiteEmulator::propose(const std::vector<std::string>& f) {
       }
       first += static_cast<int>(p.dofs.size());
     }
-    if (point == nullptr) return refused( "there is no control point " + name + " at this site");
+    if (point == nullptr) return refused("there is no control point " + name + " at this site");
     for (; i < f.size() && f[i] != "control-point"; i += 3) {
       if (i + 2 >= f.size()) return refused("control point " + name + ": a value is cut short");
       const std::string &axis = f[i], &parameter = f[i + 1];
-      const auto dof = std::find_if(point->dofs.begin(), point->dofs.end(),
-                                    [&](const PluginSiteDof& d) { return d.axis == axis; });
+      const auto dof =
+          std::find_if(point->dofs.begin(), point->dofs.end(), [&](const PluginSiteDof& d) { return d.axis == axis; });
       if (dof == point->dofs.end()) return refused(name + " has no axis " + axis);
       const bool translation = dof->motion == "translation";
-      if (parameter == "force" || parameter == "moment")
-        return refused("this site takes no " + parameter + " control");
+      if (parameter == "force" || parameter == "moment") return refused("this site takes no " + parameter + " control");
       if (parameter != (translation ? "displacement" : "rotation"))
         return refused(name + " " + axis + " takes no " + parameter);
       double value = 0.0;
@@ -208,9 +206,9 @@ void PluginSiteEmulator::propose(const std::vector<std::string>& f) {
         return refused(name + " " + axis + " " + parameter + ": \"" + f[i + 2] + "\" is no number");
       if (value < dof->lower_limit || value > dof->upper_limit) {
         return refused("proposal refused: " + name + " " + axis + " " + parameter + " " + e10(value) +
-                                       " is beyond the site's limit " +
-                                       e10(value < dof->lower_limit ? dof->lower_limit : dof->upper_limit) +
-                                       " (limits " + e10(dof->lower_limit) + " to " + e10(dof->upper_limit) + ")");
+                       " is beyond the site's limit " +
+                       e10(value < dof->lower_limit ? dof->lower_limit : dof->upper_limit) + " (limits " +
+                       e10(dof->lower_limit) + " to " + e10(dof->upper_limit) + ")");
       }
       target[static_cast<std::size_t>(first + (dof - point->dofs.begin()))] = value / dof->displacement_per_si;
     }
@@ -255,8 +253,7 @@ void PluginSiteEmulator::get_control_point(const std::vector<std::string>& f) {
       return refuse(f[1], "there is no control point " + f[n] + " at this site");
     }
     if (faulty() && config_.fault == PluginSiteFault::kOverlong) return answer(std::string(65536, 'A'));
-    const std::string transaction =
-        faulty() && config_.fault == PluginSiteFault::kWrongTransaction ? f[1] + "0" : f[1];
+    const std::string transaction = faulty() && config_.fault == PluginSiteFault::kWrongTransaction ? f[1] + "0" : f[1];
     std::string line = "OK\t0\t" + transaction + "\t" + point->name;
     for (const auto& dof : point->dofs) {
       const bool translation = dof.motion == "translation";
@@ -332,8 +329,8 @@ PluginSiteEmulator::Served PluginSiteEmulator::serve(double timeout_s) {
       // One session at a time: whoever else connects is told so and closed.
       if (auto other = listener_.accept(0.0)) {
         ++counters_.refused_clients;
-        refuse_client(*other, "this site serves one session at a time; " + session_->peer().to_string() +
-                                  " is in session");
+        refuse_client(*other,
+                      "this site serves one session at a time; " + session_->peer().to_string() + " is in session");
         return Served::kRefusedClient;
       }
       std::size_t size = 0;

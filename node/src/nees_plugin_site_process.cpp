@@ -12,8 +12,8 @@ nlohmann::json emulate_plugin_site(const PluginSiteEmulatorSetup& setup, const S
   PluginSiteEmulator site(plants.pointers, setup.site);
   site.start(setup.initial_displacement_m);
   log << "rpsd plugin-site-emulator: listening on tcp " << setup.site.bind_host << ":" << site.port() << ", "
-      << setup.site.control_points.size() << " control point(s), " << site.channels()
-      << " dof(s), serving node " << setup.site.node_host << " only, one session at a time" << std::endl;
+      << setup.site.control_points.size() << " control point(s), " << site.channels() << " dof(s), serving node "
+      << setup.site.node_host << " only, one session at a time" << std::endl;
   const std::int64_t end_ns =
       options.duration_s > 0.0 ? realtime::monotonic_now_ns() + static_cast<std::int64_t>(options.duration_s * 1e9) : 0;
   while (!stop.load() && (end_ns == 0 || realtime::monotonic_now_ns() < end_ns)) site.serve(0.05);

@@ -256,7 +256,9 @@ TEST(NeesPluginActuator, StartRefusesASiteThatDoesNotStandAtTheInitialDisplaceme
 class ScriptedSite {
  public:
   explicit ScriptedSite(std::function<std::string(const std::string&)> answer)
-      : listener_(Ipv4Endpoint::parse("127.0.0.1", 0, "site")), answer_(std::move(answer)), thread_([this] { run(); }) {}
+      : listener_(Ipv4Endpoint::parse("127.0.0.1", 0, "site")),
+        answer_(std::move(answer)),
+        thread_([this] { run(); }) {}
   ~ScriptedSite() {
     stop_.store(true);
     thread_.join();

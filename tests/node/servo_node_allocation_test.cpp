@@ -12,13 +12,13 @@
 
 #include "../servo/paper_rig.h"
 #include "allocation_counter.h"
+#include "nees_plugin_test_site.h"
 #include "rpsd/node/controller_emulator.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/udp_controller_actuator.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
-#include "nees_plugin_test_site.h"
 #include "udp_test_link.h"
 
 namespace rpsd::node {
@@ -150,7 +150,8 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverTheAuthenticatedUdpAdapter) {
 // site emulator's thread is not counted).
 TEST(ServoNodeAllocation, NoAllocationPerTickOverTheNeesPluginAdapter) {
   PluginSiteConfig config;
-  config.control_points = {{"LBCB1", {{"x", "translation", -100, 100, 1000, 1}, {"y", "translation", -100, 100, 1000, 1}}}};
+  config.control_points = {
+      {"LBCB1", {{"x", "translation", -100, 100, 1000, 1}, {"y", "translation", -100, 100, 1000, 1}}}};
   testing::EmulatedSite site(config, {1e5, 2e5});
   NeesPluginActuator adapter(testing::plugin_adapter_config(
       site.emulator(), {{"LBCB1", nees_plugin::Axis::kX, nees_plugin::Motion::kTranslation, 1000, 1},

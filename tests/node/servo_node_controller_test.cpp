@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "nees_plugin_test_site.h"
 #include "rpsd/node/controller_emulator.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/udp_controller_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
-#include "nees_plugin_test_site.h"
 #include "udp_test_link.h"
 
 namespace rpsd::node {

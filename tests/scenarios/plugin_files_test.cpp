@@ -116,23 +116,30 @@ TEST_F(PluginFiles, ABadNodeFileIsRefusedAtItsLineAndKey) {
   const std::string head = "  channels: 2\n  host: 127.0.0.1\n  port: 44000\n";  // lines 5-7
   {
     const fs::path f = node_file(head + "  channel_map: [{control_point: A, axis: x}]\n" + kRig);
-    expect_at(error_of([&] { (void)load_servo_node(f); }), f, 8, "actuator.channel_map: one entry per channel (2), got 1");
+    expect_at(error_of([&] { (void)load_servo_node(f); }), f, 8,
+              "actuator.channel_map: one entry per channel (2), got 1");
   }
   {
-    const fs::path f = node_file(head + "  channel_map:\n    - {control_point: A, axis: x}\n    - {control_point: A, axis: x}\n" + kRig);
-    expect_at(error_of([&] { (void)load_servo_node(f); }), f, 10, "actuator.channel_map[1].axis: channel 0 is already A x");
+    const fs::path f = node_file(
+        head + "  channel_map:\n    - {control_point: A, axis: x}\n    - {control_point: A, axis: x}\n" + kRig);
+    expect_at(error_of([&] { (void)load_servo_node(f); }), f, 10,
+              "actuator.channel_map[1].axis: channel 0 is already A x");
   }
   {
-    const fs::path f = node_file(head + "  channel_map:\n    - {control_point: A, axis: w}\n    - {control_point: B, axis: x}\n" + kRig);
+    const fs::path f = node_file(
+        head + "  channel_map:\n    - {control_point: A, axis: w}\n    - {control_point: B, axis: x}\n" + kRig);
     expect_at(error_of([&] { (void)load_servo_node(f); }), f, 9, "actuator.channel_map[0].axis");
   }
   {
-    const fs::path f = node_file(head + "  channel_map:\n    - {control_point: \"A B\", axis: x}\n    - {control_point: B, axis: x}\n" + kRig);
+    const fs::path f = node_file(
+        head + "  channel_map:\n    - {control_point: \"A B\", axis: x}\n    - {control_point: B, axis: x}\n" + kRig);
     expect_at(error_of([&] { (void)load_servo_node(f); }), f, 9, "actuator.channel_map[0].control_point");
   }
   {
-    const fs::path f = node_file(head + "  channel_map:\n    - {control_point: A, axis: x, force_per_si: 0}\n"
-                                        "    - {control_point: B, axis: x}\n" + kRig);
+    const fs::path f = node_file(head +
+                                 "  channel_map:\n    - {control_point: A, axis: x, force_per_si: 0}\n"
+                                 "    - {control_point: B, axis: x}\n" +
+                                 kRig);
     expect_at(error_of([&] { (void)load_servo_node(f); }), f, 9, "actuator.channel_map[0].force_per_si");
   }
   {
@@ -140,12 +147,16 @@ TEST_F(PluginFiles, ABadNodeFileIsRefusedAtItsLineAndKey) {
     expect_at(error_of([&] { (void)load_servo_node(f); }), f, 4, "actuator.rig: a hardware node must state its rig");
   }
   {
-    const fs::path f = node_file(head + "  reply_timeout_s: 0\n  channel_map: [{control_point: A, axis: x}, {control_point: B, axis: y}]\n" + kRig);
+    const fs::path f = node_file(
+        head + "  reply_timeout_s: 0\n  channel_map: [{control_point: A, axis: x}, {control_point: B, axis: y}]\n" +
+        kRig);
     expect_at(error_of([&] { (void)load_servo_node(f); }), f, 8, "actuator.reply_timeout_s");
   }
   {
-    const fs::path f = node_file("  channels: 1\n  host: 127.0.0.256\n  port: 44000\n"
-                                 "  channel_map: [{control_point: A, axis: x}]\n" + kRig);
+    const fs::path f = node_file(
+        "  channels: 1\n  host: 127.0.0.256\n  port: 44000\n"
+        "  channel_map: [{control_point: A, axis: x}]\n" +
+        kRig);
     expect_at(error_of([&] { (void)load_servo_node(f); }), f, 6, "actuator.host");
   }
 }
@@ -162,12 +173,14 @@ TEST_F(PluginFiles, ABadSiteFileIsRefusedAtItsLineAndKey) {
               "actuator.channels: one per dof of the control points (1)");
   }
   {
-    const fs::path f = site_file("  control_points:\n    - name: A\n      dofs: [{axis: x, limits: [-5, 5]}]\n"
-                                 "  fault: {kind: crash, after_steps: 3}\n");
+    const fs::path f = site_file(
+        "  control_points:\n    - name: A\n      dofs: [{axis: x, limits: [-5, 5]}]\n"
+        "  fault: {kind: crash, after_steps: 3}\n");
     expect_at(error_of([&] { (void)load_plugin_site_emulator(f); }), f, 7, "plugin_site.fault.kind");
   }
   {
-    const fs::path f = site_file("  node_port: 4\n  control_points:\n    - name: A\n      dofs: [{axis: x, limits: [-5, 5]}]\n");
+    const fs::path f =
+        site_file("  node_port: 4\n  control_points:\n    - name: A\n      dofs: [{axis: x, limits: [-5, 5]}]\n");
     expect_at(error_of([&] { (void)load_plugin_site_emulator(f); }), f, 4, "plugin_site.node_port: unknown key");
   }
 }

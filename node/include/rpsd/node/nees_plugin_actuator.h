@@ -47,8 +47,8 @@ struct NeesPluginParameters {
   int channels = 1;
   std::string host = "127.0.0.1";  // the site (dotted IPv4): the only peer the node talks to
   std::uint16_t port = 0;
-  std::string local_host = "0.0.0.0";  // the node's side of the connection
-  std::uint16_t local_port = 0;        // 0: any (a site that filters needs a fixed one)
+  std::string local_host = "0.0.0.0";       // the node's side of the connection
+  std::uint16_t local_port = 0;             // 0: any (a site that filters needs a fixed one)
   std::string session_name = "OpenFresco";  // open-session and close-session, as OpenFresco names it
   // One set-parameter line each, its fields in order; OpenFresco's own by default.
   std::vector<std::vector<std::string>> parameters{{"OPFTransaction", "nstep", "1"}};
@@ -66,15 +66,15 @@ struct NeesPluginParameters {
 };
 
 struct NeesPluginCounters {
-  std::uint64_t proposals = 0;       // propose lines sent
-  std::uint64_t executes = 0;        // execute lines sent
-  std::uint64_t readings = 0;        // control point answers taken
-  std::uint64_t refusals = 0;        // answers whose first field is not OK
-  std::uint64_t timeouts = 0;        // a step not answered in time
-  std::uint64_t malformed = 0;       // answers of another transaction or control point, cut short, unparsable
-  std::uint64_t overlong = 0;        // answers longer than nees_plugin::kMaxLineBytes
-  std::uint64_t closed = 0;          // the site closed the connection
-  std::uint64_t node_failures = 0;   // a command the node could not send (not finite, a socket error)
+  std::uint64_t proposals = 0;      // propose lines sent
+  std::uint64_t executes = 0;       // execute lines sent
+  std::uint64_t readings = 0;       // control point answers taken
+  std::uint64_t refusals = 0;       // answers whose first field is not OK
+  std::uint64_t timeouts = 0;       // a step not answered in time
+  std::uint64_t malformed = 0;      // answers of another transaction or control point, cut short, unparsable
+  std::uint64_t overlong = 0;       // answers longer than nees_plugin::kMaxLineBytes
+  std::uint64_t closed = 0;         // the site closed the connection
+  std::uint64_t node_failures = 0;  // a command the node could not send (not finite, a socket error)
 };
 
 // Why the link failed, once it has.
@@ -147,8 +147,8 @@ class NeesPluginActuator final : public servo::Actuator, public ActuatorLinkRepo
 
   NeesPluginParameters config_;
   Ipv4Endpoint site_, local_;
-  std::vector<std::string> control_points_;             // distinct names, in order of first use
-  std::vector<nees_plugin::ChannelPoint> points_;       // one per channel
+  std::vector<std::string> control_points_;        // distinct names, in order of first use
+  std::vector<nees_plugin::ChannelPoint> points_;  // one per channel
   std::optional<TcpStream> stream_;
   nees_plugin::TransactionIds ids_;
   nees_plugin::LineWriter writer_;

@@ -23,9 +23,9 @@ namespace rpsd::node {
 
 // One axis of a control point, one simulated actuator behind it.
 struct PluginSiteDof {
-  std::string axis = "x";               // x, y or z
-  std::string motion = "translation";   // translation (displacement, force) or rotation (rotation, moment)
-  double lower_limit = -1.0;            // what the site accepts, in its own units
+  std::string axis = "x";              // x, y or z
+  std::string motion = "translation";  // translation (displacement, force) or rotation (rotation, moment)
+  double lower_limit = -1.0;           // what the site accepts, in its own units
   double upper_limit = 1.0;
   double displacement_per_si = 1.0;  // the site's units per m (per rad)
   double force_per_si = 1.0;         // per N (per N m)
@@ -64,19 +64,19 @@ struct PluginSiteConfig {
 };
 
 struct PluginSiteCounters {
-  std::uint64_t connections = 0;       // clients served
-  std::uint64_t sessions = 0;          // open-session taken
-  std::uint64_t refused_clients = 0;   // a second client while one is served: an error line, closed
-  std::uint64_t foreign_clients = 0;   // a client from another address than the node's: the same
-  std::uint64_t requests = 0;          // lines read
-  std::uint64_t proposals = 0;         // proposals taken
-  std::uint64_t refused_proposals = 0; // beyond a limit, or naming what the site does not have
-  std::uint64_t executes = 0;          // steps executed
-  std::uint64_t readings = 0;          // control point lines answered
-  std::uint64_t bad_requests = 0;      // unknown, malformed, out of order, overlong
-  std::uint64_t unanswered = 0;        // requests left unanswered on purpose (fault)
-  std::uint64_t closed_sessions = 0;   // close-session taken
-  std::uint64_t disconnects = 0;       // a client that left without close-session
+  std::uint64_t connections = 0;        // clients served
+  std::uint64_t sessions = 0;           // open-session taken
+  std::uint64_t refused_clients = 0;    // a second client while one is served: an error line, closed
+  std::uint64_t foreign_clients = 0;    // a client from another address than the node's: the same
+  std::uint64_t requests = 0;           // lines read
+  std::uint64_t proposals = 0;          // proposals taken
+  std::uint64_t refused_proposals = 0;  // beyond a limit, or naming what the site does not have
+  std::uint64_t executes = 0;           // steps executed
+  std::uint64_t readings = 0;           // control point lines answered
+  std::uint64_t bad_requests = 0;       // unknown, malformed, out of order, overlong
+  std::uint64_t unanswered = 0;         // requests left unanswered on purpose (fault)
+  std::uint64_t closed_sessions = 0;    // close-session taken
+  std::uint64_t disconnects = 0;        // a client that left without close-session
 };
 
 class PluginSiteEmulator {
@@ -121,7 +121,7 @@ class PluginSiteEmulator {
   std::array<std::uint8_t, 4> node_address_{};
   std::optional<TcpStream> session_;
   bool opened_ = false;
-  bool silent_ = false;  // PluginSiteFault::kStopAnswering has begun
+  bool silent_ = false;              // PluginSiteFault::kStopAnswering has begun
   std::string proposed_, executed_;  // transactions
   std::vector<double> proposed_m_, command_m_;
   servo::ActuatorReading reading_;
