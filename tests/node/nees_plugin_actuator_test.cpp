@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 #include <mutex>
 #include <numbers>
 #include <stdexcept>
@@ -33,6 +32,24 @@ using testing::ServingSite;
 
 // 11 significant digits on the wire (%.10E).
 constexpr double kWireRelative = 1e-10;
+
+// A site of one control point in mm and kN served on its own thread, and an adapter in session
+// with it.
+struct InSession {
+  explicit InSession(const PluginSiteConfig& config, double reply_timeout_s = 10.0)
+      : site(config), serving(site.emulator()), adapter(adapter_config(site, reply_timeout_s)) {
+    const double x0[] = {0.0};
+    adapter.start(x0);
+  }
+  static NeesPluginParameters adapter_config(EmulatedSite& site, double reply_timeout_s) {
+    NeesPluginParameters p = plugin_adapter_config(site.emulator(), mdl_x_in_mm_and_kn());
+    p.reply_timeout_s = reply_timeout_s;
+    return p;
+  }
+  EmulatedSite site;
+  ServingSite serving;
+  NeesPluginActuator adapter;
+};
 
 TEST(NeesPluginActuator, FollowsTheSiteStepByStepInTheSitesUnits) {
   EmulatedSite site(one_point_site());
@@ -94,11 +111,9 @@ TEST(NeesPluginActuator, ARefusedProposalLatchesAFaultWithTheSitesOwnWords) {
   PluginSiteConfig config = one_point_site();
   config.control_points[0].dofs[0].lower_limit = -5.0;  // mm
   config.control_points[0].dofs[0].upper_limit = 5.0;
-  EmulatedSite site(config);
-  const ServingSite serving(site.emulator());
-  NeesPluginActuator adapter(plugin_adapter_config(site.emulator(), mdl_x_in_mm_and_kn()));
-  const double x0[] = {0.0};
-  adapter.start(x0);
+  InSession session(config);
+  NeesPluginActuator& adapter = session.adapter;
+  EmulatedSite& site = session.site;
   servo::ActuatorReading r;
   const double inside[] = {0.004};
   ASSERT_EQ(adapter.exchange(inside, 0.01, r), ActuatorStatus::kOk);
@@ -130,13 +145,8 @@ TEST(NeesPluginActuator, ASiteThatStopsAnsweringFaultsAtTheDeadlineAndNothingMov
   PluginSiteConfig config = one_point_site();
   config.fault = PluginSiteFault::kStopAnswering;
   config.fault_after_steps = 3;  // the start's step and two more
-  EmulatedSite site(config);
-  const ServingSite serving(site.emulator());
-  NeesPluginParameters parameters = plugin_adapter_config(site.emulator(), mdl_x_in_mm_and_kn());
-  parameters.reply_timeout_s = 0.3;
-  NeesPluginActuator adapter(parameters);
-  const double x0[] = {0.0};
-  adapter.start(x0);
+  InSession session(config, 0.3);
+  NeesPluginActuator& adapter = session.adapter;
   servo::ActuatorReading r;
   const double u[] = {0.001};
   ASSERT_EQ(adapter.exchange(u, 0.01, r), ActuatorStatus::kOk);
@@ -153,7 +163,7 @@ TEST(NeesPluginActuator, ASiteThatStopsAnsweringFaultsAtTheDeadlineAndNothingMov
   EXPECT_EQ(adapter.counters().timeouts, 1u);
   EXPECT_EQ(adapter.exchange(next, 0.01, r), ActuatorStatus::kFault);  // latched, at once
   EXPECT_EQ(adapter.counters().timeouts, 1u);
-  EXPECT_EQ(site.emulator().counters().executes, 3u);  // never executed
+  EXPECT_EQ(session.site.emulator().counters().executes, 3u);  // never executed
 }
 
 struct BadAnswer {
@@ -168,11 +178,8 @@ TEST_P(NeesPluginBadAnswer, LatchesAFaultNamingTheSite) {
   PluginSiteConfig config = one_point_site();
   config.fault = GetParam().fault;
   config.fault_after_steps = 2;
-  EmulatedSite site(config);
-  const ServingSite serving(site.emulator());
-  NeesPluginActuator adapter(plugin_adapter_config(site.emulator(), mdl_x_in_mm_and_kn()));
-  const double x0[] = {0.0};
-  adapter.start(x0);
+  InSession session(config);
+  NeesPluginActuator& adapter = session.adapter;
   servo::ActuatorReading r;
   const double u[] = {0.001}, v[] = {0.002};
   ASSERT_EQ(adapter.exchange(u, 0.01, r), ActuatorStatus::kOk);
@@ -193,12 +200,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BadAnswer{PluginSiteFault::kWrongTransaction, NeesPluginFailure::kWrongTransaction,
                                 "MDL-00-01\tx\tdisplacement\t2.0000000000E+00"}));
 
-TEST(NeesPluginActuator, ASecondClientAndAStrangerAreTurnedAwayWhileTheSessionGoesOn) {
-  EmulatedSite site(one_point_site());
-  const ServingSite serving(site.emulator());
-  NeesPluginActuator adapter(plugin_adapter_config(site.emulator(), mdl_x_in_mm_and_kn()));
-  const double x0[] = {0.0};
-  adapter.start(x0);
+TEST(NeesPluginActuator, ASecondClientIsTurnedAwayWhileTheSessionGoesOn) {
+  InSession session(one_point_site());
+  EmulatedSite& site = session.site;
   const Ipv4Endpoint at = Ipv4Endpoint::parse("127.0.0.1", site.emulator().port(), "site");
   TcpStream second = TcpStream::connect(at, Ipv4Endpoint::parse("127.0.0.1", 0, "local"), 5.0);
   std::array<char, 512> line{};
@@ -210,26 +214,32 @@ TEST(NeesPluginActuator, ASecondClientAndAStrangerAreTurnedAwayWhileTheSessionGo
   EXPECT_EQ(second.receive_line(line, size, monotonic_seconds() + 10.0), TcpStream::Io::kClosed);
   servo::ActuatorReading r;
   const double u[] = {0.003};
-  ASSERT_EQ(adapter.exchange(u, 0.01, r), ActuatorStatus::kOk);  // the session goes on
+  ASSERT_EQ(session.adapter.exchange(u, 0.01, r), ActuatorStatus::kOk);  // the session goes on
   EXPECT_NEAR(r.displacement_m[0], 0.003, 1e-12);
   EXPECT_EQ(site.emulator().counters().refused_clients, 1u);
   EXPECT_EQ(site.emulator().counters().sessions, 1u);
+}
+
+// Why the adapter's start against the site failed ("started" when it did not).
+std::string start_failure(EmulatedSite& site) {
+  const ServingSite serving(site.emulator());
+  NeesPluginActuator adapter(plugin_adapter_config(site.emulator(), mdl_x_in_mm_and_kn()));
+  const double x0[] = {0.0};
+  try {
+    adapter.start(x0);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "started";
 }
 
 TEST(NeesPluginActuator, AStartTheSiteRefusesThrowsWithTheSitesWords) {
   PluginSiteConfig config = one_point_site();
   config.node_host = "127.0.0.2";  // the site serves another node
   EmulatedSite site(config);
-  const ServingSite serving(site.emulator());
-  NeesPluginActuator adapter(plugin_adapter_config(site.emulator(), mdl_x_in_mm_and_kn()));
-  const double x0[] = {0.0};
-  try {
-    adapter.start(x0);
-    FAIL() << "started";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("open-session"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("this site serves its node only"), std::string::npos) << e.what();
-  }
+  const std::string why = start_failure(site);
+  EXPECT_NE(why.find("open-session"), std::string::npos) << why;
+  EXPECT_NE(why.find("this site serves its node only"), std::string::npos) << why;
   EXPECT_EQ(site.emulator().counters().foreign_clients, 1u);
   EXPECT_EQ(site.emulator().counters().sessions, 0u);
 }
@@ -240,24 +250,26 @@ TEST(NeesPluginActuator, StartRefusesASiteThatDoesNotStandAtTheInitialDisplaceme
   EmulatedSite site(one_point_site(), {}, 0.5);
   const double at_8_mm[] = {0.008};
   site.emulator().start(at_8_mm);
-  const ServingSite serving(site.emulator());
-  NeesPluginActuator adapter(plugin_adapter_config(site.emulator(), mdl_x_in_mm_and_kn()));
-  const double x0[] = {0.0};
-  try {
-    adapter.start(x0);
-    FAIL() << "started";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("channel 0 (MDL-00-01 x) measures 0.008 m"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("start_tolerance_m 0.001"), std::string::npos) << e.what();
-  }
+  const std::string why = start_failure(site);
+  EXPECT_NE(why.find("channel 0 (MDL-00-01 x) measures 0.008 m"), std::string::npos) << why;
+  EXPECT_NE(why.find("start_tolerance_m 0.001"), std::string::npos) << why;
 }
 
-// A site that answers each line it reads with what `answer` says, and keeps the lines.
+// The n-th tab-separated field of a line.
+std::string field(const std::string& line, int n) {
+  std::size_t begin = 0;
+  for (int i = 0; i < n; ++i) begin = line.find('\t', begin) + 1;
+  return line.substr(begin, line.find_first_of("\t\n", begin) - begin);
+}
+
+// A site that answers get-control-point with "OK\t0\t<transaction>" and `reading`,
+// open-session with `open_answer` and OK to the rest, and keeps the lines it read.
 class ScriptedSite {
  public:
-  explicit ScriptedSite(std::function<std::string(const std::string&)> answer)
+  explicit ScriptedSite(std::string reading, std::string open_answer = "OK\t0\n")
       : listener_(Ipv4Endpoint::parse("127.0.0.1", 0, "site")),
-        answer_(std::move(answer)),
+        reading_(std::move(reading)),
+        open_answer_(std::move(open_answer)),
         thread_([this] { run(); }) {}
   ~ScriptedSite() {
     stop_.store(true);
@@ -284,24 +296,20 @@ class ScriptedSite {
         const std::lock_guard lock(mutex_);
         lines_.push_back(text);
       }
-      const std::string reply = answer_(text);
+      const std::string reply = text.rfind("get-control-point", 0) == 0 ? "OK\t0\t" + field(text, 1) + reading_
+                                : text.rfind("open-session", 0) == 0    ? open_answer_
+                                                                        : std::string("OK\t0\n");
       (void)client->send_all(std::as_bytes(std::span<const char>(reply.data(), reply.size())),
                              monotonic_seconds() + 5.0);
     }
   }
   TcpListener listener_;
-  std::function<std::string(const std::string&)> answer_;
+  std::string reading_, open_answer_;
   std::mutex mutex_;
   std::vector<std::string> lines_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
-
-std::string field(const std::string& line, int n) {
-  std::size_t begin = 0;
-  for (int i = 0; i < n; ++i) begin = line.find('\t', begin) + 1;
-  return line.substr(begin, line.find_first_of("\t\n", begin) - begin);
-}
 
 NeesPluginParameters scripted_config(const ScriptedSite& site, std::vector<NeesPluginChannel> map) {
   NeesPluginParameters config;
@@ -315,11 +323,7 @@ NeesPluginParameters scripted_config(const ScriptedSite& site, std::vector<NeesP
 
 TEST(NeesPluginActuator, SendsOpenFrescosLinesFromOpenSessionToCloseSession) {
   // A site of OpenFresco's kind: OK to everything, the reading at 1.5 mm and 2 N.
-  ScriptedSite site([](const std::string& line) -> std::string {
-    if (line.rfind("get-control-point", 0) == 0)
-      return "OK\t0\t" + field(line, 1) + "\tMDL-00-01\tx\tdisplacement\t1.5000000000E+00\tx\tforce\t2.0E+00\r\n";
-    return "OK\t0\n";
-  });
+  ScriptedSite site("\tMDL-00-01\tx\tdisplacement\t1.5000000000E+00\tx\tforce\t2.0E+00\r\n");
   std::string transaction;
   {
     NeesPluginActuator adapter(scripted_config(site, mdl_x_in_mm_and_kn()));
@@ -342,38 +346,30 @@ TEST(NeesPluginActuator, SendsOpenFrescosLinesFromOpenSessionToCloseSession) {
   EXPECT_EQ(lines[5], "close-session\tOpenFresco\n");
 }
 
-TEST(NeesPluginActuator, AnAnswerWithoutAChannelsForceFaults) {
-  // The site reports the displacement only, and a y axis no channel follows.
-  ScriptedSite site([](const std::string& line) -> std::string {
-    if (line.rfind("get-control-point", 0) == 0)
-      return "OK\t0\t" + field(line, 1) + "\tMDL-00-01\ty\tforce\t9\tx\tdisplacement\t0\n";
-    return "OK\t0\n";
-  });
+// The failure the adapter's start latches against a site whose reading is `reading`, and the
+// site's words it kept.
+std::pair<NeesPluginFailure, std::string> start_against(const std::string& reading) {
+  ScriptedSite site(reading);
   NeesPluginActuator adapter(scripted_config(site, mdl_x_in_mm_and_kn()));
   const double x0[] = {0.0};
   EXPECT_THROW(adapter.start(x0), std::runtime_error);
-  EXPECT_EQ(adapter.failure(), NeesPluginFailure::kMissingChannel);
   EXPECT_EQ(adapter.failed_side(), "site");
+  return {adapter.failure(), std::string(adapter.site_message())};
+}
+
+TEST(NeesPluginActuator, AnAnswerWithoutAChannelsForceFaults) {
+  // The site reports the displacement only, and a y axis no channel follows.
+  EXPECT_EQ(start_against("\tMDL-00-01\ty\tforce\t9\tx\tdisplacement\t0\n").first, NeesPluginFailure::kMissingChannel);
 }
 
 TEST(NeesPluginActuator, AnAnswerForAnotherControlPointFaults) {
-  ScriptedSite site([](const std::string& line) -> std::string {
-    if (line.rfind("get-control-point", 0) == 0)
-      return "OK\t0\t" + field(line, 1) + "\tMDL-00-02\tx\tdisplacement\t0\tx\tforce\t0\n";
-    return "OK\t0\n";
-  });
-  NeesPluginActuator adapter(scripted_config(site, mdl_x_in_mm_and_kn()));
-  const double x0[] = {0.0};
-  EXPECT_THROW(adapter.start(x0), std::runtime_error);
-  EXPECT_EQ(adapter.failure(), NeesPluginFailure::kWrongControlPoint);
-  EXPECT_NE(std::string(adapter.site_message()).find("MDL-00-02"), std::string::npos);
+  const auto [failure, words] = start_against("\tMDL-00-02\tx\tdisplacement\t0\tx\tforce\t0\n");
+  EXPECT_EQ(failure, NeesPluginFailure::kWrongControlPoint);
+  EXPECT_NE(words.find("MDL-00-02"), std::string::npos) << words;
 }
 
 TEST(NeesPluginActuator, ASiteMessageIsKeptBoundedAndPrintable) {
-  ScriptedSite site([](const std::string& line) -> std::string {
-    if (line.rfind("open-session", 0) == 0) return "ERROR\t\x01\xff" + std::string(600, 'w') + "\n";
-    return "OK\t0\n";
-  });
+  ScriptedSite site("", "ERROR\t\x01\xff" + std::string(600, 'w') + "\n");
   NeesPluginActuator adapter(scripted_config(site, mdl_x_in_mm_and_kn()));
   const double x0[] = {0.0};
   EXPECT_THROW(adapter.start(x0), std::runtime_error);

@@ -46,3 +46,23 @@ stop() {
   kill -INT "$1" 2>/dev/null || true
   wait "$1" 2>/dev/null || true
 }
+
+# stopped_on_the_nodes_fault DIR: `rpsd run` into DIR stopped (exit 3) because the node
+# faulted, not on silence, with every step it took recorded.
+stopped_on_the_nodes_fault() {
+  [ "$RUN_EXIT" = 3 ] || fail "rpsd run exited $RUN_EXIT, not 3: $(tail -3 "$1.log")"
+  grep -q "the servo node reported a fault" "$1.log" || fail "no reason: $(tail -3 "$1.log")"
+  [ "$(json "$1/summary.json" "j['result']")" = stopped ] || fail "summary: $(json "$1/summary.json" "j['result']")"
+  [ "$(json "$1/summary.json" "j['stopped_by']['kind']")" = node_fault ] \
+    || fail "stopped by $(json "$1/summary.json" "j['stopped_by']")"
+  every_step_recorded "$1"
+}
+
+# the_site_failed FAILURE STAGE: the node's summary says it faulted because the site failed so.
+the_site_failed() {
+  local link="j['plugin_link']"
+  [ "$(json "$WORK/node.json" "j['faulted']")" = True ] || fail "the node did not fault"
+  [ "$(json "$WORK/node.json" "$link['failed_side']")" = site ] || fail "failed side: $(json "$WORK/node.json" "$link")"
+  [ "$(json "$WORK/node.json" "$link['failure']")" = "$1" ] || fail "failure: $(json "$WORK/node.json" "$link['failure']")"
+  [ "$(json "$WORK/node.json" "$link['failed_stage']")" = "$2" ] || fail "stage: $(json "$WORK/node.json" "$link['failed_stage']")"
+}

@@ -8,26 +8,17 @@ source "$(dirname "$0")/plugin_lib.sh"
 start_plugin_site --set "plugin_site.control_points=[{name: MDL-00-01, dofs: [{axis: x, limits: [-5, 5], displacement_per_si: 1000, force_per_si: 0.001}]}]"
 start_plugin_node
 run_plugin_test "$WORK/plugin"
-[ "$RUN_EXIT" = 3 ] || fail "rpsd run exited $RUN_EXIT, not 3: $(tail -3 "$WORK/plugin.log")"
-grep -q "the servo node reported a fault" "$WORK/plugin.log" || fail "no reason: $(tail -3 "$WORK/plugin.log")"
-s="$WORK/plugin/summary.json"
-[ "$(json "$s" "j['result']")" = stopped ] || fail "summary: $(json "$s" "j['result']")"
-[ "$(json "$s" "j['stopped_by']['kind']")" = node_fault ] || fail "stopped by $(json "$s" "j['stopped_by']")"
-every_step_recorded "$WORK/plugin"
+stopped_on_the_nodes_fault "$WORK/plugin"
 [ "$(column "$WORK/plugin" measured_m_ch0 "max(abs(x) for x in v) <= 0.005")" = True ] \
   || fail "a measurement beyond the site's 5 mm: $(column "$WORK/plugin" measured_m_ch0 "max(abs(x) for x in v)")"
 stop $NODE_PID
 stop $SITE_PID
-link="j['plugin_link']"
-[ "$(json "$WORK/node.json" "j['faulted']")" = True ] || fail "the node did not fault"
-[ "$(json "$WORK/node.json" "$link['failed_side']")" = site ] || fail "failed side: $(json "$WORK/node.json" "$link")"
-[ "$(json "$WORK/node.json" "$link['failure']")" = refused ] || fail "failure: $(json "$WORK/node.json" "$link['failure']")"
-[ "$(json "$WORK/node.json" "$link['failed_stage']")" = propose ] || fail "stage: $(json "$WORK/node.json" "$link['failed_stage']")"
-words=$(json "$WORK/node.json" "$link['site_message']")
+the_site_failed refused propose
+words=$(json "$WORK/node.json" "j['plugin_link']['site_message']")
 case "$words" in
   ERROR*"MDL-00-01 x displacement "*" is beyond the site's limit "*"5.0000000000E+00 (limits -5.0000000000E+00 to 5.0000000000E+00)") ;;
   *) fail "the site's words are not kept: $words" ;;
 esac
 [ "$words" = "$(json "$WORK/site.json" "j['last_refusal']")" ] || fail "not the site's words verbatim: $words"
 [ "$(json "$WORK/site.json" "j['refused_proposals']")" = 1 ] || fail "site: $(json "$WORK/site.json" "j['refused_proposals']") refused"
-echo "PASS: stopped after $(json "$s" "j['steps']") steps; the site said: $words"
+echo "PASS: stopped after $(json "$WORK/plugin/summary.json" "j['steps']") steps; the site said: $words"
