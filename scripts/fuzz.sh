@@ -99,14 +99,23 @@ for name, packet in seeds.items():
     open(f"{out}/{name}", "wb").write(packet)
 PY
 run fuzz_udp_protocol udp -max_len=256
+# Plugin site answers: OpenFresco-style lines, a refusal, CR LF, a rotation and a moment.
+mkdir -p "$seeds/plugin" "$build/corpus/plugin"
+printf 'OK\t0\tOPFTransaction20261126181701n7\tMDL-00-01\tx\tdisplacement\t1.2345678901E-02\tx\tforce\t-3.2E+03\n' \
+  >"$seeds/plugin/reading"
+printf 'ERROR\tT\tproposal refused: beyond the limit\n' >"$seeds/plugin/refusal"
+printf 'OK\t1\tT\tLBCB2\tz\trotation\t+1.5e-3\tz\tmoment\t42\r\n' >"$seeds/plugin/rotation"
+run fuzz_nees_plugin plugin -max_len=2048
 # Commands into a node's controller: no seeds needed, every byte string is a command stream.
 mkdir -p "$seeds/node" "$build/corpus/node"
 printf '\x01\x00' >"$seeds/node/one-command-one-tick"
 run fuzz_node_commands node -max_len=1024
-# Parameter files: the first byte picks the reader (0 servo parameters, 1 node, 2 emulator).
+# Parameter files: the first byte picks the reader (0 servo parameters, 1 node, 2 emulator,
+# 3 plugin site emulator).
 mkdir -p "$seeds/params" "$build/corpus/params"
 { printf '\x00'; cat examples/servo/paper-mts-244.yaml; } >"$seeds/params/servo-parameters"
 for f in examples/nodes/*.yaml; do { printf '\x01'; cat "$f"; } >"$seeds/params/node-$(basename "$f")"; done
+{ printf '\x03'; cat examples/nodes/plugin-site-emulator.yaml; } >"$seeds/params/plugin-site-emulator"
 run fuzz_parameter_files params -max_len=4096
 # A genericClient's byte stream into the site server's session: seeded with a client's setup
 # (2 basic DOFs, 11-double messages) and one step (trial, force request, commit, die).

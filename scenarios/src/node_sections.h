@@ -1,12 +1,14 @@
-// The sections of a servo node's file and of a controller emulator's, each read from a
-// config::Source: the file readers (servo_node_file.cpp) compose them, and the scenario
-// reference lists their keys by running each on a config::KeyTable.
+// The sections of a servo node's file, of a controller emulator's and of a plugin site
+// emulator's, each read from a config::Source: the file readers (servo_node_file.cpp,
+// plugin_site_file.cpp) compose them, and the scenario reference lists their keys by running
+// each on a config::KeyTable.
 #pragma once
 
 #include <filesystem>
 #include <memory>
 
 #include "rpsd/config/source.h"
+#include "rpsd/node/nees_plugin_site_process.h"
 #include "rpsd/node/servo_node_setup.h"
 
 namespace rpsd::scenarios::node_sections {
@@ -25,5 +27,9 @@ void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f);
 
 void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f);
 void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f);
+
+// The file of `rpsd plugin-site-emulator` (plugin_site_file.cpp).
+void plugin_site_file(config::Source& root, node::PluginSiteEmulatorSetup& f);
+void plugin_site_actuator(config::Source& a, node::PluginSiteEmulatorSetup& f);
 
 }  // namespace rpsd::scenarios::node_sections

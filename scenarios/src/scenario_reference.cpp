@@ -234,6 +234,21 @@ void node_file(Document& doc) {
   doc.table("actuator",
             listing("actuator", [&e](config::Source& s) { ns::emulator_actuator(s, e); }, {"actuator.servo"}),
             "`actuator.servo` takes a scenario's `servo` keys.");
+  doc.heading(
+      2, "Plugin site emulator file (`rpsd plugin-site-emulator`)",
+      "A NEES/LabVIEW plugin site in software (docs/lab-controllers-plugin.md): its control points, their limits "
+      "and the simulated actuators behind them.");
+  node::PluginSiteEmulatorSetup site;
+  doc.table("The file's own keys", listing("", [site](config::Source& s) mutable { ns::plugin_site_file(s, site); },
+                                           {"plugin_site", "actuator"}));
+  doc.table("plugin_site", listing("plugin_site", [](config::Source& s) {
+              std::vector<std::unique_ptr<config::Source>> dofs;
+              (void)node::PluginSiteConfig::read(s, dofs);
+            }));
+  doc.table("actuator",
+            listing("actuator", [&site](config::Source& s) { ns::plugin_site_actuator(s, site); }, {"actuator.servo"}),
+            "One actuator per dof, in the order of the control points; `actuator.servo` takes a scenario's `servo` "
+            "keys.");
 }
 
 void site_server_file(Document& doc) {

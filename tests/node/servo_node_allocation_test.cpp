@@ -1,8 +1,8 @@
 // The servo node allocates nothing per control period: the controller with its limits
 // acting, events logged, bad commands dropped, the watchdog holding and ramping to safe,
-// over the simulated plants and over the UDP adapter in both protocol versions (version 2
-// tags and checks every datagram; the emulator's thread is not counted: only the
-// control-loop thread must not allocate).
+// over the simulated plants, over the UDP adapter in both protocol versions (version 2
+// tags and checks every datagram) and over the NEES plugin adapter (the emulators' threads
+// are not counted: only the control-loop thread must not allocate).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -12,6 +12,7 @@
 
 #include "../servo/paper_rig.h"
 #include "allocation_counter.h"
+#include "nees_plugin_test_site.h"
 #include "rpsd/node/controller_emulator.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/udp_controller_actuator.h"
@@ -143,6 +144,29 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverTheUdpAdapter) {
 
 TEST(ServoNodeAllocation, NoAllocationPerTickOverTheAuthenticatedUdpAdapter) {
   expect_no_allocation_per_tick_over_the_udp_adapter(udp_protocol::kVersion2);
+}
+
+// The plugin adapter writes, sends and parses each step's three lines in fixed buffers (the
+// site emulator's thread is not counted).
+TEST(ServoNodeAllocation, NoAllocationPerTickOverTheNeesPluginAdapter) {
+  PluginSiteConfig config;
+  config.control_points = {
+      {"LBCB1", {{"x", "translation", -100, 100, 1000, 1}, {"y", "translation", -100, 100, 1000, 1}}}};
+  testing::EmulatedSite site(config, {1e5, 2e5});
+  NeesPluginActuator adapter(testing::plugin_adapter_config(
+      site.emulator(), {{"LBCB1", nees_plugin::Axis::kX, nees_plugin::Motion::kTranslation, 1000, 1},
+                        {"LBCB1", nees_plugin::Axis::kY, nees_plugin::Motion::kTranslation, 1000, 1}}));
+  ServoNodeController node(node_config(), adapter);
+  RunResult r;
+  {
+    const testing::ServingSite serving(site.emulator());
+    r = run(node, 2000);
+  }
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_EQ(adapter.counters().readings, 1u + 3000u + 2000u);  // the start's step, then one a tick
+  EXPECT_EQ(adapter.failed_side(), "none");
+  EXPECT_EQ(node.counters().actuator_faults, 0u);
+  EXPECT_TRUE(r.reached_safe_state);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "nees_plugin_test_site.h"
 #include "rpsd/node/controller_emulator.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/udp_controller_actuator.h"
@@ -877,32 +878,66 @@ TEST(ServoNodeController, AMeasurementAtOrBeyondTheRigsEnvelopeFaultsTheNode) {
 // times its command (a miscalibrated servo loop) drives the piston onto its 50 mm end stop for
 // a command of 47.5 mm, inside every limit. The protocol carries no end-stop flag; the
 // measurement alone faults the node.
-TEST(ServoNodeController, AMeasurementAtTheRigsStrokeFromTheUdpAdapterFaultsTheNode) {
+// That plant: 1.1 times its command, a 50 mm stroke.
+servo::TransferFunctionPlantParameters overshooting_plant() {
   servo::TransferFunctionPlantParameters p;
   p.transfer_function = {servo::Polynomial{1100.0}, servo::Polynomial{1000.0, 1.0}};
   p.rig = {0.05, 1e6, 100.0};
-  servo::TransferFunctionPlant plant(p);
-  servo::Plant* plants[] = {&plant};
-  ControllerEmulator emulator(plants, testing::emulator_config());
-  emulator.start(std::vector<double>{0.0});
-  UdpControllerActuator actuator(testing::adapter_config(emulator, 1));
-  testing::pair(emulator, actuator);
-  std::optional<testing::Serving> serving(std::in_place, emulator);
+  return p;
+}
+
+ServoNodeConfig end_stop_config() {
   auto c = config();
-  limit_to_envelope(c, p.rig);
-  ServoNodeController node(c, actuator);
+  limit_to_envelope(c, overshooting_plant().rig);
+  return c;
+}
+
+// Starts the node and commands it 47.5 mm until it faults (at most 400 periods); the last
+// feedback.
+FeedbackSample drive_to_the_end_stop(ServoNodeController& node) {
   node.start(std::vector<double>{0.0});
   FeedbackSample out;
-  std::int64_t step = 1;
-  for (; step <= 400 && !node.faulted(); ++step) out = send(node, command(step, {0.0475}));
-  serving.reset();
+  for (std::int64_t step = 1; step <= 400 && !node.faulted(); ++step) out = send(node, command(step, {0.0475}));
+  return out;
+}
+
+void expect_faulted_on_the_rigs_stroke(const ServoNodeController& node, const FeedbackSample& out) {
   ASSERT_TRUE(node.faulted()) << out.displacement_m[0];
-  EXPECT_EQ(out.displacement_m[0], 0.05);
+  EXPECT_NEAR(out.displacement_m[0], 0.05, 1e-12);  // exactly over UDP; through %.10E for the plugin
   EXPECT_NE(out.status & transport::kNodeFault, 0u);
   EXPECT_EQ(node.counters().activations(LimitKind::kStroke), 1u);
   ASSERT_EQ(node.events().size(), 1u);
   EXPECT_EQ(node.events()[0].cause, LimitCause::kRigEnvelope);
   for (const auto& command_m : node.command_m()) EXPECT_LE(command_m, 0.0475);  // never beyond its command
+}
+
+TEST(ServoNodeController, AMeasurementAtTheRigsStrokeFromTheUdpAdapterFaultsTheNode) {
+  servo::TransferFunctionPlant plant(overshooting_plant());
+  servo::Plant* plants[] = {&plant};
+  ControllerEmulator emulator(plants, testing::emulator_config());
+  emulator.start(std::vector<double>{0.0});
+  UdpControllerActuator actuator(testing::adapter_config(emulator, 1));
+  testing::pair(emulator, actuator);
+  const testing::Serving serving(emulator);
+  ServoNodeController node(end_stop_config(), actuator);
+  expect_faulted_on_the_rigs_stroke(node, drive_to_the_end_stop(node));
+}
+
+// The same from a NEES plugin site, whose protocol carries no end-stop flag either.
+TEST(ServoNodeController, AMeasurementAtTheRigsStrokeFromThePluginAdapterFaultsTheNode) {
+  servo::TransferFunctionPlant plant(overshooting_plant());
+  servo::Plant* plants[] = {&plant};
+  PluginSiteConfig site_config;
+  site_config.step_duration_s = 1.0 / 1024.0;
+  site_config.control_points = {{"MDL-00-01", {{"x", "translation", -1.0, 1.0, 1.0, 1.0}}}};
+  PluginSiteEmulator site(plants, site_config);
+  site.start(std::vector<double>{0.0});
+  const testing::ServingSite serving(site);
+  NeesPluginActuator actuator(testing::plugin_adapter_config(
+      site, {{"MDL-00-01", nees_plugin::Axis::kX, nees_plugin::Motion::kTranslation, 1.0, 1.0}}));
+  ServoNodeController node(end_stop_config(), actuator);
+  expect_faulted_on_the_rigs_stroke(node, drive_to_the_end_stop(node));
+  EXPECT_EQ(actuator.failed_side(), "none");  // the link is whole: the node faulted on what it read
 }
 
 namespace run_identity {

@@ -13,6 +13,7 @@
 
 #include "../servo/paper_rig.h"
 #include "rpsd/scenarios/config_error.h"
+#include "rpsd/scenarios/plugin_site_file.h"
 #include "rpsd/scenarios/scenario_reference.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
@@ -48,6 +49,8 @@ void read(const fs::path& file) {
     (void)load_servo_node(file);
   } else if (root["udp"]) {
     (void)load_controller_emulator(file);
+  } else if (root["plugin_site"]) {
+    (void)load_plugin_site_emulator(file);
   } else if (root["listen"]) {
     (void)load_site_server(file);
   } else {
