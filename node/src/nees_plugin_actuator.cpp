@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <memory>
 #include <sstream>
@@ -204,6 +205,14 @@ bool NeesPluginActuator::fail(NeesPluginFailure failure, Stage stage, bool keep_
     site_message_size_ = std::min(words.size(), site_message_.size());
     std::copy_n(words.begin(), site_message_size_, site_message_.begin());
   }
+  // What the node's heartbeat carries to the coordinator: the stage, and the site's words.
+  const int n = std::snprintf(fault_text_.data(), fault_text_.size(), "plugin site %s at %s%s%.*s",
+                              failure_name(failure), stage_name(stage), site_message_size_ > 0 ? ": " : "",
+                              static_cast<int>(site_message_size_), site_message_.data());
+  for (int i = 0; i < n && i < static_cast<int>(fault_text_.size()) - 1; ++i) {
+    const auto c = static_cast<unsigned char>(fault_text_[static_cast<std::size_t>(i)]);
+    if (c < 0x20 || c == 0x7f) fault_text_[static_cast<std::size_t>(i)] = ' ';  // a tab, a stray byte
+  }
   return false;
 }
 
@@ -336,6 +345,7 @@ void NeesPluginActuator::start(std::span<const double> initial_displacement_m) {
   failure_ = NeesPluginFailure::kNone;
   failed_stage_ = Stage::kNone;
   site_message_size_ = 0;
+  fault_text_ = {};
   stream_.emplace(TcpStream::connect(site_, local_, config_.connect_timeout_s));
   ids_.begin(std::time(nullptr));
 

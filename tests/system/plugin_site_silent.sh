@@ -15,6 +15,8 @@ stop $NODE_PID
 stop $SITE_PID
 the_site_failed no_answer_in_time propose
 [ "$(json "$WORK/node.json" "j['plugin_link']['steps']")" = 300 ] || fail "node: not the start's and 299 steps"
+[ "$(json "$WORK/plugin/summary.json" "j['stopped_by']['node_says']")" = "site 1: plugin site no_answer_in_time at propose" ] \
+  || fail "the test's summary.json does not say what failed: stopped_by $(json "$WORK/plugin/summary.json" "j['stopped_by']")"
 [ "$(json "$WORK/site.json" "j['executes']")" = 300 ] || fail "site: $(json "$WORK/site.json" "j['executes']") executes"
 [ "$(json "$WORK/site.json" "j['unanswered'] >= 1")" = True ] || fail "site: nothing left unanswered"
 echo "PASS: stopped after $steps steps on the node's fault; the site executed 300"

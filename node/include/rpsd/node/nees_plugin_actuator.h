@@ -118,6 +118,8 @@ class NeesPluginActuator final : public servo::Actuator, public ActuatorLinkRepo
                                  servo::ActuatorReading& reading) override;
 
   const NeesPluginCounters& counters() const { return counters_; }
+  // After a fault: "plugin site refused at propose: <the site's line>". Real-time safe.
+  std::string_view fault_text() const noexcept override { return fault_text_.data(); }
   NeesPluginFailure failure() const { return failure_; }
   // "site" (refused, late, malformed, closed), "node" or "none".
   std::string_view failed_side() const;
@@ -164,6 +166,7 @@ class NeesPluginActuator final : public servo::Actuator, public ActuatorLinkRepo
   std::array<char, kSiteMessageBytes> site_message_{};
   std::size_t site_message_size_ = 0;
   bool site_message_cut_ = false;
+  std::array<char, 160> fault_text_{};
   std::array<char, 48> failed_transaction_{};
   std::size_t failed_transaction_size_ = 0;
   std::uint64_t steps_ = 0;  // transactions executed and read
