@@ -7,11 +7,12 @@
 #include "rpsd/config/kind_list.h"
 #include "rpsd/node/owned_actuator.h"
 #include "rpsd/node/simulated_actuator_parameters.h"
+#include "rpsd/node/speedgoat_actuator.h"
 #include "rpsd/node/udp_controller_actuator.h"
 
 namespace rpsd::node {
 
-using ActuatorKinds = config::KindList<SimulatedActuatorParameters, UdpControllerParameters>;
+using ActuatorKinds = config::KindList<SimulatedActuatorParameters, UdpControllerParameters, SpeedgoatParameters>;
 using ActuatorConfig = ActuatorKinds::Variant;
 
 // Builds the actuator for `channels` channels. Not real-time safe; throws
