@@ -137,8 +137,8 @@ void SpeedgoatEmulator::send_bytes(const unsigned char* bytes, std::size_t size)
 }
 
 void SpeedgoatEmulator::send_state(bool at_target_vector) {
+  if (silent_) return;
   const auto moves = static_cast<int>(counters_.moves);
-  if (config_.silent_after_moves > 0 && moves >= config_.silent_after_moves) return;
   const bool oversized = at_target_vector && moves == config_.oversized_at_move;
   std::vector<unsigned char> out(static_cast<std::size_t>(config_.vector_doubles + (oversized ? 1 : 0)) * 8, 0);
   store_le(&out[0], switch_pc_);
@@ -158,6 +158,8 @@ void SpeedgoatEmulator::send_state(bool at_target_vector) {
 
 void SpeedgoatEmulator::take(const std::vector<unsigned char>& vector) {
   ++counters_.vectors_received;
+  // Silent from the first vector after the last move it answers in full.
+  silent_ = config_.silent_after_moves > 0 && counters_.moves >= static_cast<std::uint64_t>(config_.silent_after_moves);
   const double flag = load_le(vector.data());
   if (flag == -1.0) {  // the PC ends the session (twice)
     if (new_target_ != -1.0) ++counters_.sessions_ended;

@@ -104,6 +104,7 @@ class SpeedgoatEmulator {
   double new_target_ = 0.0;
   double switch_pc_ = 0.0;
   double at_target_ = 1.0;
+  bool silent_ = false;
   SpeedgoatEmulatorCounters counters_;
   std::atomic<bool> stop_{false};
 };
