@@ -28,6 +28,9 @@ void add_plot(CLI::App& app);
 // `rpsd servo-node NODE.yaml` and `rpsd controller-emulator EMULATOR.yaml`.
 void add_servo_node(CLI::App& app);
 
+// `rpsd speedgoat-emulator TARGET.yaml`: a Speedgoat target of OpenFresco's, in software.
+void add_speedgoat_emulator(CLI::App& app);
+
 // `rpsd site-server SITE.yaml --out DIR`: the experimental site of an OpenSees model.
 void add_site_server(CLI::App& app);
 

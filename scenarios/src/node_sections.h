@@ -8,6 +8,7 @@
 
 #include "rpsd/config/source.h"
 #include "rpsd/node/servo_node_setup.h"
+#include "rpsd/node/speedgoat_emulator_process.h"
 
 namespace rpsd::scenarios::node_sections {
 
@@ -25,5 +26,8 @@ void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f);
 
 void emulator_udp(config::Source& u, node::ControllerEmulatorSetup& f);
 void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f);
+
+// `rpsd speedgoat-emulator`'s file: `actuator` (as the controller emulator's), then `target`.
+void speedgoat_emulator_file(config::Source& root, node::SpeedgoatEmulatorSetup& f);
 
 }  // namespace rpsd::scenarios::node_sections

@@ -234,6 +234,13 @@ void node_file(Document& doc) {
   doc.table("actuator",
             listing("actuator", [&e](config::Source& s) { ns::emulator_actuator(s, e); }, {"actuator.servo"}),
             "`actuator.servo` takes a scenario's `servo` keys.");
+  doc.heading(2, "Speedgoat target emulator file (`rpsd speedgoat-emulator`)",
+              "A Speedgoat target running OpenFresco's hybrid controller model, in software "
+              "(docs/lab-controllers.md); its `actuator` section is the controller emulator's.");
+  node::SpeedgoatEmulatorSetup g;
+  doc.table("The file's own keys",
+            listing("", [g](config::Source& s) mutable { ns::speedgoat_emulator_file(s, g); }, {"actuator", "target"}));
+  doc.table("target", listing("target", [](config::Source& s) { (void)node::SpeedgoatEmulatorConfig::read(s, 1); }));
 }
 
 void site_server_file(Document& doc) {

@@ -1,8 +1,8 @@
 // The servo node allocates nothing per control period: the controller with its limits
 // acting, events logged, bad commands dropped, the watchdog holding and ramping to safe,
-// over the simulated plants and over the UDP adapter in both protocol versions (version 2
-// tags and checks every datagram; the emulator's thread is not counted: only the
-// control-loop thread must not allocate).
+// over the simulated plants, over the UDP adapter in both protocol versions (version 2
+// tags and checks every datagram) and over the Speedgoat adapter on TCP and UDP (the
+// emulators' threads are not counted: only the control-loop thread must not allocate).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -18,6 +18,7 @@
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
+#include "speedgoat_test_link.h"
 #include "udp_test_link.h"
 
 namespace rpsd::node {
@@ -143,6 +144,30 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverTheUdpAdapter) {
 
 TEST(ServoNodeAllocation, NoAllocationPerTickOverTheAuthenticatedUdpAdapter) {
   expect_no_allocation_per_tick_over_the_udp_adapter(udp_protocol::kVersion2);
+}
+
+void expect_no_allocation_per_tick_over_the_speedgoat_adapter(bool udp) {
+  testing::IdealTarget target(testing::target_config(udp, 2));
+  SpeedgoatActuator adapter(testing::node_config(target.emulator->port(), udp, 2));
+  ServoNodeController node(node_config(), adapter);
+  RunResult r;
+  {
+    const testing::ServingTarget serving(*target.emulator);
+    r = run(node, 2000);
+  }
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_EQ(adapter.counters().missed_deadlines, 0u);
+  EXPECT_EQ(adapter.counters().handshakes, 3000u + 2000u);  // one a tick
+  EXPECT_EQ(node.counters().actuator_no_replies, 0u);
+  EXPECT_TRUE(r.reached_safe_state);
+}
+
+TEST(ServoNodeAllocation, NoAllocationPerTickOverTheSpeedgoatAdapterOnTcp) {
+  expect_no_allocation_per_tick_over_the_speedgoat_adapter(false);
+}
+
+TEST(ServoNodeAllocation, NoAllocationPerTickOverTheSpeedgoatAdapterOnUdp) {
+  expect_no_allocation_per_tick_over_the_speedgoat_adapter(true);
 }
 
 }  // namespace
