@@ -348,6 +348,7 @@ SpeedgoatParameters SpeedgoatParameters::read(config::Source& section, int chann
     section.fail("rig", "a hardware node must state its rig's envelope: rig: {stroke_m, force_n, velocity_m_per_s}");
   }
   p.rig = servo::Envelope::read(*rig);
+  p.signals.check(section, channels);
   for (const auto& [key, text] : {std::pair{"host", p.host}, std::pair{"local_host", p.local_host}}) {
     try {
       Ipv4Endpoint::parse(text, 0, key);

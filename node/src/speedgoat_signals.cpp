@@ -85,8 +85,12 @@ SignalMap SignalMap::read(config::Source& section, int channels) {
     if (d.signal_per_si == 0.0) s->fail("signal_per_si", "must not be zero");
     m.daq.push_back(d);
   }
+  return m;
+}
+
+void SignalMap::check(config::Source& section, int channels) const {
   try {
-    m.validate(channels);
+    validate(channels);
   } catch (const std::invalid_argument& e) {
     // "daq_signals: channel 0 has no force signal" at daq_signals; an entry's index stays.
     const std::string what = e.what();
@@ -94,7 +98,6 @@ SignalMap SignalMap::read(config::Source& section, int channels) {
     const bool plain = what.compare(key.size(), 2, ": ") == 0;
     section.fail(key, plain ? what.substr(key.size() + 2) : what);
   }
-  return m;
 }
 
 void SignalMap::validate(int channels) const {

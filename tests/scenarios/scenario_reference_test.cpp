@@ -48,6 +48,8 @@ void read(const fs::path& file) {
     (void)load_servo_node(file);
   } else if (root["udp"]) {
     (void)load_controller_emulator(file);
+  } else if (root["target"]) {
+    (void)load_speedgoat_emulator(file);
   } else if (root["listen"]) {
     (void)load_site_server(file);
   } else {

@@ -59,6 +59,9 @@ struct SignalMap {
   // vector_doubles, control_signals and daq_signals of a section, each error at its key.
   // Not real-time safe.
   static SignalMap read(config::Source& section, int channels);
+  // validate(), failing at the section's key; called once the section's every key is read
+  // (so that a listing of the keys sees them all).
+  void check(config::Source& section, int channels) const;
   // Throws std::invalid_argument naming the list and the entry: every channel commanded in
   // displacement once and measured in displacement and in force once, relative only where a
   // DAQ signal of the same channel and quantity gives the offset, the signals within the vector.
