@@ -200,7 +200,11 @@ void SpeedgoatActuator::start(std::span<const double> initial_displacement_m) {
   std::fill(control_offset_.begin(), control_offset_.end(), 0.0);
   std::fill(daq_offset_.begin(), daq_offset_.end(), 0.0);
   const double deadline_s = monotonic_seconds() + config_.start_timeout_s;
-  link_.connect(deadline_s);
+  try {
+    link_.connect(deadline_s);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(who + ": " + e.what());
+  }
   auto check = [&](Step step, const char* what) {
     if (step == Step::kDone) return;
     std::ostringstream message;
