@@ -33,6 +33,16 @@ constexpr double kDt = 1.0 / 1024.0;
 
 // ---- A scripted target: the test plays the model's side by hand, one vector at a time. ----
 
+// The node's side on its thread: what it throws fails the test instead of ending the process.
+template <typename Body>
+void guarded(Body body) {
+  try {
+    body();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what();
+  }
+}
+
 struct Script {
   TcpListener listener{Ipv4Endpoint::parse("127.0.0.1", 0, "test")};
   std::optional<TcpStream> stream;
@@ -66,13 +76,15 @@ TEST(SpeedgoatActuator, SpeaksTheHandshakeVectorByVector) {
   Script script;
   SpeedgoatActuator adapter(node_config(script.listener.port(), false));
   std::thread node([&] {
-    const double x0[] = {0.0};
-    adapter.start(x0);
-    const double command[] = {0.004};
-    servo::ActuatorReading reading;
-    EXPECT_EQ(adapter.exchange(command, kDt, reading), servo::ActuatorStatus::kOk);
-    EXPECT_NEAR(reading.displacement_m[0], 0.004, 1e-15);
-    EXPECT_NEAR(reading.force_n[0], 4e5, 1e-6);  // 400 signal units at 1e-3 per N
+    guarded([&] {
+      const double x0[] = {0.0};
+      adapter.start(x0);
+      const double command[] = {0.004};
+      servo::ActuatorReading reading;
+      EXPECT_EQ(adapter.exchange(command, kDt, reading), servo::ActuatorStatus::kOk);
+      EXPECT_NEAR(reading.displacement_m[0], 0.004, 1e-15);
+      EXPECT_NEAR(reading.force_n[0], 4e5, 1e-6);  // 400 signal units at 1e-3 per N
+    });
   });
   script.stream = script.listener.accept(10.0);
   ASSERT_TRUE(script.stream);
@@ -111,13 +123,16 @@ TEST(SpeedgoatActuator, ResumesALateHandshakeInsteadOfStartingAnother) {
   std::vector<servo::ActuatorStatus> statuses;
   servo::ActuatorReading reading;
   std::thread node([&] {
-    const double x0[] = {0.0};
-    adapter.start(x0);
-    const double first[] = {0.002}, second[] = {0.003};
-    statuses.push_back(adapter.exchange(first, kDt, reading));  // the target is late
+    guarded([&] {
+      const double x0[] = {0.0};
+      adapter.start(x0);
+      const double first[] = {0.002}, second[] = {0.003};
+      statuses.push_back(adapter.exchange(first, kDt, reading));  // the target is late
+      stage.store(1);
+      while (stage.load() != 2) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      statuses.push_back(adapter.exchange(second, kDt, reading));  // finishes the first
+    });
     stage.store(1);
-    while (stage.load() != 2) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    statuses.push_back(adapter.exchange(second, kDt, reading));  // finishes the first
   });
   script.stream = script.listener.accept(10.0);
   ASSERT_TRUE(script.stream);
@@ -450,12 +465,14 @@ TEST(SpeedgoatSignals, VelocityAccelerationAndTimeAreTheCommandsFiniteDifference
   config.signals.control.push_back({0, speedgoat::ControlQuantity::kTime, 1.0, speedgoat::Reference::kAbsolute});
   SpeedgoatActuator adapter(config);
   std::thread node([&] {
-    const double x0[] = {0.0};
-    adapter.start(x0);
-    servo::ActuatorReading reading;
-    const double a[] = {0.001}, b[] = {0.003};
-    adapter.exchange(a, 0.5, reading);
-    adapter.exchange(b, 0.5, reading);
+    guarded([&] {
+      const double x0[] = {0.0};
+      adapter.start(x0);
+      servo::ActuatorReading reading;
+      const double a[] = {0.001}, b[] = {0.003};
+      adapter.exchange(a, 0.5, reading);
+      adapter.exchange(b, 0.5, reading);
+    });
   });
   script.stream = script.listener.accept(10.0);
   ASSERT_TRUE(script.stream);
