@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rpsd/node/hardware_link_checks.h"
 #include "rpsd/node/owned_actuator.h"
-#include "rpsd/transport/messages.h"
 
 namespace rpsd::node {
 
@@ -17,19 +17,11 @@ using speedgoat::put_double;
 using speedgoat::Reference;
 
 void SpeedgoatParameters::validate() const {
-  if (channels < 1 || channels > transport::kMaxChannels) {
-    throw std::invalid_argument("channels: must be between 1 and " + std::to_string(transport::kMaxChannels) +
-                                ", got " + std::to_string(channels));
-  }
+  check_link_channels(channels);
   Ipv4Endpoint::parse(host, port, "host");
   Ipv4Endpoint::parse(local_host, local_port, "local_host");
   if (port == 0) throw std::invalid_argument("port: required (1-65535)");
-  if (!(reply_timeout_s > 0.0) || !std::isfinite(reply_timeout_s))
-    throw std::invalid_argument("reply_timeout_s: must be positive");
-  if (max_missed_replies < 0) throw std::invalid_argument("max_missed_replies: must be zero or positive");
-  if (!(start_timeout_s > 0.0) || !std::isfinite(start_timeout_s))
-    throw std::invalid_argument("start_timeout_s: must be positive");
-  if (!(start_tolerance_m >= 0.0)) throw std::invalid_argument("start_tolerance_m: must be zero or positive");
+  check_link_timing(reply_timeout_s, max_missed_replies, start_timeout_s, start_tolerance_m);
   signals.validate(channels);
 }
 
@@ -353,13 +345,7 @@ SpeedgoatParameters SpeedgoatParameters::read(config::Source& section, int chann
   }
   p.rig = servo::Envelope::read(*rig);
   p.signals.check(section, channels);
-  for (const auto& [key, text] : {std::pair{"host", p.host}, std::pair{"local_host", p.local_host}}) {
-    try {
-      Ipv4Endpoint::parse(text, 0, key);
-    } catch (const std::invalid_argument& e) {
-      section.fail(key, e.what());
-    }
-  }
+  check_ipv4_keys(section, {{"host", p.host}, {"local_host", p.local_host}});
   return p;
 }
 

@@ -1,5 +1,7 @@
 #include "rpsd/node/speedgoat_emulator.h"
 
+#include "rpsd/node/hardware_link_checks.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -80,13 +82,7 @@ SpeedgoatEmulatorConfig SpeedgoatEmulatorConfig::read(config::Source& t, int cha
     if (!commanded) t.fail("control_signals", "channel " + std::to_string(ch) + " has no displacement signal");
     if (!measured) t.fail("daq_signals", "channel " + std::to_string(ch) + " has no displacement signal");
   }
-  for (const auto& [key, host] : {std::pair{"bind_host", c.bind_host}, std::pair{"node_host", c.node_host}}) {
-    try {
-      Ipv4Endpoint::parse(host, 0, key);
-    } catch (const std::invalid_argument& e) {
-      t.fail(key, e.what());
-    }
-  }
+  check_ipv4_keys(t, {{"bind_host", c.bind_host}, {"node_host", c.node_host}});
   return c;
 }
 

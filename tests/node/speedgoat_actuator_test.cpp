@@ -316,11 +316,7 @@ TEST(SpeedgoatActuator, TheNodeLatchesItsFaultWhenTheTargetGoesSilent) {
   const ServingTarget serving(*target.emulator);
   const double x0[] = {0.0};
   node.start(x0);
-  transport::CommandSample command;
-  command.test_id = 1;
-  command.site_id = 1;
-  command.run_id = 7;
-  command.channels = 1;
+  transport::CommandSample command{.test_id = 1, .site_id = 1, .run_id = 7, .channels = 1};
   transport::FeedbackSample feedback;
   for (int i = 1; i <= 8; ++i) {
     command.step = i;
