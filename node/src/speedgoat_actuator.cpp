@@ -44,8 +44,8 @@ void list(std::ostream& out, const std::vector<double>& values) {
 
 SpeedgoatActuator::SpeedgoatActuator(const SpeedgoatParameters& config)
     : config_(config),
-      link_(config.transport, validated_target(config), Ipv4Endpoint::parse(config.local_host, config.local_port, "local_host"),
-            config.signals.vector_bytes()),
+      link_(config.transport, validated_target(config),
+            Ipv4Endpoint::parse(config.local_host, config.local_port, "local_host"), config.signals.vector_bytes()),
       out_(config.signals.vector_bytes()),
       in_(config.signals.vector_bytes()),
       control_offset_(config.signals.control.size()),
@@ -105,10 +105,17 @@ SpeedgoatActuator::Step SpeedgoatActuator::send_twice(double new_target, double 
   put_double(out_, speedgoat::kNewTarget, new_target);
   for (int copy = 0; copy < 2; ++copy) {
     switch (link_.send(out_, deadline_s)) {
-      case SpeedgoatLink::Io::kDone: break;
-      case SpeedgoatLink::Io::kClosed: fail("target", "the target closed the connection"); return Step::kFault;
-      case SpeedgoatLink::Io::kTimeout: fail("target", "the target stopped taking vectors"); return Step::kFault;
-      case SpeedgoatLink::Io::kError: fail("node", "the node's socket refused to send"); return Step::kFault;
+      case SpeedgoatLink::Io::kDone:
+        break;
+      case SpeedgoatLink::Io::kClosed:
+        fail("target", "the target closed the connection");
+        return Step::kFault;
+      case SpeedgoatLink::Io::kTimeout:
+        fail("target", "the target stopped taking vectors");
+        return Step::kFault;
+      case SpeedgoatLink::Io::kError:
+        fail("node", "the node's socket refused to send");
+        return Step::kFault;
     }
   }
   return Step::kDone;
@@ -116,10 +123,16 @@ SpeedgoatActuator::Step SpeedgoatActuator::send_twice(double new_target, double 
 
 SpeedgoatActuator::Step SpeedgoatActuator::receive(double deadline_s) noexcept {
   switch (link_.receive(in_, deadline_s)) {
-    case SpeedgoatLink::Io::kDone: break;
-    case SpeedgoatLink::Io::kTimeout: return Step::kTimeout;
-    case SpeedgoatLink::Io::kClosed: fail("target", "the target closed the connection"); return Step::kFault;
-    case SpeedgoatLink::Io::kError: fail("node", "the node's socket refused to receive"); return Step::kFault;
+    case SpeedgoatLink::Io::kDone:
+      break;
+    case SpeedgoatLink::Io::kTimeout:
+      return Step::kTimeout;
+    case SpeedgoatLink::Io::kClosed:
+      fail("target", "the target closed the connection");
+      return Step::kFault;
+    case SpeedgoatLink::Io::kError:
+      fail("node", "the node's socket refused to receive");
+      return Step::kFault;
   }
   const double switch_pc = get_double(in_, speedgoat::kSwitchPc), at_target = get_double(in_, speedgoat::kAtTarget);
   bool well_formed = (switch_pc == 0.0 || switch_pc == 1.0) && (at_target == 0.0 || at_target == 1.0);
@@ -156,7 +169,8 @@ SpeedgoatActuator::Step SpeedgoatActuator::advance(double deadline_s) noexcept {
         if (get_double(in_, speedgoat::kAtTarget) != 1.0) break;
         phase_ = Phase::kIdle;
         return Step::kDone;
-      case Phase::kIdle: return Step::kDone;
+      case Phase::kIdle:
+        return Step::kDone;
     }
     ++counters_.drained_vectors;
   }
@@ -180,8 +194,8 @@ void SpeedgoatActuator::start(std::span<const double> initial_displacement_m) {
                                 " initial displacements expected, got " +
                                 std::to_string(initial_displacement_m.size()));
   }
-  const std::string who = std::string("Speedgoat target ") + transport_name(config_.transport) + " " +
-                          link_.target().to_string();
+  const std::string who =
+      std::string("Speedgoat target ") + transport_name(config_.transport) + " " + link_.target().to_string();
   end_session();
   link_fault_ = false;
   started_ = false;
@@ -201,8 +215,9 @@ void SpeedgoatActuator::start(std::span<const double> initial_displacement_m) {
     if (step == Step::kDone) return;
     std::ostringstream message;
     message << who << ": " << what << ": "
-            << (step == Step::kTimeout ? "no answer within start_timeout_s " + std::to_string(config_.start_timeout_s) + " s"
-                                       : std::string(failure_));
+            << (step == Step::kTimeout
+                    ? "no answer within start_timeout_s " + std::to_string(config_.start_timeout_s) + " s"
+                    : std::string(failure_));
     end_session();
     throw std::runtime_error(message.str());
   };
@@ -211,7 +226,8 @@ void SpeedgoatActuator::start(std::span<const double> initial_displacement_m) {
   check(advance(deadline_s), "reading the DAQ at start");
   const auto& control = config_.signals.control;
   const auto& daq = config_.signals.daq;
-  for (std::size_t i = 0; i < daq.size(); ++i) initial_daq_[i] = get_double(in_, speedgoat::kFirstDaqSignal + static_cast<int>(i));
+  for (std::size_t i = 0; i < daq.size(); ++i)
+    initial_daq_[i] = get_double(in_, speedgoat::kFirstDaqSignal + static_cast<int>(i));
   // Relative control signals start where the DAQ says the piston is (in the control signal's
   // scale); the vector goes out twice with newTarget = 0, as OpenFresco sends it.
   for (std::size_t i = 0; i < control.size(); ++i) {
@@ -266,14 +282,16 @@ servo::ActuatorStatus SpeedgoatActuator::exchange(std::span<const double> comman
     ++counters_.resumed_handshakes;  // this period's command waits: a half-done handshake is finished first
   }
   switch (advance(deadline_s)) {
-    case Step::kFault: return servo::ActuatorStatus::kFault;
+    case Step::kFault:
+      return servo::ActuatorStatus::kFault;
     case Step::kTimeout:
       ++counters_.missed_deadlines;
       if (++consecutive_missed_ > config_.max_missed_replies) {
         return fail("target", "the target did not finish a handshake in time, more than max_missed_replies in a row");
       }
       return servo::ActuatorStatus::kNoReply;
-    case Step::kDone: break;
+    case Step::kDone:
+      break;
   }
   consecutive_missed_ = 0;
   ++counters_.handshakes;

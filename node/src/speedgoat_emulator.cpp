@@ -93,8 +93,7 @@ SpeedgoatEmulator::SpeedgoatEmulator(std::span<servo::Plant* const> plants, cons
       incoming_(static_cast<std::size_t>(config.vector_doubles) * 8 + 1),
       target_m_(plants.size(), 0.0) {
   if (config_.daq_offsets.empty()) config_.daq_offsets.assign(config_.daq.size(), 0.0);
-  if (config_.daq_offsets.size() != config_.daq.size())
-    throw std::invalid_argument("daq_offsets: one per DAQ signal");
+  if (config_.daq_offsets.size() != config_.daq.size()) throw std::invalid_argument("daq_offsets: one per DAQ signal");
   const Ipv4Endpoint local = Ipv4Endpoint::parse(config.bind_host, config.port, "bind_host");
   if (config_.udp) {
     socket_.emplace(local);
@@ -230,7 +229,8 @@ bool SpeedgoatEmulator::serve(double timeout_s) {
       }
     } else {
       Ipv4Endpoint from;
-      const long size = socket_->receive(std::span<std::byte>(reinterpret_cast<std::byte*>(incoming_.data()), incoming_.size()), from);
+      const long size = socket_->receive(
+          std::span<std::byte>(reinterpret_cast<std::byte*>(incoming_.data()), incoming_.size()), from);
       if (size >= 0) {
         Ipv4Endpoint host = from;
         host.port = node_address_.port == 0 ? 0 : host.port;

@@ -51,8 +51,8 @@ void SpeedgoatLink::connect(double deadline_s) {
     }
   }
   if (!udp_answered_) {
-    throw std::runtime_error("Speedgoat target " + target_.to_string() + " (UDP) did not answer the node's 'a' within " +
-                             std::to_string(timeout_s) + " s");
+    throw std::runtime_error("Speedgoat target " + target_.to_string() +
+                             " (UDP) did not answer the node's 'a' within " + std::to_string(timeout_s) + " s");
   }
 }
 
@@ -67,10 +67,16 @@ SpeedgoatLink::Io SpeedgoatLink::send(std::span<const std::byte> vector, double 
   }
   if (!tcp_) return Io::kClosed;
   switch (tcp_->send_all(vector, deadline_s)) {
-    case TcpStream::Io::kDone: ++counters_.vectors_sent; return Io::kDone;
-    case TcpStream::Io::kClosed: return Io::kClosed;
-    case TcpStream::Io::kTimeout: return Io::kTimeout;
-    default: ++counters_.send_errors; return Io::kError;
+    case TcpStream::Io::kDone:
+      ++counters_.vectors_sent;
+      return Io::kDone;
+    case TcpStream::Io::kClosed:
+      return Io::kClosed;
+    case TcpStream::Io::kTimeout:
+      return Io::kTimeout;
+    default:
+      ++counters_.send_errors;
+      return Io::kError;
   }
 }
 
@@ -83,9 +89,13 @@ SpeedgoatLink::Io SpeedgoatLink::receive(std::span<std::byte> vector, double dea
       partial_bytes_ = 0;
       ++counters_.vectors_received;
       return Io::kDone;
-    case TcpStream::Io::kTimeout: return Io::kTimeout;
-    case TcpStream::Io::kClosed: return Io::kClosed;
-    default: ++counters_.receive_errors; return Io::kError;
+    case TcpStream::Io::kTimeout:
+      return Io::kTimeout;
+    case TcpStream::Io::kClosed:
+      return Io::kClosed;
+    default:
+      ++counters_.receive_errors;
+      return Io::kError;
   }
 }
 

@@ -27,28 +27,35 @@ std::string entry(const char* list, std::size_t i) { return std::string(list) + 
 
 const char* quantity_name(ControlQuantity q) {
   switch (q) {
-    case ControlQuantity::kDisplacement: return "displacement";
-    case ControlQuantity::kVelocity: return "velocity";
-    case ControlQuantity::kAcceleration: return "acceleration";
-    case ControlQuantity::kTime: return "time";
+    case ControlQuantity::kDisplacement:
+      return "displacement";
+    case ControlQuantity::kVelocity:
+      return "velocity";
+    case ControlQuantity::kAcceleration:
+      return "acceleration";
+    case ControlQuantity::kTime:
+      return "time";
   }
   return "?";
 }
 
 const char* quantity_name(DaqQuantity q) {
   switch (q) {
-    case DaqQuantity::kDisplacement: return "displacement";
-    case DaqQuantity::kForce: return "force";
-    case DaqQuantity::kUnused: return "unused";
+    case DaqQuantity::kDisplacement:
+      return "displacement";
+    case DaqQuantity::kForce:
+      return "force";
+    case DaqQuantity::kUnused:
+      return "unused";
   }
   return "?";
 }
 
 SignalMap SignalMap::read(config::Source& section, int channels) {
   SignalMap m;
-  m.vector_doubles = static_cast<int>(section.whole_number_or("vector_doubles", 3, kMaxVectorDoubles,
-                                                              kDefaultVectorDoubles,
-                                                              "doubles in each vector, both ways (OpenFresco: 256)"));
+  m.vector_doubles =
+      static_cast<int>(section.whole_number_or("vector_doubles", 3, kMaxVectorDoubles, kDefaultVectorDoubles,
+                                               "doubles in each vector, both ways (OpenFresco: 256)"));
   for (auto& s : section.sections("control_signals", kMaxSignals, "the PC's signals, in the order the target reads")) {
     ControlSignal c;
     c.channel = static_cast<int>(s->whole_number("channel", 0, channels - 1, "the node's channel (0: the first)"));
@@ -58,8 +65,7 @@ SignalMap SignalMap::read(config::Source& section, int channels) {
     c.reference = read_reference(*s);
     s->finish();
     if (q == "force") {
-      s->fail("quantity",
-              "rpsd commands displacement only; a force control signal waits for mixed control (issue 30)");
+      s->fail("quantity", "rpsd commands displacement only; a force control signal waits for mixed control (issue 30)");
     }
     c.quantity = q == "displacement"   ? ControlQuantity::kDisplacement
                  : q == "velocity"     ? ControlQuantity::kVelocity

@@ -280,8 +280,8 @@ void expect_silent_target_faults(bool udp) {
     statuses.push_back(adapter.exchange(u, kDt, reading));
   }
   using S = servo::ActuatorStatus;
-  const std::vector<S> expected{S::kOk,      S::kOk,      S::kOk,    S::kNoReply, S::kNoReply,
-                                S::kNoReply, S::kFault,   S::kFault, S::kFault,   S::kFault};
+  const std::vector<S> expected{S::kOk,      S::kOk,    S::kOk,    S::kNoReply, S::kNoReply,
+                                S::kNoReply, S::kFault, S::kFault, S::kFault,   S::kFault};
   EXPECT_EQ(statuses, expected);
   EXPECT_NEAR(reading.displacement_m[0], 0.003, 1e-15);  // the last measurement stands
   EXPECT_EQ(std::string(adapter.failed_side()), "target");
@@ -329,7 +329,8 @@ TEST(SpeedgoatActuator, TheNodeLatchesItsFaultWhenTheTargetGoesSilent) {
   EXPECT_EQ(node.counters().actuator_no_replies, 2u);
   EXPECT_GE(node.counters().actuator_faults, 1u);
   EXPECT_EQ(std::string(adapter.failed_side()), "target");
-  for (int i = 0; i < 40 && target.emulator->counters().sessions_ended == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  for (int i = 0; i < 40 && target.emulator->counters().sessions_ended == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   EXPECT_EQ(target.emulator->counters().sessions_ended, 1u);  // newTarget = -1 reached the target
 }
 
@@ -407,7 +408,8 @@ TEST(SpeedgoatActuator, StrangersDatagramsAreDroppedByBothSides) {
     ASSERT_NEAR(reading.displacement_m[0], u[0], 1e-15) << i;
   }
   EXPECT_EQ(adapter.link_counters().foreign_datagrams, 5u);
-  for (int i = 0; i < 40 && target.emulator->counters().foreign_datagrams < 10; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  for (int i = 0; i < 40 && target.emulator->counters().foreign_datagrams < 10; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   EXPECT_EQ(target.emulator->counters().foreign_datagrams, 10u);
   EXPECT_NEAR(target.emulator->reading().displacement_m[0], 0.005, 1e-15);
 }
@@ -457,7 +459,8 @@ TEST(SpeedgoatSignals, VelocityAccelerationAndTimeAreTheCommandsFiniteDifference
   Script script;
   auto config = node_config(script.listener.port(), false);
   config.signals.control.push_back({0, speedgoat::ControlQuantity::kVelocity, 1.0, speedgoat::Reference::kAbsolute});
-  config.signals.control.push_back({0, speedgoat::ControlQuantity::kAcceleration, 1.0, speedgoat::Reference::kAbsolute});
+  config.signals.control.push_back(
+      {0, speedgoat::ControlQuantity::kAcceleration, 1.0, speedgoat::Reference::kAbsolute});
   config.signals.control.push_back({0, speedgoat::ControlQuantity::kTime, 1.0, speedgoat::Reference::kAbsolute});
   SpeedgoatActuator adapter(config);
   std::thread node([&] {
@@ -485,7 +488,7 @@ TEST(SpeedgoatSignals, VelocityAccelerationAndTimeAreTheCommandsFiniteDifference
   script.send(0, 1, 0.0, 0.0);
   script.next(), script.next();
   handshake({0.0, 0.0, 0.0, 0.0});
-  handshake({1.0, 0.002, 0.004, 0.5});   // (1 mm - 0) / 0.5 s; (0.002 - 0) / 0.5 s; t = 0.5 s
+  handshake({1.0, 0.002, 0.004, 0.5});  // (1 mm - 0) / 0.5 s; (0.002 - 0) / 0.5 s; t = 0.5 s
   handshake({3.0, 0.004, 0.004, 1.0});
   node.join();
 }

@@ -36,7 +36,8 @@ inline SpeedgoatParameters node_config(std::uint16_t target_port, bool udp, int 
   p.local_host = "127.0.0.1";
   p.signals.control.clear();
   for (int ch = 0; ch < channels; ++ch) {
-    p.signals.control.push_back({ch, speedgoat::ControlQuantity::kDisplacement, 1000.0, speedgoat::Reference::kAbsolute});
+    p.signals.control.push_back(
+        {ch, speedgoat::ControlQuantity::kDisplacement, 1000.0, speedgoat::Reference::kAbsolute});
     p.signals.daq.push_back({ch, speedgoat::DaqQuantity::kDisplacement, 1000.0, speedgoat::Reference::kAbsolute});
     p.signals.daq.push_back({ch, speedgoat::DaqQuantity::kForce, 1e-3, speedgoat::Reference::kAbsolute});
   }

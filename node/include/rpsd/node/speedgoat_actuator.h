@@ -53,7 +53,7 @@ struct SpeedgoatParameters {
 };
 
 struct SpeedgoatCounters {
-  std::uint64_t handshakes = 0;         // commands whose handshake finished
+  std::uint64_t handshakes = 0;          // commands whose handshake finished
   std::uint64_t resumed_handshakes = 0;  // exchanges that went on with an unfinished one
   std::uint64_t drained_vectors = 0;     // stale, repeated or extra vectors read while a flag was awaited
   std::uint64_t missed_deadlines = 0;    // exchanges that ended before their handshake (kNoReply)

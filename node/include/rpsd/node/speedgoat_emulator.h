@@ -27,7 +27,8 @@ struct SpeedgoatEmulatorConfig {
   // One entry of the target model's signal order: the channel and what the value is.
   struct Signal {
     int channel = 0;
-    std::string quantity;  // control: displacement, velocity, acceleration, force, time; DAQ: displacement, force, unused
+    std::string
+        quantity;  // control: displacement, velocity, acceleration, force, time; DAQ: displacement, force, unused
     double signal_per_si = 1.0;
   };
   bool udp = false;
@@ -51,14 +52,14 @@ struct SpeedgoatEmulatorConfig {
 };
 
 struct SpeedgoatEmulatorCounters {
-  std::uint64_t sessions = 0;          // connections (TCP) or 'a' (UDP) taken
-  std::uint64_t sessions_ended = 0;    // newTarget = -1 received
+  std::uint64_t sessions = 0;        // connections (TCP) or 'a' (UDP) taken
+  std::uint64_t sessions_ended = 0;  // newTarget = -1 received
   std::uint64_t vectors_received = 0;
   std::uint64_t vectors_sent = 0;
-  std::uint64_t moves = 0;             // targets reached
-  std::uint64_t refused_clients = 0;   // TCP: a connection from elsewhere, or a second one
+  std::uint64_t moves = 0;              // targets reached
+  std::uint64_t refused_clients = 0;    // TCP: a connection from elsewhere, or a second one
   std::uint64_t foreign_datagrams = 0;  // UDP: from anyone but the node
-  std::uint64_t bad_packets = 0;       // UDP: a datagram of another size than a vector
+  std::uint64_t bad_packets = 0;        // UDP: a datagram of another size than a vector
   std::uint64_t send_errors = 0;
 };
 
