@@ -31,9 +31,9 @@ for transport in tcp udp; do
   for _ in $(seq 100); do grep -q "Speedgoat target" "$WORK/$transport.node.log" && break; sleep 0.1; done
   code=0
   "$RPSD" run "$SCENARIO" --out "$WORK/$transport" --set transport.domain_id=$DOMAIN > "$WORK/$transport.run.log" 2>&1 || code=$?
-  kill -TERM $node
+  kill -TERM $node 2>/dev/null || true
   wait $node || true
-  kill -TERM $target
+  kill -TERM $target 2>/dev/null || true
   wait $target || true
   cat "$WORK/$transport.target.log" "$WORK/$transport.node.log" "$WORK/$transport.run.log"
   [ $code = 0 ] || fail "$transport: rpsd run exited with $code"

@@ -21,9 +21,9 @@ for _ in $(seq 100); do grep -q "Speedgoat target" "$WORK/node.log" && break; sl
 code=0
 "$RPSD" run "$SRC/examples/scenarios/speedgoat-sdof.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN \
   --set clock.mode=real_time --set clock.max_feedback_age_periods=$RT_AGE > "$WORK/run.log" 2>&1 || code=$?
-kill -TERM $node
+kill -TERM $node 2>/dev/null || true
 wait $node || true
-kill -TERM $target
+kill -TERM $target 2>/dev/null || true
 wait $target || true
 cat "$WORK/target.log" "$WORK/node.log" "$WORK/run.log"
 [ $code = 0 ] || fail "rpsd run exited with $code"
