@@ -334,6 +334,40 @@ TEST(SpeedgoatActuator, TheNodeLatchesItsFaultWhenTheTargetGoesSilent) {
   EXPECT_EQ(target.emulator->counters().sessions_ended, 1u);  // newTarget = -1 reached the target
 }
 
+// The lab's model measures in tenths of a millimetre where the node file says millimetres: the
+// node reads ten times the piston's displacement, and the first reading beyond the rig's
+// stroke faults the node, whatever commanded it.
+TEST(SpeedgoatActuator, AMeasurementBeyondTheRigFaultsTheNode) {
+  auto tc = target_config(false);
+  tc.daq[0].signal_per_si = 10000.0;
+  IdealTarget target(tc);
+  SpeedgoatActuator adapter(node_config(target.emulator->port(), false));
+  ServoNodeConfig nc;
+  nc.test_id = 1;
+  nc.site_id = 1;
+  nc.channels = 1;
+  nc.control_period_s = kDt;
+  nc.rig[0] = {0.01, 1e6, 1.0};  // a 10 mm stroke
+  ServoNodeController node(nc, adapter);
+  const ServingTarget serving(*target.emulator);
+  const double x0[] = {0.0};
+  node.start(x0);
+  transport::CommandSample command{.test_id = 1, .site_id = 1, .run_id = 9, .channels = 1};
+  transport::FeedbackSample feedback;
+  int faulted_at = 0;
+  for (int i = 1; i <= 20 && faulted_at == 0; ++i) {
+    command.step = i;
+    command.time_s = i * kDt;
+    command.displacement_m[0] = 2e-4 * i;  // reaches 1 mm at step 5: the node reads 10 mm
+    node.accept(command);
+    node.tick(feedback);
+    if (node.faulted()) faulted_at = i;
+  }
+  EXPECT_EQ(faulted_at, 5);  // 1 mm commanded, 10 mm read: at the stroke
+  EXPECT_NE(feedback.status & transport::kNodeFault, 0u);
+  EXPECT_EQ(std::string(adapter.failed_side()), "none");  // the link is fine; the measurement is not
+}
+
 TEST(SpeedgoatActuator, AMalformedVectorFaultsTheLink) {
   for (const bool udp : {false, true}) {
     auto tc = target_config(udp);
