@@ -1,9 +1,11 @@
 #include "rpsd/node/speedgoat_link.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace rpsd::node {
 
@@ -27,9 +29,17 @@ void SpeedgoatLink::connect(double deadline_s) {
   partial_bytes_ = 0;
   const double timeout_s = std::max(0.0, deadline_s - monotonic_seconds());
   if (transport_ == SpeedgoatTransport::kTcp) {
+    // A target that is not listening yet (its model still loading) is asked again every 100 ms.
     tcp_.reset();
-    tcp_.emplace(TcpStream::connect(target_, local_, timeout_s));
-    return;
+    for (;;) {
+      try {
+        tcp_.emplace(TcpStream::connect(target_, local_, std::max(0.0, deadline_s - monotonic_seconds())));
+        return;
+      } catch (const std::runtime_error&) {
+        if (monotonic_seconds() + 0.1 >= deadline_s) throw;
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+    }
   }
   udp_answered_ = false;
   const std::byte hello[1] = {std::byte{'a'}};

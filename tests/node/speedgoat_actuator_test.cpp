@@ -469,6 +469,34 @@ TEST(SpeedgoatActuator, TheTargetRefusesASecondClientAndOneFromAnotherAddress) {
   EXPECT_EQ(target.emulator->counters().sessions, 1u);
 }
 
+// The node may start before the target's model listens: it asks again until start_timeout_s.
+TEST(SpeedgoatActuator, StartWaitsForATargetThatIsNotListeningYet) {
+  std::uint16_t port = 0;
+  {
+    const TcpListener probe(Ipv4Endpoint::parse("127.0.0.1", 0, "test"));
+    port = probe.port();  // free once the probe is gone
+  }
+  SpeedgoatActuator adapter(node_config(port, false));
+  std::atomic<bool> started{false};
+  std::thread node([&] {
+    guarded([&] {
+      const double x0[] = {0.0};
+      adapter.start(x0);
+      started.store(true);
+    });
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // refused meanwhile
+  auto tc = target_config(false);
+  tc.port = port;
+  IdealTarget target(tc);
+  {
+    const ServingTarget serving(*target.emulator);
+    node.join();
+  }
+  EXPECT_TRUE(started.load());
+  EXPECT_EQ(target.emulator->counters().sessions, 1u);
+}
+
 TEST(SpeedgoatActuator, StartFailsClearlyWhenNoTargetListens) {
   auto config = node_config(1, false);  // nothing listens on port 1
   config.start_timeout_s = 0.5;

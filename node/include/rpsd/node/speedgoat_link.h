@@ -40,10 +40,9 @@ class SpeedgoatLink {
   SpeedgoatLink(SpeedgoatTransport transport, const Ipv4Endpoint& target, const Ipv4Endpoint& local,
                 std::size_t vector_bytes);
 
-  // TCP: connects. UDP: sends the 1-byte datagram 'a' (OpenSees' UDP_Socket) every 100 ms
-  // until a datagram from the target answers it (that datagram is consumed, as OpenSees
-  // does). Throws std::runtime_error naming the target when the deadline passes. Not
-  // real-time safe.
+  // TCP: connects, asking again every 100 ms while the target refuses. UDP: sends the 1-byte datagram 'a' (OpenSees'
+  // UDP_Socket) every 100 ms until a datagram from the target answers it (that datagram is consumed, as OpenSees does).
+  // Throws std::runtime_error naming the target when the deadline passes. Not real-time safe.
   void connect(double deadline_s);
   // Real-time safe.
   Io send(std::span<const std::byte> vector, double deadline_s) noexcept;
