@@ -8,35 +8,12 @@
 # the command and the measured force is the specimen's k x (offsets removed); the node ended
 # the session (newTarget = -1).
 source "$(dirname "$0")/lib.sh"
-NODE_FILE="$SRC/examples/nodes/speedgoat-node.yaml"
-TARGET_FILE="$SRC/examples/nodes/speedgoat-target-emulator.yaml"
-SCENARIO="$SRC/examples/scenarios/speedgoat-sdof.yaml"
-free_port() {
-  python3 -c "import socket; s = socket.socket(socket.AF_INET, socket.SOCK_$1); s.bind(('127.0.0.1', 0)); print(s.getsockname()[1])"
-}
+source "$(dirname "$0")/speedgoat_lib.sh"
 
 for transport in tcp udp; do
-  port=$(free_port "$([ $transport = tcp ] && echo STREAM || echo DGRAM)")
-  "$RPSD" speedgoat-emulator "$TARGET_FILE" --set target.transport=$transport --set target.port=$port \
-    --summary "$WORK/$transport.target.json" > "$WORK/$transport.target.log" 2>&1 &
-  target=$!
-  PIDS+=($target)
-  for _ in $(seq 100); do grep -q "serving node" "$WORK/$transport.target.log" && break; sleep 0.1; done
   # Lock-step: a handshake may wait as long as a loaded machine needs (the file's 2 ms is the rig's).
-  "$RPSD" servo-node "$NODE_FILE" --set node.mode=lock_step --set dds.domain_id=$DOMAIN \
-    --set actuator.transport=$transport --set actuator.port=$port --set actuator.reply_timeout_s=5 \
-    --summary "$WORK/$transport.node.json" > "$WORK/$transport.node.log" 2>&1 &
-  node=$!
-  PIDS+=($node)
-  for _ in $(seq 100); do grep -q "Speedgoat target" "$WORK/$transport.node.log" && break; sleep 0.1; done
-  code=0
-  "$RPSD" run "$SCENARIO" --out "$WORK/$transport" --set transport.domain_id=$DOMAIN > "$WORK/$transport.run.log" 2>&1 || code=$?
-  kill -TERM $node 2>/dev/null || true
-  wait $node || true
-  kill -TERM $target 2>/dev/null || true
-  wait $target || true
-  cat "$WORK/$transport.target.log" "$WORK/$transport.node.log" "$WORK/$transport.run.log"
-  [ $code = 0 ] || fail "$transport: rpsd run exited with $code"
+  speedgoat_run $transport $transport "" "--set node.mode=lock_step --set actuator.reply_timeout_s=5"
+  [ $RUN_CODE = 0 ] || fail "$transport: rpsd run exited with $RUN_CODE"
   every_step_recorded "$WORK/$transport"
   python3 - "$WORK/$transport" "$transport" <<'PY' || fail "$transport: the run through the Speedgoat handshake is wrong"
 import csv, json, sys

@@ -7,33 +7,17 @@
 # step; the node never faulted and finished most handshakes in their period; the recorded
 # measurement tracks the command and the force is the specimen's k x.
 source "$(dirname "$0")/lib.sh"
-port=$(python3 -c "import socket; s = socket.socket(); s.bind(('127.0.0.1', 0)); print(s.getsockname()[1])")
-"$RPSD" speedgoat-emulator "$SRC/examples/nodes/speedgoat-target-emulator.yaml" --set target.port=$port \
-  --summary "$WORK/target.json" > "$WORK/target.log" 2>&1 &
-target=$!
-PIDS+=($target)
-for _ in $(seq 100); do grep -q "serving node" "$WORK/target.log" && break; sleep 0.1; done
-"$RPSD" servo-node "$SRC/examples/nodes/speedgoat-node.yaml" --set dds.domain_id=$DOMAIN --set actuator.port=$port \
-  --set actuator.max_missed_replies=1000 --summary "$WORK/node.json" > "$WORK/node.log" 2>&1 &
-node=$!
-PIDS+=($node)
-for _ in $(seq 100); do grep -q "Speedgoat target" "$WORK/node.log" && break; sleep 0.1; done
-code=0
-"$RPSD" run "$SRC/examples/scenarios/speedgoat-sdof.yaml" --out "$WORK/rt" --set transport.domain_id=$DOMAIN \
-  --set clock.mode=real_time --set clock.max_feedback_age_periods=$RT_AGE > "$WORK/run.log" 2>&1 || code=$?
-kill -TERM $node 2>/dev/null || true
-wait $node || true
-kill -TERM $target 2>/dev/null || true
-wait $target || true
-cat "$WORK/target.log" "$WORK/node.log" "$WORK/run.log"
-[ $code = 0 ] || fail "rpsd run exited with $code"
+source "$(dirname "$0")/speedgoat_lib.sh"
+speedgoat_run rt tcp "" "--set actuator.max_missed_replies=1000" --set clock.mode=real_time \
+  --set clock.max_feedback_age_periods=$RT_AGE
+[ $RUN_CODE = 0 ] || fail "rpsd run exited with $RUN_CODE"
 every_step_recorded "$WORK/rt"
 python3 - "$WORK" <<'PY' || fail "the real-time run through the Speedgoat handshake is wrong"
 import csv, json, sys
 base = sys.argv[1]
 summary = json.load(open(f"{base}/rt/summary.json"))
-node = json.load(open(f"{base}/node.json"))
-target = json.load(open(f"{base}/target.json"))
+node = json.load(open(f"{base}/rt.node.json"))
+target = json.load(open(f"{base}/rt.target.json"))
 assert summary["completed"] and summary["steps"] == summary["steps_planned"], summary.get("stop_reason")
 assert node["mode"] == "real_time" and not node["faulted"], node
 link = node["speedgoat_link"]
