@@ -12,12 +12,10 @@ speedgoat_run run tcp "--set target.silent_after_moves=500" \
 [ $RUN_CODE = 3 ] || fail "rpsd run exited with $RUN_CODE, not 3 (stopped)"
 grep -q "the servo node reported a fault" "$WORK/run.run.log" || fail "the run does not say the node faulted"
 every_step_recorded "$WORK/run"
-python3 - "$WORK" <<'PY' || fail "the silent target was not handled as it should be"
+python3 - "$WORK/run" <<'PY' || fail "the silent target was not handled as it should be"
 import json, sys
-base = sys.argv[1]
-node = json.load(open(f"{base}/run.node.json"))
-target = json.load(open(f"{base}/run.target.json"))
-summary = json.load(open(f"{base}/run/summary.json"))
+run = sys.argv[1]
+node, target, summary = (json.load(open(run + suffix)) for suffix in (".node.json", ".target.json", "/summary.json"))
 link = node["speedgoat_link"]
 assert node["faulted"], node
 assert link["failed_side"] == "target", link
