@@ -30,6 +30,8 @@ void add_servo_node(CLI::App& app);
 
 // `rpsd plugin-site-emulator SITE.yaml`: a NEES/LabVIEW plugin site in software.
 void add_plugin_site_emulator(CLI::App& app);
+// `rpsd speedgoat-emulator TARGET.yaml`: a Speedgoat target of OpenFresco's, in software.
+void add_speedgoat_emulator(CLI::App& app);
 
 // `rpsd site-server SITE.yaml --out DIR`: the experimental site of an OpenSees model.
 void add_site_server(CLI::App& app);

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   add_plot(app);
   add_servo_node(app);
   add_plugin_site_emulator(app);
+  add_speedgoat_emulator(app);
   add_site_server(app);
   add_host_check(app);
   add_reference(app);

@@ -1,5 +1,5 @@
 // `rpsd plugin-site-emulator SITE.yaml`: a NEES/LabVIEW plugin site in software, so that a lab
-// can rehearse a `nees_plugin` node file with no hardware (docs/lab-controllers-plugin.md). Reads the
+// can rehearse a `nees_plugin` node file with no hardware (docs/lab-controllers.md). Reads the
 // file, serves until SIGINT/SIGTERM (or --duration), writes the summary.
 #include <fstream>
 #include <iostream>
@@ -21,7 +21,7 @@ void add_plugin_site_emulator(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   auto* command = app.add_subcommand("plugin-site-emulator",
-                                     "Stand in for a NEES/LabVIEW plugin site on TCP (docs/lab-controllers-plugin.md)");
+                                     "Stand in for a NEES/LabVIEW plugin site on TCP (docs/lab-controllers.md)");
   command->add_option("config", o->config, "Configuration file (YAML)")->required()->check(CLI::ExistingFile);
   command->add_option("--set", o->overrides, "Override a key: key.path=value (repeatable)");
   command->add_option("--summary", o->summary, "Write what the site did (JSON) here when it stops");

@@ -1,5 +1,7 @@
 #include "rpsd/node/controller_emulator.h"
 
+#include "rpsd/node/hardware_link_checks.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -41,13 +43,7 @@ ControllerEmulatorConfig ControllerEmulatorConfig::read(config::Source& u) {
 }
 
 void ControllerEmulatorConfig::check_and_load_key(config::Source& u) {
-  for (const auto& [key, host] : {std::pair{"bind_host", bind_host}, std::pair{"node_host", node_host}}) {
-    try {
-      Ipv4Endpoint::parse(host, 0, key);
-    } catch (const std::invalid_argument& e) {
-      u.fail(key, e.what());
-    }
-  }
+  check_ipv4_keys(u, {{"bind_host", bind_host}, {"node_host", node_host}});
   if (protocol_version == udp_protocol::kVersion1 && !key_file.empty()) {
     u.fail("key_file", "protocol version 1 authenticates nothing: remove key_file, or use protocol_version 2");
   }

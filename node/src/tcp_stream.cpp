@@ -183,6 +183,10 @@ TcpStream::Io TcpStream::fill(double deadline_s) noexcept {
 
 TcpStream::Io TcpStream::receive_exact(std::span<std::byte> bytes, double deadline_s) noexcept {
   std::size_t got = 0;
+  return receive_resumable(bytes, got, deadline_s);
+}
+
+TcpStream::Io TcpStream::receive_resumable(std::span<std::byte> bytes, std::size_t& got, double deadline_s) noexcept {
   while (got < bytes.size()) {
     if (ahead_begin_ < ahead_end_) {
       const std::size_t n = std::min(bytes.size() - got, ahead_end_ - ahead_begin_);

@@ -1,5 +1,6 @@
 #include "rpsd/node/udp_controller_actuator.h"
 
+#include "rpsd/node/hardware_link_checks.h"
 #include "rpsd/node/owned_actuator.h"
 
 #include <algorithm>
@@ -15,19 +16,11 @@ using udp_protocol::ControllerStatus;
 using udp_protocol::PacketStatus;
 
 void UdpControllerParameters::validate() const {
-  if (channels < 1 || channels > transport::kMaxChannels) {
-    throw std::invalid_argument("channels: must be between 1 and " + std::to_string(transport::kMaxChannels) +
-                                ", got " + std::to_string(channels));
-  }
+  check_link_channels(channels);
   Ipv4Endpoint::parse(controller_host, controller_port, "controller_host");
   Ipv4Endpoint::parse(local_host, local_port, "local_host");
   if (controller_port == 0) throw std::invalid_argument("controller_port: required (1-65535)");
-  if (!(reply_timeout_s > 0.0) || !std::isfinite(reply_timeout_s))
-    throw std::invalid_argument("reply_timeout_s: must be positive");
-  if (max_missed_replies < 0) throw std::invalid_argument("max_missed_replies: must be zero or positive");
-  if (!(start_timeout_s > 0.0) || !std::isfinite(start_timeout_s))
-    throw std::invalid_argument("start_timeout_s: must be positive");
-  if (!(start_tolerance_m >= 0.0)) throw std::invalid_argument("start_tolerance_m: must be zero or positive");
+  check_link_timing(reply_timeout_s, max_missed_replies, start_timeout_s, start_tolerance_m);
   if (protocol_version == udp_protocol::kVersion1) {
     if (!key.empty()) throw std::invalid_argument("key_file: protocol version 1 authenticates nothing");
   } else if (protocol_version == udp_protocol::kVersion2) {

@@ -10,6 +10,7 @@
 #include "rpsd/config/source.h"
 #include "rpsd/node/nees_plugin_site_process.h"
 #include "rpsd/node/servo_node_setup.h"
+#include "rpsd/node/speedgoat_emulator_process.h"
 
 namespace rpsd::scenarios::node_sections {
 
@@ -31,5 +32,7 @@ void emulator_actuator(config::Source& a, node::ControllerEmulatorSetup& f);
 // The file of `rpsd plugin-site-emulator` (plugin_site_file.cpp).
 void plugin_site_file(config::Source& root, node::PluginSiteEmulatorSetup& f);
 void plugin_site_actuator(config::Source& a, node::PluginSiteEmulatorSetup& f);
+// `rpsd speedgoat-emulator`'s file: `actuator` (as the controller emulator's), then `target`.
+void speedgoat_emulator_file(config::Source& root, node::SpeedgoatEmulatorSetup& f);
 
 }  // namespace rpsd::scenarios::node_sections

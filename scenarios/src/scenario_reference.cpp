@@ -236,7 +236,7 @@ void node_file(Document& doc) {
             "`actuator.servo` takes a scenario's `servo` keys.");
   doc.heading(
       2, "Plugin site emulator file (`rpsd plugin-site-emulator`)",
-      "A NEES/LabVIEW plugin site in software (docs/lab-controllers-plugin.md): its control points, their limits "
+      "A NEES/LabVIEW plugin site in software (docs/lab-controllers.md): its control points, their limits "
       "and the simulated actuators behind them.");
   node::PluginSiteEmulatorSetup site;
   doc.table("The file's own keys", listing("", [site](config::Source& s) mutable { ns::plugin_site_file(s, site); },
@@ -249,6 +249,13 @@ void node_file(Document& doc) {
             listing("actuator", [&site](config::Source& s) { ns::plugin_site_actuator(s, site); }, {"actuator.servo"}),
             "One actuator per dof, in the order of the control points; `actuator.servo` takes a scenario's `servo` "
             "keys.");
+  doc.heading(2, "Speedgoat target emulator file (`rpsd speedgoat-emulator`)",
+              "A Speedgoat target running OpenFresco's hybrid controller model, in software "
+              "(docs/lab-controllers.md); its `actuator` section is the controller emulator's.");
+  node::SpeedgoatEmulatorSetup g;
+  doc.table("The file's own keys",
+            listing("", [g](config::Source& s) mutable { ns::speedgoat_emulator_file(s, g); }, {"actuator", "target"}));
+  doc.table("target", listing("target", [](config::Source& s) { (void)node::SpeedgoatEmulatorConfig::read(s, 1); }));
 }
 
 void site_server_file(Document& doc) {

@@ -195,6 +195,19 @@ void emulator_file(config::Source& root, node::ControllerEmulatorSetup& f) {
   f.udp.check_and_load_key(*udp);
 }
 
+void speedgoat_emulator_file(config::Source& root, node::SpeedgoatEmulatorSetup& f) {
+  root.optional_text("description", "one line for titles");
+  // The plants first: the target's signals name their channels.
+  node::ControllerEmulatorSetup plants;
+  emulator_actuator(*root.section("actuator", "the actuators it emulates"), plants);
+  f.channels = plants.channels;
+  f.plant = plants.plant;
+  f.initial_displacement_m = plants.initial_displacement_m;
+  const auto target = root.section("target", "where it listens, its node, its signal order and scales");
+  f.target = node::SpeedgoatEmulatorConfig::read(*target, f.channels);
+  root.finish();
+}
+
 }  // namespace node_sections
 
 node::ServoNodeSetup load_servo_node(const std::filesystem::path& file, const std::vector<Override>& overrides) {
@@ -240,6 +253,15 @@ node::ControllerEmulatorSetup load_controller_emulator(const std::filesystem::pa
   node::ControllerEmulatorSetup f;
   f.name = file.stem().string();
   node_sections::emulator_file(root, f);
+  return f;
+}
+
+node::SpeedgoatEmulatorSetup load_speedgoat_emulator(const std::filesystem::path& file,
+                                                     const std::vector<Override>& overrides) {
+  MappingReader root = load_root_reader(file, overrides);
+  node::SpeedgoatEmulatorSetup f;
+  f.name = file.stem().string();
+  node_sections::speedgoat_emulator_file(root, f);
   return f;
 }
 

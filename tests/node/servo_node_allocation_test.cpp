@@ -1,8 +1,9 @@
 // The servo node allocates nothing per control period: the controller with its limits
 // acting, events logged, bad commands dropped, the watchdog holding and ramping to safe,
 // over the simulated plants, over the UDP adapter in both protocol versions (version 2
-// tags and checks every datagram) and over the NEES plugin adapter (the emulators' threads
-// are not counted: only the control-loop thread must not allocate).
+// tags and checks every datagram), over the Speedgoat adapter on TCP and UDP and over the NEES
+// plugin adapter (the emulators' threads are not counted: only the control-loop thread must
+// not allocate).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -19,6 +20,7 @@
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
+#include "speedgoat_test_link.h"
 #include "udp_test_link.h"
 
 namespace rpsd::node {
@@ -167,6 +169,30 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverTheNeesPluginAdapter) {
   EXPECT_EQ(adapter.failed_side(), "none");
   EXPECT_EQ(node.counters().actuator_faults, 0u);
   EXPECT_TRUE(r.reached_safe_state);
+}
+
+void expect_no_allocation_per_tick_over_the_speedgoat_adapter(bool udp) {
+  testing::IdealTarget target(testing::target_config(udp, 2));
+  SpeedgoatActuator adapter(testing::node_config(target.emulator->port(), udp, 2));
+  ServoNodeController node(node_config(), adapter);
+  RunResult r;
+  {
+    const testing::ServingTarget serving(*target.emulator);
+    r = run(node, 2000);
+  }
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_EQ(adapter.counters().missed_deadlines, 0u);
+  EXPECT_EQ(adapter.counters().handshakes, 3000u + 2000u);  // one a tick
+  EXPECT_EQ(node.counters().actuator_no_replies, 0u);
+  EXPECT_TRUE(r.reached_safe_state);
+}
+
+TEST(ServoNodeAllocation, NoAllocationPerTickOverTheSpeedgoatAdapterOnTcp) {
+  expect_no_allocation_per_tick_over_the_speedgoat_adapter(false);
+}
+
+TEST(ServoNodeAllocation, NoAllocationPerTickOverTheSpeedgoatAdapterOnUdp) {
+  expect_no_allocation_per_tick_over_the_speedgoat_adapter(true);
 }
 
 }  // namespace

@@ -51,6 +51,8 @@ void read(const fs::path& file) {
     (void)load_controller_emulator(file);
   } else if (root["plugin_site"]) {
     (void)load_plugin_site_emulator(file);
+  } else if (root["target"]) {
+    (void)load_speedgoat_emulator(file);
   } else if (root["listen"]) {
     (void)load_site_server(file);
   } else {

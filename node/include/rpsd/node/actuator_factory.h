@@ -8,11 +8,13 @@
 #include "rpsd/node/nees_plugin_actuator.h"
 #include "rpsd/node/owned_actuator.h"
 #include "rpsd/node/simulated_actuator_parameters.h"
+#include "rpsd/node/speedgoat_actuator.h"
 #include "rpsd/node/udp_controller_actuator.h"
 
 namespace rpsd::node {
 
-using ActuatorKinds = config::KindList<SimulatedActuatorParameters, UdpControllerParameters, NeesPluginParameters>;
+using ActuatorKinds = config::KindList<SimulatedActuatorParameters, UdpControllerParameters, SpeedgoatParameters,
+                                      NeesPluginParameters>;
 using ActuatorConfig = ActuatorKinds::Variant;
 
 // Builds the actuator for `channels` channels. Not real-time safe; throws

@@ -1,6 +1,6 @@
 // Hardware adapter: a lab site that serves the NEES/LabVIEW plugin protocol (a LabVIEW
 // program, UIUC's load and boundary condition boxes, MiniMOST), driven as OpenFresco's
-// ECLabVIEW drives it (docs/lab-controllers-plugin.md). Each control period proposes the
+// ECLabVIEW drives it (docs/lab-controllers.md). Each control period proposes the
 // command under a new transaction, executes it and reads every control point, over one TCP
 // connection to the one configured site, all within period_s + reply_timeout_s. A refusal,
 // a late, malformed or oversized answer, or a closed connection latches kFault: a text
@@ -39,7 +39,7 @@ struct NeesPluginChannel {
 struct NeesPluginParameters {
   static constexpr std::string_view kName = "nees_plugin";
   static constexpr std::string_view kSummary =
-      "a NEES/LabVIEW plugin site, OpenFresco's ECLabVIEW protocol over TCP (docs/lab-controllers-plugin.md)";
+      "a NEES/LabVIEW plugin site, OpenFresco's ECLabVIEW protocol over TCP (docs/lab-controllers.md)";
   static NeesPluginParameters read(config::Source& section, int channels);
   static OwnedActuator make(const NeesPluginParameters& config, int channels);
   servo::Envelope envelope() const { return rig; }

@@ -1,5 +1,5 @@
 // The lines of the NEES/LabVIEW plugin protocol as OpenFresco's ECLabVIEW client writes and
-// reads them (docs/lab-controllers-plugin.md): tab-separated fields, one line per message,
+// reads them (docs/lab-controllers.md): tab-separated fields, one line per message,
 // '\n' at its end. Lines are written into and parsed from fixed buffers (std::to_chars,
 // std::from_chars), so that a control period's exchange allocates nothing.
 #pragma once

@@ -1,5 +1,5 @@
 // A lab site in software: it serves the NEES/LabVIEW plugin protocol as OpenFresco's ECLabVIEW
-// client expects it to (docs/lab-controllers-plugin.md), with simulated plants behind its
+// client expects it to (docs/lab-controllers.md), with simulated plants behind its
 // control points. Its parsing is its own, written from OpenFresco's client, not rpsd's
 // encoder, so that the node's adapter is tested against the protocol and not against itself.
 // One session at a time, from its node's address only; a proposal beyond a control point's

@@ -42,6 +42,9 @@ class TcpStream {
   Io send_all(std::span<const std::byte> bytes, double deadline_s) noexcept;
   // Receives exactly bytes.size() bytes before the deadline. Real-time safe.
   Io receive_exact(std::span<std::byte> bytes, double deadline_s) noexcept;
+  // Fills bytes from `got` on before the deadline, adding what moved to `got`: a fixed-size
+  // message cut by the deadline is resumed by the next call. Real-time safe.
+  Io receive_resumable(std::span<std::byte> bytes, std::size_t& got, double deadline_s) noexcept;
   // Receives one line, up to and including '\n', into `line` (length in `size`, the newline
   // kept); bytes after it stay for the next call. Real-time safe: the buffer is the caller's
   // and the read-ahead one is allocated at construction.
