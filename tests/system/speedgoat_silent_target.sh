@@ -3,7 +3,8 @@
 # `rpsd speedgoat-emulator` stops answering after 500 moves. The node reports no reply for
 # max_missed_replies (3) commands, then latches a fault on the 4th, ends the session
 # (newTarget = -1 twice: the emulator counts it) and says in its summary that the target
-# failed and why; the coordinator stops the test (exit 3) with every step it took recorded.
+# failed and why; the coordinator stops the test (exit 3) with every step it took recorded,
+# and its summary.json says what the node said (stopped_by.node_says).
 source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/speedgoat_lib.sh"
 # 50 ms per handshake: long for a loaded machine's lock-step, short beside the test's timeouts.
@@ -24,6 +25,8 @@ assert link["handshakes"] == 499 and link["missed_deadlines"] == 4, link  # 500 
 assert node["actuator_no_replies"] == 3, node
 assert target["moves"] == 500 and target["sessions_ended"] == 1, target
 assert not summary["completed"] and summary["steps"] < summary["steps_planned"], summary
+# The test's own summary says what faulted the node, from the node's heartbeat.
+assert summary["stopped_by"]["node_says"].startswith("site 1: the target did not finish a handshake in time"), summary["stopped_by"]
 print(f"PASS: silent after 500 moves; the node faulted after {link['missed_deadlines']} late handshakes "
       f"({link['failure']}); the run stopped at step {summary['steps']} of {summary['steps_planned']}")
 PY

@@ -99,6 +99,8 @@ class SpeedgoatActuator final : public servo::Actuator, public ActuatorLinkRepor
   // Which side failed ("none", "target", "node") and why.
   const char* failed_side() const { return failed_side_; }
   const char* failure() const { return failure_; }
+  // After a fault: why (a literal, so the node's heartbeat can carry it). Real-time safe.
+  std::string_view fault_text() const noexcept override { return link_fault_ ? failure_ : ""; }
 
  private:
   enum class Phase : std::uint8_t { kIdle, kAwaitSwitchHigh, kAwaitSwitchLow, kAwaitAtTarget };
