@@ -2,13 +2,12 @@
 // serve until SIGINT/SIGTERM (or --duration), write the summary (node/servo_node_process.h).
 #include <atomic>
 #include <csignal>
-#include <fstream>
 #include <iostream>
-#include <memory>
 
 #include "rpsd/commands.h"
 #include "rpsd/node/servo_node_process.h"
 #include "rpsd/scenarios/servo_node_file.h"
+#include "serving_command.h"
 
 namespace rpsd::cli {
 namespace {
@@ -25,48 +24,22 @@ void install_stop_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-struct NodeOptions {
-  std::string config;
-  std::vector<std::string> overrides;
-  std::string summary;
-  double duration_s = 0.0;
-};
-
-void write_summary(const std::string& file, const nlohmann::json& summary) {
-  if (!file.empty()) std::ofstream(file) << summary.dump(2) << '\n';
-}
-
-void add_node_options(CLI::App& command, const std::shared_ptr<NodeOptions>& o) {
-  command.add_option("config", o->config, "Configuration file (YAML)")->required()->check(CLI::ExistingFile);
-  command.add_option("--set", o->overrides, "Override a key: key.path=value (repeatable)");
-  command.add_option("--summary", o->summary, "Write what the process did (JSON) here when it stops");
-  command.add_option("--duration", o->duration_s, "Stop after this many seconds (default: on SIGINT/SIGTERM)")
-      ->check(CLI::NonNegativeNumber);
-}
-
 }  // namespace
 
 void add_servo_node(CLI::App& app) {
-  auto options = std::make_shared<NodeOptions>();
-  auto* node =
-      app.add_subcommand("servo-node", "Serve one site's actuators over DDS, with the node's own limits and watchdog");
-  add_node_options(*node, options);
-  node->callback([options] {
-    const auto setup = scenarios::load_servo_node(options->config, parse_overrides(options->overrides));
-    install_stop_handlers();
-    write_summary(options->summary, node::serve_site(setup, {options->duration_s}, g_stop, std::cout));
-  });
-  auto emulator_options = std::make_shared<NodeOptions>();
-  auto* emulator = app.add_subcommand("controller-emulator",
-                                      "Stand in for a hardware controller on UDP (docs/udp-controller-protocol.md)");
-  add_node_options(*emulator, emulator_options);
-  emulator->callback([emulator_options] {
-    const auto setup =
-        scenarios::load_controller_emulator(emulator_options->config, parse_overrides(emulator_options->overrides));
-    install_stop_handlers();
-    write_summary(emulator_options->summary,
-                  node::emulate_controller(setup, {emulator_options->duration_s}, g_stop, std::cout));
-  });
+  add_serving_command(app, "servo-node", "Serve one site's actuators over DDS, with the node's own limits and watchdog",
+                      "Configuration file (YAML)", [](const auto& file, const auto& overrides, const auto& options) {
+                        const auto setup = scenarios::load_servo_node(file, overrides);
+                        install_stop_handlers();
+                        return node::serve_site(setup, options, g_stop, std::cout);
+                      });
+  add_serving_command(app, "controller-emulator",
+                      "Stand in for a hardware controller on UDP (docs/udp-controller-protocol.md)",
+                      "Configuration file (YAML)", [](const auto& file, const auto& overrides, const auto& options) {
+                        const auto setup = scenarios::load_controller_emulator(file, overrides);
+                        install_stop_handlers();
+                        return node::emulate_controller(setup, options, g_stop, std::cout);
+                      });
 }
 
 }  // namespace rpsd::cli

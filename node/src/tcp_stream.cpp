@@ -16,23 +16,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "ipv4_sockaddr.h"
+
 namespace rpsd::node {
 namespace {
-
-sockaddr_in to_sockaddr(const Ipv4Endpoint& endpoint) {
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(endpoint.port);
-  std::memcpy(&address.sin_addr.s_addr, endpoint.address.data(), 4);
-  return address;
-}
-
-Ipv4Endpoint from_sockaddr(const sockaddr_in& address) {
-  Ipv4Endpoint endpoint;
-  std::memcpy(endpoint.address.data(), &address.sin_addr.s_addr, 4);
-  endpoint.port = ntohs(address.sin_port);
-  return endpoint;
-}
 
 // Waits for `events` until the monotonic deadline: > 0 ready, 0 timeout, < 0 error.
 int wait_for(int fd, short events, double deadline_s) noexcept {

@@ -13,25 +13,9 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "ipv4_sockaddr.h"
+
 namespace rpsd::node {
-namespace {
-
-sockaddr_in to_sockaddr(const Ipv4Endpoint& endpoint) {
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(endpoint.port);
-  std::memcpy(&address.sin_addr.s_addr, endpoint.address.data(), 4);  // already network order
-  return address;
-}
-
-Ipv4Endpoint from_sockaddr(const sockaddr_in& address) {
-  Ipv4Endpoint endpoint;
-  std::memcpy(endpoint.address.data(), &address.sin_addr.s_addr, 4);
-  endpoint.port = ntohs(address.sin_port);
-  return endpoint;
-}
-
-}  // namespace
 
 Ipv4Endpoint Ipv4Endpoint::parse(const std::string& address, std::uint16_t port, const std::string& what) {
   in_addr parsed{};

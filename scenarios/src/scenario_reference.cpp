@@ -234,10 +234,9 @@ void node_file(Document& doc) {
   doc.table("actuator",
             listing("actuator", [&e](config::Source& s) { ns::emulator_actuator(s, e); }, {"actuator.servo"}),
             "`actuator.servo` takes a scenario's `servo` keys.");
-  doc.heading(
-      2, "Plugin site emulator file (`rpsd plugin-site-emulator`)",
-      "A NEES/LabVIEW plugin site in software (docs/lab-controllers.md): its control points, their limits "
-      "and the simulated actuators behind them.");
+  doc.heading(2, "Plugin site emulator file (`rpsd plugin-site-emulator`)",
+              "A NEES/LabVIEW plugin site in software (docs/lab-controllers.md): its control points, their limits "
+              "and the simulated actuators behind them.");
   node::PluginSiteEmulatorSetup site;
   doc.table("The file's own keys", listing("", [site](config::Source& s) mutable { ns::plugin_site_file(s, site); },
                                            {"plugin_site", "actuator"}));

@@ -13,8 +13,8 @@
 
 namespace rpsd::node {
 
-using ActuatorKinds = config::KindList<SimulatedActuatorParameters, UdpControllerParameters, SpeedgoatParameters,
-                                      NeesPluginParameters>;
+using ActuatorKinds =
+    config::KindList<SimulatedActuatorParameters, UdpControllerParameters, SpeedgoatParameters, NeesPluginParameters>;
 using ActuatorConfig = ActuatorKinds::Variant;
 
 // Builds the actuator for `channels` channels. Not real-time safe; throws
