@@ -116,6 +116,12 @@ std::uint16_t TcpStream::local_port() const {
   return ntohs(bound.sin_port);
 }
 
+bool TcpStream::sends_without_delay() const {
+  int on = 0;
+  socklen_t length = sizeof on;
+  return fd_ >= 0 && ::getsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &on, &length) == 0 && on != 0;
+}
+
 void TcpStream::quick_ack() noexcept {
   // Linux clears TCP_QUICKACK after it acts: set again after every receive.
   const int on = 1;

@@ -41,6 +41,13 @@ TEST(TcpStream, AVectorSentInPiecesArrivesWhole) {
   EXPECT_EQ(p.server.peer().port, p.client.local_port());
 }
 
+// A small message is not held back for Nagle's algorithm on either side of a connection.
+TEST(TcpStream, BothEndsSendWithoutNaglesDelay) {
+  Pair p;
+  EXPECT_TRUE(p.client.sends_without_delay());
+  EXPECT_TRUE(p.server.sends_without_delay());
+}
+
 TEST(TcpStream, LinesAreSplitAtTheirNewlineAndTheRestKept) {
   Pair p;
   ASSERT_EQ(p.client.send_all(bytes_of("OK\t0\tfirst\nOK\t0\tsec"), in(2.0)), TcpStream::Io::kDone);

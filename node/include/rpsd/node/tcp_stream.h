@@ -37,6 +37,8 @@ class TcpStream {
   const Ipv4Endpoint& peer() const { return peer_; }
   std::uint16_t local_port() const;
   bool is_open() const { return fd_ >= 0; }
+  // Whether the system says Nagle's delay is off on this connection (TCP_NODELAY).
+  bool sends_without_delay() const;
 
   // Sends every byte before the monotonic deadline (monotonic_seconds()). Real-time safe.
   Io send_all(std::span<const std::byte> bytes, double deadline_s) noexcept;
