@@ -56,6 +56,13 @@ struct RunNotReady : std::runtime_error {
       : std::runtime_error("test " + reason + "; " + summary + " says so") {}
 };
 
+// A servo node's actuator did not start (exit code 4): its controller did not answer, refused,
+// or measures elsewhere; nothing moved, and the node's summary says which side failed.
+struct NodeNotReady : std::runtime_error {
+  explicit NodeNotReady(const std::string& reason)
+      : std::runtime_error("servo node not ready, nothing moved: " + reason) {}
+};
+
 // A test that stopped before its end; its files are complete for every step it took.
 struct TestStopped : std::runtime_error {
   TestStopped(const std::string& recorded_in, const std::string& reason)

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 ok, 1 internal error, 2 bad input, 3 test stopped before its end, 4 not ready (dry run, or no "
-      "servo node answered), "
+      "servo node answered, or a node's actuator did not start), "
       "5 results not written, 6 interrupted (SIGINT/SIGTERM)");
   auto* analyze = app.add_subcommand("analyze", "Linear analysis of a servo system or an integrator");
   analyze->require_subcommand(0, 1);
@@ -63,6 +63,9 @@ int main(int argc, char** argv) {
     std::cerr << "rpsd: " << e.what() << '\n';
     return kExitStopped;
   } catch (const DryRunNotReady& e) {
+    std::cerr << "rpsd: " << e.what() << '\n';
+    return kExitNotReady;
+  } catch (const NodeNotReady& e) {
     std::cerr << "rpsd: " << e.what() << '\n';
     return kExitNotReady;
   } catch (const RunNotReady& e) {

@@ -9,7 +9,7 @@
 namespace rpsd::cli {
 
 void add_serving_command(CLI::App& app, const std::string& name, const std::string& description,
-                         const std::string& file_help, ServeFile serve) {
+                         const std::string& file_help, ServeFile serve, CheckSummary check) {
   struct Options {
     std::string config;
     std::vector<std::string> overrides;
@@ -23,9 +23,10 @@ void add_serving_command(CLI::App& app, const std::string& name, const std::stri
   command->add_option("--summary", o->summary, "Write what the process did (JSON) here when it stops");
   command->add_option("--duration", o->duration_s, "Stop after this many seconds (default: on SIGINT/SIGTERM)")
       ->check(CLI::NonNegativeNumber);
-  command->callback([o, serve = std::move(serve)] {
+  command->callback([o, serve = std::move(serve), check = std::move(check)] {
     const nlohmann::json summary = serve(o->config, parse_overrides(o->overrides), {o->duration_s});
     if (!o->summary.empty()) std::ofstream(o->summary) << summary.dump(2) << '\n';
+    if (check) check(summary);
   });
 }
 

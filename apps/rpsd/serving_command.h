@@ -18,7 +18,10 @@ namespace rpsd::cli {
 using ServeFile = std::function<nlohmann::json(
     const std::string& file, const std::vector<scenarios::Override>& overrides, const node::ServeOptions& options)>;
 
+// Looks at the summary once it is written (--summary) and throws for an exit code other than 0.
+using CheckSummary = std::function<void(const nlohmann::json& summary)>;
+
 void add_serving_command(CLI::App& app, const std::string& name, const std::string& description,
-                         const std::string& file_help, ServeFile serve);
+                         const std::string& file_help, ServeFile serve, CheckSummary check = {});
 
 }  // namespace rpsd::cli

@@ -27,12 +27,18 @@ void install_stop_handlers() {
 }  // namespace
 
 void add_servo_node(CLI::App& app) {
-  add_serving_command(app, "servo-node", "Serve one site's actuators over DDS, with the node's own limits and watchdog",
-                      "Configuration file (YAML)", [](const auto& file, const auto& overrides, const auto& options) {
-                        const auto setup = scenarios::load_servo_node(file, overrides);
-                        install_stop_handlers();
-                        return node::serve_site(setup, options, g_stop, std::cout);
-                      });
+  add_serving_command(
+      app, "servo-node", "Serve one site's actuators over DDS, with the node's own limits and watchdog",
+      "Configuration file (YAML)",
+      [](const auto& file, const auto& overrides, const auto& options) {
+        const auto setup = scenarios::load_servo_node(file, overrides);
+        install_stop_handlers();
+        return node::serve_site(setup, options, g_stop, std::cout);
+      },
+      [](const nlohmann::json& summary) {
+        // Not ready (exit 4): the summary, written first, says which side failed.
+        if (!summary.value("started", true)) throw NodeNotReady(summary.value("start_failure", std::string()));
+      });
   add_serving_command(app, "controller-emulator",
                       "Stand in for a hardware controller on UDP (docs/udp-controller-protocol.md)",
                       "Configuration file (YAML)", [](const auto& file, const auto& overrides, const auto& options) {

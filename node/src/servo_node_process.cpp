@@ -61,6 +61,7 @@ nlohmann::json node_summary(const ServoNodeSetup& setup, const ServoNodeControll
   return {{"node", setup.name},
           {"test_id", setup.node.test_id},
           {"site_id", setup.node.site_id},
+          {"started", true},
           {"mode", setup.mode == ServoNodeSetup::Mode::kRealTime ? "real_time" : "lock_step"},
           {"control_period_s", setup.node.control_period_s},
           {"ticks", c.ticks},
@@ -141,7 +142,17 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
                           std::ostream& log) {
   const OwnedActuator actuator = make_actuator(setup.actuator, setup.node.channels);
   ServoNodeController controller(setup.node, *actuator.actuator);
-  controller.start(setup.initial_displacement_m);
+  const auto* link = dynamic_cast<const ActuatorLinkReport*>(actuator.actuator.get());
+  try {
+    controller.start(setup.initial_displacement_m);
+  } catch (const std::runtime_error& e) {
+    // The lab's controller did not answer, refused, or stands elsewhere: nothing moved, and the
+    // summary says so (the link's figures name the side that failed).
+    nlohmann::json summary = {{"node", setup.name}, {"test_id", setup.node.test_id}, {"site_id", setup.node.site_id},
+                              {"started", false},   {"start_failure", e.what()},     {"faulted", false}};
+    if (link != nullptr) summary[std::string(link->summary_key())] = link->link_summary();
+    return summary;
+  }
 
   transport::DdsParticipant participant(setup.dds);
   transport::DdsNodeEndpointConfig endpoint_config;
@@ -159,7 +170,6 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   log << "rpsd servo-node: test " << setup.node.test_id << " site " << setup.node.site_id << ", " << setup.node.channels
       << " channel(s), " << (loop.real_time ? "real time" : "lock-step") << " at " << 1.0 / setup.node.control_period_s
       << " Hz" << std::endl;
-  const auto* link = dynamic_cast<const ActuatorLinkReport*>(actuator.actuator.get());
   if (link != nullptr) log << "rpsd servo-node: " << link->describe_link() << std::endl;
   const ServoNodeLoopReport report = run_servo_node_loop(controller, endpoint, loop, stop);
   if (!report.granted.refused.empty()) log << "rpsd servo-node: " << report.granted.refused;

@@ -17,8 +17,10 @@ struct ServeOptions {
 };
 
 // Serves the setup's site over DDS until `stop` or the duration; progress lines go to `log`.
-// Returns the summary (counters, limit events, timing). Throws what building the actuator,
-// the controller or the DDS endpoint throws.
+// Returns the summary (counters, limit events, timing). An actuator that cannot start (its
+// controller does not answer, refuses, or measures elsewhere) returns at once a summary with
+// `started: false` and `start_failure`, nothing moved. Throws what building the actuator, the
+// controller or the DDS endpoint throws.
 nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& options, const std::atomic<bool>& stop,
                           std::ostream& log);
 
