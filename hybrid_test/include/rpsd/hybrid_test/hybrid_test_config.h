@@ -22,6 +22,7 @@
 #include "rpsd/opensees/adapter_link.h"
 #include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/servo/plant_factory.h"
+#include "rpsd/setups/setup_kinds.h"
 #include "rpsd/substructure/linear_mdof_model.h"
 #include "rpsd/substructure/partition.h"
 #include "rpsd/substructure/shear_building.h"
@@ -43,6 +44,34 @@ struct ExperimentalChannel {
   // is the whole reference building), so the numerical part's is K_N = K - K_E: a drawn k_e
   // changes the partition too, and K_N + K_E stays the reference building's.
   bool stiffness_in_structure = false;
+};
+
+// A site whose DOFs an experimental setup drives (experimental_setups[]): its actuators push
+// on the specimen's control point, and the setup turns the DOFs' targets into the actuators'
+// strokes and their measured strokes and forces back into the DOFs' displacements and forces.
+// The setup is square: its actuator i answers on the link on the test channel of its DOF i,
+// so a site keeps one channel per DOF. Without one, each DOF is its own actuator's stroke.
+struct ExperimentalSetupSite {
+  std::uint32_t site_id = 1;
+  // The test's channels of the setup's DOFs, in the setup's DOF order (experimental[] entries
+  // of this site); the setup's actuator i is commanded on channels[i].
+  std::vector<int> channels;
+  setups::SetupConfig setup;
+  // Each actuator's own limits (stroke, velocity or increment, force, tracking), the rig's
+  // envelope their default and ceiling; the DOFs' limits are their experimental[] entries'.
+  std::vector<coordinator::CoordinatorLimits> actuator_limits;
+  // Where the compensators act: on each actuator's stroke (the lag is the actuator's), or on
+  // the DOFs' targets before the geometry.
+  enum class Compensated { kActuators, kDofs };
+  Compensated compensated = Compensated::kActuators;
+  // Calibration: each actuator's reading at the start, where the specimen sits at its
+  // initial configuration, is recorded as its offset from the stroke the geometry predicts;
+  // beyond this the run does not start.
+  double max_calibration_offset_m = 0.002;
+  // The specimen's coupled stiffness and damping over the setup's DOFs (specimen scale, N/m,
+  // N·m/rad, ...), simulated for a rehearsal; empty: each actuator's plant keeps its own
+  // specimen, as without a setup.
+  Eigen::MatrixXd specimen_stiffness, specimen_damping;
 };
 
 // How the loop is paced.
@@ -111,6 +140,8 @@ struct TestConfig {
   std::string description;
   std::variant<substructure::LinearMdofParameters, substructure::ShearBuildingParameters> structure;
   std::vector<ExperimentalChannel> experimental;
+  // The sites whose DOFs a setup drives (the others: one actuator per DOF).
+  std::vector<ExperimentalSetupSite> setups;
   Eigen::VectorXd influence;  // ground-motion influence vector (default: all ones)
   servo::PlantConfig plant;   // every channel's actuator (each channel gets its own)
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParameters{};
