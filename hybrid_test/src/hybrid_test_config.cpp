@@ -160,6 +160,25 @@ substructure::PartitionConfig partition_config(const TestConfig& s, Eigen::Index
       }
     }
   }
+  // A setup's specimen couples its DOFs: its off-diagonal stiffness, in model units
+  // (force_scale of the row's DOF times displacement_scale of the column's).
+  for (const auto& setup : s.setups) {
+    const auto n = static_cast<Eigen::Index>(setup.channels.size());
+    if (setup.specimen_stiffness.rows() != n) continue;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      for (Eigen::Index j = i + 1; j < n; ++j) {
+        if (setup.specimen_stiffness(i, j) == 0.0) continue;
+        const auto on_channel = [&split](int channel) -> const substructure::ExperimentalDof& {
+          return *std::find_if(split.experimental.begin(), split.experimental.end(),
+                               [channel](const auto& e) { return e.actuator_channel == channel; });
+        };
+        const auto& a = on_channel(setup.channels[static_cast<std::size_t>(i)]);
+        const auto& b = on_channel(setup.channels[static_cast<std::size_t>(j)]);
+        split.couplings.push_back({a.actuator_channel, b.actuator_channel,
+                                   a.force_scale * b.displacement_scale * setup.specimen_stiffness(i, j)});
+      }
+    }
+  }
   return split;
 }
 

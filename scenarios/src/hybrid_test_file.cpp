@@ -1,6 +1,8 @@
 #include "rpsd/scenarios/hybrid_test_file.h"
 
 #include <algorithm>
+#include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -18,11 +20,45 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
   t.structure = sections::structure(*d.structure);
   const Eigen::Index dofs = structure_dofs(t);
 
+  // The setups first: the DOFs they drive state their limits in their motion's units.
+  std::vector<sections::ExperimentalSetup> setups;
+  std::map<Eigen::Index, std::pair<std::size_t, std::size_t>> driven;  // DOF -> (setup, its DOF i)
+  for (std::size_t k = 0; k < d.experimental_setups.size(); ++k) {
+    setups.push_back(sections::experimental_setup(*d.experimental_setups[k], dofs));
+    for (std::size_t i = 0; i < setups.back().dofs.size(); ++i) {
+      if (!driven.emplace(setups.back().dofs[i], std::make_pair(k, i)).second) {
+        d.experimental_setups[k]->fail("dofs", "DOF " + std::to_string(setups.back().dofs[i]) +
+                                                   " is driven by another experimental setup too");
+      }
+    }
+  }
   std::set<Eigen::Index> used;
   std::vector<std::unique_ptr<config::Source>> limit_sections(d.experimental.size());
   for (std::size_t i = 0; i < d.experimental.size(); ++i) {
-    t.experimental.push_back(sections::experimental(*d.experimental[i], dofs, i, limit_sections[i]));
+    // The entry's DOF is read twice: first to know whether a setup drives it.
+    const Eigen::Index dof = d.experimental[i]->whole_number("dof", 0, dofs - 1, "the structure's DOF");
+    std::optional<setups::DofMotion> motion;
+    if (const auto found = driven.find(dof); found != driven.end()) {
+      motion = setups[found->second.first].motions[found->second.second];
+    }
+    t.experimental.push_back(sections::experimental(*d.experimental[i], dofs, i, limit_sections[i], motion));
     if (!used.insert(t.experimental.back().dof.dof).second) d.experimental[i]->fail("dof", "is experimental twice");
+  }
+  for (std::size_t k = 0; k < setups.size(); ++k) {
+    sections::ExperimentalSetup& setup = setups[k];
+    for (std::size_t i = 0; i < setup.dofs.size(); ++i) {
+      const auto entry = std::find_if(t.experimental.begin(), t.experimental.end(),
+                                      [&](const auto& e) { return e.dof.dof == setup.dofs[i]; });
+      if (entry == t.experimental.end() || entry->site_id != setup.site.site_id) {
+        d.experimental_setups[k]->fail("dofs", "DOF " + std::to_string(setup.dofs[i]) +
+                                                   " is no experimental[] entry of site " +
+                                                   std::to_string(setup.site.site_id));
+      }
+      setup.site.channels.push_back(static_cast<int>(entry->dof.actuator_channel));
+      // The DOF's estimate for K0 and the node's force guard: the specimen's diagonal.
+      entry->dof.specimen_stiffness_estimate_n_per_m =
+          setup.site.specimen_stiffness(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+    }
   }
   std::set<std::uint32_t> specimen_sites;
   for (const auto& e : t.experimental) specimen_sites.insert(e.site_id);
@@ -72,7 +108,26 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
   }
   // And it must lie strictly inside what the converters can read (a reading on a rail may stand
   // for any value beyond it): a limit left out is the rig's, held to the same rule.
+  for (auto& setup : setups) {
+    for (std::size_t a = 0; a < setup.site.actuator_limits.size(); ++a) {
+      try {
+        const coordinator::CoordinatorLimits& stated = setup.site.actuator_limits[a];
+        coordinator::require_readable(
+            stated, coordinator::within_envelope(stated, servo::envelope_of(t.plant), control_period_s),
+            servo::reading_ranges_of(t.plant), "servo.converters");
+      } catch (const config::KeyError& e) {
+        if (a < setup.actuator_limits.size() && setup.actuator_limits[a]) {
+          setup.actuator_limits[a]->fail(e.path(), e.problem());
+        }
+        throw ConfigError(file.string() + ": experimental_setups[].actuators[" + std::to_string(a) + "].limits." +
+                          e.what());
+      }
+    }
+    t.setups.push_back(std::move(setup.site));
+  }
   for (std::size_t i = 0; i < specimens; ++i) {
+    // A DOF a setup drives has no rig of its own: its actuators were checked above.
+    if (driven.count(t.experimental[i].dof.dof) != 0) continue;
     try {
       const coordinator::CoordinatorLimits& stated = t.experimental[i].limits;
       coordinator::require_readable(stated,

@@ -1,5 +1,6 @@
 #include "hybrid_test_sections.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -12,6 +13,7 @@
 #include "rpsd/linalg/dense_from_rows.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/study_file.h"
+#include "rpsd/setups/setup_kinds.h"
 #include "rpsd/substructure/damping_models.h"
 #include "rpsd/substructure/reading_ranges.h"
 #include "rpsd/substructure/structure_kinds.h"
@@ -48,6 +50,11 @@ Document document(config::Source& root) {
   if (d.opensees_sites.empty() || root.has("experimental") || listing) {
     d.experimental =
         root.sections("experimental", transport::kMaxChannels, "the DOFs a specimen takes, one per channel");
+  }
+  if (root.has("experimental_setups") || listing) {
+    d.experimental_setups =
+        root.sections("experimental_setups", transport::kMaxChannels,
+                      "sites whose DOFs several actuators drive through their geometry (docs/experimental-setups.md)");
   }
   d.influence = root.optional_numbers(
       "influence", Number::between(-1.0, 1.0, "", "each DOF's share of the ground acceleration (default: all 1)"),
@@ -120,8 +127,123 @@ coordinator::CoordinatorLimits limits(config::Source& l) {
   return c;
 }
 
+coordinator::CoordinatorLimits rotation_limits(config::Source& l) {
+  // A rotation's limits are the specimen's own: the rig's envelope is its actuators'.
+  constexpr double kMaxRotationRad = 10.0, kMaxMomentNM = 1e10;
+  coordinator::CoordinatorLimits c;
+  c.max_stroke_m = l.number_or("max_rotation_rad", c.max_stroke_m,
+                               Number{"rad", "|rotation target| (default: none)", 0.0, kMaxRotationRad, true});
+  c.max_increment_m =
+      l.number_or("max_rotation_increment_rad", c.max_increment_m,
+                  Number{"rad", "|rotation target change| per control period (default: none)", 0.0, kMaxRotationRad,
+                         true});
+  c.max_velocity_m_per_s =
+      l.number_or("max_rotation_rate_rad_per_s", c.max_velocity_m_per_s,
+                  Number{"rad/s", "or: |rotation target change| per second", 0.0, 1e3, true});
+  c.max_force_n = l.number_or("max_moment_n_m", c.max_force_n,
+                              Number{"N m", "|measured moment| (default: none)", 0.0, kMaxMomentNM, true});
+  c.max_tracking_error_m =
+      l.number_or("max_tracking_error_rad", c.max_tracking_error_m,
+                  Number{"rad", "|target - measured rotation| before the test counts as run away (default: none)", 0.0,
+                         kMaxRotationRad, true});
+  l.finish();
+  return c;
+}
+
+ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
+  ExperimentalSetup result;
+  hybrid_test::ExperimentalSetupSite& site = result.site;
+  site.site_id = static_cast<std::uint32_t>(s.whole_number("site", 1, 1'000'000, "the site whose actuators these are"));
+  const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "",
+                                     "an experimental DOF of the site (0-based), in the setup's DOF order");
+  const std::vector<double> listed = s.numbers("dofs", dof, static_cast<std::size_t>(setups::kMaxSetupDofs));
+  const std::string compensated = s.choice_or("compensate", {"actuators", "dofs"}, "actuators",
+                                              "where the compensator acts: each actuator's stroke, or the DOFs' targets");
+  site.compensated = compensated == "dofs" ? hybrid_test::ExperimentalSetupSite::Compensated::kDofs
+                                           : hybrid_test::ExperimentalSetupSite::Compensated::kActuators;
+  if (auto calibration = s.optional_section("calibration", "the actuators' readings at the start")) {
+    site.max_calibration_offset_m = calibration->number_or(
+        "max_offset_m", site.max_calibration_offset_m,
+        Number::between(0.0, 0.1, "m",
+                        "the largest difference between an actuator's reading at the start and the stroke the "
+                        "geometry predicts there (default 0.002)"));
+    calibration->finish();
+  }
+  // A listing (has() says no to everything, "site" included) lists the actuators' keys too.
+  const bool listing = !s.has("site");
+  std::vector<std::unique_ptr<config::Source>> actuator_sections;
+  if (s.has("actuators") || listing) {
+    actuator_sections = s.sections("actuators", static_cast<std::size_t>(setups::kMaxSetupDofs),
+                                   "each actuator's own limits, in the setup's actuator order");
+  }
+  for (auto& a : actuator_sections) {
+    auto l = a->optional_section("limits", "the actuator's limits (only tighter than the rig; default: the rig's)");
+    site.actuator_limits.push_back(l ? limits(*l) : coordinator::CoordinatorLimits{});
+    result.actuator_limits.push_back(std::move(l));
+    a->finish();
+  }
+  result.specimen = s.optional_section(
+      "specimen", "the specimen over the setup's DOFs: its stiffness estimate, and what a rehearsal simulates");
+  if (result.specimen) {
+    const Number entry = Number::between(-kMaxStiffnessNPerM, kMaxStiffnessNPerM, "N/m",
+                                         "over the setup's DOFs, rows in its DOF order (N/m, N/rad, N m/rad)");
+    site.specimen_stiffness = linalg::dense_from_rows(
+        result.specimen->matrix("stiffness_n_per_m", entry, static_cast<std::size_t>(setups::kMaxSetupDofs)));
+    if (result.specimen->has("damping_n_s_per_m")) {
+      site.specimen_damping = linalg::dense_from_rows(result.specimen->matrix(
+          "damping_n_s_per_m",
+          Number::between(-1e9, 1e9, "N s/m", "over the setup's DOFs (N s/m, N s/rad, N m s/rad); default none"),
+          static_cast<std::size_t>(setups::kMaxSetupDofs)));
+    }
+    result.specimen->finish();
+  }
+  site.setup = setups::read_setup_config(s);
+  s.finish();
+  // Checked after every key is read, so that a listing lists them all.
+  setups::PlanarGeometry geometry;
+  try {
+    geometry = setups::planar_geometry(site.setup);
+    (void)setups::PlanarSetup(geometry);
+  } catch (const std::invalid_argument& e) {
+    s.fail("kind", e.what());
+  }
+  if (listed.size() != static_cast<std::size_t>(geometry.dof_count)) {
+    s.fail("dofs", "the " + std::string(config::kind_name(site.setup)) + " setup drives " +
+                       std::to_string(geometry.dof_count) + " DOF(s) (" + std::to_string(listed.size()) + " listed)");
+  }
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    if (listed[i] != std::floor(listed[i])) s.fail("dofs", "expected whole DOF numbers");
+    const auto d = static_cast<Eigen::Index>(listed[i]);
+    if (std::find(result.dofs.begin(), result.dofs.end(), d) != result.dofs.end()) {
+      s.fail("dofs", "DOF " + std::to_string(d) + " is listed twice");
+    }
+    result.dofs.push_back(d);
+    result.motions.push_back(geometry.dofs[i]);
+  }
+  if (!actuator_sections.empty() && actuator_sections.size() != listed.size()) {
+    s.fail("actuators", "one entry per actuator (" + std::to_string(listed.size()) + "), or none");
+  }
+  if (site.actuator_limits.empty()) site.actuator_limits.resize(listed.size());
+  const auto n = static_cast<Eigen::Index>(listed.size());
+  if (!result.specimen) s.fail("specimen", "required: the specimen's stiffness over the setup's DOFs");
+  const auto square = [n](const Eigen::MatrixXd& m) { return m.rows() == n && m.cols() == n; };
+  if (!square(site.specimen_stiffness)) {
+    result.specimen->fail("stiffness_n_per_m", "needs " + std::to_string(n) + " rows of " + std::to_string(n));
+  }
+  if (!site.specimen_stiffness.isApprox(site.specimen_stiffness.transpose()) ||
+      (site.specimen_stiffness.diagonal().array() < 0.0).any()) {
+    result.specimen->fail("stiffness_n_per_m", "must be symmetric with no negative diagonal entry");
+  }
+  if (site.specimen_damping.size() != 0 &&
+      (!square(site.specimen_damping) || !site.specimen_damping.isApprox(site.specimen_damping.transpose()))) {
+    result.specimen->fail("damping_n_s_per_m",
+                          "needs " + std::to_string(n) + " rows of " + std::to_string(n) + ", symmetric");
+  }
+  return result;
+}
+
 void specimen_channel(config::Source& e, std::size_t index, hybrid_test::ExperimentalChannel& channel,
-                      std::unique_ptr<config::Source>& limits_section) {
+                      std::unique_ptr<config::Source>& limits_section, std::optional<setups::DofMotion> driven) {
   channel.dof.actuator_channel = e.whole_number_or("channel", 0, transport::kMaxChannels - 1, static_cast<long>(index),
                                                    "the actuator channel (default: i)");
   // Similitude scales of a reduced-size specimen: 1:1000 geometry, forces down to 1e-6.
@@ -166,9 +288,23 @@ void specimen_channel(config::Source& e, std::size_t index, hybrid_test::Experim
                                 ? coordinator::RestoringForceSource::kMeasuredForce
                                 : coordinator::RestoringForceSource::kStiffnessTimesMeasuredDisplacement;
   channel.site_id = static_cast<std::uint32_t>(e.whole_number_or("site", 1, 1'000'000, 1, "the site's node"));
-  limits_section = e.optional_section("limits", "the coordinator's limits on this channel (only tighter than the rig)");
-  if (limits_section) channel.limits = limits(*limits_section);
+  limits_section = e.optional_section(
+      "limits", driven ? "the DOF's own limits, in its motion's units (its actuators' are the setup's)"
+                       : "the coordinator's limits on this channel (only tighter than the rig)");
+  if (limits_section) {
+    channel.limits = driven == setups::DofMotion::kRotation ? rotation_limits(*limits_section) : limits(*limits_section);
+  }
   // Checked after every key is read, so that a listing lists them all.
+  if (driven) {
+    // The setup's specimen is one over all its DOFs: no DOF has one of its own.
+    for (const char* key : {"specimen_stiffness_n_per_m", "specimen_damping_n_s_per_m", "specimen_mass_kg", "specimen"}) {
+      if (e.has(key)) e.fail(key, "a DOF an experimental setup drives takes its specimen from the setup's `specimen`");
+    }
+    if (channel.restoring_force != coordinator::RestoringForceSource::kMeasuredForce) {
+      e.fail("restoring_force", "a DOF an experimental setup drives takes its force from the actuators' load cells");
+    }
+    return;
+  }
   if (own && (stiffness || damping || mass)) {
     e.fail("specimen", "give the specimen either as specimen: or as the specimen_* keys, not both");
   }
@@ -176,10 +312,11 @@ void specimen_channel(config::Source& e, std::size_t index, hybrid_test::Experim
 }
 
 hybrid_test::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
-                                              std::unique_ptr<config::Source>& limits_section) {
+                                              std::unique_ptr<config::Source>& limits_section,
+                                              std::optional<setups::DofMotion> driven) {
   hybrid_test::ExperimentalChannel channel;
   channel.dof.dof = e.whole_number("dof", 0, dofs - 1, "the structure's DOF the specimen takes (0-based)");
-  specimen_channel(e, index, channel, limits_section);
+  specimen_channel(e, index, channel, limits_section, driven);
   e.finish();
   return channel;
 }

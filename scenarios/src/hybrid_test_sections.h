@@ -13,6 +13,7 @@
 
 #include "rpsd/config/source.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
+#include "rpsd/setups/planar_setup.h"
 #include "rpsd/substructure/damping_models.h"
 #include "rpsd/substructure/structure_kinds.h"
 
@@ -23,6 +24,7 @@ struct Document {
   std::unique_ptr<config::Source> structure;
   std::vector<std::unique_ptr<config::Source>> experimental;  // empty when only OpenSees sites take DOFs
   std::vector<std::unique_ptr<config::Source>> opensees_sites;
+  std::vector<std::unique_ptr<config::Source>> experimental_setups;
   std::optional<std::vector<double>> influence;
   std::unique_ptr<config::Source> servo;
   std::unique_ptr<config::Source> integrator;
@@ -44,14 +46,32 @@ Structure structure(config::Source& st);
 // single ratio needs it).
 substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* mass);
 
-// experimental[i]; its `limits:` handle is left in `limits` for the envelope check.
+// experimental_setups[i], read before the DOFs it drives (a DOF's limits are stated in its
+// motion's units). Its site's channels are filled in once the DOFs are read.
+struct ExperimentalSetup {
+  hybrid_test::ExperimentalSetupSite site;
+  std::vector<Eigen::Index> dofs;             // the structure's DOFs, in the setup's DOF order
+  std::vector<setups::DofMotion> motions;     // each DOF's motion, from the setup's kind
+  std::vector<std::unique_ptr<config::Source>> actuator_limits;  // per actuator (null: none given)
+  std::unique_ptr<config::Source> specimen;   // for messages about the specimen's matrices
+};
+ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs);
+
+// experimental[i]; its `limits:` handle is left in `limits` for the envelope check. A DOF an
+// experimental setup drives (`driven`: its motion) takes its specimen from the setup and its
+// limits in its motion's units; its actuators take the rig's.
 hybrid_test::ExperimentalChannel experimental(config::Source& e, Eigen::Index dofs, std::size_t index,
-                                              std::unique_ptr<config::Source>& limits);
+                                              std::unique_ptr<config::Source>& limits,
+                                              std::optional<setups::DofMotion> driven = std::nullopt);
+// An actuator's limits, or a translation DOF's (m, N).
 coordinator::CoordinatorLimits limits(config::Source& l);
+// A setup's rotation DOF's limits, in rad and N·m (kept in the same fields).
+coordinator::CoordinatorLimits rotation_limits(config::Source& l);
 // A specimen channel's own keys (channel, scales, stiffness, restoring force, site, limits),
 // whatever says which DOF it takes; the caller finishes the section.
 void specimen_channel(config::Source& e, std::size_t index, hybrid_test::ExperimentalChannel& channel,
-                      std::unique_ptr<config::Source>& limits_section);
+                      std::unique_ptr<config::Source>& limits_section,
+                      std::optional<setups::DofMotion> driven = std::nullopt);
 // opensees_sites[i]: the site, and one channel per DOF it carries (channels from `first_channel`).
 hybrid_test::OpenSeesSite opensees_site(config::Source& o, Eigen::Index dofs, int first_channel,
                                         std::vector<hybrid_test::ExperimentalChannel>& channels);

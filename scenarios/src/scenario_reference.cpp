@@ -12,6 +12,7 @@
 
 #include "ground_motion_keys.h"
 #include "hybrid_test_sections.h"
+#include "rpsd/setups/setup_kinds.h"
 #include "node_sections.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/config/key_table.h"
@@ -140,6 +141,17 @@ void test_scenario(Document& doc) {
               std::unique_ptr<config::Source> limits;
               (void)ts::experimental(s, kListedDofs, 0, limits);
             }));
+  doc.table("experimental[].limits (a DOF an experimental setup drives, rotation)",
+            listing("experimental[].limits", [](config::Source& s) { (void)ts::rotation_limits(s); }),
+            "A translation DOF that a setup drives takes the same keys as a channel's (m, N), with no rig default: "
+            "the rig's envelope is its actuators' (`experimental_setups[].actuators[].limits`).");
+  doc.table("experimental_setups[]",
+            listing("experimental_setups[]", [](config::Source& s) { (void)ts::experimental_setup(s, kListedDofs); }),
+            "A site whose DOFs several actuators drive through their geometry (docs/experimental-setups.md): one "
+            "actuator per DOF, commanded on its DOF's channel. `actuators[].limits` takes a channel's limit keys.");
+  kind_tables<setups::SetupKinds>(
+      doc, "experimental_setups[]", "the experimental setup",
+      [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s, setups::Geometry::kLinear); });
   doc.table("opensees_sites[]",
             listing("opensees_sites[]",
                     [](config::Source& s) {
