@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace rpsd::setups {
 
@@ -150,7 +151,13 @@ SetupStatus PlanarSetup::displacements(const SetupVector& strokes_m, const Setup
     u.noalias() = reference_jacobian_inverse_ * strokes_m;
     return SetupStatus::kOk;
   }
-  u = guess;
+  // From the last solution; from the linear solution when there is none yet (a guess of
+  // another size, or not finite), so that a first call is safe too.
+  if (guess.size() == n && guess.allFinite()) {
+    u = guess;
+  } else {
+    u.noalias() = reference_jacobian_inverse_ * strokes_m;
+  }
   SetupVector s(n), residual(n), change(n);
   SetupMatrix j(n, n);
   for (int iteration = 0; iteration < geometry_.max_newton_iterations; ++iteration) {
