@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <Eigen/LU>
@@ -188,13 +189,18 @@ TEST(PlanarSetup, ReportsUnreachableStrokesAsNotConverged) {
   EXPECT_NE(status, SetupStatus::kOk) << setup_status_text(status);
 }
 
-// The first call has no last solution: a guess of another size starts from the linear one.
+// The first call has no last solution: a guess of another size starts from the linear one
+// (on d82d167 Newton read past the empty guess).
 TEST(PlanarSetup, StartsFromTheLinearSolutionWithoutAGuess) {
   const PlanarSetup s(examples::three_actuators(Geometry::kLargeDisplacement).planar());
   SetupVector u(3), strokes, back;
   u << 0.05, -0.02, 0.15;
   s.strokes(u, strokes);
   ASSERT_EQ(s.displacements(strokes, SetupVector(), back), SetupStatus::kOk);
+  for (int j = 0; j < 3; ++j) EXPECT_NEAR(back[j], u[j], 1e-12);
+  // A last solution that was not finite (a failed step's) is no start either.
+  const SetupVector lost = SetupVector::Constant(3, std::numeric_limits<double>::quiet_NaN());
+  ASSERT_EQ(s.displacements(strokes, lost, back), SetupStatus::kOk);
   for (int j = 0; j < 3; ++j) EXPECT_NEAR(back[j], u[j], 1e-12);
 }
 
