@@ -141,8 +141,9 @@ int main(int argc, char** argv) try {
   const bench::Summary base = per_step(base_s);
   for (const Measured& m : measured) {
     const bench::Summary value = per_step(m.wall_s);
-    fragment.add(bench::figure(m.id, m.title, "ns", value, per_step(m.cpu_s))
-                     .against("setup_baseline_matvec_ns", "setup / 3x3 matrix-vector step", value.median / base.median));
+    fragment.add(
+        bench::figure(m.id, m.title, "ns", value, per_step(m.cpu_s))
+            .against("setup_baseline_matvec_ns", "setup / 3x3 matrix-vector step", value.median / base.median));
   }
   fragment.add(bench::figure("setup_baseline_matvec_ns", "  the same loop with one 3x3 matrix-vector product", "ns",
                              base, per_step(base_cpu_s)));

@@ -8,11 +8,11 @@ namespace rpsd::setups {
 OneActuatorParameters OneActuatorParameters::read(config::Source& section, Geometry geometry) {
   OneActuatorParameters p;
   p.geometry = geometry;
-  p.motion = section.choice("dof", {"translation_x", "translation_y"},
-                            "the translation of the control point the actuator drives (OpenFresco's DOF)") ==
-                     "translation_y"
-                 ? DofMotion::kTranslationY
-                 : DofMotion::kTranslationX;
+  p.motion =
+      section.choice("dof", {"translation_x", "translation_y"},
+                     "the translation of the control point the actuator drives (OpenFresco's DOF)") == "translation_y"
+          ? DofMotion::kTranslationY
+          : DofMotion::kTranslationX;
   p.actuator_length_m = section.number(
       "actuator_length_m", reading::length("the actuator's length, fixed end to attachment, at the reference "
                                            "configuration (pin to pin)"));
@@ -30,7 +30,7 @@ PlanarGeometry OneActuatorParameters::planar() const {
   g.actuators[0].name = "actuator";
   g.actuators[0].attachment_m = {0.0, 0.0};
   g.actuators[0].fixed_end_m = motion == DofMotion::kTranslationY ? Eigen::Vector2d(0.0, -actuator_length_m)
-                                                                   : Eigen::Vector2d(-actuator_length_m, 0.0);
+                                                                  : Eigen::Vector2d(-actuator_length_m, 0.0);
   common.apply(g);
   return g;
 }

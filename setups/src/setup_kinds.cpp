@@ -32,8 +32,8 @@ void require_valid(config::Source& section, std::string_view key, const PlanarGe
 bool is_plain_name(std::string_view name) noexcept {
   if (name.empty()) return false;
   for (const char c : name) {
-    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-                       c == '-';
+    const bool plain =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
     if (!plain) return false;
   }
   return true;
@@ -45,8 +45,8 @@ CommonSetupConfig CommonSetupConfig::read(config::Source& section, int actuators
   CommonSetupConfig c;
   std::optional<std::vector<std::string>> names;
   if (names_key) {
-    names = section.optional_texts("actuator_names", "the actuators' names in records and messages, in the kind's order",
-                                   kMaxSetupDofs);
+    names = section.optional_texts("actuator_names",
+                                   "the actuators' names in records and messages, in the kind's order", kMaxSetupDofs);
   }
   c.newton_tolerance_m = section.number_or(
       "newton_tolerance_m", c.newton_tolerance_m,

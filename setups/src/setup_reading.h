@@ -27,8 +27,7 @@ ActuatorSide read_side(config::Source& section, std::string_view key, std::strin
 
 // Fails at `key` unless `values` has exactly `count` entries. Call after every key is read (a
 // listing gives lists of one).
-void require_count(config::Source& section, std::string_view key, const std::vector<double>& values,
-                   std::size_t count);
+void require_count(config::Source& section, std::string_view key, const std::vector<double>& values, std::size_t count);
 
 // Fails at `key` with PlanarSetup's own message when it refuses `g`.
 void require_valid(config::Source& section, std::string_view key, const PlanarGeometry& g);

@@ -204,8 +204,8 @@ TEST(ThreeActuatorsSetup, InverseAgainstClosedForms) {
     const PlanarSetup linear(examples::three_actuators(kLinear, side).planar());
     const PlanarSetup large(examples::three_actuators(kLarge, side).planar());
     for (const auto& [s0, s1, s2] : strokes) {
-      const SetupVector want = vec({side == ActuatorSide::kLeft ? s0 : -s0, (l3 * s1 + l2 * s2) / (l2 + l3),
-                                    (s2 - s1) / (l2 + l3)});
+      const SetupVector want =
+          vec({side == ActuatorSide::kLeft ? s0 : -s0, (l3 * s1 + l2 * s2) / (l2 + l3), (s2 - s1) / (l2 + l3)});
       expect_near(solve(linear, vec({s0, s1, s2})), want, 1e-15, "linear");
       const SetupVector u = solve(large, vec({s0, s1, s2}));
       expect_near(strokes_of(large, u), vec({s0, s1, s2}), 1e-12, "large");

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "rpsd/config/key_table.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/yaml_reader.h"
 #include "rpsd/setups/setup_kinds.h"
@@ -178,11 +179,43 @@ TEST(SetupKinds, RefusesListsThatDoNotFit) {
       "kind: planar\ngeometry: linear\ndofs: [translation_x, rotation]\nactuators:\n"
       "  - {name: a, fixed_end_m: [-1.5, 0.0], attachment_m: [0.0, 0.0]}\n");
   EXPECT_NE(count.find("setup.actuators: expected 2 actuators, one per DOF, got 1"), std::string::npos) << count;
-  const std::string names = error_of(std::string("kind: two_actuators\ngeometry: linear\n") + kTwo +
-                                     "actuator_names: [north, north]\n");
+  const std::string names =
+      error_of(std::string("kind: two_actuators\ngeometry: linear\n") + kTwo + "actuator_names: [north, north]\n");
   EXPECT_NE(names.find("setup.actuator_names: \"north\" is given twice"), std::string::npos) << names;
   const std::string extra = error_of(std::string("kind: two_actuators\ngeometry: linear\n") + kTwo + "La1: 1.2\n");
   EXPECT_NE(extra.find("setup.La1: unknown key"), std::string::npos) << extra;
+}
+
+// The scenario reference lists a section's keys by reading it through a KeyTable: every kind's
+// readers read all their keys before checking that they fit together, so that a listing that
+// stops at a check has listed them all.
+template <class Kind>
+std::string listed_keys() {
+  config::KeyTable table("setup");
+  try {
+    Kind::read(table, Geometry::kLinear);
+  } catch (const config::ListingStopped&) {
+  }
+  std::string keys;
+  for (const config::KeyRow& row : table.rows()) keys += row.path + " ";
+  return keys;
+}
+
+TEST(SetupKinds, AListingSeesEveryKeyOfEveryKind) {
+  EXPECT_EQ(listed_keys<OneActuatorParameters>(),
+            "setup.dof setup.actuator_length_m setup.actuator_names setup.newton_tolerance_m "
+            "setup.max_newton_iterations ");
+  EXPECT_EQ(listed_keys<TwoActuatorsParameters>(),
+            "setup.actuators_side setup.actuator_lengths_m setup.distance_between_actuators_m setup.actuator_names "
+            "setup.newton_tolerance_m setup.max_newton_iterations ");
+  EXPECT_EQ(listed_keys<ThreeActuatorsParameters>(),
+            "setup.horizontal_actuator_side setup.actuator_lengths_m setup.left_actuator_distance_m "
+            "setup.right_actuator_distance_m setup.joint_offsets setup.joint_offsets.horizontal_actuator_offset_m "
+            "setup.joint_offsets.left_actuator_offset_m setup.joint_offsets.right_actuator_offset_m "
+            "setup.actuator_names setup.newton_tolerance_m setup.max_newton_iterations ");
+  EXPECT_EQ(listed_keys<PlanarActuatorsParameters>(),
+            "setup.dofs setup.actuators setup.actuators[].name setup.actuators[].fixed_end_m "
+            "setup.actuators[].attachment_m setup.newton_tolerance_m setup.max_newton_iterations ");
 }
 
 }  // namespace

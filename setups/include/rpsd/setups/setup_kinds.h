@@ -78,7 +78,7 @@ struct ThreeActuatorsParameters {
   static ThreeActuatorsParameters read(config::Source& section, Geometry geometry);
   Geometry geometry = Geometry::kLinear;
   ActuatorSide horizontal_actuator_side = ActuatorSide::kLeft;  // -posAct1
-  double actuator_length_m[3] = {0.0, 0.0, 0.0};                 // La1 (horizontal), La2 (left), La3 (right)
+  double actuator_length_m[3] = {0.0, 0.0, 0.0};                // La1 (horizontal), La2 (left), La3 (right)
   // ESThreeActuatorsJntOff2d's L1..L6 (ESThreeActuators2d's L1, L2 are [1], [2], the rest zero):
   // [0] the horizontal actuator's attachment beyond the left vertical actuator (left side only),
   // [1] the control point to the left vertical actuator, [2] to the right one, [3] the
