@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace rpsd::setups {
 
@@ -19,9 +20,15 @@ Displaced displaced(const PlanarGeometry& g, const PlanarActuator& a, const Setu
   double x = 0.0, y = 0.0, theta = 0.0;
   for (int j = 0; j < g.dof_count; ++j) {
     switch (g.dofs[static_cast<std::size_t>(j)]) {
-      case DofMotion::kTranslationX: x = u[j]; break;
-      case DofMotion::kTranslationY: y = u[j]; break;
-      case DofMotion::kRotation: theta = u[j]; break;
+      case DofMotion::kTranslationX:
+        x = u[j];
+        break;
+      case DofMotion::kTranslationY:
+        y = u[j];
+        break;
+      case DofMotion::kRotation:
+        theta = u[j];
+        break;
     }
   }
   const double c = std::cos(theta), s = std::sin(theta);
@@ -30,9 +37,15 @@ Displaced displaced(const PlanarGeometry& g, const PlanarActuator& a, const Setu
   d.point = {x + c * r.x() - s * r.y(), y + s * r.x() + c * r.y()};
   for (int j = 0; j < g.dof_count; ++j) {
     switch (g.dofs[static_cast<std::size_t>(j)]) {
-      case DofMotion::kTranslationX: d.along_dof[static_cast<std::size_t>(j)] = {1.0, 0.0}; break;
-      case DofMotion::kTranslationY: d.along_dof[static_cast<std::size_t>(j)] = {0.0, 1.0}; break;
-      case DofMotion::kRotation: d.along_dof[static_cast<std::size_t>(j)] = {-s * r.x() - c * r.y(), c * r.x() - s * r.y()}; break;
+      case DofMotion::kTranslationX:
+        d.along_dof[static_cast<std::size_t>(j)] = {1.0, 0.0};
+        break;
+      case DofMotion::kTranslationY:
+        d.along_dof[static_cast<std::size_t>(j)] = {0.0, 1.0};
+        break;
+      case DofMotion::kRotation:
+        d.along_dof[static_cast<std::size_t>(j)] = {-s * r.x() - c * r.y(), c * r.x() - s * r.y()};
+        break;
     }
   }
   return d;
@@ -52,18 +65,24 @@ bool near_singular(const SetupMatrix& j) noexcept {
 
 std::string_view dof_motion_name(DofMotion motion) noexcept {
   switch (motion) {
-    case DofMotion::kTranslationX: return "translation_x";
-    case DofMotion::kTranslationY: return "translation_y";
-    case DofMotion::kRotation: return "rotation";
+    case DofMotion::kTranslationX:
+      return "translation_x";
+    case DofMotion::kTranslationY:
+      return "translation_y";
+    case DofMotion::kRotation:
+      return "rotation";
   }
   return "?";
 }
 
 std::string_view setup_status_text(SetupStatus status) noexcept {
   switch (status) {
-    case SetupStatus::kOk: return "ok";
-    case SetupStatus::kSingular: return "the setup's Jacobian is singular at this configuration";
-    case SetupStatus::kNotConverged: return "the setup's geometry did not converge on the measured strokes";
+    case SetupStatus::kOk:
+      return "ok";
+    case SetupStatus::kSingular:
+      return "the setup's Jacobian is singular at this configuration";
+    case SetupStatus::kNotConverged:
+      return "the setup's geometry did not converge on the measured strokes";
   }
   return "?";
 }
@@ -150,7 +169,13 @@ SetupStatus PlanarSetup::displacements(const SetupVector& strokes_m, const Setup
     u.noalias() = reference_jacobian_inverse_ * strokes_m;
     return SetupStatus::kOk;
   }
-  u = guess;
+  // From the last solution; from the linear solution when there is none yet (a guess of
+  // another size, or not finite), so that a first call is safe too.
+  if (guess.size() == n && guess.allFinite()) {
+    u = guess;
+  } else {
+    u.noalias() = reference_jacobian_inverse_ * strokes_m;
+  }
   SetupVector s(n), residual(n), change(n);
   SetupMatrix j(n, n);
   for (int iteration = 0; iteration < geometry_.max_newton_iterations; ++iteration) {

@@ -36,7 +36,7 @@ enum class Geometry : std::uint8_t { kLinear, kLargeDisplacement };
 // configuration (the specimen at rest, every DOF zero), metres. A positive stroke lengthens
 // the actuator; its positive force pushes the attachment point away from the fixed end.
 struct PlanarActuator {
-  std::string name;                      // "horizontal", "west", ... for records and messages
+  std::string name;                        // "horizontal", "west", ... for records and messages
   Eigen::Vector2d fixed_end_m{0.0, 0.0};   // on the reaction frame: does not move
   Eigen::Vector2d attachment_m{0.0, 0.0};  // on the specimen, at the reference configuration
 };
@@ -84,7 +84,8 @@ class PlanarSetup {
   void dof_forces(const SetupVector& u, const SetupVector& actuator_forces_n, SetupVector& dof_forces) const noexcept;
   // The actuator forces that carry `dof_forces` at `u` (solves J(u)ᵀ f = F): what a
   // simulated specimen loads each actuator with. Real-time safe.
-  SetupStatus actuator_forces(const SetupVector& u, const SetupVector& dof_forces, SetupVector& actuator_forces_n) const noexcept;
+  SetupStatus actuator_forces(const SetupVector& u, const SetupVector& dof_forces,
+                              SetupVector& actuator_forces_n) const noexcept;
 
  private:
   PlanarGeometry geometry_;
