@@ -172,16 +172,14 @@ ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
   // A listing (has() says no to everything, "site" included) lists the actuators' keys too.
   const bool listing = !s.has("site");
   std::vector<std::unique_ptr<config::Source>> actuator_sections;
-  if (s.has("actuators") || listing) {
-    actuator_sections = s.sections("actuators", static_cast<std::size_t>(setups::kMaxSetupDofs),
-                                   "each actuator's own limits, in the setup's actuator order");
+  if (s.has("actuator_limits") || listing) {
+    actuator_sections =
+        s.sections("actuator_limits", static_cast<std::size_t>(setups::kMaxSetupDofs),
+                   "each actuator's own limits, in the setup's actuator order (only tighter than the rig; default: "
+                   "the rig's)");
   }
-  for (auto& a : actuator_sections) {
-    auto l = a->optional_section("limits", "the actuator's limits (only tighter than the rig; default: the rig's)");
-    site.actuator_limits.push_back(l ? limits(*l) : coordinator::CoordinatorLimits{});
-    result.actuator_limits.push_back(std::move(l));
-    a->finish();
-  }
+  for (auto& a : actuator_sections) site.actuator_limits.push_back(limits(*a));
+  result.actuator_limits = std::move(actuator_sections);
   result.specimen = s.optional_section(
       "specimen", "the specimen over the setup's DOFs: its stiffness estimate, and what a rehearsal simulates");
   if (result.specimen) {
@@ -189,7 +187,7 @@ ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
                                          "over the setup's DOFs, rows in its DOF order (N/m, N/rad, N m/rad)");
     site.specimen_stiffness = linalg::dense_from_rows(
         result.specimen->matrix("stiffness_n_per_m", entry, static_cast<std::size_t>(setups::kMaxSetupDofs)));
-    if (result.specimen->has("damping_n_s_per_m")) {
+    if (result.specimen->has("damping_n_s_per_m") || !s.has("site")) {
       site.specimen_damping = linalg::dense_from_rows(result.specimen->matrix(
           "damping_n_s_per_m",
           Number::between(-1e9, 1e9, "N s/m", "over the setup's DOFs (N s/m, N s/rad, N m s/rad); default none"),
@@ -197,7 +195,9 @@ ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
     }
     result.specimen->finish();
   }
-  site.setup = setups::read_setup_config(s);
+  auto setup = s.section("setup", "the geometry between the site's DOFs and its actuators (docs/experimental-setups.md)");
+  site.setup = setups::read_setup_config(*setup);
+  setup->finish();
   s.finish();
   // Checked after every key is read, so that a listing lists them all.
   setups::PlanarGeometry geometry;
@@ -205,7 +205,7 @@ ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
     geometry = setups::planar_geometry(site.setup);
     (void)setups::PlanarSetup(geometry);
   } catch (const std::invalid_argument& e) {
-    s.fail("kind", e.what());
+    setup->fail("kind", e.what());
   }
   if (listed.size() != static_cast<std::size_t>(geometry.dof_count)) {
     s.fail("dofs", "the " + std::string(config::kind_name(site.setup)) + " setup drives " +
@@ -220,8 +220,8 @@ ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
     result.dofs.push_back(d);
     result.motions.push_back(geometry.dofs[i]);
   }
-  if (!actuator_sections.empty() && actuator_sections.size() != listed.size()) {
-    s.fail("actuators", "one entry per actuator (" + std::to_string(listed.size()) + "), or none");
+  if (!result.actuator_limits.empty() && result.actuator_limits.size() != listed.size()) {
+    s.fail("actuator_limits", "one entry per actuator (" + std::to_string(listed.size()) + "), or none");
   }
   if (site.actuator_limits.empty()) site.actuator_limits.resize(listed.size());
   const auto n = static_cast<Eigen::Index>(listed.size());

@@ -144,13 +144,13 @@ void test_scenario(Document& doc) {
   doc.table("experimental[].limits (a DOF an experimental setup drives, rotation)",
             listing("experimental[].limits", [](config::Source& s) { (void)ts::rotation_limits(s); }),
             "A translation DOF that a setup drives takes the same keys as a channel's (m, N), with no rig default: "
-            "the rig's envelope is its actuators' (`experimental_setups[].actuators[].limits`).");
+            "the rig's envelope is its actuators' (`experimental_setups[].actuator_limits[]`).");
   doc.table("experimental_setups[]",
             listing("experimental_setups[]", [](config::Source& s) { (void)ts::experimental_setup(s, kListedDofs); }),
             "A site whose DOFs several actuators drive through their geometry (docs/experimental-setups.md): one "
-            "actuator per DOF, commanded on its DOF's channel. `actuators[].limits` takes a channel's limit keys.");
+            "actuator per DOF, commanded on its DOF's channel. `actuator_limits[]` takes a channel's limit keys.");
   kind_tables<setups::SetupKinds>(
-      doc, "experimental_setups[]", "the experimental setup",
+      doc, "experimental_setups[].setup", "the experimental setup",
       [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s, setups::Geometry::kLinear); });
   doc.table("opensees_sites[]",
             listing("opensees_sites[]",
