@@ -65,7 +65,8 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
       << r.steps_planned << " steps\n";
   if (r.outcome != coordinator::StepOutcome::kOk && r.outcome != coordinator::StepOutcome::kRecordEnded) {
     out << "  the simulated test stopped early";
-    if (r.outcome == coordinator::StepOutcome::kLimit || r.outcome == coordinator::StepOutcome::kRunAway) {
+    if (r.outcome == coordinator::StepOutcome::kLimit || r.outcome == coordinator::StepOutcome::kRunAway ||
+        r.outcome == coordinator::StepOutcome::kGeometry) {
       out << ": " << coordinator::describe_limit_stop(r.limit_stop);
     }
     out << "\n";
