@@ -16,59 +16,10 @@
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/setup_plan.h"
+#include "two_actuator_test.h"
 
 namespace rpsd::hybrid_test {
 namespace {
-
-constexpr double kK = 4.0e5;  // N/m: each actuator's specimen in the setup
-
-TestConfig two_dof_test(double plant_stiffness_n_per_m) {
-  TestConfig t;
-  t.name = "two-dof";
-  substructure::LinearMdofParameters model;
-  Eigen::MatrixXd m(2, 2);
-  m << 3000.0, 0.0, 0.0, 1500.0;
-  model.mass_kg = linalg::StructuralMatrix(m);
-  model.stiffness_n_per_m = linalg::StructuralMatrix(Eigen::MatrixXd::Zero(2, 2));  // the specimen's
-  Eigen::MatrixXd c(2, 2);
-  c << 900.0, -100.0, -100.0, 600.0;
-  model.damping = substructure::DampingMatrix{linalg::StructuralMatrix(c)};
-  t.structure = model;
-  for (int d = 0; d < 2; ++d) {
-    ExperimentalChannel channel;
-    channel.dof = {d, d, 1.0, 1.0, 2.0 * kK};
-    channel.restoring_force = coordinator::RestoringForceSource::kMeasuredForce;
-    t.experimental.push_back(channel);
-  }
-  t.influence = Eigen::VectorXd::Ones(2);
-  t.plant = servo::PureDelayParameters{0.0, plant_stiffness_n_per_m, 8192.0, {}, {}};
-  t.control_rate_hz = 1024.0;
-  t.record_dofs = {0, 1};
-  t.initial_displacement_m = Eigen::Vector2d(0.004, 0.003);
-  t.duration_s = 1.0;
-  return t;
-}
-
-setups::PlanarGeometry symmetric_pair(setups::Geometry geometry) {
-  setups::PlanarGeometry g;
-  g.geometry = geometry;
-  g.dof_count = 2;
-  g.dofs = {setups::DofMotion::kTranslationX, setups::DofMotion::kRotation, setups::DofMotion::kTranslationX};
-  g.actuators[0] = {"top", {-1.5, 1.0}, {0.0, 1.0}};
-  g.actuators[1] = {"bottom", {-1.5, -1.0}, {0.0, -1.0}};
-  return g;
-}
-
-TestConfig with_setup(setups::Geometry geometry = setups::Geometry::kLinear) {
-  TestConfig t = two_dof_test(kK);
-  ExperimentalSetupSite site;
-  site.channels = {0, 1};
-  setups::PlanarActuatorsParameters planar;
-  planar.geometry = symmetric_pair(geometry);
-  site.setup = planar;
-  t.setups = {site};
-  return t;
-}
 
 TestRun run(const TestConfig& t, const std::filesystem::path& csv = {}) {
   TestAssembly assembly(t, {csv, false, true, {}});
