@@ -173,15 +173,17 @@ TEST(SetupExchange, AnActuatorsStrokeLimitActsOnItsStrokeNotOnTheDofs) {
 
 TEST(SetupExchange, ADofsStrokeLimitActsOnTheDofNotOnTheActuators) {
   std::vector<CoordinatorLimits> dof(2);
-  dof[0].max_stroke_m = 0.005;
+  dof[1].max_stroke_m = 0.005;  // rad: the rotation's
   Exchange e(group_of(setups::Geometry::kLinear), dof);
-  // x = 0.004 within its 0.005, though actuator 2's stroke 0.004 + h 0.002 = 0.0056 is not.
-  ASSERT_EQ(e.to(0.004, -0.002), StepOutcome::kOk);
-  EXPECT_EQ(e.to(0.006, 0.0), StepOutcome::kLimit);
+  // θ = 0.004 rad within its 0.005, though actuator 2's stroke 0.01 - h 0.004 = 0.0068 m is not.
+  ASSERT_EQ(e.to(0.01, 0.004), StepOutcome::kOk);
+  EXPECT_EQ(e.to(0.01, 0.006), StepOutcome::kLimit);
   const LimitStop& l = e.exchange->limit_stop();
-  EXPECT_EQ(l.dof, 0);
+  EXPECT_EQ(l.dof, 1);
   EXPECT_EQ(l.actuator, -1);
-  EXPECT_EQ(std::string(l.name.data()), "site 1 DOF 1 translation_x");
+  EXPECT_EQ(std::string(l.name.data()), "site 1 DOF 2 rotation");
+  EXPECT_NE(describe_limit_stop(l).find("site 1 DOF 2 rotation (channel 1): its target 0.006 rad"), std::string::npos)
+      << describe_limit_stop(l);
 }
 
 TEST(SetupExchange, ForceLimitsActOnTheLoadCellAndOnTheDofsForceInItsUnits) {
