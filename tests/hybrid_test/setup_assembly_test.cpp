@@ -10,11 +10,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/hybrid_test_output.h"
 #include "rpsd/hybrid_test/setup_plan.h"
 #include "two_actuator_test.h"
 
@@ -128,6 +130,34 @@ TEST(SetupAssembly, AnActuatorsLimitStopsTheRunNamingTheActuator) {
   EXPECT_NE(coordinator::describe_limit_stop(r.limit_stop).find("site 1 actuator bottom (channel 1): its stroke"),
             std::string::npos)
       << coordinator::describe_limit_stop(r.limit_stop);
+}
+
+TEST(SetupAssembly, TheSummaryNamesTheActuatorThatStoppedTheRunAndDescribesTheSetup) {
+  TestConfig t = with_setup();
+  t.setups[0].actuator_limits.resize(2);
+  t.setups[0].actuator_limits[1].max_stroke_m = 0.0065;
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "setup_assembly_summary";
+  std::filesystem::remove_all(dir);
+  TestDocument file;
+  file.name = "two-dof";
+  run_test_into(dir, file, t);
+  std::ifstream in(dir / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["stopped_by"]["kind"], "limit");
+  EXPECT_EQ(summary["stopped_by"]["actuator"], "site 1 actuator bottom");
+  EXPECT_EQ(summary["stopped_by"]["unit"], "m");
+  EXPECT_NE(summary["outcome"].get<std::string>().find("site 1 actuator bottom (channel 1): its stroke"),
+            std::string::npos)
+      << summary["outcome"];
+  const nlohmann::json& setup = summary["experimental_setups"][0];
+  EXPECT_EQ(setup["kind"], "planar");
+  EXPECT_EQ(setup["geometry"], "linear");
+  EXPECT_EQ(setup["actuators"][1]["name"], "bottom");
+  EXPECT_EQ(setup["actuators"][1]["channel"], 1);
+  EXPECT_DOUBLE_EQ(setup["actuators"][1]["reference_length_m"].get<double>(), 1.5);
+  EXPECT_EQ(setup["dofs"][1]["motion"], "rotation");
+  EXPECT_EQ(setup["calibration"]["offset_m"], nlohmann::json::array({0.0, 0.0}));
+  EXPECT_NEAR(setup["calibration"]["predicted_stroke_m"][1].get<double>(), 0.007, 1e-15);
 }
 
 }  // namespace
