@@ -55,7 +55,8 @@ ExperimentalExchange::ExperimentalExchange(ExchangeParts parts) : parts_(std::mo
       throw std::invalid_argument("ExperimentalExchange: " + site + ": limits for every actuator or for none");
     }
     if (!sg.calibration_offset_m.empty() && static_cast<int>(sg.calibration_offset_m.size()) != n) {
-      throw std::invalid_argument("ExperimentalExchange: " + site + ": a calibration offset for every actuator or none");
+      throw std::invalid_argument("ExperimentalExchange: " + site +
+                                  ": a calibration offset for every actuator or none");
     }
     for (int i = 0; i < n; ++i) {
       const int c = sg.channels[static_cast<std::size_t>(i)];
@@ -66,8 +67,7 @@ ExperimentalExchange::ExperimentalExchange(ExchangeParts parts) : parts_(std::mo
       group_of_[static_cast<std::size_t>(c)] = static_cast<int>(groups_.size());
       index_in_group_[static_cast<std::size_t>(c)] = i;
       const setups::PlanarActuator& a = sg.geometry.actuators[static_cast<std::size_t>(i)];
-      g.actuator_names.push_back(
-          label(site + " actuator " + (a.name.empty() ? std::to_string(i + 1) : a.name)));
+      g.actuator_names.push_back(label(site + " actuator " + (a.name.empty() ? std::to_string(i + 1) : a.name)));
       const setups::DofMotion motion = sg.geometry.dofs[static_cast<std::size_t>(i)];
       g.dof_names.push_back(
           label(site + " DOF " + std::to_string(i + 1) + " " + std::string(setups::dof_motion_name(motion))));
@@ -126,8 +126,7 @@ void ExperimentalExchange::start(const Eigen::VectorXd& targets, std::span<const
   feedback_.step = -1;
 }
 
-void ExperimentalExchange::stop_on_actuator(const Group& g, int i, LimitStop::Kind kind, double value,
-                                            double bound) {
+void ExperimentalExchange::stop_on_actuator(const Group& g, int i, LimitStop::Kind kind, double value, double bound) {
   limit_stop_ = {kind, g.parts.channels[static_cast<std::size_t>(i)], value, bound};
   limit_stop_.setup = static_cast<int>(&g - groups_.data());
   limit_stop_.actuator = i;
@@ -239,7 +238,8 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
   command_.step = exchange_;
   command_.time_s = time_s;
   for (int c = 0; c < channels_; ++c) {
-    if (group_of_[static_cast<std::size_t>(c)] < 0) command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
+    if (group_of_[static_cast<std::size_t>(c)] < 0)
+      command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
   }
   for (Group& g : groups_) command_setup(g);
   if (!commands_within_limits()) return StepOutcome::kLimit;
@@ -281,7 +281,8 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
       }
       group.stroke_measured[i] = feedback_.displacement_m[c] - group.offset[i];
       group.actuator_force[i] = feedback_.force_n[c];
-      if (!group.parts.compensate_dofs) parts_.compensators[c]->observe(group.stroke_target[i], group.stroke_measured[i]);
+      if (!group.parts.compensate_dofs)
+        parts_.compensators[c]->observe(group.stroke_target[i], group.stroke_measured[i]);
       tracking_[c].update(group.stroke_target[i], group.stroke_measured[i]);
       continue;
     }
@@ -317,7 +318,8 @@ void ExperimentalExchange::command_setup(Group& g) {
     g.setup.strokes(g.dof_command, g.stroke_command);
   } else {
     for (int i = 0; i < n; ++i) {
-      g.stroke_command[i] = parts_.compensators[g.parts.channels[static_cast<std::size_t>(i)]]->command(g.stroke_target[i]);
+      g.stroke_command[i] =
+          parts_.compensators[g.parts.channels[static_cast<std::size_t>(i)]]->command(g.stroke_target[i]);
     }
   }
   for (int i = 0; i < n; ++i) {

@@ -42,14 +42,14 @@ std::string describe_setup_stop(const LimitStop& l) {
                     limit_stop_name(l.kind), l.bound);
       break;
     case Kind::kTrackingError:
-      std::snprintf(text, sizeof text, "%s (channel %d): tracking error %.6g %s beyond limits.max_tracking_error_m %.6g",
-                    l.name.data(), l.channel, l.value, l.unit, l.bound);
+      std::snprintf(text, sizeof text,
+                    "%s (channel %d): tracking error %.6g %s beyond limits.max_tracking_error_m %.6g", l.name.data(),
+                    l.channel, l.value, l.unit, l.bound);
       break;
     case Kind::kGeometry:
-      std::snprintf(text, sizeof text, "%s (channels from %d): %s; no further command was sent", l.name.data(),
-                    l.channel,
-                    std::string(setups::setup_status_text(static_cast<setups::SetupStatus>(static_cast<int>(l.value))))
-                        .c_str());
+      std::snprintf(
+          text, sizeof text, "%s (channels from %d): %s; no further command was sent", l.name.data(), l.channel,
+          std::string(setups::setup_status_text(static_cast<setups::SetupStatus>(static_cast<int>(l.value)))).c_str());
       break;
     default:
       std::snprintf(text, sizeof text, "%s: %s", l.name.data(), limit_stop_name(l.kind));

@@ -51,8 +51,9 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
       const auto ch = static_cast<std::size_t>(site.channels[i]);
       initial_force_n_[ch] = built.initial_force_n(i);
       plant_of_channel_[ch] = built.simulated_plant(i);
-      initial_reading_m_[ch] = plant_of_channel_[ch] ? std::optional<double>(plant_of_channel_[ch]->measure().displacement_m)
-                                                     : built.initial_displacement_m(i);
+      initial_reading_m_[ch] = plant_of_channel_[ch]
+                                   ? std::optional<double>(plant_of_channel_[ch]->measure().displacement_m)
+                                   : built.initial_displacement_m(i);
     }
     routes.push_back({site.site_id, &built.link(), site.channels});
   }

@@ -30,7 +30,7 @@ struct TestAssembly::Parts {
   std::int64_t steps = 0;
   TimingReport timing;
   std::vector<SetupCalibration> calibrations;  // per experimental setup
-  realtime::CpuWakeLatencyHold cpus_awake;  // from the start to finish(): real time, or over DDS
+  realtime::CpuWakeLatencyHold cpus_awake;     // from the start to finish(): real time, or over DDS
   const std::atomic<bool>* stop_request = nullptr;
 
   // Counts a step the loop took and hands its record on. Real-time safe.
@@ -107,10 +107,9 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   SetupPlan setups = plan_setups(s, hold, control_period_s, perfect_actuator);
   const std::uint64_t run_id = transport::draw_run_id();
   const auto per_channel = [&](const std::vector<double>& v) { return std::span<const double>(v.data(), v.size()); };
-  p.actuators = std::make_unique<ActuatorLinks>(s, control_period_s, perfect_actuator, per_channel(setups.hold_m),
-                                                run_id,
-                                                s.setups.empty() ? std::span<const double>{}
-                                                                 : per_channel(setups.stiffness_estimate_n_per_m));
+  p.actuators = std::make_unique<ActuatorLinks>(
+      s, control_period_s, perfect_actuator, per_channel(setups.hold_m), run_id,
+      s.setups.empty() ? std::span<const double>{} : per_channel(setups.stiffness_estimate_n_per_m));
   // Calibration: each setup actuator's reading at rest against the stroke the geometry predicts.
   if (!s.setups.empty()) {
     std::vector<std::optional<double>> readings(static_cast<std::size_t>(channels));

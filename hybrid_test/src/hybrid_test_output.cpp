@@ -373,8 +373,8 @@ nlohmann::json experimental_setups_json(const hybrid_test::TestConfig& scenario,
     }
     out.push_back(
         {{"site_id", site.site_id},
-         {"kind", std::visit([](const auto& kind) { return std::string(std::decay_t<decltype(kind)>::kName); },
-                             site.setup)},
+         {"kind",
+          std::visit([](const auto& kind) { return std::string(std::decay_t<decltype(kind)>::kName); }, site.setup)},
          {"geometry", g.geometry == setups::Geometry::kLinear ? "linear" : "large_displacement"},
          {"compensated",
           site.compensated == hybrid_test::ExperimentalSetupSite::Compensated::kDofs ? "dofs" : "actuators"},

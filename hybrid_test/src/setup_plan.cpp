@@ -64,9 +64,9 @@ SetupPlan plan_setups(const TestConfig& s, const Eigen::VectorXd& dof_hold_m, do
     if (!perfect_actuator) {
       const servo::Envelope envelope = servo::envelope_of(s.plant);
       for (int i = 0; i < n; ++i) {
-        const coordinator::CoordinatorLimits given =
-            site.actuator_limits.empty() ? coordinator::CoordinatorLimits{}
-                                         : site.actuator_limits[static_cast<std::size_t>(i)];
+        const coordinator::CoordinatorLimits given = site.actuator_limits.empty()
+                                                         ? coordinator::CoordinatorLimits{}
+                                                         : site.actuator_limits[static_cast<std::size_t>(i)];
         try {
           group.actuator_limits.push_back(coordinator::within_envelope(given, envelope, control_period_s));
         } catch (const std::exception& e) {

@@ -294,8 +294,7 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
           std::max(d.peak_tracking_error_m, std::abs(r.dof_measured_m[d.channel] - r.dof_target_m[d.channel]));
     }
   };
-  const coordinator::StepOutcome outcome =
-      report.dofs.empty() ? test.run(watch, {}) : test.run(watch_dofs, {});
+  const coordinator::StepOutcome outcome = report.dofs.empty() ? test.run(watch, {}) : test.run(watch_dofs, {});
   const hybrid_test::TestRun run = test.finish(outcome);
   report.outcome = run.outcome;
   report.limit_stop = run.limit_stop;
@@ -377,14 +376,14 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
   }
   const bool completed =
       report.outcome == coordinator::StepOutcome::kOk || report.outcome == coordinator::StepOutcome::kRecordEnded;
-  report.within_limits = completed &&
-                         std::all_of(report.channels.begin(), report.channels.end(),
-                                     [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
-                         std::all_of(report.dofs.begin(), report.dofs.end(),
-                                     [](const auto& d) { return d.within_limits; }) &&
-                         std::all_of(report.modes.begin(), report.modes.end(),
-                                     [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
-                         (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
+  report.within_limits =
+      completed &&
+      std::all_of(report.channels.begin(), report.channels.end(),
+                  [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
+      std::all_of(report.dofs.begin(), report.dofs.end(), [](const auto& d) { return d.within_limits; }) &&
+      std::all_of(report.modes.begin(), report.modes.end(),
+                  [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
+      (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
   return report;
 }
 

@@ -193,13 +193,13 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
                            {"steps", r.steps},
                            {"steps_planned", r.steps_planned},
                            {"channels", channels},
-          {"residual_delay_ms", r.residual_delay_ms},
-          {"modes", modes},
-          {"p_gain", maybe(r.p_gain)},
-          {"max_stable_p_gain", maybe(r.max_stable_p_gain)},
-          {"actuator_cutoff_hz", maybe(r.actuator_cutoff_hz)},
-          {"warnings", r.warnings},
-          {"ready", r.within_limits}};
+                           {"residual_delay_ms", r.residual_delay_ms},
+                           {"modes", modes},
+                           {"p_gain", maybe(r.p_gain)},
+                           {"max_stable_p_gain", maybe(r.max_stable_p_gain)},
+                           {"actuator_cutoff_hz", maybe(r.actuator_cutoff_hz)},
+                           {"warnings", r.warnings},
+                           {"ready", r.within_limits}};
   // Only with a setup: the channels above are its actuators, these its DOFs.
   if (!r.dofs.empty()) report["dofs"] = dofs;
   return report;

@@ -2,12 +2,12 @@
 // in-process link, plant and recorder hand-off, for each plant kind and several compensators.
 #include <gtest/gtest.h>
 
+#include "../hybrid_test/two_actuator_test.h"
 #include "../servo/paper_rig.h"
 #include "allocation_counter.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/specimen_sdof.h"
-#include "../hybrid_test/two_actuator_test.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -110,7 +110,8 @@ TEST(LoopAllocation, NoAllocationPerStepUnderTheBenchmarksLoopTiming) {
 // from the measured strokes every exchange, Jᵀ f at the measured configuration), its
 // compensators on the actuators or on the DOFs, with per-actuator and DOF limits in force.
 TEST(LoopAllocation, NoAllocationPerStepThroughALargeDisplacementSetup) {
-  for (const auto compensated : {ExperimentalSetupSite::Compensated::kActuators, ExperimentalSetupSite::Compensated::kDofs}) {
+  for (const auto compensated :
+       {ExperimentalSetupSite::Compensated::kActuators, ExperimentalSetupSite::Compensated::kDofs}) {
     TestConfig config = with_setup(setups::Geometry::kLargeDisplacement);
     config.duration_s = 3.0;
     config.compensation = compensation::PolynomialExtrapolationParameters{3, 0.002};

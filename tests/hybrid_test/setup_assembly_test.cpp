@@ -40,8 +40,8 @@ TEST(SetupAssembly, TwoActuatorsOnADofDiagonalSpecimenReproduceTheRunWithoutASet
       peak = std::max(peak, std::abs(a.records[n].displacement_m[d]));
       worst = std::max(worst, std::abs(a.records[n].displacement_m[d] - b.records[n].displacement_m[d]));
       worst = std::max(worst, std::abs(a.records[n].measured_m[d] - b.records[n].dof_measured_m[d]));
-      worst_force = std::max(worst_force,
-                             std::abs(a.records[n].specimen_restoring_force_n[d] - b.records[n].dof_force_n[d]));
+      worst_force =
+          std::max(worst_force, std::abs(a.records[n].specimen_restoring_force_n[d] - b.records[n].dof_force_n[d]));
     }
     // The actuators' own view: s = x ∓ θ, and each load cell k s.
     const auto& r = b.records[n];

@@ -94,7 +94,7 @@ struct DryRunReport {
   // against the actuator's limits).
   std::vector<ChannelPrediction> channels;
   std::vector<DofPrediction> dofs;  // the DOFs setups drive (empty without setups)
-  double residual_delay_ms = 0.0;  // the channels' mean tracking delay
+  double residual_delay_ms = 0.0;   // the channels' mean tracking delay
   std::vector<ModePrediction> modes;
   // Servo model only: its proportional gain and the largest stable one (eigenvalues of the
   // full linear model with the specimen).
