@@ -46,6 +46,7 @@ ExperimentalExchange::ExperimentalExchange(ExchangeParts parts) : parts_(std::mo
   for (const SetupGroup& sg : parts_.setups) {
     const std::string site = "site " + std::to_string(sg.site_id);
     Group g(sg, setups::PlanarSetup(sg.geometry));  // checks the geometry
+    g.name = label(site + " setup");
     const int n = g.setup.dofs();
     if (static_cast<int>(sg.channels.size()) != n) {
       throw std::invalid_argument("ExperimentalExchange: " + site + "'s setup drives " + std::to_string(n) +
@@ -336,8 +337,7 @@ StepOutcome ExperimentalExchange::feedback_setup(Group& g) {
     g.dof_measured = guess;
     limit_stop_ = {LimitStop::Kind::kGeometry, g.parts.channels.front(), static_cast<double>(status), 0.0};
     limit_stop_.setup = static_cast<int>(&g - groups_.data());
-    std::snprintf(limit_stop_.name.data(), limit_stop_.name.size(), "site %u setup",
-                  static_cast<unsigned>(g.parts.site_id));
+    limit_stop_.name = g.name;
     return StepOutcome::kGeometry;
   }
   g.setup.dof_forces(g.dof_measured, g.actuator_force, g.dof_force);

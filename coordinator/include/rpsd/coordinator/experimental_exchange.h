@@ -86,6 +86,7 @@ class ExperimentalExchange {
     setups::SetupVector dof_target, dof_command, stroke_target, stroke_command, stroke_measured, dof_measured,
         actuator_force, dof_force, offset, last_dof_command;
     std::vector<std::array<char, 64>> actuator_names, dof_names;
+    std::array<char, 64> name{};  // "site 1 setup"
     std::vector<const char*> dof_units, dof_force_units;
   };
 

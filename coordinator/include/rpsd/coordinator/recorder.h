@@ -31,7 +31,7 @@ struct RecorderOptions {
   // Keep every record in memory for finish(). Off when the metrics are computed as the test
   // runs: memory then stays flat however long the test is.
   bool keep_records = true;
-  // Records the queue to the writer thread holds (712 bytes each): 4096 is 1 s at 4096 Hz.
+  // Records the queue to the writer thread holds (984 bytes each): 4096 is 1 s at 4096 Hz.
   std::size_t queue_capacity = 1 << 12;
   // The channels a setup drives, whose DOF view follows each row's other columns (empty:
   // none, and the file is as without setups).
