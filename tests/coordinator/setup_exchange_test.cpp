@@ -58,11 +58,12 @@ struct Exchange {
   std::unique_ptr<ExperimentalExchange> exchange;
 
   explicit Exchange(SetupGroup group, std::vector<CoordinatorLimits> dof_limits = {},
-                    std::vector<RestoringForcePath> paths = {}) {
+                    std::vector<RestoringForcePath> paths = {},
+                    const compensation::CompensatorConfig& compensator = compensation::PassThroughParameters{}) {
     ExchangeParts parts;
     parts.link = &link;
     for (int c = 0; c < 2; ++c) {
-      owned.push_back(compensation::make_compensator(compensation::PassThroughParameters{}, 1.0 / 1024));
+      owned.push_back(compensation::make_compensator(compensator, 1.0 / 1024));
       parts.compensators.push_back(owned.back().get());
     }
     parts.force_paths = paths.empty() ? std::vector<RestoringForcePath>(2) : paths;
@@ -221,6 +222,26 @@ TEST(SetupExchange, StiffnessTimesDisplacementUsesTheDofsMeasuredDisplacement) {
   ASSERT_EQ(e.to(0.004, 0.003), StepOutcome::kOk);
   EXPECT_NEAR(e.exchange->specimen_forces()[0], 2.0e5 * 0.004, 1e-9);
   EXPECT_NEAR(e.exchange->specimen_forces()[1], 3.0e4 * 0.003, 1e-9);
+}
+
+// A linear compensator commutes with linear geometry: compensating the DOFs' targets and then
+// taking J of them sends what compensating each actuator's stroke J u sends.
+TEST(SetupExchange, CompensationOnTheDofsOrOnTheActuatorsIsTheSameThroughLinearGeometry) {
+  const compensation::CompensatorConfig extrapolation = compensation::PolynomialExtrapolationParameters{3, 0.01};
+  SetupGroup on_dofs = group_of(setups::Geometry::kLinear), on_actuators = on_dofs;
+  on_dofs.compensate_dofs = true;
+  Exchange a(on_dofs, {}, {}, extrapolation), b(on_actuators, {}, {}, extrapolation);
+  double lead = 0.0;
+  for (int n = 1; n <= 200; ++n) {
+    const double t = n / 1024.0, x = 0.01 * std::sin(2.0 * M_PI * 1.5 * t), theta = 0.004 * std::sin(2.0 * M_PI * t);
+    ASSERT_EQ(a.to(x, theta), StepOutcome::kOk);
+    ASSERT_EQ(b.to(x, theta), StepOutcome::kOk);
+    for (int c = 0; c < 2; ++c) {
+      EXPECT_NEAR(a.link.sent.back().displacement_m[c], b.link.sent.back().displacement_m[c], 1e-12);
+    }
+    lead = std::max(lead, std::abs(a.link.sent.back().displacement_m[0] - x));  // the extrapolation acts
+  }
+  EXPECT_GT(lead, 1e-4);
 }
 
 }  // namespace
