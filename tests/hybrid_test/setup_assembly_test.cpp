@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -130,6 +131,45 @@ TEST(SetupAssembly, AnActuatorsLimitStopsTheRunNamingTheActuator) {
   EXPECT_NE(coordinator::describe_limit_stop(r.limit_stop).find("site 1 actuator bottom (channel 1): its stroke"),
             std::string::npos)
       << coordinator::describe_limit_stop(r.limit_stop);
+}
+
+// From exchange 100 on, actuator 1 reads a stroke no configuration has; counts what is sent.
+class ImpossibleReading final : public transport::Link {
+ public:
+  explicit ImpossibleReading(transport::Link& inner) : inner_(inner) {}
+  transport::LinkStatus send(const transport::CommandSample& command) override {
+    ++sent;
+    return inner_.send(command);
+  }
+  transport::LinkStatus receive(transport::FeedbackSample& feedback) override {
+    const transport::LinkStatus status = inner_.receive(feedback);
+    if (feedback.step >= 100) feedback.displacement_m[0] -= 5.0;  // shorter than the actuator itself
+    return status;
+  }
+  int sent = 0;
+
+ private:
+  transport::Link& inner_;
+};
+
+TEST(SetupAssembly, AGeometryThatFailsStopsTheRunAndNothingMoreIsSent) {
+  const TestConfig t = with_setup(setups::Geometry::kLargeDisplacement);
+  ImpossibleReading* link = nullptr;
+  AssemblyOptions options;
+  options.keep_records = true;
+  options.wrap_link = [&](transport::Link& inner) {
+    auto wrapped = std::make_unique<ImpossibleReading>(inner);
+    link = wrapped.get();
+    return wrapped;
+  };
+  TestAssembly assembly(t, options);
+  const TestRun r = assembly.finish(assembly.run({}, {}));
+  EXPECT_EQ(r.outcome, coordinator::StepOutcome::kGeometry);
+  EXPECT_EQ(r.steps, 100);  // exchanges 0..99 completed their steps
+  ASSERT_NE(link, nullptr);
+  EXPECT_EQ(link->sent, 101);  // the command of the failing exchange, and none after
+  EXPECT_EQ(r.limit_stop.kind, coordinator::LimitStop::Kind::kGeometry);
+  EXPECT_EQ(std::string(r.limit_stop.name.data()), "site 1 setup");
 }
 
 TEST(SetupAssembly, TheSummaryNamesTheActuatorThatStoppedTheRunAndDescribesTheSetup) {
