@@ -9,7 +9,8 @@ enum ExitCode : int {
   kExitInternalError = 1,  // a failure that is not the input's: a bug, the OS refused something
   kExitBadInput = 2,       // a file, key, value or option is wrong, or --out holds another run
   kExitStopped = 3,        // the test stopped before its end (limit, run-away, node or link failure)
-  kExitNotReady = 4,       // not ready: the dry run says so, no servo node answered before the first step, or a node's
+  kExitNotReady = 4,       // not ready: the dry run says so, no servo node answered before the first step, a setup's
+                           // calibration offset is beyond its limit, or a node's
                            // actuator did not start
   kExitResultsNotWritten = 5,  // a result file could not be written (full disk, permissions)
   kExitInterrupted = 6,        // SIGINT or SIGTERM ended the run in order

@@ -2,10 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace rpsd::coordinator {
+
+namespace {
+
+std::array<char, 64> label(const std::string& text) {
+  std::array<char, 64> out{};
+  std::snprintf(out.data(), out.size(), "%s", text.c_str());
+  return out;
+}
+
+}  // namespace
 
 ExperimentalExchange::ExperimentalExchange(ExchangeParts parts) : parts_(std::move(parts)) {
   if (!parts_.link) throw std::invalid_argument("ExperimentalExchange: a link is required");
@@ -29,6 +40,51 @@ ExperimentalExchange::ExperimentalExchange(ExchangeParts parts) : parts_(std::mo
   command_.test_id = feedback_.test_id = parts_.test_id;
   command_.run_id = parts_.run_id != 0 ? parts_.run_id : transport::draw_run_id();
   command_.channels = static_cast<std::uint8_t>(channels_);
+  group_of_.fill(-1);
+  index_in_group_.fill(-1);
+  groups_.reserve(parts_.setups.size());
+  for (const SetupGroup& sg : parts_.setups) {
+    const std::string site = "site " + std::to_string(sg.site_id);
+    Group g(sg, setups::PlanarSetup(sg.geometry));  // checks the geometry
+    g.name = label(site + " setup");
+    const int n = g.setup.dofs();
+    if (static_cast<int>(sg.channels.size()) != n) {
+      throw std::invalid_argument("ExperimentalExchange: " + site + "'s setup drives " + std::to_string(n) +
+                                  " DOFs on " + std::to_string(sg.channels.size()) + " channels");
+    }
+    if (!sg.actuator_limits.empty() && static_cast<int>(sg.actuator_limits.size()) != n) {
+      throw std::invalid_argument("ExperimentalExchange: " + site + ": limits for every actuator or for none");
+    }
+    if (!sg.calibration_offset_m.empty() && static_cast<int>(sg.calibration_offset_m.size()) != n) {
+      throw std::invalid_argument("ExperimentalExchange: " + site +
+                                  ": a calibration offset for every actuator or none");
+    }
+    for (int i = 0; i < n; ++i) {
+      const int c = sg.channels[static_cast<std::size_t>(i)];
+      if (c < 0 || c >= channels_ || group_of_[static_cast<std::size_t>(c)] >= 0) {
+        throw std::invalid_argument("ExperimentalExchange: " + site + "'s setup names channel " + std::to_string(c) +
+                                    ", which is not a channel of the test or is another setup's");
+      }
+      group_of_[static_cast<std::size_t>(c)] = static_cast<int>(groups_.size());
+      index_in_group_[static_cast<std::size_t>(c)] = i;
+      const setups::PlanarActuator& a = sg.geometry.actuators[static_cast<std::size_t>(i)];
+      g.actuator_names.push_back(label(site + " actuator " + (a.name.empty() ? std::to_string(i + 1) : a.name)));
+      const setups::DofMotion motion = sg.geometry.dofs[static_cast<std::size_t>(i)];
+      g.dof_names.push_back(
+          label(site + " DOF " + std::to_string(i + 1) + " " + std::string(setups::dof_motion_name(motion))));
+      const bool rotation = motion == setups::DofMotion::kRotation;
+      g.dof_units.push_back(rotation ? "rad" : "m");
+      g.dof_force_units.push_back(rotation ? "N·m" : "N");
+    }
+    for (auto* v : {&g.dof_target, &g.dof_command, &g.stroke_target, &g.stroke_command, &g.stroke_measured,
+                    &g.dof_measured, &g.actuator_force, &g.dof_force, &g.offset, &g.last_dof_command}) {
+      *v = setups::SetupVector::Zero(n);
+    }
+    for (int i = 0; i < n && !sg.calibration_offset_m.empty(); ++i) {
+      g.offset[i] = sg.calibration_offset_m[static_cast<std::size_t>(i)];
+    }
+    groups_.push_back(std::move(g));
+  }
 }
 
 void ExperimentalExchange::start(const Eigen::VectorXd& targets, std::span<const double> specimen_force_n) {
@@ -37,10 +93,31 @@ void ExperimentalExchange::start(const Eigen::VectorXd& targets, std::span<const
   }
   targets_ = targets;
   for (int c = 0; c < channels_; ++c) {
+    if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
     parts_.compensators[c]->reset(targets_[c]);
     tracking_[c].reset(targets_[c], targets_[c]);
     specimen_forces_[c] = specimen_force_n[c];
     last_sent_m_[c] = targets_[c];  // the actuator holds the start
+  }
+  // A setup's actuators hold the strokes of its DOFs' start, read with their offsets.
+  for (Group& g : groups_) {
+    const int n = g.setup.dofs();
+    for (int i = 0; i < n; ++i) g.dof_target[i] = targets_[g.parts.channels[static_cast<std::size_t>(i)]];
+    g.setup.strokes(g.dof_target, g.stroke_target);
+    g.dof_command = g.last_dof_command = g.dof_measured = g.dof_target;
+    g.stroke_command = g.stroke_measured = g.stroke_target;
+    for (int i = 0; i < n; ++i) {
+      const int c = g.parts.channels[static_cast<std::size_t>(i)];
+      parts_.compensators[c]->reset(g.parts.compensate_dofs ? g.dof_target[i] : g.stroke_target[i]);
+      tracking_[c].reset(g.stroke_target[i], g.stroke_target[i]);
+      specimen_forces_[c] = specimen_force_n[c];
+      g.dof_force[i] = specimen_force_n[c];
+      last_sent_m_[c] = g.stroke_target[i] + g.offset[i];
+    }
+    g.actuator_force.setZero();
+    // Best effort at rest: the actuators' forces that carry the DOFs' (a singular start was
+    // refused when the setup was made).
+    (void)g.setup.actuator_forces(g.dof_target, g.dof_force, g.actuator_force);
   }
   limit_stop_ = LimitStop{};
   saturated_exchanges_ = 0;
@@ -50,9 +127,57 @@ void ExperimentalExchange::start(const Eigen::VectorXd& targets, std::span<const
   feedback_.step = -1;
 }
 
+void ExperimentalExchange::stop_on_actuator(const Group& g, int i, LimitStop::Kind kind, double value, double bound) {
+  limit_stop_ = {kind, g.parts.channels[static_cast<std::size_t>(i)], value, bound};
+  limit_stop_.setup = static_cast<int>(&g - groups_.data());
+  limit_stop_.actuator = i;
+  limit_stop_.name = g.actuator_names[static_cast<std::size_t>(i)];
+  limit_stop_.unit = kind == LimitStop::Kind::kForce ? "N" : "m";
+}
+
+void ExperimentalExchange::stop_on_dof(const Group& g, int i, LimitStop::Kind kind, double value, double bound,
+                                       bool force) {
+  limit_stop_ = {kind, g.parts.channels[static_cast<std::size_t>(i)], value, bound};
+  limit_stop_.setup = static_cast<int>(&g - groups_.data());
+  limit_stop_.dof = i;
+  limit_stop_.name = g.dof_names[static_cast<std::size_t>(i)];
+  limit_stop_.unit = force ? g.dof_force_units[static_cast<std::size_t>(i)] : g.dof_units[static_cast<std::size_t>(i)];
+}
+
 bool ExperimentalExchange::commands_within_limits() {
+  // A setup's actuators: on the stroke as sent (what the hardware sees), then its DOFs' own
+  // limits on the DOFs' commands.
+  for (Group& g : groups_) {
+    const int n = g.setup.dofs();
+    for (int i = 0; i < n && !g.parts.actuator_limits.empty(); ++i) {
+      const CoordinatorLimits& l = g.parts.actuator_limits[static_cast<std::size_t>(i)];
+      const int c = g.parts.channels[static_cast<std::size_t>(i)];
+      const double x = command_.displacement_m[c], change = x - last_sent_m_[c];
+      if (!std::isfinite(x) || std::abs(x) > l.max_stroke_m) {
+        stop_on_actuator(g, i, LimitStop::Kind::kStroke, x, l.max_stroke_m);
+        return false;
+      }
+      if (std::abs(change) > l.max_increment_m) {
+        stop_on_actuator(g, i, LimitStop::Kind::kIncrement, change, l.max_increment_m);
+        return false;
+      }
+    }
+    for (int i = 0; i < n && !parts_.limits.empty(); ++i) {
+      const CoordinatorLimits& l = parts_.limits[g.parts.channels[static_cast<std::size_t>(i)]];
+      const double u = g.dof_command[i], change = u - g.last_dof_command[i];
+      if (!std::isfinite(u) || std::abs(u) > l.max_stroke_m) {
+        stop_on_dof(g, i, LimitStop::Kind::kStroke, u, l.max_stroke_m, false);
+        return false;
+      }
+      if (std::abs(change) > l.max_increment_m) {
+        stop_on_dof(g, i, LimitStop::Kind::kIncrement, change, l.max_increment_m, false);
+        return false;
+      }
+    }
+  }
   if (parts_.limits.empty()) return true;
   for (int c = 0; c < channels_; ++c) {
+    if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
     const CoordinatorLimits& l = parts_.limits[c];
     const double x = command_.displacement_m[c], change = x - last_sent_m_[c];
     // A non-finite command fails both comparisons below, so test it first.
@@ -84,8 +209,21 @@ StepOutcome ExperimentalExchange::run_away() {
                    static_cast<double>(parts_.max_valve_saturation_exchanges)};
     return StepOutcome::kRunAway;
   }
+  // A setup's actuators: the error of each actuator's own stroke.
+  for (Group& g : groups_) {
+    for (int i = 0; i < g.setup.dofs() && !g.parts.actuator_limits.empty(); ++i) {
+      const int c = g.parts.channels[static_cast<std::size_t>(i)];
+      const double error = g.stroke_target[i] + g.offset[i] - feedback_.displacement_m[c];
+      const double bound = g.parts.actuator_limits[static_cast<std::size_t>(i)].max_tracking_error_m;
+      if (std::abs(error) > bound) {
+        stop_on_actuator(g, i, LimitStop::Kind::kTrackingError, error, bound);
+        return StepOutcome::kRunAway;
+      }
+    }
+  }
   if (!parts_.limits.empty()) {
     for (int c = 0; c < channels_; ++c) {
+      if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
       const double error = targets_[c] - feedback_.displacement_m[c];
       if (std::abs(error) > parts_.limits[c].max_tracking_error_m) {
         limit_stop_ = {LimitStop::Kind::kTrackingError, c, error, parts_.limits[c].max_tracking_error_m};
@@ -100,10 +238,15 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
   targets_ = targets;
   command_.step = exchange_;
   command_.time_s = time_s;
-  for (int c = 0; c < channels_; ++c) command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
+  for (int c = 0; c < channels_; ++c) {
+    if (group_of_[static_cast<std::size_t>(c)] < 0)
+      command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
+  }
+  for (Group& g : groups_) command_setup(g);
   if (!commands_within_limits()) return StepOutcome::kLimit;
   if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
   for (int c = 0; c < channels_; ++c) last_sent_m_[c] = command_.displacement_m[c];
+  for (Group& g : groups_) g.last_dof_command = g.dof_command;
   const transport::LinkStatus received = parts_.link->receive(feedback_);
   if (received == transport::LinkStatus::kRefused) return StepOutcome::kRefused;
   // How many commands behind the newest measurement is: 0 on time. Without any feedback
@@ -127,6 +270,23 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
   if (transport::has_non_finite_measurement(feedback_, channels_)) return StepOutcome::kNonFinite;
   if (const StepOutcome outcome = run_away(); outcome != StepOutcome::kOk) return outcome;
   for (int c = 0; c < channels_; ++c) {
+    if (const int g = group_of_[static_cast<std::size_t>(c)]; g >= 0) {
+      // A setup's actuator: its load cell against its own force limit, its stroke tracked.
+      Group& group = groups_[static_cast<std::size_t>(g)];
+      const int i = index_in_group_[static_cast<std::size_t>(c)];
+      const std::vector<CoordinatorLimits>& l = group.parts.actuator_limits;
+      if (!l.empty() && std::abs(feedback_.force_n[c]) > l[static_cast<std::size_t>(i)].max_force_n) {
+        stop_on_actuator(group, i, LimitStop::Kind::kForce, feedback_.force_n[c],
+                         l[static_cast<std::size_t>(i)].max_force_n);
+        return StepOutcome::kLimit;
+      }
+      group.stroke_measured[i] = feedback_.displacement_m[c] - group.offset[i];
+      group.actuator_force[i] = feedback_.force_n[c];
+      if (!group.parts.compensate_dofs)
+        parts_.compensators[c]->observe(group.stroke_target[i], group.stroke_measured[i]);
+      tracking_[c].update(group.stroke_target[i], group.stroke_measured[i]);
+      continue;
+    }
     if (!parts_.limits.empty() && std::abs(feedback_.force_n[c]) > parts_.limits[c].max_force_n) {
       limit_stop_ = {LimitStop::Kind::kForce, c, feedback_.force_n[c], parts_.limits[c].max_force_n};
       return StepOutcome::kLimit;
@@ -134,11 +294,72 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
     parts_.compensators[c]->observe(targets_[c], feedback_.displacement_m[c]);
     tracking_[c].update(targets_[c], feedback_.displacement_m[c]);
   }
+  for (Group& g : groups_) {
+    if (const StepOutcome outcome = feedback_setup(g); outcome != StepOutcome::kOk) return outcome;
+  }
   for (int c = 0; c < channels_; ++c) {
+    if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
     const RestoringForcePath& path = parts_.force_paths[c];
     specimen_forces_[c] = path.source == RestoringForceSource::kMeasuredForce
                               ? feedback_.force_n[c]
                               : path.stiffness_n_per_m * feedback_.displacement_m[c];
+  }
+  return StepOutcome::kOk;
+}
+
+void ExperimentalExchange::command_setup(Group& g) {
+  const int n = g.setup.dofs();
+  for (int i = 0; i < n; ++i) {
+    const int c = g.parts.channels[static_cast<std::size_t>(i)];
+    g.dof_target[i] = targets_[c];
+    g.dof_command[i] = g.parts.compensate_dofs ? parts_.compensators[c]->command(targets_[c]) : targets_[c];
+  }
+  g.setup.strokes(g.dof_target, g.stroke_target);
+  if (g.parts.compensate_dofs) {
+    g.setup.strokes(g.dof_command, g.stroke_command);
+  } else {
+    for (int i = 0; i < n; ++i) {
+      g.stroke_command[i] =
+          parts_.compensators[g.parts.channels[static_cast<std::size_t>(i)]]->command(g.stroke_target[i]);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    command_.displacement_m[g.parts.channels[static_cast<std::size_t>(i)]] = g.stroke_command[i] + g.offset[i];
+  }
+}
+
+StepOutcome ExperimentalExchange::feedback_setup(Group& g) {
+  const int n = g.setup.dofs();
+  // Newton from the last solution: the specimen moves little in one control period.
+  const setups::SetupVector guess = g.dof_measured;
+  const setups::SetupStatus status = g.setup.displacements(g.stroke_measured, guess, g.dof_measured);
+  if (status != setups::SetupStatus::kOk) {
+    g.dof_measured = guess;
+    limit_stop_ = {LimitStop::Kind::kGeometry, g.parts.channels.front(), static_cast<double>(status), 0.0};
+    limit_stop_.setup = static_cast<int>(&g - groups_.data());
+    limit_stop_.name = g.name;
+    return StepOutcome::kGeometry;
+  }
+  g.setup.dof_forces(g.dof_measured, g.actuator_force, g.dof_force);
+  for (int i = 0; i < n && !parts_.limits.empty(); ++i) {
+    const CoordinatorLimits& l = parts_.limits[g.parts.channels[static_cast<std::size_t>(i)]];
+    if (std::abs(g.dof_force[i]) > l.max_force_n) {
+      stop_on_dof(g, i, LimitStop::Kind::kForce, g.dof_force[i], l.max_force_n, true);
+      return StepOutcome::kLimit;
+    }
+    const double error = g.dof_target[i] - g.dof_measured[i];
+    if (std::abs(error) > l.max_tracking_error_m) {
+      stop_on_dof(g, i, LimitStop::Kind::kTrackingError, error, l.max_tracking_error_m, false);
+      return StepOutcome::kRunAway;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const int c = g.parts.channels[static_cast<std::size_t>(i)];
+    if (g.parts.compensate_dofs) parts_.compensators[c]->observe(g.dof_target[i], g.dof_measured[i]);
+    const RestoringForcePath& path = parts_.force_paths[c];
+    specimen_forces_[c] = path.source == RestoringForceSource::kMeasuredForce
+                              ? g.dof_force[i]
+                              : path.stiffness_n_per_m * g.dof_measured[i];
   }
   return StepOutcome::kOk;
 }
@@ -153,6 +374,21 @@ void ExperimentalExchange::fill_channels(StepRecord& r) const {
     r.specimen_restoring_force_n[c] = specimen_forces_[c];
     r.tracking_indicator_m2[c] = tracking_[c].value_m2();
     r.round_trip_s[c] = static_cast<double>(feedback_.round_trip_ns[c]) * 1e-9;
+    r.dof_target_m[c] = targets_[c];
+    r.dof_measured_m[c] = feedback_.displacement_m[c];
+    r.dof_force_n[c] = feedback_.force_n[c];
+  }
+  // A setup's channels: the actuators' strokes (offsets off) beside the DOFs' view.
+  for (const Group& g : groups_) {
+    for (int i = 0; i < g.setup.dofs(); ++i) {
+      const int c = g.parts.channels[static_cast<std::size_t>(i)];
+      r.target_m[c] = g.stroke_target[i];
+      r.command_m[c] = g.stroke_command[i];
+      r.measured_m[c] = g.stroke_measured[i];
+      r.dof_target_m[c] = g.dof_target[i];
+      r.dof_measured_m[c] = g.dof_measured[i];
+      r.dof_force_n[c] = g.dof_force[i];
+    }
   }
   r.node_status = feedback_.status;
   r.limit_flags = feedback_.limit_flags;

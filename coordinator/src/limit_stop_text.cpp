@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "rpsd/setups/planar_setup.h"
 #include "rpsd/transport/messages.h"
 
 namespace rpsd::coordinator {
@@ -23,9 +24,43 @@ std::string node_limits_named(std::uint32_t flags) {
   return which;
 }
 
+// An actuator or a DOF of a setup, by its name and in its units (the value's).
+std::string describe_setup_stop(const LimitStop& l) {
+  char text[300];
+  using Kind = LimitStop::Kind;
+  const char* what = l.actuator >= 0 ? "its stroke" : "its target";
+  switch (l.kind) {
+    case Kind::kStroke:
+    case Kind::kIncrement:
+      std::snprintf(text, sizeof text, "%s (channel %d): %s%s %.6g %s beyond limits.%s %.6g; the command was not sent",
+                    l.name.data(), l.channel, what, l.kind == Kind::kIncrement ? "'s change" : "", l.value, l.unit,
+                    limit_stop_name(l.kind), l.bound);
+      break;
+    case Kind::kForce:
+      std::snprintf(text, sizeof text, "%s (channel %d): %s %.6g %s beyond limits.%s %.6g; no further command was sent",
+                    l.name.data(), l.channel, l.actuator >= 0 ? "load-cell force" : "force", l.value, l.unit,
+                    limit_stop_name(l.kind), l.bound);
+      break;
+    case Kind::kTrackingError:
+      std::snprintf(text, sizeof text,
+                    "%s (channel %d): tracking error %.6g %s beyond limits.max_tracking_error_m %.6g", l.name.data(),
+                    l.channel, l.value, l.unit, l.bound);
+      break;
+    case Kind::kGeometry:
+      std::snprintf(
+          text, sizeof text, "%s (channels from %d): %s; no further command was sent", l.name.data(), l.channel,
+          std::string(setups::setup_status_text(static_cast<setups::SetupStatus>(static_cast<int>(l.value)))).c_str());
+      break;
+    default:
+      std::snprintf(text, sizeof text, "%s: %s", l.name.data(), limit_stop_name(l.kind));
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string describe_limit_stop(const LimitStop& l) {
+  if (l.name[0] != '\0') return describe_setup_stop(l);
   char text[240];
   using Kind = LimitStop::Kind;
   switch (l.kind) {
@@ -56,6 +91,7 @@ std::string describe_limit_stop(const LimitStop& l) {
                     "a servovalve stayed fully open for %.0f control periods (run_away.max_valve_saturation_s)",
                     l.value);
       break;
+    case Kind::kGeometry:
     case Kind::kNone:
       std::snprintf(text, sizeof text, "%s", limit_stop_name(l.kind));
   }

@@ -15,9 +15,14 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
       channels_(channels),
       dofs_(dofs),
       keep_records_(options.keep_records),
-      row_(static_cast<std::size_t>(64 + (output::kG10MaxChars + 1) * (10 + 7 * channels + 4 * dofs))) {
+      dof_view_(std::move(options.dof_view)),
+      row_(static_cast<std::size_t>(64 + (output::kG10MaxChars + 1) *
+                                             (10 + 7 * channels + 4 * dofs + 3 * static_cast<int>(dof_view_.size())))) {
   if (channels > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
     throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
+  }
+  for (const DofViewColumn& v : dof_view_) {
+    if (v.channel < 0 || v.channel >= channels) throw std::invalid_argument("Recorder: a DOF view of no channel");
   }
   if (!csv.empty()) {
     csv_path_ = csv;
@@ -118,7 +123,15 @@ void Recorder::write_header() {
   }
   csv_ << ",input_energy_j,kinetic_energy_j,damping_energy_j,restoring_energy_j,node_status,limit_flags";
   for (int c = 0; c < channels_; ++c) csv_ << ",round_trip_s_ch" << c;
-  csv_ << ",cycle_lateness_s,feedback_age_periods\n";
+  csv_ << ",cycle_lateness_s,feedback_age_periods";
+  // A setup's channels: the columns above are its actuators' strokes and load-cell forces;
+  // these its DOFs' targets, displacements and forces, in the DOF's own units.
+  for (const DofViewColumn& v : dof_view_) {
+    const char* displacement = v.rotation ? "rad" : "m";
+    csv_ << ",dof_target_" << displacement << "_ch" << v.channel << ",dof_measured_" << displacement << "_ch"
+         << v.channel << (v.rotation ? ",dof_moment_n_m_ch" : ",dof_force_n_ch") << v.channel;
+  }
+  csv_ << "\n";
 }
 
 void Recorder::write_row(const StepRecord& r) {
@@ -159,6 +172,11 @@ void Recorder::write_row(const StepRecord& r) {
   put(r.cycle_lateness_s);
   *out++ = ',';
   out = std::to_chars(out, end, static_cast<int>(r.feedback_age_periods)).ptr;
+  for (const DofViewColumn& v : dof_view_) {
+    put(r.dof_target_m[v.channel]);
+    put(r.dof_measured_m[v.channel]);
+    put(r.dof_force_n[v.channel]);
+  }
   *out++ = '\n';
   csv_.write(row, out - row);
 }

@@ -24,7 +24,8 @@ ExchangeParts exchange_parts(const LoopParts& p) {
           p.max_feedback_age_periods,
           p.limits,
           p.stop_on_node_limits,
-          p.max_valve_saturation_exchanges};
+          p.max_valve_saturation_exchanges,
+          p.setups};
 }
 
 }  // namespace

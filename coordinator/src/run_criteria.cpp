@@ -75,7 +75,9 @@ void CriteriaAccumulator::add_test(const StepRecord& r) {
 void CriteriaAccumulator::floor_displacements(const StepRecord& test, std::span<double> out) const {
   for (std::size_t d = 0; d < dofs_.size(); ++d) {
     const FloorSource& f = floors_[d];
-    out[d] = f.channel < 0 ? test.displacement_m[d] : test.measured_m[f.channel] / f.displacement_scale;
+    out[d] = f.channel < 0 ? test.displacement_m[d]
+             : f.setup_dof ? test.dof_measured_m[f.channel] / f.displacement_scale
+                           : test.measured_m[f.channel] / f.displacement_scale;
   }
 }
 

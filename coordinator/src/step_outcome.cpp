@@ -20,6 +20,8 @@ const char* limit_stop_name(LimitStop::Kind kind) {
       return "end_stop";
     case LimitStop::Kind::kValveSaturation:
       return "valve_saturation";
+    case LimitStop::Kind::kGeometry:
+      return "geometry";
   }
   return "unknown";
 }
@@ -42,6 +44,8 @@ const char* step_outcome_name(StepOutcome outcome) {
       return "limit";
     case StepOutcome::kRunAway:
       return "run_away";
+    case StepOutcome::kGeometry:
+      return "geometry";
     case StepOutcome::kResultsNotWritten:
       return "results_not_written";
     case StepOutcome::kInterrupted:

@@ -12,9 +12,11 @@ namespace rpsd::hybrid_test {
 ActuatorLinks::~ActuatorLinks() { end_run(); }
 
 ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool perfect_actuator,
-                             std::span<const double> hold_m, std::uint64_t run_id) {
+                             std::span<const double> hold_m, std::uint64_t run_id,
+                             std::span<const double> stiffness_estimate_n_per_m) {
   const int channels = static_cast<int>(s.experimental.size());
   initial_force_n_.assign(static_cast<std::size_t>(channels), 0.0);
+  initial_reading_m_.assign(static_cast<std::size_t>(channels), std::nullopt);
   plant_of_channel_.assign(static_cast<std::size_t>(channels), nullptr);
   // Sites in order of first appearance; each site's channels in the test's channel order.
   std::map<std::uint32_t, std::size_t> index_of_site;
@@ -35,7 +37,9 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
     for (int ch : site.channels) {
       setup.hold_m.push_back(hold_m[static_cast<std::size_t>(ch)]);
       setup.stiffness_estimate_n_per_m.push_back(
-          by_channel[static_cast<std::size_t>(ch)]->dof.specimen_stiffness_estimate_n_per_m);
+          stiffness_estimate_n_per_m.empty()
+              ? by_channel[static_cast<std::size_t>(ch)]->dof.specimen_stiffness_estimate_n_per_m
+              : stiffness_estimate_n_per_m[static_cast<std::size_t>(ch)]);
     }
     setup.control_period_s = control_period_s;
     setup.run_id = run_id;
@@ -47,6 +51,9 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
       const auto ch = static_cast<std::size_t>(site.channels[i]);
       initial_force_n_[ch] = built.initial_force_n(i);
       plant_of_channel_[ch] = built.simulated_plant(i);
+      initial_reading_m_[ch] = plant_of_channel_[ch]
+                                   ? std::optional<double>(plant_of_channel_[ch]->measure().displacement_m)
+                                   : built.initial_displacement_m(i);
     }
     routes.push_back({site.site_id, &built.link(), site.channels});
   }

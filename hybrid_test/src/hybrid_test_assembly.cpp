@@ -6,6 +6,7 @@
 
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/hybrid_test/actuator_links.h"
+#include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/realtime/pacer.h"
 #include "rpsd/substructure/ground_motion_load.h"
@@ -28,7 +29,8 @@ struct TestAssembly::Parts {
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
   TimingReport timing;
-  realtime::CpuWakeLatencyHold cpus_awake;  // from the start to finish(): real time, or over DDS
+  std::vector<SetupCalibration> calibrations;  // per experimental setup
+  realtime::CpuWakeLatencyHold cpus_awake;     // from the start to finish(): real time, or over DDS
   const std::atomic<bool>* stop_request = nullptr;
 
   // Counts a step the loop took and hands its record on. Real-time safe.
@@ -83,23 +85,37 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
         control_period_s));
     parts.compensators[ch] = p.compensators.back().get();
     // The rig's envelope is every limit's default; the reference is numerical: no rig, no limits.
+    // A DOF a setup drives keeps its limits as given: the rig's envelope is its actuators'.
+    const bool setup_dof = std::any_of(s.setups.begin(), s.setups.end(), [&](const ExperimentalSetupSite& site) {
+      return std::find(site.channels.begin(), site.channels.end(), static_cast<int>(ch)) != site.channels.end();
+    });
     if (!perfect_actuator) {
       parts.limits.resize(static_cast<std::size_t>(channels));
       parts.limits[ch] =
-          numerical_site ? coordinator::CoordinatorLimits{}
-                         : coordinator::within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
+          numerical_site || setup_dof
+              ? (setup_dof ? channel.limits : coordinator::CoordinatorLimits{})
+              : coordinator::within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
     }
     parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};
   }
 
   // Start at rest at the initial displacement, the specimens holding it. The run's identity
   // is drawn now: no other run, of this test id or any, carries it.
+  // A setup's actuators rest at the strokes of its DOFs' initial targets.
   Eigen::VectorXd hold(channels);
   p.partition.extract_commands(s.initial_displacement_m, hold);
+  SetupPlan setups = plan_setups(s, hold, control_period_s, perfect_actuator);
   const std::uint64_t run_id = transport::draw_run_id();
-  p.actuators =
-      std::make_unique<ActuatorLinks>(s, control_period_s, perfect_actuator,
-                                      std::span<const double>(hold.data(), static_cast<std::size_t>(channels)), run_id);
+  const auto per_channel = [&](const std::vector<double>& v) { return std::span<const double>(v.data(), v.size()); };
+  p.actuators = std::make_unique<ActuatorLinks>(
+      s, control_period_s, perfect_actuator, per_channel(setups.hold_m), run_id,
+      s.setups.empty() ? std::span<const double>{} : per_channel(setups.stiffness_estimate_n_per_m));
+  // Calibration: each setup actuator's reading at rest against the stroke the geometry predicts.
+  if (!s.setups.empty()) {
+    std::vector<std::optional<double>> readings(static_cast<std::size_t>(channels));
+    for (int c = 0; c < channels; ++c) readings[static_cast<std::size_t>(c)] = p.actuators->initial_reading_m(c);
+    p.calibrations = calibrate_setups(s, setups, readings);
+  }
 
   parts.integrator = p.integrator.get();
   parts.numerical = p.numerical.get();
@@ -131,6 +147,24 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
                                               ? p.actuators->initial_force_n(c)
                                               : path.stiffness_n_per_m * hold[c];
   }
+  // A setup's DOFs carry Jᵀ f of its actuators' forces at rest.
+  for (const coordinator::SetupGroup& group : setups.groups) {
+    const setups::PlanarSetup setup(group.geometry);
+    const int n = setup.dofs();
+    setups::SetupVector u0(n), f(n), dof_f(n);
+    for (int i = 0; i < n; ++i) {
+      const int c = group.channels[static_cast<std::size_t>(i)];
+      u0[i] = hold[c];
+      f[i] = p.actuators->initial_force_n(c);
+    }
+    setup.dof_forces(u0, f, dof_f);
+    for (int i = 0; i < n; ++i) {
+      const auto c = static_cast<std::size_t>(group.channels[static_cast<std::size_t>(i)]);
+      const coordinator::RestoringForcePath& path = parts.force_paths[c];
+      if (path.source == coordinator::RestoringForceSource::kMeasuredForce) force0[c] = dof_f[i];
+    }
+  }
+  parts.setups = std::move(setups.groups);
   p.loop = std::make_unique<coordinator::RpsdLoop>(std::move(parts));
   p.loop->start(s.initial_displacement_m, force0);
 
@@ -150,6 +184,12 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   p.round_trips.resize(p.actuators->sites().size());
   coordinator::RecorderOptions recording;
   recording.keep_records = options.keep_records;
+  for (const ExperimentalSetupSite& site : s.setups) {
+    const setups::PlanarGeometry g = setups::planar_geometry(site.setup);
+    for (std::size_t i = 0; i < site.channels.size(); ++i) {
+      recording.dof_view.push_back({site.channels[i], g.dofs[i] == setups::DofMotion::kRotation});
+    }
+  }
   p.recorder =
       std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);
 }
@@ -272,6 +312,7 @@ TestRun TestAssembly::finish(coordinator::StepOutcome outcome) {
       run.outcome = coordinator::StepOutcome::kResultsNotWritten;
   }
   run.timing = p.timing;
+  run.calibrations = p.calibrations;
   // Command-to-feedback latency per site (each site's first channel).
   for (std::size_t i = 0; i < p.round_trips.size(); ++i) {
     run.timing.sites.push_back({p.actuators->sites()[i].site_id, p.round_trips[i].summary()});

@@ -13,6 +13,7 @@
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
+#include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/output/gnuplot.h"
 #include "rpsd/output/plot_decimation.h"
 #include "rpsd/output/provenance.h"
@@ -41,6 +42,8 @@ const char* outcome_text(coordinator::StepOutcome o) {
       return "aborted: a coordinator limit was reached";
     case coordinator::StepOutcome::kRunAway:
       return "stopped: the test ran away";
+    case coordinator::StepOutcome::kGeometry:
+      return "stopped: an experimental setup's geometry failed";
     case coordinator::StepOutcome::kResultsNotWritten:
       return "stopped: the results could not be written";
     case coordinator::StepOutcome::kInterrupted:
@@ -237,7 +240,8 @@ std::string describe_outcome(const hybrid_test::TestConfig& s, const hybrid_test
                   static_cast<double>(test.steps + 1) / s.control_rate_hz);
     text += detail;
   }
-  if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
+  if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway ||
+      test.outcome == coordinator::StepOutcome::kGeometry) {
     text += " (" + coordinator::describe_limit_stop(test.limit_stop) + ")";
   }
   if (!test.node_fault.empty()) text += ": " + test.node_fault;
@@ -335,6 +339,54 @@ const char* result_name(RunResult r) {
   return "stopped";
 }
 
+namespace {
+
+// Each experimental setup as the run used it: its kind and geometry, each actuator (name,
+// channel, attachment points, reference length) and DOF, and each actuator's calibration.
+nlohmann::json experimental_setups_json(const hybrid_test::TestConfig& scenario,
+                                        const std::vector<hybrid_test::SetupCalibration>& calibrations) {
+  using nlohmann::json;
+  json out = json::array();
+  for (std::size_t k = 0; k < scenario.setups.size(); ++k) {
+    const hybrid_test::ExperimentalSetupSite& site = scenario.setups[k];
+    const setups::PlanarGeometry g = setups::planar_geometry(site.setup);
+    const setups::PlanarSetup setup(g);
+    json actuators = json::array(), dofs = json::array();
+    for (int i = 0; i < setup.dofs(); ++i) {
+      const setups::PlanarActuator& a = g.actuators[static_cast<std::size_t>(i)];
+      actuators.push_back({{"name", a.name.empty() ? "actuator " + std::to_string(i + 1) : a.name},
+                           {"channel", site.channels[static_cast<std::size_t>(i)]},
+                           {"fixed_end_m", {a.fixed_end_m.x(), a.fixed_end_m.y()}},
+                           {"attachment_m", {a.attachment_m.x(), a.attachment_m.y()}},
+                           {"reference_length_m", setup.reference_length_m(i)}});
+      dofs.push_back({{"channel", site.channels[static_cast<std::size_t>(i)]},
+                      {"motion", setups::dof_motion_name(g.dofs[static_cast<std::size_t>(i)])}});
+    }
+    json calibration = nullptr;
+    if (k < calibrations.size()) {
+      const hybrid_test::SetupCalibration& c = calibrations[k];
+      calibration = {{"measured", c.measured},
+                     {"max_calibration_offset_m", site.max_calibration_offset_m},
+                     {"reading_m", c.reading_m},
+                     {"predicted_stroke_m", c.predicted_stroke_m},
+                     {"offset_m", c.offset_m}};
+    }
+    out.push_back(
+        {{"site_id", site.site_id},
+         {"kind",
+          std::visit([](const auto& kind) { return std::string(std::decay_t<decltype(kind)>::kName); }, site.setup)},
+         {"geometry", g.geometry == setups::Geometry::kLinear ? "linear" : "large_displacement"},
+         {"compensated",
+          site.compensated == hybrid_test::ExperimentalSetupSite::Compensated::kDofs ? "dofs" : "actuators"},
+         {"dofs", dofs},
+         {"actuators", actuators},
+         {"calibration", calibration}});
+  }
+  return out;
+}
+
+}  // namespace
+
 TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument& file,
                            const hybrid_test::TestConfig& scenario, const ProgressSink& progress,
                            const std::atomic<bool>* stop_request, std::size_t case_number, std::size_t cases) {
@@ -363,6 +415,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
         scenario, dir / "time_history.csv", dir / "reference_history.csv",
         [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request);
   } catch (const hybrid_test::NoNodeAnswered& e) {
+    return not_ready(dir, file, e.what());
+  } catch (const hybrid_test::CalibrationOutOfRange& e) {
     return not_ready(dir, file, e.what());
   }
   const hybrid_test::TestRun& test = run.test;
@@ -416,17 +470,23 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
                   {"reason", outcome},
                   {"step", step},
                   {"time_s", static_cast<double>(step) / scenario.control_rate_hz}};
-    if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway) {
+    if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway ||
+        test.outcome == coordinator::StepOutcome::kGeometry) {
       const coordinator::LimitStop& l = test.limit_stop;
       stopped_by["limit"] = coordinator::limit_stop_name(l.kind);
       stopped_by["channel"] = l.channel;
       stopped_by["value"] = l.value;
       stopped_by["bound"] = l.bound;
+      // On a setup's channel: the actuator or the DOF (or the setup, for its geometry) by name.
+      if (l.name[0] != '\0') {
+        stopped_by[l.actuator >= 0 ? "actuator" : l.dof >= 0 ? "dof" : "setup"] = std::string(l.name.data());
+        stopped_by["unit"] = l.unit;
+      }
     }
     // A node's fault in its own words, or those of the lab controller behind it.
     if (!test.node_fault.empty()) stopped_by["node_says"] = test.node_fault;
   }
-  const json summary = {
+  json summary = {
       {"study", "rpsd_test"},
       {"scenario", file.name},
       {"description", file.description},
@@ -459,6 +519,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
       {"timing", timing_json(test.timing)},
       {"provenance", output::provenance_json(file.input_files)},
   };
+  // Only with a setup: its kind, geometry, actuators and the calibration the run used.
+  if (!scenario.setups.empty()) summary["experimental_setups"] = experimental_setups_json(scenario, test.calibrations);
   std::vector<int> dof_numbers;
   for (auto d : scenario.record_dofs) dof_numbers.push_back(static_cast<int>(d));
   bool from_the_ground_up = true;  // DOFs 0, 1, ... n-1: a storey's drift is one less the next

@@ -12,7 +12,12 @@ std::vector<coordinator::FloorSource> floor_sources(const TestConfig& s) {
   for (std::size_t d = 0; d < floors.size(); ++d) {
     for (std::size_t c = 0; c < s.experimental.size(); ++c) {
       const auto& dof = s.experimental[c].dof;
-      if (dof.dof == s.record_dofs[d]) floors[d] = {static_cast<int>(dof.actuator_channel), dof.displacement_scale};
+      if (dof.dof != s.record_dofs[d]) continue;
+      const int channel = static_cast<int>(dof.actuator_channel);
+      const bool setup_dof = std::any_of(s.setups.begin(), s.setups.end(), [&](const ExperimentalSetupSite& site) {
+        return std::find(site.channels.begin(), site.channels.end(), channel) != site.channels.end();
+      });
+      floors[d] = {channel, dof.displacement_scale, setup_dof};
     }
   }
   return floors;

@@ -28,6 +28,7 @@ std::string stop_reason(const SiteRun& run) {
   switch (run.outcome) {
     case StepOutcome::kLimit:
     case StepOutcome::kRunAway:
+    case StepOutcome::kGeometry:
       return "stopped by " + coordinator::describe_limit_stop(run.limit_stop);
     case StepOutcome::kLinkFailure:
       return "a servo node stopped answering";

@@ -12,6 +12,7 @@
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
+#include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
@@ -223,14 +224,39 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
     auto& p = report.channels[static_cast<std::size_t>(e.dof.actuator_channel)];
     p.channel = e.dof.actuator_channel;
     p.site_id = e.site_id;
-    // The limits the test runs with: the rig's envelope unless the scenario tightens it.
-    p.limits = coordinator::within_envelope(e.limits, servo::envelope_of(s.plant), test.control_period_s());
+    // The limits the test runs with: the rig's envelope unless the scenario tightens it (a
+    // setup's channel: its actuator's, below).
+    const bool setup_dof = std::any_of(s.setups.begin(), s.setups.end(), [&](const auto& site) {
+      return std::find(site.channels.begin(), site.channels.end(), p.channel) != site.channels.end();
+    });
+    if (!setup_dof) {
+      p.limits = coordinator::within_envelope(e.limits, servo::envelope_of(s.plant), test.control_period_s());
+    }
     p.rig_velocity_m_per_s = servo::envelope_of(s.plant).velocity_m_per_s;
     p.rails = converter_rails(s.plant);
   }
-  attach_nodes(report, s, nodes);
   Eigen::VectorXd hold(channels);
   test.partition().extract_commands(s.initial_displacement_m, hold);
+  // A setup's channels: each actuator's own limits, and its rest at the strokes of the
+  // initial configuration; its DOFs predicted against their own limits.
+  const hybrid_test::SetupPlan plan = hybrid_test::plan_setups(s, hold, test.control_period_s(), false);
+  for (std::size_t k = 0; k < plan.groups.size(); ++k) {
+    const coordinator::SetupGroup& group = plan.groups[k];
+    for (std::size_t i = 0; i < group.channels.size(); ++i) {
+      const auto c = static_cast<std::size_t>(group.channels[i]);
+      report.channels[c].limits = group.actuator_limits[i];
+      DofPrediction d;
+      d.channel = group.channels[i];
+      d.site_id = group.site_id;
+      d.motion = std::string(setups::dof_motion_name(group.geometry.dofs[i]));
+      for (const auto& e : s.experimental) {
+        if (e.dof.actuator_channel == d.channel) d.limits = e.limits;
+      }
+      report.dofs.push_back(d);
+    }
+  }
+  for (int c = 0; c < channels; ++c) hold[c] = plan.hold_m[static_cast<std::size_t>(c)];
+  attach_nodes(report, s, nodes);
   for (int c = 0; c < channels; ++c) previous_x[c] = previous_command[c] = hold[c];
 
   const auto watch = [&](const coordinator::StepRecord& r) {
@@ -258,7 +284,17 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
       }
     }
   };
-  const coordinator::StepOutcome outcome = test.run(watch, {});
+  const auto watch_dofs = [&](const coordinator::StepRecord& r) {
+    watch(r);
+    for (DofPrediction& d : report.dofs) {
+      d.peak_target_m = std::max(d.peak_target_m, std::abs(r.dof_target_m[d.channel]));
+      d.peak_displacement_m = std::max(d.peak_displacement_m, std::abs(r.dof_measured_m[d.channel]));
+      d.peak_force_n = std::max(d.peak_force_n, std::abs(r.dof_force_n[d.channel]));
+      d.peak_tracking_error_m =
+          std::max(d.peak_tracking_error_m, std::abs(r.dof_measured_m[d.channel] - r.dof_target_m[d.channel]));
+    }
+  };
+  const coordinator::StepOutcome outcome = report.dofs.empty() ? test.run(watch, {}) : test.run(watch_dofs, {});
   const hybrid_test::TestRun run = test.finish(outcome);
   report.outcome = run.outcome;
   report.limit_stop = run.limit_stop;
@@ -267,7 +303,16 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
   // The value that stopped the run was never sent or recorded: it belongs in the peaks, so
   // that its limit shows as reached (margin <= 0), not with the margin of the last step taken.
   const coordinator::LimitStop& stop = report.limit_stop;
-  if (stop.channel >= 0 && stop.channel < channels) {
+  // A DOF's limit: its peaks, not its actuator's.
+  for (DofPrediction& d : report.dofs) {
+    if (stop.dof < 0 || stop.channel != d.channel) continue;
+    const double v = std::abs(stop.value);
+    if (stop.kind == coordinator::LimitStop::Kind::kStroke) d.peak_target_m = std::max(d.peak_target_m, v);
+    if (stop.kind == coordinator::LimitStop::Kind::kForce) d.peak_force_n = std::max(d.peak_force_n, v);
+    if (stop.kind == coordinator::LimitStop::Kind::kTrackingError)
+      d.peak_tracking_error_m = std::max(d.peak_tracking_error_m, v);
+  }
+  if (stop.dof < 0 && stop.channel >= 0 && stop.channel < channels) {
     auto& p = report.channels[static_cast<std::size_t>(stop.channel)];
     const double v = std::abs(stop.value);
     switch (stop.kind) {
@@ -308,6 +353,11 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
     }
     add_margins(p, report.warnings);
   }
+  for (DofPrediction& d : report.dofs) {
+    d.within_limits = std::max(d.peak_target_m, d.peak_displacement_m) <= d.limits.max_stroke_m &&
+                      d.peak_force_n <= d.limits.max_force_n &&
+                      d.peak_tracking_error_m <= d.limits.max_tracking_error_m;
+  }
   report.residual_delay_ms = delays > 0 ? delay_sum_ms / delays : 0.0;
   report.modes = modes_under_delay(test, s);
 
@@ -326,12 +376,14 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
   }
   const bool completed =
       report.outcome == coordinator::StepOutcome::kOk || report.outcome == coordinator::StepOutcome::kRecordEnded;
-  report.within_limits = completed &&
-                         std::all_of(report.channels.begin(), report.channels.end(),
-                                     [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
-                         std::all_of(report.modes.begin(), report.modes.end(),
-                                     [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
-                         (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
+  report.within_limits =
+      completed &&
+      std::all_of(report.channels.begin(), report.channels.end(),
+                  [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
+      std::all_of(report.dofs.begin(), report.dofs.end(), [](const auto& d) { return d.within_limits; }) &&
+      std::all_of(report.modes.begin(), report.modes.end(),
+                  [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
+      (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);
   return report;
 }
 

@@ -65,7 +65,8 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
       << r.steps_planned << " steps\n";
   if (r.outcome != coordinator::StepOutcome::kOk && r.outcome != coordinator::StepOutcome::kRecordEnded) {
     out << "  the simulated test stopped early";
-    if (r.outcome == coordinator::StepOutcome::kLimit || r.outcome == coordinator::StepOutcome::kRunAway) {
+    if (r.outcome == coordinator::StepOutcome::kLimit || r.outcome == coordinator::StepOutcome::kRunAway ||
+        r.outcome == coordinator::StepOutcome::kGeometry) {
       out << ": " << coordinator::describe_limit_stop(r.limit_stop);
     }
     out << "\n";
@@ -127,6 +128,32 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
                         {"rail_contact", c.rail_contact},
                         {"within_limits", c.within_limits}});
   }
+  // A setup's DOFs, in their own units (m and N, or rad and N·m), against their own limits.
+  nlohmann::json dofs = nlohmann::json::array();
+  for (const auto& d : r.dofs) {
+    const bool rotation = d.motion == "rotation";
+    const char* length = rotation ? "mrad" : "mm";
+    const char* force = rotation ? "kN·m" : "kN";
+    out << "  DOF on channel " << d.channel << " (site " << d.site_id << ", " << d.motion << "): displacement "
+        << versus(std::max(d.peak_target_m, d.peak_displacement_m), d.limits.max_stroke_m, 1e3, length) << ", force "
+        << versus(d.peak_force_n, d.limits.max_force_n, 1e-3, force) << ", tracking error "
+        << versus(d.peak_tracking_error_m, d.limits.max_tracking_error_m, 1e3, length)
+        << (d.within_limits ? "" : "  BEYOND ITS LIMITS") << "\n";
+    dofs.push_back({{"channel", d.channel},
+                    {"site_id", d.site_id},
+                    {"motion", d.motion},
+                    {"unit", rotation ? "rad" : "m"},
+                    {"force_unit", rotation ? "N·m" : "N"},
+                    {"peak_target", d.peak_target_m},
+                    {"peak_displacement", d.peak_displacement_m},
+                    {"peak_force", d.peak_force_n},
+                    {"peak_tracking_error", d.peak_tracking_error_m},
+                    {"limits",
+                     {{"max_stroke_m", bound(d.limits.max_stroke_m)},
+                      {"max_force_n", bound(d.limits.max_force_n)},
+                      {"max_tracking_error_m", bound(d.limits.max_tracking_error_m)}}},
+                    {"within_limits", d.within_limits}});
+  }
   out << "  stability per mode (delay theory with the compensated plant's gain and delay at each mode):\n";
   nlohmann::json modes = nlohmann::json::array();
   for (const auto& m : r.modes) {
@@ -162,17 +189,20 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
     out << "  ready: every peak within its limit and every mode damped, with " << r.warnings.size()
         << " warning(s) above\n";
   }
-  return {{"scenario", test_name},
-          {"steps", r.steps},
-          {"steps_planned", r.steps_planned},
-          {"channels", channels},
-          {"residual_delay_ms", r.residual_delay_ms},
-          {"modes", modes},
-          {"p_gain", maybe(r.p_gain)},
-          {"max_stable_p_gain", maybe(r.max_stable_p_gain)},
-          {"actuator_cutoff_hz", maybe(r.actuator_cutoff_hz)},
-          {"warnings", r.warnings},
-          {"ready", r.within_limits}};
+  nlohmann::json report = {{"scenario", test_name},
+                           {"steps", r.steps},
+                           {"steps_planned", r.steps_planned},
+                           {"channels", channels},
+                           {"residual_delay_ms", r.residual_delay_ms},
+                           {"modes", modes},
+                           {"p_gain", maybe(r.p_gain)},
+                           {"max_stable_p_gain", maybe(r.max_stable_p_gain)},
+                           {"actuator_cutoff_hz", maybe(r.actuator_cutoff_hz)},
+                           {"warnings", r.warnings},
+                           {"ready", r.within_limits}};
+  // Only with a setup: the channels above are its actuators, these its DOFs.
+  if (!r.dofs.empty()) report["dofs"] = dofs;
+  return report;
 }
 
 }  // namespace rpsd::studies

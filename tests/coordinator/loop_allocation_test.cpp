@@ -2,8 +2,10 @@
 // in-process link, plant and recorder hand-off, for each plant kind and several compensators.
 #include <gtest/gtest.h>
 
+#include "../hybrid_test/two_actuator_test.h"
 #include "../servo/paper_rig.h"
 #include "allocation_counter.h"
+#include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/specimen_sdof.h"
 
@@ -101,6 +103,32 @@ TEST(LoopAllocation, NoAllocationPerStepUnderTheBenchmarksLoopTiming) {
     const servo::PureDelayParameters delay{0.002, setup.stiffness_n_per_m, 8192.0, {}};
     EXPECT_EQ(allocations_over_steps(setup, delay, 4000, LoopTiming::kTargetNowForceDelayed), 0);
     EXPECT_EQ(allocations_over_steps(setup, rpsd::testing::paper_rig(), 2000, LoopTiming::kTargetNowForceDelayed), 0);
+  }
+}
+
+// Through a large-displacement setup (strokes from the displaced attachment points, Newton
+// from the measured strokes every exchange, Jᵀ f at the measured configuration), its
+// compensators on the actuators or on the DOFs, with per-actuator and DOF limits in force.
+TEST(LoopAllocation, NoAllocationPerStepThroughALargeDisplacementSetup) {
+  for (const auto compensated :
+       {ExperimentalSetupSite::Compensated::kActuators, ExperimentalSetupSite::Compensated::kDofs}) {
+    TestConfig config = with_setup(setups::Geometry::kLargeDisplacement);
+    config.duration_s = 3.0;
+    config.compensation = compensation::PolynomialExtrapolationParameters{3, 0.002};
+    config.setups[0].compensated = compensated;
+    config.setups[0].actuator_limits.resize(2);
+    config.experimental[1].limits.max_force_n = 1e9;
+    TestAssembly test(config, {{}, false, true, {}});
+    int taken = 0;
+    rpsd::testing::begin_counting_allocations();
+    for (; taken < 2000; ++taken) {
+      if (test.step() != StepOutcome::kOk) break;
+    }
+    const long allocations = rpsd::testing::end_counting_allocations().total();
+    EXPECT_EQ(taken, 2000) << describe_limit_stop(test.limit_stop());
+    EXPECT_EQ(allocations, 0);
+    EXPECT_GT(std::abs(test.last_record().dof_measured_m[1]), 0.0);  // Newton ran on a moving specimen
+    test.finish(StepOutcome::kOk);
   }
 }
 

@@ -1,7 +1,10 @@
 // One exchange with the experimental sites: the targets of every channel go through its
 // compensator and the coordinator's limits, out over the link, and the measurement comes back
 // checked (node faults, non-finite values, run-aways, the force limit) and turned into the
-// specimens' restoring forces. The RPsD loop runs one per integrator iteration; `rpsd
+// specimens' restoring forces. On the channels an experimental setup drives, the targets are
+// the DOFs' and go through the setup's geometry to the actuators' strokes, and the actuators'
+// measured strokes and forces come back through it as the DOFs' displacements and forces
+// (setup_group.h). The RPsD loop runs one per integrator iteration; `rpsd
 // site-server` runs one per trial displacement OpenSees sends. Configured once, then
 // exchange() is real-time safe: no allocation, no locks, no exceptions.
 #pragma once
@@ -16,6 +19,7 @@
 #include "rpsd/compensation/tracking_indicator.h"
 #include "rpsd/coordinator/coordinator_limits.h"
 #include "rpsd/coordinator/restoring_force.h"
+#include "rpsd/coordinator/setup_group.h"
 #include "rpsd/coordinator/step_outcome.h"
 #include "rpsd/coordinator/step_record.h"
 #include "rpsd/transport/link.h"
@@ -34,6 +38,9 @@ struct ExchangeParts {
   std::vector<CoordinatorLimits> limits;  // per channel, or empty: none
   bool stop_on_node_limits = false;
   int max_valve_saturation_exchanges = 0;  // 0: not checked
+  // The experimental setups and the channels each drives (the other channels: one actuator
+  // per DOF, as without any).
+  std::vector<SetupGroup> setups;
 };
 
 class ExperimentalExchange {
@@ -62,13 +69,36 @@ class ExperimentalExchange {
   std::int64_t late_feedback_total() const { return late_total_; }
   std::int64_t feedback_age_periods() const { return feedback_age_; }
 
+  // The setups, as configured (their geometry checked). Not real-time safe.
+  int setup_count() const { return static_cast<int>(groups_.size()); }
+  const setups::PlanarSetup& setup(int g) const { return groups_[static_cast<std::size_t>(g)].setup; }
+
   // The channels' part of a step record (targets, commands, measurements, forces, tracking,
   // round trips). Real-time safe.
   void fill_channels(StepRecord& r) const;
 
  private:
+  // One setup's state: the DOF and actuator vectors of the exchange under way (fixed size).
+  struct Group {
+    Group(SetupGroup p, setups::PlanarSetup s) : parts(std::move(p)), setup(std::move(s)) {}
+    SetupGroup parts;
+    setups::PlanarSetup setup;
+    setups::SetupVector dof_target, dof_command, stroke_target, stroke_command, stroke_measured, dof_measured,
+        actuator_force, dof_force, offset, last_dof_command;
+    std::vector<std::array<char, 64>> actuator_names, dof_names;
+    std::array<char, 64> name{};  // "site 1 setup"
+    std::vector<const char*> dof_units, dof_force_units;
+  };
+
   bool commands_within_limits();  // fills limit_stop_ when not
   StepOutcome run_away();         // kOk, or kRunAway with limit_stop_ filled
+  // A setup's channels: the DOF targets through the geometry to the actuators' commands.
+  void command_setup(Group& g);
+  // A setup's channels: the measured strokes and forces back to the DOFs'; kGeometry, kLimit
+  // or kRunAway with limit_stop_ filled when the geometry or a DOF's limit stops the test.
+  StepOutcome feedback_setup(Group& g);
+  void stop_on_actuator(const Group& g, int i, LimitStop::Kind kind, double value, double bound);
+  void stop_on_dof(const Group& g, int i, LimitStop::Kind kind, double value, double bound, bool force);
 
   ExchangeParts parts_;
   int channels_ = 0;
@@ -82,6 +112,9 @@ class ExperimentalExchange {
   LimitStop limit_stop_;
   std::array<double, transport::kMaxChannels> last_sent_m_{};
   int saturated_exchanges_ = 0;
+  std::vector<Group> groups_;
+  // Per channel: its setup and its index there (-1: no setup drives it).
+  std::array<int, transport::kMaxChannels> group_of_{}, index_in_group_{};
 };
 
 }  // namespace rpsd::coordinator

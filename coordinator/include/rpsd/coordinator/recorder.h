@@ -20,12 +20,22 @@
 
 namespace rpsd::coordinator {
 
+// A channel whose DOF view the CSV carries (a setup drives it): its columns' units follow the
+// DOF's motion (m and N, or rad and N·m).
+struct DofViewColumn {
+  int channel = 0;
+  bool rotation = false;
+};
+
 struct RecorderOptions {
   // Keep every record in memory for finish(). Off when the metrics are computed as the test
   // runs: memory then stays flat however long the test is.
   bool keep_records = true;
-  // Records the queue to the writer thread holds (712 bytes each): 4096 is 1 s at 4096 Hz.
+  // Records the queue to the writer thread holds (984 bytes each): 4096 is 1 s at 4096 Hz.
   std::size_t queue_capacity = 1 << 12;
+  // The channels a setup drives, whose DOF view follows each row's other columns (empty:
+  // none, and the file is as without setups).
+  std::vector<DofViewColumn> dof_view = {};
 };
 
 class Recorder {
@@ -68,6 +78,7 @@ class Recorder {
   std::ofstream csv_;
   int channels_, dofs_;
   bool keep_records_;
+  std::vector<DofViewColumn> dof_view_;
   std::vector<char> row_;  // one CSV row, built by the writer thread
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};

@@ -64,6 +64,9 @@ struct LoopParts {
   // Which target a step commands and which force it feeds back (loop_timing.h); the
   // benchmark's timing needs an integrator with one exchange per step.
   LoopTiming timing = LoopTiming::kEndOfStep;
+  // The experimental setups: their channels' targets and restoring forces are their DOFs',
+  // their commands and feedback their actuators' (setup_group.h).
+  std::vector<SetupGroup> setups;
 };
 
 class RpsdLoop {
@@ -95,6 +98,7 @@ class RpsdLoop {
 
   std::int64_t step_index() const { return step_; }
   std::uint64_t run_id() const { return exchange_.run_id(); }
+  const ExperimentalExchange& exchange() const { return exchange_; }
   std::int64_t steps_available() const;  // ground-motion steps, or unlimited (-1)
   double dt_s() const { return parts_.integrator->dt_s(); }
 

@@ -52,9 +52,12 @@ struct Criteria {
 
 // Where a recorded DOF's displacement for J4-J9 comes from: the numerical model's (channel
 // -1), or a channel's measured displacement divided by its displacement scale.
+// A channel an experimental setup drives gives its DOF's displacement solved from the
+// measured strokes (StepRecord::dof_measured_m), not its actuator's stroke.
 struct FloorSource {
   int channel = -1;
   double displacement_scale = 1.0;  // specimen / model
+  bool setup_dof = false;
 };
 
 class CriteriaAccumulator {

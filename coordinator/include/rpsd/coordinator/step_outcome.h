@@ -3,6 +3,7 @@
 // (experimental_exchange.h), which an outside integrator (OpenSees) may drive too.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace rpsd::coordinator {
@@ -19,10 +20,18 @@ struct LimitStop {
     kNodeLimit,        // a node's limit acted; value: its limit flags
     kEndStop,          // a piston reached the end of its stroke
     kValveSaturation,  // a servovalve stayed fully open; value: exchanges in a row
+    kGeometry,         // a setup's geometry failed (StepOutcome::kGeometry); value: its SetupStatus
   };
   Kind kind = Kind::kNone;
   int channel = -1;
   double value = 0.0, bound = 0.0;
+  // On a channel an experimental setup drives: which of its actuators (the limit acted on the
+  // actuator's stroke or force) or which of its DOFs (on the DOF's target, force or tracking),
+  // named for people ("site 1 actuator west", "site 1 DOF 2 rotation"), with the units of the
+  // value. Filled in place on the real-time path: no allocation. Empty name: a plain channel.
+  int setup = -1, actuator = -1, dof = -1;
+  std::array<char, 64> name{};
+  const char* unit = "m";  // of value and bound: m, rad, N or N·m (a string literal)
 };
 const char* limit_stop_name(LimitStop::Kind kind);
 
@@ -35,6 +44,9 @@ enum class StepOutcome : std::uint8_t {
   kNonFinite,
   kLimit,    // a coordinator limit (limit_stop() says which)
   kRunAway,  // the test left the rig's envelope or diverged (limit_stop() says how)
+  // An experimental setup's geometry failed: its Jacobian singular at the measured strokes,
+  // or its Newton solve not converged; nothing more is sent (limit_stop() names the setup).
+  kGeometry,
   // Set by the test around the loop, never by the loop itself:
   kResultsNotWritten,  // a write of the step records failed (a full disk)
   kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)

@@ -17,7 +17,9 @@ struct StepRecord {
   double ground_acceleration_m_per_s2 = 0.0;
   std::uint8_t channels = 0;
   std::uint8_t dofs = 0;
-  // Per actuator channel, specimen scale.
+  // Per actuator channel, specimen scale. On a channel an experimental setup drives, the
+  // actuator's view: target, command and measurement are its strokes (m, the calibration
+  // offset taken off), the force its load cell's.
   std::array<double, transport::kMaxChannels> target_m{};
   std::array<double, transport::kMaxChannels> command_m{};
   std::array<double, transport::kMaxChannels> measured_m{};
@@ -25,6 +27,13 @@ struct StepRecord {
   // The specimen's restoring force the test used (the measured force, or k x measured).
   std::array<double, transport::kMaxChannels> specimen_restoring_force_n{};
   std::array<double, transport::kMaxChannels> tracking_indicator_m2{};
+  // The DOF view of the same channels (a setup's DOF i on its actuator i's channel): the DOF's
+  // target, its displacement solved from the measured strokes and its force Jᵀ f (m or rad,
+  // N or N·m by the DOF's motion). Without a setup: the channel's own target, measurement
+  // and load-cell force.
+  std::array<double, transport::kMaxChannels> dof_target_m{};
+  std::array<double, transport::kMaxChannels> dof_measured_m{};
+  std::array<double, transport::kMaxChannels> dof_force_n{};
   // Per recorded model DOF, model scale.
   std::array<double, kMaxRecordedDofs> displacement_m{};
   std::array<double, kMaxRecordedDofs> velocity_m_per_s{};
@@ -60,6 +69,9 @@ inline void copy_used(const StepRecord& from, StepRecord& to) {
     to.measured_force_n[c] = from.measured_force_n[c];
     to.specimen_restoring_force_n[c] = from.specimen_restoring_force_n[c];
     to.tracking_indicator_m2[c] = from.tracking_indicator_m2[c];
+    to.dof_target_m[c] = from.dof_target_m[c];
+    to.dof_measured_m[c] = from.dof_measured_m[c];
+    to.dof_force_n[c] = from.dof_force_n[c];
     to.round_trip_s[c] = from.round_trip_s[c];
   }
   for (int d = 0; d < from.dofs; ++d) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -33,12 +34,15 @@ class NoNodeAnswered : public std::runtime_error {
 class ActuatorLinks {
  public:
   // Builds the sites' links for run `run_id` and puts every actuator at rest at hold_m (one
-  // value per channel, in channel order). With perfect_actuator, in-process plants follow
+  // value per channel, in channel order). `stiffness_estimate_n_per_m` (per channel; empty:
+  // the channels' own estimates) is what each node's force guard predicts with: an
+  // actuator's share of a setup's specimen. With perfect_actuator, in-process plants follow
   // their command exactly whatever the transport. DDS: waits for every site's node to be
   // discovered and throws NoNodeAnswered naming the missing sites, unless a node refuses
   // the run (refused()). Not real-time safe.
   ActuatorLinks(const TestConfig& config, double control_period_s, bool perfect_actuator,
-                std::span<const double> hold_m, std::uint64_t run_id);
+                std::span<const double> hold_m, std::uint64_t run_id,
+                std::span<const double> stiffness_estimate_n_per_m = {});
   // Ends the run on every site (end_run) if it has not been. Not real-time safe.
   ~ActuatorLinks();
 
@@ -46,6 +50,11 @@ class ActuatorLinks {
   // The specimen's force at rest, per channel: the simulated load cell, or (over DDS,
   // before any feedback) the specimen stiffness estimate times the hold position.
   double initial_force_n(int channel) const { return initial_force_n_[static_cast<std::size_t>(channel)]; }
+  // The actuator's reading at rest before the first command (its simulated plant's here, or
+  // what the site can tell; nullopt: not before the first feedback). For calibration.
+  std::optional<double> initial_reading_m(int channel) const {
+    return initial_reading_m_[static_cast<std::size_t>(channel)];
+  }
   const std::vector<SiteSummary>& sites() const { return sites_; }
   // Real time: the receive deadline for every DDS site this cycle (0: none).
   void set_receive_deadline_ns(std::int64_t deadline_ns);
@@ -74,6 +83,7 @@ class ActuatorLinks {
   std::vector<std::unique_ptr<Site>> built_;  // per site, in sites_' order
   std::unique_ptr<transport::MultiSiteLink> multi_site_;
   std::vector<double> initial_force_n_;
+  std::vector<std::optional<double>> initial_reading_m_;
   std::vector<const servo::Plant*> plant_of_channel_;
   bool over_dds_ = false;
   bool ended_ = false;

@@ -13,6 +13,7 @@
 
 #include "rpsd/coordinator/rpsd_loop.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
+#include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/transport/dds_link.h"
 
@@ -49,6 +50,9 @@ struct TestRun {
   std::string refusal;                    // coordinator::StepOutcome::kRefused: which site refused the run and why
   std::string node_fault;                 // kNodeFault: what the faulted nodes say faulted them ("site 1: ...")
   TimingReport timing;
+  // Per experimental setup: each actuator's reading at the start, the stroke the geometry
+  // predicted there and the offset used for every command and measurement.
+  std::vector<SetupCalibration> calibrations;
 };
 
 struct AssemblyOptions {

@@ -26,6 +26,11 @@ class Site {
   virtual transport::Link& link() = 0;
   // The specimen's force at rest on the site's channel i (in the site's channel order).
   virtual double initial_force_n(std::size_t i) const = 0;
+  // The actuator's reading on the site's channel i at rest, before the first command, for a
+  // setup's calibration; nullopt when the site cannot tell before its first feedback (over
+  // DDS: a node's heartbeat carries no position). A site with a simulated plant here is read
+  // through the plant instead (ActuatorLinks::initial_reading_m).
+  virtual std::optional<double> initial_displacement_m(std::size_t /*i*/) const { return std::nullopt; }
   // The simulated plant of the site's channel i in this process, or nullptr.
   virtual const servo::Plant* simulated_plant(std::size_t /*i*/) const { return nullptr; }
   // Whether the site's node answers over DDS from another process.

@@ -63,6 +63,19 @@ struct ChannelPrediction {
   bool rail_contact = false;  // a converter reached its rail: the signal was clamped
 };
 
+// A DOF an experimental setup drives, from the same simulated run: its target, its
+// displacement solved from the measured strokes and its force Jᵀ f, against the DOF's own
+// limits (experimental[].limits as given: the rig's envelope is its actuators', which the
+// channel's prediction above holds). Units by the DOF's motion: m and N, or rad and N·m.
+struct DofPrediction {
+  int channel = 0;
+  std::uint32_t site_id = 1;
+  std::string motion;  // translation_x, translation_y, rotation
+  double peak_target_m = 0.0, peak_displacement_m = 0.0, peak_force_n = 0.0, peak_tracking_error_m = 0.0;
+  coordinator::CoordinatorLimits limits;
+  bool within_limits = true;
+};
+
 struct ModePrediction {
   double frequency_hz = 0.0;
   double damping_ratio = 0.0;            // of the structure alone (no delay)
@@ -77,8 +90,11 @@ struct DryRunReport {
   coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
   coordinator::LimitStop limit_stop;
   std::int64_t steps = 0, steps_planned = 0;
+  // Per channel: what its actuator sees (with a setup, the actuator's stroke and load cell
+  // against the actuator's limits).
   std::vector<ChannelPrediction> channels;
-  double residual_delay_ms = 0.0;  // the channels' mean tracking delay
+  std::vector<DofPrediction> dofs;  // the DOFs setups drive (empty without setups)
+  double residual_delay_ms = 0.0;   // the channels' mean tracking delay
   std::vector<ModePrediction> modes;
   // Servo model only: its proportional gain and the largest stable one (eigenvalues of the
   // full linear model with the specimen).
