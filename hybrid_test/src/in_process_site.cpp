@@ -85,4 +85,6 @@ InProcessSite::InProcessSite(const TestConfig& test, const SiteSetup& setup) {
   link_ = std::make_unique<transport::InProcessLink>(*node_);
 }
 
+std::string InProcessSite::node_fault_text() { return std::string(controller_->fault_text().data()); }
+
 }  // namespace rpsd::hybrid_test

@@ -121,5 +121,27 @@ TEST(CoupledSite, WithoutASpecimenMatrixEachChannelKeepsItsOwnSpecimen) {
   EXPECT_NEAR(site->initial_force_n(1), 4e5 * setup.hold_m[1], 1e-9);
 }
 
+// The perfect-actuator reference has no limits to keep a command out of reach: strokes no
+// configuration has fault its node, which says why.
+TEST(CoupledSite, StrokesTheGeometryCannotSolveFaultTheNodeWhichSaysWhy) {
+  TestConfig config = coupled_test(servo::PureDelayParameters{});
+  std::get<setups::PlanarActuatorsParameters>(config.setups[0].setup).geometry.geometry =
+      setups::Geometry::kLargeDisplacement;
+  SiteSetup setup = site_at(0.0, 0.0, true);
+  SiteResources shared;
+  const auto site = make_site(config, setup, shared);
+  transport::CommandSample command;
+  command.test_id = config.transport.test_id;
+  command.site_id = 1;
+  command.run_id = setup.run_id;
+  command.channels = 2;
+  command.displacement_m[0] = -6.0;  // the top actuator 4 m shorter than nothing
+  transport::FeedbackSample feedback;
+  ASSERT_EQ(site->link().send(command), transport::LinkStatus::kOk);
+  site->link().receive(feedback);
+  EXPECT_NE(feedback.status & transport::kNodeFault, 0u);
+  EXPECT_NE(site->node_fault_text().find("coupled specimen"), std::string::npos) << site->node_fault_text();
+}
+
 }  // namespace
 }  // namespace rpsd::hybrid_test

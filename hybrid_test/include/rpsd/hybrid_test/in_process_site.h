@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -33,6 +34,8 @@ class InProcessSite final : public Site {
   // specimen: each actuator's load there).
   double initial_force_n(std::size_t i) const override { return initial_force_n_[i]; }
   const servo::Plant* simulated_plant(std::size_t i) const override { return actuator_.plants.pointers[i]; }
+  // What faulted the node, as it keeps it (a simulated coupled specimen's failed geometry).
+  std::string node_fault_text() override;
 
  private:
   InProcessSite(const TestConfig& test, const SiteSetup& setup);
