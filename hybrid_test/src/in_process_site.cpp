@@ -23,7 +23,8 @@ const ExperimentalSetupSite* coupled_setup(const TestConfig& test, const SiteSet
 // implemented (branch geometry): then this function is replaced by it.
 setups::PlanarGeometry planar_geometry_of(const setups::SetupConfig& config) {
   if (const auto* planar = std::get_if<setups::PlanarActuatorsParameters>(&config)) return planar->planar();
-  throw std::invalid_argument("a simulated coupled specimen needs the setup's geometry: only kind planar is read here yet");
+  throw std::invalid_argument(
+      "a simulated coupled specimen needs the setup's geometry: only kind planar is read here yet");
 }
 
 // The geometry with its actuators in the site's channel order (the setup's actuator i is on
@@ -34,8 +35,9 @@ setups::PlanarGeometry in_site_order(const ExperimentalSetupSite& coupled, const
   if (coupled.channels.size() != setup.channels.size() ||
       static_cast<int>(coupled.channels.size()) != given.dof_count) {
     throw std::invalid_argument("site " + std::to_string(setup.site_id) + ": its setup drives " +
-                                std::to_string(given.dof_count) + " DOFs on " + std::to_string(coupled.channels.size()) +
-                                " channels, the site has " + std::to_string(setup.channels.size()));
+                                std::to_string(given.dof_count) + " DOFs on " +
+                                std::to_string(coupled.channels.size()) + " channels, the site has " +
+                                std::to_string(setup.channels.size()));
   }
   for (std::size_t j = 0; j < setup.channels.size(); ++j) {
     std::size_t i = 0;
@@ -72,7 +74,8 @@ InProcessSite::InProcessSite(const TestConfig& test, const SiteSetup& setup) {
     // Each channel its own plant: the test's, or one that follows its command exactly.
     for (const double k : setup.stiffness_estimate_n_per_m) {
       actuator_.plants.owned.push_back(servo::make_plant(
-          setup.perfect_actuator ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}, {}}} : test.plant));
+          setup.perfect_actuator ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}, {}}}
+                                 : test.plant));
       actuator_.plants.pointers.push_back(actuator_.plants.owned.back().get());
     }
     actuator_.actuator = std::make_unique<servo::SimulatedActuator>(actuator_.plants.pointers);

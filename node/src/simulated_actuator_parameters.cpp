@@ -29,11 +29,11 @@ struct PlanarSetupSection {
   explicit PlanarSetupSection(std::unique_ptr<config::Source> s) : section(std::move(s)) {
     config::Source& in = *section;
     in.choice("kind", {"planar"}, "the setup's kind (only planar here until the setup kinds are read)");
-    geometry.geometry = in.choice_or("geometry", {"linear", "large_displacement"}, "linear",
-                                     "the strokes from the reference Jacobian, or from the displaced points") ==
-                                "large_displacement"
-                            ? setups::Geometry::kLargeDisplacement
-                            : setups::Geometry::kLinear;
+    geometry.geometry =
+        in.choice_or("geometry", {"linear", "large_displacement"}, "linear",
+                     "the strokes from the reference Jacobian, or from the displaced points") == "large_displacement"
+            ? setups::Geometry::kLargeDisplacement
+            : setups::Geometry::kLinear;
     dofs = in.optional_texts("dofs", "the DOFs in the site's order: translation_x, translation_y, rotation",
                              setups::kMaxSetupDofs);
     actuators = in.sections("actuators", setups::kMaxSetupDofs, "one per DOF, in the node's channels");
@@ -96,11 +96,11 @@ CoupledSpecimenParameters read_coupled_specimen(config::Source& section, int cha
                                                 const servo::PlantConfig& plant) {
   CoupledSpecimenParameters c;
   PlanarSetupSection setup(section.section("setup", "the experimental setup the channels' actuators form"));
-  const auto stiffness = section.matrix(
-      "stiffness",
-      config::Number::between(0.0, kMaxCoupledEntry, "N/m, N/rad, N m/rad",
-                              "the specimen's stiffness over the setup's DOFs (rows, or a diagonal)"),
-      setups::kMaxSetupDofs);
+  const auto stiffness =
+      section.matrix("stiffness",
+                     config::Number::between(0.0, kMaxCoupledEntry, "N/m, N/rad, N m/rad",
+                                             "the specimen's stiffness over the setup's DOFs (rows, or a diagonal)"),
+                     setups::kMaxSetupDofs);
   const auto damping = section.matrix(
       "damping",
       config::Number::between(0.0, kMaxCoupledEntry, "N s/m, N s/rad, N m s/rad",

@@ -89,8 +89,9 @@ inline ServoHydraulicPlant::Terms ServoHydraulicPlant::terms(const Rates& s, dou
   t.other_flows = k_.area_per_compressibility * xdot + k_.leakage_per_compressibility * load_pressure;
 
   // The same for the velocity, whose chain runs through the friction's tanh.
-  t.other_forces = k_.area_per_mass * load_pressure -
-                   (spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot + external_load_n_) * k_.inverse_mass_per_kg;
+  t.other_forces =
+      k_.area_per_mass * load_pressure -
+      (spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot + external_load_n_) * k_.inverse_mass_per_kg;
   t.friction_tanh = k_.friction_per_mass == 0.0 ? 0.0 : regularised_tanh(xdot * k_.friction_per_velocity_s_per_m);
 
   t.rate = {opening_rate, pilot_flow_rate, t.root_coefficient * t.root - t.other_flows, xdot,

@@ -4,13 +4,13 @@
 // against each other; a file whose setup or matrices do not fit the node is refused at its key.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
-#include "rpsd/scenarios/config_error.h"
 #include "rpsd/node/actuator_factory.h"
+#include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/servo/coupled_specimen_actuator.h"
 

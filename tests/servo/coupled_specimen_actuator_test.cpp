@@ -121,7 +121,8 @@ TEST(CoupledSpecimenActuator, DampingLoadsTheActuatorsWithTheDofVelocities) {
   for (int n = 1; n <= 10; ++n) {
     const double x = velocity_x * n * kDt, theta = rate_theta * n * kDt;
     ASSERT_EQ(actuator.exchange(std::vector<double>{x, x - kLever_m * theta}, kDt, reading), ActuatorStatus::kOk);
-    const Eigen::Vector2d force = column_stiffness() * Eigen::Vector2d(x, theta) + c * Eigen::Vector2d(velocity_x, rate_theta);
+    const Eigen::Vector2d force =
+        column_stiffness() * Eigen::Vector2d(x, theta) + c * Eigen::Vector2d(velocity_x, rate_theta);
     const auto f = hand_loads(force[0], force[1]);
     EXPECT_NEAR(reading.force_n[0], f[0], 1e-6) << "period " << n;
     EXPECT_NEAR(reading.force_n[1], f[1], 1e-6) << "period " << n;

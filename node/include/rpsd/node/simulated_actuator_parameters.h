@@ -17,7 +17,7 @@ namespace rpsd::node {
 // the node's simulated actuators (servo/coupled_specimen_actuator.h): the node's channel i is
 // the setup's actuator i, and the plants' own specimens carry no stiffness or damping.
 struct CoupledSpecimenParameters {
-  setups::PlanarGeometry geometry;   // the setup's (actuator.coupled_specimen.setup)
+  setups::PlanarGeometry geometry;     // the setup's (actuator.coupled_specimen.setup)
   Eigen::MatrixXd stiffness, damping;  // over the setup's DOFs (N/m, N/rad, N m/rad)
 };
 
