@@ -37,8 +37,8 @@ ServoHydraulicPlant::ServoHydraulicPlant(const ServoSystemParameters& parameters
 }
 
 void ServoHydraulicPlant::reset(double displacement_m) {
-  // At rest the chambers carry the spring force and the outside load, and the spool is open just enough to
-  // replace the leakage flow; the pilot flow is zero.
+  // At rest the chambers carry the spring force and the outside load, and the spool is open
+  // just enough to replace the leakage flow; the pilot flow is zero.
   const auto& p = parameters_;
   const double load_pressure =
       (spring_force_n(p.specimen.stiffness, displacement_m) + external_load_n_) / p.actuator.piston_area_m2;
