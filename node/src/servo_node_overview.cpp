@@ -14,6 +14,17 @@ void print_node_overview(const ServoNodeSetup& setup, std::ostream& out) {
       [&out](const auto& kind) {
         using Kind = std::decay_t<decltype(kind)>;
         out << "  actuator: " << Kind::kName << " (" << Kind::kSummary << ")\n";
+        if constexpr (std::is_same_v<Kind, SimulatedActuatorParameters>) {
+          if (kind.coupled_specimen) {
+            const setups::PlanarGeometry& g = kind.coupled_specimen->geometry;
+            out << "  coupled specimen over " << g.dof_count << " DOF(s) (";
+            for (int j = 0; j < g.dof_count; ++j) {
+              out << (j > 0 ? ", " : "") << setups::dof_motion_name(g.dofs[static_cast<std::size_t>(j)]);
+            }
+            out << "), " << (g.geometry == setups::Geometry::kLinear ? "linear" : "large-displacement")
+                << " geometry: channel i is the setup's actuator i\n";
+          }
+        }
       },
       setup.actuator);
   for (int c = 0; c < n.channels; ++c) {

@@ -74,7 +74,7 @@ PlantMeasurement PureDelayPlant::measure() const {
   const double commanded = command_at(time_s_ - parameters_.delay_s);
   const double stroke = parameters_.rig.stroke_m;
   const double x = std::clamp(commanded, -stroke, stroke);  // the end stops
-  return {x, parameters_.specimen_stiffness_n_per_m * x, std::abs(commanded) >= stroke, false};
+  return {x, parameters_.specimen_stiffness_n_per_m * x + external_load_n_, std::abs(commanded) >= stroke, false};
 }
 
 PureDelayParameters PureDelayParameters::read(config::Source& section, double specimen_stiffness_n_per_m) {

@@ -37,10 +37,11 @@ ServoHydraulicPlant::ServoHydraulicPlant(const ServoSystemParameters& parameters
 }
 
 void ServoHydraulicPlant::reset(double displacement_m) {
-  // At rest the chambers carry the spring force and the spool is open just enough to
-  // replace the leakage flow; the pilot flow is zero.
+  // At rest the chambers carry the spring force and the outside load, and the spool is open
+  // just enough to replace the leakage flow; the pilot flow is zero.
   const auto& p = parameters_;
-  const double load_pressure = spring_force_n(p.specimen.stiffness, displacement_m) / p.actuator.piston_area_m2;
+  const double load_pressure =
+      (spring_force_n(p.specimen.stiffness, displacement_m) + external_load_n_) / p.actuator.piston_area_m2;
   const double leakage_flow = p.actuator.leakage_m3_per_s_per_pa * load_pressure;
   state_ = State::Zero();
   state_[kLoadPressure] = load_pressure;
@@ -88,8 +89,9 @@ inline ServoHydraulicPlant::Terms ServoHydraulicPlant::terms(const Rates& s, dou
   t.other_flows = k_.area_per_compressibility * xdot + k_.leakage_per_compressibility * load_pressure;
 
   // The same for the velocity, whose chain runs through the friction's tanh.
-  t.other_forces = k_.area_per_mass * load_pressure -
-                   (spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot) * k_.inverse_mass_per_kg;
+  t.other_forces =
+      k_.area_per_mass * load_pressure -
+      (spring_force_n(k_.stiffness, x) + k_.damping_n_s_per_m * xdot + external_load_n_) * k_.inverse_mass_per_kg;
   t.friction_tanh = k_.friction_per_mass == 0.0 ? 0.0 : regularised_tanh(xdot * k_.friction_per_velocity_s_per_m);
 
   t.rate = {opening_rate, pilot_flow_rate, t.root_coefficient * t.root - t.other_flows, xdot,

@@ -106,7 +106,7 @@ PlantMeasurement TransferFunctionPlant::measure() const {
   const double x = std::clamp(y, -stroke, stroke);
   const double force = parameters_.specimen_stiffness_n_per_m * x +
                        parameters_.specimen_damping_n_s_per_m * c_velocity_.dot(x_) +
-                       parameters_.specimen_mass_kg * mean_acceleration_m_per_s2_;
+                       parameters_.specimen_mass_kg * mean_acceleration_m_per_s2_ + external_load_n_;
   return {x, force, std::abs(y) >= stroke, false};
 }
 

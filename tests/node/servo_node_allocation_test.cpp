@@ -17,6 +17,7 @@
 #include "rpsd/node/controller_emulator.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/udp_controller_actuator.h"
+#include "rpsd/servo/coupled_specimen_actuator.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/servo/transfer_function_plant.h"
@@ -114,6 +115,31 @@ TEST(ServoNodeAllocation, NoAllocationPerTickOverSimulatedPlants) {
   EXPECT_GT(r.events_not_logged, 0u);
   EXPECT_EQ(r.dropped, 3000u / 7 - 2u);    // the duplicates, less the two that fell in the gap (1001, 1008)
   EXPECT_GE(r.missed_periods, 10u + 20u);  // the gap, then the silence up to the timeout
+  EXPECT_TRUE(r.reached_safe_state);
+}
+
+// Two actuators under one coupled specimen (a column top's translation and rotation, large-
+// displacement geometry: Newton every tick), the node's limits and watchdog acting as above.
+TEST(ServoNodeAllocation, NoAllocationPerTickOverACoupledSpecimen) {
+  const servo::PlantConfig plant = servo::coupled_plant_config(rpsd::testing::paper_rig());
+  auto bottom = servo::make_plant(plant), top = servo::make_plant(plant);
+  servo::Plant* plants[] = {bottom.get(), top.get()};
+  setups::PlanarGeometry g;
+  g.geometry = setups::Geometry::kLargeDisplacement;
+  g.dof_count = 2;
+  g.dofs = {setups::DofMotion::kTranslationX, setups::DofMotion::kRotation, setups::DofMotion::kTranslationY};
+  g.actuators[0] = {"bottom", {-2.0, 0.0}, {0.0, 0.0}};
+  g.actuators[1] = {"top", {-2.0, 0.8}, {0.0, 0.8}};
+  Eigen::MatrixXd k(2, 2), c(2, 2);
+  k << 1.5e6, -1.5e6, -1.5e6, 2.0e6;
+  c << 2e4, 0.0, 0.0, 1e4;
+  servo::CoupledSpecimenActuator actuator(plants, setups::PlanarSetup(g), k, c);
+  ServoNodeController node(node_config(), actuator);
+  const RunResult r = run(node, 2000);
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_GT(r.activations, 16u);
+  EXPECT_NE(actuator.actuator_loads_n()[1], 0.0);  // the specimen loaded the top actuator
+  EXPECT_EQ(node.counters().actuator_faults, 0u);
   EXPECT_TRUE(r.reached_safe_state);
 }
 

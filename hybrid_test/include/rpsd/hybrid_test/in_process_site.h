@@ -1,9 +1,13 @@
 // A site whose servo node runs in this process as `rpsd servo-node` would run it (its limits,
 // actions and watchdog), on simulated plants, answered in lock-step: deterministic, and the
-// perfect-actuator reference's way to every actuator site.
+// perfect-actuator reference's way to every actuator site. A site whose setup carries a
+// coupled specimen (ExperimentalSetupSite::specimen_stiffness) simulates its actuators under
+// that one specimen (servo/coupled_specimen_actuator.h): channel j's plant is the setup's
+// actuator on the site's channel j, and setup.hold_m are the actuators' strokes at rest.
 #pragma once
 
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -26,9 +30,12 @@ class InProcessSite final : public Site {
   static std::unique_ptr<Site> make(const TestConfig& test, const SiteSetup& setup, SiteResources& shared);
 
   transport::Link& link() override { return *link_; }
-  // The simulated load cell's, once the node holds the actuators at rest.
+  // The simulated load cell's, once the node holds the actuators at rest (under a coupled
+  // specimen: each actuator's load there).
   double initial_force_n(std::size_t i) const override { return initial_force_n_[i]; }
   const servo::Plant* simulated_plant(std::size_t i) const override { return actuator_.plants.pointers[i]; }
+  // What faulted the node, as it keeps it (a simulated coupled specimen's failed geometry).
+  std::string node_fault_text() override;
 
  private:
   InProcessSite(const TestConfig& test, const SiteSetup& setup);

@@ -24,6 +24,9 @@ class ConvertedPlant final : public Plant {
   // command_start_m is not used: the ramp starts from the D/A's last output.
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   PlantMeasurement measure() const override { return measured_; }
+  // The plant's own answer: the converters stand between it and the node, not the specimen.
+  bool accepts_external_load() const noexcept override { return plant_->accepts_external_load(); }
+  void set_external_load_n(double force_n) noexcept override { plant_->set_external_load_n(force_n); }
   const Plant& plant() const { return *plant_; }
   // The D/A's range in plant units (infinite without saturation).
   double command_limit() const { return command_limit_; }

@@ -56,6 +56,8 @@ class FeedbackControlledPlant final : public Plant {
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   // The converted readings; valve_saturated: the controller's output or its D/A at a limit.
   PlantMeasurement measure() const override;
+  // Refuses a load from outside (plant.h's default): its load cell reads its transfer
+  // function's own specimen behind the servo loop, which a coupled specimen cannot reach.
 
  private:
   FeedbackControlledPlantParameters parameters_;

@@ -30,6 +30,16 @@ class Plant {
 
   // The current sensor readings. Real-time safe.
   virtual PlantMeasurement measure() const = 0;
+
+  // Whether the plant can carry a load from outside: a share of a coupled specimen
+  // (coupled_specimen_actuator.h) that its own specimen does not know of. Refused by default.
+  virtual bool accepts_external_load() const noexcept { return false; }
+  // The force the outside specimen opposes the piston with, N (positive: against a positive
+  // stroke, as the plant's own spring k x), held until the next call; reset() puts the plant at
+  // rest carrying it. The load cell reads it; a plant whose motion responds to its load (the
+  // servo-hydraulic model) carries it in its specimen equation. Ignored by a plant that does
+  // not accept one. Real-time safe.
+  virtual void set_external_load_n(double /*force_n*/) noexcept {}
 };
 
 }  // namespace rpsd::servo

@@ -44,6 +44,9 @@ class PureDelayPlant final : public Plant {
   // advance durations at or above it. Real-time safe.
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   PlantMeasurement measure() const override;
+  // The load cell reads the outside load too; the motion does not depend on it.
+  bool accepts_external_load() const noexcept override { return true; }
+  void set_external_load_n(double force_n) noexcept override { external_load_n_ = force_n; }
 
   double time_s() const { return time_s_; }
 
@@ -60,6 +63,7 @@ class PureDelayPlant final : public Plant {
   std::size_t head_ = 0;
   std::size_t size_ = 0;
   double time_s_ = 0.0;
+  double external_load_n_ = 0.0;
 };
 
 }  // namespace rpsd::servo

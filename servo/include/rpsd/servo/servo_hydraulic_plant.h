@@ -7,7 +7,8 @@
 //   main spool   x_vmax A_v xdot_v = q, stopped at |x_v| = 1                 (together Eq. 2)
 //   valve flow   Q_L  = K_v(x_v) x_v sqrt(1 - sgn(x_v) P_L / P_s)            (Eq. 3)
 //   chambers     K_a Pdot_L = Q_L - A xdot - C_l P_L                         (Eq. 4)
-//   specimen     m xddot = A P_L - c xdot - k(x) - F_c tanh(xdot / v_reg)
+//   specimen     m xddot = A P_L - c xdot - k(x) - F_c tanh(xdot / v_reg) - f_ext
+// (f_ext: a coupled specimen's share, set_external_load_n; zero otherwise).
 // At the default rates the derivative runs 32 times per control step, so it is written for speed: docs/servo-model.md
 #pragma once
 
@@ -30,6 +31,9 @@ class ServoHydraulicPlant final : public Plant {
   void reset(double displacement_m) override;
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   PlantMeasurement measure() const override;
+  // The load enters the specimen equation; the load cell (A P_L) carries it at rest.
+  bool accepts_external_load() const noexcept override { return true; }
+  void set_external_load_n(double force_n) noexcept override { external_load_n_ = force_n; }
 
   // Time derivative of the state for command u and command rate udot; the model's whole
   // physics in one pure function (used by the integrator and the linearisation). Real-time safe.
@@ -84,6 +88,7 @@ class ServoHydraulicPlant final : public Plant {
   double stroke_m_;  // the piston's end stops: +/- the actuator's stroke
   State state_ = State::Zero();
   double time_s_ = 0.0;
+  double external_load_n_ = 0.0;  // f_ext, held over each advance
 };
 
 }  // namespace rpsd::servo

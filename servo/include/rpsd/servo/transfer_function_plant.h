@@ -54,6 +54,9 @@ class TransferFunctionPlant final : public Plant {
   void reset(double displacement_m) override;
   void advance(double command_start_m, double command_end_m, double duration_s) override;
   PlantMeasurement measure() const override;
+  // The load cell reads the outside load too; the motion does not depend on it.
+  bool accepts_external_load() const noexcept override { return true; }
+  void set_external_load_n(double force_n) noexcept override { external_load_n_ = force_n; }
 
  private:
   TransferFunctionPlantParameters parameters_;
@@ -65,6 +68,7 @@ class TransferFunctionPlant final : public Plant {
   double last_command_m_ = 0.0;
   double mean_acceleration_m_per_s2_ = 0.0;  // over the last advance
   double max_step_s_;
+  double external_load_n_ = 0.0;
 };
 
 }  // namespace rpsd::servo
