@@ -6,6 +6,7 @@
 
 #include "rpsd/servo/coupled_specimen_actuator.h"
 #include "rpsd/servo/simulated_actuator.h"
+#include "rpsd/setups/setup_kinds.h"
 
 namespace rpsd::hybrid_test {
 
@@ -19,18 +20,10 @@ const ExperimentalSetupSite* coupled_setup(const TestConfig& test, const SiteSet
   return nullptr;
 }
 
-// The setup's planar geometry. Only the `planar` kind until setups::planar_geometry is
-// implemented (branch geometry): then this function is replaced by it.
-setups::PlanarGeometry planar_geometry_of(const setups::SetupConfig& config) {
-  if (const auto* planar = std::get_if<setups::PlanarActuatorsParameters>(&config)) return planar->planar();
-  throw std::invalid_argument(
-      "a simulated coupled specimen needs the setup's geometry: only kind planar is read here yet");
-}
-
 // The geometry with its actuators in the site's channel order (the setup's actuator i is on
 // the test channel setup.channels[i]; the node's channel j is the site's channels[j]).
 setups::PlanarGeometry in_site_order(const ExperimentalSetupSite& coupled, const SiteSetup& setup) {
-  const setups::PlanarGeometry given = planar_geometry_of(coupled.setup);
+  const setups::PlanarGeometry given = setups::planar_geometry(coupled.setup);
   setups::PlanarGeometry ordered = given;
   if (coupled.channels.size() != setup.channels.size() ||
       static_cast<int>(coupled.channels.size()) != given.dof_count) {

@@ -8,78 +8,13 @@
 
 #include "rpsd/servo/coupled_specimen_actuator.h"
 #include "rpsd/servo/simulated_actuator.h"
+#include "rpsd/setups/setup_kinds.h"
 
 namespace rpsd::node {
 
 namespace {
 
 constexpr double kMaxCoupledEntry = 1e13;  // N/m and N s/m, as a specimen's stiffness
-
-// The `planar` form of an experimental setup as its section gives it: its actuators' fixed
-// ends and attachment points. Until setups::read_setup_config is implemented (branch
-// geometry), which then replaces it. Read first and checked after (check()), so that a listing
-// lists every key of the actuator's section.
-struct PlanarSetupSection {
-  std::unique_ptr<config::Source> section;
-  std::vector<std::unique_ptr<config::Source>> actuators;
-  std::optional<std::vector<std::string>> dofs;
-  setups::PlanarGeometry geometry;
-  std::vector<std::vector<double>> ends, attachments;
-
-  explicit PlanarSetupSection(std::unique_ptr<config::Source> s) : section(std::move(s)) {
-    config::Source& in = *section;
-    in.choice("kind", {"planar"}, "the setup's kind (only planar here until the setup kinds are read)");
-    geometry.geometry =
-        in.choice_or("geometry", {"linear", "large_displacement"}, "linear",
-                     "the strokes from the reference Jacobian, or from the displaced points") == "large_displacement"
-            ? setups::Geometry::kLargeDisplacement
-            : setups::Geometry::kLinear;
-    dofs = in.optional_texts("dofs", "the DOFs in the site's order: translation_x, translation_y, rotation",
-                             setups::kMaxSetupDofs);
-    actuators = in.sections("actuators", setups::kMaxSetupDofs, "one per DOF, in the node's channels");
-    const config::Number coordinate = config::Number::between(-1e3, 1e3, "m", "x and y in the lab's frame");
-    for (std::size_t i = 0; i < actuators.size(); ++i) {
-      config::Source& a = *actuators[i];
-      geometry.actuators[i].name = a.optional_text("name", "for records and messages").value_or("");
-      ends.push_back(a.numbers("fixed_end_m", coordinate, 2));
-      attachments.push_back(a.numbers("attachment_m", coordinate, 2));
-      a.finish();
-    }
-    in.finish();
-  }
-
-  // The geometry, checked as a PlanarSetup checks it; errors at their keys.
-  setups::PlanarGeometry check() {
-    config::Source& in = *section;
-    for (std::size_t i = 0; i < actuators.size(); ++i) {
-      if (ends[i].size() != 2) actuators[i]->fail("fixed_end_m", "needs two coordinates, x and y");
-      if (attachments[i].size() != 2) actuators[i]->fail("attachment_m", "needs two coordinates, x and y");
-      geometry.actuators[i].fixed_end_m = {ends[i][0], ends[i][1]};
-      geometry.actuators[i].attachment_m = {attachments[i][0], attachments[i][1]};
-    }
-    if (!dofs) in.fail("dofs", "missing: the DOFs the setup drives");
-    if (dofs->size() != actuators.size()) in.fail("actuators", "needs one actuator per DOF in dofs");
-    geometry.dof_count = static_cast<int>(dofs->size());
-    for (std::size_t j = 0; j < dofs->size(); ++j) {
-      const std::string& d = (*dofs)[j];
-      if (d == "translation_x") {
-        geometry.dofs[j] = setups::DofMotion::kTranslationX;
-      } else if (d == "translation_y") {
-        geometry.dofs[j] = setups::DofMotion::kTranslationY;
-      } else if (d == "rotation") {
-        geometry.dofs[j] = setups::DofMotion::kRotation;
-      } else {
-        in.fail("dofs", "'" + d + "' is none of translation_x, translation_y, rotation");
-      }
-    }
-    try {
-      const setups::PlanarSetup checked(geometry);
-    } catch (const std::invalid_argument& e) {
-      in.fail("actuators", e.what());
-    }
-    return geometry;
-  }
-};
 
 Eigen::MatrixXd dense(const std::vector<std::vector<double>>& rows) {
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()),
@@ -95,31 +30,42 @@ Eigen::MatrixXd dense(const std::vector<std::vector<double>>& rows) {
 CoupledSpecimenParameters read_coupled_specimen(config::Source& section, int channels,
                                                 const servo::PlantConfig& plant) {
   CoupledSpecimenParameters c;
-  PlanarSetupSection setup(section.section("setup", "the experimental setup the channels' actuators form"));
+  // A listing (has() says no to every key) lists every key, the optional damping too.
+  const bool listing = !section.has("setup");
+  auto setup = section.section("setup", "the experimental setup the channels' actuators form (as a scenario's)");
+  const setups::SetupConfig setup_config = setups::read_setup_config(*setup);
   const auto stiffness =
-      section.matrix("stiffness",
-                     config::Number::between(0.0, kMaxCoupledEntry, "N/m, N/rad, N m/rad",
+      section.matrix("stiffness_n_per_m",
+                     config::Number::between(-kMaxCoupledEntry, kMaxCoupledEntry, "N/m, N/rad, N m/rad",
                                              "the specimen's stiffness over the setup's DOFs (rows, or a diagonal)"),
                      setups::kMaxSetupDofs);
-  const auto damping = section.matrix(
-      "damping",
-      config::Number::between(0.0, kMaxCoupledEntry, "N s/m, N s/rad, N m s/rad",
-                              "the specimen's damping over the setup's DOFs (rows, or a diagonal: zeros for none)"),
-      setups::kMaxSetupDofs);
+  std::vector<std::vector<double>> damping;
+  if (section.has("damping_n_s_per_m") || listing) {
+    damping = section.matrix(
+        "damping_n_s_per_m",
+        config::Number::between(-kMaxCoupledEntry, kMaxCoupledEntry, "N s/m, N s/rad, N m s/rad",
+                                "the specimen's damping over the setup's DOFs (rows, or a diagonal; default none)"),
+        setups::kMaxSetupDofs);
+  }
   section.finish();
-  // A listing, whose has() says no to every key, lists on past the checks (its values are
-  // placeholders); a file got here with its `setup`.
-  if (!section.has("setup")) return c;
-  c.geometry = setup.check();
+  if (listing) return c;
+  try {
+    c.geometry = setups::planar_geometry(setup_config);
+    (void)setups::PlanarSetup(c.geometry);
+  } catch (const std::invalid_argument& e) {
+    setup->fail("kind", e.what());
+  }
   const auto dofs = static_cast<std::size_t>(c.geometry.dof_count);
   if (dofs != static_cast<std::size_t>(channels)) {
     section.fail("setup", "drives " + std::to_string(dofs) + " DOFs with as many actuators, the node has " +
                               std::to_string(channels) + " channels");
   }
-  if (stiffness.size() != dofs) section.fail("stiffness", "needs one row per DOF of the setup");
+  if (stiffness.size() != dofs) section.fail("stiffness_n_per_m", "needs one row per DOF of the setup");
   c.stiffness = dense(stiffness);
-  if (damping.size() != dofs) section.fail("damping", "needs one row per DOF of the setup");
-  c.damping = dense(damping);
+  if (!c.stiffness.isApprox(c.stiffness.transpose())) section.fail("stiffness_n_per_m", "must be symmetric");
+  if (!damping.empty() && damping.size() != dofs) section.fail("damping_n_s_per_m", "needs one row per DOF of the setup");
+  c.damping = damping.empty() ? Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(dofs), static_cast<Eigen::Index>(dofs))
+                              : dense(damping);
   try {
     servo::coupled_plant_config(plant);
   } catch (const std::invalid_argument& e) {

@@ -234,7 +234,10 @@ void node_file(Document& doc) {
   doc.table("actuator", listing("actuator", [&f](config::Source& s) { ns::actuator(s, f); }, {"actuator.servo"}));
   kind_tables<node::ActuatorKinds>(doc, "actuator", "what the node drives (node/)",
                                    [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s, 1); },
-                                   {"actuator.servo"});
+                                   {"actuator.servo", "actuator.coupled_specimen.setup"});
+  kind_tables<setups::SetupKinds>(
+      doc, "actuator.coupled_specimen.setup", "the experimental setup",
+      [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s, setups::Geometry::kLinear); });
   doc.table("limits", listing("limits", [&f](config::Source& s) { ns::limits(s, f); }),
             "One value per channel; a limit left out is the rig's.");
   doc.table("watchdog", listing("watchdog", [&f](config::Source& s) { ns::watchdog(s, f); }));

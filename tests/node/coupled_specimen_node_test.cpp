@@ -1,5 +1,5 @@
-// A servo node file whose simulated actuators carry a coupled specimen: the shipped column-top
-// node (two servo-hydraulic actuators, one specimen coupling translation and rotation) builds
+// A servo node file whose simulated actuators carry a coupled specimen: the shipped two-actuator
+// column's node (two servo-hydraulic actuators, one column coupling translation and rotation) builds
 // the coupled actuator, whose load cells settle on J^-T K u by hand, the two actuators pushing
 // against each other; a file whose setup or matrices do not fit the node is refused at its key.
 #include <gtest/gtest.h>
@@ -22,21 +22,22 @@ std::filesystem::path source_dir() {
   return RPSD_TEST_SOURCE_DIR;
 }
 
-std::filesystem::path example() { return source_dir() / "examples/nodes/column-top-coupled-node.yaml"; }
+std::filesystem::path example() { return source_dir() / "examples/nodes/two-actuator-column-site.yaml"; }
 
 TEST(CoupledSpecimenNode, TheColumnTopNodeCarriesTheCoupledSpecimen) {
   const ServoNodeSetup setup = scenarios::load_servo_node(example());
   const auto& simulated = std::get<SimulatedActuatorParameters>(setup.actuator);
   ASSERT_TRUE(simulated.coupled_specimen.has_value());
   EXPECT_EQ(simulated.coupled_specimen->geometry.dof_count, 2);
-  EXPECT_EQ(simulated.coupled_specimen->stiffness(0, 1), -1.5e6);
-  EXPECT_EQ(simulated.coupled_specimen->damping(1, 1), 1.0e4);
+  EXPECT_EQ(simulated.coupled_specimen->stiffness(0, 1), 0.75e6);
+  EXPECT_EQ(simulated.coupled_specimen->damping(1, 1), 0.0);  // none given
   OwnedActuator owned = make_actuator(setup.actuator, setup.node.channels);
   auto* coupled = dynamic_cast<servo::CoupledSpecimenActuator*>(owned.actuator.get());
   ASSERT_NE(coupled, nullptr);
   owned.actuator->start(setup.initial_displacement_m);
-  // A translation of 10 mm, ramped over 0.5 s and held: the top actuator pushes, the bottom
-  // one pulls (Jᵀ f = K u with J = [[1, 0], [1, -0.8]] near the reference configuration).
+  // A translation of 10 mm, ramped over 0.5 s and held: the column's top would rotate, which
+  // the actuator 0.5 m above resists (pulls) while the one at the top pushes harder
+  // (Jᵀ f = K u with J = [[1, 0], [1, -0.5]] near the reference configuration).
   const double period_s = setup.node.control_period_s, x = 0.01;
   servo::ActuatorReading reading;
   for (int n = 1; n <= 3072; ++n) {
@@ -45,12 +46,12 @@ TEST(CoupledSpecimenNode, TheColumnTopNodeCarriesTheCoupledSpecimen) {
     ASSERT_EQ(owned.actuator->exchange(command, period_s, reading), servo::ActuatorStatus::kOk) << "period " << n;
   }
   const setups::SetupVector& u = coupled->dof_displacements();
-  const double force_x = 1.5e6 * u[0] - 1.5e6 * u[1], moment = -1.5e6 * u[0] + 2.0e6 * u[1];
-  const double top = -moment / 0.8, bottom = force_x - top;
-  EXPECT_NEAR(reading.force_n[1], top, 0.01 * std::abs(top));
-  EXPECT_NEAR(reading.force_n[0], bottom, 0.01 * std::abs(top));
-  EXPECT_LT(reading.force_n[0], 0.0);
-  EXPECT_GT(reading.force_n[1], 0.0);
+  const double force_x = 1.0e6 * u[0] + 0.75e6 * u[1], moment = 0.75e6 * u[0] + 0.75e6 * u[1];
+  const double upper = -moment / 0.5, lower = force_x - upper;
+  EXPECT_NEAR(reading.force_n[1], upper, 0.01 * std::abs(upper));
+  EXPECT_NEAR(reading.force_n[0], lower, 0.01 * std::abs(upper));
+  EXPECT_GT(reading.force_n[0], 0.0);
+  EXPECT_LT(reading.force_n[1], 0.0);
 }
 
 // A copy of the example with one line replaced, in the temporary folder (its files named by
@@ -78,14 +79,16 @@ std::string refusal(const std::string& from, const std::string& to) {
 }
 
 TEST(CoupledSpecimenNode, ASetupOrMatrixThatDoesNotFitIsRefusedAtItsKey) {
-  EXPECT_NE(refusal("damping: [2.0e4, 1.0e4]", "damping: [2.0e4]").find("actuator.coupled_specimen.damping"),
-            std::string::npos);
-  EXPECT_NE(refusal("dofs: [translation_x, rotation]", "dofs: [translation_x, twist]").find("'twist'"),
-            std::string::npos);
-  const std::string lever = refusal("fixed_end_m: [-2.0, 0.8], attachment_m: [0.0, 0.8]",
-                                    "fixed_end_m: [-2.0, 0.0], attachment_m: [0.0, 0.0]");
-  EXPECT_NE(lever.find("actuator.coupled_specimen.setup.actuators"), std::string::npos) << lever;
-  EXPECT_NE(lever.find("singular"), std::string::npos) << lever;
+  const std::string rows = refusal("stiffness_n_per_m: [[1.0e6, 0.75e6], [0.75e6, 0.75e6]]", "stiffness_n_per_m: [1e6]");
+  EXPECT_NE(rows.find("actuator.coupled_specimen.stiffness_n_per_m: needs one row per DOF"), std::string::npos) << rows;
+  const std::string kind = refusal("kind: two_actuators", "kind: two_actuator");
+  EXPECT_NE(kind.find("actuator.coupled_specimen.setup.kind"), std::string::npos) << kind;
+  const std::string lever = refusal("distance_between_actuators_m: 0.5", "distance_between_actuators_m: 0");
+  EXPECT_NE(lever.find("actuator.coupled_specimen.setup"), std::string::npos) << lever;
+  const std::string channels =
+      refusal("channels: 2\n  initial_displacement_m: [0, 0]", "channels: 3\n  initial_displacement_m: [0, 0, 0]");
+  EXPECT_NE(channels.find("drives 2 DOFs with as many actuators, the node has 3 channels"), std::string::npos)
+      << channels;
 }
 
 }  // namespace
