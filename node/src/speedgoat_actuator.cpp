@@ -367,6 +367,11 @@ SpeedgoatParameters SpeedgoatParameters::read(config::Source& section, int chann
   return p;
 }
 
+std::string SpeedgoatParameters::force_control_refusal(int channel) const {
+  return "control_signals has no force signal for channel " + std::to_string(channel) +
+         " (rpsd sends the Speedgoat target displacement commands only)";
+}
+
 OwnedActuator SpeedgoatParameters::make(const SpeedgoatParameters& config, int) {
   OwnedActuator owned;
   owned.actuator = std::make_unique<SpeedgoatActuator>(config);

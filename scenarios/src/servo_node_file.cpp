@@ -100,6 +100,22 @@ void actuator(config::Source& a, node::ServoNodeSetup& f) {
   using Kinds = node::ActuatorKinds;
   const std::string kind = a.choice("kind", Kinds::names(), "what the node drives (node/)");
   f.actuator = *Kinds::read(kind, a, f.node.channels);
+  // Mixed control (issue 30): a channel may hold a force; its command must then say so.
+  if (const auto modes = a.optional_texts(
+          "control", "per channel: displacement (the default) or force control (holds a force command, N)",
+          transport::kMaxChannels)) {
+    if (static_cast<int>(modes->size()) != f.node.channels)
+      a.fail("control", "needs one value per channel (" + std::to_string(f.node.channels) + ")");
+    for (int c = 0; c < f.node.channels; ++c) {
+      const std::string& mode = (*modes)[static_cast<std::size_t>(c)];
+      if (mode != "displacement" && mode != "force")
+        a.fail("control", "channel " + std::to_string(c) + ": '" + mode + "' is not displacement or force");
+      f.node.control[c] = mode == "force" ? servo::ControlMode::kForce : servo::ControlMode::kDisplacement;
+      if (f.node.control[c] != servo::ControlMode::kForce) continue;
+      if (const std::string why = node::force_control_refusal(f.actuator, c); !why.empty())
+        a.fail("control", "channel " + std::to_string(c) + " cannot be in force control: " + why);
+    }
+  }
   a.finish();
 }
 
@@ -128,9 +144,16 @@ void limits(config::Source& r, node::ServoNodeSetup& f) {
                   Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the force guard's stiffness (0: the specimen's)"));
   const auto stop = per_channel(r, "stop_deceleration_m_per_s2", n, kNone,
                                 limit("m/s^2", "how hard a hold or an abort brakes", kMaxAccelerationMPerS2));
+  const auto force_command = per_channel(
+      r, "max_force_command_n", n, kNone,
+      limit("N", "a channel in force control: |force command| (left out: max_force_n)", kMaxForceN));
+  const auto force_rate =
+      per_channel(r, "max_force_rate_n_per_s", n, kNone,
+                  limit("N/s", "a channel in force control: |force command change| per second (required there)",
+                        kMaxForceN * 1e3));
   for (int c = 0; c < n; ++c) {
-    f.node.limits[c] = {stroke[c],          velocity[c],     force[c], increment[c],
-                        increment_per_s[c], acceleration[c], guard[c], stop[c]};
+    f.node.limits[c] = {stroke[c], velocity[c],     force[c], increment[c],   increment_per_s[c],
+                        acceleration[c], guard[c], stop[c], force_command[c], force_rate[c]};
   }
   if (auto actions = r.optional_section("actions", "what each limit does when it acts")) {
     f.node.actions.stroke = limit_action(*actions, "stroke", f.node.actions.stroke);

@@ -4,6 +4,8 @@
 // (CONTRIBUTING.md).
 #pragma once
 
+#include <string>
+
 #include "rpsd/config/kind_list.h"
 #include "rpsd/node/nees_plugin_actuator.h"
 #include "rpsd/node/owned_actuator.h"
@@ -21,6 +23,12 @@ using ActuatorConfig = ActuatorKinds::Variant;
 // std::invalid_argument naming what does not fit.
 inline OwnedActuator make_actuator(const ActuatorConfig& config, int channels) {
   return std::visit([channels](const auto& c) { return std::decay_t<decltype(c)>::make(c, channels); }, config);
+}
+
+// Why channel `channel` of this actuator cannot be put in force control (empty: it can). Not
+// real-time safe.
+inline std::string force_control_refusal(const ActuatorConfig& config, int channel) {
+  return std::visit([channel](const auto& c) { return c.force_control_refusal(channel); }, config);
 }
 
 // What the actuator's rig can do: the simulated plant's envelope, or the one a hardware

@@ -2,6 +2,7 @@
 // (the node's `actuator: {kind: simulated}`).
 #pragma once
 
+#include <string>
 #include <string_view>
 
 #include "rpsd/config/source.h"
@@ -18,6 +19,9 @@ struct SimulatedActuatorParameters {
   // Not real-time safe.
   static OwnedActuator make(const SimulatedActuatorParameters& config, int channels);
   servo::Envelope envelope() const { return servo::envelope_of(plant); }
+  // Why channel `channel` cannot be put in force control (empty: it can): its plant has no
+  // force loop. Not real-time safe.
+  std::string force_control_refusal(int channel) const;
 
   servo::PlantConfig plant;
 };

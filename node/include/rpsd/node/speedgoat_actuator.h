@@ -32,6 +32,9 @@ struct SpeedgoatParameters {
   static SpeedgoatParameters read(config::Source& section, int channels);
   static OwnedActuator make(const SpeedgoatParameters& config, int channels);
   servo::Envelope envelope() const { return rig; }
+  // Why channel `channel` cannot be put in force control (empty: it can): it needs a force
+  // control signal. Not real-time safe.
+  std::string force_control_refusal(int channel) const;
 
   int channels = 1;
   SpeedgoatTransport transport = SpeedgoatTransport::kTcp;
