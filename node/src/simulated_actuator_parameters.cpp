@@ -11,7 +11,8 @@ SimulatedActuatorParameters SimulatedActuatorParameters::read(config::Source& se
   return {servo::read_plant_config(*section.section("servo", "each channel's plant"), k)};
 }
 
-std::string SimulatedActuatorParameters::force_control_refusal(int channel) const {
+std::string SimulatedActuatorParameters::control_mode_refusal(int channel, servo::ControlMode mode) const {
+  if (mode != servo::ControlMode::kForce) return {};
   const OwnedActuator probe = make(*this, channel + 1);
   if (probe.actuator->controls_force(channel)) return {};
   return "its plant has no force loop (only servo_model has one, with controller.force_gain_v_per_n stated in its "

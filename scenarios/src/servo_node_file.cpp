@@ -101,19 +101,19 @@ void actuator(config::Source& a, node::ServoNodeSetup& f) {
   const std::string kind = a.choice("kind", Kinds::names(), "what the node drives (node/)");
   f.actuator = *Kinds::read(kind, a, f.node.channels);
   // Mixed control (issue 30): a channel may hold a force; its command must then say so.
-  if (const auto modes = a.optional_texts(
-          "control", "per channel: displacement (the default) or force control (holds a force command, N)",
-          transport::kMaxChannels)) {
-    if (static_cast<int>(modes->size()) != f.node.channels)
-      a.fail("control", "needs one value per channel (" + std::to_string(f.node.channels) + ")");
-    for (int c = 0; c < f.node.channels; ++c) {
-      const std::string& mode = (*modes)[static_cast<std::size_t>(c)];
-      if (mode != "displacement" && mode != "force")
-        a.fail("control", "channel " + std::to_string(c) + ": '" + mode + "' is not displacement or force");
-      f.node.control[c] = mode == "force" ? servo::ControlMode::kForce : servo::ControlMode::kDisplacement;
-      if (f.node.control[c] != servo::ControlMode::kForce) continue;
-      if (const std::string why = node::force_control_refusal(f.actuator, c); !why.empty())
-        a.fail("control", "channel " + std::to_string(c) + " cannot be in force control: " + why);
+  const auto modes = a.optional_texts(
+      "control", "per channel: displacement (the default) or force (holds a force command, N)", transport::kMaxChannels);
+  if (modes && static_cast<int>(modes->size()) != f.node.channels)
+    a.fail("control", "needs one value per channel (" + std::to_string(f.node.channels) + ")");
+  for (int c = 0; c < f.node.channels; ++c) {
+    const std::string mode = modes ? (*modes)[static_cast<std::size_t>(c)] : "displacement";
+    if (mode != "displacement" && mode != "force")
+      a.fail("control", "channel " + std::to_string(c) + ": '" + mode + "' is not displacement or force");
+    f.node.control[c] = mode == "force" ? servo::ControlMode::kForce : servo::ControlMode::kDisplacement;
+    if (const std::string why = node::control_mode_refusal(f.actuator, c, f.node.control[c]); !why.empty()) {
+      const std::string message = "channel " + std::to_string(c) + " cannot be in " + mode + " control: " + why;
+      if (modes) a.fail("control", message);
+      a.fail("kind", message);
     }
   }
   a.finish();

@@ -25,10 +25,10 @@ inline OwnedActuator make_actuator(const ActuatorConfig& config, int channels) {
   return std::visit([channels](const auto& c) { return std::decay_t<decltype(c)>::make(c, channels); }, config);
 }
 
-// Why channel `channel` of this actuator cannot be put in force control (empty: it can). Not
+// Why channel `channel` of this actuator cannot be in control mode `mode` (empty: it can). Not
 // real-time safe.
-inline std::string force_control_refusal(const ActuatorConfig& config, int channel) {
-  return std::visit([channel](const auto& c) { return c.force_control_refusal(channel); }, config);
+inline std::string control_mode_refusal(const ActuatorConfig& config, int channel, servo::ControlMode mode) {
+  return std::visit([channel, mode](const auto& c) { return c.control_mode_refusal(channel, mode); }, config);
 }
 
 // What the actuator's rig can do: the simulated plant's envelope, or the one a hardware

@@ -19,9 +19,9 @@ struct SimulatedActuatorParameters {
   // Not real-time safe.
   static OwnedActuator make(const SimulatedActuatorParameters& config, int channels);
   servo::Envelope envelope() const { return servo::envelope_of(plant); }
-  // Why channel `channel` cannot be put in force control (empty: it can): its plant has no
-  // force loop. Not real-time safe.
-  std::string force_control_refusal(int channel) const;
+  // Why channel `channel` cannot be in `mode` (empty: it can): in force control, its plant has
+  // no force loop. Not real-time safe.
+  std::string control_mode_refusal(int channel, servo::ControlMode mode) const;
 
   servo::PlantConfig plant;
 };
