@@ -1,5 +1,6 @@
 #include "rpsd/scenarios/servo_node_file.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -152,6 +153,12 @@ void limits(config::Source& r, node::ServoNodeSetup& f) {
                   limit("N/s", "a channel in force control: |force command change| per second (required there)",
                         kMaxForceN * 1e3));
   for (int c = 0; c < n; ++c) {
+    if (f.node.control[c] == servo::ControlMode::kForce && !std::isfinite(force_rate[c])) {
+      r.fail("max_force_rate_n_per_s", "channel " + std::to_string(c) +
+                                           " is in force control (actuator.control): it needs a force rate limit");
+    }
+  }
+  for (int c = 0; c < n; ++c) {
     f.node.limits[c] = {stroke[c], velocity[c],     force[c], increment[c],   increment_per_s[c],
                         acceleration[c], guard[c], stop[c], force_command[c], force_rate[c]};
   }
@@ -201,7 +208,12 @@ std::unique_ptr<config::Source> node_file(config::Source& root, const std::files
   dds(*root.section("dds", "how the node meets the coordinator"), dir, f);
   actuator(*root.section("actuator", "what the node drives"), f);
   auto limits_section = root.optional_section("limits", "the node's own limits, one value per channel");
-  if (limits_section) limits(*limits_section, f);
+  if (limits_section) {
+    limits(*limits_section, f);
+  } else if (std::find(f.node.control.begin(), f.node.control.begin() + f.node.channels,
+                       servo::ControlMode::kForce) != f.node.control.begin() + f.node.channels) {
+    root.fail("limits", "a channel in force control (actuator.control) needs limits.max_force_rate_n_per_s");
+  }
   if (auto watchdog_section = root.optional_section("watchdog", "what the node does when commands stop")) {
     watchdog(*watchdog_section, f);
   }
