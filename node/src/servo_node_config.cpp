@@ -131,8 +131,7 @@ void ServoNodeConfig::validate() const {
         fail(at + "max_force_rate_n_per_s", "a channel in force control needs a force rate limit",
              l.max_force_rate_n_per_s);
       if (!std::isfinite(l.max_stroke_m) || !std::isfinite(l.max_velocity_m_per_s))
-        fail(at + "max_stroke_m", "a channel in force control needs finite stroke and velocity limits",
-             l.max_stroke_m);
+        fail(at + "max_stroke_m", "a channel in force control needs finite stroke and velocity limits", l.max_stroke_m);
     }
   }
   if (command_timeout_periods < 1) fail("command_timeout_periods", "must be at least 1", command_timeout_periods);

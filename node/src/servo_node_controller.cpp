@@ -182,11 +182,11 @@ CommandVerdict ServoNodeController::check(const transport::CommandSample& comman
     return CommandVerdict::kRateMismatch;
   }
   for (int c = 0; c < channels; ++c) {
-    const auto declared = static_cast<std::uint8_t>(config_.control[c] == servo::ControlMode::kForce
-                                                        ? transport::kForceControl
-                                                        : transport::kDisplacementControl);
+    const auto declared = static_cast<std::uint8_t>(
+        config_.control[c] == servo::ControlMode::kForce ? transport::kForceControl : transport::kDisplacementControl);
     if (command.control_mode[c] != declared) return CommandVerdict::kModeMismatch;
-    if (declared == transport::kForceControl && !std::isfinite(command.force_n[c])) return CommandVerdict::kModeMismatch;
+    if (declared == transport::kForceControl && !std::isfinite(command.force_n[c]))
+      return CommandVerdict::kModeMismatch;
   }
   if (command.step <= newest_accepted_step_) return CommandVerdict::kNotNewer;
   if (fault_ || safe_state_ || !started_) return CommandVerdict::kNotFollowing;
@@ -317,7 +317,7 @@ void ServoNodeController::choose_target() {
     if (!holding_ && ++missed_in_row_ >= config_.command_timeout_periods) {
       holding_ = true;
       ++counters_.holds;
-      target_m_ = command_m_;  // stop where the command is; a clamped command stops chasing
+      target_m_ = command_m_;              // stop where the command is; a clamped command stops chasing
       force_target_n_ = force_command_n_;  // a force channel holds its force
       safe_state_ = config_.on_command_loss == LossAction::kRampToSafe;
     }
@@ -589,10 +589,9 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     // A fault or the safe state: displacement control at the measured position, which
     // apply_limits has already made a force channel's applied command.
     if (fault_ || safe_state_) leave_force_control();
-    status = actuator_.exchange_mixed(std::span<const double>(applied.data(), n),
-                                      std::span<const double>(force_command_n_.data(), n),
-                                      std::span<const servo::ControlMode>(mode_.data(), n), config_.control_period_s,
-                                      reading_);
+    status = actuator_.exchange_mixed(
+        std::span<const double>(applied.data(), n), std::span<const double>(force_command_n_.data(), n),
+        std::span<const servo::ControlMode>(mode_.data(), n), config_.control_period_s, reading_);
   } else {
     // Displacement only: the path every existing node file takes, unchanged.
     status = actuator_.exchange(std::span<const double>(applied.data(), n), config_.control_period_s, reading_);

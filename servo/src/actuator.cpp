@@ -25,7 +25,7 @@ const char* control_mode_name(ControlMode mode) {
 }
 
 ActuatorStatus Actuator::exchange_mixed(std::span<const double> command_m, std::span<const double> /*force_command_n*/,
-                                  std::span<const ControlMode> mode, double period_s, ActuatorReading& reading) {
+                                        std::span<const ControlMode> mode, double period_s, ActuatorReading& reading) {
   for (ControlMode m : mode) {
     if (m != ControlMode::kDisplacement) return ActuatorStatus::kFault;
   }

@@ -131,8 +131,9 @@ TEST(MixedControl, ACommandInAnotherModeThanTheDeclaredOneFaultsTheNode) {
   command.step = 0;
   command.control_mode = {transport::kForceControl, transport::kForceControl};
   EXPECT_EQ(other.controller->accept(command), CommandVerdict::kModeMismatch);
-  EXPECT_NE(std::string(other.controller->fault_text().data()).find("channel 0 in control mode 1, declared displacement"),
-            std::string::npos)
+  EXPECT_NE(
+      std::string(other.controller->fault_text().data()).find("channel 0 in control mode 1, declared displacement"),
+      std::string::npos)
       << other.controller->fault_text().data();
 }
 

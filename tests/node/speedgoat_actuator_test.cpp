@@ -215,8 +215,7 @@ TEST(SpeedgoatActuator, AForceChannelsCommandReachesTheTargetInItsForceSlot) {
   auto config = node_config(target.port(), false, 2);
   config.rig = {0.25, 2e5, 1.0};
   config.signals.control.push_back({1, speedgoat::ControlQuantity::kForce, 1e-3, speedgoat::Reference::kAbsolute});
-  config.signals.control.push_back(
-      {1, speedgoat::ControlQuantity::kControlMode, 1.0, speedgoat::Reference::kAbsolute});
+  config.signals.control.push_back({1, speedgoat::ControlQuantity::kControlMode, 1.0, speedgoat::Reference::kAbsolute});
   EXPECT_EQ(config.control_mode_refusal(1, servo::ControlMode::kForce), "");
   EXPECT_NE(config.control_mode_refusal(0, servo::ControlMode::kForce), "");
   EXPECT_NE(config.control_mode_refusal(1, servo::ControlMode::kDisplacement), "");

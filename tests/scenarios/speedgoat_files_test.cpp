@@ -102,8 +102,7 @@ TEST(SpeedgoatFiles, AChannelInForceControlWithoutAForceSignalOrARateLimitIsRefu
             std::string::npos)
       << no_signal;
   const std::string no_rate = force_channel_error("limits={max_force_n: [500.0e3, 800.0e3]}");
-  EXPECT_NE(no_rate.find("limits.max_force_rate_n_per_s: channel 1 is in force control"), std::string::npos)
-      << no_rate;
+  EXPECT_NE(no_rate.find("limits.max_force_rate_n_per_s: channel 1 is in force control"), std::string::npos) << no_rate;
   const std::string beyond = force_channel_error("limits.max_force_command_n=[500.0e3, 900.0e3]");
   EXPECT_NE(beyond.find("max_force_command_n"), std::string::npos) << beyond;
 }

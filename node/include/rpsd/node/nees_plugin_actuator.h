@@ -45,7 +45,9 @@ struct NeesPluginParameters {
   servo::Envelope envelope() const { return rig; }
   // Why a channel cannot be in `mode` (empty: it can): the protocol has no force command.
   std::string control_mode_refusal(int /*channel*/, servo::ControlMode mode) const {
-    return mode == servo::ControlMode::kForce ? "the NEES plugin protocol's propose and execute messages carry displacements and rotations only, no force command" : "";
+    return mode == servo::ControlMode::kForce ? "the NEES plugin protocol's propose and execute messages carry "
+                                                "displacements and rotations only, no force command"
+                                              : "";
   }
 
   int channels = 1;

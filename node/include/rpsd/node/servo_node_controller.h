@@ -204,14 +204,14 @@ class ServoNodeController {
   std::int64_t followed_step_ = -1;
   double followed_time_s_ = 0.0;
 
-  Values target_m_{};   // what the node is moving the command toward
-  Values command_m_{};  // what it sent to the actuator last
-  Values change_m_{};   // the last applied change of command (for the acceleration limit)
-  bool any_force_channel_ = false;                                  // config_.control has one
+  Values target_m_{};               // what the node is moving the command toward
+  Values command_m_{};              // what it sent to the actuator last
+  Values change_m_{};               // the last applied change of command (for the acceleration limit)
+  bool any_force_channel_ = false;  // config_.control has one
   std::array<servo::ControlMode, transport::kMaxChannels> mode_{};  // each channel's, now
-  Values force_target_n_{};   // a force channel's newest force command
-  Values force_command_n_{};  // what it sent to the actuator last
-  Values previous_measured_m_{};  // for the measured velocity of a force channel
+  Values force_target_n_{};                                         // a force channel's newest force command
+  Values force_command_n_{};                                        // what it sent to the actuator last
+  Values previous_measured_m_{};                                    // for the measured velocity of a force channel
   servo::ActuatorReading reading_;
 
   bool commands_began_ = false;
