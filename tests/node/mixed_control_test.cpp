@@ -33,7 +33,8 @@ servo::ServoSystemParameters force_rig() {
 
 // Channel 0 follows displacements, channel 1 holds a force; both on the paper's rig.
 struct MixedNode {
-  explicit MixedNode(double max_stroke_m = 0.1) : a(force_rig()), b(force_rig()), actuator(plants) {
+  explicit MixedNode(double max_stroke_m = 0.1, double max_velocity_m_per_s = 0.5)
+      : a(force_rig()), b(force_rig()), actuator(plants) {
     config.test_id = 7;
     config.site_id = 1;
     config.channels = 2;
@@ -41,7 +42,7 @@ struct MixedNode {
     config.control[1] = ControlMode::kForce;
     for (auto& l : config.limits) {
       l.max_stroke_m = max_stroke_m;
-      l.max_velocity_m_per_s = 0.5;
+      l.max_velocity_m_per_s = max_velocity_m_per_s;
       l.max_force_n = 60e3;
       l.max_force_command_n = 20e3;
       l.max_force_rate_n_per_s = 50e3;
@@ -162,6 +163,23 @@ TEST(MixedControl, AForceChannelWhoseMeasuredStrokePassesItsLimitHoldsItsMeasure
   }
   EXPECT_NEAR(node.feedback.displacement_m[1], x_at_fault, 5e-4);
   EXPECT_NEAR(node.controller->command_m()[1], x_at_fault, 1e-4);
+}
+
+TEST(MixedControl, AForceChannelWhoseMeasuredVelocityPassesItsLimitHoldsItsMeasuredPositionFaulted) {
+  // 10 kN at 50 kN/s on the paper's springs moves the piston at up to ~40 mm/s: the limit is 10.
+  MixedNode node(0.1, 0.010);
+  int ticks = 0;
+  for (; ticks < 4 * 1024 && !node.controller->faulted(); ++ticks) {
+    node.send(0.0, 10e3);
+    node.tick();
+  }
+  ASSERT_TRUE(node.controller->faulted());
+  EXPECT_NE(std::string(node.controller->fault_text().data()).find("velocity limit on channel 1"), std::string::npos)
+      << node.controller->fault_text().data();
+  EXPECT_EQ(node.controller->control_mode()[1], ControlMode::kDisplacement);
+  const double x_held = node.controller->command_m()[1];
+  for (int i = 0; i < 1024; ++i) node.tick();
+  EXPECT_NEAR(node.feedback.displacement_m[1], x_held, 1e-3);
 }
 
 TEST(MixedControl, AForceChannelOnAPlantWithoutAForceLoopIsRefused) {
