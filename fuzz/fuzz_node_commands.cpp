@@ -1,6 +1,7 @@
 // libFuzzer target: commands from the network into a servo node's controller. The input is
 // read as a sequence of command samples with arbitrary fields (ids, runs, writers, ends of
-// run, control periods, steps, channel counts, NaN and infinite displacements) interleaved with
+// run, control periods, steps, channel counts, NaN and infinite displacements, control modes and
+// forces: these channels are in displacement control, so a force mode must fault) interleaved with
 // ticks and releases of the run. Whatever arrives, the actuator must only ever be commanded
 // within the stroke, by at most the increment per tick, with finite values, and every command
 // must be counted as accepted, dropped by one reason, or an end of run.
@@ -67,7 +68,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       command.writer = (what & 32u) ? take<std::uint64_t>(data, size) : 1;
       command.end_of_run = (what & 64u) != 0;
       command.control_period_s = (what & 128u) ? take<double>(data, size) : kPeriod;
-      controller.accept(command);
+      const auto modes = take<std::uint8_t>(data, size);
+      for (int c = 0; c < kChannels; ++c) {
+        command.control_mode[c] = static_cast<std::uint8_t>((modes >> (2 * c)) & 3u);
+        if (modes & 0x80u) command.force_n[c] = take<double>(data, size);
+      }
+      const bool faulted = controller.faulted();
+      const node::CommandVerdict verdict = controller.accept(command);
+      if (verdict == node::CommandVerdict::kModeMismatch && !controller.faulted()) __builtin_trap();
+      if (verdict == node::CommandVerdict::kAccepted && (modes & 0x0fu) != 0) __builtin_trap();
+      if (faulted && !controller.faulted()) __builtin_trap();
       ++commands;
     } else {
       if (what & 2u) controller.release_run();

@@ -1,5 +1,6 @@
 #include "rpsd/node/servo_node_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -117,6 +118,21 @@ void ServoNodeConfig::validate() const {
       fail(at + "force_guard_stiffness_n_per_m", "must be zero (no guard) or positive",
            l.force_guard_stiffness_n_per_m);
     }
+    if (!(l.max_force_command_n > 0.0))
+      fail(at + "max_force_command_n", "must be positive (infinity: max_force_n)", l.max_force_command_n);
+    if (!(l.max_force_rate_n_per_s > 0.0))
+      fail(at + "max_force_rate_n_per_s", "must be positive (infinity: no limit)", l.max_force_rate_n_per_s);
+    if (control[c] == servo::ControlMode::kForce) {
+      // A force loop may drive the piston anywhere the specimen lets it: it needs bounds of its own.
+      if (!std::isfinite(std::min(l.max_force_command_n, l.max_force_n)))
+        fail(at + "max_force_command_n", "a channel in force control needs a finite force command limit",
+             l.max_force_command_n);
+      if (!std::isfinite(l.max_force_rate_n_per_s))
+        fail(at + "max_force_rate_n_per_s", "a channel in force control needs a force rate limit",
+             l.max_force_rate_n_per_s);
+      if (!std::isfinite(l.max_stroke_m) || !std::isfinite(l.max_velocity_m_per_s))
+        fail(at + "max_stroke_m", "a channel in force control needs finite stroke and velocity limits", l.max_stroke_m);
+    }
   }
   if (command_timeout_periods < 1) fail("command_timeout_periods", "must be at least 1", command_timeout_periods);
   // A watchdog that waits longer than this is none: the rig would follow nobody for minutes.
@@ -159,6 +175,9 @@ void limit_to_envelope(ServoNodeConfig& config, const servo::Envelope& envelope)
       tighten_to_rig(l.max_stroke_m, envelope.stroke_m, "max_stroke_m", "stroke");
       tighten_to_rig(l.max_force_n, envelope.force_n, "max_force_n", "force capacity");
       tighten_to_rig(l.max_velocity_m_per_s, envelope.velocity_m_per_s, "max_velocity_m_per_s", "velocity capacity");
+      // A force command never asks for more than the channel's force limit.
+      if (l.max_force_command_n != ChannelLimits::kNone)
+        tighten_to_rig(l.max_force_command_n, l.max_force_n, "max_force_command_n", "max_force_n");
       // Per second: the same increment at any rate the node runs at (left out, no increment limit).
       if (l.max_increment_m_per_s != ChannelLimits::kNone) {
         tighten_to_rig(l.max_increment_m_per_s, envelope.velocity_m_per_s, "max_increment_m_per_s",

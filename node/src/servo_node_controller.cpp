@@ -40,6 +40,8 @@ const char* command_verdict_name(CommandVerdict verdict) {
       return "impossible step";
     case CommandVerdict::kEndOfRun:
       return "end of run";
+    case CommandVerdict::kModeMismatch:
+      return "control mode differs";
   }
   return "unknown";
 }
@@ -87,6 +89,14 @@ ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::A
     throw std::invalid_argument("channels: the config has " + std::to_string(config_.channels) + ", the actuator " +
                                 std::to_string(actuator.channels()));
   }
+  for (int c = 0; c < config_.channels; ++c) {
+    if (config_.control[c] != servo::ControlMode::kForce) continue;
+    if (!actuator.controls_force(c)) {
+      throw std::invalid_argument("control[" + std::to_string(c) + "]: channel " + std::to_string(c) +
+                                  " is declared in force control, but its actuator cannot control force");
+    }
+    any_force_channel_ = true;
+  }
   events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
   run_events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
   // A coordinator sends one command a period: after commands were lost (a partition, a stall
@@ -133,6 +143,11 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
   limit_was_active_ = {};
   measurement_was_beyond_ = {};
   change_m_ = {};
+  // Every channel starts in displacement control, holding its initial position; a force channel
+  // enters force control with its first command, from the force it measures then.
+  mode_.fill(servo::ControlMode::kDisplacement);
+  force_target_n_ = force_command_n_ = {};
+  previous_measured_m_ = target_m_;
   counters_ = ServoNodeCounters{};
   events_.clear();
   events_not_logged_ = 0;
@@ -166,6 +181,13 @@ CommandVerdict ServoNodeController::check(const transport::CommandSample& comman
   if (command.control_period_s != 0.0 && !same_period(command.control_period_s, config_.control_period_s)) {
     return CommandVerdict::kRateMismatch;
   }
+  for (int c = 0; c < channels; ++c) {
+    const auto declared = static_cast<std::uint8_t>(
+        config_.control[c] == servo::ControlMode::kForce ? transport::kForceControl : transport::kDisplacementControl);
+    if (command.control_mode[c] != declared) return CommandVerdict::kModeMismatch;
+    if (declared == transport::kForceControl && !std::isfinite(command.force_n[c]))
+      return CommandVerdict::kModeMismatch;
+  }
   if (command.step <= newest_accepted_step_) return CommandVerdict::kNotNewer;
   if (fault_ || safe_state_ || !started_) return CommandVerdict::kNotFollowing;
   if (newest_accepted_step_ < 0) {
@@ -190,6 +212,19 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
       if (run_id_ != 0 && command.run_id == run_id_ && command.writer == run_writer_) {
         end_run(RunEvent::Kind::kEnded);
       }
+      return verdict;
+    case CommandVerdict::kModeMismatch:
+      // The run's own command asks the rig for what its file does not allow: stop following.
+      if (!fault_ && started_) {
+        int c = 0;
+        while (c + 1 < config_.channels && command.control_mode[c] == static_cast<std::uint8_t>(config_.control[c]))
+          ++c;
+        std::snprintf(fault_text_.data(), fault_text_.size(),
+                      "command of step %lld puts channel %d in control mode %u, declared %s: refused",
+                      static_cast<long long>(command.step), c, static_cast<unsigned>(command.control_mode[c]),
+                      servo::control_mode_name(config_.control[c]));
+      }
+      latch_fault();
       return verdict;
     case CommandVerdict::kOtherRun:
     case CommandVerdict::kUnknownWriter:
@@ -240,6 +275,7 @@ void ServoNodeController::end_run(RunEvent::Kind why) {
     holding_ = true;
     ++counters_.holds;
     target_m_ = command_m_;
+    force_target_n_ = force_command_n_;
     safe_state_ = safe_state_ || config_.on_command_loss == LossAction::kRampToSafe;
   }
   commands_began_ = false;
@@ -266,6 +302,7 @@ void ServoNodeController::choose_target() {
   if (has_pending_) {
     has_pending_ = false;
     std::copy_n(pending_.displacement_m.begin(), channels, target_m_.begin());
+    std::copy_n(pending_.force_n.begin(), channels, force_target_n_.begin());
     followed_step_ = pending_.step;
     followed_time_s_ = pending_.time_s;
     ++counters_.applied;
@@ -280,7 +317,8 @@ void ServoNodeController::choose_target() {
     if (!holding_ && ++missed_in_row_ >= config_.command_timeout_periods) {
       holding_ = true;
       ++counters_.holds;
-      target_m_ = command_m_;  // stop where the command is; a clamped command stops chasing
+      target_m_ = command_m_;              // stop where the command is; a clamped command stops chasing
+      force_target_n_ = force_command_n_;  // a force channel holds its force
       safe_state_ = config_.on_command_loss == LossAction::kRampToSafe;
     }
   }
@@ -348,6 +386,11 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
     const ChannelLimits& limits = config_.limits[c];
     const double change = target_m_[c] - command_m_[c];
     const double x_measured = reading_.displacement_m[c], force = reading_.force_n[c];
+    if (mode_[c] == servo::ControlMode::kForce) {
+      // No displacement command: its measurements are checked by apply_force_limits.
+      check(c, std::abs(force) > limits.max_force_n, LimitKind::kForce, std::abs(force), limits.max_force_n);
+      continue;
+    }
     check(c, std::abs(target_m_[c]) > limits.max_stroke_m, LimitKind::kStroke, std::abs(target_m_[c]),
           limits.max_stroke_m);
     check(c, std::abs(change) > limits.max_velocity_m_per_s * period_s, LimitKind::kVelocity,
@@ -374,6 +417,10 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
     const ChannelLimits& limits = config_.limits[c];
     const double x_command = command_m_[c], v_command = change_m_[c] / period_s;
     const double x_measured = reading_.displacement_m[c], force = reading_.force_n[c];
+    if (mode_[c] == servo::ControlMode::kForce) {
+      applied[c] = x_measured;  // where it would hold, should it leave force control
+      continue;
+    }
     const double stop = limits.stop_deceleration_m_per_s2;
     const double wanted = stopping ? x_command : target_m_[c];
     const double asked = (wanted - x_command) / period_s;
@@ -459,6 +506,56 @@ std::uint32_t ServoNodeController::check_measurement() {
   return flags;
 }
 
+std::uint32_t ServoNodeController::apply_force_limits() {
+  // A force channel's piston goes wherever the specimen lets it (a softening or broken specimen
+  // lets it run away): its measured stroke and velocity stop it whatever the limits' actions.
+  // Its force command is held to max_force_command_n and max_force_rate_n_per_s.
+  std::uint32_t flags = transport::kLimitNone;
+  const double period_s = config_.control_period_s;
+  for (int c = 0; c < config_.channels; ++c) {
+    if (config_.control[c] != servo::ControlMode::kForce) continue;
+    const ChannelLimits& l = config_.limits[c];
+    const double x = reading_.displacement_m[c];
+    const double velocity = std::abs(x - previous_measured_m_[c]) / period_s;
+    previous_measured_m_[c] = x;
+    if (mode_[c] != servo::ControlMode::kForce) continue;
+    const struct {
+      LimitKind kind;
+      double observed, bound;
+    } measured[2] = {{LimitKind::kStroke, std::abs(x), l.max_stroke_m},
+                     {LimitKind::kVelocity, velocity, l.max_velocity_m_per_s}};
+    for (const auto& [kind, observed, bound] : measured) {
+      if (!(observed > bound)) continue;
+      flags |= limit_flag(kind);
+      const int k = static_cast<int>(kind);
+      if (!limit_was_active_[c][k]) {
+        limit_was_active_[c][k] = true;
+        ++counters_.limit_activations[k];
+        log({counters_.ticks, followed_step_, c, kind, LimitAction::kAbort, x, x, observed, bound});
+      }
+      latch_fault();
+    }
+    if (fault_) continue;
+    const double cap = std::min(l.max_force_command_n, l.max_force_n);
+    const double step_n = l.max_force_rate_n_per_s * period_s;
+    const double wanted = std::clamp(force_target_n_[c], -cap, cap);
+    const double next = std::clamp(wanted, force_command_n_[c] - step_n, force_command_n_[c] + step_n);
+    if (next != force_target_n_[c]) flags |= transport::kLimitForce;
+    force_command_n_[c] = next;
+  }
+  return flags;
+}
+
+void ServoNodeController::leave_force_control() {
+  // The safe state of a force channel: displacement control, holding where the piston is.
+  for (int c = 0; c < config_.channels; ++c) {
+    if (mode_[c] != servo::ControlMode::kForce) continue;
+    mode_[c] = servo::ControlMode::kDisplacement;
+    target_m_[c] = command_m_[c] = reading_.displacement_m[c];
+    change_m_[c] = 0.0;
+  }
+}
+
 void ServoNodeController::tick(transport::FeedbackSample& out) {
   const int channels = config_.channels;
   out.test_id = config_.test_id;
@@ -475,11 +572,30 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
 
   const bool faulted_before = fault_;
   choose_target();
+  // A force channel enters force control with its first command, from the force it measures.
+  if (any_force_channel_ && commands_began_ && !fault_ && !safe_state_) {
+    for (int c = 0; c < channels; ++c) {
+      if (config_.control[c] != servo::ControlMode::kForce || mode_[c] == servo::ControlMode::kForce) continue;
+      mode_[c] = servo::ControlMode::kForce;
+      force_command_n_[c] = reading_.force_n[c];
+    }
+  }
   Values applied = command_m_;
   std::uint32_t flags = apply_limits(applied);
-
-  const servo::ActuatorStatus status = actuator_.exchange(
-      std::span<const double>(applied.data(), static_cast<std::size_t>(channels)), config_.control_period_s, reading_);
+  servo::ActuatorStatus status = servo::ActuatorStatus::kOk;
+  const auto n = static_cast<std::size_t>(channels);
+  if (any_force_channel_) {
+    flags |= apply_force_limits();
+    // A fault or the safe state: displacement control at the measured position, which
+    // apply_limits has already made a force channel's applied command.
+    if (fault_ || safe_state_) leave_force_control();
+    status = actuator_.exchange_mixed(
+        std::span<const double>(applied.data(), n), std::span<const double>(force_command_n_.data(), n),
+        std::span<const servo::ControlMode>(mode_.data(), n), config_.control_period_s, reading_);
+  } else {
+    // Displacement only: the path every existing node file takes, unchanged.
+    status = actuator_.exchange(std::span<const double>(applied.data(), n), config_.control_period_s, reading_);
+  }
   for (int c = 0; c < channels; ++c) change_m_[c] = applied[c] - command_m_[c];
   command_m_ = applied;
   if (status == servo::ActuatorStatus::kNoReply) ++counters_.actuator_no_replies;

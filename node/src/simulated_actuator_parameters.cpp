@@ -90,6 +90,14 @@ SimulatedActuatorParameters SimulatedActuatorParameters::read(config::Source& se
   return p;
 }
 
+std::string SimulatedActuatorParameters::control_mode_refusal(int channel, servo::ControlMode mode) const {
+  if (mode != servo::ControlMode::kForce) return {};
+  const OwnedActuator probe = make(*this, channel + 1);
+  if (probe.actuator->controls_force(channel)) return {};
+  return "its plant has no force loop (only servo_model has one, with controller.force_gain_v_per_n stated in its "
+         "parameter file, and without converters)";
+}
+
 OwnedActuator SimulatedActuatorParameters::make(const SimulatedActuatorParameters& config, int channels) {
   OwnedActuator owned;
   if (config.coupled_specimen) {

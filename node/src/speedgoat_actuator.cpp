@@ -88,6 +88,8 @@ bool SpeedgoatActuator::compose(std::span<const double> command_m, double period
     const double value = s.quantity == ControlQuantity::kDisplacement   ? command_m[s.channel]
                          : s.quantity == ControlQuantity::kVelocity     ? velocity[s.channel]
                          : s.quantity == ControlQuantity::kAcceleration ? acceleration[s.channel]
+                         : s.quantity == ControlQuantity::kForce        ? force_command_n_[s.channel]
+                         : s.quantity == ControlQuantity::kControlMode  ? control_mode_[s.channel]
                                                                         : time_s;
     const double signal = value * s.signal_per_si + control_offset_[i];
     if (!std::isfinite(signal)) return false;
@@ -268,6 +270,26 @@ void SpeedgoatActuator::start(std::span<const double> initial_displacement_m) {
   started_ = true;
 }
 
+bool SpeedgoatActuator::controls_force(int channel) const {
+  return config_.control_mode_refusal(channel, servo::ControlMode::kForce).empty();
+}
+
+servo::ActuatorStatus SpeedgoatActuator::exchange_mixed(std::span<const double> command_m,
+                                                        std::span<const double> force_command_n,
+                                                        std::span<const servo::ControlMode> mode, double period_s,
+                                                        servo::ActuatorReading& reading) {
+  const auto n = static_cast<std::size_t>(config_.channels);
+  if (force_command_n.size() != n || mode.size() != n) return fail("node", "a command of another channel count");
+  for (std::size_t c = 0; c < n; ++c) {
+    const bool force = mode[c] == servo::ControlMode::kForce;
+    if (force && !std::isfinite(force_command_n[c])) return fail("node", "a force command that is not finite");
+    // A channel with a force signal that leaves force control holds the measured force there.
+    force_command_n_[c] = force ? force_command_n[c] : reading.force_n[c];
+    control_mode_[c] = force ? 1.0 : 0.0;
+  }
+  return exchange(command_m, period_s, reading);
+}
+
 servo::ActuatorStatus SpeedgoatActuator::exchange(std::span<const double> command_m, double period_s,
                                                   servo::ActuatorReading& reading) {
   reading.fresh = false;
@@ -365,6 +387,18 @@ SpeedgoatParameters SpeedgoatParameters::read(config::Source& section, int chann
   p.signals.check(section, channels);
   check_ipv4_keys(section, {{"host", p.host}, {"local_host", p.local_host}});
   return p;
+}
+
+std::string SpeedgoatParameters::control_mode_refusal(int channel, servo::ControlMode mode) const {
+  bool force_signal = false;
+  for (const auto& s : signals.control) force_signal |= s.channel == channel && s.quantity == ControlQuantity::kForce;
+  if (mode == servo::ControlMode::kForce && !force_signal)
+    return "control_signals has no force signal for channel " + std::to_string(channel);
+  if (mode != servo::ControlMode::kForce && force_signal) {
+    return "control_signals has a force signal for channel " + std::to_string(channel) +
+           ", which is in displacement control: declare it in force control, or take the signal out";
+  }
+  return {};
 }
 
 OwnedActuator SpeedgoatParameters::make(const SpeedgoatParameters& config, int) {

@@ -56,7 +56,8 @@ SpeedgoatEmulatorConfig SpeedgoatEmulatorConfig::read(config::Source& t, int cha
       t.whole_number_or("node_port", 0, 65535, 0, "UDP: the node's port (0: that of its first 'a')"));
   c.vector_doubles =
       static_cast<int>(t.whole_number_or("vector_doubles", 3, 4096, c.vector_doubles, "doubles in each vector"));
-  c.control = read_order(t, "control_signals", channels, {"displacement", "velocity", "acceleration", "force", "time"});
+  c.control = read_order(t, "control_signals", channels,
+                         {"displacement", "velocity", "acceleration", "force", "control_mode", "time"});
   c.daq = read_order(t, "daq_signals", channels, {"displacement", "force", "unused"});
   if (auto offsets = t.optional_numbers("daq_offsets", config::Number::between(-1e12, 1e12, "", "signal units"), 64)) {
     c.daq_offsets = *offsets;
@@ -91,7 +92,9 @@ SpeedgoatEmulator::SpeedgoatEmulator(std::span<servo::Plant* const> plants, cons
       actuator_(plants),
       node_address_(Ipv4Endpoint::parse(config.node_host, config.node_port, "node_host")),
       incoming_(static_cast<std::size_t>(config.vector_doubles) * 8 + 1),
-      target_m_(plants.size(), 0.0) {
+      target_m_(plants.size(), 0.0),
+      force_target_n_(plants.size(), 0.0),
+      mode_(plants.size(), servo::ControlMode::kDisplacement) {
   if (config_.daq_offsets.empty()) config_.daq_offsets.assign(config_.daq.size(), 0.0);
   if (config_.daq_offsets.size() != config_.daq.size()) throw std::invalid_argument("daq_offsets: one per DAQ signal");
   const Ipv4Endpoint local = Ipv4Endpoint::parse(config.bind_host, config.port, "bind_host");
@@ -114,6 +117,8 @@ void SpeedgoatEmulator::start(std::span<const double> initial_displacement_m) {
   actuator_.start(initial_displacement_m);
   reading_ = actuator_.measure();
   std::copy(initial_displacement_m.begin(), initial_displacement_m.end(), target_m_.begin());
+  std::fill(force_target_n_.begin(), force_target_n_.end(), 0.0);
+  std::fill(mode_.begin(), mode_.end(), servo::ControlMode::kDisplacement);
   new_target_ = 0.0;
   switch_pc_ = 0.0;
   at_target_ = 1.0;
@@ -165,6 +170,18 @@ void SpeedgoatEmulator::take(const std::vector<unsigned char>& vector) {
     // Rising edge: the control signals are the new target, in the transducers' frame.
     for (std::size_t i = 0; i < config_.control.size(); ++i) {
       const auto& s = config_.control[i];
+      if (s.quantity == "force") {
+        force_target_n_[s.channel] = load_le(vector.data() + 8 * (1 + i)) / s.signal_per_si;
+        mode_[s.channel] = servo::ControlMode::kForce;
+      }
+    }
+    for (std::size_t i = 0; i < config_.control.size(); ++i) {
+      const auto& s = config_.control[i];
+      if (s.quantity == "control_mode" && load_le(vector.data() + 8 * (1 + i)) / s.signal_per_si < 0.5)
+        mode_[s.channel] = servo::ControlMode::kDisplacement;
+    }
+    for (std::size_t i = 0; i < config_.control.size(); ++i) {
+      const auto& s = config_.control[i];
       if (s.quantity != "displacement") continue;
       double zero = 0.0;
       for (std::size_t d = 0; d < config_.daq.size(); ++d) {
@@ -178,7 +195,11 @@ void SpeedgoatEmulator::take(const std::vector<unsigned char>& vector) {
   } else if (flag == 0.0 && new_target_ == 1.0) {
     // Falling edge: the move, then the at-target vector.
     switch_pc_ = 0.0;
-    actuator_.exchange(target_m_, config_.step_duration_s, reading_);
+    if (std::find(mode_.begin(), mode_.end(), servo::ControlMode::kForce) == mode_.end()) {
+      actuator_.exchange(target_m_, config_.step_duration_s, reading_);
+    } else {
+      actuator_.exchange_mixed(target_m_, force_target_n_, mode_, config_.step_duration_s, reading_);
+    }
     ++counters_.moves;
     at_target_ = 1.0;
     send_state(true);

@@ -35,6 +35,10 @@ const char* quantity_name(ControlQuantity q) {
       return "acceleration";
     case ControlQuantity::kTime:
       return "time";
+    case ControlQuantity::kForce:
+      return "force";
+    case ControlQuantity::kControlMode:
+      return "control_mode";
   }
   return "?";
 }
@@ -59,17 +63,17 @@ SignalMap SignalMap::read(config::Source& section, int channels) {
   for (auto& s : section.sections("control_signals", kMaxSignals, "the PC's signals, in the order the target reads")) {
     ControlSignal c;
     c.channel = static_cast<int>(s->whole_number("channel", 0, channels - 1, "the node's channel (0: the first)"));
-    const std::string q = s->choice("quantity", {"displacement", "velocity", "acceleration", "force", "time"},
-                                    "what the signal commands");
+    const std::string q =
+        s->choice("quantity", {"displacement", "velocity", "acceleration", "force", "control_mode", "time"},
+                  "what the signal commands (force and control_mode: a channel in force control, actuator.control)");
     c.signal_per_si = s->number("signal_per_si", scale_spec());
     c.reference = read_reference(*s);
     s->finish();
-    if (q == "force") {
-      s->fail("quantity", "rpsd commands displacement only; a force control signal waits for mixed control (issue 30)");
-    }
     c.quantity = q == "displacement"   ? ControlQuantity::kDisplacement
                  : q == "velocity"     ? ControlQuantity::kVelocity
                  : q == "acceleration" ? ControlQuantity::kAcceleration
+                 : q == "force"        ? ControlQuantity::kForce
+                 : q == "control_mode" ? ControlQuantity::kControlMode
                                        : ControlQuantity::kTime;
     if (c.signal_per_si == 0.0) s->fail("signal_per_si", "must not be zero");
     if (c.reference == Reference::kRelative && c.quantity != ControlQuantity::kDisplacement) {

@@ -1,5 +1,6 @@
 #include "rpsd/scenarios/servo_node_file.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -100,6 +101,23 @@ void actuator(config::Source& a, node::ServoNodeSetup& f) {
   using Kinds = node::ActuatorKinds;
   const std::string kind = a.choice("kind", Kinds::names(), "what the node drives (node/)");
   f.actuator = *Kinds::read(kind, a, f.node.channels);
+  // Mixed control (issue 30): a channel may hold a force; its command must then say so.
+  const auto modes =
+      a.optional_texts("control", "per channel: displacement (the default) or force (holds a force command, N)",
+                       transport::kMaxChannels);
+  if (modes && static_cast<int>(modes->size()) != f.node.channels)
+    a.fail("control", "needs one value per channel (" + std::to_string(f.node.channels) + ")");
+  for (int c = 0; c < f.node.channels; ++c) {
+    const std::string mode = modes ? (*modes)[static_cast<std::size_t>(c)] : "displacement";
+    if (mode != "displacement" && mode != "force")
+      a.fail("control", "channel " + std::to_string(c) + ": '" + mode + "' is not displacement or force");
+    f.node.control[c] = mode == "force" ? servo::ControlMode::kForce : servo::ControlMode::kDisplacement;
+    if (const std::string why = node::control_mode_refusal(f.actuator, c, f.node.control[c]); !why.empty()) {
+      const std::string message = "channel " + std::to_string(c) + " cannot be in " + mode + " control: " + why;
+      if (modes) a.fail("control", message);
+      a.fail("kind", message);
+    }
+  }
   a.finish();
 }
 
@@ -128,9 +146,21 @@ void limits(config::Source& r, node::ServoNodeSetup& f) {
                   Number::between(0.0, kMaxStiffnessNPerM, "N/m", "the force guard's stiffness (0: the specimen's)"));
   const auto stop = per_channel(r, "stop_deceleration_m_per_s2", n, kNone,
                                 limit("m/s^2", "how hard a hold or an abort brakes", kMaxAccelerationMPerS2));
+  const auto force_command =
+      per_channel(r, "max_force_command_n", n, kNone,
+                  limit("N", "a channel in force control: |force command| (left out: max_force_n)", kMaxForceN));
+  const auto force_rate = per_channel(
+      r, "max_force_rate_n_per_s", n, kNone,
+      limit("N/s", "a channel in force control: |force command change| per second (required there)", kMaxForceN * 1e3));
   for (int c = 0; c < n; ++c) {
-    f.node.limits[c] = {stroke[c],          velocity[c],     force[c], increment[c],
-                        increment_per_s[c], acceleration[c], guard[c], stop[c]};
+    if (f.node.control[c] == servo::ControlMode::kForce && !std::isfinite(force_rate[c])) {
+      r.fail("max_force_rate_n_per_s",
+             "channel " + std::to_string(c) + " is in force control (actuator.control): it needs a force rate limit");
+    }
+  }
+  for (int c = 0; c < n; ++c) {
+    f.node.limits[c] = {stroke[c],       velocity[c], force[c], increment[c],     increment_per_s[c],
+                        acceleration[c], guard[c],    stop[c],  force_command[c], force_rate[c]};
   }
   if (auto actions = r.optional_section("actions", "what each limit does when it acts")) {
     f.node.actions.stroke = limit_action(*actions, "stroke", f.node.actions.stroke);
@@ -178,7 +208,12 @@ std::unique_ptr<config::Source> node_file(config::Source& root, const std::files
   dds(*root.section("dds", "how the node meets the coordinator"), dir, f);
   actuator(*root.section("actuator", "what the node drives"), f);
   auto limits_section = root.optional_section("limits", "the node's own limits, one value per channel");
-  if (limits_section) limits(*limits_section, f);
+  if (limits_section) {
+    limits(*limits_section, f);
+  } else if (std::find(f.node.control.begin(), f.node.control.begin() + f.node.channels, servo::ControlMode::kForce) !=
+             f.node.control.begin() + f.node.channels) {
+    root.fail("limits", "a channel in force control (actuator.control) needs limits.max_force_rate_n_per_s");
+  }
   if (auto watchdog_section = root.optional_section("watchdog", "what the node does when commands stop")) {
     watchdog(*watchdog_section, f);
   }

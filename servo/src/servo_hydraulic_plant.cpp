@@ -17,6 +17,8 @@ ServoHydraulicPlant::ServoHydraulicPlant(const ServoSystemParameters& parameters
   const double c_f = p.sensors.lvdt_gain_v_per_m;
   k_.position_gain_v_per_m = p.controller.proportional_gain * c_f;
   k_.rate_gain_v_s_per_m = p.controller.derivative_gain_s * c_f;
+  k_.force_gain_v_per_n = p.controller.force_gain_v_per_n;
+  k_.piston_area_m2 = p.actuator.piston_area_m2;
   k_.pilot_gain_m3_per_s2_per_v = valve.pilot_flow_gain_m3_per_s_per_v / valve.pilot_time_constant_s;
   k_.spool_feedback_v = valve.spool_lvdt_gain_v_per_m * valve.max_spool_stroke_m;
   k_.pilot_rate_per_s = 1.0 / valve.pilot_time_constant_s;
@@ -68,7 +70,8 @@ inline ServoHydraulicPlant::Terms ServoHydraulicPlant::terms(const Rates& s, dou
   Terms t;
 
   const double valve_command_v =
-      k_.position_gain_v_per_m * (command_m - x) + k_.rate_gain_v_s_per_m * (command_rate_m_per_s - xdot);
+      in_force_ ? k_.force_gain_v_per_n * (command_m - k_.piston_area_m2 * load_pressure)
+                : k_.position_gain_v_per_m * (command_m - x) + k_.rate_gain_v_s_per_m * (command_rate_m_per_s - xdot);
   const double pilot_flow_rate = k_.pilot_gain_m3_per_s2_per_v * (valve_command_v - k_.spool_feedback_v * opening) -
                                  k_.pilot_rate_per_s * pilot_flow;
   double opening_rate = k_.opening_per_m3 * pilot_flow;
@@ -136,14 +139,25 @@ void ServoHydraulicPlant::rk4_step(Rates& y, double h, double u0, double command
 }
 
 void ServoHydraulicPlant::advance(double command_start_m, double command_end_m, double duration_s) {
+  in_force_ = false;
+  integrate(command_start_m, command_end_m, duration_s);
+}
+
+void ServoHydraulicPlant::advance_in_force(double force_start_n, double force_end_n, double duration_s) {
+  in_force_ = true;
+  integrate(force_start_n, force_end_n, duration_s);
+  in_force_ = false;
+}
+
+void ServoHydraulicPlant::integrate(double command_start, double command_end, double duration_s) {
   if (!(duration_s > 0.0)) return;
   // Whole substeps no longer than the plant's step, so that the interval is covered exactly.
   const int substeps = detail::substeps(duration_s / max_step_s_);
   const double h = duration_s / substeps;
-  const double command_rate = (command_end_m - command_start_m) / duration_s;
+  const double command_rate = (command_end - command_start) / duration_s;
   Rates y{state_[0], state_[1], state_[2], state_[3], state_[4]};
   for (int i = 0; i < substeps; ++i) {
-    rk4_step(y, h, command_start_m + command_rate * (i * h), command_rate);
+    rk4_step(y, h, command_start + command_rate * (i * h), command_rate);
   }
   state_ = State(y.data());
   time_s_ += duration_s;

@@ -44,6 +44,7 @@ void require_non_negative(double v, const char* field) {
 void ServoSystemParameters::validate() const {
   require_positive(controller.proportional_gain, "controller.proportional_gain");
   require_non_negative(controller.derivative_gain_s, "controller.derivative_gain_s");
+  require_non_negative(controller.force_gain_v_per_n, "controller.force_gain_v_per_n");
   require_positive(servovalve.pilot_time_constant_s, "servovalve.pilot_time_constant_s");
   require_positive(servovalve.pilot_flow_gain_m3_per_s_per_v, "servovalve.pilot_flow_gain_m3_per_s_per_v");
   require_positive(servovalve.main_spool_area_m2, "servovalve.main_spool_area_m2");

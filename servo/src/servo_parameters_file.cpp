@@ -14,6 +14,10 @@ ControllerParameters read_controller(config::Source& r) {
   c.proportional_gain =
       r.number("proportional_gain", Number{"V/V", "G_p, valve command volts per error volt", 0.0, 1e4, true});
   c.derivative_gain_s = r.number_or("derivative_gain_s", 0.0, Number::between(0.0, 10.0, "s", "G_d"));
+  c.force_gain_v_per_n = r.number_or(
+      "force_gain_v_per_n", 0.0,
+      Number::between(0.0, 1.0, "V/N",
+                      "G_f, valve command volts per newton of force error in force control; 0: no force loop"));
   r.finish();
   return c;
 }

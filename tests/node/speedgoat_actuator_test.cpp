@@ -17,6 +17,8 @@
 #include "rpsd/node/speedgoat_actuator.h"
 #include "rpsd/node/speedgoat_emulator.h"
 #include "rpsd/node/tcp_stream.h"
+#include "rpsd/scenarios/servo_parameters_file.h"
+#include "rpsd/servo/servo_hydraulic_plant.h"
 #include "speedgoat_test_link.h"
 
 namespace rpsd::node {
@@ -190,6 +192,51 @@ void expect_whole_run(bool udp) {
   const auto summary = adapter.link_summary();
   EXPECT_EQ(summary["transport"], udp ? "udp" : "tcp");
   EXPECT_EQ(summary["handshakes"], steps);
+}
+
+// Mixed control (issue 30): channel 1 in force control. Its force command reaches the target in
+// the force slot the map declares, in the lab's scale, with its mode in the control_mode slot;
+// the target's servo model holds the force on the paper's specimen.
+TEST(SpeedgoatActuator, AForceChannelsCommandReachesTheTargetInItsForceSlot) {
+  auto tc = target_config(false, 2);
+  tc.control.push_back({1, "force", 1e-3});  // kN
+  tc.control.push_back({1, "control_mode", 1.0});
+  const char* env = std::getenv("RPSD_SOURCE_DIR");
+  const std::filesystem::path dir = env != nullptr && *env != '\0' ? env : RPSD_TEST_SOURCE_DIR;
+  auto rig = scenarios::load_servo_parameters(dir / "examples/servo/paper-mts-244.yaml");
+  rig.controller.force_gain_v_per_n = 1e-5;
+  servo::PureDelayPlant plant0({0.0, 1e5, 8192.0, {}});
+  servo::ServoHydraulicPlant plant1(rig);
+  servo::Plant* plants[] = {&plant0, &plant1};
+  SpeedgoatEmulator target(plants, tc);
+  const double zero[] = {0.0, 0.0};
+  target.start(zero);
+
+  auto config = node_config(target.port(), false, 2);
+  config.rig = {0.25, 2e5, 1.0};
+  config.signals.control.push_back({1, speedgoat::ControlQuantity::kForce, 1e-3, speedgoat::Reference::kAbsolute});
+  config.signals.control.push_back({1, speedgoat::ControlQuantity::kControlMode, 1.0, speedgoat::Reference::kAbsolute});
+  EXPECT_EQ(config.control_mode_refusal(1, servo::ControlMode::kForce), "");
+  EXPECT_NE(config.control_mode_refusal(0, servo::ControlMode::kForce), "");
+  EXPECT_NE(config.control_mode_refusal(1, servo::ControlMode::kDisplacement), "");
+  SpeedgoatActuator adapter(config);
+  EXPECT_TRUE(adapter.controls_force(1));
+  EXPECT_FALSE(adapter.controls_force(0));
+  const ServingTarget serving(target);
+  adapter.start(zero);
+  servo::ActuatorReading reading;
+  const servo::ControlMode modes[] = {servo::ControlMode::kDisplacement, servo::ControlMode::kForce};
+  for (int i = 1; i <= 2048; ++i) {
+    const double x[] = {0.001, 0.0}, f[] = {0.0, 5000.0};
+    ASSERT_EQ(adapter.exchange_mixed(x, f, modes, kDt, reading), servo::ActuatorStatus::kOk) << i;
+  }
+  EXPECT_EQ(target.force_target_n()[1], 5000.0);
+  EXPECT_EQ(target.control_mode()[1], servo::ControlMode::kForce);
+  EXPECT_EQ(target.control_mode()[0], servo::ControlMode::kDisplacement);
+  EXPECT_NEAR(reading.displacement_m[0], 0.001, 1e-15);
+  // Two seconds of the force loop (a time constant of ~0.7 s; tests/servo): on its way to 5 kN.
+  EXPECT_GT(reading.force_n[1], 3000.0);
+  EXPECT_LT(reading.force_n[1], 5000.0);
 }
 
 TEST(SpeedgoatActuator, FollowsCommandsOverTcp) { expect_whole_run(false); }

@@ -57,17 +57,54 @@ std::string node_error(const std::vector<std::string>& overrides) {
   return "";
 }
 
-TEST(SpeedgoatFiles, AForceControlSignalIsRefusedUntilMixedControl) {
+TEST(SpeedgoatFiles, AForceControlSignalOfADisplacementChannelIsRefused) {
   try {
     load_servo_node(testing::source_dir() / "tests/scenarios/data/speedgoat/force-control-node.yaml");
-    FAIL() << "a force control signal was taken";
+    FAIL() << "a force control signal of a displacement channel was taken";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("force-control-node.yaml:11:"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("actuator.control_signals[1].quantity: rpsd commands displacement only; a "
-                                         "force control signal waits for mixed control (issue 30)"),
+    EXPECT_NE(std::string(e.what()).find("force-control-node.yaml:6:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("actuator.kind: channel 0 cannot be in displacement control: "
+                                         "control_signals has a force signal for channel 0"),
               std::string::npos)
         << e.what();
   }
+}
+
+// The node file of the channel-in-force-control example; or the message of the ConfigError its
+// overrides give.
+std::filesystem::path force_channel_file() {
+  return testing::source_dir() / "tests/scenarios/data/speedgoat/force-channel-node.yaml";
+}
+std::string force_channel_error(const std::string& override_text) {
+  try {
+    load_servo_node(force_channel_file(), {parse_override(override_text)});
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SpeedgoatFiles, AChannelInForceControlTakesAForceSignalAndItsOwnLimits) {
+  const node::ServoNodeSetup setup = load_servo_node(force_channel_file());
+  EXPECT_EQ(setup.node.control[0], servo::ControlMode::kDisplacement);
+  EXPECT_EQ(setup.node.control[1], servo::ControlMode::kForce);
+  EXPECT_EQ(setup.node.limits[1].max_force_command_n, 600e3);
+  EXPECT_EQ(setup.node.limits[1].max_force_rate_n_per_s, 50e3);
+  const auto& p = std::get<node::SpeedgoatParameters>(setup.actuator);
+  EXPECT_EQ(p.signals.control[2].quantity, node::speedgoat::ControlQuantity::kForce);
+  EXPECT_EQ(p.signals.control[3].quantity, node::speedgoat::ControlQuantity::kControlMode);
+}
+
+TEST(SpeedgoatFiles, AChannelInForceControlWithoutAForceSignalOrARateLimitIsRefused) {
+  const std::string no_signal = force_channel_error("actuator.control=[force, force]");
+  EXPECT_NE(no_signal.find("actuator.control: channel 0 cannot be in force control: control_signals has no force "
+                           "signal for channel 0"),
+            std::string::npos)
+      << no_signal;
+  const std::string no_rate = force_channel_error("limits={max_force_n: [500.0e3, 800.0e3]}");
+  EXPECT_NE(no_rate.find("limits.max_force_rate_n_per_s: channel 1 is in force control"), std::string::npos) << no_rate;
+  const std::string beyond = force_channel_error("limits.max_force_command_n=[500.0e3, 900.0e3]");
+  EXPECT_NE(beyond.find("max_force_command_n"), std::string::npos) << beyond;
 }
 
 TEST(SpeedgoatFiles, EachChannelNeedsADisplacementAndAForceDaqSignal) {

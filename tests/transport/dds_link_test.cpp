@@ -342,6 +342,28 @@ TEST(DdsLink, EveryCommandCarriesTheRunAndTheControlPeriod) {
   EXPECT_EQ(got.writer, writer);
 }
 
+// Mixed control: each channel's control mode and force cross DDS with its displacement.
+TEST(DdsLink, ACommandCarriesEachChannelsControlModeAndForce) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(82, 1, 2));
+  DdsNodeEndpoint node(node_side, node_config(82, 1));
+  ASSERT_TRUE(connect(link, node, 82, 1));
+  CommandSample c;
+  c.channels = 2;
+  c.step = 1;
+  c.displacement_m = {0.01, -0.02};
+  c.control_mode = {kDisplacementControl, kForceControl};
+  c.force_n = {0.0, -1.5e5};
+  link.send(c);
+  ASSERT_TRUE(node.wait_for_command_until(realtime::monotonic_now_ns() + 5'000'000'000));
+  CommandSample got;
+  ASSERT_TRUE(node.take_command(got));
+  EXPECT_EQ(got.displacement_m[1], -0.02);
+  EXPECT_EQ(got.control_mode[0], kDisplacementControl);
+  EXPECT_EQ(got.control_mode[1], kForceControl);
+  EXPECT_EQ(got.force_n[1], -1.5e5);
+}
+
 TEST(DdsLink, ANodeServingAnotherRunRefusesTheRunBeforeItsFirstCommand) {
   DdsParticipant coordinator(loopback()), node_side(loopback());
   DdsLink link(coordinator, link_config(82, 1, 1));

@@ -58,6 +58,31 @@ TEST(MultiSiteLink, RoutesEachChannelToItsSiteAndMergesTheFeedback) {
   EXPECT_EQ(f.status, kNodeLimitActive);  // one site's limit shows on the merged sample
 }
 
+// Mixed control: each channel's mode and force go to its site with its displacement.
+TEST(MultiSiteLink, RoutesEachChannelsControlModeAndForceToItsSite) {
+  EchoNode a(1), b(2);
+  InProcessLink la(a), lb(b);
+  MultiSiteLink link({{1, &la, {2, 0}}, {2, &lb, {1}}});
+  CommandSample c;
+  c.channels = 3;
+  c.control_mode = {kDisplacementControl, kDisplacementControl, kForceControl};
+  c.force_n = {0.0, 0.0, 250e3};
+  ASSERT_EQ(link.send(c), LinkStatus::kOk);
+  EXPECT_EQ(a.seen.control_mode[0], kForceControl);
+  EXPECT_EQ(a.seen.force_n[0], 250e3);
+  EXPECT_EQ(a.seen.control_mode[1], kDisplacementControl);
+  EXPECT_EQ(b.seen.control_mode[0], kDisplacementControl);
+  EXPECT_EQ(b.seen.force_n[0], 0.0);
+}
+
+TEST(Messages, EveryChannelOfACommandIsInDisplacementControlUnlessItSaysOtherwise) {
+  const CommandSample c;
+  for (int k = 0; k < kMaxChannels; ++k) {
+    EXPECT_EQ(c.control_mode[k], kDisplacementControl);
+    EXPECT_EQ(c.force_n[k], 0.0);
+  }
+}
+
 // A link whose node has not answered yet: it leaves the feedback untouched (Link::receive).
 class SilentLink final : public Link {
  public:

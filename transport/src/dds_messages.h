@@ -31,6 +31,8 @@ void copy_command(const In& in, Out& out) {
   out.control_period_s = in.control_period_s;
   out.end_of_run = in.end_of_run;
   std::ranges::copy(in.displacement_m, std::begin(out.displacement_m));
+  std::ranges::copy(in.control_mode, std::begin(out.control_mode));
+  std::ranges::copy(in.force_n, std::begin(out.force_n));
 }
 
 // FeedbackSample <-> rpsd_dds_Feedback (round_trip_ns is local and not on the wire).

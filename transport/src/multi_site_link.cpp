@@ -43,8 +43,11 @@ LinkStatus MultiSiteLink::send(const CommandSample& command) {
     site_command_ = command;
     site_command_.site_id = site.site_id;
     site_command_.channels = static_cast<std::uint8_t>(site.channels.size());
-    for (std::size_t i = 0; i < site.channels.size(); ++i)
+    for (std::size_t i = 0; i < site.channels.size(); ++i) {
       site_command_.displacement_m[i] = command.displacement_m[site.channels[i]];
+      site_command_.control_mode[i] = command.control_mode[site.channels[i]];
+      site_command_.force_n[i] = command.force_n[site.channels[i]];
+    }
     status = worse(status, site.link->send(site_command_));
   }
   return status;

@@ -4,6 +4,8 @@
 // (CONTRIBUTING.md).
 #pragma once
 
+#include <string>
+
 #include "rpsd/config/kind_list.h"
 #include "rpsd/node/nees_plugin_actuator.h"
 #include "rpsd/node/owned_actuator.h"
@@ -21,6 +23,12 @@ using ActuatorConfig = ActuatorKinds::Variant;
 // std::invalid_argument naming what does not fit.
 inline OwnedActuator make_actuator(const ActuatorConfig& config, int channels) {
   return std::visit([channels](const auto& c) { return std::decay_t<decltype(c)>::make(c, channels); }, config);
+}
+
+// Why channel `channel` of this actuator cannot be in control mode `mode` (empty: it can). Not
+// real-time safe.
+inline std::string control_mode_refusal(const ActuatorConfig& config, int channel, servo::ControlMode mode) {
+  return std::visit([channel, mode](const auto& c) { return c.control_mode_refusal(channel, mode); }, config);
 }
 
 // What the actuator's rig can do: the simulated plant's envelope, or the one a hardware

@@ -43,6 +43,12 @@ struct NeesPluginParameters {
   static NeesPluginParameters read(config::Source& section, int channels);
   static OwnedActuator make(const NeesPluginParameters& config, int channels);
   servo::Envelope envelope() const { return rig; }
+  // Why a channel cannot be in `mode` (empty: it can): the protocol has no force command.
+  std::string control_mode_refusal(int /*channel*/, servo::ControlMode mode) const {
+    return mode == servo::ControlMode::kForce ? "the NEES plugin protocol's propose and execute messages carry "
+                                                "displacements and rotations only, no force command"
+                                              : "";
+  }
 
   int channels = 1;
   std::string host = "127.0.0.1";  // the site (dotted IPv4): the only peer the node talks to

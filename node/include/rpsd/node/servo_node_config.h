@@ -59,6 +59,11 @@ struct ChannelLimits {
   // stroke or the force guard's bound: a moving specimen stopped abruptly loads the rig with
   // its inertia. Infinity: it stops at once.
   double stop_deceleration_m_per_s2 = kNone;
+  // A channel in force control (ServoNodeConfig::control): |force command|, clamped (infinity:
+  // max_force_n's), and |force command change| / control period, clamped (required there). Its
+  // stroke and velocity limits act on its measured displacement and end in the safe state.
+  double max_force_command_n = kNone;
+  double max_force_rate_n_per_s = kNone;
 };
 
 struct LimitActions {
@@ -80,6 +85,9 @@ struct ServoNodeConfig {
   int channels = 1;
   double control_period_s = 1.0 / 1024.0;
   std::array<ChannelLimits, transport::kMaxChannels> limits{};  // per channel
+  // Per channel: displacement control (the default) or force control (mixed control, issue
+  // 30). A command must state each channel's mode as declared here, or the node faults.
+  std::array<servo::ControlMode, transport::kMaxChannels> control{};
   LimitActions actions;
   // Consecutive control periods without a new command after which the node holds; at most
   // kMaxWatchdogTimeoutS in all.

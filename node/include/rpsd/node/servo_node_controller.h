@@ -38,8 +38,11 @@ enum class CommandVerdict : std::uint8_t {
   // gone: one step a period since, plus max_step_lead (a forgery, or a coordinator's bug).
   kImpossibleStep,
   kEndOfRun,  // not a drop: a run's end (the node frees itself if it is the run it serves)
+  // A channel's control mode is not the one the node file declares (or a force channel's force
+  // is not finite): the node, not the coordinator, says what drives the rig. Faults the node.
+  kModeMismatch,
 };
-inline constexpr int kCommandVerdicts = 15;
+inline constexpr int kCommandVerdicts = 16;
 const char* command_verdict_name(CommandVerdict verdict);
 
 // What happened to the node's run: it took a run, the run ended, the node freed itself after a
@@ -151,8 +154,19 @@ class ServoNodeController {
   const std::array<char, transport::kFaultTextBytes>& fault_text() const { return fault_text_; }
   bool holding() const { return holding_; }
   bool in_safe_state() const { return safe_state_; }
-  // The command sent to the actuator on the last tick (the initial displacement before).
+  // The command sent to the actuator on the last tick (the initial displacement before); a
+  // channel in force control: its measured displacement.
   std::span<const double> command_m() const { return {command_m_.data(), static_cast<std::size_t>(config_.channels)}; }
+  // Each channel's mode on the last tick: a channel declared in force control is in displacement
+  // control until its first command, and again (at its measured position) after a fault or in
+  // the safe state.
+  std::span<const servo::ControlMode> control_mode() const {
+    return {mode_.data(), static_cast<std::size_t>(config_.channels)};
+  }
+  // The force command sent on the last tick to each channel in force control (N).
+  std::span<const double> force_command_n() const {
+    return {force_command_n_.data(), static_cast<std::size_t>(config_.channels)};
+  }
   const servo::ActuatorReading& reading() const { return reading_; }
   const ServoNodeConfig& config() const { return config_; }
 
@@ -164,6 +178,8 @@ class ServoNodeController {
   void choose_target();
   std::uint32_t apply_limits(Values& applied);
   std::uint32_t check_measurement();
+  std::uint32_t apply_force_limits();
+  void leave_force_control();
   void log(const LimitEvent& event);
   void latch_fault();
   void keep_fault_text(std::string_view text) noexcept;
@@ -188,9 +204,14 @@ class ServoNodeController {
   std::int64_t followed_step_ = -1;
   double followed_time_s_ = 0.0;
 
-  Values target_m_{};   // what the node is moving the command toward
-  Values command_m_{};  // what it sent to the actuator last
-  Values change_m_{};   // the last applied change of command (for the acceleration limit)
+  Values target_m_{};               // what the node is moving the command toward
+  Values command_m_{};              // what it sent to the actuator last
+  Values change_m_{};               // the last applied change of command (for the acceleration limit)
+  bool any_force_channel_ = false;  // config_.control has one
+  std::array<servo::ControlMode, transport::kMaxChannels> mode_{};  // each channel's, now
+  Values force_target_n_{};                                         // a force channel's newest force command
+  Values force_command_n_{};                                        // what it sent to the actuator last
+  Values previous_measured_m_{};                                    // for the measured velocity of a force channel
   servo::ActuatorReading reading_;
 
   bool commands_began_ = false;

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "rpsd/config/source.h"
@@ -30,6 +31,9 @@ struct SimulatedActuatorParameters {
   // Not real-time safe.
   static OwnedActuator make(const SimulatedActuatorParameters& config, int channels);
   servo::Envelope envelope() const { return servo::envelope_of(plant); }
+  // Why channel `channel` cannot be in `mode` (empty: it can): in force control, its plant has
+  // no force loop. Not real-time safe.
+  std::string control_mode_refusal(int channel, servo::ControlMode mode) const;
 
   servo::PlantConfig plant;
   std::optional<CoupledSpecimenParameters> coupled_specimen;

@@ -32,6 +32,10 @@ struct SpeedgoatParameters {
   static SpeedgoatParameters read(config::Source& section, int channels);
   static OwnedActuator make(const SpeedgoatParameters& config, int channels);
   servo::Envelope envelope() const { return rig; }
+  // Why channel `channel` cannot be in `mode` (empty: it can): a channel in force control needs
+  // a force control signal, and one in displacement control has none (rpsd would have no force
+  // to send there). Not real-time safe.
+  std::string control_mode_refusal(int channel, servo::ControlMode mode) const;
 
   int channels = 1;
   SpeedgoatTransport transport = SpeedgoatTransport::kTcp;
@@ -83,6 +87,13 @@ class SpeedgoatActuator final : public servo::Actuator, public ActuatorLinkRepor
   // safe: no allocation, every wait bounded.
   servo::ActuatorStatus exchange(std::span<const double> command_m, double period_s,
                                  servo::ActuatorReading& reading) override;
+  // Mixed control: a force channel's force command goes to its force control signal (its
+  // displacement signal carries the node's displacement command: its measured position), and
+  // each channel's mode to its control_mode signal, if it has one. Real-time safe.
+  servo::ActuatorStatus exchange_mixed(std::span<const double> command_m, std::span<const double> force_command_n,
+                                       std::span<const servo::ControlMode> mode, double period_s,
+                                       servo::ActuatorReading& reading) override;
+  bool controls_force(int channel) const override;
 
   std::string_view summary_key() const override { return "speedgoat_link"; }
   std::string describe_link() const override;
@@ -124,6 +135,8 @@ class SpeedgoatActuator final : public servo::Actuator, public ActuatorLinkRepor
   std::vector<std::byte> in_;   // the target's newest vector
   std::vector<double> control_offset_, daq_offset_, initial_daq_;
   std::array<double, servo::kMaxChannels> previous_m_{};
+  std::array<double, servo::kMaxChannels> force_command_n_{};  // the newest force commands
+  std::array<double, servo::kMaxChannels> control_mode_{};     // 0 displacement, 1 force control
   std::array<double, servo::kMaxChannels> previous_velocity_m_per_s_{};
   double time_s_ = 0.0;
   Phase phase_ = Phase::kIdle;

@@ -80,6 +80,10 @@ class SpeedgoatEmulator {
   // Read from the serving thread, or after it stopped.
   const SpeedgoatEmulatorCounters& counters() const { return counters_; }
   const servo::ActuatorReading& reading() const { return reading_; }
+  // The newest target's force commands (N) and control modes, from its force and control_mode
+  // signals: a channel with a force signal is in force control unless its control_mode says 0.
+  std::span<const double> force_target_n() const { return force_target_n_; }
+  std::span<const servo::ControlMode> control_mode() const { return mode_; }
   int channels() const { return actuator_.channels(); }
   // The node it serves ("none yet" until one came).
   std::string node() const;
@@ -102,6 +106,8 @@ class SpeedgoatEmulator {
   std::vector<unsigned char> incoming_;
   std::size_t incoming_bytes_ = 0;
   std::vector<double> target_m_, previous_target_m_;
+  std::vector<double> force_target_n_;
+  std::vector<servo::ControlMode> mode_;
   double new_target_ = 0.0;
   double switch_pc_ = 0.0;
   double at_target_ = 1.0;

@@ -29,7 +29,9 @@ inline constexpr double kHold = 0.0;
 inline constexpr double kTakeTarget = 1.0;
 inline constexpr double kEndSession = -1.0;
 
-enum class ControlQuantity : std::uint8_t { kDisplacement, kVelocity, kAcceleration, kTime };
+// kForce: a force channel's force command (mixed control); kControlMode: each channel's mode, 0
+// displacement control, 1 force control, so that the lab's model switches with the node.
+enum class ControlQuantity : std::uint8_t { kDisplacement, kVelocity, kAcceleration, kTime, kForce, kControlMode };
 enum class DaqQuantity : std::uint8_t { kDisplacement, kForce, kUnused };
 enum class Reference : std::uint8_t { kAbsolute, kRelative };
 

@@ -34,6 +34,12 @@ struct UdpControllerParameters {
   static UdpControllerParameters read(config::Source& section, int channels);
   static OwnedActuator make(const UdpControllerParameters& config, int channels);
   servo::Envelope envelope() const { return rig; }
+  // Why a channel cannot be in `mode` (empty: it can): the protocol has no force command.
+  std::string control_mode_refusal(int /*channel*/, servo::ControlMode mode) const {
+    return mode == servo::ControlMode::kForce ? "rpsd's UDP controller protocol (versions 1 and 2) carries a "
+                                                "displacement command only, with no room for a control mode or a force"
+                                              : "";
+  }
 
   int channels = 1;                           // must equal the controller's
   std::string controller_host = "127.0.0.1";  // dotted IPv4

@@ -22,6 +22,11 @@ enum class ActuatorStatus : std::uint8_t {
 
 const char* actuator_status_name(ActuatorStatus status);
 
+// How a channel is driven (mixed control, issue 30): following a displacement command, or
+// holding a force command measured by its load cell.
+enum class ControlMode : std::uint8_t { kDisplacement, kForce };
+const char* control_mode_name(ControlMode mode);
+
 // The sensors of every channel at the end of one control period.
 struct ActuatorReading {
   std::array<double, kMaxChannels> displacement_m{};
@@ -47,6 +52,19 @@ class Actuator {
   // that period in `reading`. On kNoReply the values in `reading` are left untouched and
   // reading.fresh is false. Real-time safe: no allocation, no locks, no exceptions.
   virtual ActuatorStatus exchange(std::span<const double> command_m, double period_s, ActuatorReading& reading) = 0;
+
+  // Mixed control: as exchange(), but a channel whose mode is kForce holds force_command_n[c]
+  // (newtons, ramping from its previous force command; from the measured force when it has
+  // just entered force control) and ignores command_m[c]; a channel back in displacement
+  // control starts from its measured displacement. One value of each span per channel. The
+  // default serves displacement only: every channel in kDisplacement calls exchange(), any
+  // kForce channel is a kFault. Real-time safe.
+  virtual ActuatorStatus exchange_mixed(std::span<const double> command_m, std::span<const double> force_command_n,
+                                        std::span<const ControlMode> mode, double period_s, ActuatorReading& reading);
+
+  // Whether channel c can be driven in force control; the node refuses a node file that puts a
+  // channel in force control otherwise. Not real-time safe.
+  virtual bool controls_force(int /*channel*/) const { return false; }
 
   // After a kFault: what failed, in the lab controller's own words when it gave any ("the
   // target stopped answering", a site's refusal); empty when there is nothing to add. The

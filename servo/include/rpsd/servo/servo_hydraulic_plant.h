@@ -3,6 +3,7 @@
 // State (5 numbers, contiguous): spool opening x_v (-1..1), pilot-stage flow q, load
 // pressure P_L, piston/specimen displacement x and velocity xdot.
 //   controller   v    = G_p C_F (u - x) + G_d C_F (udot - xdot)             (Eq. 1)
+//                in force control (issue 30): v = G_f (F_u - A P_L)
 //   pilot stage  tau qdot = K_vp (v - K_3 x_vmax x_v) - q
 //   main spool   x_vmax A_v xdot_v = q, stopped at |x_v| = 1                 (together Eq. 2)
 //   valve flow   Q_L  = K_v(x_v) x_v sqrt(1 - sgn(x_v) P_L / P_s)            (Eq. 3)
@@ -15,12 +16,13 @@
 #include <Eigen/Core>
 #include <array>
 
+#include "rpsd/servo/force_controlled_plant.h"
 #include "rpsd/servo/plant.h"
 #include "rpsd/servo/servo_parameters.h"
 
 namespace rpsd::servo {
 
-class ServoHydraulicPlant final : public Plant {
+class ServoHydraulicPlant final : public Plant, public ForceControlledPlant {
  public:
   using State = Eigen::Matrix<double, 5, 1>;
   enum StateIndex { kSpoolOpening = 0, kPilotFlow, kLoadPressure, kDisplacement, kVelocity };
@@ -34,6 +36,10 @@ class ServoHydraulicPlant final : public Plant {
   // The load enters the specimen equation; the load cell (A P_L) carries it at rest.
   bool accepts_external_load() const noexcept override { return true; }
   void set_external_load_n(double force_n) noexcept override { external_load_n_ = force_n; }
+  // Force control: the valve command is G_f (F_command - A P_L) (ServoSystemParameters::
+  // force_gain_v_per_n); the specimen's displacement follows from its own force balance.
+  void advance_in_force(double force_start_n, double force_end_n, double duration_s) override;
+  bool controls_force() const override { return k_.force_gain_v_per_n > 0.0; }
 
   // Time derivative of the state for command u and command rate udot; the model's whole
   // physics in one pure function (used by the integrator and the linearisation). Real-time safe.
@@ -52,6 +58,8 @@ class ServoHydraulicPlant final : public Plant {
   struct Coefficients {
     double position_gain_v_per_m = 0.0;          // G_p C_F
     double rate_gain_v_s_per_m = 0.0;            // G_d C_F
+    double force_gain_v_per_n = 0.0;             // G_f (force control)
+    double piston_area_m2 = 0.0;                 // A: the load cell reads A P_L
     double pilot_gain_m3_per_s2_per_v = 0.0;     // K_vp / tau
     double spool_feedback_v = 0.0;               // K_3 x_vmax: volts per unit opening
     double pilot_rate_per_s = 0.0;               // 1 / tau
@@ -78,9 +86,11 @@ class ServoHydraulicPlant final : public Plant {
     double root = 0.0, root_coefficient = 0.0, other_flows = 0.0;
     double friction_tanh = 0.0, other_forces = 0.0;
   };
+  // In force control command_m is the force command (N) and the rate is not used.
   Terms terms(const Rates& s, double command_m, double command_rate_m_per_s) const;
   Rates stage_state(const Rates& y, double c, const Terms& t) const;
   void rk4_step(Rates& y, double h, double u0, double command_rate) const;
+  void integrate(double command_start, double command_end, double duration_s);
 
   ServoSystemParameters parameters_;
   Coefficients k_;
@@ -89,6 +99,7 @@ class ServoHydraulicPlant final : public Plant {
   State state_ = State::Zero();
   double time_s_ = 0.0;
   double external_load_n_ = 0.0;  // f_ext, held over each advance
+  bool in_force_ = false;  // terms() closes the force loop (set for one advance_in_force)
 };
 
 }  // namespace rpsd::servo

@@ -12,10 +12,16 @@
 
 namespace rpsd::servo {
 
-// PID controller with the integral gain zero (paper Eq. 1): H_c = G_p + G_d s.
+// PID controller with the integral gain zero (paper Eq. 1): H_c = G_p + G_d s. In force
+// control (issue 30) the valve command is G_f (F_command - F_load_cell), proportional only.
 struct ControllerParameters {
   double proportional_gain = 0.0;  // G_p, valve command volts per error volt
   double derivative_gain_s = 0.0;  // G_d, seconds
+  // G_f, valve command volts per newton of force error. 0 (the default): no force loop, and a
+  // node refuses a force channel on this plant. No default is safe for every rig: against the
+  // oil column the loop's gain is G_f K_s K_v0 A / K_a, which the spool must follow
+  // (docs/servo-model.md, "Force control").
+  double force_gain_v_per_n = 0.0;
 };
 
 // Three-stage servovalve spool dynamics with the inner spool loop (paper Eq. 2):

@@ -13,7 +13,16 @@ inline constexpr int kMaxChannels = 8;
 // Room for a node's fault in its heartbeat (NodeHeartbeat::fault_text).
 inline constexpr std::size_t kFaultTextBytes = 160;
 
-// Displacement commands for one control step.
+// How a channel's actuator is driven (CommandSample::control_mode): it follows the command's
+// displacement, or holds its force (mixed control, issue 30). A node refuses a command whose
+// mode differs from the one its node file declares for the channel.
+enum ControlMode : std::uint8_t {
+  kDisplacementControl = 0,
+  kForceControl = 1,
+};
+
+// Commands for one control step: per channel a displacement, or a force for a channel in force
+// control. Every channel is in displacement control unless its control_mode says otherwise.
 struct CommandSample {
   std::uint32_t test_id = 0;
   std::uint32_t site_id = 0;
@@ -25,6 +34,8 @@ struct CommandSample {
   bool end_of_run = false;        // the run is over; no displacement: the node is free again
   std::uint8_t channels = 0;
   std::array<double, kMaxChannels> displacement_m{};
+  std::array<std::uint8_t, kMaxChannels> control_mode{};  // ControlMode; 0: displacement
+  std::array<double, kMaxChannels> force_n{};             // the force held by a force channel
   // Filled by the node's endpoint, never sent: the DDS writer that sent the command (its
   // instance handle; 0 in process). A node follows one writer of its run.
   std::uint64_t writer = 0;
