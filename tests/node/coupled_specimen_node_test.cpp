@@ -62,7 +62,7 @@ std::string refusal(const std::string& from, const std::string& to) {
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   text.replace(at, from.size(), to);
-  for (const std::string relative : {"../servo/paper-mts-244.yaml", "../../transport/config/loopback.xml"}) {
+  for (const std::string relative : {"../servo/mts-244-loading-beam.yaml", "../../transport/config/loopback.xml"}) {
     text.replace(text.find(relative), relative.size(), (example().parent_path() / relative).string());
   }
   const std::filesystem::path file =
