@@ -71,7 +71,7 @@ ExperimentalExchange::ExperimentalExchange(ExchangeParts parts) : parts_(std::mo
       g.actuator_names.push_back(label(site + " actuator " + (a.name.empty() ? std::to_string(i + 1) : a.name)));
       const setups::DofMotion motion = sg.geometry.dofs[static_cast<std::size_t>(i)];
       g.dof_names.push_back(
-          label(site + " DOF " + std::to_string(i + 1) + " " + std::string(setups::dof_motion_name(motion))));
+          label(site + " DOF " + std::string(setups::dof_motion_name(motion))));  // one motion per setup DOF
       const bool rotation = motion == setups::DofMotion::kRotation;
       g.dof_units.push_back(rotation ? "rad" : "m");
       g.dof_force_units.push_back(rotation ? "N·m" : "N");

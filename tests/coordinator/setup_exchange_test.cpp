@@ -182,8 +182,8 @@ TEST(SetupExchange, ADofsStrokeLimitActsOnTheDofNotOnTheActuators) {
   const LimitStop& l = e.exchange->limit_stop();
   EXPECT_EQ(l.dof, 1);
   EXPECT_EQ(l.actuator, -1);
-  EXPECT_EQ(std::string(l.name.data()), "site 1 DOF 2 rotation");
-  EXPECT_NE(describe_limit_stop(l).find("site 1 DOF 2 rotation (channel 1): its target 0.006 rad"), std::string::npos)
+  EXPECT_EQ(std::string(l.name.data()), "site 1 DOF rotation");
+  EXPECT_NE(describe_limit_stop(l).find("site 1 DOF rotation (channel 1): its target 0.006 rad"), std::string::npos)
       << describe_limit_stop(l);
 }
 
