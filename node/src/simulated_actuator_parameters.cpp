@@ -63,7 +63,8 @@ CoupledSpecimenParameters read_coupled_specimen(config::Source& section, int cha
   if (stiffness.size() != dofs) section.fail("stiffness_n_per_m", "needs one row per DOF of the setup");
   c.stiffness = dense(stiffness);
   if (!c.stiffness.isApprox(c.stiffness.transpose())) section.fail("stiffness_n_per_m", "must be symmetric");
-  if (!damping.empty() && damping.size() != dofs) section.fail("damping_n_s_per_m", "needs one row per DOF of the setup");
+  if (!damping.empty() && damping.size() != dofs)
+    section.fail("damping_n_s_per_m", "needs one row per DOF of the setup");
   c.damping = damping.empty() ? Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(dofs), static_cast<Eigen::Index>(dofs))
                               : dense(damping);
   try {

@@ -27,8 +27,8 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
     setups.push_back(sections::experimental_setup(*d.experimental_setups[k], dofs));
     for (std::size_t i = 0; i < setups.back().dofs.size(); ++i) {
       if (!driven.emplace(setups.back().dofs[i], std::make_pair(k, i)).second) {
-        d.experimental_setups[k]->fail("dofs", "DOF " + std::to_string(setups.back().dofs[i]) +
-                                                   " is driven by another experimental setup too");
+        d.experimental_setups[k]->fail(
+            "dofs", "DOF " + std::to_string(setups.back().dofs[i]) + " is driven by another experimental setup too");
       }
     }
   }

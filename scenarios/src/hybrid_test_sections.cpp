@@ -133,13 +133,11 @@ coordinator::CoordinatorLimits rotation_limits(config::Source& l) {
   coordinator::CoordinatorLimits c;
   c.max_stroke_m = l.number_or("max_rotation_rad", c.max_stroke_m,
                                Number{"rad", "|rotation target| (default: none)", 0.0, kMaxRotationRad, true});
-  c.max_increment_m =
-      l.number_or("max_rotation_increment_rad", c.max_increment_m,
-                  Number{"rad", "|rotation target change| per control period (default: none)", 0.0, kMaxRotationRad,
-                         true});
-  c.max_velocity_m_per_s =
-      l.number_or("max_rotation_rate_rad_per_s", c.max_velocity_m_per_s,
-                  Number{"rad/s", "or: |rotation target change| per second", 0.0, 1e3, true});
+  c.max_increment_m = l.number_or(
+      "max_rotation_increment_rad", c.max_increment_m,
+      Number{"rad", "|rotation target change| per control period (default: none)", 0.0, kMaxRotationRad, true});
+  c.max_velocity_m_per_s = l.number_or("max_rotation_rate_rad_per_s", c.max_velocity_m_per_s,
+                                       Number{"rad/s", "or: |rotation target change| per second", 0.0, 1e3, true});
   c.max_force_n = l.number_or("max_moment_n_m", c.max_force_n,
                               Number{"N m", "|measured moment| (default: none)", 0.0, kMaxMomentNM, true});
   c.max_tracking_error_m =
@@ -157,8 +155,9 @@ ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
   const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "",
                                      "an experimental DOF of the site (0-based), in the setup's DOF order");
   const std::vector<double> listed = s.numbers("dofs", dof, static_cast<std::size_t>(setups::kMaxSetupDofs));
-  const std::string compensated = s.choice_or("compensate", {"actuators", "dofs"}, "actuators",
-                                              "where the compensator acts: each actuator's stroke, or the DOFs' targets");
+  const std::string compensated =
+      s.choice_or("compensate", {"actuators", "dofs"}, "actuators",
+                  "where the compensator acts: each actuator's stroke, or the DOFs' targets");
   site.compensated = compensated == "dofs" ? hybrid_test::ExperimentalSetupSite::Compensated::kDofs
                                            : hybrid_test::ExperimentalSetupSite::Compensated::kActuators;
   if (auto calibration = s.optional_section("calibration", "the actuators' readings at the start")) {
@@ -195,7 +194,8 @@ ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
     }
     result.specimen->finish();
   }
-  auto setup = s.section("setup", "the geometry between the site's DOFs and its actuators (docs/experimental-setups.md)");
+  auto setup =
+      s.section("setup", "the geometry between the site's DOFs and its actuators (docs/experimental-setups.md)");
   site.setup = setups::read_setup_config(*setup);
   setup->finish();
   s.finish();
@@ -292,12 +292,14 @@ void specimen_channel(config::Source& e, std::size_t index, hybrid_test::Experim
       "limits", driven ? "the DOF's own limits, in its motion's units (its actuators' are the setup's)"
                        : "the coordinator's limits on this channel (only tighter than the rig)");
   if (limits_section) {
-    channel.limits = driven == setups::DofMotion::kRotation ? rotation_limits(*limits_section) : limits(*limits_section);
+    channel.limits =
+        driven == setups::DofMotion::kRotation ? rotation_limits(*limits_section) : limits(*limits_section);
   }
   // Checked after every key is read, so that a listing lists them all.
   if (driven) {
     // The setup's specimen is one over all its DOFs: no DOF has one of its own.
-    for (const char* key : {"specimen_stiffness_n_per_m", "specimen_damping_n_s_per_m", "specimen_mass_kg", "specimen"}) {
+    for (const char* key :
+         {"specimen_stiffness_n_per_m", "specimen_damping_n_s_per_m", "specimen_mass_kg", "specimen"}) {
       if (e.has(key)) e.fail(key, "a DOF an experimental setup drives takes its specimen from the setup's `specimen`");
     }
     if (channel.restoring_force != coordinator::RestoringForceSource::kMeasuredForce) {

@@ -50,10 +50,10 @@ substructure::DampingConfig damping(config::Source& d, const Eigen::MatrixXd* ma
 // motion's units). Its site's channels are filled in once the DOFs are read.
 struct ExperimentalSetup {
   hybrid_test::ExperimentalSetupSite site;
-  std::vector<Eigen::Index> dofs;             // the structure's DOFs, in the setup's DOF order
-  std::vector<setups::DofMotion> motions;     // each DOF's motion, from the setup's kind
+  std::vector<Eigen::Index> dofs;                                // the structure's DOFs, in the setup's DOF order
+  std::vector<setups::DofMotion> motions;                        // each DOF's motion, from the setup's kind
   std::vector<std::unique_ptr<config::Source>> actuator_limits;  // per actuator (null: none given)
-  std::unique_ptr<config::Source> specimen;   // for messages about the specimen's matrices
+  std::unique_ptr<config::Source> specimen;                      // for messages about the specimen's matrices
 };
 ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs);
 

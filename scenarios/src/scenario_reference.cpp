@@ -12,7 +12,6 @@
 
 #include "ground_motion_keys.h"
 #include "hybrid_test_sections.h"
-#include "rpsd/setups/setup_kinds.h"
 #include "node_sections.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/config/key_table.h"
@@ -20,6 +19,7 @@
 #include "rpsd/node/actuator_factory.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/plant_factory.h"
+#include "rpsd/setups/setup_kinds.h"
 #include "rpsd/transport/messages.h"
 #include "site_server_sections.h"
 #include "study_sections.h"

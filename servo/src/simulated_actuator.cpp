@@ -6,6 +6,18 @@
 
 namespace rpsd::servo {
 
+namespace {
+
+// Channel c's sensors into the reading; an end stop or a saturated valve on any channel counts.
+void add_measurement(const PlantMeasurement& m, int c, ActuatorReading& reading) {
+  reading.displacement_m[static_cast<std::size_t>(c)] = m.displacement_m;
+  reading.force_n[static_cast<std::size_t>(c)] = m.force_n;
+  reading.at_end_stop = reading.at_end_stop || m.at_end_stop;
+  reading.valve_saturated = reading.valve_saturated || m.valve_saturated;
+}
+
+}  // namespace
+
 SimulatedActuator::SimulatedActuator(std::span<Plant* const> plants) : channels_(static_cast<int>(plants.size())) {
   if (plants.empty() || plants.size() > kMaxChannels) {
     throw std::invalid_argument("SimulatedActuator: between 1 and " + std::to_string(kMaxChannels) +
@@ -62,11 +74,7 @@ ActuatorStatus SimulatedActuator::exchange(std::span<const double> command_m, do
     }
     plants_[c]->advance(last_command_m_[c], command_m[c], period_s);
     last_command_m_[c] = command_m[c];
-    const PlantMeasurement m = plants_[c]->measure();
-    reading.displacement_m[c] = m.displacement_m;
-    reading.force_n[c] = m.force_n;
-    reading.at_end_stop = reading.at_end_stop || m.at_end_stop;
-    reading.valve_saturated = reading.valve_saturated || m.valve_saturated;
+    add_measurement(plants_[c]->measure(), c, reading);
   }
   reading.fresh = true;
   return ActuatorStatus::kOk;
@@ -108,11 +116,7 @@ ActuatorStatus SimulatedActuator::exchange_mixed(std::span<const double> command
       last_command_m_[c] = command_m[c];
       last_mode_[c] = ControlMode::kDisplacement;
     }
-    const PlantMeasurement m = plants_[c]->measure();
-    reading.displacement_m[c] = m.displacement_m;
-    reading.force_n[c] = m.force_n;
-    reading.at_end_stop = reading.at_end_stop || m.at_end_stop;
-    reading.valve_saturated = reading.valve_saturated || m.valve_saturated;
+    add_measurement(plants_[c]->measure(), c, reading);
   }
   reading.fresh = true;
   return ActuatorStatus::kOk;

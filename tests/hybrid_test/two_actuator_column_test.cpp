@@ -54,7 +54,8 @@ TEST(TwoActuatorColumn, LinearOnPerfectActuatorsItIsTheCoupledSystemsExactFreeVi
     for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(s.displacement_m[d] - exact[d]));
     // The actuators' strokes by the setup's closed form, from the DOFs the test measured.
     const double x = s.dof_measured_m[0], theta = s.dof_measured_m[1];
-    worst_stroke = std::max({worst_stroke, std::abs(s.measured_m[0] - x), std::abs(s.measured_m[1] - (x - kL * theta))});
+    worst_stroke =
+        std::max({worst_stroke, std::abs(s.measured_m[0] - x), std::abs(s.measured_m[1] - (x - kL * theta))});
     // Jᵀ f = F with J = [[1, 0], [1, -L]]: f2 = -M / L, f1 = F_x - f2.
     const Eigen::Vector2d f = column * Eigen::Vector2d(x, theta);
     const double f2 = -f[1] / kL, f1 = f[0] - f2;
@@ -88,7 +89,8 @@ TEST(TwoActuatorColumn, TheRehearsalFollowsItsReferenceWhileTheActuatorsPushAgai
       opposed_n = std::max(opposed_n, std::min(std::abs(s.measured_force_n[0]), std::abs(s.measured_force_n[1])));
     }
     peak_dof_force = std::max(peak_dof_force, std::abs(s.dof_force_n[0]));
-    peak_actuator_force = std::max({peak_actuator_force, std::abs(s.measured_force_n[0]), std::abs(s.measured_force_n[1])});
+    peak_actuator_force =
+        std::max({peak_actuator_force, std::abs(s.measured_force_n[0]), std::abs(s.measured_force_n[1])});
   }
   // The column top follows its reference (J4 of the example: about 20 %, the actuators' lag
   // and their loading beam's inertia), and at times the two actuators push against each

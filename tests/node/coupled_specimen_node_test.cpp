@@ -79,7 +79,8 @@ std::string refusal(const std::string& from, const std::string& to) {
 }
 
 TEST(CoupledSpecimenNode, ASetupOrMatrixThatDoesNotFitIsRefusedAtItsKey) {
-  const std::string rows = refusal("stiffness_n_per_m: [[1.0e6, 0.75e6], [0.75e6, 0.75e6]]", "stiffness_n_per_m: [1e6]");
+  const std::string rows =
+      refusal("stiffness_n_per_m: [[1.0e6, 0.75e6], [0.75e6, 0.75e6]]", "stiffness_n_per_m: [1e6]");
   EXPECT_NE(rows.find("actuator.coupled_specimen.stiffness_n_per_m: needs one row per DOF"), std::string::npos) << rows;
   const std::string kind = refusal("kind: two_actuators", "kind: two_actuator");
   EXPECT_NE(kind.find("actuator.coupled_specimen.setup.kind"), std::string::npos) << kind;

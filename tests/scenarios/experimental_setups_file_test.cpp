@@ -61,7 +61,7 @@ TEST(ExperimentalSetupsFile, ADofsOrderFollowsTheListNotTheEntries) {
 
 TEST(ExperimentalSetupsFile, ARotationDofTakesItsLimitsInRadiansAndNewtonMetres) {
   const hybrid_test::TestConfig t = column();
-  EXPECT_DOUBLE_EQ(t.experimental[1].limits.max_stroke_m, 0.05);  // max_rotation_rad
+  EXPECT_DOUBLE_EQ(t.experimental[1].limits.max_stroke_m, 0.05);   // max_rotation_rad
   EXPECT_DOUBLE_EQ(t.experimental[1].limits.max_force_n, 60.0e3);  // max_moment_n_m
   refused("experimental.1.limits={max_stroke_m: 0.05}", "experimental[1].limits.max_stroke_m");
   refused("experimental.0.limits={max_rotation_rad: 0.05}", "experimental[0].limits.max_rotation_rad");
@@ -81,9 +81,9 @@ TEST(ExperimentalSetupsFile, TheSpecimensDiagonalIsEachDofsEstimateAndItsCouplin
 TEST(ExperimentalSetupsFile, ACouplingIsScaledLikeTheForcesAndDisplacementsItJoins) {
   // A half-scale specimen: the translation's force scale 4, the rotation's moment scale 8,
   // the translation's displacement scale 0.5: K_model(0, 1) = 4 x 1 x k, K_model(1, 0) = 8 x 0.5 x k.
-  const hybrid_test::TestConfig t = column({parse_override("experimental.0.force_scale=4"),
-                                            parse_override("experimental.0.displacement_scale=0.5"),
-                                            parse_override("experimental.1.force_scale=8")});
+  const hybrid_test::TestConfig t =
+      column({parse_override("experimental.0.force_scale=4"), parse_override("experimental.0.displacement_scale=0.5"),
+              parse_override("experimental.1.force_scale=8")});
   const substructure::PartitionConfig p = hybrid_test::partition_config(t, 3);
   ASSERT_EQ(p.couplings.size(), 1u);
   EXPECT_DOUBLE_EQ(p.couplings[0].stiffness_n_per_m, 4.0 * 0.75e6);
@@ -117,7 +117,8 @@ TEST(ExperimentalSetupsFile, ADofDrivenTwiceIsRefused) {
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string anchor = "experimental_setups:\n";
   text.insert(text.find(anchor) + anchor.size(),
-              "  - {site: 1, dofs: [0], setup: {kind: one_actuator, geometry: linear, dof: translation_x, actuator_length_m: 1.0},\n"
+              "  - {site: 1, dofs: [0], setup: {kind: one_actuator, geometry: linear, dof: translation_x, "
+              "actuator_length_m: 1.0},\n"
               "     specimen: {stiffness_n_per_m: 1e6}}\n");
   // Beside no example: its files named absolute.
   for (const std::string relative : {"../../", "../"}) {
@@ -128,8 +129,7 @@ TEST(ExperimentalSetupsFile, ADofDrivenTwiceIsRefused) {
       text.replace(at + 2, relative.size(), absolute);
     }
   }
-  const std::filesystem::path file =
-      std::filesystem::path(::testing::TempDir()) / "rpsd-two-setups-on-one-dof.yaml";
+  const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / "rpsd-two-setups-on-one-dof.yaml";
   std::ofstream(file) << text;
   EXPECT_THAT([&] { (void)load_study(file); },
               ::testing::ThrowsMessage<ConfigError>(::testing::HasSubstr(

@@ -99,7 +99,7 @@ class ServoHydraulicPlant final : public Plant, public ForceControlledPlant {
   State state_ = State::Zero();
   double time_s_ = 0.0;
   double external_load_n_ = 0.0;  // f_ext, held over each advance
-  bool in_force_ = false;  // terms() closes the force loop (set for one advance_in_force)
+  bool in_force_ = false;         // terms() closes the force loop (set for one advance_in_force)
 };
 
 }  // namespace rpsd::servo
