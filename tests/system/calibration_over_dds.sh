@@ -51,7 +51,7 @@ coordinator off
 sleep 0.5  # the node would have taken a command by now, were one sent
 stop_node off
 [ "$RC" = 4 ] || { cat "$WORK/off.log" >&2; fail "off: exit $RC, not 4"; }
-grep -q "actuator 1 (channel 0): its reading 0.003 m at the start is 0.003 m from the stroke 0 m" "$WORK/off.log" \
+grep -q "site 1, actuator_1 (channel 0): its reading 0.003 m at the start is 0.003 m from the stroke 0 m" "$WORK/off.log" \
   || { cat "$WORK/off.log" >&2; fail "off: the refusal does not name the actuator and its offset"; }
 [ "$(json "$WORK/off/summary.json" "j['result']")" = not_ready ] || fail "off: the summary's result is not not_ready"
 python3 - "$WORK/off-node.json" <<'PY' || fail "off: the node moved"
