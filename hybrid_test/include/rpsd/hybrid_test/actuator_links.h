@@ -52,9 +52,7 @@ class ActuatorLinks {
   // specimen stiffness estimate times the hold position.
   double initial_force_n(int channel) const { return initial_force_n_[static_cast<std::size_t>(channel)]; }
   // Whether initial_force_n(channel) is a measurement rather than the estimate.
-  bool initial_force_measured(int channel) const {
-    return initial_force_measured_[static_cast<std::size_t>(channel)];
-  }
+  bool initial_force_measured(int channel) const { return initial_force_measured_[static_cast<std::size_t>(channel)]; }
   // The actuator's reading at rest before the first command (its simulated plant's here, over
   // DDS its node's heartbeat's; nullopt: not before the first feedback). For calibration.
   std::optional<double> initial_reading_m(int channel) const {
