@@ -17,6 +17,7 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
   const int channels = static_cast<int>(s.experimental.size());
   initial_force_n_.assign(static_cast<std::size_t>(channels), 0.0);
   initial_reading_m_.assign(static_cast<std::size_t>(channels), std::nullopt);
+  initial_force_measured_.assign(static_cast<std::size_t>(channels), false);
   plant_of_channel_.assign(static_cast<std::size_t>(channels), nullptr);
   // Sites in order of first appearance; each site's channels in the test's channel order.
   std::map<std::uint32_t, std::size_t> index_of_site;
@@ -47,14 +48,6 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
     built_.push_back(make_site(s, setup, shared_));
     Site& built = *built_.back();
     over_dds_ = over_dds_ || built.over_dds();
-    for (std::size_t i = 0; i < site.channels.size(); ++i) {
-      const auto ch = static_cast<std::size_t>(site.channels[i]);
-      initial_force_n_[ch] = built.initial_force_n(i);
-      plant_of_channel_[ch] = built.simulated_plant(i);
-      initial_reading_m_[ch] = plant_of_channel_[ch]
-                                   ? std::optional<double>(plant_of_channel_[ch]->measure().displacement_m)
-                                   : built.initial_displacement_m(i);
-    }
     routes.push_back({site.site_id, &built.link(), site.channels});
   }
   multi_site_ = std::make_unique<transport::MultiSiteLink>(std::move(routes));
@@ -63,10 +56,24 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
   for (std::size_t i = 0; i < built_.size(); ++i) {
     if (!built_[i]->wait_for_node(s.transport.discovery_timeout_s)) {
       // A node that refuses the run ends it at once: the run reports why (refusal_text).
-      if (built_[i]->refused()) return;
+      if (built_[i]->refused()) break;
       missing += (missing.empty() ? "" : ", ") + std::to_string(sites_[i].site_id);
     }
   }
+  // What each actuator reads at rest, asked once its node is found: over DDS, its heartbeat's.
+  for (std::size_t k = 0; k < built_.size(); ++k) {
+    const Site& built = *built_[k];
+    for (std::size_t i = 0; i < sites_[k].channels.size(); ++i) {
+      const auto ch = static_cast<std::size_t>(sites_[k].channels[i]);
+      initial_force_n_[ch] = built.initial_force_n(i);
+      initial_force_measured_[ch] = built.initial_force_measured(i);
+      plant_of_channel_[ch] = built.simulated_plant(i);
+      initial_reading_m_[ch] = plant_of_channel_[ch]
+                                   ? std::optional<double>(plant_of_channel_[ch]->measure().displacement_m)
+                                   : built.initial_displacement_m(i);
+    }
+  }
+  if (refused()) return;
   if (!missing.empty()) {
     throw NoNodeAnswered("no servo node answered for site(s) " + missing + " of test " +
                          std::to_string(s.transport.test_id) + " within " +

@@ -1,5 +1,6 @@
 #include "rpsd/hybrid_test/dds_site.h"
 
+#include <cmath>
 #include <utility>
 
 namespace rpsd::hybrid_test {
@@ -20,6 +21,30 @@ std::unique_ptr<Site> DdsSite::make(const TestConfig& test, const SiteSetup& set
   config.busy_wait_s = test.transport.busy_wait_s;
   auto link = std::make_unique<transport::DdsLink>(*shared.participant, config);
   return std::unique_ptr<Site>(new DdsSite(std::move(link), estimated_initial_forces_n(setup)));
+}
+
+namespace {
+
+// The node's newest heartbeat, when it carries a measurement.
+const transport::NodeHeartbeat* measured_heartbeat(const transport::DdsLink& link) {
+  const auto& heartbeat = link.node_heartbeat();
+  return heartbeat && heartbeat->measured ? &*heartbeat : nullptr;
+}
+
+}  // namespace
+
+std::optional<double> DdsSite::initial_displacement_m(std::size_t i) const {
+  const transport::NodeHeartbeat* h = measured_heartbeat(*link_);
+  return h ? std::optional<double>(h->displacement_m[i]) : std::nullopt;
+}
+
+bool DdsSite::initial_force_measured(std::size_t i) const {
+  const transport::NodeHeartbeat* h = measured_heartbeat(*link_);
+  return h != nullptr && std::isfinite(h->force_n[i]);
+}
+
+double DdsSite::initial_force_n(std::size_t i) const {
+  return initial_force_measured(i) ? measured_heartbeat(*link_)->force_n[i] : initial_force_n_[i];
 }
 
 }  // namespace rpsd::hybrid_test

@@ -115,6 +115,12 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
     std::vector<std::optional<double>> readings(static_cast<std::size_t>(channels));
     for (int c = 0; c < channels; ++c) readings[static_cast<std::size_t>(c)] = p.actuators->initial_reading_m(c);
     p.calibrations = calibrate_setups(s, setups, readings);
+    for (SetupCalibration& cal : p.calibrations) {
+      for (int c : cal.channels) {
+        cal.force_at_rest_n.push_back(p.actuators->initial_force_n(c));
+        cal.force_at_rest_measured = cal.force_at_rest_measured && p.actuators->initial_force_measured(c);
+      }
+    }
   }
 
   parts.integrator = p.integrator.get();

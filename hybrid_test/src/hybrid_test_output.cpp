@@ -369,7 +369,9 @@ nlohmann::json experimental_setups_json(const hybrid_test::TestConfig& scenario,
                      {"max_calibration_offset_m", site.max_calibration_offset_m},
                      {"reading_m", c.reading_m},
                      {"predicted_stroke_m", c.predicted_stroke_m},
-                     {"offset_m", c.offset_m}};
+                     {"offset_m", c.offset_m},
+                     {"force_at_rest_measured", c.force_at_rest_measured},
+                     {"force_at_rest_n", c.force_at_rest_n}};
     }
     out.push_back(
         {{"site_id", site.site_id},

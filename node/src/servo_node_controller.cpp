@@ -126,6 +126,8 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
   actuator_.start(initial_displacement_m);
   reading_ = servo::ActuatorReading{};
   reading_.fresh = false;
+  latest_measurement_ = servo::ActuatorReading{};
+  has_measurement_ = false;
   for (int c = 0; c < channels; ++c) {
     target_m_[c] = command_m_[c] = reading_.displacement_m[c] = initial_displacement_m[c];
   }
@@ -152,6 +154,11 @@ void ServoNodeController::start(std::span<const double> initial_displacement_m) 
   events_.clear();
   events_not_logged_ = 0;
   started_ = true;
+}
+
+void ServoNodeController::note_reading_at_rest(const servo::ActuatorReading& reading) {
+  latest_measurement_ = reading;
+  has_measurement_ = true;
 }
 
 namespace {
@@ -598,6 +605,10 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
   }
   for (int c = 0; c < channels; ++c) change_m_[c] = applied[c] - command_m_[c];
   command_m_ = applied;
+  if (status == servo::ActuatorStatus::kOk) {
+    latest_measurement_ = reading_;
+    has_measurement_ = true;
+  }
   if (status == servo::ActuatorStatus::kNoReply) ++counters_.actuator_no_replies;
   if (status == servo::ActuatorStatus::kFault) {
     ++counters_.actuator_faults;

@@ -48,6 +48,15 @@ transport::NodeHeartbeat heartbeat(const ServoNodeController& controller, const 
   h.control_period_s = controller.config().control_period_s;
   h.serving_run_id = controller.serving_run();
   if (controller.faulted()) h.fault_text = controller.fault_text();
+  // The actuator's newest reading, in every state: at rest, a coordinator calibrates from it.
+  h.measured = controller.has_measurement();
+  if (h.measured) {
+    const servo::ActuatorReading& r = controller.latest_measurement();
+    for (int c = 0; c < controller.config().channels; ++c) {
+      h.displacement_m[c] = r.displacement_m[c];
+      h.force_n[c] = r.force_n[c];
+    }
+  }
   return h;
 }
 

@@ -145,6 +145,9 @@ nlohmann::json serve_site(const ServoNodeSetup& setup, const ServeOptions& optio
   const auto* link = dynamic_cast<const ActuatorLinkReport*>(actuator.actuator.get());
   try {
     controller.start(setup.initial_displacement_m);
+    // A simulated actuator is read at rest at once: a lock-step node's heartbeat tells its
+    // position before the first command (the coordinator calibrates a setup from it).
+    if (const auto at_rest = reading_at_rest(actuator)) controller.note_reading_at_rest(*at_rest);
   } catch (const std::runtime_error& e) {
     // The lab's controller did not answer, refused, or stands elsewhere: nothing moved, and the
     // summary says so (the link's figures name the side that failed).

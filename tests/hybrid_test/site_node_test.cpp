@@ -7,10 +7,12 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include "../coordinator/specimen_runs.h"
+#include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/node/servo_node_loop.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/transport/messages.h"
@@ -45,7 +47,9 @@ TestConfig clamped_sdof() {
 // and plant as the in-process site.
 class DdsNode {
  public:
-  explicit DdsNode(const TestConfig& config)
+  // `rest_m`: where the node's actuator starts (nullopt: the test's initial displacement);
+  // `read_at_rest`: the node reads its plant at rest after start, as `rpsd servo-node` does.
+  explicit DdsNode(const TestConfig& config, std::optional<double> rest_m = std::nullopt, bool read_at_rest = true)
       : plant_(servo::make_plant(config.plant)),
         participant_(loopback()),
         endpoint_(participant_, endpoint_config(config)) {
@@ -57,8 +61,9 @@ class DdsNode {
     c.channels = 1;
     c.control_period_s = 1.0 / config.control_rate_hz;
     controller_ = std::make_unique<node::ServoNodeController>(c, *actuator_);
-    const double x0[] = {config.initial_displacement_m[0]};
+    const double x0[] = {rest_m.value_or(config.initial_displacement_m[0])};
     controller_->start(x0);
+    if (read_at_rest) controller_->note_reading_at_rest(actuator_->measure());
     thread_ = std::thread([this] {
       node::ServoNodeLoopOptions options;
       options.real_time = false;
@@ -73,6 +78,7 @@ class DdsNode {
     thread_.join();
   }
   const node::ServoNodeController& controller() const { return *controller_; }
+  servo::ActuatorReading plant_reading() const { return actuator_->measure(); }
 
  private:
   static transport::DdsNodeEndpointConfig endpoint_config(const TestConfig& config) {
@@ -122,6 +128,41 @@ TEST(SiteNode, AVelocityLimitTripsIdenticallyInProcessAndOverDds) {
   TestConfig free = in_process;
   free.site_nodes.clear();
   EXPECT_EQ(coordinator::testing::run_steps(free).outcome, coordinator::StepOutcome::kOk);
+}
+
+// Issue 30: over DDS a site's reading and force at rest are its node's measurements, from the
+// heartbeat after the node is found: a node whose actuator rests 2 mm off the coordinator's
+// hold gives its own reading and load cell, not the hold and the stiffness estimate. A node
+// that has read nothing yet gives no reading (calibration not measured) and the estimate.
+TEST(SiteNode, OverDdsTheReadingAndForceAtRestAreTheNodesMeasurements) {
+  TestConfig config = clamped_sdof();
+  config.transport.test_id = kTest + 2;  // not the other tests': ctest may run them at once
+  config.site_nodes[1] = node::ServoNodeConfig{};
+  config.transport.kind = TransportConfig::Kind::kDds;
+  config.transport.domain_id = loopback().domain_id;
+  config.transport.dds_config = loopback().config_file;
+  config.clock.realtime.keep_cpus_awake = false;
+  const double hold_m[] = {config.initial_displacement_m[0]};
+  const double period_s = 1.0 / config.control_rate_hz;
+  const double estimate_n = config.experimental[0].dof.specimen_stiffness_estimate_n_per_m * hold_m[0];
+  {
+    DdsNode node(config, hold_m[0] + 0.002);
+    const servo::ActuatorReading at_rest = node.plant_reading();
+    ASSERT_NE(at_rest.force_n[0], estimate_n);
+    ActuatorLinks links(config, period_s, false, hold_m, transport::draw_run_id());
+    ASSERT_TRUE(links.initial_reading_m(0).has_value());
+    EXPECT_EQ(*links.initial_reading_m(0), at_rest.displacement_m[0]);
+    EXPECT_NEAR(*links.initial_reading_m(0), hold_m[0] + 0.002, 1e-12);
+    EXPECT_EQ(links.initial_force_n(0), at_rest.force_n[0]);
+    EXPECT_TRUE(links.initial_force_measured(0));
+  }
+  {
+    DdsNode node(config, hold_m[0] + 0.002, /*read_at_rest=*/false);
+    ActuatorLinks links(config, period_s, false, hold_m, transport::draw_run_id());
+    EXPECT_FALSE(links.initial_reading_m(0).has_value());
+    EXPECT_EQ(links.initial_force_n(0), estimate_n);
+    EXPECT_FALSE(links.initial_force_measured(0));
+  }
 }
 
 // A site's node in this process knows its plant's converters: the SDOF released from 10 mm

@@ -229,6 +229,38 @@ TEST(ServoNodeController, AppliesEachCommandOnTheNextTickAndReportsIt) {
   EXPECT_EQ(node.counters().ticks, 52u);
 }
 
+// Issue 30: what the node's heartbeat carries. Nothing is measured after start() until the
+// actuator answers an exchange (or the reading at rest is noted); then each answered tick's
+// reading, holding too, and an exchange without a reply keeps the newest one.
+TEST(ServoNodeController, TheLatestMeasurementIsTheNewestAnsweredExchange) {
+  Rig rig(config(2), 1e5);
+  EXPECT_FALSE(rig.node.has_measurement());
+  servo::ActuatorReading at_rest;
+  at_rest.displacement_m[0] = 0.0025;
+  at_rest.force_n[1] = -40.0;
+  rig.node.note_reading_at_rest(at_rest);
+  EXPECT_TRUE(rig.node.has_measurement());
+  EXPECT_EQ(rig.node.latest_measurement().displacement_m[0], 0.0025);
+  EXPECT_EQ(rig.node.latest_measurement().force_n[1], -40.0);
+  EXPECT_TRUE(rig.actuator.commands.empty());  // noted, not exchanged
+
+  rig.actuator.measured_offset_m = 0.001;
+  idle(rig.node);  // holding its start position, read 1 mm off
+  EXPECT_EQ(rig.node.latest_measurement().displacement_m[0], 0.001);
+  EXPECT_EQ(rig.node.latest_measurement().force_n[1], 1e5 * 0.001);
+  rig.actuator.measured_offset_m = 0.0;
+  rig.actuator.script.push_back(servo::ActuatorStatus::kNoReply);
+  idle(rig.node);  // no reply: the newest measurement stands
+  EXPECT_EQ(rig.node.latest_measurement().displacement_m[0], 0.001);
+  send(rig.node, command(0, {0.002, -0.003}));
+  EXPECT_EQ(rig.node.latest_measurement().displacement_m[1], -0.003);
+  EXPECT_EQ(rig.node.latest_measurement().force_n[0], 1e5 * 0.002);
+
+  const double x0[] = {0.0, 0.0};
+  rig.node.start(x0);  // a new start forgets it
+  EXPECT_FALSE(rig.node.has_measurement());
+}
+
 TEST(ServoNodeController, StrokeClampGivesExactlyTheBound) {
   auto c = config();
   c.limits[0].max_stroke_m = 0.05;

@@ -18,6 +18,7 @@
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/servo_node_loop.h"
 #include "rpsd/realtime/pacer.h"
+#include "rpsd/transport/dds_link.h"
 #include "rpsd/transport/dds_node_endpoint.h"
 #include "rpsd/transport/dds_qos_profile.h"
 #include "rpsd_messages.h"
@@ -236,6 +237,70 @@ ServoNodeLoopOptions lock_step_options() {
   options.realtime.fifo_priority = 0;
   options.realtime.keep_cpus_awake = false;
   return options;
+}
+
+// Issue 30: the node's heartbeat carries its actuator's newest reading, so that a coordinator
+// calibrates a setup from it at rest. A node that has read nothing says so; one that has (the
+// reading at rest noted after start, a command's exchange) carries it, in every state.
+transport::DdsLinkConfig link_to_node() {
+  transport::DdsLinkConfig c;
+  c.test_id = kTest;
+  c.site_id = kSite;
+  c.run_id = kRun;  // the raw coordinator's: the node serving it does not refuse this link
+  c.channels = 1;
+  return c;
+}
+
+// Polls the node's heartbeats until one satisfies `done` (10 s: a bound against a hang).
+template <class Done>
+bool heartbeat_until(transport::DdsLink& link, Done done) {
+  const std::int64_t until = realtime::monotonic_now_ns() + 10'000'000'000;
+  while (realtime::monotonic_now_ns() < until) {
+    link.wait_for_node(0.05);
+    if (link.node_heartbeat() && done(*link.node_heartbeat())) return true;
+  }
+  return false;
+}
+
+TEST_F(NodeOverDds, TheHeartbeatSaysTheNodeHasReadNothingThenCarriesItsReadings) {
+  ASSERT_TRUE(coordinator.wait_for_reader(10.0));
+  std::atomic<bool> stop{false};
+  std::thread loop([&] { run_servo_node_loop(node, endpoint, lock_step_options(), stop); });
+  transport::DdsLink link(coordinator_side, link_to_node());
+  ASSERT_TRUE(link.wait_for_node(10.0));
+  ASSERT_TRUE(link.node_heartbeat().has_value());
+  EXPECT_FALSE(link.node_heartbeat()->measured);  // lock-step, no command yet: nothing read
+  coordinator.take_steps(1000, 0.5);              // discovery of the feedback reader
+  coordinator.write(kTest, kSite, 0, 1, 0.0025);
+  ASSERT_EQ(coordinator.take_steps(1, 5.0).size(), 1u);
+  // The exchange read 2.5 mm: the next heartbeat says so.
+  const bool carried = heartbeat_until(link, [](const transport::NodeHeartbeat& h) { return h.measured; });
+  stop = true;
+  loop.join();
+  ASSERT_TRUE(carried);
+  EXPECT_EQ(link.node_heartbeat()->displacement_m[0], 0.0025);
+  EXPECT_EQ(link.node_heartbeat()->force_n[0], 0.0);
+}
+
+TEST_F(NodeOverDds, AReadingNotedAtRestIsInTheHeartbeatBeforeAnyCommand) {
+  servo::ActuatorReading at_rest;
+  at_rest.displacement_m[0] = 0.003;
+  at_rest.force_n[0] = -1250.0;
+  node.note_reading_at_rest(at_rest);
+  std::atomic<bool> stop{false};
+  std::thread loop([&] { run_servo_node_loop(node, endpoint, lock_step_options(), stop); });
+  transport::DdsLink link(coordinator_side, link_to_node());
+  const bool found = link.wait_for_node(10.0);
+  stop = true;
+  loop.join();
+  ASSERT_TRUE(found);
+  ASSERT_TRUE(link.node_heartbeat().has_value());
+  const transport::NodeHeartbeat& h = *link.node_heartbeat();
+  EXPECT_TRUE(h.measured);
+  EXPECT_EQ(h.state, transport::NodeHeartbeat::kWaiting);
+  EXPECT_EQ(h.displacement_m[0], 0.003);
+  EXPECT_EQ(h.force_n[0], -1250.0);
+  EXPECT_TRUE(actuator.sent.empty());  // read without moving it
 }
 
 // A coordinator that dies sends no end of run: after release_after_silence_s without a command

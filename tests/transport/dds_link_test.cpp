@@ -18,6 +18,7 @@ namespace rpsd::transport {
 namespace {
 
 using testing::connect;
+using testing::connect_with;
 using testing::link_config;
 using testing::loopback;
 using testing::node_config;
@@ -134,6 +135,43 @@ TEST(DdsLink, WaitsForTheNodesWordThatItFoundTheCoordinator) {
   EXPECT_FALSE(link.wait_for_node(0.5));          // matched both ways, but no word from the node
   EXPECT_FALSE(connect(link, node, 61, 9, 0.5));  // a heartbeat claiming another site
   EXPECT_TRUE(connect(link, node, 61, 1));
+}
+
+// Issue 30: a node's heartbeat carries each channel's newest measured displacement and force
+// and whether they are a measurement, so that the coordinator calibrates a setup's actuators
+// from them at rest; every field arrives as sent.
+TEST(DdsLink, AHeartbeatCarriesTheNodesReadingsAndWhetherTheyAreMeasured) {
+  DdsParticipant coordinator(loopback()), node_side(loopback());
+  DdsLink link(coordinator, link_config(91, 1, 3));
+  DdsNodeEndpoint node(node_side, node_config(91, 1));
+  EXPECT_FALSE(link.node_heartbeat().has_value());  // nothing heard yet
+  NodeHeartbeat h;
+  h.test_id = 91;
+  h.site_id = 1;
+  h.channels = 3;
+  h.state = NodeHeartbeat::kHolding;
+  h.control_period_s = DdsQosConfig{}.control_period_s;
+  h.measured = true;
+  h.displacement_m = {0.003, -1.25e-4, 0.0421, 0, 0, 0, 0, 7.5};
+  h.force_n = {-1520.5, 3.0e4, 0.125, 0, 0, 0, 0, -2.0};
+  ASSERT_TRUE(connect_with(link, node, h));
+  ASSERT_TRUE(link.node_heartbeat().has_value());
+  const NodeHeartbeat& heard = *link.node_heartbeat();
+  EXPECT_TRUE(heard.measured);
+  EXPECT_EQ(heard.state, NodeHeartbeat::kHolding);
+  EXPECT_EQ(heard.channels, 3);
+  EXPECT_EQ(heard.displacement_m, h.displacement_m);
+  EXPECT_EQ(heard.force_n, h.force_n);
+
+  // A node that has read nothing yet says so.
+  DdsLink unread(coordinator, link_config(91, 2, 1));
+  DdsNodeEndpoint node_unread(node_side, node_config(91, 2));
+  h.site_id = 2;
+  h.channels = 1;
+  h.measured = false;
+  ASSERT_TRUE(connect_with(unread, node_unread, h));
+  ASSERT_TRUE(unread.node_heartbeat().has_value());
+  EXPECT_FALSE(unread.node_heartbeat()->measured);
 }
 
 TEST(DdsLink, TwoTestsOnOneNetworkNeverSeeEachOther) {

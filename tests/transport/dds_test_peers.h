@@ -40,16 +40,10 @@ inline DdsNodeEndpointConfig node_config(std::uint32_t test, std::uint32_t site)
 // The node's side of the start handshake: heartbeats, as a servo node sends them (serving
 // run `serving_run_id`, 0: none, at `control_period_s`), while the link waits for the node;
 // true once the link has found it and it serves no other run at the link's rate.
-inline bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, std::uint32_t site,
-                    double timeout_s = 10.0, std::uint64_t serving_run_id = 0,
-                    double control_period_s = DdsQosConfig{}.control_period_s) {
+// The same with the heartbeat `h` (its own test, site, run and rate).
+inline bool connect_with(DdsLink& link, DdsNodeEndpoint& node, const NodeHeartbeat& h, double timeout_s = 10.0) {
   std::atomic<bool> done{false};
   std::thread announcer([&] {
-    NodeHeartbeat h;
-    h.test_id = test;
-    h.site_id = site;
-    h.control_period_s = control_period_s;
-    h.serving_run_id = serving_run_id;
     while (!done) {
       node.publish_heartbeat(h);
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -59,6 +53,17 @@ inline bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, st
   done = true;
   announcer.join();
   return found;
+}
+
+inline bool connect(DdsLink& link, DdsNodeEndpoint& node, std::uint32_t test, std::uint32_t site,
+                    double timeout_s = 10.0, std::uint64_t serving_run_id = 0,
+                    double control_period_s = DdsQosConfig{}.control_period_s) {
+  NodeHeartbeat h;
+  h.test_id = test;
+  h.site_id = site;
+  h.control_period_s = control_period_s;
+  h.serving_run_id = serving_run_id;
+  return connect_with(link, node, h, timeout_s);
 }
 
 }  // namespace rpsd::transport::testing

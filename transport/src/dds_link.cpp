@@ -57,6 +57,9 @@ bool DdsLink::node_reports_matched() {
   // Only the newest counts: an older heartbeat may name a run the node has since ended.
   if (heard) {
     node_matched_ = newest.coordinator_matched;
+    NodeHeartbeat said;
+    copy_heartbeat(newest, said);
+    node_heartbeat_ = said;
     if (newest.state == NodeHeartbeat::kFaulted && newest.fault_text[0] != '\0') {
       std::ranges::copy(newest.fault_text, node_fault_text_.begin());
       node_fault_text_.back() = '\0';

@@ -45,8 +45,9 @@ void copy_feedback(const In& in, Out& out) {
   out.limit_flags = in.limit_flags;
 }
 
-// NodeHeartbeat -> rpsd_dds_NodeHeartbeat.
-inline void copy_heartbeat(const NodeHeartbeat& in, rpsd_dds_NodeHeartbeat& out) {
+// NodeHeartbeat <-> rpsd_dds_NodeHeartbeat (the fault text always NUL-terminated).
+template <class In, class Out>
+void copy_heartbeat(const In& in, Out& out) {
   out.test_id = in.test_id;
   out.site_id = in.site_id;
   out.channels = in.channels;
@@ -60,6 +61,9 @@ inline void copy_heartbeat(const NodeHeartbeat& in, rpsd_dds_NodeHeartbeat& out)
   static_assert(sizeof(out.fault_text) == kFaultTextBytes);
   std::ranges::copy(in.fault_text, std::begin(out.fault_text));
   out.fault_text[kFaultTextBytes - 1] = '\0';
+  out.measured = in.measured;
+  std::ranges::copy(in.displacement_m, std::begin(out.displacement_m));
+  std::ranges::copy(in.force_n, std::begin(out.force_n));
 }
 
 }  // namespace rpsd::transport

@@ -47,11 +47,14 @@ class ActuatorLinks {
   ~ActuatorLinks();
 
   transport::Link& link() { return *multi_site_; }
-  // The specimen's force at rest, per channel: the simulated load cell, or (over DDS,
-  // before any feedback) the specimen stiffness estimate times the hold position.
+  // The specimen's force at rest, per channel: the simulated load cell, over DDS what the
+  // node's heartbeat measured, or (an OpenSees site, a node that has read nothing yet) the
+  // specimen stiffness estimate times the hold position.
   double initial_force_n(int channel) const { return initial_force_n_[static_cast<std::size_t>(channel)]; }
-  // The actuator's reading at rest before the first command (its simulated plant's here, or
-  // what the site can tell; nullopt: not before the first feedback). For calibration.
+  // Whether initial_force_n(channel) is a measurement rather than the estimate.
+  bool initial_force_measured(int channel) const { return initial_force_measured_[static_cast<std::size_t>(channel)]; }
+  // The actuator's reading at rest before the first command (its simulated plant's here, over
+  // DDS its node's heartbeat's; nullopt: not before the first feedback). For calibration.
   std::optional<double> initial_reading_m(int channel) const {
     return initial_reading_m_[static_cast<std::size_t>(channel)];
   }
@@ -84,6 +87,7 @@ class ActuatorLinks {
   std::unique_ptr<transport::MultiSiteLink> multi_site_;
   std::vector<double> initial_force_n_;
   std::vector<std::optional<double>> initial_reading_m_;
+  std::vector<bool> initial_force_measured_;
   std::vector<const servo::Plant*> plant_of_channel_;
   bool over_dds_ = false;
   bool ended_ = false;

@@ -24,8 +24,14 @@ class DdsSite final : public Site {
   static std::unique_ptr<Site> make(const TestConfig& test, const SiteSetup& setup, SiteResources& shared);
 
   transport::Link& link() override { return *link_; }
-  // Before any feedback: the specimen's stiffness estimate times the hold position.
-  double initial_force_n(std::size_t i) const override { return initial_force_n_[i]; }
+  // Once the node is found: the force its heartbeat measured at rest; the specimen's stiffness
+  // estimate times the hold position when the node has read nothing yet (or read a non-finite
+  // force, which its first feedback then stops the test on).
+  double initial_force_n(std::size_t i) const override;
+  bool initial_force_measured(std::size_t i) const override;
+  // Once the node is found: the displacement its heartbeat measured at rest (nullopt: the node
+  // has read nothing yet), which calibrates a setup's actuator before the first command.
+  std::optional<double> initial_displacement_m(std::size_t i) const override;
   bool over_dds() const override { return true; }
   std::optional<transport::DdsLinkCounters> dds_counters() const override { return link_->counters(); }
   bool wait_for_node(double timeout_s) override { return link_->wait_for_node(timeout_s); }

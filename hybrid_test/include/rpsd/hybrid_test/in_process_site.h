@@ -33,6 +33,7 @@ class InProcessSite final : public Site {
   // The simulated load cell's, once the node holds the actuators at rest (under a coupled
   // specimen: each actuator's load there).
   double initial_force_n(std::size_t i) const override { return initial_force_n_[i]; }
+  bool initial_force_measured(std::size_t /*i*/) const override { return true; }
   const servo::Plant* simulated_plant(std::size_t i) const override { return actuator_.plants.pointers[i]; }
   // What faulted the node, as it keeps it (a simulated coupled specimen's failed geometry).
   std::string node_fault_text() override;

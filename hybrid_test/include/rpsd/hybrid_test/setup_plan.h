@@ -32,7 +32,11 @@ struct SetupCalibration {
   std::vector<std::string> actuators;  // names ("actuator 2" when unnamed)
   std::vector<int> channels;
   std::vector<double> reference_length_m, predicted_stroke_m, reading_m, offset_m;
-  bool measured = true;  // false: no reading before the first feedback (over DDS); offsets zero
+  bool measured = true;  // false: a site with no reading before the first feedback; offsets zero
+  // Each actuator's load cell at rest, the start of the DOFs' restoring forces; measured false:
+  // some are the stiffness estimate times the hold (a node that has read nothing yet).
+  std::vector<double> force_at_rest_n;
+  bool force_at_rest_measured = true;
 };
 
 struct SetupPlan {

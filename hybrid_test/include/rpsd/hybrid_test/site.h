@@ -24,12 +24,17 @@ class Site {
  public:
   virtual ~Site() = default;
   virtual transport::Link& link() = 0;
-  // The specimen's force at rest on the site's channel i (in the site's channel order).
+  // The specimen's force at rest on the site's channel i (in the site's channel order). Asked
+  // once the site's node is found (wait_for_node): over DDS, what its heartbeat measured.
   virtual double initial_force_n(std::size_t i) const = 0;
+  // Whether initial_force_n is a measurement (a load cell's), not an estimate (stiffness times
+  // the hold position: an OpenSees site, or a node that has read nothing yet).
+  virtual bool initial_force_measured(std::size_t /*i*/) const { return false; }
   // The actuator's reading on the site's channel i at rest, before the first command, for a
-  // setup's calibration; nullopt when the site cannot tell before its first feedback (over
-  // DDS: a node's heartbeat carries no position). A site with a simulated plant here is read
-  // through the plant instead (ActuatorLinks::initial_reading_m).
+  // setup's calibration; nullopt when the site cannot tell before its first feedback (an
+  // OpenSees site; a node whose heartbeat says it has read nothing yet). Asked once the site's
+  // node is found. A site with a simulated plant here is read through the plant instead
+  // (ActuatorLinks::initial_reading_m).
   virtual std::optional<double> initial_displacement_m(std::size_t /*i*/) const { return std::nullopt; }
   // The simulated plant of the site's channel i in this process, or nullptr.
   virtual const servo::Plant* simulated_plant(std::size_t /*i*/) const { return nullptr; }

@@ -168,6 +168,15 @@ class ServoNodeController {
     return {force_command_n_.data(), static_cast<std::size_t>(config_.channels)};
   }
   const servo::ActuatorReading& reading() const { return reading_; }
+  // The actuator's newest measurement (a tick's exchange that answered, or the reading at rest
+  // noted after start()), and whether there is one: a node whose actuator can only be read by
+  // an exchange has read nothing before its first tick. Its heartbeat carries both.
+  const servo::ActuatorReading& latest_measurement() const { return latest_measurement_; }
+  bool has_measurement() const { return has_measurement_; }
+  // After start(): the actuator's reading at rest, when it can be read without an exchange (a
+  // simulated plant's sensors), so that a lock-step node tells its position before the first
+  // command. Changes nothing the controller does. Not real-time safe.
+  void note_reading_at_rest(const servo::ActuatorReading& reading);
   const ServoNodeConfig& config() const { return config_; }
 
  private:
@@ -213,6 +222,8 @@ class ServoNodeController {
   Values force_command_n_{};                                        // what it sent to the actuator last
   Values previous_measured_m_{};                                    // for the measured velocity of a force channel
   servo::ActuatorReading reading_;
+  servo::ActuatorReading latest_measurement_;  // what latest_measurement() reports
+  bool has_measurement_ = false;
 
   bool commands_began_ = false;
   int missed_in_row_ = 0;

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "rpsd/transport/dds_qos_profile.h"
@@ -72,6 +73,11 @@ class DdsLink final : public Link {
   // (refusal()). Not real-time safe.
   bool wait_for_node(double timeout_s);
 
+  // The newest heartbeat heard from the site's node (nullopt: none yet). After wait_for_node
+  // it carries the node's actuator reading at rest, before this run's first command, which a
+  // setup's calibration uses (NodeHeartbeat::measured false: the node has read nothing yet).
+  const std::optional<NodeHeartbeat>& node_heartbeat() const { return node_heartbeat_; }
+
   std::uint64_t run_id() const { return config_.run_id; }
   // Why the node refuses this run (kind kNone: it has not).
   const NodeRefusal& refusal() const { return refusal_; }
@@ -115,6 +121,7 @@ class DdsLink final : public Link {
   bool node_matched_ = false;
   NodeRefusal refusal_;
   std::array<char, kFaultTextBytes> node_fault_text_{};  // from the newest faulted heartbeat
+  std::optional<NodeHeartbeat> node_heartbeat_;          // the newest heard
   std::uint64_t node_writer_ = 0;                        // the writer of the first feedback of this run (0: none yet)
   std::int64_t sent_step_ = -1;
   std::int64_t sent_at_ns_ = 0;

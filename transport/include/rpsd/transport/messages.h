@@ -106,6 +106,13 @@ struct NodeHeartbeat {
   // kFaulted: what faulted the node (the lab controller's own words when it gave any),
   // NUL-terminated and cut to fit; empty otherwise.
   std::array<char, kFaultTextBytes> fault_text{};
+  // Each channel's newest measured displacement and force (issue 30: a coordinator calibrates
+  // a setup's actuators from them at rest, before its first command). measured false: the node
+  // has not read its actuator yet (hardware in lock-step before its first command), and the
+  // values mean nothing.
+  bool measured = false;
+  std::array<double, kMaxChannels> displacement_m{};
+  std::array<double, kMaxChannels> force_n{};
 };
 
 // A new run's identity: 64 random bits from std::random_device, never 0 (which means no run).
