@@ -23,6 +23,16 @@ CoordinatorLimits within_envelope(CoordinatorLimits limits, const servo::Envelop
   return limits;
 }
 
+CoordinatorLimits per_control_period(CoordinatorLimits limits, double control_period_s) {
+  if (limits.max_velocity_m_per_s == CoordinatorLimits::kNone) return limits;
+  if (limits.max_increment_m != CoordinatorLimits::kNone) {
+    throw config::KeyError("max_velocity_m_per_s",
+                           "give max_increment_m (per control period) or max_velocity_m_per_s (per second), not both");
+  }
+  limits.max_increment_m = limits.max_velocity_m_per_s * control_period_s;
+  return limits;
+}
+
 void require_readable(const CoordinatorLimits& stated, const CoordinatorLimits& effective,
                       const servo::ReadingRanges& ranges, const std::string& converters_key) {
   servo::require_readable(effective.max_stroke_m, stated.max_stroke_m == CoordinatorLimits::kNone,

@@ -93,7 +93,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
       parts.limits.resize(static_cast<std::size_t>(channels));
       parts.limits[ch] =
           numerical_site || setup_dof
-              ? (setup_dof ? channel.limits : coordinator::CoordinatorLimits{})
+              ? (setup_dof ? coordinator::per_control_period(channel.limits, control_period_s)
+                           : coordinator::CoordinatorLimits{})
               : coordinator::within_envelope(channel.limits, servo::envelope_of(s.plant), control_period_s);
     }
     parts.force_paths[ch] = {channel.restoring_force, channel.dof.specimen_stiffness_estimate_n_per_m};

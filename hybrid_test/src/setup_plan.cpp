@@ -78,12 +78,14 @@ SetupPlan plan_setups(const TestConfig& s, const Eigen::VectorXd& dof_hold_m, do
     // The actuators rest at the strokes of the initial configuration; each force guard
     // predicts with its actuator's share of the DOFs' stiffness, diag(J⁻ᵀ K J⁻¹).
     setups::SetupVector u0(n), strokes(n);
+    // The DOFs' stiffness: the setup's specimen, couplings included, or each DOF's estimate.
     Eigen::MatrixXd k_dof = Eigen::MatrixXd::Zero(n, n);
     for (int i = 0; i < n; ++i) {
       const auto c = static_cast<std::size_t>(site.channels[static_cast<std::size_t>(i)]);
       u0[i] = dof_hold_m[static_cast<Eigen::Index>(c)];
       k_dof(i, i) = by_channel[c]->dof.specimen_stiffness_estimate_n_per_m;
     }
+    if (site.specimen_stiffness.rows() == n && site.specimen_stiffness.cols() == n) k_dof = site.specimen_stiffness;
     setup.strokes(u0, strokes);
     setups::SetupMatrix j(n, n);
     setup.jacobian(u0, j);

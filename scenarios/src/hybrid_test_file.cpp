@@ -126,8 +126,19 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
     t.setups.push_back(std::move(setup.site));
   }
   for (std::size_t i = 0; i < specimens; ++i) {
-    // A DOF a setup drives has no rig of its own: its actuators were checked above.
-    if (driven.count(t.experimental[i].dof.dof) != 0) continue;
+    // A DOF a setup drives has no rig of its own: its actuators were checked above. Its rate
+    // is stated per period or per second, not both.
+    if (const auto found = driven.find(t.experimental[i].dof.dof); found != driven.end()) {
+      const coordinator::CoordinatorLimits& l = t.experimental[i].limits;
+      if (l.max_velocity_m_per_s != coordinator::CoordinatorLimits::kNone &&
+          l.max_increment_m != coordinator::CoordinatorLimits::kNone) {
+        const bool rotation = setups[found->second.first].motions[found->second.second] == setups::DofMotion::kRotation;
+        limit_sections[i]->fail(rotation ? "max_rotation_rate_rad_per_s" : "max_velocity_m_per_s",
+                                rotation ? "give max_rotation_increment_rad or max_rotation_rate_rad_per_s, not both"
+                                         : "give max_increment_m or max_velocity_m_per_s, not both");
+      }
+      continue;
+    }
     try {
       const coordinator::CoordinatorLimits& stated = t.experimental[i].limits;
       coordinator::require_readable(stated,

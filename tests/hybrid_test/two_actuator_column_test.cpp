@@ -13,6 +13,7 @@
 #include "../servo/paper_rig.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
+#include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::hybrid_test {
@@ -98,6 +99,30 @@ TEST(TwoActuatorColumn, TheRehearsalFollowsItsReferenceWhileTheActuatorsPushAgai
   EXPECT_LT(std::sqrt(error2 / reference2), 0.3);
   EXPECT_GT(opposed_n, 1.0e3);
   EXPECT_GT(peak_actuator_force, 1.5 * peak_dof_force);
+}
+
+TEST(TwoActuatorColumn, EachActuatorsForceGuardPredictsWithItsShareOfTheCoupledColumn) {
+  // J = [[1, 0], [1, -L]] at rest, J^-1 = [[1, 0], [2, -2]]: the actuators' stiffness
+  // J^-T K J^-1 = [[7.0, -4.5], [-4.5, 3.0]] MN/m for the column's K, coupling included
+  // (a DOF-diagonal K would give 4.0 and 3.0).
+  const TestConfig t = load("examples/scenarios/two-actuator-column.yaml");
+  const SetupPlan plan = plan_setups(t, Eigen::Vector3d::Zero().head(2), 1.0 / 1024.0, false);
+  EXPECT_NEAR(plan.stiffness_estimate_n_per_m[0], 7.0e6, 1.0);
+  EXPECT_NEAR(plan.stiffness_estimate_n_per_m[1], 3.0e6, 1.0);
+}
+
+TEST(TwoActuatorColumn, ADofsRateStatedPerSecondActsPerControlPeriod) {
+  // 2 mrad/s on the rotation: 1.95e-6 rad per period at 1024 Hz, which the record's rotation
+  // passes early on; the run stops on the DOF, before its command leaves.
+  TestConfig t = std::get<TestConfig>(
+      scenarios::load_study(testing::source_dir() / "examples/scenarios/two-actuator-column.yaml",
+                            {scenarios::parse_override("experimental.1.limits={max_rotation_rate_rad_per_s: 0.002}")})
+          .study);
+  const TestRun r = run(t);
+  ASSERT_EQ(r.outcome, coordinator::StepOutcome::kLimit);
+  EXPECT_EQ(r.limit_stop.kind, coordinator::LimitStop::Kind::kIncrement);
+  EXPECT_EQ(std::string(r.limit_stop.name.data()), "site 1 DOF rotation");
+  EXPECT_DOUBLE_EQ(r.limit_stop.bound, 0.002 / 1024.0);
 }
 
 }  // namespace

@@ -65,6 +65,10 @@ TEST(ExperimentalSetupsFile, ARotationDofTakesItsLimitsInRadiansAndNewtonMetres)
   EXPECT_DOUBLE_EQ(t.experimental[1].limits.max_force_n, 60.0e3);  // max_moment_n_m
   refused("experimental.1.limits={max_stroke_m: 0.05}", "experimental[1].limits.max_stroke_m");
   refused("experimental.0.limits={max_rotation_rad: 0.05}", "experimental[0].limits.max_rotation_rad");
+  refused("experimental.1.limits={max_rotation_rate_rad_per_s: 0.1, max_rotation_increment_rad: 0.001}",
+          "experimental[1].limits.max_rotation_rate_rad_per_s: give max_rotation_increment_rad or");
+  refused("experimental.0.limits={max_velocity_m_per_s: 0.1, max_increment_m: 0.001}",
+          "experimental[0].limits.max_velocity_m_per_s: give max_increment_m or");
 }
 
 TEST(ExperimentalSetupsFile, TheSpecimensDiagonalIsEachDofsEstimateAndItsCouplingEntersK0) {

@@ -30,6 +30,12 @@ struct CoordinatorLimits {
 // control_period_s (and is kept, for reports); both given are refused. Not real-time safe.
 CoordinatorLimits within_envelope(CoordinatorLimits limits, const servo::Envelope& envelope, double control_period_s);
 
+// The limits of what has no rig of its own (a DOF an experimental setup drives: its rig is its
+// actuators'): only a limit stated per second becomes max_increment_m at control_period_s (and
+// is kept, for reports); both given are refused (config::KeyError on max_velocity_m_per_s).
+// Nothing else is defaulted. Not real-time safe.
+CoordinatorLimits per_control_period(CoordinatorLimits limits, double control_period_s);
+
 // The limits as within_envelope made them (`stated`: as the file gave them) must lie strictly
 // inside what the channel's converters can read: max_stroke_m inside the displacement's A/D,
 // max_force_n inside the force's. Otherwise std::invalid_argument "max_force_n: ..." naming
