@@ -162,7 +162,10 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
         woke = realtime::monotonic_now_ns();
       }
       last_tick = woke;
-      if (!command_came) jitter.add(woke - deadline);
+      if (!command_came) {
+        jitter.add(woke - deadline);
+        if (woke - deadline >= period_ns) ++report.late_wakeups;
+      }
       const std::uint64_t served = controller.serving_run();
       while (endpoint.take_command(command)) accept(woke);
       controller.tick(feedback);
@@ -170,7 +173,10 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
       publish();
       ++report.cycles;
       const std::int64_t done = realtime::monotonic_now_ns();
-      deadline = command_came ? woke + period_ns + grace_ns : deadline + period_ns;
+      // A tick woken late (this host stalled the node) is not followed by catch-up ticks: ticks
+      // without a command stay 3/4 of a period apart, so the watchdog counts real time without
+      // commands, not the node's own stall (commands queued meanwhile are taken at the next tick).
+      deadline = command_came ? woke + period_ns + grace_ns : std::max(deadline + period_ns, woke + min_spacing_ns);
       if (done > deadline) {
         // The tick itself took longer than a period: count it and re-anchor.
         ++report.overruns;

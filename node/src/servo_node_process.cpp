@@ -89,6 +89,7 @@ nlohmann::json node_summary(const ServoNodeSetup& setup, const ServoNodeControll
           {"feedback_published", report.feedback_published},
           {"cycles", report.cycles},
           {"overruns", report.overruns},
+          {"late_wakeups", report.late_wakeups},
           {"jitter", realtime::latency_json(report.jitter)},
           {"memory_locked", report.granted.memory_locked},
           {"sched_fifo", report.granted.fifo_granted},
