@@ -32,7 +32,8 @@ struct ServoNodeLoopOptions {
 struct ServoNodeLoopReport {
   realtime::RealTimeSetupReport granted;
   std::int64_t cycles = 0, overruns = 0;
-  std::int64_t late_wakeups = 0;  // ticks without a command woken a period or more after their deadline (a stalled host)
+  std::int64_t late_wakeups =
+      0;  // ticks without a command woken a period or more after their deadline (a stalled host)
   realtime::LatencySummary jitter;       // wake-up lateness of the ticks made without a command
   std::int64_t first_command_tick = -1;  // tick on which the first command was applied
   std::int64_t last_command_tick = -1;   // tick on which the last command was applied
