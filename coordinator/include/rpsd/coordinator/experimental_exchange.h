@@ -18,6 +18,7 @@
 #include "rpsd/compensation/command_compensator.h"
 #include "rpsd/compensation/tracking_indicator.h"
 #include "rpsd/coordinator/coordinator_limits.h"
+#include "rpsd/coordinator/held_force.h"
 #include "rpsd/coordinator/restoring_force.h"
 #include "rpsd/coordinator/setup_group.h"
 #include "rpsd/coordinator/step_outcome.h"
@@ -41,6 +42,8 @@ struct ExchangeParts {
   // The experimental setups and the channels each drives (the other channels: one actuator
   // per DOF, as without any).
   std::vector<SetupGroup> setups;
+  // The channels in force control (held_force.h), on the link channels after the structure's.
+  std::vector<HeldForceChannel> held_forces;
 };
 
 class ExperimentalExchange {

@@ -36,6 +36,10 @@ struct RecorderOptions {
   // The channels a setup drives, whose DOF view follows each row's other columns (empty:
   // none, and the file is as without setups).
   std::vector<DofViewColumn> dof_view = {};
+  // The link channels in force control, in their order (held_force.h), whose columns follow
+  // the DOF view: held_force_command_n_chC, held_measured_m_chC, held_measured_force_n_chC
+  // (empty: none, and the file is as without them).
+  std::vector<int> held_channels = {};
 };
 
 class Recorder {

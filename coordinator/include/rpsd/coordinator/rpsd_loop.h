@@ -67,6 +67,8 @@ struct LoopParts {
   // The experimental setups: their channels' targets and restoring forces are their DOFs',
   // their commands and feedback their actuators' (setup_group.h).
   std::vector<SetupGroup> setups;
+  // The channels in force control, after the structure's on the link (held_force.h).
+  std::vector<HeldForceChannel> held_forces;
 };
 
 class RpsdLoop {

@@ -34,6 +34,12 @@ struct StepRecord {
   std::array<double, transport::kMaxChannels> dof_target_m{};
   std::array<double, transport::kMaxChannels> dof_measured_m{};
   std::array<double, transport::kMaxChannels> dof_force_n{};
+  // Per channel in force control (held_force.h), in their order: the force commanded (the
+  // ramp), the piston's measured stroke and its load cell's force.
+  std::uint8_t held = 0;
+  std::array<double, transport::kMaxChannels> held_force_command_n{};
+  std::array<double, transport::kMaxChannels> held_measured_m{};
+  std::array<double, transport::kMaxChannels> held_measured_force_n{};
   // Per recorded model DOF, model scale.
   std::array<double, kMaxRecordedDofs> displacement_m{};
   std::array<double, kMaxRecordedDofs> velocity_m_per_s{};
@@ -73,6 +79,12 @@ inline void copy_used(const StepRecord& from, StepRecord& to) {
     to.dof_measured_m[c] = from.dof_measured_m[c];
     to.dof_force_n[c] = from.dof_force_n[c];
     to.round_trip_s[c] = from.round_trip_s[c];
+  }
+  to.held = from.held;
+  for (int k = 0; k < from.held; ++k) {
+    to.held_force_command_n[k] = from.held_force_command_n[k];
+    to.held_measured_m[k] = from.held_measured_m[k];
+    to.held_measured_force_n[k] = from.held_measured_force_n[k];
   }
   for (int d = 0; d < from.dofs; ++d) {
     to.displacement_m[d] = from.displacement_m[d];
