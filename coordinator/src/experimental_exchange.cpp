@@ -39,7 +39,25 @@ ExperimentalExchange::ExperimentalExchange(ExchangeParts parts) : parts_(std::mo
   tracking_.resize(static_cast<std::size_t>(channels_));
   command_.test_id = feedback_.test_id = parts_.test_id;
   command_.run_id = parts_.run_id != 0 ? parts_.run_id : transport::draw_run_id();
-  command_.channels = static_cast<std::uint8_t>(channels_);
+  link_channels_ = channels_ + static_cast<int>(parts_.held_forces.size());
+  if (link_channels_ > transport::kMaxChannels) {
+    throw std::invalid_argument("ExperimentalExchange: " + std::to_string(link_channels_) +
+                                " link channels with the held forces, at most " +
+                                std::to_string(transport::kMaxChannels));
+  }
+  for (std::size_t k = 0; k < parts_.held_forces.size(); ++k) {
+    const HeldForceChannel& h = parts_.held_forces[k];
+    if (h.channel != channels_ + static_cast<int>(k)) {
+      throw std::invalid_argument("ExperimentalExchange: held force " + std::to_string(k) +
+                                  " must be on link channel " + std::to_string(channels_ + static_cast<int>(k)));
+    }
+    if (!(h.max_force_rate_n_per_s > 0.0) || !std::isfinite(h.force_n) || !std::isfinite(h.force_at_rest_n)) {
+      throw std::invalid_argument(std::string("ExperimentalExchange: ") + h.name.data() +
+                                  ": a finite force, a force at rest and a rate > 0 are required");
+    }
+    command_.control_mode[static_cast<std::size_t>(h.channel)] = transport::kForceControl;
+  }
+  command_.channels = static_cast<std::uint8_t>(link_channels_);
   group_of_.fill(-1);
   index_in_group_.fill(-1);
   groups_.reserve(parts_.setups.size());
@@ -119,6 +137,12 @@ void ExperimentalExchange::start(const Eigen::VectorXd& targets, std::span<const
     // refused when the setup was made).
     (void)g.setup.actuator_forces(g.dof_target, g.dof_force, g.actuator_force);
   }
+  for (const HeldForceChannel& h : parts_.held_forces) {
+    const auto c = static_cast<std::size_t>(h.channel);
+    command_.force_n[c] = h.force_at_rest_n;  // the node enters force control from what it measures
+    command_.displacement_m[c] = 0.0;         // not followed in force control
+    feedback_.force_n[c] = h.force_at_rest_n;
+  }
   limit_stop_ = LimitStop{};
   saturated_exchanges_ = 0;
   exchange_ = 0;
@@ -145,6 +169,15 @@ void ExperimentalExchange::stop_on_dof(const Group& g, int i, LimitStop::Kind ki
 }
 
 bool ExperimentalExchange::commands_within_limits() {
+  // A held force's command (the ramp from its force at rest) is never sent beyond its force limit.
+  for (int k = 0; k < static_cast<int>(parts_.held_forces.size()); ++k) {
+    const HeldForceChannel& h = parts_.held_forces[static_cast<std::size_t>(k)];
+    const double f = command_.force_n[static_cast<std::size_t>(h.channel)];
+    if (std::abs(f) > h.limits.max_force_n) {
+      stop_on_held(k, LimitStop::Kind::kForce, f, h.limits.max_force_n, "N");
+      return false;
+    }
+  }
   // A setup's actuators: on the stroke as sent (what the hardware sees), then its DOFs' own
   // limits on the DOFs' commands.
   for (Group& g : groups_) {
@@ -243,6 +276,7 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
       command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
   }
   for (Group& g : groups_) command_setup(g);
+  command_held_forces(time_s);
   if (!commands_within_limits()) return StepOutcome::kLimit;
   if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
   for (int c = 0; c < channels_; ++c) last_sent_m_[c] = command_.displacement_m[c];
@@ -267,8 +301,9 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
   }
   ++exchange_;
   if (feedback_.status & transport::kNodeFault) return StepOutcome::kNodeFault;
-  if (transport::has_non_finite_measurement(feedback_, channels_)) return StepOutcome::kNonFinite;
+  if (transport::has_non_finite_measurement(feedback_, link_channels_)) return StepOutcome::kNonFinite;
   if (const StepOutcome outcome = run_away(); outcome != StepOutcome::kOk) return outcome;
+  if (const StepOutcome outcome = check_held_forces(); outcome != StepOutcome::kOk) return outcome;
   for (int c = 0; c < channels_; ++c) {
     if (const int g = group_of_[static_cast<std::size_t>(c)]; g >= 0) {
       // A setup's actuator: its load cell against its own force limit, its stroke tracked.
@@ -303,6 +338,47 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
     specimen_forces_[c] = path.source == RestoringForceSource::kMeasuredForce
                               ? feedback_.force_n[c]
                               : path.stiffness_n_per_m * feedback_.displacement_m[c];
+  }
+  return StepOutcome::kOk;
+}
+
+void ExperimentalExchange::command_held_forces(double time_s) {
+  // The ramp follows test time, so a late cycle in real time does not slow it.
+  for (const HeldForceChannel& h : parts_.held_forces) {
+    const double to_go = h.force_n - h.force_at_rest_n;
+    const double ramped = h.max_force_rate_n_per_s * std::max(0.0, time_s);
+    command_.force_n[static_cast<std::size_t>(h.channel)] =
+        std::abs(to_go) <= ramped ? h.force_n : h.force_at_rest_n + std::copysign(ramped, to_go);
+  }
+}
+
+void ExperimentalExchange::stop_on_held(int k, LimitStop::Kind kind, double value, double bound, const char* unit) {
+  const HeldForceChannel& h = parts_.held_forces[static_cast<std::size_t>(k)];
+  limit_stop_ = {kind, h.channel, value, bound};
+  limit_stop_.held = k;
+  limit_stop_.name = h.name;
+  limit_stop_.unit = unit;
+}
+
+StepOutcome ExperimentalExchange::check_held_forces() {
+  for (int k = 0; k < static_cast<int>(parts_.held_forces.size()); ++k) {
+    const HeldForceChannel& h = parts_.held_forces[static_cast<std::size_t>(k)];
+    const auto c = static_cast<std::size_t>(h.channel);
+    const double force = feedback_.force_n[c], stroke = feedback_.displacement_m[c];
+    if (std::abs(force) > h.limits.max_force_n) {
+      stop_on_held(k, LimitStop::Kind::kForce, force, h.limits.max_force_n, "N");
+      return StepOutcome::kLimit;
+    }
+    // A specimen that softens lets a piston in force control run: its stroke is the check.
+    if (std::abs(stroke) > h.limits.max_stroke_m) {
+      stop_on_held(k, LimitStop::Kind::kStroke, stroke, h.limits.max_stroke_m, "m");
+      return StepOutcome::kRunAway;
+    }
+    const double error = command_.force_n[c] - force;
+    if (std::abs(error) > h.limits.max_force_error_n) {
+      stop_on_held(k, LimitStop::Kind::kTrackingError, error, h.limits.max_force_error_n, "N");
+      return StepOutcome::kRunAway;
+    }
   }
   return StepOutcome::kOk;
 }
@@ -389,6 +465,13 @@ void ExperimentalExchange::fill_channels(StepRecord& r) const {
       r.dof_measured_m[c] = g.dof_measured[i];
       r.dof_force_n[c] = g.dof_force[i];
     }
+  }
+  r.held = static_cast<std::uint8_t>(parts_.held_forces.size());
+  for (int k = 0; k < r.held; ++k) {
+    const auto c = static_cast<std::size_t>(parts_.held_forces[static_cast<std::size_t>(k)].channel);
+    r.held_force_command_n[k] = command_.force_n[c];
+    r.held_measured_m[k] = feedback_.displacement_m[c];
+    r.held_measured_force_n[k] = feedback_.force_n[c];
   }
   r.node_status = feedback_.status;
   r.limit_flags = feedback_.limit_flags;

@@ -57,9 +57,38 @@ std::string describe_setup_stop(const LimitStop& l) {
   return text;
 }
 
+// A channel in force control: its force command, its load cell, its piston's stroke, its
+// force's tracking error, under its held_forces[] entry's limits.
+std::string describe_held_stop(const LimitStop& l) {
+  char text[300];
+  using Kind = LimitStop::Kind;
+  switch (l.kind) {
+    case Kind::kStroke:
+      std::snprintf(text, sizeof text,
+                    "%s (channel %d): the piston's measured stroke %.6g m beyond limits.max_stroke_m %.6g (the "
+                    "specimen gave way under the held force); no further command was sent",
+                    l.name.data(), l.channel, l.value, l.bound);
+      break;
+    case Kind::kForce:
+      std::snprintf(text, sizeof text, "%s (channel %d): force %.6g N beyond limits.max_force_n %.6g; %s",
+                    l.name.data(), l.channel, l.value, l.bound,
+                    "the force was not commanded, or no further command was sent");
+      break;
+    case Kind::kTrackingError:
+      std::snprintf(text, sizeof text,
+                    "%s (channel %d): force command less measured force %.6g N beyond limits.max_force_error_n %.6g",
+                    l.name.data(), l.channel, l.value, l.bound);
+      break;
+    default:
+      std::snprintf(text, sizeof text, "%s: %s", l.name.data(), limit_stop_name(l.kind));
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string describe_limit_stop(const LimitStop& l) {
+  if (l.held >= 0) return describe_held_stop(l);
   if (l.name[0] != '\0') return describe_setup_stop(l);
   char text[240];
   using Kind = LimitStop::Kind;

@@ -16,9 +16,11 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
       dofs_(dofs),
       keep_records_(options.keep_records),
       dof_view_(std::move(options.dof_view)),
+      held_channels_(std::move(options.held_channels)),
       row_(static_cast<std::size_t>(64 + (output::kG10MaxChars + 1) *
-                                             (10 + 7 * channels + 4 * dofs + 3 * static_cast<int>(dof_view_.size())))) {
-  if (channels > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
+                                             (10 + 7 * channels + 4 * dofs + 3 * static_cast<int>(dof_view_.size()) +
+                                              3 * static_cast<int>(held_channels_.size())))) {
+  if (channels + static_cast<int>(held_channels_.size()) > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
     throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
   }
   for (const DofViewColumn& v : dof_view_) {
@@ -131,6 +133,10 @@ void Recorder::write_header() {
     csv_ << ",dof_target_" << displacement << "_ch" << v.channel << ",dof_measured_" << displacement << "_ch"
          << v.channel << (v.rotation ? ",dof_moment_n_m_ch" : ",dof_force_n_ch") << v.channel;
   }
+  // The channels in force control: the force commanded, the piston's stroke and its force.
+  for (const int c : held_channels_) {
+    csv_ << ",held_force_command_n_ch" << c << ",held_measured_m_ch" << c << ",held_measured_force_n_ch" << c;
+  }
   csv_ << "\n";
 }
 
@@ -176,6 +182,11 @@ void Recorder::write_row(const StepRecord& r) {
     put(r.dof_target_m[v.channel]);
     put(r.dof_measured_m[v.channel]);
     put(r.dof_force_n[v.channel]);
+  }
+  for (std::size_t k = 0; k < held_channels_.size(); ++k) {
+    put(r.held_force_command_n[k]);
+    put(r.held_measured_m[k]);
+    put(r.held_measured_force_n[k]);
   }
   *out++ = '\n';
   csv_.write(row, out - row);

@@ -25,7 +25,8 @@ ExchangeParts exchange_parts(const LoopParts& p) {
           p.limits,
           p.stop_on_node_limits,
           p.max_valve_saturation_exchanges,
-          p.setups};
+          p.setups,
+          p.held_forces};
 }
 
 }  // namespace

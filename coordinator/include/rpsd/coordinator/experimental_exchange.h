@@ -51,7 +51,8 @@ class ExperimentalExchange {
   // Checks the parts fit together (std::invalid_argument naming the mismatch). Not real-time safe.
   explicit ExperimentalExchange(ExchangeParts parts);
 
-  int channels() const { return channels_; }
+  int channels() const { return channels_; }  // the structure's; the held forces' come after
+  int held_forces() const { return static_cast<int>(parts_.held_forces.size()); }
   std::uint64_t run_id() const { return command_.run_id; }
 
   // At rest: the actuators hold `targets` (specimen scale), the specimens carry `forces`.
@@ -94,7 +95,13 @@ class ExperimentalExchange {
   };
 
   bool commands_within_limits();  // fills limit_stop_ when not
-  StepOutcome run_away();         // kOk, or kRunAway with limit_stop_ filled
+  // The held forces' commands at test time `time_s`: each ramps from its force at rest.
+  void command_held_forces(double time_s);
+  // The held forces' measurements against their limits: kOk, or kLimit / kRunAway with
+  // limit_stop_ filled.
+  StepOutcome check_held_forces();
+  void stop_on_held(int k, LimitStop::Kind kind, double value, double bound, const char* unit);
+  StepOutcome run_away();  // kOk, or kRunAway with limit_stop_ filled
   // A setup's channels: the DOF targets through the geometry to the actuators' commands.
   void command_setup(Group& g);
   // A setup's channels: the measured strokes and forces back to the DOFs'; kGeometry, kLimit
@@ -116,6 +123,7 @@ class ExperimentalExchange {
   std::array<double, transport::kMaxChannels> last_sent_m_{};
   int saturated_exchanges_ = 0;
   std::vector<Group> groups_;
+  int link_channels_ = 0;  // the structure's channels and the held forces'
   // Per channel: its setup and its index there (-1: no setup drives it).
   std::array<int, transport::kMaxChannels> group_of_{}, index_in_group_{};
 };

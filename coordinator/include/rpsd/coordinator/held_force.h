@@ -23,9 +23,9 @@ struct HeldForceLimits {
 
 struct HeldForceChannel {
   std::uint32_t site_id = 1;
-  std::array<char, 64> name{};  // for people: "site 1 held force axial"
-  int channel = 0;              // its link channel, after the structure's channels
-  double force_n = 0.0;         // the force held once ramped
+  std::array<char, 64> name{};          // for people: "site 1 held force axial"
+  int channel = 0;                      // its link channel, after the structure's channels
+  double force_n = 0.0;                 // the force held once ramped
   double max_force_rate_n_per_s = 0.0;  // the ramp's rate (> 0)
   double force_at_rest_n = 0.0;         // measured before the first command: the ramp starts here
   HeldForceLimits limits;

@@ -83,7 +83,8 @@ class Recorder {
   int channels_, dofs_;
   bool keep_records_;
   std::vector<DofViewColumn> dof_view_;
-  std::vector<char> row_;  // one CSV row, built by the writer thread
+  std::vector<int> held_channels_;  // the link channels of the held forces, in their order
+  std::vector<char> row_;           // one CSV row, built by the writer thread
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};
   std::mutex wake_mutex_;  // the writer's idle wait and finish() only, never the loop

@@ -30,6 +30,7 @@ struct LimitStop {
   // named for people ("site 1 actuator west", "site 1 DOF 2 rotation"), with the units of the
   // value. Filled in place on the real-time path: no allocation. Empty name: a plain channel.
   int setup = -1, actuator = -1, dof = -1;
+  int held = -1;  // a channel in force control (held_force.h), by its index among them
   std::array<char, 64> name{};
   const char* unit = "m";  // of value and bound: m, rad, N or N·m (a string literal)
 };
