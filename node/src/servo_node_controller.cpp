@@ -330,11 +330,17 @@ void ServoNodeController::choose_target() {
     }
   }
   if (safe_state_) {
+    // Every channel moves along one straight line and all arrive together, the farthest at the
+    // safe velocity: the actuators of one specimen (an experimental setup) take it back along a
+    // straight path of their strokes, which linear geometry maps to a straight path of its DOFs,
+    // not one actuator after the other.
     const double step_m = config_.safe_ramp_velocity_m_per_s * config_.control_period_s;
+    double farthest_m = 0.0;
+    for (int c = 0; c < channels; ++c)
+      farthest_m = std::max(farthest_m, std::abs(config_.safe_position_m[c] - command_m_[c]));
     for (int c = 0; c < channels; ++c) {
       const double to_go = config_.safe_position_m[c] - command_m_[c];
-      target_m_[c] =
-          std::abs(to_go) <= step_m ? config_.safe_position_m[c] : command_m_[c] + std::copysign(step_m, to_go);
+      target_m_[c] = farthest_m <= step_m ? config_.safe_position_m[c] : command_m_[c] + step_m * (to_go / farthest_m);
     }
   }
 }

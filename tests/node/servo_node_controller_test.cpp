@@ -575,6 +575,32 @@ TEST(ServoNodeController, RampToSafeReachesTheSafePositionAtTheConfiguredRate) {
   EXPECT_EQ(node.counters().limit_activations, (std::array<std::uint64_t, kLimitKinds>{}));  // within every limit
 }
 
+// Several channels ramp to safe along one straight line and arrive together, the farthest at
+// the safe velocity: channel 1, half as far from safe as channel 0, moves half as fast, so a
+// specimen driven through a setup goes back along a straight path, not one actuator first.
+TEST(ServoNodeController, RampToSafeMovesEveryChannelAlongOneStraightLine) {
+  auto c = config(2);
+  c.command_timeout_periods = 3;
+  c.on_command_loss = LossAction::kRampToSafe;
+  c.safe_ramp_velocity_m_per_s = 0.0625;  // 2^-14 m per period
+  c.safe_position_m = {0.0, 0.001};
+  Rig rig(c);
+  auto& [actuator, node] = rig;
+  const double start0_m = 0.0078125, start1_m = 0.001 - 0.00390625, step_m = 0.0625 * kPeriod;  // 2^-7, -2^-8
+  send(node, command(1, {start0_m, start1_m}));
+  idle(node);
+  idle(node);
+  for (int k = 1; k <= 128; ++k) {
+    idle(node);
+    ASSERT_EQ(actuator.last(0), start0_m - k * step_m) << k;
+    ASSERT_NEAR(actuator.last(1), start1_m + k * step_m / 2, 1e-15) << k;
+  }
+  EXPECT_EQ(actuator.last(0), 0.0);
+  EXPECT_NEAR(actuator.last(1), 0.001, 1e-15);  // together, after 128 periods
+  idle(node);
+  EXPECT_EQ(actuator.last(1), 0.001);
+}
+
 TEST(ServoNodeController, BadCommandsAreDroppedCountedAndNeverApplied) {
   IdealActuator actuator(2);
   auto c = config(2);
