@@ -28,6 +28,15 @@ AdapterLink::~AdapterLink() { end_run(); }
 
 transport::LinkStatus AdapterLink::send(const transport::CommandSample& command) {
   if (!stream_.is_open()) return transport::LinkStatus::kPeerLost;
+  // An adapter element takes trial displacements only: a force command is refused, never
+  // dropped in silence (its channel would follow a displacement nobody asked for).
+  for (int i = 0; i < config_.dofs; ++i) {
+    if (command.control_mode[static_cast<std::size_t>(i)] != transport::kDisplacementControl) {
+      failure_ = "the OpenSees adapter at " + stream_.peer() + " takes displacements only: its DOF " +
+                 std::to_string(i) + " was sent a force command";
+      return transport::LinkStatus::kRefused;
+    }
+  }
   // [3, displacements] and [10] in one write: the adapter answers only once both are in, and
   // two small writes would wait on Nagle and the delayed ACK.
   std::fill(out_.begin(), out_.end(), 0.0);

@@ -73,6 +73,29 @@ TEST(AdapterLink, AnAdapterThatLeavesIsALostPeerWithItsAddress) {
   EXPECT_THAT(link.failure(), testing::HasSubstr("the OpenSees adapter at 127.0.0.1:"));
 }
 
+// An adapter element takes trial displacements only: a command with a channel in force control
+// is refused and named, nothing is written (the adapter reads no trial after its sizes).
+TEST(AdapterLink, AForceCommandIsRefusedNotDropped) {
+  TcpListener listener("127.0.0.1", 0);
+  auto adapter = std::async(std::launch::async, [&] {
+    TcpStream s = *listener.accept(5.0);
+    std::array<std::int32_t, 11> sizes{};
+    EXPECT_EQ(s.read_exact(std::as_writable_bytes(std::span<std::int32_t>(sizes)), 5.0, 5.0), IoStatus::kOk);
+    std::array<double, 3> trial{};
+    return s.read_exact(std::as_writable_bytes(std::span<double>(trial)), 0.5, 0.5);
+  });
+  AdapterSiteConfig config;
+  config.port = listener.port();
+  config.dofs = 2;
+  AdapterLink link(config);
+  transport::CommandSample command;
+  command.control_mode[1] = transport::kForceControl;
+  command.force_n[1] = 1000.0;
+  EXPECT_EQ(link.send(command), transport::LinkStatus::kRefused);
+  EXPECT_THAT(link.failure(), testing::HasSubstr("DOF 1 was sent a force command"));
+  EXPECT_NE(adapter.get(), IoStatus::kOk);  // no trial reached the adapter
+}
+
 TEST(AdapterLink, NoAdapterListeningIsNamedAfterTheTimeout) {
   AdapterSiteConfig config;
   config.port = [] {
