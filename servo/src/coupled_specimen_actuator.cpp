@@ -13,6 +13,8 @@ constexpr std::string_view kSingularText =
     "the simulated coupled specimen: the setup's Jacobian is singular at the measured strokes";
 constexpr std::string_view kNotConvergedText =
     "the simulated coupled specimen: the setup's geometry did not converge on the measured strokes";
+constexpr std::string_view kMirroredText =
+    "the simulated coupled specimen: the measured strokes solve to a configuration mirrored from the reference one";
 constexpr std::string_view kNotFiniteText = "the simulated coupled specimen: its forces are not finite";
 
 setups::SetupMatrix square_over_dofs(const Eigen::MatrixXd& m, int dofs, const char* what, bool empty_is_zero) {
@@ -104,7 +106,9 @@ bool CoupledSpecimenActuator::load_plants(const ActuatorReading& reading, double
   for (int i = 0; i < n; ++i) strokes_m_[i] = reading.displacement_m[static_cast<std::size_t>(i)];
   const setups::SetupStatus solved = setup_.displacements(strokes_m_, u_last_, u_);
   if (solved != setups::SetupStatus::kOk) {
-    fault_text_ = solved == setups::SetupStatus::kSingular ? kSingularText : kNotConvergedText;
+    fault_text_ = solved == setups::SetupStatus::kSingular   ? kSingularText
+                  : solved == setups::SetupStatus::kMirrored ? kMirroredText
+                                                             : kNotConvergedText;
     return false;
   }
   velocity_ = (u_ - u_last_) / period_s;

@@ -83,6 +83,9 @@ std::string_view setup_status_text(SetupStatus status) noexcept {
       return "the setup's Jacobian is singular at this configuration";
     case SetupStatus::kNotConverged:
       return "the setup's geometry did not converge on the measured strokes";
+    case SetupStatus::kMirrored:
+      return "the measured strokes solve to a configuration mirrored from the reference one (the Jacobian's "
+             "orientation flipped)";
   }
   return "?";
 }
@@ -125,6 +128,7 @@ PlanarSetup::PlanarSetup(PlanarGeometry geometry) : geometry_(std::move(geometry
         "(two actuators along one line, or a rotation without a lever arm)");
   }
   reference_jacobian_inverse_ = reference_jacobian_.inverse();
+  reference_orientation_positive_ = reference_jacobian_.determinant() > 0.0;
 }
 
 double PlanarSetup::reference_length_m(int actuator) const noexcept {
@@ -178,11 +182,17 @@ SetupStatus PlanarSetup::displacements(const SetupVector& strokes_m, const Setup
   }
   SetupVector s(n), residual(n), change(n);
   SetupMatrix j(n, n);
+  // A solution on the mirrored branch has the same strokes but a Jacobian of the other
+  // orientation (the branches meet where it is singular): it is not the specimen's configuration.
+  const auto on_the_reference_branch = [&] {
+    jacobian(u, j);
+    return (j.determinant() > 0.0) == reference_orientation_positive_ ? SetupStatus::kOk : SetupStatus::kMirrored;
+  };
   for (int iteration = 0; iteration < geometry_.max_newton_iterations; ++iteration) {
     this->strokes(u, s);
     residual = strokes_m - s;
     if (!residual.allFinite()) return SetupStatus::kNotConverged;
-    if (residual.cwiseAbs().maxCoeff() <= geometry_.newton_tolerance_m) return SetupStatus::kOk;
+    if (residual.cwiseAbs().maxCoeff() <= geometry_.newton_tolerance_m) return on_the_reference_branch();
     jacobian(u, j);
     if (near_singular(j)) return SetupStatus::kSingular;
     change.noalias() = Eigen::PartialPivLU<SetupMatrix>(j).solve(residual);
@@ -191,7 +201,7 @@ SetupStatus PlanarSetup::displacements(const SetupVector& strokes_m, const Setup
   this->strokes(u, s);
   residual = strokes_m - s;
   return residual.allFinite() && residual.cwiseAbs().maxCoeff() <= geometry_.newton_tolerance_m
-             ? SetupStatus::kOk
+             ? on_the_reference_branch()
              : SetupStatus::kNotConverged;
 }
 

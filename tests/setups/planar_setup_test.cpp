@@ -189,6 +189,21 @@ TEST(PlanarSetup, ReportsUnreachableStrokesAsNotConverged) {
   EXPECT_NE(status, SetupStatus::kOk) << setup_status_text(status);
 }
 
+// One actuator of length L pinned at x = -L: strokes s = |x + L| - L, so x and -2L - x give
+// the same stroke, with dstroke/dx of opposite signs. Newton from a guess beyond the fixed end
+// finds the mirrored x; that is refused, not taken for the specimen's displacement.
+TEST(PlanarSetup, RefusesTheMirroredSolutionOfTheMeasuredStrokes) {
+  const PlanarSetup s(examples::one_actuator(Geometry::kLargeDisplacement).planar());
+  const double l = s.reference_length_m(0);
+  SetupVector strokes(1), u;
+  strokes << 0.01;
+  ASSERT_EQ(s.displacements(strokes, SetupVector::Constant(1, 0.0), u), SetupStatus::kOk);
+  EXPECT_NEAR(u[0], 0.01, 1e-12);
+  EXPECT_EQ(s.displacements(strokes, SetupVector::Constant(1, -2.0 * l - 0.005), u), SetupStatus::kMirrored);
+  EXPECT_NEAR(u[0], -2.0 * l - 0.01, 1e-9);  // the mirror image it found
+  EXPECT_NE(setup_status_text(SetupStatus::kMirrored).find("mirrored"), std::string_view::npos);
+}
+
 // The first call has no last solution: a guess of another size starts from the linear one
 // (on d82d167 Newton read past the empty guess).
 TEST(PlanarSetup, StartsFromTheLinearSolutionWithoutAGuess) {

@@ -57,6 +57,8 @@ enum class SetupStatus : std::uint8_t {
   kSingular,      // the Jacobian at this configuration has no inverse (the actuators cannot
                   // hold the DOFs there)
   kNotConverged,  // Newton did not reach the measured strokes within its iterations
+  kMirrored,      // the strokes solve to a configuration mirrored from the reference one (the
+                  // Jacobian's orientation flipped: an actuator swung through its fixed end)
 };
 std::string_view setup_status_text(SetupStatus status) noexcept;
 
@@ -91,6 +93,7 @@ class PlanarSetup {
   PlanarGeometry geometry_;
   std::array<double, kMaxSetupDofs> reference_length_m_{};
   SetupMatrix reference_jacobian_, reference_jacobian_inverse_;
+  bool reference_orientation_positive_ = true;  // the sign of det J at the reference configuration
 };
 
 }  // namespace rpsd::setups
