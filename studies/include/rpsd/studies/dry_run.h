@@ -29,7 +29,8 @@ struct NodeLimits {
   std::string name;  // the node file, for messages
   std::uint32_t test_id = 0, site_id = 0;
   double control_period_s = 1.0 / 1024.0;
-  // The site's channels, in the test's channel order (how the coordinator addresses them).
+  // The site's channels, in the test's channel order (how the coordinator addresses them):
+  // its structure's, then its held forces'.
   std::vector<node::ChannelLimits> channels;
 };
 
@@ -76,6 +77,20 @@ struct DofPrediction {
   bool within_limits = true;
 };
 
+// An actuator that holds a force (held_forces[]), from the same simulated run: its ramp and
+// limits as the test holds them, how well the force was held once ramped and how far its
+// piston went.
+struct HeldForcePrediction {
+  std::string name;  // "site 1 held force axial"
+  std::uint32_t site_id = 1;
+  int channel = 0;  // its link channel, after the structure's
+  double force_n = 0.0, max_force_rate_n_per_s = 0.0, force_at_rest_n = 0.0, ramp_s = 0.0;
+  coordinator::HeldForceLimits limits;
+  double max_force_error_after_ramp_n = 0.0;  // NaN: the run stopped before the ramp's end
+  double peak_measured_m = 0.0;               // |measured stroke|
+  bool within_limits = true;
+};
+
 struct ModePrediction {
   double frequency_hz = 0.0;
   double damping_ratio = 0.0;            // of the structure alone (no delay)
@@ -94,6 +109,7 @@ struct DryRunReport {
   // against the actuator's limits).
   std::vector<ChannelPrediction> channels;
   std::vector<DofPrediction> dofs;  // the DOFs setups drive (empty without setups)
+  std::vector<HeldForcePrediction> held_forces;  // empty without held forces
   double residual_delay_ms = 0.0;   // the channels' mean tracking delay
   std::vector<ModePrediction> modes;
   // Servo model only: its proportional gain and the largest stable one (eigenvalues of the
