@@ -181,10 +181,10 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
       (void)hybrid_test::held_force_limits(held, servo::envelope_of(t.plant));
     } catch (const config::KeyError& e) {
       const std::string limits_key = "limits.";
-      if (e.path().rfind(limits_key, 0) == 0 && held_limits[i] && held_limits[i]->has(e.leaf())) {
-        held_limits[i]->fail(e.leaf(), e.problem());
-      }
-      d.held_forces[i]->fail(e.path().rfind(limits_key, 0) == 0 ? "limits" : e.path(), e.problem());
+      const bool a_limit = e.path().rfind(limits_key, 0) == 0;
+      const std::string key = a_limit ? e.path().substr(limits_key.size()) : e.path();
+      if (a_limit && held_limits[i] && held_limits[i]->has(key)) held_limits[i]->fail(key, e.problem());
+      d.held_forces[i]->fail(a_limit ? "limits" : e.path(), e.problem());
     }
     if (t.transport.kind == hybrid_test::TransportConfig::Kind::kInProcess) {
       if (const std::string why = hybrid_test::held_force_refusal(t.plant); !why.empty()) {

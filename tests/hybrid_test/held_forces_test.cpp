@@ -146,6 +146,42 @@ TEST(HeldForces, SiteSetupPutsTheHeldChannelInForceControlWithinTheHeldForcesLim
   EXPECT_NO_THROW(n.validate());
 }
 
+TEST(HeldForces, TheExamplesSiteHoldsAForceSentInForceModeOnItsHeldChannel) {
+  // The site as the test builds it, driven through its link as the coordinator will: channel 0
+  // held at rest, channel 1 sent the example's ramp (10 kN/s to -30 kN) in force mode.
+  const TestConfig t = column();
+  const double hold_m[1] = {0.0};
+  const std::uint64_t run_id = transport::draw_run_id();
+  ActuatorLinks links(t, 1.0 / 1024.0, false, hold_m, run_id);
+  transport::CommandSample command;
+  command.test_id = t.transport.test_id;
+  command.site_id = 1;
+  command.run_id = run_id;
+  command.channels = 2;
+  command.control_mode[1] = transport::kForceControl;
+  transport::FeedbackSample feedback;
+  double peak_x_m = 0.0, worst_after_ramp_n = 0.0;
+  const int steps = 6 * 1024;
+  for (int n = 1; n <= steps; ++n) {
+    command.step = n;
+    command.time_s = n / 1024.0;
+    command.force_n[1] = std::max(-30.0e3, -10.0e3 * command.time_s);
+    ASSERT_EQ(links.link().send(command), transport::LinkStatus::kOk);
+    ASSERT_EQ(links.link().receive(feedback), transport::LinkStatus::kOk);
+    ASSERT_EQ(feedback.status & transport::kNodeFault, 0u) << "step " << n;
+    peak_x_m = std::max(peak_x_m, std::abs(feedback.displacement_m[1]));
+    if (command.time_s >= 3.0)
+      worst_after_ramp_n = std::max(worst_after_ramp_n, std::abs(feedback.force_n[1] - command.force_n[1]));
+  }
+  // Held within the default force error (10 % of the rig's 156 kN; a proportional loop holds
+  // it to 7.6 % at rest, docs/servo-model.md), the column shortened by about F / k on the
+  // held force's specimen (43 mm), and the lateral actuator left at rest.
+  EXPECT_LT(worst_after_ramp_n, 0.1 * servo::envelope_of(t.plant).force_n);
+  EXPECT_NEAR(feedback.displacement_m[1], -30.0e3 / 700.8e3, 0.1 * 30.0e3 / 700.8e3);
+  EXPECT_LT(peak_x_m, 0.08);
+  EXPECT_NEAR(feedback.displacement_m[0], 0.0, 1e-4);
+}
+
 TEST(HeldForces, TheLoopIsGivenEachHeldForceWithItsForceAtRestAndTheReferenceNone) {
   const TestConfig t = column();
   TestAssembly test(t, {{}, false, false, {}});

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <regex>
+#include <sstream>
 #include <string>
 
 #include "../servo/paper_rig.h"
@@ -120,10 +121,14 @@ TEST(HeldForcesFile, InThisProcessThePlantMustHaveAForceLoopOverDdsTheNodeSays) 
 
 TEST(HeldForcesFile, ExperimentalAndHeldChannelsTogetherFitTheLink) {
   std::string list;
-  for (int k = 0; k < transport::kMaxChannels; ++k) list += (k ? ", " : "") + held("h" + std::to_string(k));
-  refused({"held_forces=[" + list + "]"}, "held_forces[" + std::to_string(transport::kMaxChannels - 1) +
-                                              "].site: more than " + std::to_string(transport::kMaxChannels) +
-                                              " link channels in all");
+  for (int k = 0; k < transport::kMaxChannels; ++k) {
+    if (k > 0) list += ", ";
+    list += held(std::string(1, static_cast<char>('a' + k)));
+  }
+  std::ostringstream words;
+  words << "held_forces[" << transport::kMaxChannels - 1 << "].site: more than " << transport::kMaxChannels
+        << " link channels in all";
+  refused({"held_forces=[" + list + "]"}, words.str());
 }
 
 TEST(HeldForcesFile, ARefusalNamesTheFileAndLine) {
