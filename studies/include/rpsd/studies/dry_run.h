@@ -32,6 +32,8 @@ struct NodeLimits {
   // The site's channels, in the test's channel order (how the coordinator addresses them):
   // its structure's, then its held forces'.
   std::vector<node::ChannelLimits> channels;
+  // Each channel's control mode as its file declares it (empty: not known, not checked).
+  std::vector<servo::ControlMode> control;
 };
 
 // One channel's peaks against its node's limits.
@@ -124,8 +126,9 @@ struct DryRunReport {
 
 // Runs the scenario's test (not the reference) with its simulated plant, whatever its transport
 // and clock say. Throws what building the test throws, and std::invalid_argument naming the
-// node file when a node serves another test, an unknown or repeated site, or another number
-// of channels than the scenario gives its site.
+// node file when a node serves another test, an unknown or repeated site, another number
+// of channels than the scenario gives its site, or a channel in another control mode than the
+// scenario's (a held force's channel in force control, every other in displacement control).
 DryRunReport dry_run(const hybrid_test::TestConfig& scenario, const std::vector<NodeLimits>& nodes = {});
 
 }  // namespace rpsd::studies
