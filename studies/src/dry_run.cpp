@@ -140,6 +140,21 @@ void attach_nodes(DryRunReport& report, const hybrid_test::TestConfig& s, const 
                                   std::to_string(site.size() + held) +
                                   (held > 0 ? " (" + std::to_string(held) + " of them holding a force)" : ""));
     }
+    // The control mode the test sends each node channel: force on the site's held forces'.
+    std::vector<std::string> held_on(node.channels.size());
+    std::size_t j = site.size();
+    for (const hybrid_test::HeldForce& h : s.held_forces) {
+      if (h.site_id == node.site_id) held_on[j++] = hybrid_test::held_force_label(h);
+    }
+    for (std::size_t c = 0; c < node.control.size() && c < held_on.size(); ++c) {
+      const bool force = node.control[c] == servo::ControlMode::kForce;
+      if (force == !held_on[c].empty()) continue;
+      throw std::invalid_argument(
+          node.name + ": channel " + std::to_string(c) + " is in " + (force ? "force" : "displacement") +
+          " control (actuator.control), the scenario sends it " +
+          (held_on[c].empty() ? std::string("displacements") : "the force of " + held_on[c]) +
+          (held_on[c].empty() ? "" : ": declare it force"));
+    }
     for (std::size_t i = 0; i < site.size(); ++i)
       site[i]->node = NodeCheck{node.name, node.channels[i], node.control_period_s};
   }
