@@ -30,8 +30,9 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
   std::vector<const ExperimentalChannel*> by_channel(static_cast<std::size_t>(structure_channels));
   for (const auto& e : s.experimental) by_channel[static_cast<std::size_t>(e.dof.actuator_channel)] = &e;
   for (int ch = 0; ch < channels; ++ch) {
-    const std::uint32_t site = ch < structure_channels ? by_channel[static_cast<std::size_t>(ch)]->site_id
-                                                       : s.held_forces[static_cast<std::size_t>(ch - structure_channels)].site_id;
+    const std::uint32_t site = ch < structure_channels
+                                   ? by_channel[static_cast<std::size_t>(ch)]->site_id
+                                   : s.held_forces[static_cast<std::size_t>(ch - structure_channels)].site_id;
     auto [it, added] = index_of_site.emplace(site, sites_.size());
     if (added) sites_.push_back({site, {}});
     sites_[it->second].channels.push_back(ch);
@@ -48,7 +49,8 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
         // sent forces, not positions.
         const int k = ch - structure_channels;
         setup.hold_m.push_back(0.0);
-        setup.stiffness_estimate_n_per_m.push_back(s.held_forces[static_cast<std::size_t>(k)].specimen_stiffness_n_per_m);
+        setup.stiffness_estimate_n_per_m.push_back(
+            s.held_forces[static_cast<std::size_t>(k)].specimen_stiffness_n_per_m);
         setup.held_force.resize(site.channels.size(), -1);
         setup.held_force[setup.hold_m.size() - 1] = k;
         continue;

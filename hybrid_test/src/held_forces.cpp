@@ -18,8 +18,8 @@ namespace {
 void within_rig(double& limit, double rig, const std::string& key, const char* what) {
   servo::tighten_to_rig(limit, rig, "limits." + key, what);
   if (!std::isfinite(limit)) {
-    throw config::KeyError("limits." + key, std::string("the rig states no ") + what +
-                                                ": a held force needs this limit stated");
+    throw config::KeyError("limits." + key,
+                           std::string("the rig states no ") + what + ": a held force needs this limit stated");
   }
 }
 
@@ -101,9 +101,8 @@ void HeldForceTracker::add(const coordinator::StepRecord& r) {
     s.last_measured_force_n = r.held_measured_force_n[k];
     if (r.time_s >= s.ramp_s) {
       const double error = std::abs(r.held_force_command_n[k] - r.held_measured_force_n[k]);
-      s.max_force_error_after_ramp_n = std::isnan(s.max_force_error_after_ramp_n)
-                                           ? error
-                                           : std::max(s.max_force_error_after_ramp_n, error);
+      s.max_force_error_after_ramp_n =
+          std::isnan(s.max_force_error_after_ramp_n) ? error : std::max(s.max_force_error_after_ramp_n, error);
     }
   }
 }

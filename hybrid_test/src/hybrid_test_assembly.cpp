@@ -30,10 +30,10 @@ struct TestAssembly::Parts {
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
   TimingReport timing;
-  std::vector<SetupCalibration> calibrations;  // per experimental setup
+  std::vector<SetupCalibration> calibrations;              // per experimental setup
   std::vector<coordinator::HeldForceChannel> held_forces;  // as the loop was given them
   HeldForceTracker held_stats;                             // of held_forces, from every step's record
-  realtime::CpuWakeLatencyHold cpus_awake;     // from the start to finish(): real time, or over DDS
+  realtime::CpuWakeLatencyHold cpus_awake;                 // from the start to finish(): real time, or over DDS
   const std::atomic<bool>* stop_request = nullptr;
 
   // Counts a step the loop took and hands its record on. Real-time safe.
@@ -180,8 +180,7 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   // reference is numerical and holds none.
   if (!perfect_actuator) {
     for (std::size_t k = 0; k < s.held_forces.size(); ++k) {
-      p.held_forces.push_back(
-          held_force_channel(s, k, p.actuators->initial_force_n(held_force_link_channel(s, k))));
+      p.held_forces.push_back(held_force_channel(s, k, p.actuators->initial_force_n(held_force_link_channel(s, k))));
     }
   }
   parts.held_forces = p.held_forces;

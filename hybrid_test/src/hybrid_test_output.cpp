@@ -10,9 +10,9 @@
 #include <stdexcept>
 
 #include "rpsd/coordinator/limit_stop_text.h"
-#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/hybrid_test/actuator_links.h"
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/output/gnuplot.h"
@@ -522,7 +522,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
       // on a held force's (after the structure's channels): the held force.
       const bool held_channel = l.channel >= static_cast<int>(scenario.experimental.size());
       if (l.name[0] != '\0') {
-        stopped_by[held_channel       ? "held_force"
+        stopped_by[held_channel      ? "held_force"
                    : l.actuator >= 0 ? "actuator"
                    : l.dof >= 0      ? "dof"
                                      : "setup"] = std::string(l.name.data());

@@ -81,7 +81,7 @@ InProcessSite::InProcessSite(const TestConfig& test, const SiteSetup& setup) {
         }
       }
       actuator_.plants.owned.push_back(servo::make_plant(
-          setup.perfect_actuator    ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}, {}}}
+          setup.perfect_actuator        ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}, {}}}
           : setup.held_force_of(i) >= 0 ? held_force_plant(test.plant, k)
                                         : test.plant));
       actuator_.plants.pointers.push_back(actuator_.plants.owned.back().get());

@@ -96,7 +96,8 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
                          " has no experimental[] channel: a held force's actuator belongs to an experimental site");
     }
     for (std::size_t j = 0; j < i; ++j) {
-      if (t.held_forces[j].name == held.name) h.fail("name", "'" + held.name + "' names held_forces[" + std::to_string(j) + "] too");
+      if (t.held_forces[j].name == held.name)
+        h.fail("name", "'" + held.name + "' names held_forces[" + std::to_string(j) + "] too");
     }
     if (t.experimental.size() + t.held_forces.size() > static_cast<std::size_t>(transport::kMaxChannels)) {
       h.fail("site", "more than " + std::to_string(transport::kMaxChannels) +
@@ -192,9 +193,8 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
                                        "'s actuators are simulated in this process (transport in_process), and " +
                                        "servo: cannot hold a force: " + why);
       }
-      if (std::any_of(t.setups.begin(), t.setups.end(), [&](const auto& s) {
-            return s.site_id == held.site_id && s.specimen_stiffness.size() > 0;
-          })) {
+      if (std::any_of(t.setups.begin(), t.setups.end(),
+                      [&](const auto& s) { return s.site_id == held.site_id && s.specimen_stiffness.size() > 0; })) {
         d.held_forces[i]->fail("site", "site " + std::to_string(held.site_id) +
                                            " carries a coupled specimen (experimental_setups[].specimen): a held force "
                                            "beside it is not simulated in this process (run it over DDS)");

@@ -11,8 +11,8 @@
 #include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/hybrid_test/actuator_links.h"
-#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/hybrid_test/held_forces.h"
+#include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/servo/linear_analysis.h"
 #include "rpsd/servo/plant_factory.h"
@@ -132,8 +132,8 @@ void attach_nodes(DryRunReport& report, const hybrid_test::TestConfig& s, const 
     if (site.front()->node)
       throw std::invalid_argument(node.name + ": a second node file for site " + std::to_string(node.site_id));
     // The site's held forces are its node's channels after its structure's.
-    const auto held = static_cast<std::size_t>(
-        std::count_if(s.held_forces.begin(), s.held_forces.end(), [&](const auto& h) { return h.site_id == node.site_id; }));
+    const auto held = static_cast<std::size_t>(std::count_if(s.held_forces.begin(), s.held_forces.end(),
+                                                             [&](const auto& h) { return h.site_id == node.site_id; }));
     if (site.size() + held != node.channels.size()) {
       throw std::invalid_argument(node.name + ": " + std::to_string(node.channels.size()) +
                                   " channel(s), the scenario gives site " + std::to_string(node.site_id) + " " +
@@ -149,11 +149,11 @@ void attach_nodes(DryRunReport& report, const hybrid_test::TestConfig& s, const 
     for (std::size_t c = 0; c < node.control.size() && c < held_on.size(); ++c) {
       const bool force = node.control[c] == servo::ControlMode::kForce;
       if (force == !held_on[c].empty()) continue;
-      throw std::invalid_argument(
-          node.name + ": channel " + std::to_string(c) + " is in " + (force ? "force" : "displacement") +
-          " control (actuator.control), the scenario sends it " +
-          (held_on[c].empty() ? std::string("displacements") : "the force of " + held_on[c]) +
-          (held_on[c].empty() ? "" : ": declare it force"));
+      throw std::invalid_argument(node.name + ": channel " + std::to_string(c) + " is in " +
+                                  (force ? "force" : "displacement") +
+                                  " control (actuator.control), the scenario sends it " +
+                                  (held_on[c].empty() ? std::string("displacements") : "the force of " + held_on[c]) +
+                                  (held_on[c].empty() ? "" : ": declare it force"));
     }
     for (std::size_t i = 0; i < site.size(); ++i)
       site[i]->node = NodeCheck{node.name, node.channels[i], node.control_period_s};
@@ -425,7 +425,8 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
       std::all_of(report.channels.begin(), report.channels.end(),
                   [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
       std::all_of(report.dofs.begin(), report.dofs.end(), [](const auto& d) { return d.within_limits; }) &&
-      std::all_of(report.held_forces.begin(), report.held_forces.end(), [](const auto& h) { return h.within_limits; }) &&
+      std::all_of(report.held_forces.begin(), report.held_forces.end(),
+                  [](const auto& h) { return h.within_limits; }) &&
       std::all_of(report.modes.begin(), report.modes.end(),
                   [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
       (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);

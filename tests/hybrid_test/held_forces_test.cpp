@@ -85,15 +85,16 @@ TEST(HeldForces, ALimitBeyondTheRigOrAForceBeyondItsLimitIsRefusedAtItsKey) {
   beyond.limits.max_force_n = 20.0e3;  // the force beyond its stated limit
   EXPECT_EQ(key_of(beyond), "force_n");
   // A rig that states no envelope leaves no default: the limit must be stated.
-  EXPECT_EQ([&] {
-    try {
-      (void)held_force_limits(held, servo::Envelope{});
-    } catch (const config::KeyError& e) {
-      return e.path();
-    }
-    return std::string("accepted");
-  }(),
-            "limits.max_force_n");
+  EXPECT_EQ(
+      [&] {
+        try {
+          (void)held_force_limits(held, servo::Envelope{});
+        } catch (const config::KeyError& e) {
+          return e.path();
+        }
+        return std::string("accepted");
+      }(),
+      "limits.max_force_n");
 }
 
 TEST(HeldForces, APlantWithoutAForceLoopCannotHoldAForceAndTheNodeSaysWhy) {
@@ -137,7 +138,7 @@ TEST(HeldForces, SiteSetupPutsTheHeldChannelInForceControlWithinTheHeldForcesLim
   const node::ServoNodeConfig& n = setup.node.node;
   EXPECT_EQ(n.control[0], servo::ControlMode::kDisplacement);
   EXPECT_EQ(n.control[1], servo::ControlMode::kForce);
-  EXPECT_DOUBLE_EQ(n.limits[1].max_force_command_n, 40.0e3);   // the held force's limits.max_force_n
+  EXPECT_DOUBLE_EQ(n.limits[1].max_force_command_n, 40.0e3);     // the held force's limits.max_force_n
   EXPECT_DOUBLE_EQ(n.limits[1].max_force_rate_n_per_s, 10.0e3);  // its rate
   EXPECT_FALSE(std::isfinite(n.limits[0].max_force_rate_n_per_s));
   // Its stroke stays the rig's: the held force's own stroke limit is the coordinator's to act

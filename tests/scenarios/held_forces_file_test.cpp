@@ -62,8 +62,9 @@ TEST(HeldForcesFile, TheExampleHoldsItsAxialLoadOnSiteOne) {
 
 TEST(HeldForcesFile, EachRequiredKeyIsRequired) {
   for (const char* key : {"site", "name", "force_n", "max_force_rate_n_per_s", "specimen_stiffness_n_per_m"}) {
-    std::string entry = "{site: 1, name: axial, force_n: -10.0e3, max_force_rate_n_per_s: 10.0e3, "
-                        "specimen_stiffness_n_per_m: 700.8e3}";
+    std::string entry =
+        "{site: 1, name: axial, force_n: -10.0e3, max_force_rate_n_per_s: 10.0e3, "
+        "specimen_stiffness_n_per_m: 700.8e3}";
     entry = std::regex_replace(entry, std::regex(std::string(key) + ": [^,}]*(, )?"), "");
     refused({"held_forces=[" + entry + "]"}, "held_forces[0]." + std::string(key));
   }
@@ -112,7 +113,8 @@ TEST(HeldForcesFile, TheSiteMustBeAnExperimentalSiteWithActuators) {
 }
 
 TEST(HeldForcesFile, InThisProcessThePlantMustHaveAForceLoopOverDdsTheNodeSays) {
-  const std::string without = "servo.parameters=" + (testing::source_dir() / "examples/servo/paper-mts-244.yaml").string();
+  const std::string without =
+      "servo.parameters=" + (testing::source_dir() / "examples/servo/paper-mts-244.yaml").string();
   refused({without}, "held_forces[0]: site 1's actuators are simulated in this process");
   refused({without}, "no force loop");
   // Over DDS the node's file says whether its channel can hold a force (it refuses otherwise).

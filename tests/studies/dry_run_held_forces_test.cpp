@@ -50,16 +50,22 @@ TEST(DryRunHeldForces, TheReportCarriesEachHeldForcesRampAndLimits) {
 }
 
 TEST(DryRunHeldForces, ANodeFileMustDeclareTheHeldForcesChannelInForceControl) {
-  EXPECT_THAT([] { (void)dry_run(column(), {column_node({scenarios::parse_override(
-                                                "actuator.control=[displacement, displacement]")})}); },
-              ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr(
-                  "channel 1 is in displacement control (actuator.control), the scenario sends it the force of site 1 "
-                  "held force axial: declare it force")));
-  EXPECT_THAT([] { (void)dry_run(column(), {column_node({scenarios::parse_override("actuator.channels=1"),
-                                                         scenarios::parse_override("actuator.control=[displacement]"),
-                                                         scenarios::parse_override("limits={max_stroke_m: [0.1]}")})}); },
-              ::testing::ThrowsMessage<std::invalid_argument>(
-                  ::testing::HasSubstr("1 channel(s), the scenario gives site 1 2 (1 of them holding a force)")));
+  EXPECT_THAT(
+      [] {
+        (void)dry_run(column(),
+                      {column_node({scenarios::parse_override("actuator.control=[displacement, displacement]")})});
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr(
+          "channel 1 is in displacement control (actuator.control), the scenario sends it the force of site 1 "
+          "held force axial: declare it force")));
+  EXPECT_THAT(
+      [] {
+        (void)dry_run(column(), {column_node({scenarios::parse_override("actuator.channels=1"),
+                                              scenarios::parse_override("actuator.control=[displacement]"),
+                                              scenarios::parse_override("limits={max_stroke_m: [0.1]}")})});
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(
+          ::testing::HasSubstr("1 channel(s), the scenario gives site 1 2 (1 of them holding a force)")));
 }
 
 }  // namespace

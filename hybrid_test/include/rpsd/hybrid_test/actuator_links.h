@@ -22,7 +22,6 @@ namespace rpsd::hybrid_test {
 struct SiteSummary {
   std::uint32_t site_id = 1;
   std::vector<int> channels;  // the link channels this site owns: its structure's, then its held forces'
-
 };
 
 // No servo node answered for a site before the first step: nothing moved, the test is not

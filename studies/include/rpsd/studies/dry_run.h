@@ -110,9 +110,9 @@ struct DryRunReport {
   // Per channel: what its actuator sees (with a setup, the actuator's stroke and load cell
   // against the actuator's limits).
   std::vector<ChannelPrediction> channels;
-  std::vector<DofPrediction> dofs;  // the DOFs setups drive (empty without setups)
+  std::vector<DofPrediction> dofs;               // the DOFs setups drive (empty without setups)
   std::vector<HeldForcePrediction> held_forces;  // empty without held forces
-  double residual_delay_ms = 0.0;   // the channels' mean tracking delay
+  double residual_delay_ms = 0.0;                // the channels' mean tracking delay
   std::vector<ModePrediction> modes;
   // Servo model only: its proportional gain and the largest stable one (eigenvalues of the
   // full linear model with the specimen).
