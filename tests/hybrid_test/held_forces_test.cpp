@@ -244,7 +244,9 @@ TEST(HeldForces, TheExampleRampsItsAxialLoadAtItsRateAndHoldsItWhileTheColumnFol
     ASSERT_EQ(s.held, 1);
     // The force command against the analytic ramp from the force at rest, within one step's
     // increment (which exchange of the step the ramp counts from is the loop's).
-    const double analytic = s.time_s >= ramp_s ? h.force_n : h.force_at_rest_n - h.max_force_rate_n_per_s * s.time_s;
+    const double toward = h.force_n >= h.force_at_rest_n ? 1.0 : -1.0;
+    const double analytic =
+        s.time_s >= ramp_s ? h.force_n : h.force_at_rest_n + toward * h.max_force_rate_n_per_s * s.time_s;
     worst_ramp_n = std::max(worst_ramp_n, std::abs(s.held_force_command_n[0] - analytic));
     // Once ramped, the load cell holds the force within its tracking limit.
     if (s.time_s >= ramp_s) worst_held_n = std::max(worst_held_n, std::abs(s.held_measured_force_n[0] - h.force_n));
