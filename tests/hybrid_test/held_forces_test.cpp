@@ -183,6 +183,30 @@ TEST(HeldForces, TheExamplesSiteHoldsAForceSentInForceModeOnItsHeldChannel) {
   EXPECT_NEAR(feedback.displacement_m[0], 0.0, 1e-4);
 }
 
+TEST(HeldForces, ANodeThatRefusesTheControlModeIsToldWhichHeldForceTheTestSendsThere) {
+  // A command that leaves the held channel in displacement control: the node (declared force)
+  // refuses it and faults; what the test reports names the held force it holds there.
+  const TestConfig t = column();
+  const double hold_m[1] = {0.0};
+  const std::uint64_t run_id = transport::draw_run_id();
+  ActuatorLinks links(t, 1.0 / 1024.0, false, hold_m, run_id);
+  transport::CommandSample command;
+  command.test_id = t.transport.test_id;
+  command.site_id = 1;
+  command.run_id = run_id;
+  command.channels = 2;
+  command.step = 1;
+  command.time_s = 1.0 / 1024.0;
+  transport::FeedbackSample feedback;
+  (void)links.link().send(command);
+  (void)links.link().receive(feedback);
+  const std::string text = links.node_fault_text();
+  EXPECT_NE(text.find("site 1: command of step 1 puts channel 1 in control mode 0, declared force"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("this test puts its channel 1 in force control for site 1 held force axial"), std::string::npos)
+      << text;
+}
+
 TEST(HeldForces, TheLoopIsGivenEachHeldForceWithItsForceAtRestAndTheReferenceNone) {
   const TestConfig t = column();
   TestAssembly test(t, {{}, false, false, {}});
