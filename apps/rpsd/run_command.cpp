@@ -84,6 +84,7 @@ studies::NodeLimits node_limits(const std::string& file) {
   limits.site_id = node.node.site_id;
   limits.control_period_s = node.node.control_period_s;
   limits.channels.assign(node.node.limits.begin(), node.node.limits.begin() + node.node.channels);
+  limits.control.assign(node.node.control.begin(), node.node.control.begin() + node.node.channels);
   return limits;
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/site_kinds.h"
 
 namespace rpsd::hybrid_test {
@@ -14,17 +15,24 @@ ActuatorLinks::~ActuatorLinks() { end_run(); }
 ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool perfect_actuator,
                              std::span<const double> hold_m, std::uint64_t run_id,
                              std::span<const double> stiffness_estimate_n_per_m) {
-  const int channels = static_cast<int>(s.experimental.size());
+  // The structure's channels, then (not for the perfect-actuator reference, which is
+  // numerical) the held forces' (held_forces.h): every link channel.
+  const int structure_channels = static_cast<int>(s.experimental.size());
+  const int held = perfect_actuator ? 0 : static_cast<int>(s.held_forces.size());
+  const int channels = structure_channels + held;
   initial_force_n_.assign(static_cast<std::size_t>(channels), 0.0);
   initial_reading_m_.assign(static_cast<std::size_t>(channels), std::nullopt);
   initial_force_measured_.assign(static_cast<std::size_t>(channels), false);
   plant_of_channel_.assign(static_cast<std::size_t>(channels), nullptr);
-  // Sites in order of first appearance; each site's channels in the test's channel order.
+  // Sites in order of first appearance; each site's channels in the test's channel order, its
+  // held forces' after its structure's.
   std::map<std::uint32_t, std::size_t> index_of_site;
-  std::vector<const ExperimentalChannel*> by_channel(static_cast<std::size_t>(channels));
+  std::vector<const ExperimentalChannel*> by_channel(static_cast<std::size_t>(structure_channels));
   for (const auto& e : s.experimental) by_channel[static_cast<std::size_t>(e.dof.actuator_channel)] = &e;
   for (int ch = 0; ch < channels; ++ch) {
-    const std::uint32_t site = by_channel[static_cast<std::size_t>(ch)]->site_id;
+    const std::uint32_t site = ch < structure_channels
+                                   ? by_channel[static_cast<std::size_t>(ch)]->site_id
+                                   : s.held_forces[static_cast<std::size_t>(ch - structure_channels)].site_id;
     auto [it, added] = index_of_site.emplace(site, sites_.size());
     if (added) sites_.push_back({site, {}});
     sites_[it->second].channels.push_back(ch);
@@ -36,12 +44,31 @@ ActuatorLinks::ActuatorLinks(const TestConfig& s, double control_period_s, bool 
     setup.site_id = site.site_id;
     setup.channels = site.channels;
     for (int ch : site.channels) {
+      if (ch >= structure_channels) {
+        // A held force's actuator rests where it is (its piston's position at rest, 0) and is
+        // sent forces, not positions.
+        const int k = ch - structure_channels;
+        setup.hold_m.push_back(0.0);
+        setup.stiffness_estimate_n_per_m.push_back(
+            s.held_forces[static_cast<std::size_t>(k)].specimen_stiffness_n_per_m);
+        setup.held_force.resize(site.channels.size(), -1);
+        setup.held_force[setup.hold_m.size() - 1] = k;
+        continue;
+      }
       setup.hold_m.push_back(hold_m[static_cast<std::size_t>(ch)]);
       setup.stiffness_estimate_n_per_m.push_back(
           stiffness_estimate_n_per_m.empty()
               ? by_channel[static_cast<std::size_t>(ch)]->dof.specimen_stiffness_estimate_n_per_m
               : stiffness_estimate_n_per_m[static_cast<std::size_t>(ch)]);
     }
+    // What a node refusing a command's control mode is told by the test (node_fault_text).
+    std::string modes;
+    for (std::size_t j = 0; j < setup.held_force.size(); ++j) {
+      if (setup.held_force[j] < 0) continue;
+      modes += (modes.empty() ? "" : ", ") + std::string("channel ") + std::to_string(j) + " in force control for " +
+               held_force_label(s.held_forces[static_cast<std::size_t>(setup.held_force[j])]);
+    }
+    held_modes_.push_back(modes);
     setup.control_period_s = control_period_s;
     setup.run_id = run_id;
     setup.perfect_actuator = perfect_actuator;
@@ -107,8 +134,15 @@ std::string ActuatorLinks::refusal_text() const {
 std::string ActuatorLinks::node_fault_text() {
   std::string text;
   for (std::size_t i = 0; i < built_.size(); ++i) {
-    if (const std::string said = built_[i]->node_fault_text(); !said.empty())
-      text += (text.empty() ? "" : "; ") + ("site " + std::to_string(sites_[i].site_id) + ": ") + said;
+    const std::string said = built_[i]->node_fault_text();
+    if (said.empty()) continue;
+    text += (text.empty() ? "" : "; ") + ("site " + std::to_string(sites_[i].site_id) + ": ") + said;
+    // A node refuses a command whose control mode is not the one its file declares: say which
+    // held force the test sends there.
+    if (!held_modes_[i].empty() && said.find("control mode") != std::string::npos) {
+      text += " (this test puts its " + held_modes_[i] +
+              ", every other channel in displacement control: the node file's actuator.control must say the same)";
+    }
   }
   return text;
 }

@@ -6,6 +6,7 @@
 
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/hybrid_test/actuator_links.h"
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/realtime/pacer.h"
@@ -29,14 +30,17 @@ struct TestAssembly::Parts {
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
   TimingReport timing;
-  std::vector<SetupCalibration> calibrations;  // per experimental setup
-  realtime::CpuWakeLatencyHold cpus_awake;     // from the start to finish(): real time, or over DDS
+  std::vector<SetupCalibration> calibrations;              // per experimental setup
+  std::vector<coordinator::HeldForceChannel> held_forces;  // as the loop was given them
+  HeldForceTracker held_stats;                             // of held_forces, from every step's record
+  realtime::CpuWakeLatencyHold cpus_awake;                 // from the start to finish(): real time, or over DDS
   const std::atomic<bool>* stop_request = nullptr;
 
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const coordinator::StepRecord&)>& after_step) {
     ++steps;
     const coordinator::StepRecord& r = loop->last_record();
+    held_stats.add(r);
     for (std::size_t i = 0; i < round_trips.size(); ++i) {
       const int ch = actuators->sites()[i].channels.front();
       round_trips[i].add(static_cast<std::int64_t>(std::llround(r.round_trip_s[static_cast<std::size_t>(ch)] * 1e9)));
@@ -172,6 +176,15 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
     }
   }
   parts.setups = std::move(setups.groups);
+  // The held forces ramp from what their load cells read at rest; the perfect-actuator
+  // reference is numerical and holds none.
+  if (!perfect_actuator) {
+    for (std::size_t k = 0; k < s.held_forces.size(); ++k) {
+      p.held_forces.push_back(held_force_channel(s, k, p.actuators->initial_force_n(held_force_link_channel(s, k))));
+    }
+  }
+  parts.held_forces = p.held_forces;
+  p.held_stats = HeldForceTracker(p.held_forces);
   p.loop = std::make_unique<coordinator::RpsdLoop>(std::move(parts));
   p.loop->start(s.initial_displacement_m, force0);
 
@@ -197,6 +210,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
       recording.dof_view.push_back({site.channels[i], g.dofs[i] == setups::DofMotion::kRotation});
     }
   }
+  for (const coordinator::HeldForceChannel& held : p.held_forces) recording.held_channels.push_back(held.channel);
+  // The structure's channels; the held forces' columns follow (RecorderOptions::held_channels).
   p.recorder =
       std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);
 }
@@ -320,6 +335,8 @@ TestRun TestAssembly::finish(coordinator::StepOutcome outcome) {
   }
   run.timing = p.timing;
   run.calibrations = p.calibrations;
+  run.held_forces = p.held_forces;
+  run.held_stats = p.held_stats.stats();
   // Command-to-feedback latency per site (each site's first channel).
   for (std::size_t i = 0; i < p.round_trips.size(); ++i) {
     run.timing.sites.push_back({p.actuators->sites()[i].site_id, p.round_trips[i].summary()});

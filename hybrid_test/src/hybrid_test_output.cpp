@@ -12,6 +12,7 @@
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/hybrid_test/actuator_links.h"
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/output/gnuplot.h"
@@ -389,6 +390,44 @@ nlohmann::json experimental_setups_json(const hybrid_test::TestConfig& scenario,
 
 }  // namespace
 
+// Only with held forces: each one's site, channel, force, ramp and limits, and what the run's
+// records say of it (how well it was held once ramped, how far its piston went).
+nlohmann::json held_forces_json(const hybrid_test::TestConfig& scenario, const hybrid_test::TestRun& test) {
+  using nlohmann::json;
+  const auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json held = json::array();
+  for (std::size_t k = 0; k < scenario.held_forces.size(); ++k) {
+    const hybrid_test::HeldForce& h = scenario.held_forces[k];
+    // The channel as the loop held it; a run that never started one: as the file says.
+    const coordinator::HeldForceChannel c =
+        k < test.held_forces.size() ? test.held_forces[k] : hybrid_test::held_force_channel(scenario, k, 0.0);
+    json entry = {{"site", h.site_id},
+                  {"channel", c.channel},
+                  {"name", h.name},
+                  {"force_n", h.force_n},
+                  {"max_force_rate_n_per_s", h.max_force_rate_n_per_s},
+                  {"specimen_stiffness_n_per_m", h.specimen_stiffness_n_per_m},
+                  {"limits",
+                   {{"max_force_n", c.limits.max_force_n},
+                    {"max_stroke_m", c.limits.max_stroke_m},
+                    {"max_force_error_n", c.limits.max_force_error_n}}},
+                  {"force_at_rest_n", c.force_at_rest_n},
+                  {"ramp_s", hybrid_test::held_force_ramp_s(h, c.force_at_rest_n)}};
+    if (k < test.held_stats.size() && test.held_stats[k].steps > 0) {
+      const hybrid_test::HeldForceStats& st = test.held_stats[k];
+      entry["max_force_error_after_ramp_n"] = number(st.max_force_error_after_ramp_n);
+      entry["measured_stroke_m"] = {{"min", st.min_measured_m}, {"max", st.max_measured_m}};
+      entry["final_measured_force_n"] = number(st.last_measured_force_n);
+    } else {
+      entry["max_force_error_after_ramp_n"] = nullptr;
+      entry["measured_stroke_m"] = nullptr;
+      entry["final_measured_force_n"] = nullptr;
+    }
+    held.push_back(entry);
+  }
+  return held;
+}
+
 TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument& file,
                            const hybrid_test::TestConfig& scenario, const ProgressSink& progress,
                            const std::atomic<bool>* stop_request, std::size_t case_number, std::size_t cases) {
@@ -479,9 +518,14 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
       stopped_by["channel"] = l.channel;
       stopped_by["value"] = l.value;
       stopped_by["bound"] = l.bound;
-      // On a setup's channel: the actuator or the DOF (or the setup, for its geometry) by name.
+      // On a setup's channel: the actuator or the DOF (or the setup, for its geometry) by name;
+      // on a held force's (after the structure's channels): the held force.
+      const bool held_channel = l.channel >= static_cast<int>(scenario.experimental.size());
       if (l.name[0] != '\0') {
-        stopped_by[l.actuator >= 0 ? "actuator" : l.dof >= 0 ? "dof" : "setup"] = std::string(l.name.data());
+        stopped_by[held_channel      ? "held_force"
+                   : l.actuator >= 0 ? "actuator"
+                   : l.dof >= 0      ? "dof"
+                                     : "setup"] = std::string(l.name.data());
         stopped_by["unit"] = l.unit;
       }
     }
@@ -523,6 +567,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   };
   // Only with a setup: its kind, geometry, actuators and the calibration the run used.
   if (!scenario.setups.empty()) summary["experimental_setups"] = experimental_setups_json(scenario, test.calibrations);
+  // Only with held forces: nothing of this section without them.
+  if (!scenario.held_forces.empty()) summary["held_forces"] = held_forces_json(scenario, test);
   std::vector<int> dof_numbers;
   for (auto d : scenario.record_dofs) dof_numbers.push_back(static_cast<int>(d));
   bool from_the_ground_up = true;  // DOFs 0, 1, ... n-1: a storey's drift is one less the next

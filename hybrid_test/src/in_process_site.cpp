@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/servo/coupled_specimen_actuator.h"
 #include "rpsd/servo/simulated_actuator.h"
 #include "rpsd/setups/setup_kinds.h"
@@ -52,6 +53,10 @@ std::unique_ptr<Site> InProcessSite::make(const TestConfig& test, const SiteSetu
 
 InProcessSite::InProcessSite(const TestConfig& test, const SiteSetup& setup) {
   if (const ExperimentalSetupSite* coupled = coupled_setup(test, setup)) {
+    if (!setup.held_force.empty()) {
+      throw std::invalid_argument("site " + std::to_string(setup.site_id) +
+                                  ": a held force beside a coupled specimen is not simulated in this process");
+    }
     // One specimen couples the actuators: each its own plant without a specimen of its own.
     servo::PlantConfig plant;
     try {
@@ -64,11 +69,21 @@ InProcessSite::InProcessSite(const TestConfig& test, const SiteSetup& setup) {
         actuator_.plants.pointers, setups::PlanarSetup(in_site_order(*coupled, setup)), coupled->specimen_stiffness,
         coupled->specimen_damping);
   } else {
-    // Each channel its own plant: the test's, or one that follows its command exactly.
-    for (const double k : setup.stiffness_estimate_n_per_m) {
+    // Each channel its own plant: the test's, or one that follows its command exactly; a held
+    // force's pushes on its own specimen.
+    for (std::size_t i = 0; i < setup.stiffness_estimate_n_per_m.size(); ++i) {
+      const double k = setup.stiffness_estimate_n_per_m[i];
+      if (const int held = setup.held_force_of(i); held >= 0) {
+        // What a node refuses, so is a held force here: a plant without a force loop.
+        if (const std::string why = held_force_refusal(test.plant); !why.empty()) {
+          throw std::invalid_argument(held_force_label(test.held_forces[static_cast<std::size_t>(held)]) +
+                                      " cannot be simulated in this process: " + why);
+        }
+      }
       actuator_.plants.owned.push_back(servo::make_plant(
-          setup.perfect_actuator ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}, {}}}
-                                 : test.plant));
+          setup.perfect_actuator        ? servo::PlantConfig{servo::PureDelayParameters{0.0, k, 8192.0, {}, {}}}
+          : setup.held_force_of(i) >= 0 ? held_force_plant(test.plant, k)
+                                        : test.plant));
       actuator_.plants.pointers.push_back(actuator_.plants.owned.back().get());
     }
     actuator_.actuator = std::make_unique<servo::SimulatedActuator>(actuator_.plants.pointers);

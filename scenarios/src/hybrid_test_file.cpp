@@ -8,6 +8,7 @@
 
 #include "hybrid_test_sections.h"
 #include "rpsd/config/key_error.h"
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/scenarios/ground_motion_section.h"
 
 namespace rpsd::scenarios {
@@ -80,6 +81,29 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
       }
     }
   }
+  // The held forces: each on an experimental site's actuator, after the structure's channels.
+  std::vector<std::unique_ptr<config::Source>> held_limits(d.held_forces.size());
+  for (std::size_t i = 0; i < d.held_forces.size(); ++i) {
+    config::Source& h = *d.held_forces[i];
+    t.held_forces.push_back(sections::held_force(h, held_limits[i]));
+    const hybrid_test::HeldForce& held = t.held_forces.back();
+    if (t.opensees_site(held.site_id) != nullptr) {
+      h.fail("site", "site " + std::to_string(held.site_id) +
+                         " is an OpenSees site: a numerical model has no actuator to hold a force");
+    }
+    if (!specimen_sites.count(held.site_id)) {
+      h.fail("site", "site " + std::to_string(held.site_id) +
+                         " has no experimental[] channel: a held force's actuator belongs to an experimental site");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (t.held_forces[j].name == held.name)
+        h.fail("name", "'" + held.name + "' names held_forces[" + std::to_string(j) + "] too");
+    }
+    if (t.experimental.size() + t.held_forces.size() > static_cast<std::size_t>(transport::kMaxChannels)) {
+      h.fail("site", "more than " + std::to_string(transport::kMaxChannels) +
+                         " link channels in all (experimental channels and held forces)");
+    }
+  }
   t.influence = Eigen::VectorXd::Ones(dofs);
   if (d.influence) {
     if (static_cast<Eigen::Index>(d.influence->size()) != dofs) root.fail("influence", "needs one value per DOF");
@@ -150,6 +174,33 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
     }
   }
   if (d.transport) sections::transport(*d.transport, t);
+  // A held force's limits against the rig (a limit left out is the rig's); in this process, its
+  // actuator's simulated plant must have a force loop, as a node's must.
+  for (std::size_t i = 0; i < t.held_forces.size(); ++i) {
+    const hybrid_test::HeldForce& held = t.held_forces[i];
+    try {
+      (void)hybrid_test::held_force_limits(held, servo::envelope_of(t.plant));
+    } catch (const config::KeyError& e) {
+      const std::string limits_key = "limits.";
+      const bool a_limit = e.path().rfind(limits_key, 0) == 0;
+      const std::string key = a_limit ? e.path().substr(limits_key.size()) : e.path();
+      if (a_limit && held_limits[i] && held_limits[i]->has(key)) held_limits[i]->fail(key, e.problem());
+      d.held_forces[i]->fail(a_limit ? "limits" : e.path(), e.problem());
+    }
+    if (t.transport.kind == hybrid_test::TransportConfig::Kind::kInProcess) {
+      if (const std::string why = hybrid_test::held_force_refusal(t.plant); !why.empty()) {
+        d.held_forces[i]->fail_section("site " + std::to_string(held.site_id) +
+                                       "'s actuators are simulated in this process (transport in_process), and " +
+                                       "servo: cannot hold a force: " + why);
+      }
+      if (std::any_of(t.setups.begin(), t.setups.end(),
+                      [&](const auto& s) { return s.site_id == held.site_id && s.specimen_stiffness.size() > 0; })) {
+        d.held_forces[i]->fail("site", "site " + std::to_string(held.site_id) +
+                                           " carries a coupled specimen (experimental_setups[].specimen): a held force "
+                                           "beside it is not simulated in this process (run it over DDS)");
+      }
+    }
+  }
   if (!t.opensees_sites.empty() && t.clock.mode == hybrid_test::ClockConfig::Mode::kRealTime) {
     root.fail("opensees_sites",
               "an OpenSees site answers when its static step converges: clock.mode as_fast_as_possible");

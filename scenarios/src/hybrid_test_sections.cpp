@@ -56,6 +56,12 @@ Document document(config::Source& root) {
         root.sections("experimental_setups", transport::kMaxChannels,
                       "sites whose DOFs several actuators drive through their geometry (docs/experimental-setups.md)");
   }
+  if (root.has("held_forces") || listing) {
+    d.held_forces =
+        root.sections("held_forces", transport::kMaxChannels,
+                      "actuators of experimental sites that hold a force in force control, as a column's axial load "
+                      "(docs/held-forces.md)");
+  }
   d.influence = root.optional_numbers(
       "influence", Number::between(-1.0, 1.0, "", "each DOF's share of the ground acceleration (default: all 1)"),
       kMaxDofs);
@@ -240,6 +246,56 @@ ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs) {
                           "needs " + std::to_string(n) + " rows of " + std::to_string(n) + ", symmetric");
   }
   return result;
+}
+
+hybrid_test::HeldForce held_force(config::Source& h, std::unique_ptr<config::Source>& limits) {
+  hybrid_test::HeldForce held;
+  held.site_id = static_cast<std::uint32_t>(h.whole_number(
+      "site", 1, 1'000'000, "the experimental site whose actuator holds the force (not an OpenSees site)"));
+  held.name = h.text("name", "a short identifier, [a-z0-9_], unique among the held forces (\"axial\")");
+  held.force_n = h.number(
+      "force_n", Number::between(-kMaxForceN, kMaxForceN, "N", "the force held once ramped (negative: compression)"));
+  held.max_force_rate_n_per_s =
+      h.number("max_force_rate_n_per_s",
+               Number{"N/s", "the ramp's rate from the force at rest (required: no rate is safe for every rig)", 0.0,
+                      kMaxForceN * 1e3, true});
+  held.specimen_stiffness_n_per_m = h.number(
+      "specimen_stiffness_n_per_m",
+      Number{"N/m",
+             "what the actuator pushes on (required): the specimen a rehearsal simulates and the node's force guard",
+             0.0, kMaxStiffnessNPerM, true});
+  limits = h.optional_section("limits", "the held force's own limits (only tighter than the rig; default: the rig's)");
+  if (limits) {
+    constexpr double kNone = coordinator::HeldForceLimits::kNone;
+    held.limits.max_force_n = limits->number_or(
+        "max_force_n", kNone,
+        Number{"N", "|measured force| (default: the rig's force capacity); also the node's force command limit", 0.0,
+               kMaxForceN, true});
+    held.limits.max_stroke_m = limits->number_or(
+        "max_stroke_m", kNone,
+        Number{"m", "|measured stroke|: beyond it the piston has run away (default: the rig's stroke)", 0.0,
+               kMaxDisplacementM, true});
+    held.limits.max_force_error_n = limits->number_or(
+        "max_force_error_n", kNone,
+        Number{"N",
+               "|force command - measured force| before the test counts as run away (default: 10 % of the rig's "
+               "force capacity; at most the capacity)",
+               0.0, kMaxForceN, true});
+    limits->finish();
+  }
+  h.finish();
+  // Checked after every key is read, so that a listing lists them all. The name goes into
+  // "site S held force NAME" (64 characters with the site) and into column names.
+  constexpr std::size_t kMaxNameLength = 32;
+  const bool well_formed = !held.name.empty() && held.name.size() <= kMaxNameLength &&
+                           std::all_of(held.name.begin(), held.name.end(), [](char c) {
+                             return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+                           });
+  if (!well_formed) {
+    h.fail("name", "'" + held.name + "' is not a short identifier: 1 to " + std::to_string(kMaxNameLength) +
+                       " of a-z, 0-9 and _");
+  }
+  return held;
 }
 
 void specimen_channel(config::Source& e, std::size_t index, hybrid_test::ExperimentalChannel& channel,

@@ -25,6 +25,7 @@ struct Document {
   std::vector<std::unique_ptr<config::Source>> experimental;  // empty when only OpenSees sites take DOFs
   std::vector<std::unique_ptr<config::Source>> opensees_sites;
   std::vector<std::unique_ptr<config::Source>> experimental_setups;
+  std::vector<std::unique_ptr<config::Source>> held_forces;
   std::optional<std::vector<double>> influence;
   std::unique_ptr<config::Source> servo;
   std::unique_ptr<config::Source> integrator;
@@ -56,6 +57,11 @@ struct ExperimentalSetup {
   std::unique_ptr<config::Source> specimen;                      // for messages about the specimen's matrices
 };
 ExperimentalSetup experimental_setup(config::Source& s, Eigen::Index dofs);
+
+// held_forces[i]: its own keys, each within its range, and its name's form; its `limits:`
+// handle (null: none given) is left in `limits` for the checks against the rig, the sites and
+// the other held forces, which read_test_config makes once the rig is known.
+hybrid_test::HeldForce held_force(config::Source& h, std::unique_ptr<config::Source>& limits);
 
 // experimental[i]; its `limits:` handle is left in `limits` for the envelope check. A DOF an
 // experimental setup drives (`driven`: its motion) takes its specimen from the setup and its

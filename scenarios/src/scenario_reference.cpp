@@ -152,6 +152,18 @@ void test_scenario(Document& doc) {
   kind_tables<setups::SetupKinds>(
       doc, "experimental_setups[].setup", "the experimental setup",
       [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s, setups::Geometry::kLinear); });
+  doc.table("held_forces[]",
+            listing("held_forces[]",
+                    [](config::Source& s) {
+                      std::unique_ptr<config::Source> limits;
+                      (void)ts::held_force(s, limits);
+                    }),
+            "An actuator of an experimental site that holds a force in force control while the structure's "
+            "channels follow displacements (docs/held-forces.md): not a DOF of the structure. Its link channel "
+            "follows the structure's (held force k: channel experimental.size() + k), on its site's node after the "
+            "site's own channels. Its force command ramps from the force measured at rest at "
+            "`max_force_rate_n_per_s`. Limits left out are the rig's: `max_force_n` its force capacity, "
+            "`max_stroke_m` its stroke, `max_force_error_n` 10 % of its force capacity.");
   doc.table("opensees_sites[]",
             listing("opensees_sites[]",
                     [](config::Source& s) {

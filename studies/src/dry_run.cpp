@@ -11,6 +11,7 @@
 #include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/hybrid_test/actuator_links.h"
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/servo/linear_analysis.h"
@@ -130,10 +131,29 @@ void attach_nodes(DryRunReport& report, const hybrid_test::TestConfig& s, const 
     }
     if (site.front()->node)
       throw std::invalid_argument(node.name + ": a second node file for site " + std::to_string(node.site_id));
-    if (site.size() != node.channels.size()) {
+    // The site's held forces are its node's channels after its structure's.
+    const auto held = static_cast<std::size_t>(std::count_if(s.held_forces.begin(), s.held_forces.end(),
+                                                             [&](const auto& h) { return h.site_id == node.site_id; }));
+    if (site.size() + held != node.channels.size()) {
       throw std::invalid_argument(node.name + ": " + std::to_string(node.channels.size()) +
                                   " channel(s), the scenario gives site " + std::to_string(node.site_id) + " " +
-                                  std::to_string(site.size()));
+                                  std::to_string(site.size() + held) +
+                                  (held > 0 ? " (" + std::to_string(held) + " of them holding a force)" : ""));
+    }
+    // The control mode the test sends each node channel: force on the site's held forces'.
+    std::vector<std::string> held_on(node.channels.size());
+    std::size_t j = site.size();
+    for (const hybrid_test::HeldForce& h : s.held_forces) {
+      if (h.site_id == node.site_id) held_on[j++] = hybrid_test::held_force_label(h);
+    }
+    for (std::size_t c = 0; c < node.control.size() && c < held_on.size(); ++c) {
+      const bool force = node.control[c] == servo::ControlMode::kForce;
+      if (force == !held_on[c].empty()) continue;
+      throw std::invalid_argument(node.name + ": channel " + std::to_string(c) + " is in " +
+                                  (force ? "force" : "displacement") +
+                                  " control (actuator.control), the scenario sends it " +
+                                  (held_on[c].empty() ? std::string("displacements") : "the force of " + held_on[c]) +
+                                  (held_on[c].empty() ? "" : ": declare it force"));
     }
     for (std::size_t i = 0; i < site.size(); ++i)
       site[i]->node = NodeCheck{node.name, node.channels[i], node.control_period_s};
@@ -299,6 +319,30 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
   report.outcome = run.outcome;
   report.limit_stop = run.limit_stop;
   report.steps = run.steps;
+  for (std::size_t k = 0; k < run.held_forces.size(); ++k) {
+    const coordinator::HeldForceChannel& c = run.held_forces[k];
+    HeldForcePrediction h;
+    h.name = c.name.data();
+    h.site_id = c.site_id;
+    h.channel = c.channel;
+    h.force_n = c.force_n;
+    h.max_force_rate_n_per_s = c.max_force_rate_n_per_s;
+    h.force_at_rest_n = c.force_at_rest_n;
+    h.limits = c.limits;
+    h.ramp_s = hybrid_test::held_force_ramp_s(s.held_forces[k], c.force_at_rest_n);
+    if (k < run.held_stats.size()) {
+      const hybrid_test::HeldForceStats& st = run.held_stats[k];
+      h.max_force_error_after_ramp_n = st.max_force_error_after_ramp_n;
+      if (st.steps > 0) h.peak_measured_m = std::max(std::abs(st.min_measured_m), std::abs(st.max_measured_m));
+    }
+    // A stop on the held force's channel belongs in its peaks.
+    if (report.limit_stop.channel == c.channel && report.limit_stop.kind == coordinator::LimitStop::Kind::kStroke)
+      h.peak_measured_m = std::max(h.peak_measured_m, std::abs(report.limit_stop.value));
+    h.within_limits = h.peak_measured_m <= h.limits.max_stroke_m &&
+                      !(h.max_force_error_after_ramp_n > h.limits.max_force_error_n) &&
+                      std::abs(h.force_n) <= h.limits.max_force_n;
+    report.held_forces.push_back(h);
+  }
 
   // The value that stopped the run was never sent or recorded: it belongs in the peaks, so
   // that its limit shows as reached (margin <= 0), not with the margin of the last step taken.
@@ -381,6 +425,8 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
       std::all_of(report.channels.begin(), report.channels.end(),
                   [](const auto& p) { return p.within_limits && !p.rail_contact; }) &&
       std::all_of(report.dofs.begin(), report.dofs.end(), [](const auto& d) { return d.within_limits; }) &&
+      std::all_of(report.held_forces.begin(), report.held_forces.end(),
+                  [](const auto& h) { return h.within_limits; }) &&
       std::all_of(report.modes.begin(), report.modes.end(),
                   [](const auto& m) { return m.predicted_damping_ratio > 0.0; }) &&
       (!report.p_gain || *report.p_gain < *report.max_stable_p_gain);

@@ -154,6 +154,38 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
                       {"max_tracking_error_m", bound(d.limits.max_tracking_error_m)}}},
                     {"within_limits", d.within_limits}});
   }
+  // The actuators that hold a force: their ramp and limits, and how the rehearsal held them.
+  nlohmann::json held = nlohmann::json::array();
+  for (const auto& h : r.held_forces) {
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "  %s (channel %d): force %.4g kN at %.4g kN/s, ramp %.3g s from %.4g kN; limits: force %.4g kN, "
+                  "stroke %.4g mm, force error %.4g kN\n",
+                  h.name.c_str(), h.channel, 1e-3 * h.force_n, 1e-3 * h.max_force_rate_n_per_s, h.ramp_s,
+                  1e-3 * h.force_at_rest_n, 1e-3 * h.limits.max_force_n, 1e3 * h.limits.max_stroke_m,
+                  1e-3 * h.limits.max_force_error_n);
+    out << line;
+    out << "    measured stroke " << versus(h.peak_measured_m, h.limits.max_stroke_m, 1e3, "mm")
+        << ", force error after the ramp "
+        << (std::isfinite(h.max_force_error_after_ramp_n)
+                ? versus(h.max_force_error_after_ramp_n, h.limits.max_force_error_n, 1e-3, "kN")
+                : std::string("not reached (the run stopped before the ramp's end)"))
+        << (h.within_limits ? "" : "  BEYOND ITS LIMITS") << "\n";
+    held.push_back({{"name", h.name},
+                    {"site_id", h.site_id},
+                    {"channel", h.channel},
+                    {"force_n", h.force_n},
+                    {"max_force_rate_n_per_s", h.max_force_rate_n_per_s},
+                    {"force_at_rest_n", h.force_at_rest_n},
+                    {"ramp_s", h.ramp_s},
+                    {"limits",
+                     {{"max_force_n", bound(h.limits.max_force_n)},
+                      {"max_stroke_m", bound(h.limits.max_stroke_m)},
+                      {"max_force_error_n", bound(h.limits.max_force_error_n)}}},
+                    {"peak_measured_m", h.peak_measured_m},
+                    {"max_force_error_after_ramp_n", bound(h.max_force_error_after_ramp_n)},
+                    {"within_limits", h.within_limits}});
+  }
   out << "  stability per mode (delay theory with the compensated plant's gain and delay at each mode):\n";
   nlohmann::json modes = nlohmann::json::array();
   for (const auto& m : r.modes) {
@@ -202,6 +234,8 @@ nlohmann::json report_dry_run(const DryRunReport& r, const std::string& test_nam
                            {"ready", r.within_limits}};
   // Only with a setup: the channels above are its actuators, these its DOFs.
   if (!r.dofs.empty()) report["dofs"] = dofs;
+  // Only with held forces.
+  if (!r.held_forces.empty()) report["held_forces"] = held;
   return report;
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/studies/pretest_checks.h"
@@ -120,6 +121,19 @@ ScenarioOverview overview_of(const hybrid_test::TestConfig& s) {
     }
     o.channels.push_back(ch);
   }
+  for (std::size_t k = 0; k < s.held_forces.size(); ++k) {
+    // The ramp from rest (0 N: the force at rest is measured when the test starts).
+    const hybrid_test::HeldForce& h = s.held_forces[k];
+    const coordinator::HeldForceChannel c = hybrid_test::held_force_channel(s, k, 0.0);
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "%s, channel %d: %.6g N at %.6g N/s (%.4g s from rest), specimen %.6g N/m; limits: force %.6g N, "
+                  "stroke %.6g m, force error %.6g N",
+                  hybrid_test::held_force_label(h).c_str(), c.channel, h.force_n, h.max_force_rate_n_per_s,
+                  hybrid_test::held_force_ramp_s(h, 0.0), h.specimen_stiffness_n_per_m, c.limits.max_force_n,
+                  c.limits.max_stroke_m, c.limits.max_force_error_n);
+    o.held_forces.emplace_back(text);
+  }
   o.actuator_cutoff_hz = actuator_cutoff_hz(s.plant);
   if (o.actuator_cutoff_hz && !o.channels.empty()) {
     std::vector<double> frequencies;
@@ -198,6 +212,7 @@ void print_overview(const ScenarioOverview& o, std::ostream& out) {
           << rail(r.displacement_m, 1e3, "mm") << ", force A/D " << rail(r.force_n, 1e-3, "kN") << "\n";
     }
   }
+  for (const std::string& h : o.held_forces) out << "  " << h << "\n";
   if (o.actuator_cutoff_hz) {
     std::snprintf(line, sizeof line, "  actuator: cut-off frequency %.4g Hz (servo linear analysis)\n",
                   *o.actuator_cutoff_hz);

@@ -3,7 +3,7 @@
 was printed (stdout and stderr together), the files written and values in JSON files.
 
   run_cli.py --exit N [--prints REGEX]... [--file PATH]... [--json PATH:KEY=VALUE]...
-             [--json-near PATH:KEY=VALUE~TOLERANCE]... [--json-matches PATH:KEY=REGEX]... [--rows PATH=N]... [--absent PATH]... [--fresh DIR] -- COMMAND...
+             [--json-near PATH:KEY=VALUE~TOLERANCE]... [--json-matches PATH:KEY=REGEX]... [--rows PATH=N]... [--header PATH=REGEX]... [--absent PATH]... [--fresh DIR] -- COMMAND...
 
 KEY is a dotted path into the JSON document (list items by index). Every check that fails is
 reported; the exit code is 1 if any did."""
@@ -28,6 +28,7 @@ def main():
     parser.add_argument("--exit", type=int, required=True)
     parser.add_argument("--prints", action="append", default=[])
     parser.add_argument("--file", action="append", default=[])
+    parser.add_argument("--header", action="append", default=[])
     parser.add_argument("--json", action="append", default=[])
     parser.add_argument("--json-near", action="append", default=[])
     parser.add_argument("--json-matches", action="append", default=[])
@@ -89,6 +90,15 @@ def main():
                 rows = sum(1 for _ in f) - 1  # the header
             if rows != int(expected):
                 problems.append(f"{path} has {rows} rows, expected {expected}")
+        except OSError as e:
+            problems.append(f"{path}: {e.strerror}")
+    for check in args.header:
+        path, pattern = check.split("=", 1)
+        try:
+            with open(path) as f:
+                header = f.readline()
+            if not re.search(pattern, header):
+                problems.append(f"{path}: its header does not match {pattern!r}")
         except OSError as e:
             problems.append(f"{path}: {e.strerror}")
     for path in args.absent:

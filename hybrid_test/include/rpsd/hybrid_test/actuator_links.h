@@ -21,7 +21,7 @@ namespace rpsd::hybrid_test {
 
 struct SiteSummary {
   std::uint32_t site_id = 1;
-  std::vector<int> channels;  // the test's channels this site owns
+  std::vector<int> channels;  // the link channels this site owns: its structure's, then its held forces'
 };
 
 // No servo node answered for a site before the first step: nothing moved, the test is not
@@ -34,7 +34,10 @@ class NoNodeAnswered : public std::runtime_error {
 class ActuatorLinks {
  public:
   // Builds the sites' links for run `run_id` and puts every actuator at rest at hold_m (one
-  // value per channel, in channel order). `stiffness_estimate_n_per_m` (per channel; empty:
+  // value per structure channel, in channel order). Each held force (TestConfig::held_forces,
+  // but for the perfect-actuator reference) is a link channel after the structure's, on its
+  // site's node after the site's structure channels, in force control; the per-channel
+  // accessors below take every link channel. `stiffness_estimate_n_per_m` (per channel; empty:
   // the channels' own estimates) is what each node's force guard predicts with: an
   // actuator's share of a setup's specimen. With perfect_actuator, in-process plants follow
   // their command exactly whatever the transport. DDS: waits for every site's node to be
@@ -62,6 +65,8 @@ class ActuatorLinks {
   // Real time: the receive deadline for every DDS site this cycle (0: none).
   void set_receive_deadline_ns(std::int64_t deadline_ns);
   bool over_dds() const { return over_dds_; }
+  // Link channels: the structure's and the held forces'.
+  int channels() const { return static_cast<int>(initial_force_n_.size()); }
   // The simulated plant of a channel in this process (nullptr over DDS).
   const servo::Plant* simulated_plant(int channel) const {
     return plant_of_channel_[static_cast<std::size_t>(channel)];
@@ -74,7 +79,8 @@ class ActuatorLinks {
   // Every site's refusal, as sentences ("site 1 is serving another run (...)"). Not real-time safe.
   std::string refusal_text() const;
   // After a node fault: what each faulted node says faulted it ("site 1: ..."), joined by
-  // "; "; empty when none says. Not real-time safe.
+  // "; "; empty when none says. A node that refused a command's control mode is told which
+  // of its channels the test holds a force on, and for which held force. Not real-time safe.
   std::string node_fault_text();
   // Tells every site's node that the run is over, once, so that it may serve the next run at
   // once. Not real-time safe.
@@ -89,6 +95,9 @@ class ActuatorLinks {
   std::vector<std::optional<double>> initial_reading_m_;
   std::vector<bool> initial_force_measured_;
   std::vector<const servo::Plant*> plant_of_channel_;
+  // Per site: which of its node's channels hold which force ("channel 1 in force control for
+  // site 1 held force axial"), for a node's refusal of a control mode; empty: none.
+  std::vector<std::string> held_modes_;
   bool over_dds_ = false;
   bool ended_ = false;
 };

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rpsd/coordinator/rpsd_loop.h"
+#include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/hybrid_test/setup_plan.h"
 #include "rpsd/realtime/latency_histogram.h"
@@ -53,6 +54,10 @@ struct TestRun {
   // Per experimental setup: each actuator's reading at the start, the stroke the geometry
   // predicted there and the offset used for every command and measurement.
   std::vector<SetupCalibration> calibrations;
+  // The held forces as the loop held them (their channel, limits and force at rest); none for
+  // the perfect-actuator reference.
+  std::vector<coordinator::HeldForceChannel> held_forces;
+  std::vector<HeldForceStats> held_stats;  // per held force, from every step's record
 };
 
 struct AssemblyOptions {

@@ -15,6 +15,7 @@
 
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/coordinator/coordinator_limits.h"
+#include "rpsd/coordinator/held_force.h"
 #include "rpsd/coordinator/loop_timing.h"
 #include "rpsd/coordinator/restoring_force.h"
 #include "rpsd/integrators/factory.h"
@@ -72,6 +73,20 @@ struct ExperimentalSetupSite {
   // N·m/rad, ...), simulated for a rehearsal; empty: each actuator's plant keeps its own
   // specimen, as without a setup.
   Eigen::MatrixXd specimen_stiffness, specimen_damping;
+};
+
+// An actuator of an experimental site that holds a force in force control (mixed control,
+// held_forces[]; docs/held-forces.md), as a column's axial load: not a DOF of the structure,
+// its force is neither commanded by the integrator nor fed back to it. Held force k is on the
+// link channel experimental.size() + k, after its site's structure channels on its node.
+struct HeldForce {
+  std::uint32_t site_id = 1;
+  std::string name;                         // [a-z0-9_], unique: "axial"
+  double force_n = 0.0;                     // held once ramped (negative: compression)
+  double max_force_rate_n_per_s = 0.0;      // the ramp's rate from the force at rest (> 0)
+  double specimen_stiffness_n_per_m = 0.0;  // what the jack pushes on: the rehearsal's specimen, the node's guard
+  // As read: infinite means the rig's (held_forces.h, held_force_limits fills them in).
+  coordinator::HeldForceLimits limits;
 };
 
 // How the loop is paced.
@@ -142,6 +157,8 @@ struct TestConfig {
   std::vector<ExperimentalChannel> experimental;
   // The sites whose DOFs a setup drives (the others: one actuator per DOF).
   std::vector<ExperimentalSetupSite> setups;
+  // The actuators that hold a force (mixed control): link channels experimental.size() + k.
+  std::vector<HeldForce> held_forces;
   Eigen::VectorXd influence;  // ground-motion influence vector (default: all ones)
   servo::PlantConfig plant;   // every channel's actuator (each channel gets its own)
   integrators::IntegratorConfig integrator = integrators::CentralDifferenceParameters{};

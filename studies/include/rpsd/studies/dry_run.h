@@ -29,8 +29,11 @@ struct NodeLimits {
   std::string name;  // the node file, for messages
   std::uint32_t test_id = 0, site_id = 0;
   double control_period_s = 1.0 / 1024.0;
-  // The site's channels, in the test's channel order (how the coordinator addresses them).
+  // The site's channels, in the test's channel order (how the coordinator addresses them):
+  // its structure's, then its held forces'.
   std::vector<node::ChannelLimits> channels;
+  // Each channel's control mode as its file declares it (empty: not known, not checked).
+  std::vector<servo::ControlMode> control;
 };
 
 // One channel's peaks against its node's limits.
@@ -76,6 +79,20 @@ struct DofPrediction {
   bool within_limits = true;
 };
 
+// An actuator that holds a force (held_forces[]), from the same simulated run: its ramp and
+// limits as the test holds them, how well the force was held once ramped and how far its
+// piston went.
+struct HeldForcePrediction {
+  std::string name;  // "site 1 held force axial"
+  std::uint32_t site_id = 1;
+  int channel = 0;  // its link channel, after the structure's
+  double force_n = 0.0, max_force_rate_n_per_s = 0.0, force_at_rest_n = 0.0, ramp_s = 0.0;
+  coordinator::HeldForceLimits limits;
+  double max_force_error_after_ramp_n = 0.0;  // NaN: the run stopped before the ramp's end
+  double peak_measured_m = 0.0;               // |measured stroke|
+  bool within_limits = true;
+};
+
 struct ModePrediction {
   double frequency_hz = 0.0;
   double damping_ratio = 0.0;            // of the structure alone (no delay)
@@ -93,8 +110,9 @@ struct DryRunReport {
   // Per channel: what its actuator sees (with a setup, the actuator's stroke and load cell
   // against the actuator's limits).
   std::vector<ChannelPrediction> channels;
-  std::vector<DofPrediction> dofs;  // the DOFs setups drive (empty without setups)
-  double residual_delay_ms = 0.0;   // the channels' mean tracking delay
+  std::vector<DofPrediction> dofs;               // the DOFs setups drive (empty without setups)
+  std::vector<HeldForcePrediction> held_forces;  // empty without held forces
+  double residual_delay_ms = 0.0;                // the channels' mean tracking delay
   std::vector<ModePrediction> modes;
   // Servo model only: its proportional gain and the largest stable one (eigenvalues of the
   // full linear model with the specimen).
@@ -108,8 +126,9 @@ struct DryRunReport {
 
 // Runs the scenario's test (not the reference) with its simulated plant, whatever its transport
 // and clock say. Throws what building the test throws, and std::invalid_argument naming the
-// node file when a node serves another test, an unknown or repeated site, or another number
-// of channels than the scenario gives its site.
+// node file when a node serves another test, an unknown or repeated site, another number
+// of channels than the scenario gives its site, or a channel in another control mode than the
+// scenario's (a held force's channel in force control, every other in displacement control).
 DryRunReport dry_run(const hybrid_test::TestConfig& scenario, const std::vector<NodeLimits>& nodes = {});
 
 }  // namespace rpsd::studies

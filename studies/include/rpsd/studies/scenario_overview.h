@@ -49,6 +49,9 @@ struct ScenarioOverview {
   std::vector<std::string> processing;             // what the scenario did to it, in order
   double record_dt_s = 0.0, record_pga_g = 0.0;    // as the test runs it
   std::vector<ChannelOverview> channels;
+  // One line per held force (held_forces[]): "site 1 held force axial, channel 1: ..."; empty
+  // without any.
+  std::vector<std::string> held_forces;
   std::optional<double> actuator_cutoff_hz;  // the servo model's (linear analysis); none for other plants
   // What deserves a look before the test: a mode above the actuator's cut-off (naming the mass
   // key), a limit that a converter's rail would pre-empt.
