@@ -316,6 +316,14 @@ TestRun TestAssembly::finish(coordinator::StepOutcome outcome) {
   TestRun run;
   // Asked before the run ends: the node's heartbeat still names this run's fault.
   if (outcome == coordinator::StepOutcome::kNodeFault) run.node_fault = p.actuators->node_fault_text();
+  // A lock-step node that faults on a command it refuses (a control mode its file does not
+  // declare) answers nothing: the link times out, but the node's heartbeat says why.
+  if (outcome == coordinator::StepOutcome::kLinkFailure) {
+    if (std::string said = p.actuators->node_fault_text(); !said.empty()) {
+      outcome = coordinator::StepOutcome::kNodeFault;
+      run.node_fault = std::move(said);
+    }
+  }
   p.actuators->end_run();
   run.outcome = outcome;
   run.run_id = p.loop->run_id();

@@ -514,13 +514,16 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
     if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway ||
         test.outcome == coordinator::StepOutcome::kGeometry) {
       const coordinator::LimitStop& l = test.limit_stop;
-      stopped_by["limit"] = coordinator::limit_stop_name(l.kind);
+      // A held force's tracking limit is on its force (held_forces[].limits.max_force_error_n).
+      stopped_by["limit"] = l.held >= 0 && l.kind == coordinator::LimitStop::Kind::kTrackingError
+                                ? "max_force_error_n"
+                                : coordinator::limit_stop_name(l.kind);
       stopped_by["channel"] = l.channel;
       stopped_by["value"] = l.value;
       stopped_by["bound"] = l.bound;
       // On a setup's channel: the actuator or the DOF (or the setup, for its geometry) by name;
       // on a held force's (after the structure's channels): the held force.
-      const bool held_channel = l.channel >= static_cast<int>(scenario.experimental.size());
+      const bool held_channel = l.held >= 0;
       if (l.name[0] != '\0') {
         stopped_by[held_channel      ? "held_force"
                    : l.actuator >= 0 ? "actuator"

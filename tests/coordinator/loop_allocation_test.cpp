@@ -8,6 +8,7 @@
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/specimen_sdof.h"
+#include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -130,6 +131,27 @@ TEST(LoopAllocation, NoAllocationPerStepThroughALargeDisplacementSetup) {
     EXPECT_GT(std::abs(test.last_record().dof_measured_m[1]), 0.0);  // Newton ran on a moving specimen
     test.finish(StepOutcome::kOk);
   }
+}
+
+// With a held force (examples/scenarios/column-axial-load.yaml): its ramp, its force-mode
+// command, its limits and its record, through the in-process node's force loop.
+TEST(LoopAllocation, NoAllocationPerStepWithAHeldForce) {
+  const TestConfig config =
+      std::get<TestConfig>(scenarios::load_study(testing::source_dir() / "examples/scenarios/column-axial-load.yaml",
+                                                 {scenarios::parse_override("ground_motion.trim={end_s: 4}")})
+                               .study);
+  ASSERT_EQ(config.held_forces.size(), 1u);
+  TestAssembly test(config, {{}, false, true, {}});
+  int taken = 0;
+  rpsd::testing::begin_counting_allocations();
+  for (; taken < 3000; ++taken) {
+    if (test.step() != StepOutcome::kOk) break;
+  }
+  const long allocations = rpsd::testing::end_counting_allocations().total();
+  EXPECT_EQ(taken, 3000) << describe_limit_stop(test.limit_stop());
+  EXPECT_EQ(allocations, 0);
+  EXPECT_LT(test.last_record().held_force_command_n[0], -1.0e3);  // the ramp is under way
+  test.finish(StepOutcome::kOk);
 }
 
 }  // namespace
