@@ -44,10 +44,10 @@ struct TelemetryStatus {
   double control_rate_hz = 0.0;  // steps per second of test time
   bool real_time = false;
   std::uint8_t channels = 0;
-  std::int64_t overruns = 0;               // real time: paced cycles that missed their deadline
-  std::int64_t late_feedback = 0;          // exchanges answered by an older measurement
+  std::int64_t overruns = 0;       // real time: paced cycles that missed their deadline
+  std::int64_t late_feedback = 0;  // exchanges answered by an older measurement
   std::uint8_t worst_feedback_age_periods = 0;
-  std::int64_t dropped_samples = 0;        // decimated samples the publisher could not send
+  std::int64_t dropped_samples = 0;  // decimated samples the publisher could not send
   // The delay theory's effective damping ratio of the first mode, predicted before the run,
   // and identified from the record once enough has passed (kUnknown until then).
   double predicted_effective_damping = kUnknown;
