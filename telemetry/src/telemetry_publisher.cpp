@@ -201,14 +201,17 @@ void TelemetryPublisher::set_held(bool held) {
   p.write_batch();  // the state shows now, with whatever samples wait
 }
 
-void TelemetryPublisher::end(std::string_view stopped_by, bool stopped_by_limit) {
+void TelemetryPublisher::end(const TelemetryRunEnd& end) {
   const std::lock_guard lock(mutex_);
   Parts& p = *parts_;
-  if (stopped_by_limit) p.event(EventKind::kLimit, stopped_by);
+  p.run.live = nullptr;
+  p.batch.status.overruns = end.overruns;
+  p.batch.status.late_feedback = end.late_feedback;
+  if (end.stopped_by_limit) p.event(EventKind::kLimit, end.stopped_by);
   p.batch.status.state = RunState::kEnded;
-  set_text(p.batch.status.stopped_by, stopped_by);
+  set_text(p.batch.status.stopped_by, end.stopped_by);
   p.write_batch();
-  p.event(EventKind::kRunEnded, std::string("run ended: ") + std::string(stopped_by));
+  p.event(EventKind::kRunEnded, "run ended: " + end.stopped_by);
 }
 
 std::int64_t TelemetryPublisher::keep_every_steps() const {
