@@ -23,7 +23,7 @@ void RealTimeProgress::observe(const coordinator::StepRecord& r) {
   const Clock::time_point now = Clock::now();
   if (now - last_report_ < kEvery) return;
   last_report_ = now;
-  ProgressReport report{"test", case_number_, cases_, r.step + 1, planned_};
+  ProgressReport report{"test", case_number_, cases_, r.step, planned_};  // steps count from 1
   report.real_time = true;
   report.overruns = live_ ? live_->overruns.load(std::memory_order_relaxed) : 0;
   report.worst_feedback_age_periods = worst_age_;

@@ -150,7 +150,7 @@ void TelemetryPublisher::observe(const coordinator::StepRecord& r) {
   p.last_step = r.step;
   p.last_time_s = r.time_s;
   TelemetryStatus& s = p.batch.status;
-  s.steps_done = r.step + 1;
+  s.steps_done = r.step;  // steps count from 1
   s.worst_feedback_age_periods = std::max(s.worst_feedback_age_periods, r.feedback_age_periods);
   // Events are never decimated: every change of the nodes' limits and states.
   if (!p.have_previous || r.limit_flags != p.previous_limit_flags) {
