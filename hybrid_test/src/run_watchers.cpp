@@ -72,6 +72,7 @@ RunWatch RunWatchers::watch() {
       info.real_time = run.real_time();
       info.channels = static_cast<int>(test_.experimental.size());
       info.live = &run.live_counters();
+      info.predicted_effective_damping = test_.telemetry.predicted_effective_damping;
       telemetry_->start(info);
     }
     started_ = true;
