@@ -5,13 +5,13 @@
 // the loop waits for the recorder's writer thread when its queue is full, so the ratio is
 // also what the publisher costs the writer; in real time the loop never waits for it
 // (docs/telemetry.md). The default rate (256 samples/s of test time) and every step (1024/s).
+#include <unistd.h>
 #include <atomic>
 #include <cstdio>
 #include <functional>
 #include <stdexcept>
 #include <string>
 #include <thread>
-#include <unistd.h>
 
 #include "bench_report.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
@@ -112,14 +112,14 @@ int main(int argc, char** argv) try {
   with.against("telemetry_none_x_realtime", "with telemetry / without (speed), median of the rounds' ratios",
                bench::summarize(decimated_ratios).median);
   fragment.add(with);
-  bench::Figure ratio = bench::figure("telemetry_monitored_ratio",
-                                      "  the same: speed with telemetry over without, round by round",
-                                      "with / without", bench::summarize(decimated_ratios));
+  bench::Figure ratio =
+      bench::figure("telemetry_monitored_ratio", "  the same: speed with telemetry over without, round by round",
+                    "with / without", bench::summarize(decimated_ratios));
   ratio.aiming_for(">= 0.9", ratio.value.median >= 0.9);
   fragment.add(ratio);
-  bench::Figure every = bench::figure("telemetry_every_step_ratio",
-                                      "  the same with every step published (1024 samples/s), over without",
-                                      "with / without", bench::summarize(every_ratios));
+  bench::Figure every =
+      bench::figure("telemetry_every_step_ratio", "  the same with every step published (1024 samples/s), over without",
+                    "with / without", bench::summarize(every_ratios));
   fragment.add(every);
   char text[400];
   std::snprintf(text, sizeof text,

@@ -11,7 +11,11 @@ double seconds(std::chrono::steady_clock::duration d) { return std::chrono::dura
 }  // namespace
 
 ProgressBar::ProgressBar(double control_rate_hz, std::FILE* out, bool terminal)
-    : rate_hz_(control_rate_hz), out_(out), terminal_(terminal), start_(Clock::now()), case_start_(start_),
+    : rate_hz_(control_rate_hz),
+      out_(out),
+      terminal_(terminal),
+      start_(Clock::now()),
+      case_start_(start_),
       last_plain_(start_) {}
 
 ProgressBar::ProgressBar(double control_rate_hz) : ProgressBar(control_rate_hz, stderr, isatty(STDERR_FILENO) != 0) {}

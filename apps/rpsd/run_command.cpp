@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "progress_bar.h"
 #include "rpsd/commands.h"
 #include "rpsd/hybrid_test/hybrid_test_output.h"
 #include "rpsd/node/servo_node_overview.h"
@@ -16,7 +17,6 @@
 #include "rpsd/studies/dry_run_report.h"
 #include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
-#include "progress_bar.h"
 #include "stop_signals.h"
 
 namespace rpsd::cli {

@@ -477,11 +477,12 @@ void free_vibration(config::Source& f, Eigen::Index dofs, hybrid_test::TestConfi
 
 telemetry::TelemetryConfig telemetry(config::Source& output) {
   telemetry::TelemetryConfig t;
-  t.enabled = output.boolean_or("telemetry", t.enabled,
-                                "publish the test's telemetry for `rpsd monitor` (docs/telemetry.md); off: nothing changes");
-  t.max_samples_per_s = output.number_or(
-      "telemetry_samples_per_s", t.max_samples_per_s,
-      Number::between(1.0, 1e6, "1/s", "telemetry samples per second of test time (every k-th step)"));
+  t.enabled =
+      output.boolean_or("telemetry", t.enabled,
+                        "publish the test's telemetry for `rpsd monitor` (docs/telemetry.md); off: nothing changes");
+  t.max_samples_per_s =
+      output.number_or("telemetry_samples_per_s", t.max_samples_per_s,
+                       Number::between(1.0, 1e6, "1/s", "telemetry samples per second of test time (every k-th step)"));
   return t;
 }
 

@@ -31,12 +31,11 @@ std::string flag_names(std::uint32_t flags, const std::pair<std::uint32_t, const
 }
 
 std::string limit_text(std::uint32_t flags) {
-  static constexpr std::pair<std::uint32_t, const char*> kNames[] = {
-      {transport::kLimitStroke, "stroke"},
-      {transport::kLimitVelocity, "velocity"},
-      {transport::kLimitForce, "force"},
-      {transport::kLimitIncrement, "increment"},
-      {transport::kLimitAcceleration, "acceleration"}};
+  static constexpr std::pair<std::uint32_t, const char*> kNames[] = {{transport::kLimitStroke, "stroke"},
+                                                                     {transport::kLimitVelocity, "velocity"},
+                                                                     {transport::kLimitForce, "force"},
+                                                                     {transport::kLimitIncrement, "increment"},
+                                                                     {transport::kLimitAcceleration, "acceleration"}};
   return "node limits acting: " + flag_names(flags, kNames, std::size(kNames));
 }
 
@@ -58,12 +57,12 @@ struct TelemetryPublisher::Parts {
         participant(c.domain_id, c.dds_config),
         publisher(dds_create_publisher(participant.get(), telemetry_partition_qos(c.test_id).get(), nullptr),
                   "dds_create_publisher(telemetry)"),
-        batch_writer(dds_create_writer(publisher.get(), participant.batch_topic(), telemetry_qos(kBatchHistory).get(),
-                                       nullptr),
-                     "dds_create_writer(rpsd_TelemetryBatch)"),
-        event_writer(dds_create_writer(publisher.get(), participant.event_topic(), telemetry_qos(kEventHistory).get(),
-                                       nullptr),
-                     "dds_create_writer(rpsd_TelemetryEvent)") {
+        batch_writer(
+            dds_create_writer(publisher.get(), participant.batch_topic(), telemetry_qos(kBatchHistory).get(), nullptr),
+            "dds_create_writer(rpsd_TelemetryBatch)"),
+        event_writer(
+            dds_create_writer(publisher.get(), participant.event_topic(), telemetry_qos(kEventHistory).get(), nullptr),
+            "dds_create_writer(rpsd_TelemetryEvent)") {
     batch.status.test_id = c.test_id;
     set_text(batch.status.test_name, c.test_name);
   }
@@ -73,7 +72,7 @@ struct TelemetryPublisher::Parts {
   transport::DdsEntity publisher, batch_writer, event_writer;
   TelemetryRunInfo run;
   std::int64_t keep_every = 1;
-  TelemetryBatch batch;       // the one being filled; its status is the run's
+  TelemetryBatch batch;         // the one being filled; its status is the run's
   rpsd_telemetry_Batch wire{};  // written from here: ~12 kB, kept off the stack
   bool have_previous = false;
   std::uint32_t previous_limit_flags = 0, previous_node_status = 0;

@@ -39,12 +39,12 @@ struct TelemetrySubscriber::Parts {
       : participant(c.domain_id, c.dds_config),
         subscriber(dds_create_subscriber(participant.get(), telemetry_partition_qos(c.test_id).get(), nullptr),
                    "dds_create_subscriber(telemetry)"),
-        batch_reader(dds_create_reader(subscriber.get(), participant.batch_topic(), telemetry_qos(kBatchHistory).get(),
-                                       nullptr),
-                     "dds_create_reader(rpsd_TelemetryBatch)"),
-        event_reader(dds_create_reader(subscriber.get(), participant.event_topic(), telemetry_qos(kEventHistory).get(),
-                                       nullptr),
-                     "dds_create_reader(rpsd_TelemetryEvent)"),
+        batch_reader(
+            dds_create_reader(subscriber.get(), participant.batch_topic(), telemetry_qos(kBatchHistory).get(), nullptr),
+            "dds_create_reader(rpsd_TelemetryBatch)"),
+        event_reader(
+            dds_create_reader(subscriber.get(), participant.event_topic(), telemetry_qos(kEventHistory).get(), nullptr),
+            "dds_create_reader(rpsd_TelemetryEvent)"),
         waitset(dds_create_waitset(participant.get()), "dds_create_waitset(telemetry)"),
         batch_ready(dds_create_readcondition(batch_reader.get(), DDS_ANY_STATE), "dds_create_readcondition(batches)"),
         event_ready(dds_create_readcondition(event_reader.get(), DDS_ANY_STATE), "dds_create_readcondition(events)") {

@@ -146,7 +146,8 @@ void expect_same_records(const hybrid_test::TestRun& a, const hybrid_test::TestR
 class SubscriberThatLeaves final : public coordinator::RecordObserver {
  public:
   explicit SubscriberThatLeaves(std::uint32_t test_id)
-      : subscriber_(std::make_unique<TelemetrySubscriber>(TelemetrySubscriberConfig{test_domain(), loopback_xml(), test_id})) {}
+      : subscriber_(
+            std::make_unique<TelemetrySubscriber>(TelemetrySubscriberConfig{test_domain(), loopback_xml(), test_id})) {}
   void observe(const coordinator::StepRecord& r) override {
     if (r.step == 4000) subscriber_.reset();
   }

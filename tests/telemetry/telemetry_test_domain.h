@@ -28,9 +28,7 @@ struct Received {
 inline Received collect_until_ended(TelemetrySubscriber& subscriber) {
   Received r;
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  const auto ended_batch = [&] {
-    return !r.batches.empty() && r.batches.back().status.state == RunState::kEnded;
-  };
+  const auto ended_batch = [&] { return !r.batches.empty() && r.batches.back().status.state == RunState::kEnded; };
   while (!(r.ended() && ended_batch()) && std::chrono::steady_clock::now() < give_up) {
     subscriber.wait(std::chrono::milliseconds(100));
     subscriber.take(r.batches, r.events);

@@ -89,7 +89,7 @@ class Recorder {
   std::vector<DofViewColumn> dof_view_;
   std::vector<int> held_channels_;  // the link channels of the held forces, in their order
   std::vector<RecordObserver*> observers_;
-  std::vector<char> row_;           // one CSV row, built by the writer thread
+  std::vector<char> row_;  // one CSV row, built by the writer thread
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};
   std::mutex wake_mutex_;  // the writer's idle wait and finish() only, never the loop
