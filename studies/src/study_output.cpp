@@ -1,6 +1,7 @@
 #include "rpsd/studies/study_output.h"
 
 #include "rpsd/hybrid_test/monte_carlo_output.h"
+#include "rpsd/studies/dry_run.h"
 
 #include <algorithm>
 #include <cmath>
@@ -235,6 +236,16 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
       900, 600);
 }
 
+// A test whose telemetry is on carries the delay theory's damping of its lowest mode to the
+// monitors (the dry run's prediction); off, the test as it is.
+namespace {
+hybrid_test::TestConfig with_predicted_damping(const hybrid_test::TestConfig& test) {
+  hybrid_test::TestConfig watched = test;
+  if (test.telemetry.enabled) watched.telemetry.predicted_effective_damping = predicted_lowest_mode_damping(test);
+  return watched;
+}
+}  // namespace
+
 StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& dir,
                        const hybrid_test::ProgressSink& progress, const std::atomic<bool>* stop_request) {
   StudyRun run;
@@ -264,7 +275,7 @@ StudyRun run_and_write(const StudyDocument& file, const std::filesystem::path& d
           }
         } else {
           const hybrid_test::TestHeadline headline =
-              hybrid_test::run_test_into(dir, file, study, progress, stop_request);
+              hybrid_test::run_test_into(dir, file, with_predicted_damping(study), progress, stop_request);
           run.result = headline.result;
           run.reason = headline.outcome;
           run.recorded_in = (dir / "time_history.csv").string();

@@ -37,6 +37,15 @@ TEST(DryRun, UncompensatedDelayGivesTheExactDdeRootAndIsNotReady) {
   EXPECT_FALSE(r.within_limits);
 }
 
+// The telemetry's predicted effective damping is the dry run's lowest mode's, without a step.
+TEST(DryRun, ThePredictionForTheTelemetryIsTheDryRunsLowestMode) {
+  const auto uncompensated = sdof({scenarios::parse_override("compensation={kind: none}")});
+  const double predicted = predicted_lowest_mode_damping(uncompensated);
+  EXPECT_LT(predicted, 0.0);  // the 5 ms the compensator does not remove
+  EXPECT_EQ(predicted, dry_run(uncompensated).modes[0].predicted_damping_ratio);
+  EXPECT_NEAR(predicted_lowest_mode_damping(sdof({})), 0.011, 0.002);
+}
+
 TEST(DryRun, CompensatedDelayKeepsTheStructuresDampingAndIsReady) {
   const DryRunReport r = dry_run(sdof({}));
   ASSERT_EQ(r.modes.size(), 1u);

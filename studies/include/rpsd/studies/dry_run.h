@@ -131,4 +131,9 @@ struct DryRunReport {
 // scenario's (a held force's channel in force control, every other in displacement control).
 DryRunReport dry_run(const hybrid_test::TestConfig& scenario, const std::vector<NodeLimits>& nodes = {});
 
+// The delay theory's damping ratio of the scenario's lowest mode with its compensated simulated
+// plant (as the dry run's table gives it), without taking a step: for the telemetry's status.
+// NaN when it cannot be predicted (OpenSees sites, a model the dry run refuses).
+double predicted_lowest_mode_damping(const hybrid_test::TestConfig& scenario);
+
 }  // namespace rpsd::studies
