@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   add_speedgoat_emulator(app);
   add_site_server(app);
   add_host_check(app);
+  add_stop(app);
   add_reference(app);
 
   try {
@@ -77,6 +78,12 @@ int main(int argc, char** argv) {
   } catch (const RunInterrupted& e) {
     std::cerr << "rpsd: " << e.what() << '\n';
     return kExitInterrupted;
+  } catch (const OperatorCommandRefused& e) {
+    std::cerr << "rpsd stop: " << e.what() << '\n';
+    return kExitCommandRefused;
+  } catch (const NoOperatorReply& e) {
+    std::cerr << "rpsd stop: " << e.what() << '\n';
+    return kExitNoAnswer;
   } catch (const std::invalid_argument& e) {
     // Inputs that do not fit together (a node file for another test, an integrator option
     // it does not take, an --out folder in use: output::OutputFolderInUse).

@@ -34,11 +34,14 @@ TestRun run_test(const TestConfig& s, const std::filesystem::path& csv, bool per
 
 EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem::path& test_csv,
                                      const std::filesystem::path& reference_csv, const Progress& progress,
-                                     const std::atomic<bool>* stop_request) {
+                                     const std::atomic<bool>* stop_request,
+                                     const OperatorCommandHook& on_operator_command) {
   const auto channels = static_cast<int>(s.experimental.size());
   const auto dofs = static_cast<std::size_t>(s.record_dofs.size());
   coordinator::CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz, floor_sources(s));
-  TestAssembly test(s, {test_csv, false, false, {}, stop_request});
+  operator_commands::OperatorControl operator_control;
+  TestAssembly test(s, {test_csv, false, false, {}, stop_request, &operator_control});
+  const auto operators = listen_for_operators(s, test.run_id(), test.real_time(), operator_control, on_operator_command);
   EvaluatedTest result;
   coordinator::StepOutcome test_outcome = coordinator::StepOutcome::kOk,
                            reference_outcome = coordinator::StepOutcome::kOk;
@@ -80,6 +83,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
     result.reference = reference.finish(reference_outcome);
   }
   result.test = test.finish(test_outcome);
+  if (operators) result.test.operator_commands = operators->log();
   result.criteria = sums.criteria();
   return result;
 }

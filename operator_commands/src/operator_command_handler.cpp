@@ -32,11 +32,11 @@ OperatorReply OperatorCommandHandler::decide(const OperatorCommand& command) {
   const OperatorRequest request = control_.request();
   switch (command.action) {
     case OperatorAction::kAbort:
-      control_.request_abort();
+      control_.request_abort(sender_text(command.sender));
       return answer(ReplyStatus::kDone, "the coordinator stops commanding and every node holds at once");
     case OperatorAction::kStop:
       if (request == OperatorRequest::kAbort) return answer(ReplyStatus::kRefused, "the test is already aborted");
-      control_.request_stop();
+      control_.request_stop(sender_text(command.sender));
       return answer(ReplyStatus::kDone, options_.stop_effect);
     case OperatorAction::kHold:
     case OperatorAction::kResume:

@@ -2,13 +2,23 @@
 
 namespace rpsd::operator_commands {
 
-void OperatorControl::request_stop() {
-  std::uint8_t none = static_cast<std::uint8_t>(OperatorRequest::kNone);
-  request_.compare_exchange_strong(none, static_cast<std::uint8_t>(OperatorRequest::kStop), std::memory_order_acq_rel);
+void OperatorControl::request_stop(const std::string& who) {
+  const std::lock_guard lock(who_mutex_);
+  if (request() != OperatorRequest::kNone) return;
+  requested_by_ = who;
+  request_.store(static_cast<std::uint8_t>(OperatorRequest::kStop), std::memory_order_release);
 }
 
-void OperatorControl::request_abort() {
+void OperatorControl::request_abort(const std::string& who) {
+  const std::lock_guard lock(who_mutex_);
+  if (request() == OperatorRequest::kAbort) return;
+  requested_by_ = who;
   request_.store(static_cast<std::uint8_t>(OperatorRequest::kAbort), std::memory_order_release);
+}
+
+std::string OperatorControl::requested_by() const {
+  const std::lock_guard lock(who_mutex_);
+  return requested_by_;
 }
 
 bool OperatorControl::request_hold(const std::string& who) {

@@ -65,6 +65,8 @@ class ExperimentalExchange {
   StepOutcome exchange(const Eigen::VectorXd& targets, double time_s);
 
   const Eigen::VectorXd& specimen_forces() const { return specimen_forces_; }
+  // The targets of the last exchange (specimen scale; a setup's channels: its DOFs').
+  const Eigen::VectorXd& targets() const { return targets_; }
   const transport::CommandSample& command() const { return command_; }
   const transport::FeedbackSample& feedback() const { return feedback_; }
   const LimitStop& limit_stop() const { return limit_stop_; }

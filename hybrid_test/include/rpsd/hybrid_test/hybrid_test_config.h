@@ -23,6 +23,7 @@
 #include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/setups/setup_kinds.h"
+#include "rpsd/operator_commands/operator_commands_config.h"
 #include "rpsd/substructure/linear_mdof_model.h"
 #include "rpsd/substructure/partition.h"
 #include "rpsd/substructure/shear_building.h"
@@ -150,6 +151,7 @@ struct TestConfig {
   ClockConfig clock;
   RunAwayConfig run_away;
   TransportConfig transport;
+  operator_commands::OperatorCommandsConfig operator_commands;  // stop, abort, hold, resume (docs/operator-commands.md)
   // Either a ground motion or an initial displacement (free vibration) drives the test.
   std::optional<GroundMotion> ground_motion;
   Eigen::VectorXd initial_displacement_m;

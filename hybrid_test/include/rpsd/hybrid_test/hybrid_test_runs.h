@@ -7,6 +7,7 @@
 
 #include "rpsd/coordinator/run_criteria.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/operator_listener.h"
 
 namespace rpsd::hybrid_test {
 
@@ -29,10 +30,13 @@ struct EvaluatedTest {
 // however long the record. In real time the reference is not run inside the paced cycle: the
 // test keeps only its recorded DOFs' displacements (8 bytes per DOF per step, allocated
 // before the clock starts) and the reference runs afterwards. The reference goes on to the
-// end when the test aborts. Both stop when *stop_request is set (AssemblyOptions).
+// end when the test aborts. Both stop when *stop_request is set (AssemblyOptions). The test
+// hears operator commands as listen_for_operators says (the reference never does);
+// `on_operator_command` sees each one heard.
 EvaluatedTest run_test_and_reference(const TestConfig& config, const std::filesystem::path& test_csv,
                                      const std::filesystem::path& reference_csv, const Progress& progress = {},
-                                     const std::atomic<bool>* stop_request = nullptr);
+                                     const std::atomic<bool>* stop_request = nullptr,
+                                     const OperatorCommandHook& on_operator_command = {});
 
 // The criteria from two runs that kept their records; the same numbers as
 // run_test_and_reference gives.

@@ -19,9 +19,9 @@ class OperatorControl {
   // A hold is asked (lock-step only): take no further step until it is lifted. Real-time safe.
   bool hold_requested() const { return hold_.load(std::memory_order_acquire); }
 
-  // The listener's side. An abort replaces a stop, never the other way round.
-  void request_stop();
-  void request_abort();
+  // The listener's side, with who asked. An abort replaces a stop, never the other way round.
+  void request_stop(const std::string& who);
+  void request_abort(const std::string& who);
   // False when already held (hold) or not held (resume); `who` is kept for the held interval.
   bool request_hold(const std::string& who);
   bool request_resume(const std::string& who);
@@ -30,12 +30,14 @@ class OperatorControl {
   // mutex): the lock-step loop asks when it enters and leaves a hold, never in real time.
   std::string held_by() const;
   std::string resumed_by() const;
+  // Who asked for the stop or the abort under way (the abort's once it replaced a stop).
+  std::string requested_by() const;
 
  private:
   std::atomic<std::uint8_t> request_{static_cast<std::uint8_t>(OperatorRequest::kNone)};
   std::atomic<bool> hold_{false};
   mutable std::mutex who_mutex_;
-  std::string held_by_, resumed_by_;
+  std::string held_by_, resumed_by_, requested_by_;
 };
 
 }  // namespace rpsd::operator_commands
