@@ -113,7 +113,7 @@ struct TestAssembly::Parts {
   }
 
   // Ramps every channel's target from where the stop left it to its start position at the
-  // stated velocity, one exchange per control period (paced on the wall clock when a rig may
+  // stated velocity and holds it there for half a second, one exchange per control period (paced on the wall clock when a rig may
   // be on the other side: real time or over DDS), within the coordinator's limits; stops at
   // the first exchange that is not kOk. The rows are sized before the first exchange.
   void return_to_start_positions() {
@@ -127,7 +127,10 @@ struct TestAssembly::Parts {
     r.channels = channels;
     double farthest_m = 0.0;
     for (int c = 0; c < channels; ++c) farthest_m = std::max(farthest_m, std::abs(start_targets[c] - from[c]));
-    const auto exchanges = static_cast<std::int64_t>(std::ceil(farthest_m / step_m));
+    // Then the start target is held for kSettleS, so that the actuators settle on it.
+    constexpr double kSettleS = 0.5;
+    const auto ramp = static_cast<std::int64_t>(std::ceil(farthest_m / step_m));
+    const auto exchanges = ramp + static_cast<std::int64_t>(std::ceil(kSettleS / period_s));
     r.rows.assign(static_cast<std::size_t>(exchanges) * static_cast<std::size_t>(1 + 4 * channels), 0.0);
     Eigen::VectorXd target = from;
     const bool paced = real_time || actuators->over_dds();

@@ -52,7 +52,7 @@ const char* outcome_text(coordinator::StepOutcome o) {
     case coordinator::StepOutcome::kRefused:
       return "refused";
     case coordinator::StepOutcome::kOperatorStop:
-      return "operator stop: the test ended in order after the step under way; the actuators hold";
+      return "operator stop: the test ended in order after the step under way";
     case coordinator::StepOutcome::kOperatorAbort:
       return "operator abort: the coordinator stopped commanding; every node holds at once";
   }

@@ -93,6 +93,7 @@ std::string operator_outcome_detail(const TestRun& test) {
   std::string text;
   if (!test.operator_sender.empty()) text += " by \"" + test.operator_sender + "\"";
   const ReturnToStart& r = test.return_to_start;
+  if (test.outcome == coordinator::StepOutcome::kOperatorStop && !r.asked) text += "; the actuators hold";
   if (r.asked) {
     char detail[96];
     std::snprintf(detail, sizeof detail, "; returned to the start positions at %g m/s", r.velocity_m_per_s);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 #include <mutex>
+#include <thread>
 
 #include "operator_dds.h"
 #include "operator_wire.h"
@@ -85,8 +86,15 @@ std::optional<OperatorReply> OperatorCommandSender::send(OperatorAction action, 
   const auto deadline =
       start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                   std::chrono::duration<double>(timeout_s > 0.0 ? timeout_s : 0.0));
-  // Until answered, the command is repeated every 200 ms: one written before the coordinator's
-  // reader had discovered this writer is lost (volatile), a repeat is not.
+  // The first write waits for a coordinator's reader (discovery), up to the timeout. Until
+  // answered, the command is repeated every 200 ms: one written before that reader had
+  // discovered this writer too is lost (volatile), a repeat is not.
+  for (;;) {
+    dds_publication_matched_status_t matched{};
+    if (dds_get_publication_matched_status(s.writer.get(), &matched) == 0 && matched.current_count > 0) break;
+    if (std::chrono::steady_clock::now() >= deadline) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   for (;;) {
     dds_write(s.writer.get(), &wire);
     const auto resend_at = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
