@@ -90,6 +90,7 @@ struct TestAssembly::Parts {
     interval.start_unix_ns = unix_now_ns();
     interval.held_by = operator_control->held_by();
     auto next_keep_alive = std::chrono::steady_clock::now();
+    operator_control->set_holding(true);
     while (operator_control->hold_requested() &&
            operator_control->request() == operator_commands::OperatorRequest::kNone &&
            !(stop_request && stop_request->load(std::memory_order_relaxed))) {
@@ -100,6 +101,7 @@ struct TestAssembly::Parts {
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
+    operator_control->set_holding(false);
     if (!operator_control->hold_requested()) {
       interval.end_unix_ns = unix_now_ns();
       interval.resumed_by = operator_control->resumed_by();

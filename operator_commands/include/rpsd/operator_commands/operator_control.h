@@ -19,6 +19,11 @@ class OperatorControl {
   // A hold is asked (lock-step only): take no further step until it is lifted. Real-time safe.
   bool hold_requested() const { return hold_.load(std::memory_order_acquire); }
 
+  // The loop's side: whether it is holding now (between two steps, no step under way), for
+  // whoever watches the run. Real-time safe.
+  void set_holding(bool holding) { holding_.store(holding, std::memory_order_release); }
+  bool holding() const { return holding_.load(std::memory_order_acquire); }
+
   // The listener's side, with who asked. An abort replaces a stop, never the other way round.
   void request_stop(const std::string& who);
   void request_abort(const std::string& who);
@@ -36,6 +41,7 @@ class OperatorControl {
  private:
   std::atomic<std::uint8_t> request_{static_cast<std::uint8_t>(OperatorRequest::kNone)};
   std::atomic<bool> hold_{false};
+  std::atomic<bool> holding_{false};
   mutable std::mutex who_mutex_;
   std::string held_by_, resumed_by_, requested_by_;
 };
