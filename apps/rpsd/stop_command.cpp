@@ -58,8 +58,15 @@ void add_stop(CLI::App& app) {
                                   : o->hold ? OperatorAction::kHold
                                   : o->resume ? OperatorAction::kResume
                                               : OperatorAction::kStop;
-    operator_commands::OperatorCommandSender sender({o->domain, o->dds_config, o->test_id},
-                                                    o->sender.empty() ? default_sender() : o->sender);
+    std::unique_ptr<operator_commands::OperatorCommandSender> made;
+    try {
+      made = std::make_unique<operator_commands::OperatorCommandSender>(
+          operator_commands::OperatorLinkConfig{o->domain, o->dds_config, o->test_id},
+          o->sender.empty() ? default_sender() : o->sender);
+    } catch (const operator_commands::OperatorNotPermitted& e) {
+      throw OperatorCommandRefused(o->test_id, e.what());
+    }
+    operator_commands::OperatorCommandSender& sender = *made;
     const auto reply = sender.send(action, o->timeout_s);
     if (!reply) throw NoOperatorReply(o->test_id, operator_commands::operator_action_name(action), o->timeout_s);
     const std::string text(reply->text.data());

@@ -42,12 +42,14 @@ struct OperatorCommandSender::Impl {
                                      "dds_create_publisher");
     subscriber = transport::DdsEntity(dds_create_subscriber(participant.get(), partition.get(), nullptr),
                                       "dds_create_subscriber");
-    writer = transport::DdsEntity(dds_create_writer(publisher.get(), participant.command_topic(), command_qos().get(),
-                                                    nullptr),
-                                  "dds_create_writer(rpsd_OperatorCommand)");
-    reader = transport::DdsEntity(dds_create_reader(subscriber.get(), participant.reply_topic(), reply_qos().get(),
-                                                    nullptr),
-                                  "dds_create_reader(rpsd_OperatorReply)");
+    writer = transport::DdsEntity(
+        permitted(dds_create_writer(publisher.get(), participant.command_topic(), command_qos().get(), nullptr),
+                  "dds_create_writer(rpsd_OperatorCommand)"),
+        "dds_create_writer(rpsd_OperatorCommand)");
+    reader = transport::DdsEntity(
+        permitted(dds_create_reader(subscriber.get(), participant.reply_topic(), reply_qos().get(), nullptr),
+                  "dds_create_reader(rpsd_OperatorReply)"),
+        "dds_create_reader(rpsd_OperatorReply)");
     waitset = transport::DdsEntity(dds_create_waitset(participant.get()), "dds_create_waitset");
     data = transport::DdsEntity(dds_create_readcondition(reader.get(), DDS_ANY_STATE), "dds_create_readcondition");
     transport::dds_check(dds_waitset_attach(waitset.get(), data.get(), 0), "dds_waitset_attach");

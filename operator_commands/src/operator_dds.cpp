@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rpsd/operator_commands/operator_command_sender.h"
 #include "rpsd_operator.h"
 
 namespace rpsd::operator_commands {
@@ -28,11 +29,23 @@ OperatorParticipant::OperatorParticipant(std::uint32_t domain_id, const std::str
   }
   participant_ = transport::DdsEntity(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant");
   command_topic_ = transport::DdsEntity(
-      dds_create_topic(participant_.get(), &rpsd_operator_Command_desc, "rpsd_OperatorCommand", nullptr, nullptr),
+      permitted(dds_create_topic(participant_.get(), &rpsd_operator_Command_desc, "rpsd_OperatorCommand", nullptr,
+                                 nullptr),
+                "dds_create_topic(rpsd_OperatorCommand)"),
       "dds_create_topic(rpsd_OperatorCommand)");
   reply_topic_ = transport::DdsEntity(
-      dds_create_topic(participant_.get(), &rpsd_operator_Reply_desc, "rpsd_OperatorReply", nullptr, nullptr),
+      permitted(
+          dds_create_topic(participant_.get(), &rpsd_operator_Reply_desc, "rpsd_OperatorReply", nullptr, nullptr),
+          "dds_create_topic(rpsd_OperatorReply)"),
       "dds_create_topic(rpsd_OperatorReply)");
+}
+
+dds_entity_t permitted(dds_entity_t handle, const std::string& what) {
+  if (handle == DDS_RETCODE_NOT_ALLOWED_BY_SECURITY) {
+    throw OperatorNotPermitted(what + ": DDS Security does not let this identity send operator commands (its "
+                                      "permissions grant no operator role)");
+  }
+  return handle;
 }
 
 std::string operator_partition_name(std::uint32_t test_id) { return "rpsd/test-" + std::to_string(test_id) + "/operator"; }

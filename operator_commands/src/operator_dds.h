@@ -29,4 +29,8 @@ transport::DdsQos operator_partition_qos(std::uint32_t test_id);
 transport::DdsQos command_qos();
 transport::DdsQos reply_qos();
 
+// An entity made under DDS Security: OperatorNotPermitted when the permissions refuse it
+// (naming `what`), transport::DdsError for any other failure.
+dds_entity_t permitted(dds_entity_t handle, const std::string& what);
+
 }  // namespace rpsd::operator_commands

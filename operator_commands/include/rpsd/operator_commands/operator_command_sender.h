@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "rpsd/operator_commands/operator_command.h"
@@ -19,9 +20,17 @@ struct OperatorLinkConfig {
   std::uint32_t test_id = 1;
 };
 
+// DDS Security does not let this identity send operator commands: its permissions grant no
+// operator role (the monitor's, a node's), so it may not create the command topic or writer.
+class OperatorNotPermitted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class OperatorCommandSender {
  public:
   // Joins the domain and the test's operator partition. Not real-time safe; throws
+  // OperatorNotPermitted when DDS Security refuses this identity the command writer, or
   // std::runtime_error (transport::DdsError) naming the failing call or an unreadable file.
   // sender_name (at most 63 bytes are sent) is who the coordinator logs: "alice@rig-pc".
   OperatorCommandSender(const OperatorLinkConfig& config, std::string sender_name);
