@@ -40,7 +40,8 @@ void add_stop(CLI::App& app) {
       "--resume (lock-step only). Exit 0 done, 7 refused by the test, 8 no answer. The rig's hardware emergency "
       "stop stays the primary stop.");
   stop->add_option("--test-id", o->test_id, "The test's id (its scenario's transport.test_id)")->required();
-  auto* abort = stop->add_flag("--abort", o->abort, "Abort: the coordinator stops commanding, every node holds at once");
+  auto* abort =
+      stop->add_flag("--abort", o->abort, "Abort: the coordinator stops commanding, every node holds at once");
   auto* hold = stop->add_flag("--hold", o->hold, "Hold a lock-step test between two steps (refused in real time)");
   auto* resume = stop->add_flag("--resume", o->resume, "Resume a held lock-step test from the step where it held");
   abort->excludes(hold)->excludes(resume);
@@ -54,8 +55,8 @@ void add_stop(CLI::App& app) {
   stop->add_option("--sender", o->sender, "Who the test logs as the sender (default: user@host (rpsd stop))");
   stop->callback([o] {
     using operator_commands::OperatorAction;
-    const OperatorAction action = o->abort  ? OperatorAction::kAbort
-                                  : o->hold ? OperatorAction::kHold
+    const OperatorAction action = o->abort    ? OperatorAction::kAbort
+                                  : o->hold   ? OperatorAction::kHold
                                   : o->resume ? OperatorAction::kResume
                                               : OperatorAction::kStop;
     std::unique_ptr<operator_commands::OperatorCommandSender> made;

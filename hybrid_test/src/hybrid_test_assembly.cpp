@@ -70,8 +70,9 @@ struct TestAssembly::Parts {
     using operator_commands::OperatorRequest;
     const OperatorRequest request = operator_control->request();
     if (request == OperatorRequest::kNone) return coordinator::StepOutcome::kOk;
-    if (operator_ended) return request == OperatorRequest::kAbort ? coordinator::StepOutcome::kOperatorAbort
-                                                                  : coordinator::StepOutcome::kOperatorStop;
+    if (operator_ended)
+      return request == OperatorRequest::kAbort ? coordinator::StepOutcome::kOperatorAbort
+                                                : coordinator::StepOutcome::kOperatorStop;
     operator_ended = true;
     if (request == OperatorRequest::kStop && config->operator_commands.return_to_start) return_to_start_positions();
     // Asked after the return: an abort during it replaces the stop.
@@ -115,9 +116,10 @@ struct TestAssembly::Parts {
   }
 
   // Ramps every channel's target from where the stop left it to its start position at the
-  // stated velocity and holds it there for half a second, one exchange per control period (paced on the wall clock when a rig may
-  // be on the other side: real time or over DDS), within the coordinator's limits; stops at
-  // the first exchange that is not kOk. The rows are sized before the first exchange.
+  // stated velocity and holds it there for half a second, one exchange per control period
+  // (paced on the wall clock when a rig may be on the other side: real time or over DDS),
+  // within the coordinator's limits; stops at the first exchange that is not kOk. The rows
+  // are sized before the first exchange.
   void return_to_start_positions() {
     ReturnToStart& r = return_to_start;
     r.asked = true;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "operator_run_output.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/hybrid_test/actuator_links.h"
@@ -20,7 +21,6 @@
 #include "rpsd/output/results_files.h"
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/transport/messages.h"
-#include "operator_run_output.h"
 
 namespace rpsd::hybrid_test {
 namespace {
@@ -500,9 +500,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
     }
     if (test.outcome == coordinator::StepOutcome::kOperatorStop ||
         test.outcome == coordinator::StepOutcome::kOperatorAbort) {
-      stopped_by["operator"] = {
-          {"action", test.outcome == coordinator::StepOutcome::kOperatorStop ? "stop" : "abort"},
-          {"sender", test.operator_sender}};
+      stopped_by["operator"] = {{"action", test.outcome == coordinator::StepOutcome::kOperatorStop ? "stop" : "abort"},
+                                {"sender", test.operator_sender}};
     }
     // A node's fault in its own words, or those of the lab controller behind it.
     if (!test.node_fault.empty()) stopped_by["node_says"] = test.node_fault;

@@ -41,7 +41,8 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
   coordinator::CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz, floor_sources(s));
   operator_commands::OperatorControl operator_control;
   TestAssembly test(s, {test_csv, false, false, {}, stop_request, &operator_control});
-  const auto operators = listen_for_operators(s, test.run_id(), test.real_time(), operator_control, on_operator_command);
+  const auto operators =
+      listen_for_operators(s, test.run_id(), test.real_time(), operator_control, on_operator_command);
   EvaluatedTest result;
   coordinator::StepOutcome test_outcome = coordinator::StepOutcome::kOk,
                            reference_outcome = coordinator::StepOutcome::kOk;

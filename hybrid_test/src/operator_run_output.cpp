@@ -42,13 +42,14 @@ nlohmann::json operator_commands_json(const TestRun& test) {
 nlohmann::json held_intervals_json(const TestRun& test) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& h : test.held) {
-    list.push_back({{"after_step", h.after_step},
-                    {"start_utc", utc_text(h.start_unix_ns)},
-                    {"end_utc", h.end_unix_ns ? nlohmann::json(utc_text(h.end_unix_ns)) : nlohmann::json(nullptr)},
-                    {"held_s", h.end_unix_ns ? nlohmann::json(static_cast<double>(h.end_unix_ns - h.start_unix_ns) * 1e-9)
-                                             : nlohmann::json(nullptr)},
-                    {"held_by", h.held_by},
-                    {"resumed_by", h.end_unix_ns ? nlohmann::json(h.resumed_by) : nlohmann::json(nullptr)}});
+    list.push_back(
+        {{"after_step", h.after_step},
+         {"start_utc", utc_text(h.start_unix_ns)},
+         {"end_utc", h.end_unix_ns ? nlohmann::json(utc_text(h.end_unix_ns)) : nlohmann::json(nullptr)},
+         {"held_s", h.end_unix_ns ? nlohmann::json(static_cast<double>(h.end_unix_ns - h.start_unix_ns) * 1e-9)
+                                  : nlohmann::json(nullptr)},
+         {"held_by", h.held_by},
+         {"resumed_by", h.end_unix_ns ? nlohmann::json(h.resumed_by) : nlohmann::json(nullptr)}});
   }
   return list;
 }

@@ -60,7 +60,8 @@ std::optional<OperatorReply> OperatorCommandHandler::handle(const OperatorComman
                                                             std::int64_t received_unix_ns) {
   const std::lock_guard lock(mutex_);
   const std::string who = sender_text(command.sender);
-  const bool other_run = command.test_id != options_.test_id || (command.run_id != 0 && command.run_id != options_.run_id);
+  const bool other_run =
+      command.test_id != options_.test_id || (command.run_id != 0 && command.run_id != options_.run_id);
   const auto previous = last_reply_.find(who);
   if (!other_run && previous != last_reply_.end()) {
     if (command.sequence == previous->second.sequence) return previous->second;  // a repeat: same answer

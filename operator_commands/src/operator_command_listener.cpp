@@ -53,14 +53,14 @@ struct OperatorCommandListener::Impl {
     const transport::DdsQos partition = operator_partition_qos(link.test_id);
     subscriber = transport::DdsEntity(dds_create_subscriber(participant.get(), partition.get(), nullptr),
                                       "dds_create_subscriber");
-    publisher = transport::DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr),
-                                     "dds_create_publisher");
-    reader = transport::DdsEntity(dds_create_reader(subscriber.get(), participant.command_topic(),
-                                                    command_qos().get(), nullptr),
-                                  "dds_create_reader(rpsd_OperatorCommand)");
-    writer = transport::DdsEntity(dds_create_writer(publisher.get(), participant.reply_topic(), reply_qos().get(),
-                                                    nullptr),
-                                  "dds_create_writer(rpsd_OperatorReply)");
+    publisher =
+        transport::DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr), "dds_create_publisher");
+    reader = transport::DdsEntity(
+        dds_create_reader(subscriber.get(), participant.command_topic(), command_qos().get(), nullptr),
+        "dds_create_reader(rpsd_OperatorCommand)");
+    writer =
+        transport::DdsEntity(dds_create_writer(publisher.get(), participant.reply_topic(), reply_qos().get(), nullptr),
+                             "dds_create_writer(rpsd_OperatorReply)");
     waitset = transport::DdsEntity(dds_create_waitset(participant.get()), "dds_create_waitset");
     data = transport::DdsEntity(dds_create_readcondition(reader.get(), DDS_ANY_STATE), "dds_create_readcondition");
     wake = transport::DdsEntity(dds_create_guardcondition(participant.get()), "dds_create_guardcondition");

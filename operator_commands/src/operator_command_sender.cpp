@@ -1,7 +1,7 @@
 #include "rpsd/operator_commands/operator_command_sender.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <mutex>
 #include <thread>
@@ -38,8 +38,8 @@ struct OperatorCommandSender::Impl {
       : config(c), sender_name(std::move(name)), participant(c.domain_id, c.dds_config) {
     if (sender_name.size() > 63) sender_name.resize(63);
     const transport::DdsQos partition = operator_partition_qos(c.test_id);
-    publisher = transport::DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr),
-                                     "dds_create_publisher");
+    publisher =
+        transport::DdsEntity(dds_create_publisher(participant.get(), partition.get(), nullptr), "dds_create_publisher");
     subscriber = transport::DdsEntity(dds_create_subscriber(participant.get(), partition.get(), nullptr),
                                       "dds_create_subscriber");
     writer = transport::DdsEntity(
@@ -85,9 +85,8 @@ std::optional<OperatorReply> OperatorCommandSender::send(OperatorAction action, 
   rpsd_operator_Command wire{};
   to_wire(command, wire);
   const auto start = std::chrono::steady_clock::now();
-  const auto deadline =
-      start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                  std::chrono::duration<double>(timeout_s > 0.0 ? timeout_s : 0.0));
+  const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                    std::chrono::duration<double>(timeout_s > 0.0 ? timeout_s : 0.0));
   // The first write waits for a coordinator's reader (discovery), up to the timeout. Until
   // answered, the command is repeated every 200 ms: one written before that reader had
   // discovered this writer too is lost (volatile), a repeat is not.
@@ -117,8 +116,7 @@ std::optional<OperatorReply> OperatorCommandSender::send(OperatorAction action, 
       if (now >= deadline) return std::nullopt;
       if (now >= resend_at) break;
       const auto wait = std::min(deadline, resend_at) - now;
-      dds_waitset_wait(s.waitset.get(), nullptr, 0,
-                       std::chrono::duration_cast<std::chrono::nanoseconds>(wait).count());
+      dds_waitset_wait(s.waitset.get(), nullptr, 0, std::chrono::duration_cast<std::chrono::nanoseconds>(wait).count());
     }
   }
 }

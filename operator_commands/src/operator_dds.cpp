@@ -25,30 +25,32 @@ OperatorParticipant::OperatorParticipant(std::uint32_t domain_id, const std::str
     const std::string xml = read_config(config_file);
     const dds_entity_t d = dds_create_domain(domain, xml.c_str());
     // Another participant of this process (the test's sites) may have made the domain first.
-    if (d != DDS_RETCODE_PRECONDITION_NOT_MET) domain_ = transport::DdsEntity(d, "dds_create_domain(" + config_file + ")");
+    if (d != DDS_RETCODE_PRECONDITION_NOT_MET)
+      domain_ = transport::DdsEntity(d, "dds_create_domain(" + config_file + ")");
   }
   participant_ = transport::DdsEntity(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant");
-  command_topic_ = transport::DdsEntity(
-      permitted(dds_create_topic(participant_.get(), &rpsd_operator_Command_desc, "rpsd_OperatorCommand", nullptr,
-                                 nullptr),
-                "dds_create_topic(rpsd_OperatorCommand)"),
-      "dds_create_topic(rpsd_OperatorCommand)");
+  command_topic_ = transport::DdsEntity(permitted(dds_create_topic(participant_.get(), &rpsd_operator_Command_desc,
+                                                                   "rpsd_OperatorCommand", nullptr, nullptr),
+                                                  "dds_create_topic(rpsd_OperatorCommand)"),
+                                        "dds_create_topic(rpsd_OperatorCommand)");
   reply_topic_ = transport::DdsEntity(
-      permitted(
-          dds_create_topic(participant_.get(), &rpsd_operator_Reply_desc, "rpsd_OperatorReply", nullptr, nullptr),
-          "dds_create_topic(rpsd_OperatorReply)"),
+      permitted(dds_create_topic(participant_.get(), &rpsd_operator_Reply_desc, "rpsd_OperatorReply", nullptr, nullptr),
+                "dds_create_topic(rpsd_OperatorReply)"),
       "dds_create_topic(rpsd_OperatorReply)");
 }
 
 dds_entity_t permitted(dds_entity_t handle, const std::string& what) {
   if (handle == DDS_RETCODE_NOT_ALLOWED_BY_SECURITY) {
-    throw OperatorNotPermitted(what + ": DDS Security does not let this identity send operator commands (its "
-                                      "permissions grant no operator role)");
+    throw OperatorNotPermitted(what +
+                               ": DDS Security does not let this identity send operator commands (its "
+                               "permissions grant no operator role)");
   }
   return handle;
 }
 
-std::string operator_partition_name(std::uint32_t test_id) { return "rpsd/test-" + std::to_string(test_id) + "/operator"; }
+std::string operator_partition_name(std::uint32_t test_id) {
+  return "rpsd/test-" + std::to_string(test_id) + "/operator";
+}
 
 transport::DdsQos operator_partition_qos(std::uint32_t test_id) {
   transport::DdsQos q;

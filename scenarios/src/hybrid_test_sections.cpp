@@ -424,10 +424,10 @@ void operator_commands(config::Source& o, hybrid_test::TestConfig& t) {
   c.return_to_start = o.boolean_or(
       "return_to_start", c.return_to_start,
       "an operator's stop returns every channel to its start position, through the exchange, within the limits");
-  c.return_velocity_m_per_s =
-      o.number_or("return_velocity_m_per_s", c.return_velocity_m_per_s,
-                  Number{"m/s", "the return's rate per channel (a setup's rotation: rad/s); required by return_to_start",
-                         0.0, kMaxVelocityMPerS, true});
+  c.return_velocity_m_per_s = o.number_or(
+      "return_velocity_m_per_s", c.return_velocity_m_per_s,
+      Number{"m/s", "the return's rate per channel (a setup's rotation: rad/s); required by return_to_start", 0.0,
+             kMaxVelocityMPerS, true});
   o.finish();
   if (c.return_to_start && !(c.return_velocity_m_per_s > 0.0)) {
     o.fail("return_to_start", "needs return_velocity_m_per_s > 0: the rate at which the actuators return");

@@ -95,7 +95,8 @@ TEST(OperatorCommands, ReturnToStartRampsEachTargetAtTheStatedVelocityThroughThe
   const double t0 = run.records.back().time_s;
   for (std::int64_t k = 1; k <= r.exchanges; ++k) {
     const double* row = r.rows.data() + (k - 1) * 5;
-    const double analytic = from - std::copysign(std::min(std::abs(from), kVelocity * dt * static_cast<double>(k)), from);
+    const double analytic =
+        from - std::copysign(std::min(std::abs(from), kVelocity * dt * static_cast<double>(k)), from);
     ASSERT_NEAR(row[0], t0 + dt * static_cast<double>(k), 1e-9) << "exchange " << k;
     ASSERT_NEAR(row[1], analytic, 1e-12) << "exchange " << k;
   }
@@ -122,7 +123,8 @@ TEST(OperatorCommands, AHeldAndResumedRunWritesTheSameHistoryAsAnUnheldOneByteFo
   const auto dir = std::filesystem::temp_directory_path() / ("rpsd-held-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   OperatorControl unheld_control, control;
-  const TestRun unheld = run_with(s, unheld_control, [](std::int64_t) {}, dir / "unheld.csv");
+  const TestRun unheld = run_with(
+      s, unheld_control, [](std::int64_t) {}, dir / "unheld.csv");
   std::thread resumer;
   const TestRun held = run_with(
       s, control,

@@ -98,7 +98,8 @@ TEST(OperatorCommandHandler, ARunThatDoesNotAcceptCommandsRefusesEveryOneChanges
   o.accepting = false;
   o.not_accepting_reason = "not enabled";
   OperatorCommandHandler handler(o, control);
-  for (auto [action, seq] : {std::pair{OperatorAction::kStop, 1}, {OperatorAction::kAbort, 2}, {OperatorAction::kHold, 3}}) {
+  for (auto [action, seq] :
+       {std::pair{OperatorAction::kStop, 1}, {OperatorAction::kAbort, 2}, {OperatorAction::kHold, 3}}) {
     const auto reply = handler.handle(command(action, static_cast<std::uint64_t>(seq)), seq);
     ASSERT_TRUE(reply.has_value());
     EXPECT_EQ(reply->status, ReplyStatus::kRefused);

@@ -232,7 +232,8 @@ TEST(TestScenarioFile, OperatorCommandsAreOffByDefaultAndAReturnToStartNeedsItsV
   EXPECT_FALSE(off.enabled);
   EXPECT_FALSE(off.return_to_start);
   const auto file = load_study(
-      example(), {parse_override("operator_commands={enabled: true, return_to_start: true, return_velocity_m_per_s: 0.02}")});
+      example(),
+      {parse_override("operator_commands={enabled: true, return_to_start: true, return_velocity_m_per_s: 0.02}")});
   const auto& on = std::get<hybrid_test::TestConfig>(file.study).operator_commands;
   EXPECT_TRUE(on.enabled);
   EXPECT_TRUE(on.return_to_start);

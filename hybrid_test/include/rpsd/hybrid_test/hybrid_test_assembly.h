@@ -42,10 +42,10 @@ struct TimingReport {
 // An interval an operator held a lock-step test (operator_commands/): no step was taken, the
 // actuators held their last command.
 struct HeldInterval {
-  std::int64_t after_step = 0;       // steps taken when the hold began; the next one taken after it
-  std::int64_t start_unix_ns = 0;    // wall clock
-  std::int64_t end_unix_ns = 0;      // 0: still held when the run ended (stopped while held)
-  std::string held_by, resumed_by;   // senders, as they name themselves
+  std::int64_t after_step = 0;      // steps taken when the hold began; the next one taken after it
+  std::int64_t start_unix_ns = 0;   // wall clock
+  std::int64_t end_unix_ns = 0;     // 0: still held when the run ended (stopped while held)
+  std::string held_by, resumed_by;  // senders, as they name themselves
 };
 
 // An operator's stop with operator_commands.return_to_start: every channel's target ramped
@@ -57,9 +57,9 @@ struct ReturnToStart {
   double velocity_m_per_s = 0.0;
   int channels = 0;
   std::int64_t exchanges = 0;
-  std::vector<double> rows;  // exchanges x (1 + 4 channels)
+  std::vector<double> rows;                                          // exchanges x (1 + 4 channels)
   coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;  // kOk: reached the start
-  coordinator::LimitStop limit_stop;                                // what stopped it, if anything
+  coordinator::LimitStop limit_stop;                                 // what stopped it, if anything
 };
 
 struct TestRun {
