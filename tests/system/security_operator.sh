@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Operator commands under the DDS Security profile (docs/operator-commands.md, docs/dds-security.md)
 # on loopback: the two-site bridge runs lock-step with its nodes under the lab's identities, its
-# scenario not enabling operator commands (with security on, the permissions decide). While it
-# runs, none of these can stop it:
+# scenario not enabling operator commands (with security on, the permissions decide). The lab's
+# operator holds it (so that it cannot end on its own meanwhile); then none of these can stop it:
 #   - the lab's monitor identity (read-only grant): refused at once, exit 7, by its own permissions;
 #   - an operator identity of another lab (a stranger's CA): never authenticated, no answer, exit 8;
 #   - a participant without security (the plain loopback configuration): no answer, exit 8;
-# and the test runs on. The lab's operator identity then stops it: exit 0 for `rpsd stop`,
-# exit 3 for the run, summary.json operator_stop naming the operator, and the coordinator heard
-# no command but the operator's.
+# the test is still there and carries on when the operator resumes it. The lab's operator then
+# stops it: exit 0 for `rpsd stop`, exit 3 for the run, summary.json operator_stop naming the
+# operator, and the coordinator heard no command but the operator's.
 source "$(dirname "$0")/lib.sh"
 
 skip() { echo "SKIP: $*"; exit 77; }
@@ -58,6 +58,8 @@ rows() { cat "$WORK/dds/time_history.csv" 2>/dev/null | wc -l; }
 
 wait_for_rows "$WORK/dds/time_history.csv" 200 $RUN_PID
 kill -0 $RUN_PID 2>/dev/null || fail "the secured run ended before the first command: $(cat "$WORK/dds.log")"
+code=$(stop_as lab-operator "$LAB" operator "$SECURE" --hold --timeout 20)
+[ "$code" = 0 ] || fail "the lab's operator could not hold the test: exit $code: $(cat "$WORK/lab-operator.out")"
 code=$(stop_as monitor "$LAB" monitor "$SECURE" --timeout 5)
 [ "$code" = 7 ] || fail "the monitor identity: exit $code, expected 7: $(cat "$WORK/monitor.out")"
 grep -q "DDS Security does not let this identity send operator commands" "$WORK/monitor.out" \
@@ -66,6 +68,9 @@ code=$(stop_as stranger "$ROGUE" operator "$SECURE" --timeout 5)
 [ "$code" = 8 ] || fail "a stranger's operator identity: exit $code, expected 8: $(cat "$WORK/stranger.out")"
 code=$(stop_as plain "$LAB" none "$SRC/transport/config/loopback.xml" --timeout 3)
 [ "$code" = 8 ] || fail "a participant without security: exit $code, expected 8: $(cat "$WORK/plain.out")"
+kill -0 $RUN_PID 2>/dev/null || fail "the held run ended: $(cat "$WORK/dds.log")"
+code=$(stop_as lab-operator "$LAB" operator "$SECURE" --resume --timeout 20)
+[ "$code" = 0 ] || fail "the lab's operator could not resume the test: exit $code: $(cat "$WORK/lab-operator.out")"
 before=$(rows)
 wait_for_rows "$WORK/dds/time_history.csv" $((before + 200)) $RUN_PID
 kill -0 $RUN_PID 2>/dev/null || fail "the run did not carry on after the refused commands: $(cat "$WORK/dds.log")"
@@ -86,10 +91,11 @@ run = json.load(open(f"{w}/dds/summary.json"))
 s = run["stopped_by"]
 assert s["kind"] == "operator_stop" and s["operator"]["sender"] == "lab-operator", s
 heard = [(c["sender"], c["action"], c["status"]) for c in run["operator_commands"]]
-assert heard == [("lab-operator", "stop", "done")], heard
+assert heard == [("lab-operator", a, "done") for a in ("hold", "resume", "stop")], heard
 for site in (1, 2):
     node = json.load(open(f"{w}/node{site}.json"))
     assert node["commands_accepted"] == run["steps"], (site, node["commands_accepted"], run["steps"])
 print(f"PASS: the monitor (exit 7), a stranger's operator and a plain participant (exit 8) could not stop the "
-      f"secured test; the lab's operator stopped it after step {run['steps']} of {run['steps_planned']} (exit 3)")
+      f"secured test; the lab's operator held, resumed and stopped it after step {run['steps']} of "
+      f"{run['steps_planned']} (exit 3)")
 PY
