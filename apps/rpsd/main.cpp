@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit codes: 0 ok, 1 internal error, 2 bad input, 3 test stopped before its end, 4 not ready (dry run, or no "
       "servo node answered, or a node's actuator did not start), "
-      "5 results not written, 6 interrupted (SIGINT/SIGTERM)");
+      "5 results not written, 6 interrupted (SIGINT/SIGTERM), 7 rpsd stop: refused, 8 rpsd stop: no answer");
   auto* analyze = app.add_subcommand("analyze", "Linear analysis of a servo system or an integrator");
   analyze->require_subcommand(0, 1);
   add_analyze_servo(*analyze);

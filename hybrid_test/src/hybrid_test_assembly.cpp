@@ -115,7 +115,7 @@ struct TestAssembly::Parts {
         .count();
   }
 
-  // Ramps every channel's target from where the stop left it to its start position at the
+  // Ramps every channel's target from where the stop left its command to its start position at the
   // stated velocity and holds it there for half a second, one exchange per control period
   // (paced on the wall clock when a rig may be on the other side: real time or over DDS),
   // within the coordinator's limits; stops at the first exchange that is not kOk. The rows
@@ -126,8 +126,12 @@ struct TestAssembly::Parts {
     const double period_s = 1.0 / config->control_rate_hz / integrator->iterations_per_step();
     r.velocity_m_per_s = config->operator_commands.return_velocity_m_per_s;
     const double step_m = r.velocity_m_per_s * period_s;
-    const Eigen::VectorXd from = loop->exchange().targets();
-    const auto channels = static_cast<int>(from.size());
+    // The ramp starts where each channel's command is and goes uncompensated: no jump at its
+    // first exchange, and no lead on a ramp too slow to need any.
+    const auto channels = static_cast<int>(loop->exchange().targets().size());
+    Eigen::VectorXd from(channels);
+    for (int c = 0; c < channels; ++c) from[c] = loop->exchange().command_in_target_space(c);
+    loop->set_compensated(false);
     r.channels = channels;
     double farthest_m = 0.0;
     for (int c = 0; c < channels; ++c) farthest_m = std::max(farthest_m, std::abs(start_targets[c] - from[c]));

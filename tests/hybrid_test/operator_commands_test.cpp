@@ -87,8 +87,9 @@ TEST(OperatorCommands, ReturnToStartRampsEachTargetAtTheStatedVelocityThroughThe
   ASSERT_TRUE(r.asked);
   ASSERT_EQ(r.outcome, StepOutcome::kOk);
   ASSERT_EQ(r.channels, 1);
-  const double from = run.records.back().target_m[0];
-  ASSERT_GT(std::abs(from), 2e-3) << "the stop must leave the target away from the start";
+  // The ramp starts where the last command was, uncompensated: no jump on its first exchange.
+  const double from = run.records.back().command_m[0];
+  ASSERT_GT(std::abs(from), 2e-3) << "the stop must leave the command away from the start";
   const double dt = 1.0 / s.control_rate_hz;
   const auto ramp = static_cast<std::int64_t>(std::ceil(std::abs(from) / (kVelocity * dt)));
   ASSERT_GT(r.exchanges, ramp);  // the ramp, then the settling at the start
@@ -99,6 +100,7 @@ TEST(OperatorCommands, ReturnToStartRampsEachTargetAtTheStatedVelocityThroughThe
         from - std::copysign(std::min(std::abs(from), kVelocity * dt * static_cast<double>(k)), from);
     ASSERT_NEAR(row[0], t0 + dt * static_cast<double>(k), 1e-9) << "exchange " << k;
     ASSERT_NEAR(row[1], analytic, 1e-12) << "exchange " << k;
+    ASSERT_EQ(row[2], row[1]) << "exchange " << k << ": the return's command is its target";
   }
   const double* last = r.rows.data() + (r.exchanges - 1) * 5;
   EXPECT_EQ(last[1], 0.0);

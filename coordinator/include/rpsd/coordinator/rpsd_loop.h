@@ -104,6 +104,8 @@ class RpsdLoop {
   StepOutcome exchange_only(const Eigen::VectorXd& targets, double time_s) {
     return exchange_.exchange(targets, time_s);
   }
+  // ExperimentalExchange::set_compensated, for such exchanges. Real-time safe.
+  void set_compensated(bool compensated) { exchange_.set_compensated(compensated); }
 
   std::int64_t step_index() const { return step_; }
   std::uint64_t run_id() const { return exchange_.run_id(); }
