@@ -8,8 +8,8 @@
 #   OUT/identities/NAME/       identity.pem (certificate), identity_key.pem (private key, that
 #                              host only), permissions.xml and its signed permissions.p7s
 #   OUT/revoked/NAME-SERIAL/   what a revoked identity had (--revoke)
-# Identities: coordinator, node-site-1..N (one per site), monitor (read-only), and any given
-# with --identity. Running it again reuses the CAs and the identities' keys and renews the
+# Identities: coordinator, node-site-1..N (one per site), monitor (read-only), operator (may
+# send operator commands: stop, abort, hold, resume), and any given with --identity. Running it again reuses the CAs and the identities' keys and renews the
 # certificates and the signed documents, so an identity can be added or re-granted later.
 # A host may keep its key to itself: put its certificate request (made on that host, see
 # docs/dds-security.md) at OUT/identities/NAME/identity.csr and no key; the script signs it.
@@ -20,8 +20,8 @@ usage() {
 usage: $0 [options] OUT_DIR
   --sites N                 node identities node-site-1..N (default 2)
   --identity NAME:ROLE[:SITE]
-                            one more identity; ROLE is coordinator, node (needs SITE) or
-                            monitor (repeatable)
+                            one more identity; ROLE is coordinator, node (needs SITE),
+                            monitor or operator (repeatable)
   --lab NAME                organisation in the certificates' subjects (default "rpsd lab")
   --test-ids PATTERN        test ids the grants cover, an fnmatch pattern (default "*")
   --domains MIN-MAX         DDS domains the grants cover (default 0-230, all of them)
@@ -133,9 +133,9 @@ make_identity() {
   local name=$1 role=$2 site=${3:-}
   [[ "$name" =~ ^[A-Za-z0-9._-]+$ ]] || { echo "$0: identity name \"$name\": letters, digits . _ - only" >&2; exit 2; }
   case "$role" in
-    coordinator|monitor) ;;
+    coordinator|monitor|operator) ;;
     node) [[ "$site" =~ ^[0-9]+$ ]] || { echo "$0: identity $name: a node needs its site id" >&2; exit 2; } ;;
-    *) echo "$0: identity $name: unknown role \"$role\" (coordinator, node, monitor)" >&2; exit 2 ;;
+    *) echo "$0: identity $name: unknown role \"$role\" (coordinator, node, monitor, operator)" >&2; exit 2 ;;
   esac
   local dir="$out/identities/$name"
   mkdir -p "$dir"
@@ -171,6 +171,7 @@ make_identity() {
 make_identity coordinator coordinator
 for ((s = 1; s <= sites; ++s)); do make_identity "node-site-$s" node "$s"; done
 make_identity monitor monitor
+make_identity operator operator
 for spec in "${extra[@]}"; do
   IFS=: read -r name role site <<< "$spec"
   make_identity "$name" "$role" "$site"

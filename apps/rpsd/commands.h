@@ -39,6 +39,9 @@ void add_site_server(CLI::App& app);
 // `rpsd host-check [--rates ...] [--seconds S] [--json]`: this host's real-time floor.
 void add_host_check(CLI::App& app);
 
+// `rpsd stop --test-id N [--abort | --hold | --resume]`: an operator's command to a running test.
+void add_stop(CLI::App& app);
+
 // `rpsd reference [--check FILE]` (hidden): the scenario reference from the readers.
 void add_reference(CLI::App& app);
 
@@ -73,6 +76,22 @@ struct TestStopped : std::runtime_error {
 struct RunInterrupted : std::runtime_error {
   RunInterrupted(const std::string& summary, const std::string& reason)
       : std::runtime_error(reason + "; the steps taken are recorded, and " + summary + " says so") {}
+};
+
+// `rpsd stop`: the test answered and refused the command (exit code 7).
+struct OperatorCommandRefused : std::runtime_error {
+  OperatorCommandRefused(std::uint32_t test_id, const std::string& reply)
+      : std::runtime_error("test " + std::to_string(test_id) + " refused: " + reply) {}
+};
+
+// `rpsd stop`: no test answered in time (exit code 8): no run of that test id on this domain,
+// or it does not hear operator commands, or DDS Security kept the command out.
+struct NoOperatorReply : std::runtime_error {
+  NoOperatorReply(std::uint32_t test_id, const std::string& action, double timeout_s)
+      : std::runtime_error("no answer to " + action + " from test " + std::to_string(test_id) + " within " +
+                           std::to_string(timeout_s) +
+                           " s: no run of that test on this domain hears operator commands, or DDS Security "
+                           "refused this identity") {}
 };
 
 }  // namespace rpsd::cli

@@ -14,6 +14,8 @@ enum ExitCode : int {
                            // actuator did not start
   kExitResultsNotWritten = 5,  // a result file could not be written (full disk, permissions)
   kExitInterrupted = 6,        // SIGINT or SIGTERM ended the run in order
+  kExitCommandRefused = 7,     // rpsd stop: the test answered and refused the command
+  kExitNoAnswer = 8,           // rpsd stop: no test answered in time
 };
 
 }  // namespace rpsd::cli

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit codes: 0 ok, 1 internal error, 2 bad input, 3 test stopped before its end, 4 not ready (dry run, or no "
       "servo node answered, or a node's actuator did not start), "
-      "5 results not written, 6 interrupted (SIGINT/SIGTERM)");
+      "5 results not written, 6 interrupted (SIGINT/SIGTERM), 7 rpsd stop: refused, 8 rpsd stop: no answer");
   auto* analyze = app.add_subcommand("analyze", "Linear analysis of a servo system or an integrator");
   analyze->require_subcommand(0, 1);
   add_analyze_servo(*analyze);
@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   add_speedgoat_emulator(app);
   add_site_server(app);
   add_host_check(app);
+  add_stop(app);
   add_reference(app);
 
   try {
@@ -77,6 +78,12 @@ int main(int argc, char** argv) {
   } catch (const RunInterrupted& e) {
     std::cerr << "rpsd: " << e.what() << '\n';
     return kExitInterrupted;
+  } catch (const OperatorCommandRefused& e) {
+    std::cerr << "rpsd stop: " << e.what() << '\n';
+    return kExitCommandRefused;
+  } catch (const NoOperatorReply& e) {
+    std::cerr << "rpsd stop: " << e.what() << '\n';
+    return kExitNoAnswer;
   } catch (const std::invalid_argument& e) {
     // Inputs that do not fit together (a node file for another test, an integrator option
     // it does not take, an --out folder in use: output::OutputFolderInUse).

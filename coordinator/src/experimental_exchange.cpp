@@ -273,7 +273,7 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
   command_.time_s = time_s;
   for (int c = 0; c < channels_; ++c) {
     if (group_of_[static_cast<std::size_t>(c)] < 0)
-      command_.displacement_m[c] = parts_.compensators[c]->command(targets_[c]);
+      command_.displacement_m[c] = compensated_ ? parts_.compensators[c]->command(targets_[c]) : targets_[c];
   }
   for (Group& g : groups_) command_setup(g);
   command_held_forces(time_s);
@@ -383,12 +383,20 @@ StepOutcome ExperimentalExchange::check_held_forces() {
   return StepOutcome::kOk;
 }
 
+double ExperimentalExchange::command_in_target_space(int c) const {
+  const int g = group_of_[static_cast<std::size_t>(c)];
+  if (g < 0) return command_.displacement_m[static_cast<std::size_t>(c)];
+  const Group& group = groups_[static_cast<std::size_t>(g)];
+  return group.parts.compensate_dofs ? group.dof_command[index_in_group_[static_cast<std::size_t>(c)]] : targets_[c];
+}
+
 void ExperimentalExchange::command_setup(Group& g) {
   const int n = g.setup.dofs();
   for (int i = 0; i < n; ++i) {
     const int c = g.parts.channels[static_cast<std::size_t>(i)];
     g.dof_target[i] = targets_[c];
-    g.dof_command[i] = g.parts.compensate_dofs ? parts_.compensators[c]->command(targets_[c]) : targets_[c];
+    g.dof_command[i] =
+        g.parts.compensate_dofs && compensated_ ? parts_.compensators[c]->command(targets_[c]) : targets_[c];
   }
   g.setup.strokes(g.dof_target, g.stroke_target);
   if (g.parts.compensate_dofs) {
@@ -396,7 +404,8 @@ void ExperimentalExchange::command_setup(Group& g) {
   } else {
     for (int i = 0; i < n; ++i) {
       g.stroke_command[i] =
-          parts_.compensators[g.parts.channels[static_cast<std::size_t>(i)]]->command(g.stroke_target[i]);
+          compensated_ ? parts_.compensators[g.parts.channels[static_cast<std::size_t>(i)]]->command(g.stroke_target[i])
+                       : g.stroke_target[i];
     }
   }
   for (int i = 0; i < n; ++i) {

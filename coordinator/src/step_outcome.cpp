@@ -52,6 +52,10 @@ const char* step_outcome_name(StepOutcome outcome) {
       return "interrupted";
     case StepOutcome::kRefused:
       return "refused";
+    case StepOutcome::kOperatorStop:
+      return "operator_stop";
+    case StepOutcome::kOperatorAbort:
+      return "operator_abort";
   }
   return "unknown";
 }

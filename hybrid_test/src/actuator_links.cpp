@@ -153,6 +153,11 @@ void ActuatorLinks::end_run() {
   for (auto& site : built_) site->end_run();
 }
 
+void ActuatorLinks::keep_run_alive() {
+  if (ended_) return;
+  for (auto& site : built_) site->keep_run_alive();
+}
+
 std::vector<transport::DdsLinkCounters> ActuatorLinks::dds_counters() const {
   std::vector<transport::DdsLinkCounters> counters;
   for (const auto& site : built_) {

@@ -1,8 +1,10 @@
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <thread>
 
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/hybrid_test/actuator_links.h"
@@ -36,6 +38,12 @@ struct TestAssembly::Parts {
   HeldForceTracker held_stats;                             // of held_forces, from every step's record
   realtime::CpuWakeLatencyHold cpus_awake;                 // from the start to finish(): real time, or over DDS
   const std::atomic<bool>* stop_request = nullptr;
+  operator_commands::OperatorControl* operator_control = nullptr;
+  Eigen::VectorXd start_targets;  // each channel's target at rest before the first step
+  std::vector<HeldInterval> held;
+  std::string operator_sender;
+  ReturnToStart return_to_start;
+  bool operator_ended = false;  // an operator's stop or abort was acted on
 
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const coordinator::StepRecord&)>& after_step) {
@@ -51,12 +59,131 @@ struct TestAssembly::Parts {
     if (after_step) after_step(r);
   }
 
-  // Why the run stops although its step succeeded: the records cannot be written, or the
-  // user asked it to stop. Real-time safe.
-  coordinator::StepOutcome stop_after_step() const {
+  // Why the run stops although its step succeeded: the records cannot be written, the user
+  // asked it to stop, or an operator did. An operator's hold (lock-step only) waits here, after
+  // the step, until it is lifted. Real-time safe but for the hold (which real time refuses).
+  coordinator::StepOutcome stop_after_step() {
     if (recorder->write_failed()) return coordinator::StepOutcome::kResultsNotWritten;
     if (stop_request && stop_request->load(std::memory_order_relaxed)) return coordinator::StepOutcome::kInterrupted;
-    return coordinator::StepOutcome::kOk;
+    if (!operator_control) return coordinator::StepOutcome::kOk;
+    if (!real_time && operator_control->hold_requested()) hold_while_asked();
+    return operator_outcome();
+  }
+
+  // The operator's stop or abort, acted on: the abort tells every node the run is over at once
+  // (each holds where its command is); the stop returns to the start positions first when the
+  // scenario asks for it, then ends the run the same way. kOk when neither was asked.
+  coordinator::StepOutcome operator_outcome() {
+    using operator_commands::OperatorRequest;
+    const OperatorRequest request = operator_control->request();
+    if (request == OperatorRequest::kNone) return coordinator::StepOutcome::kOk;
+    if (operator_ended)
+      return request == OperatorRequest::kAbort ? coordinator::StepOutcome::kOperatorAbort
+                                                : coordinator::StepOutcome::kOperatorStop;
+    operator_ended = true;
+    if (request == OperatorRequest::kStop && config->operator_commands.return_to_start) return_to_start_positions();
+    // Asked after the return: an abort during it replaces the stop.
+    const bool aborted = operator_control->request() == OperatorRequest::kAbort;
+    actuators->end_run();
+    operator_sender = operator_control->requested_by();
+    return aborted ? coordinator::StepOutcome::kOperatorAbort : coordinator::StepOutcome::kOperatorStop;
+  }
+
+  // Lock-step: takes no step while an operator holds the test; the actuators hold their last
+  // command and every node over DDS hears the run is alive. A stop, an abort or SIGINT while
+  // held ends the hold (and the run). Not real-time safe (allocates the interval's record).
+  void hold_while_asked() {
+    HeldInterval interval;
+    interval.after_step = steps;
+    interval.start_unix_ns = unix_now_ns();
+    interval.held_by = operator_control->held_by();
+    auto next_keep_alive = std::chrono::steady_clock::now();
+    operator_control->set_holding(true);
+    while (operator_control->hold_requested() &&
+           operator_control->request() == operator_commands::OperatorRequest::kNone &&
+           !(stop_request && stop_request->load(std::memory_order_relaxed))) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now >= next_keep_alive) {
+        actuators->keep_run_alive();
+        next_keep_alive = now + std::chrono::milliseconds(500);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    operator_control->set_holding(false);
+    if (!operator_control->hold_requested()) {
+      interval.end_unix_ns = unix_now_ns();
+      interval.resumed_by = operator_control->resumed_by();
+    }
+    held.push_back(std::move(interval));
+  }
+
+  static std::int64_t unix_now_ns() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+        .count();
+  }
+
+  // Ramps every channel's target from where the stop left its command to its start position at the
+  // stated velocity and holds it there for half a second, one exchange per control period
+  // (paced on the wall clock when a rig may be on the other side: real time or over DDS),
+  // within the coordinator's limits; stops at the first exchange that is not kOk. The rows
+  // are sized before the first exchange.
+  void return_to_start_positions() {
+    ReturnToStart& r = return_to_start;
+    r.asked = true;
+    const double period_s = 1.0 / config->control_rate_hz / integrator->iterations_per_step();
+    r.velocity_m_per_s = config->operator_commands.return_velocity_m_per_s;
+    const double step_m = r.velocity_m_per_s * period_s;
+    // The ramp starts where each channel's command is and goes uncompensated: no jump at its
+    // first exchange, and no lead on a ramp too slow to need any.
+    const auto channels = static_cast<int>(loop->exchange().targets().size());
+    Eigen::VectorXd from(channels);
+    for (int c = 0; c < channels; ++c) from[c] = loop->exchange().command_in_target_space(c);
+    loop->set_compensated(false);
+    r.channels = channels;
+    double farthest_m = 0.0;
+    for (int c = 0; c < channels; ++c) farthest_m = std::max(farthest_m, std::abs(start_targets[c] - from[c]));
+    // Then the start target is held for kSettleS, so that the actuators settle on it.
+    constexpr double kSettleS = 0.5;
+    const auto ramp = static_cast<std::int64_t>(std::ceil(farthest_m / step_m));
+    const auto exchanges = ramp + static_cast<std::int64_t>(std::ceil(kSettleS / period_s));
+    r.rows.assign(static_cast<std::size_t>(exchanges) * static_cast<std::size_t>(1 + 4 * channels), 0.0);
+    Eigen::VectorXd target = from;
+    const bool paced = real_time || actuators->over_dds();
+    const auto period_ns = static_cast<std::int64_t>(std::llround(period_s * 1e9));
+    realtime::Pacer pacer(period_ns);
+    if (paced) pacer.start();
+    const double t0_s = loop->last_record().time_s;
+    for (std::int64_t k = 1; k <= exchanges; ++k) {
+      for (int c = 0; c < channels; ++c) {
+        const double to_go = start_targets[c] - from[c];
+        const double moved = std::min(std::abs(to_go), step_m * static_cast<double>(k));
+        target[c] = from[c] + std::copysign(moved, to_go);
+      }
+      if (paced) {
+        pacer.wait_next();
+        actuators->set_receive_deadline_ns(real_time ? pacer.current_deadline_ns() + period_ns * 8 / 10 : 0);
+      }
+      const double time_s = t0_s + period_s * static_cast<double>(k);
+      const coordinator::StepOutcome o = loop->exchange_only(target, time_s);
+      if (o != coordinator::StepOutcome::kOk) {
+        r.outcome = o;
+        r.limit_stop = loop->limit_stop();
+        break;
+      }
+      const transport::CommandSample& cmd = loop->exchange().command();
+      const transport::FeedbackSample& fb = loop->exchange().feedback();
+      double* row = r.rows.data() + static_cast<std::size_t>(k - 1) * static_cast<std::size_t>(1 + 4 * channels);
+      row[0] = time_s;
+      for (int c = 0; c < channels; ++c) {
+        row[1 + 4 * c] = target[c];
+        row[2 + 4 * c] = cmd.displacement_m[static_cast<std::size_t>(c)];
+        row[3 + 4 * c] = fb.displacement_m[static_cast<std::size_t>(c)];
+        row[4 + 4 * c] = fb.force_n[static_cast<std::size_t>(c)];
+      }
+      r.exchanges = k;
+      if (operator_control->request() == operator_commands::OperatorRequest::kAbort) break;
+    }
+    r.rows.resize(static_cast<std::size_t>(r.exchanges) * static_cast<std::size_t>(1 + 4 * channels));
   }
 };
 
@@ -135,6 +262,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   parts.numerical = p.numerical.get();
   parts.partition = &p.partition;
   p.stop_request = options.stop_request;
+  p.operator_control = perfect_actuator ? nullptr : options.operator_control;
+  p.start_targets = hold;
   if (options.wrap_link) p.wrapped_link = options.wrap_link(p.actuators->link());
   parts.link = p.wrapped_link ? p.wrapped_link.get() : &p.actuators->link();
   parts.recorded_dofs = s.record_dofs;
@@ -352,6 +481,9 @@ TestRun TestAssembly::finish(coordinator::StepOutcome outcome) {
   run.calibrations = p.calibrations;
   run.held_forces = p.held_forces;
   run.held_stats = p.held_stats.stats();
+  run.held = p.held;
+  run.operator_sender = p.operator_sender;
+  run.return_to_start = p.return_to_start;
   // Command-to-feedback latency per site (each site's first channel).
   for (std::size_t i = 0; i < p.round_trips.size(); ++i) {
     run.timing.sites.push_back({p.actuators->sites()[i].site_id, p.round_trips[i].summary()});

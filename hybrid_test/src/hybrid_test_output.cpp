@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "operator_run_output.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/hybrid_test/actuator_links.h"
@@ -52,6 +53,10 @@ const char* outcome_text(coordinator::StepOutcome o) {
       return "interrupted: the user stopped the run (SIGINT or SIGTERM); the nodes hold where they are";
     case coordinator::StepOutcome::kRefused:
       return "refused";
+    case coordinator::StepOutcome::kOperatorStop:
+      return "operator stop: the test ended in order after the step under way";
+    case coordinator::StepOutcome::kOperatorAbort:
+      return "operator abort: the coordinator stopped commanding; every node holds at once";
   }
   return "aborted";
 }
@@ -231,7 +236,9 @@ std::string describe_outcome(const hybrid_test::TestConfig& s, const hybrid_test
                     static_cast<double>(test.steps + 1) / s.control_rate_hz);
     }
     text += detail;
-  } else if (test.outcome == coordinator::StepOutcome::kInterrupted) {
+  } else if (test.outcome == coordinator::StepOutcome::kInterrupted ||
+             test.outcome == coordinator::StepOutcome::kOperatorStop ||
+             test.outcome == coordinator::StepOutcome::kOperatorAbort) {
     char detail[100];
     std::snprintf(detail, sizeof detail, " (after step %zu, t = %.4f s)", static_cast<std::size_t>(test.steps),
                   static_cast<double>(test.steps) / s.control_rate_hz);
@@ -245,6 +252,10 @@ std::string describe_outcome(const hybrid_test::TestConfig& s, const hybrid_test
   if (test.outcome == coordinator::StepOutcome::kLimit || test.outcome == coordinator::StepOutcome::kRunAway ||
       test.outcome == coordinator::StepOutcome::kGeometry) {
     text += " (" + coordinator::describe_limit_stop(test.limit_stop) + ")";
+  }
+  if (test.outcome == coordinator::StepOutcome::kOperatorStop ||
+      test.outcome == coordinator::StepOutcome::kOperatorAbort) {
+    text += operator_outcome_detail(test);
   }
   if (!test.node_fault.empty()) text += ": " + test.node_fault;
   if (!test.write_error.empty()) text += " (" + test.write_error + ")";
@@ -509,7 +520,9 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
     // A run that reached its end and still did not complete lost its results on the way.
     const bool ran_to_end =
         test.outcome == coordinator::StepOutcome::kOk || test.outcome == coordinator::StepOutcome::kRecordEnded;
-    const bool after_step = ran_to_end || test.outcome == coordinator::StepOutcome::kInterrupted;
+    const bool after_step = ran_to_end || test.outcome == coordinator::StepOutcome::kInterrupted ||
+                            test.outcome == coordinator::StepOutcome::kOperatorStop ||
+                            test.outcome == coordinator::StepOutcome::kOperatorAbort;
     const auto step = static_cast<std::int64_t>(after_step ? test.steps : test.steps + 1);
     stopped_by = {{"kind", ran_to_end ? "results_not_written" : coordinator::step_outcome_name(test.outcome)},
                   {"reason", outcome},
@@ -535,6 +548,11 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
                                      : "setup"] = std::string(l.name.data());
         stopped_by["unit"] = l.unit;
       }
+    }
+    if (test.outcome == coordinator::StepOutcome::kOperatorStop ||
+        test.outcome == coordinator::StepOutcome::kOperatorAbort) {
+      stopped_by["operator"] = {{"action", test.outcome == coordinator::StepOutcome::kOperatorStop ? "stop" : "abort"},
+                                {"sender", test.operator_sender}};
     }
     // A node's fault in its own words, or those of the lab controller behind it.
     if (!test.node_fault.empty()) stopped_by["node_says"] = test.node_fault;
@@ -570,6 +588,9 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
       {"clock", scenario.clock.mode == hybrid_test::ClockConfig::Mode::kRealTime ? "real_time" : "as_fast_as_possible"},
       {"transport", scenario.transport.kind == hybrid_test::TransportConfig::Kind::kDds ? "dds" : "in_process"},
       {"timing", timing_json(test.timing)},
+      {"operator_commands", operator_commands_json(test)},
+      {"held", held_intervals_json(test)},
+      {"return_to_start", return_to_start_json(test)},
       {"provenance", output::provenance_json(file.input_files)},
   };
   // Only with a setup: its kind, geometry, actuators and the calibration the run used.
@@ -598,6 +619,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
   }
+  write_return_to_start(dir, test);
   output::write_summary(dir / "summary.json", summary.dump(2) + '\n');
   TestHeadline headline;
   headline.result = result;

@@ -38,8 +38,19 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
   const auto channels = static_cast<int>(s.experimental.size());
   const auto dofs = static_cast<std::size_t>(s.record_dofs.size());
   coordinator::CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz, floor_sources(s));
-  TestAssembly test(s, {test_csv, false, false, {}, stop_request, watch.observers});
+  operator_commands::OperatorControl operator_control;
+  TestAssembly test(s, {test_csv, false, false, {}, stop_request, watch.observers, &operator_control});
   if (watch.started) watch.started(test);
+  auto operators =
+      listen_for_operators(s, test.run_id(), test.real_time(), operator_control, watch.on_operator_command);
+  // Once the test has ended, no operator command can act on it: the listener stops (a later
+  // command gets no answer) before the reference goes on, and its log is the test's.
+  std::vector<operator_commands::OperatorCommandEvent> heard;
+  const auto stop_listening = [&] {
+    if (!operators) return;
+    heard = operators->log();
+    operators.reset();
+  };
   EvaluatedTest result;
   coordinator::StepOutcome test_outcome = coordinator::StepOutcome::kOk,
                            reference_outcome = coordinator::StepOutcome::kOk;
@@ -51,6 +62,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
       const bool testing = test_outcome == coordinator::StepOutcome::kOk;
       if (testing) test_outcome = test.step();
       if (reference_outcome == coordinator::StepOutcome::kOk) reference_outcome = reference.step();
+      if (testing && test_outcome != coordinator::StepOutcome::kOk) stop_listening();
       if (testing && test_outcome == coordinator::StepOutcome::kOk) {
         sums.add_test(test.last_record());
         if (reference_outcome == coordinator::StepOutcome::kOk)
@@ -70,6 +82,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
           ++taken;
         },
         progress);
+    stop_listening();
     TestAssembly reference(s, {reference_csv, true, false, {}, stop_request});
     std::size_t paired = 0;
     reference_outcome = reference.run(
@@ -80,7 +93,9 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
         {});
     result.reference = reference.finish(reference_outcome);
   }
+  stop_listening();
   result.test = test.finish(test_outcome);
+  result.test.operator_commands = std::move(heard);
   result.criteria = sums.criteria();
   return result;
 }

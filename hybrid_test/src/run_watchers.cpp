@@ -1,6 +1,9 @@
 #include "rpsd/hybrid_test/run_watchers.h"
 
 #include <algorithm>
+#include <cstdio>
+
+#include "rpsd/operator_commands/operator_command_sender.h"
 
 namespace rpsd::hybrid_test {
 
@@ -77,6 +80,23 @@ RunWatch RunWatchers::watch() {
     }
     started_ = true;
   };
+  // Each operator command the run heard, as an event on the page; a hold or resume done
+  // changes the run's state there. On the listener's thread.
+  if (telemetry_) {
+    w.on_operator_command = [this](const operator_commands::OperatorCommandEvent& heard) {
+      telemetry::TelemetryEvent event;
+      event.kind = telemetry::EventKind::kOperatorCommand;
+      event.wall_clock_unix_ns = heard.received_unix_ns;
+      std::snprintf(event.text.data(), event.text.size(), "%s from %s: %s",
+                    operator_commands::operator_action_name(heard.action), heard.sender.c_str(),
+                    heard.reply.c_str());
+      telemetry_->publish_event(event);
+      if (heard.status == operator_commands::ReplyStatus::kDone) {
+        if (heard.action == operator_commands::OperatorAction::kHold) telemetry_->set_held(true);
+        if (heard.action == operator_commands::OperatorAction::kResume) telemetry_->set_held(false);
+      }
+    };
+  }
   return w;
 }
 

@@ -197,7 +197,15 @@ ServoNodeLoopReport run_servo_node_loop(ServoNodeController& controller, transpo
       const std::uint64_t served = controller.serving_run();
       const std::int64_t now = realtime::monotonic_now_ns();
       while (endpoint.take_command(command)) {
-        if (!answer_lock_step(controller, command, feedback)) continue;
+        const CommandVerdict verdict = controller.accept(command);
+        // The run's own command repeated (its coordinator held by an operator, rpsd stop
+        // --hold): the run is alive, and nothing is applied a second time.
+        if (verdict == CommandVerdict::kNotNewer && command.run_id == controller.serving_run()) {
+          last_run_command_ns = now;
+          continue;
+        }
+        if (verdict != CommandVerdict::kAccepted) continue;
+        controller.tick(feedback);
         last_run_command_ns = now;
         watch.after_tick();
         publish();

@@ -201,6 +201,7 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
       }
     }
   }
+  if (d.operator_commands) sections::operator_commands(*d.operator_commands, t);
   if (!t.opensees_sites.empty() && t.clock.mode == hybrid_test::ClockConfig::Mode::kRealTime) {
     root.fail("opensees_sites",
               "an OpenSees site answers when its static step converges: clock.mode as_fast_as_possible");

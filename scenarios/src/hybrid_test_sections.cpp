@@ -78,6 +78,8 @@ Document document(config::Source& root) {
       "whole_structure_damping",
       "the damping of the whole structure (numerical part and specimens); the numerical part gets it less the "
       "specimens' own");
+  d.operator_commands = root.optional_section(
+      "operator_commands", "stop, abort, hold and resume from `rpsd stop` or the monitor (docs/operator-commands.md)");
   if ((d.ground_motion != nullptr) == (d.free_vibration != nullptr)) {
     root.fail(d.ground_motion ? "free_vibration" : "ground_motion",
               "give exactly one of ground_motion or free_vibration");
@@ -468,6 +470,24 @@ void clock(config::Source& c, hybrid_test::TestConfig& t) {
   t.clock.realtime.keep_cpus_awake =
       c.boolean_or("keep_cpus_awake", t.clock.realtime.keep_cpus_awake, "hold /dev/cpu_dma_latency at 0");
   c.finish();
+}
+
+void operator_commands(config::Source& o, hybrid_test::TestConfig& t) {
+  auto& c = t.operator_commands;
+  c.enabled = o.boolean_or(
+      "enabled", c.enabled,
+      "with DDS Security off, act on operator commands (anyone on the test's DDS network can then send them)");
+  c.return_to_start = o.boolean_or(
+      "return_to_start", c.return_to_start,
+      "an operator's stop returns every channel to its start position, through the exchange, within the limits");
+  c.return_velocity_m_per_s = o.number_or(
+      "return_velocity_m_per_s", c.return_velocity_m_per_s,
+      Number{"m/s", "the return's rate per channel (a setup's rotation: rad/s); required by return_to_start", 0.0,
+             kMaxVelocityMPerS, true});
+  o.finish();
+  if (c.return_to_start && !(c.return_velocity_m_per_s > 0.0)) {
+    o.fail("return_to_start", "needs return_velocity_m_per_s > 0: the rate at which the actuators return");
+  }
 }
 
 void transport(config::Source& r, hybrid_test::TestConfig& t) {

@@ -37,6 +37,7 @@ struct Document {
   std::unique_ptr<config::Source> free_vibration;
   std::unique_ptr<config::Source> output;
   std::unique_ptr<config::Source> whole_structure_damping;
+  std::unique_ptr<config::Source> operator_commands;
 };
 Document document(config::Source& root);
 
@@ -91,6 +92,9 @@ void check_integrator_name(config::Source& r, std::string_view key);
 
 void clock(config::Source& c, hybrid_test::TestConfig& t);
 void transport(config::Source& r, hybrid_test::TestConfig& t);
+// `operator_commands:`: whether the run acts on operator commands with DDS Security off, and
+// an operator's stop returning the actuators to their start positions.
+void operator_commands(config::Source& o, hybrid_test::TestConfig& t);
 compensation::CompensatorConfig compensation(config::Source& r, double control_period_s);
 void free_vibration(config::Source& f, Eigen::Index dofs, hybrid_test::TestConfig& t);
 std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs);

@@ -194,6 +194,10 @@ void test_scenario(Document& doc) {
               hybrid_test::TestConfig t;
               ts::transport(s, t);
             }));
+  doc.table("operator_commands", listing("operator_commands", [](config::Source& s) {
+              hybrid_test::TestConfig t;
+              ts::operator_commands(s, t);
+            }));
   kind_tables<compensation::CompensatorKinds>(
       doc, "compensation", "the compensator (compensation/)",
       [](config::Source& s, auto kind) { (void)decltype(kind)::type::read(s); });

@@ -206,5 +206,35 @@ TEST(LoopAllocation, NoAllocationPerStepWithAHeldForce) {
   test.finish(StepOutcome::kOk);
 }
 
+// An operator's flags attached (operator_commands/): the loop reads them between steps and
+// allocates nothing more, with none set and with a stop set (the run ends on it).
+TEST(LoopAllocation, NoAllocationPerStepWithAnOperatorsFlagsAttached) {
+  SpecimenSdof sdof;
+  sdof.initial_displacement_m = 0.0002;
+  sdof.plant = rpsd::testing::paper_rig();
+  sdof.duration_s = 4000.0 / sdof.control_rate_hz;
+  const TestConfig config = specimen_sdof_test(sdof);
+  operator_commands::OperatorControl control;
+  AssemblyOptions options;
+  options.keep_records = true;
+  options.operator_control = &control;
+  TestAssembly test(config, options);
+  int taken = 0;
+  rpsd::testing::begin_counting_allocations();
+  for (; taken < 2000; ++taken) {
+    if (test.step() != StepOutcome::kOk) break;
+  }
+  const long allocations = rpsd::testing::end_counting_allocations().total();
+  EXPECT_EQ(taken, 2000);
+  EXPECT_EQ(allocations, 0);
+  control.request_stop("operator");  // the name is copied here, off the loop
+  rpsd::testing::begin_counting_allocations();
+  const StepOutcome stopped = test.step();
+  const long at_stop = rpsd::testing::end_counting_allocations().total();
+  EXPECT_EQ(stopped, StepOutcome::kOperatorStop);
+  EXPECT_EQ(test.finish(stopped).steps, 2001);
+  RecordProperty("allocations_at_the_stop", std::to_string(at_stop));
+}
+
 }  // namespace
 }  // namespace rpsd::coordinator

@@ -226,5 +226,24 @@ TEST(ScenarioText, DeepNestingIsASyntaxErrorNotACrash) {
   EXPECT_THROW(parse_study(text, "deep.yaml"), ConfigError);
 }
 
+TEST(TestScenarioFile, OperatorCommandsAreOffByDefaultAndAReturnToStartNeedsItsVelocity) {
+  const auto plain = load_study(example());
+  const auto& off = std::get<hybrid_test::TestConfig>(plain.study).operator_commands;
+  EXPECT_FALSE(off.enabled);
+  EXPECT_FALSE(off.return_to_start);
+  const auto file = load_study(
+      example(),
+      {parse_override("operator_commands={enabled: true, return_to_start: true, return_velocity_m_per_s: 0.02}")});
+  const auto& on = std::get<hybrid_test::TestConfig>(file.study).operator_commands;
+  EXPECT_TRUE(on.enabled);
+  EXPECT_TRUE(on.return_to_start);
+  EXPECT_DOUBLE_EQ(on.return_velocity_m_per_s, 0.02);
+  // Refused without a velocity: a return at an unstated rate is no safe state.
+  EXPECT_NE(error_of({parse_override("operator_commands={return_to_start: true}")})
+                .find("operator_commands.return_to_start: needs return_velocity_m_per_s > 0"),
+            std::string::npos)
+      << error_of({parse_override("operator_commands={return_to_start: true}")});
+}
+
 }  // namespace
 }  // namespace rpsd::scenarios

@@ -137,7 +137,20 @@ void DdsLink::end_run() {
   for (int i = 0; i < copies; ++i) dds_write(ports_.writer(), &wire);
 }
 
+void DdsLink::keep_alive() {
+  if (counters_.sent == 0) return;
+  rpsd_dds_Command wire{};
+  copy_command(last_command_, wire);
+  wire.test_id = config_.test_id;
+  wire.site_id = config_.site_id;
+  wire.run_id = config_.run_id;
+  wire.control_period_s = config_.qos.control_period_s;
+  wire.end_of_run = false;
+  dds_write(ports_.writer(), &wire);
+}
+
 LinkStatus DdsLink::send(const CommandSample& command) {
+  last_command_ = command;
   rpsd_dds_Command wire{};
   copy_command(command, wire);
   wire.test_id = config_.test_id;

@@ -65,6 +65,16 @@ class ExperimentalExchange {
   StepOutcome exchange(const Eigen::VectorXd& targets, double time_s);
 
   const Eigen::VectorXd& specimen_forces() const { return specimen_forces_; }
+  // The targets of the last exchange (specimen scale; a setup's channels: its DOFs').
+  const Eigen::VectorXd& targets() const { return targets_; }
+  // Channel c's last command where its target lives: a plain channel's command, a setup DOF's
+  // compensated command (compensated on the DOFs) or its target (compensated on the
+  // actuators). Where an uncompensated ramp starts without a jump. Real-time safe.
+  double command_in_target_space(int c) const;
+  // Off: every command is its target, no compensator acts (an operator's return to the start
+  // positions: a slow ramp has no lag worth compensating, and a compensator's lead on the
+  // ramp's first exchange would jump). Real-time safe.
+  void set_compensated(bool compensated) { compensated_ = compensated; }
   const transport::CommandSample& command() const { return command_; }
   const transport::FeedbackSample& feedback() const { return feedback_; }
   const LimitStop& limit_stop() const { return limit_stop_; }
@@ -122,6 +132,7 @@ class ExperimentalExchange {
   LimitStop limit_stop_;
   std::array<double, transport::kMaxChannels> last_sent_m_{};
   int saturated_exchanges_ = 0;
+  bool compensated_ = true;
   std::vector<Group> groups_;
   int link_channels_ = 0;  // the structure's channels and the held forces'
   // Per channel: its setup and its index there (-1: no setup drives it).

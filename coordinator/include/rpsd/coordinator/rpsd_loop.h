@@ -98,6 +98,15 @@ class RpsdLoop {
   // The coordinator limit that stopped the loop (kind kNone if none did).
   const LimitStop& limit_stop() const { return exchange_.limit_stop(); }
 
+  // One exchange outside the integration (an operator's stop returning the actuators to
+  // their start positions): the channels toward `targets` at test time `time_s` through the
+  // same compensators, coordinator limits and setups, unrecorded. Real-time safe.
+  StepOutcome exchange_only(const Eigen::VectorXd& targets, double time_s) {
+    return exchange_.exchange(targets, time_s);
+  }
+  // ExperimentalExchange::set_compensated, for such exchanges. Real-time safe.
+  void set_compensated(bool compensated) { exchange_.set_compensated(compensated); }
+
   std::int64_t step_index() const { return step_; }
   std::uint64_t run_id() const { return exchange_.run_id(); }
   const ExperimentalExchange& exchange() const { return exchange_; }

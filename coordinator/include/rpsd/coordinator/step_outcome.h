@@ -52,6 +52,8 @@ enum class StepOutcome : std::uint8_t {
   kResultsNotWritten,  // a write of the step records failed (a full disk)
   kInterrupted,        // the user asked the run to stop (SIGINT, SIGTERM)
   kRefused,            // a site's node serves another run, or runs at another rate (the link says which)
+  kOperatorStop,       // an operator's stop (operator_commands/): ended in order after the step under way
+  kOperatorAbort,      // an operator's abort: the coordinator stopped commanding, every node holds at once
 };
 // The outcome's name for scripts (summary.json's stopped_by.kind): "node_fault", "limit", ...
 const char* step_outcome_name(StepOutcome outcome);

@@ -85,6 +85,9 @@ class ActuatorLinks {
   // Tells every site's node that the run is over, once, so that it may serve the next run at
   // once. Not real-time safe.
   void end_run();
+  // While an operator holds a lock-step test: every site's node hears the run is alive
+  // (Site::keep_run_alive). Not real-time safe.
+  void keep_run_alive();
 
  private:
   std::vector<SiteSummary> sites_;

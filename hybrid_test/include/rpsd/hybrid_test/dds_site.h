@@ -39,6 +39,7 @@ class DdsSite final : public Site {
   bool refused() const override { return link_->refusal().kind != transport::NodeRefusal::Kind::kNone; }
   std::string refusal_text() const override { return refused() ? link_->refusal_text() : std::string(); }
   void end_run() override { link_->end_run(); }
+  void keep_run_alive() override { link_->keep_alive(); }
   // A faulted node announces its fault at once; a second covers a lock-step node's 50 ms wake.
   std::string node_fault_text() override { return link_->node_fault_text(1.0); }
 

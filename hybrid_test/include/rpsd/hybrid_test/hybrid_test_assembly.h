@@ -17,6 +17,8 @@
 #include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/hybrid_test/setup_plan.h"
+#include "rpsd/operator_commands/operator_command_handler.h"
+#include "rpsd/operator_commands/operator_control.h"
 #include "rpsd/realtime/latency_histogram.h"
 #include "rpsd/transport/dds_link.h"
 
@@ -40,6 +42,29 @@ struct TimingReport {
   std::vector<transport::DdsLinkCounters> dds_counters;  // per site, over DDS
 };
 
+// An interval an operator held a lock-step test (operator_commands/): no step was taken, the
+// actuators held their last command.
+struct HeldInterval {
+  std::int64_t after_step = 0;      // steps taken when the hold began; the next one taken after it
+  std::int64_t start_unix_ns = 0;   // wall clock
+  std::int64_t end_unix_ns = 0;     // 0: still held when the run ended (stopped while held)
+  std::string held_by, resumed_by;  // senders, as they name themselves
+};
+
+// An operator's stop with operator_commands.return_to_start: every channel's target ramped
+// from where the stop left it to its start position at the stated velocity, one exchange per
+// control period. Rows: time_s, then per channel target, command, measured displacement and
+// measured force.
+struct ReturnToStart {
+  bool asked = false;
+  double velocity_m_per_s = 0.0;
+  int channels = 0;
+  std::int64_t exchanges = 0;
+  std::vector<double> rows;                                          // exchanges x (1 + 4 channels)
+  coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;  // kOk: reached the start
+  coordinator::LimitStop limit_stop;                                 // what stopped it, if anything
+};
+
 struct TestRun {
   std::vector<coordinator::StepRecord> records;  // every step, when the run kept them
   std::int64_t steps = 0;                        // steps taken
@@ -60,6 +85,12 @@ struct TestRun {
   // the perfect-actuator reference.
   std::vector<coordinator::HeldForceChannel> held_forces;
   std::vector<HeldForceStats> held_stats;  // per held force, from every step's record
+  // Operator commands (operator_commands/): the held intervals, who stopped or aborted the run
+  // (kOperatorStop, kOperatorAbort), the return to the start positions, and every command heard.
+  std::vector<HeldInterval> held;
+  std::string operator_sender;
+  ReturnToStart return_to_start;
+  std::vector<operator_commands::OperatorCommandEvent> operator_commands;
 };
 
 struct AssemblyOptions {
@@ -76,6 +107,10 @@ struct AssemblyOptions {
   // Watchers of every record, called by the recorder's writer thread (never the loop's): the
   // telemetry, the terminal's progress. They must outlive finish().
   std::vector<coordinator::RecordObserver*> record_observers = {};
+  // Set by the run's operator-command listener: polled between steps (one atomic load); a
+  // stop ends the run in order (kOperatorStop, with the return to start when the scenario asks
+  // for it), an abort at once (kOperatorAbort), a hold (lock-step only) waits between steps.
+  operator_commands::OperatorControl* operator_control = nullptr;
 };
 
 // One run of a test with every part built and started at rest.

@@ -21,6 +21,7 @@
 #include "rpsd/integrators/factory.h"
 #include "rpsd/node/servo_node_config.h"
 #include "rpsd/opensees/adapter_link.h"
+#include "rpsd/operator_commands/operator_commands_config.h"
 #include "rpsd/realtime/realtime_setup.h"
 #include "rpsd/servo/plant_factory.h"
 #include "rpsd/setups/setup_kinds.h"
@@ -168,6 +169,7 @@ struct TestConfig {
   ClockConfig clock;
   RunAwayConfig run_away;
   TransportConfig transport;
+  operator_commands::OperatorCommandsConfig operator_commands;  // stop, abort, hold, resume (docs/operator-commands.md)
   // Either a ground motion or an initial displacement (free vibration) drives the test.
   std::optional<GroundMotion> ground_motion;
   Eigen::VectorXd initial_displacement_m;

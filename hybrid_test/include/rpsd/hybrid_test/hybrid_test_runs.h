@@ -8,6 +8,7 @@
 
 #include "rpsd/coordinator/run_criteria.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/hybrid_test/operator_listener.h"
 
 namespace rpsd::hybrid_test {
 
@@ -24,6 +25,8 @@ TestRun run_test(const TestConfig& config, const std::filesystem::path& csv, boo
 struct RunWatch {
   std::vector<coordinator::RecordObserver*> observers;
   std::function<void(const TestAssembly&)> started;
+  // Told each operator command the run's listener heard (operator_listener.h), off the loop.
+  OperatorCommandHook on_operator_command;
 };
 
 // A test and its perfect-actuator reference, and the criteria between them.
@@ -38,7 +41,9 @@ struct EvaluatedTest {
 // however long the record. In real time the reference is not run inside the paced cycle: the
 // test keeps only its recorded DOFs' displacements (8 bytes per DOF per step, allocated
 // before the clock starts) and the reference runs afterwards. The reference goes on to the
-// end when the test aborts. Both stop when *stop_request is set (AssemblyOptions).
+// end when the test aborts. Both stop when *stop_request is set (AssemblyOptions). The test
+// hears operator commands as listen_for_operators says (the reference never does);
+// `on_operator_command` sees each one heard.
 EvaluatedTest run_test_and_reference(const TestConfig& config, const std::filesystem::path& test_csv,
                                      const std::filesystem::path& reference_csv, const Progress& progress = {},
                                      const std::atomic<bool>* stop_request = nullptr, const RunWatch& watch = {});

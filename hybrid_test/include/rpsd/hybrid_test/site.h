@@ -58,6 +58,9 @@ class Site {
   virtual std::string node_fault_text() { return {}; }
   // Tells the site's node that the run is over. Not real-time safe.
   virtual void end_run() {}
+  // While an operator holds a lock-step test: tells the site's node that the run is alive
+  // without a new command (a node in this process needs no word). Not real-time safe.
+  virtual void keep_run_alive() {}
 };
 
 }  // namespace rpsd::hybrid_test

@@ -94,6 +94,12 @@ class DdsLink final : public Link {
   // itself after a silence); nothing when no command was sent. Not real-time safe.
   void end_run();
 
+  // Lock-step, while an operator holds the test: repeats the last command sent, which the
+  // node takes as word that the run is alive (it frees itself from a run silent for
+  // release_after_silence_s) and applies no second time. Nothing before the first command.
+  // Not real-time safe (called while held, between steps).
+  void keep_alive();
+
   // Real-time safe (no allocation in rpsd's code; Cyclone serialises the sample).
   LinkStatus send(const CommandSample& command) override;
   // Real-time safe.
@@ -116,6 +122,7 @@ class DdsLink final : public Link {
   void refuse(NodeRefusal::Kind kind, std::uint64_t serving_run_id, double node_period_s);
 
   DdsLinkConfig config_;
+  CommandSample last_command_{};  // what keep_alive() repeats
   DdsSitePorts ports_;
   DdsEntity heartbeat_subscriber_, heartbeat_reader_;
   bool node_matched_ = false;
