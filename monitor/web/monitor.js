@@ -7,7 +7,7 @@
   const $ = (id) => document.getElementById(id);
   const NODE_BITS = [[1, "limit active"], [2, "fault"], [4, "holding"], [8, "end stop"], [16, "valve saturated"]];
   const LIMIT_BITS = [[1, "stroke"], [2, "velocity"], [4, "force"], [8, "increment"], [16, "acceleration"]];
-  const COLORS = { target: "#2b6cb0", command: "#8a8f96", measured: "#c8102e", force: "#1b7f3b", error: "#6b2fa0",
+  const COLORS = { target: "#7fb0e6", command: "#8a8f96", measured: "#c8102e", force: "#1b7f3b", error: "#6b2fa0",
                    age: "#b26a00", roundTrip: "#2b6cb0", lateness: "#c8102e" };
   const MAX_SAMPLES = 400000;  // a live run keeps at most this many steps in the browser
 
@@ -58,9 +58,10 @@
     const common = (id) => ({ width: plotWidth(id), height: PLOT_HEIGHT, scales: { x: { time: false } },
                               cursor: { drag: { x: true, y: false } }, legend: { live: true } });
     plots.displacement = new uPlot(Object.assign(common("p-displacement"), {
-      series: [{ label: "t [s]" }, line("target", COLORS.target, { value: siValue(1000, "mm", 3) }),
-               line("command", COLORS.command, { dash: [6, 4], value: siValue(1000, "mm", 3) }),
-               line("measured", COLORS.measured, { value: siValue(1000, "mm", 3) })],
+      // The target wide and pale beneath, the measurement narrow on top: both stay visible.
+      series: [{ label: "t [s]" }, line("target", COLORS.target, { width: 5, value: siValue(1000, "mm", 3) }),
+               line("command", COLORS.command, { dash: [6, 4], width: 1.5, value: siValue(1000, "mm", 3) }),
+               line("measured", COLORS.measured, { width: 1.5, value: siValue(1000, "mm", 3) })],
       axes: [timeAxis(), axis("displacement [mm]", 1000)] }), [[], [], [], []], $("p-displacement"));
     plots.force = new uPlot(Object.assign(common("p-force"), {
       series: [{ label: "t [s]" }, line("measured force", COLORS.force, { value: siValue(1e-3, "kN", 3) })],
@@ -76,9 +77,10 @@
       scales: { x: { time: false }, periods: { auto: true, range: (u, lo, hi) => [0, Math.max(2, hi + 1)] }, s: { auto: true, range: (u, lo, hi) => [0, Math.max(hi * 1.1, 1e-3)] } },
       series: [{ label: "t [s]" }, line("feedback age", COLORS.age, { scale: "periods", paths: uPlot.paths.stepped({ align: 1 }), value: (u, v) => v == null ? "—" : v + " periods" }),
                line("round trip", COLORS.roundTrip, { scale: "s", value: siValue(1000, "ms", 3) })],
-      axes: [timeAxis(), Object.assign(axis("feedback age [control periods]", 1), { scale: "periods" }), Object.assign(axis("round trip [ms]", 1000, 1), { scale: "s" })] }),
+      axes: [timeAxis(), Object.assign(axis("feedback age [periods]", 1), { scale: "periods" }), Object.assign(axis("round trip [ms]", 1000, 1), { scale: "s" })] }),
       [[], [], []], $("p-timing"));
     plots.lateness = new uPlot(Object.assign(common("p-lateness"), {
+      scales: { x: { time: false }, y: { auto: true, range: (u, lo, hi) => [Math.min(0, lo), Math.max(hi * 1.1, 1e-3)] } },
       series: [{ label: "t [s]" }, line("cycle lateness", COLORS.lateness, { value: siValue(1000, "ms", 3) })],
       axes: [timeAxis(), axis("lateness [ms]", 1000)] }), [[], []], $("p-lateness"));
     return plots;
@@ -95,6 +97,13 @@
     return lo;
   }
 
+  const LOOP_S = 5;
+  function countSince(t, seconds) {  // samples within the last `seconds` of t
+    let n = 0;
+    while (n < t.length && t[t.length - 1 - n] >= t[t.length - 1] - seconds) n++;
+    return n;
+  }
+
   function draw() {
     if (!page.dirty) return;
     page.dirty = false;
@@ -108,10 +117,13 @@
     plots.displacement.setData([t, target, command, measured]);
     plots.force.setData([t, force]);
     plots.error.setData([t, error]);
-    plots.hysteresis.setData([null, [measured, force]]);
+    // The loop of the last few seconds (the whole run when the whole run is asked for).
+    const h0 = page.windowS ? Math.max(0, t.length - countSince(t, LOOP_S)) : 0;
+    plots.hysteresis.setData([null, [measured.slice(h0), force.slice(h0)]]);
+    $("loop-caption").textContent = page.windowS ? `last ${LOOP_S} s` : "whole run";
     plots.timing.setData([t, cut(store.age), cut(store.roundTrip[c])]);
     plots.lateness.setData([t, cut(store.lateness)]);
-    window.rpsdShown = { channel: c, step: cut(store.step) };
+    window.rpsdShown = { channel: c, step: cut(store.step), loopFrom: h0 };
   }
   setInterval(draw, 40);  // 25 frames per second at most, only when something came
   window.addEventListener("resize", () => {
@@ -139,7 +151,6 @@
   function appendBatch(m) {
     const s = m.samples;
     if (store.runId !== m.run_id || store.channels !== s.channels) {
-      if (store.runId !== m.run_id) { $("events").textContent = ""; }
       store = emptyStore(s.channels);
       store.runId = m.run_id;
       setChannels(s.channels);
@@ -179,7 +190,8 @@
 
   function showStatus(st) {
     page.status = st;
-    $("subtitle").textContent = `test ${st.test_id} · ${st.test_name || "run " + st.run_id} · ${st.real_time ? "real time" : "lock-step"}`;
+    $("subtitle").textContent = page.mode === "results" ? "recorded: " + st.test_name
+      : `test ${st.test_id} · ${st.test_name || "run " + st.run_id} · ${st.real_time ? "real time" : "lock-step"}`;
     const state = page.mode === "results" ? "recorded" : st.state;
     $("state").textContent = state === "ended" && st.stopped_by ? "ENDED: " + st.stopped_by : state.toUpperCase();
     $("state").className = "state state-" + state;
@@ -218,6 +230,7 @@
   }
 
   function addEvent(e) {
+    if (e.kind === "run_started") $("events").textContent = "";  // a new run: its own events
     const li = document.createElement("li");
     li.className = e.kind + (e.kind === "run_ended" && e.text !== "completed" ? " bad" : "");
     const when = document.createElement("span");
@@ -310,9 +323,9 @@
   // ---------- recorded results ----------
   async function listResults() {
     const tbody = $("results-table").querySelector("tbody");
-    tbody.textContent = "";
     const res = await fetch("/api/results");
     const body = await res.json();
+    tbody.textContent = "";
     if (!res.ok) { $("results-root").textContent = body.error; return; }
     for (const f of body.folders) {
       const tr = document.createElement("tr");
@@ -372,7 +385,7 @@
     const stopped = sum.stopped_by && sum.stopped_by.reason ? sum.stopped_by.reason : (sum.result || "");
     if (stopped) addEvent({ kind: "run_ended", step: store.step[store.step.length - 1], time_s: store.time[store.time.length - 1], text: stopped });
     const n = store.step.length;
-    showStatus({ test_id: "—", test_name: path + (sum.scenario ? " · " + sum.scenario : ""), run_id: 0, state: "ended",
+    showStatus({ test_id: "—", test_name: (path || "the results folder") + (sum.scenario ? " · " + sum.scenario : ""), run_id: 0, state: "ended",
                  stopped_by: stopped, steps_done: n, steps_planned: n, real_time: false, overruns, late_feedback: late,
                  worst_feedback_age_periods: worst, predicted_effective_damping: null, identified_effective_damping: null });
     $("btn-hold").classList.add("hidden"); $("btn-resume").classList.add("hidden");
