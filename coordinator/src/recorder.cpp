@@ -17,6 +17,7 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
       keep_records_(options.keep_records),
       dof_view_(std::move(options.dof_view)),
       held_channels_(std::move(options.held_channels)),
+      observers_(std::move(options.observers)),
       row_(static_cast<std::size_t>(64 + (output::kG10MaxChars + 1) *
                                              (10 + 7 * channels + 4 * dofs + 3 * static_cast<int>(dof_view_.size()) +
                                               3 * static_cast<int>(held_channels_.size())))) {
@@ -57,6 +58,7 @@ void Recorder::take(const StepRecord& r) {
     write_row(r);
     check_stream();
   }
+  for (RecordObserver* o : observers_) o->observe(r);
 }
 
 void Recorder::check_stream() {
@@ -90,6 +92,7 @@ void Recorder::run() {
         check_stream();
         since_flush = 0;
       }
+      for (RecordObserver* o : observers_) o->idle();
       // Idle until the next poll, or until finish() asks for the last drain. The loop never
       // touches the lock: it only fills the queue.
       std::unique_lock lock(wake_mutex_);

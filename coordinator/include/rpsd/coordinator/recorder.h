@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "rpsd/coordinator/record_observer.h"
 #include "rpsd/coordinator/step_record.h"
 #include "rpsd/realtime/spsc_queue.h"
 
@@ -40,6 +41,9 @@ struct RecorderOptions {
   // the DOF view: held_force_command_n_chC, held_measured_m_chC, held_measured_force_n_chC
   // (empty: none, and the file is as without them).
   std::vector<int> held_channels = {};
+  // Called by the writer thread with each record after its row, in order (the telemetry, the
+  // terminal's progress); they must outlive the recorder's finish(). Empty: none.
+  std::vector<RecordObserver*> observers = {};
 };
 
 class Recorder {
@@ -84,6 +88,7 @@ class Recorder {
   bool keep_records_;
   std::vector<DofViewColumn> dof_view_;
   std::vector<int> held_channels_;  // the link channels of the held forces, in their order
+  std::vector<RecordObserver*> observers_;
   std::vector<char> row_;           // one CSV row, built by the writer thread
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};
