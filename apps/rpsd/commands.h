@@ -39,6 +39,9 @@ void add_site_server(CLI::App& app);
 // `rpsd host-check [--rates ...] [--seconds S] [--json]`: this host's real-time floor.
 void add_host_check(CLI::App& app);
 
+// `rpsd monitor --test-id N [--listen HOST:PORT] [--results DIR]`: the test in a browser.
+void add_monitor(CLI::App& app);
+
 // `rpsd reference [--check FILE]` (hidden): the scenario reference from the readers.
 void add_reference(CLI::App& app);
 

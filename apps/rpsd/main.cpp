@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   add_speedgoat_emulator(app);
   add_site_server(app);
   add_host_check(app);
+  add_monitor(app);
   add_reference(app);
 
   try {

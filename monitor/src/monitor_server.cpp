@@ -136,6 +136,7 @@ struct MonitorServer::Impl {
         next_notice = Clock::now() + std::chrono::milliseconds(500);
         json s = status();
         json notice{{"type", "link"},
+                    {"test_id", options.test_id},
                     {"alive", s["alive"]},
                     {"stale", s["stale"]},
                     {"link_lost", s["link_lost"]},

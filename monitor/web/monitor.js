@@ -229,7 +229,14 @@
     return rate > 0 ? "≈ " + duration(left / rate) : "—";
   }
 
+  const seenEvents = new Set();
   function addEvent(e) {
+    // A reconnected stream repeats the recent events: each is listed once.
+    const key = [e.run_id, e.kind, e.step, e.wall_clock_unix_ns, e.text].join("|");
+    if (e.wall_clock_unix_ns !== undefined) {
+      if (seenEvents.has(key)) return;
+      seenEvents.add(key);
+    }
     if (e.kind === "run_started") $("events").textContent = "";  // a new run: its own events
     const li = document.createElement("li");
     li.className = e.kind + (e.kind === "run_ended" && e.text !== "completed" ? " bad" : "");
@@ -272,7 +279,11 @@
       if (page.mode !== "live") return;
       if (m.type === "batch") appendBatch(m);
       else if (m.type === "event") addEvent(m);
-      else if (m.type === "link") { page.link = m; $("f-lost").textContent = m.batches_lost; }
+      else if (m.type === "link") {
+        page.link = m;
+        $("f-lost").textContent = m.batches_lost;
+        if (!page.status) $("subtitle").textContent = `test ${m.test_id}: waiting for its run to publish`;
+      }
       else if (m.type === "dropped") notice(`${m.count} updates were not shown: this browser kept up too slowly`, true);
     };
   }
