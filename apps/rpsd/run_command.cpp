@@ -1,5 +1,3 @@
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +16,7 @@
 #include "rpsd/studies/dry_run_report.h"
 #include "rpsd/studies/scenario_overview.h"
 #include "rpsd/studies/study_output.h"
+#include "progress_bar.h"
 #include "stop_signals.h"
 
 namespace rpsd::cli {
@@ -31,48 +30,7 @@ struct RunOptions {
   bool dry_run = false;
   bool replace = false;
   std::vector<std::string> node_files;
-};
-
-// Phase, sweep case, steps, simulated time, speed as a multiple of real time and an estimate
-// of the time left (a sweep's from the case under way); on a terminal only, and only once the
-// run has lasted a second.
-class ProgressBar {
- public:
-  explicit ProgressBar(double control_rate_hz) : rate_hz_(control_rate_hz), start_(Clock::now()), case_start_(start_) {}
-  void operator()(const hybrid_test::ProgressReport& r) {
-    if (!isatty(STDERR_FILENO)) return;
-    const auto now = Clock::now();
-    if (r.case_number != case_number_) case_number_ = r.case_number, case_start_ = now;
-    if (seconds(now - start_) < 1.0) return;
-    char where[48] = "";
-    if (r.cases > 1) std::snprintf(where, sizeof where, "case %zu/%zu  ", r.case_number, r.cases);
-    if (r.planned <= 0) {
-      std::fprintf(stderr, "\r%s%-12s%90s", where, std::string(r.phase).c_str(), "");
-    } else {
-      const double wall = seconds(now - case_start_), simulated = static_cast<double>(r.done) / rate_hz_;
-      const double speed = wall > 0.0 ? simulated / wall : 0.0;
-      const double fraction = static_cast<double>(r.done) / static_cast<double>(r.planned);
-      // The case under way at its own pace, and every case after it as long as this one.
-      double left = speed > 0.0 ? (static_cast<double>(r.planned - r.done) / rate_hz_) / speed : 0.0;
-      if (fraction > 0.0) left += static_cast<double>(r.cases - r.case_number) * wall / fraction;
-      const int width = 30, filled = static_cast<int>(width * fraction);
-      std::fprintf(stderr, "\r%s%-5s [%.*s%*s] %lld/%lld steps  %.1f s simulated  %.1fx real time  ETA %.0f s ", where,
-                   std::string(r.phase).c_str(), filled, "##############################", width - filled, "",
-                   static_cast<long long>(r.done), static_cast<long long>(r.planned), simulated, speed, left);
-    }
-    drawn_ = true;
-  }
-  ~ProgressBar() {
-    if (drawn_) std::fprintf(stderr, "\n");
-  }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
-  double rate_hz_;
-  Clock::time_point start_, case_start_;
-  std::size_t case_number_ = 1;
-  bool drawn_ = false;
+  bool telemetry = false;
 };
 
 // The limits a node enforces, as `rpsd servo-node FILE` reads them.
@@ -129,6 +87,8 @@ void add_run(CLI::App& app) {
   // No CLI11 file check: the record reader's own (regular files only, a size cap) names
   // the problem and exits 2 like every other bad input.
   run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's");
+  run->add_flag("--telemetry", options->telemetry,
+                "Publish the test's telemetry for `rpsd monitor` (as output.telemetry: true; docs/telemetry.md)");
   run->callback([options] {
     // --record replaces the record and keeps the scenario's processing; --set may then refine it.
     std::vector<scenarios::Override> overrides;
@@ -137,6 +97,7 @@ void add_run(CLI::App& app) {
                            "{file: \"" + std::filesystem::absolute(options->record).string() + "\", format: peer_at2}",
                            "--record", scenarios::Override::Kind::kRecord});
     }
+    if (options->telemetry) overrides.push_back({"output.telemetry", "true", "--telemetry"});
     for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
     const auto file = scenarios::load_study(options->scenario, overrides);
     if (options->dry_run) {

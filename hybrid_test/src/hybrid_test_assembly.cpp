@@ -25,6 +25,7 @@ struct TestAssembly::Parts {
   substructure::GroundMotionLoad ground_load;
   std::unique_ptr<coordinator::RpsdLoop> loop;
   std::unique_ptr<coordinator::Recorder> recorder;
+  coordinator::LiveCounters live;  // for watchers on other threads (AssemblyOptions::record_observers)
   std::vector<realtime::LatencyHistogram> round_trips;  // per site, its first channel
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
@@ -36,6 +37,8 @@ struct TestAssembly::Parts {
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const coordinator::StepRecord&)>& after_step) {
     ++steps;
+    live.steps_done.store(steps, std::memory_order_relaxed);
+    live.late_feedback.store(loop->late_feedback_total(), std::memory_order_relaxed);
     const coordinator::StepRecord& r = loop->last_record();
     for (std::size_t i = 0; i < round_trips.size(); ++i) {
       const int ch = actuators->sites()[i].channels.front();
@@ -191,6 +194,7 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   p.round_trips.resize(p.actuators->sites().size());
   coordinator::RecorderOptions recording;
   recording.keep_records = options.keep_records;
+  recording.observers = options.record_observers;
   for (const ExperimentalSetupSite& site : s.setups) {
     const setups::PlanarGeometry g = setups::planar_geometry(site.setup);
     for (std::size_t i = 0; i < site.channels.size(); ++i) {
@@ -204,6 +208,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
 TestAssembly::~TestAssembly() = default;
 
 std::uint64_t TestAssembly::run_id() const { return parts_->loop->run_id(); }
+
+const coordinator::LiveCounters& TestAssembly::live_counters() const { return parts_->live; }
 
 std::int64_t TestAssembly::steps_planned() const { return parts_->steps_planned; }
 
@@ -278,6 +284,7 @@ coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordi
     loop.set_cycle_lateness_ns(late_ns);
     p.actuators->set_receive_deadline_ns(pacer.current_deadline_ns() + period_ns * 8 / 10);
     outcome = loop.step(*p.recorder);
+    p.live.overruns.store(pacer.overruns(), std::memory_order_relaxed);
     if (outcome != coordinator::StepOutcome::kOk) break;
     p.took_step(after_step);
     outcome = p.stop_after_step();

@@ -1,4 +1,5 @@
 #include "rpsd/hybrid_test/hybrid_test_output.h"
+#include "rpsd/hybrid_test/run_watchers.h"
 
 #include "rpsd/hybrid_test/benchmark_criteria.h"
 
@@ -411,11 +412,13 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
+  hybrid_test::RunWatchers watchers(scenario, progress, case_number, cases);
   hybrid_test::EvaluatedTest run;
   try {
     run = hybrid_test::run_test_and_reference(
         scenario, dir / "time_history.csv", dir / "reference_history.csv",
-        [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request);
+        [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request,
+        watchers.watch());
   } catch (const hybrid_test::NoNodeAnswered& e) {
     return not_ready(dir, file, e.what());
   } catch (const hybrid_test::CalibrationOutOfRange& e) {
@@ -430,6 +433,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
     outcome = (completed ? "" : outcome + "; ") + "stopped: the results could not be written (" +
               run.reference.write_error + ")";
   }
+  watchers.ended(test, outcome);
 
   using nlohmann::json;
   json channels = json::array();

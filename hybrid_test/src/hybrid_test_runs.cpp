@@ -34,11 +34,12 @@ TestRun run_test(const TestConfig& s, const std::filesystem::path& csv, bool per
 
 EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem::path& test_csv,
                                      const std::filesystem::path& reference_csv, const Progress& progress,
-                                     const std::atomic<bool>* stop_request) {
+                                     const std::atomic<bool>* stop_request, const RunWatch& watch) {
   const auto channels = static_cast<int>(s.experimental.size());
   const auto dofs = static_cast<std::size_t>(s.record_dofs.size());
   coordinator::CriteriaAccumulator sums(channels, static_cast<int>(dofs), s.control_rate_hz, floor_sources(s));
-  TestAssembly test(s, {test_csv, false, false, {}, stop_request});
+  TestAssembly test(s, {test_csv, false, false, {}, stop_request, watch.observers});
+  if (watch.started) watch.started(test);
   EvaluatedTest result;
   coordinator::StepOutcome test_outcome = coordinator::StepOutcome::kOk,
                            reference_outcome = coordinator::StepOutcome::kOk;

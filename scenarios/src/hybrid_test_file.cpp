@@ -164,7 +164,10 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
   } else {
     sections::free_vibration(*d.free_vibration, dofs, t);
   }
-  if (d.output) t.record_dofs = sections::record_dofs(*d.output, dofs);
+  if (d.output) {
+    t.telemetry = sections::telemetry(*d.output);
+    t.record_dofs = sections::record_dofs(*d.output, dofs);
+  }
   // A specimen stated as `specimen:` is taken from the structure: K_N = K - K_E and M_N = M - M_E
   // must stand on their own (make_numerical_model refuses them otherwise).
   for (std::size_t i = 0; i < specimens; ++i) {

@@ -475,6 +475,16 @@ void free_vibration(config::Source& f, Eigen::Index dofs, hybrid_test::TestConfi
   if (t.duration_s * t.control_rate_hz > kMaxSteps) f.fail("duration_s", "more than 1e9 steps");
 }
 
+telemetry::TelemetryConfig telemetry(config::Source& output) {
+  telemetry::TelemetryConfig t;
+  t.enabled = output.boolean_or("telemetry", t.enabled,
+                                "publish the test's telemetry for `rpsd monitor` (docs/telemetry.md); off: nothing changes");
+  t.max_samples_per_s = output.number_or(
+      "telemetry_samples_per_s", t.max_samples_per_s,
+      Number::between(1.0, 1e6, "1/s", "telemetry samples per second of test time (every k-th step)"));
+  return t;
+}
+
 std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs) {
   // A longer list than the recorder keeps is refused before its items are read.
   const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "", "a DOF to record (0-based)");

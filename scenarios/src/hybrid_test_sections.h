@@ -16,6 +16,7 @@
 #include "rpsd/setups/planar_setup.h"
 #include "rpsd/substructure/damping_models.h"
 #include "rpsd/substructure/structure_kinds.h"
+#include "rpsd/telemetry/telemetry_config.h"
 
 namespace rpsd::scenarios::test_sections {
 
@@ -87,5 +88,7 @@ void transport(config::Source& r, hybrid_test::TestConfig& t);
 compensation::CompensatorConfig compensation(config::Source& r, double control_period_s);
 void free_vibration(config::Source& f, Eigen::Index dofs, hybrid_test::TestConfig& t);
 std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs);
+// output.telemetry and output.telemetry_samples_per_s (before record_dofs, which finishes the section).
+telemetry::TelemetryConfig telemetry(config::Source& output);
 
 }  // namespace rpsd::scenarios::test_sections

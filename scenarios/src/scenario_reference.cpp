@@ -203,7 +203,11 @@ void test_scenario(Document& doc) {
               hybrid_test::TestConfig t;
               ts::free_vibration(s, kListedDofs, t);
             }));
-  doc.table("output", listing("output", [](config::Source& s) { (void)ts::record_dofs(s, kListedDofs); }));
+  doc.table("output", listing("output",
+                                   [](config::Source& s) {
+                                     (void)ts::telemetry(s);
+                                     (void)ts::record_dofs(s, kListedDofs);
+                                   }));
   doc.table("sweep", listing("", [](config::Source& s) { (void)study_sections::sweep(s); }),
             "One or two keys, each run with every value: the cases are read in full before anything runs.");
   doc.table("monte_carlo", listing("", [](config::Source& s) { (void)study_sections::monte_carlo(s); }),

@@ -150,7 +150,7 @@ void TelemetryPublisher::observe(const coordinator::StepRecord& r) {
   p.last_step = r.step;
   p.last_time_s = r.time_s;
   TelemetryStatus& s = p.batch.status;
-  s.steps_done = r.step + 1;
+  s.steps_done = r.step;  // steps count from 1
   s.worst_feedback_age_periods = std::max(s.worst_feedback_age_periods, r.feedback_age_periods);
   // Events are never decimated: every change of the nodes' limits and states.
   if (!p.have_previous || r.limit_flags != p.previous_limit_flags) {
@@ -201,14 +201,17 @@ void TelemetryPublisher::set_held(bool held) {
   p.write_batch();  // the state shows now, with whatever samples wait
 }
 
-void TelemetryPublisher::end(std::string_view stopped_by, bool stopped_by_limit) {
+void TelemetryPublisher::end(const TelemetryRunEnd& end) {
   const std::lock_guard lock(mutex_);
   Parts& p = *parts_;
-  if (stopped_by_limit) p.event(EventKind::kLimit, stopped_by);
+  p.run.live = nullptr;
+  p.batch.status.overruns = end.overruns;
+  p.batch.status.late_feedback = end.late_feedback;
+  if (end.stopped_by_limit) p.event(EventKind::kLimit, end.stopped_by);
   p.batch.status.state = RunState::kEnded;
-  set_text(p.batch.status.stopped_by, stopped_by);
+  set_text(p.batch.status.stopped_by, end.stopped_by);
   p.write_batch();
-  p.event(EventKind::kRunEnded, std::string("run ended: ") + std::string(stopped_by));
+  p.event(EventKind::kRunEnded, "run ended: " + end.stopped_by);
 }
 
 std::int64_t TelemetryPublisher::keep_every_steps() const {

@@ -32,6 +32,10 @@ transport::DdsQos telemetry_qos(int depth) {
   dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, 0);
   dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, depth);
   dds_qset_durability(q.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
+  // What a late joiner gets: Cyclone keeps a transient-local writer's past by the durability
+  // service's history (default: the last sample only), not by the writer's own.
+  dds_qset_durability_service(q.get(), 0, DDS_HISTORY_KEEP_LAST, depth, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED,
+                              DDS_LENGTH_UNLIMITED);
   dds_qset_liveliness(q.get(), DDS_LIVELINESS_AUTOMATIC,
                       static_cast<dds_duration_t>(std::llround(kLivelinessLeaseS * 1e9)));
   return q;

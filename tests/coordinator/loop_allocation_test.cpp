@@ -1,6 +1,11 @@
 // The coordinator loop allocates nothing per step: integrator, substructure, compensator,
 // in-process link, plant and recorder hand-off, for each plant kind and several compensators.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
 
 #include "../hybrid_test/two_actuator_test.h"
 #include "../servo/paper_rig.h"
@@ -8,6 +13,8 @@
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/specimen_sdof.h"
+#include "rpsd/telemetry/telemetry_publisher.h"
+#include "rpsd/telemetry/telemetry_subscriber.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -34,6 +41,51 @@ long allocations_over_steps(SpecimenSdof sdof, const servo::PlantConfig& plant, 
   EXPECT_GE(taken, 500) << "the test stopped: " << limit_stop_name(test.limit_stop().kind);
   EXPECT_EQ(test.finish(StepOutcome::kOk).records.size(), static_cast<std::size_t>(taken));
   return allocations;
+}
+
+// With the telemetry on, a subscriber reading it: the publisher runs on the recorder's writer
+// thread (it allocates there, for its events' texts), the loop's thread allocates nothing.
+TEST(LoopAllocation, NoAllocationPerStepWithTelemetryPublishedAndRead) {
+  SpecimenSdof sdof;
+  sdof.duration_s = 8.0;
+  const TestConfig config = specimen_sdof_test(sdof);
+  const auto domain = static_cast<std::uint32_t>(190 + ::getpid() % 40);
+  const std::string xml = std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml";
+  telemetry::TelemetrySubscriber subscriber({domain, xml, 21});
+  telemetry::TelemetryPublisher publisher({domain, xml, 21, "allocation", 1024.0});  // every step
+  std::atomic<bool> done{false};
+  std::size_t batches_read = 0;
+  std::thread reader([&] {
+    std::vector<telemetry::TelemetryBatch> batches;
+    std::vector<telemetry::TelemetryEvent> events;
+    while (!done.load()) {
+      subscriber.wait(std::chrono::milliseconds(20));
+      subscriber.take(batches, events);
+    }
+    batches_read = batches.size();
+  });
+  TestAssembly test(config, {{}, false, true, {}, nullptr, {&publisher}});
+  telemetry::TelemetryRunInfo info;
+  info.run_id = test.run_id();
+  info.steps_planned = test.steps_planned();
+  info.control_rate_hz = config.control_rate_hz;
+  info.channels = 1;
+  info.live = &test.live_counters();
+  publisher.start(info);
+  int taken = 0;
+  rpsd::testing::begin_counting_allocations();
+  for (; taken < 6000; ++taken) {
+    if (test.step() != StepOutcome::kOk) break;
+  }
+  const long allocations = rpsd::testing::end_counting_allocations().total();
+  EXPECT_EQ(taken, 6000);
+  EXPECT_EQ(test.finish(StepOutcome::kOk).records.size(), 6000u);
+  publisher.end({});
+  done.store(true);
+  reader.join();
+  EXPECT_EQ(allocations, 0);
+  EXPECT_GT(publisher.batches_sent(), 6000u / telemetry::kSamplesPerBatch - 1);  // it did publish
+  EXPECT_GT(batches_read, 0u);
 }
 
 TEST(LoopAllocation, CounterSeesAllocations) {

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "rpsd/coordinator/live_counters.h"
+#include "rpsd/coordinator/record_observer.h"
 #include "rpsd/coordinator/rpsd_loop.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/hybrid_test/setup_plan.h"
@@ -66,6 +68,9 @@ struct AssemblyOptions {
   // Set (from a signal handler, another thread) when the user asks the run to stop: the
   // step under way finishes and is recorded, the next one returns kInterrupted.
   const std::atomic<bool>* stop_request = nullptr;
+  // Watchers of every record, called by the recorder's writer thread (never the loop's): the
+  // telemetry, the terminal's progress. They must outlive finish().
+  std::vector<coordinator::RecordObserver*> record_observers = {};
 };
 
 // One run of a test with every part built and started at rest.
@@ -79,6 +84,8 @@ class TestAssembly {
 
   // This run's identity, on every command: no other run carries it.
   std::uint64_t run_id() const;
+  // What the run has done so far, updated by the loop's thread (relaxed), for other threads.
+  const coordinator::LiveCounters& live_counters() const;
   // Steps in the scenario (its duration, or the record's length if shorter).
   std::int64_t steps_planned() const;
   // The test is paced by the real-time clock (the reference never is).

@@ -26,6 +26,7 @@
 #include "rpsd/substructure/linear_mdof_model.h"
 #include "rpsd/substructure/partition.h"
 #include "rpsd/substructure/shear_building.h"
+#include "rpsd/telemetry/telemetry_config.h"
 
 namespace rpsd::hybrid_test {
 
@@ -155,6 +156,7 @@ struct TestConfig {
   Eigen::VectorXd initial_displacement_m;
   double duration_s = 0.0;  // free vibration length, or the record's length
   std::vector<Eigen::Index> record_dofs;
+  telemetry::TelemetryConfig telemetry;  // published for `rpsd monitor` when enabled
   // In process: the servo node of a site, by site id (its limits, limit actions and
   // watchdog; identity, channels and period come from the test). A site without one runs
   // a node with ServoNodeConfig's defaults.

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <vector>
 
 #include "rpsd/coordinator/run_criteria.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
@@ -16,6 +17,14 @@ using Progress = std::function<void(std::int64_t, std::int64_t)>;
 // Runs the test, keeping every record in memory; `csv` as in AssemblyOptions.
 TestRun run_test(const TestConfig& config, const std::filesystem::path& csv, bool perfect_actuator,
                  const Progress& progress = {});
+
+// Who watches the test (not its reference) as it runs, off the loop's thread: observers of its
+// records (the recorder's writer thread) and `started`, called with the built test before its
+// first step on the calling thread (run_watchers.h).
+struct RunWatch {
+  std::vector<coordinator::RecordObserver*> observers;
+  std::function<void(const TestAssembly&)> started;
+};
 
 // A test and its perfect-actuator reference, and the criteria between them.
 struct EvaluatedTest {
@@ -32,7 +41,7 @@ struct EvaluatedTest {
 // end when the test aborts. Both stop when *stop_request is set (AssemblyOptions).
 EvaluatedTest run_test_and_reference(const TestConfig& config, const std::filesystem::path& test_csv,
                                      const std::filesystem::path& reference_csv, const Progress& progress = {},
-                                     const std::atomic<bool>* stop_request = nullptr);
+                                     const std::atomic<bool>* stop_request = nullptr, const RunWatch& watch = {});
 
 // The criteria from two runs that kept their records; the same numbers as
 // run_test_and_reference gives.

@@ -41,6 +41,13 @@ struct TelemetryRunInfo {
   const coordinator::LiveCounters* live = nullptr;
 };
 
+// How the run ended, in its summary's words.
+struct TelemetryRunEnd {
+  std::string stopped_by = "completed";
+  bool stopped_by_limit = false;  // a coordinator limit stopped it
+  std::int64_t overruns = 0, late_feedback = 0;
+};
+
 class TelemetryPublisher final : public coordinator::RecordObserver {
  public:
   // Joins the domain and writes in the test's partition. Not real-time safe; throws
@@ -61,8 +68,9 @@ class TelemetryPublisher final : public coordinator::RecordObserver {
   // Any thread: the run is held (an operator's hold) or running again.
   void set_held(bool held);
   // After the recorder finished: the last batch, the status "ended" with why, a limit event
-  // first when a coordinator limit stopped it, then "run ended".
-  void end(std::string_view stopped_by, bool stopped_by_limit = false);
+  // first when a coordinator limit stopped it, then "run ended". The run's LiveCounters are no
+  // longer read (the run may be gone): its final counts are given here.
+  void end(const TelemetryRunEnd& end);
 
   // Steps kept out of every k: the decimation (1: every step).
   std::int64_t keep_every_steps() const;
