@@ -80,12 +80,13 @@ void run_monitor(const MonitorArgs& args) {
   const std::atomic<bool>& stop_requested = stop_on_signals();
   monitor::MonitorServer server(options, &source, &sink, std::cout);
   server.bind();
-  const std::string address =
-      "http://" + (options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host) + ":" +
-      std::to_string(server.bound_port()) + "/";
+  const std::string address = "http://" +
+                              (options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host) +
+                              ":" + std::to_string(server.bound_port()) + "/";
   std::cout << "rpsd monitor: test " << args.test_id << " on DDS domain " << args.domain_id << "\n"
             << "  page:     " << address << "\n"
-            << "  operator: " << address << "#token=" << options.token << "  (the page with the token: operators only)\n"
+            << "  operator: " << address << "#token=" << options.token
+            << "  (the page with the token: operators only)\n"
             << "  token:    " << options.token << "\n";
   if (!loopback(options.host)) {
     std::cout << "  warning: listening on " << options.host
@@ -121,7 +122,8 @@ void add_monitor(CLI::App& app) {
   cmd->add_option("--dds-config", args->dds_config,
                   "Cyclone DDS XML (with DDS Security: the monitor's identity); default CYCLONEDDS_URI")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--listen", args->listen, "HOST:PORT to serve the page on; another address than localhost only when asked")
+  cmd->add_option("--listen", args->listen,
+                  "HOST:PORT to serve the page on; another address than localhost only when asked")
       ->capture_default_str();
   cmd->add_option("--results", args->results, "a folder of rpsd output folders the page's viewer may open");
   cmd->add_option("--reply-timeout", args->reply_timeout_s, "seconds to wait for the coordinator's reply to a command")

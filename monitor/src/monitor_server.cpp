@@ -160,10 +160,12 @@ struct MonitorServer::Impl {
       return;
     }
     const std::string action_text = body["action"].get<std::string>();
-    const std::string token = body.contains("token") && body["token"].is_string() ? body["token"].get<std::string>() : "";
+    const std::string token =
+        body.contains("token") && body["token"].is_string() ? body["token"].get<std::string>() : "";
     if (!token_matches(options.token, token)) {
       log_line("operator " + action_text + " from " + origin + ": refused, wrong or missing token");
-      send_json(res, 403, {{"error", "refused: the token is wrong or missing (it is printed where rpsd monitor started)"}});
+      send_json(res, 403,
+                {{"error", "refused: the token is wrong or missing (it is printed where rpsd monitor started)"}});
       return;
     }
     const std::optional<operator_commands::OperatorAction> action = parse_action(action_text);
@@ -230,7 +232,8 @@ struct MonitorServer::Impl {
       res.set_content(asset->bytes.data(), asset->bytes.size(), std::string(asset->content_type).c_str());
     };
     http.Get("/", [page](const httplib::Request&, httplib::Response& res) { page("index.html", res); });
-    http.Get(R"(/assets/(.+))", [page](const httplib::Request& req, httplib::Response& res) { page(req.matches[1], res); });
+    http.Get(R"(/assets/(.+))",
+             [page](const httplib::Request& req, httplib::Response& res) { page(req.matches[1], res); });
     http.Get("/api/status", [this](const httplib::Request&, httplib::Response& res) { send_json(res, 200, status()); });
     http.Get("/api/stream", [this](const httplib::Request&, httplib::Response& res) { stream(res); });
     http.Post("/api/operator",

@@ -57,8 +57,8 @@ std::vector<telemetry::TelemetrySample> read_time_history(const fs::path& csv) {
   std::vector<ChannelColumns> ch;
   for (int c = 0; c < channels; ++c) {
     const std::string s = "_ch" + std::to_string(c);
-    ch.push_back({index("target_m" + s), index("command_m" + s), index("measured_m" + s),
-                  index("measured_force_n" + s), index("round_trip_s" + s)});
+    ch.push_back({index("target_m" + s), index("command_m" + s), index("measured_m" + s), index("measured_force_n" + s),
+                  index("round_trip_s" + s)});
   }
   const std::size_t step = index("step"), time = index("time_s"), status = index("node_status"),
                     flags = index("limit_flags"), lateness = index("cycle_lateness_s"),
@@ -122,7 +122,8 @@ RecordedTelemetrySource::RecordedTelemetrySource(const fs::path& folder, Recorde
     if (sb != summary.end() && sb->is_object() && sb->contains("reason") && (*sb)["reason"].is_string()) {
       stopped_by_ = (*sb)["reason"].get<std::string>();
     }
-    if (summary.contains("scenario") && summary["scenario"].is_string()) test_name_ = summary["scenario"].get<std::string>();
+    if (summary.contains("scenario") && summary["scenario"].is_string())
+      test_name_ = summary["scenario"].get<std::string>();
   }
   if (test_name_.empty()) test_name_ = folder.filename().string();
   started_ = std::chrono::steady_clock::now();
@@ -148,15 +149,15 @@ std::size_t RecordedTelemetrySource::take(std::vector<telemetry::TelemetryBatch>
       e.time_s = at->time_s;
     }
     e.wall_clock_unix_ns =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+            .count();
     copy_text(e.text, text);
     events.push_back(e);
     ++added;
   };
   if (!start_sent_) {
     start_sent_ = true;
-    event(telemetry::EventKind::kRunStarted, samples_.empty() ? nullptr : &samples_.front(),
-          "replay of " + test_name_);
+    event(telemetry::EventKind::kRunStarted, samples_.empty() ? nullptr : &samples_.front(), "replay of " + test_name_);
   }
   const std::size_t due = due_samples();
   while (sent_ < due) {

@@ -24,31 +24,44 @@ json per_channel(const telemetry::TelemetryBatch& batch, int channels, Field fie
 
 const char* run_state_name(telemetry::RunState state) {
   switch (state) {
-    case telemetry::RunState::kStarting: return "starting";
-    case telemetry::RunState::kRunning: return "running";
-    case telemetry::RunState::kHeld: return "held";
-    case telemetry::RunState::kEnded: return "ended";
+    case telemetry::RunState::kStarting:
+      return "starting";
+    case telemetry::RunState::kRunning:
+      return "running";
+    case telemetry::RunState::kHeld:
+      return "held";
+    case telemetry::RunState::kEnded:
+      return "ended";
   }
   return "unknown";
 }
 
 const char* event_kind_name(telemetry::EventKind kind) {
   switch (kind) {
-    case telemetry::EventKind::kRunStarted: return "run_started";
-    case telemetry::EventKind::kLimit: return "limit";
-    case telemetry::EventKind::kNodeStatus: return "node_status";
-    case telemetry::EventKind::kOperatorCommand: return "operator_command";
-    case telemetry::EventKind::kRunEnded: return "run_ended";
+    case telemetry::EventKind::kRunStarted:
+      return "run_started";
+    case telemetry::EventKind::kLimit:
+      return "limit";
+    case telemetry::EventKind::kNodeStatus:
+      return "node_status";
+    case telemetry::EventKind::kOperatorCommand:
+      return "operator_command";
+    case telemetry::EventKind::kRunEnded:
+      return "run_ended";
   }
   return "unknown";
 }
 
 const char* action_name(operator_commands::OperatorAction action) {
   switch (action) {
-    case operator_commands::OperatorAction::kStop: return "stop";
-    case operator_commands::OperatorAction::kAbort: return "abort";
-    case operator_commands::OperatorAction::kHold: return "hold";
-    case operator_commands::OperatorAction::kResume: return "resume";
+    case operator_commands::OperatorAction::kStop:
+      return "stop";
+    case operator_commands::OperatorAction::kAbort:
+      return "abort";
+    case operator_commands::OperatorAction::kHold:
+      return "hold";
+    case operator_commands::OperatorAction::kResume:
+      return "resume";
   }
   return "unknown";
 }
@@ -87,6 +100,7 @@ json batch_json(const telemetry::TelemetryBatch& batch) {
   b.count = static_cast<std::uint8_t>(count);
   int channels = 0;
   for (int i = 0; i < count; ++i) channels = std::max<int>(channels, b.samples[i].channels);
+  if (count == 0) channels = batch.status.channels;  // a batch of status only
   channels = std::min(channels, transport::kMaxChannels);
   json step = json::array(), time = json::array(), age = json::array(), lateness = json::array(),
        node_status = json::array(), limit_flags = json::array();

@@ -26,7 +26,8 @@ std::string_view content_type_of(std::string_view path) {
 
 std::optional<WebAsset> find_web_asset(std::string_view path) {
   for (std::size_t i = 0; i < detail::kEmbeddedAssetCount; ++i) {
-    if (detail::kEmbeddedAssets[i].path == path) return WebAsset{detail::kEmbeddedAssets[i].bytes, content_type_of(path)};
+    if (detail::kEmbeddedAssets[i].path == path)
+      return WebAsset{detail::kEmbeddedAssets[i].bytes, content_type_of(path)};
   }
   return std::nullopt;
 }

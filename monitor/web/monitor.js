@@ -150,7 +150,9 @@
 
   function appendBatch(m) {
     const s = m.samples;
-    if (store.runId !== m.run_id || store.channels !== s.channels) {
+    // A new run starts afresh; a run's channels never change, but a batch of no samples (its
+    // last, with the status) may say none.
+    if (store.runId !== m.run_id || (s.step.length && store.channels !== s.channels)) {
       store = emptyStore(s.channels);
       store.runId = m.run_id;
       setChannels(s.channels);
@@ -239,12 +241,13 @@
     }
     if (e.kind === "run_started") $("events").textContent = "";  // a new run: its own events
     const li = document.createElement("li");
-    li.className = e.kind + (e.kind === "run_ended" && e.text !== "completed" ? " bad" : "");
+    li.className = e.kind + (e.kind === "run_ended" && !/completed/.test(e.text) ? " bad" : "");
     const when = document.createElement("span");
     when.className = "when";
-    when.textContent = `step ${e.step} · ${Number(e.time_s).toFixed(3)} s`;
+    when.textContent = e.step >= 0 ? `step ${e.step} · ${Number(e.time_s).toFixed(3)} s` : "before the first step";
     li.appendChild(when);
-    li.appendChild(document.createTextNode(" " + e.kind.replace("_", " ") + ": " + e.text));
+    const label = e.kind.replace("_", " ");
+    li.appendChild(document.createTextNode(" " + (e.text.startsWith(label) ? e.text : label + ": " + e.text)));
     $("events").prepend(li);
   }
 

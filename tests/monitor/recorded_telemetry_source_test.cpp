@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <fstream>
 #include <iomanip>
-#include <unistd.h>
 
 namespace rpsd::monitor {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <unistd.h>
+#include <fstream>
 
 namespace rpsd::monitor {
 namespace {
@@ -20,7 +20,8 @@ TEST(ResultsCatalog, ListsTestsSweepsCasesAndSiteServers) {
   fs::create_directories(root / "site");
   fs::create_directories(root / "empty");
   fs::create_directories(base / "elsewhere");
-  std::ofstream(root / "sweep" / "summary.json") << R"({"study":"rpsd_test_sweep","result":"completed","scenario":"s.yaml"})";
+  std::ofstream(root / "sweep" / "summary.json")
+      << R"({"study":"rpsd_test_sweep","result":"completed","scenario":"s.yaml"})";
   std::ofstream(root / "sweep" / "case_000" / "summary.json") << R"({"study":"rpsd_test","result":"stopped"})";
   std::ofstream(root / "sweep" / "case_000" / "time_history.csv") << "step\n";
   std::ofstream(root / "site" / "summary.json") << R"({"kind":"site_server","result":"completed"})";

@@ -21,7 +21,7 @@ struct ResultsFolder {
 };
 
 struct CatalogOptions {
-  int max_depth = 4;              // folders below the results folder
+  int max_depth = 4;               // folders below the results folder
   std::size_t max_folders = 2000;  // listed at most (a results folder of many batches)
 };
 
