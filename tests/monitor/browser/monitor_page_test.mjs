@@ -48,6 +48,7 @@ async function main() {
     const second = await (await browser.newContext({ viewport: { width: 1600, height: 1150 } })).newPage();
     watch(second, "second browser");
     await second.goto(url);
+    await waitFor(second, () => window.rpsdShown && window.rpsdShown.step.length > 0);  // its stream has joined
     const joinedByStep = await first.evaluate(() => window.rpsdPage.status.steps_done);
     await waitFor(first, () => window.rpsdPage.status && window.rpsdPage.status.steps_done > 16000);
     await first.screenshot({ path: join(outDir, "monitor.png"), fullPage: true });
