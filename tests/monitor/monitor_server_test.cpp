@@ -173,9 +173,11 @@ TEST_F(MonitorServerTest, TheStreamCarriesTheRecentPastAndTheStatusSaysStaleThen
   // Wait until the batch has come through (a hang guard, not a measured time).
   for (int i = 0; i < 3000 && status()["run"].is_null(); ++i) std::this_thread::sleep_for(10ms);
   std::string received;
+  const auto give_up = std::chrono::steady_clock::now() + 30s;  // a hang guard: the stream never ends by itself
   client_->Get("/api/stream", [&](const char* data, std::size_t n) {
     received.append(data, n);
-    return received.find("\"type\":\"batch\"") == std::string::npos;  // stop reading once it came
+    // Stop reading once the batch came.
+    return received.find("\"type\":\"batch\"") == std::string::npos && std::chrono::steady_clock::now() < give_up;
   });
   EXPECT_NE(received.find("data: {"), std::string::npos);
   EXPECT_NE(received.find("\"measured_m\":[[0.001,0.002]]"), std::string::npos) << received;
