@@ -195,7 +195,8 @@
     $("subtitle").textContent = page.mode === "results" ? "recorded: " + st.test_name
       : `test ${st.test_id} · ${st.test_name || "run " + st.run_id} · ${st.real_time ? "real time" : "lock-step"}`;
     const state = page.mode === "results" ? "recorded" : st.state;
-    $("state").textContent = state === "ended" && st.stopped_by ? "ENDED: " + st.stopped_by : state.toUpperCase();
+    $("state").textContent = state === "ended" && st.stopped_by ? "ENDED: " + st.stopped_by
+      : state === "recorded" && page.result ? "RECORDED: " + page.result : state.toUpperCase();
     $("state").className = "state state-" + state;
     const done = st.steps_done, planned = st.steps_planned;
     $("progress-text").textContent = `step ${done} of ${planned}` + (store.time.length ? ` · t = ${store.time[store.time.length - 1].toFixed(2)} s` : "");
@@ -399,6 +400,7 @@
     const stopped = sum.stopped_by && sum.stopped_by.reason ? sum.stopped_by.reason : (sum.result || "");
     if (stopped) addEvent({ kind: "run_ended", step: store.step[store.step.length - 1], time_s: store.time[store.time.length - 1], text: stopped });
     const n = store.step.length;
+    page.result = sum.result || "";
     showStatus({ test_id: "—", test_name: (path || "the results folder") + (sum.scenario ? " · " + sum.scenario : ""), run_id: 0, state: "ended",
                  stopped_by: stopped, steps_done: n, steps_planned: n, real_time: false, overruns, late_feedback: late,
                  worst_feedback_age_periods: worst, predicted_effective_damping: null, identified_effective_damping: null });
