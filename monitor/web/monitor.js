@@ -417,8 +417,9 @@
     $("mode-live").classList.toggle("active", mode === "live");
     $("mode-results").classList.toggle("active", mode === "results");
     $("results-panel").classList.toggle("hidden", mode !== "results");
-    store = emptyStore(0); page.dirty = true; $("events").textContent = "";
+    store = emptyStore(0); page.dirty = true; $("events").textContent = ""; seenEvents.clear();
     if (mode === "results") listResults();
+    else if (source) { source.close(); page.status = null; connect(); }  // a new stream starts with the recent past
     showBanner();
   }
   $("mode-live").onclick = () => setMode("live");
