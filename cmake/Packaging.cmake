@@ -1,8 +1,8 @@
 # `cpack` builds rpsd_<version>_amd64.deb: the rpsd binary, the module libraries, headers and
 # CMake package, and under share/rpsd the example scenarios with the records, servo files and
 # DDS configurations they name (their relative paths hold there as in the source tree), and the
-# docs under share/doc/rpsd. Runtime dependencies come from dpkg-shlibdeps, plus gnuplot for
-# the plots; building against the CMake package needs the -dev packages it recommends.
+# docs under share/doc/rpsd. Runtime dependencies come from dpkg-shlibdeps (libcpp-httplib for
+# `rpsd monitor`, whose page is built into the binary), plus gnuplot for the plots; building against the CMake package needs the -dev packages it recommends.
 set(RPSD_SHARE_DIR ${CMAKE_INSTALL_DATADIR}/rpsd)
 install(DIRECTORY examples/ DESTINATION ${RPSD_SHARE_DIR}/examples)
 install(DIRECTORY data/ground-motions/ DESTINATION ${RPSD_SHARE_DIR}/data/ground-motions)
@@ -23,5 +23,5 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "gnuplot-nox | gnuplot")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
-    "libeigen3-dev, libspectra-dev, libyaml-cpp-dev, nlohmann-json3-dev, libcli11-dev, cyclonedds-dev, libssl-dev")
+    "libeigen3-dev, libspectra-dev, libyaml-cpp-dev, nlohmann-json3-dev, libcli11-dev, cyclonedds-dev, libssl-dev, libcpp-httplib-dev, pkg-config")
 include(CPack)

@@ -19,7 +19,15 @@ packages=(
   libgtest-dev libgmock-dev          # the tests (GoogleTest and its matchers)
   iproute2 nftables                  # system tests: network namespaces, veth links, packet filters
   python3 python3-yaml               # test checks on the results (JSON, CSV, YAML)
+  pkg-config                         # finds cpp-httplib (it has no CMake package)
+  libcpp-httplib-dev                 # rpsd monitor's HTTP server (Server-Sent Events)
+  chromium                           # the monitor's browser tests (headless)
 )
+# The browser tests' driver (playwright-core, from npm by the test command) needs node >= 18 and
+# npm: Debian's nodejs and npm, unless a node with its npm is installed already.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 if [ "${1:-}" = "--team" ]; then
   packages+=(
     clang libclang-rt-14-dev         # scripts/fuzz.sh: clang, libFuzzer and the sanitizer runtimes

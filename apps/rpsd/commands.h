@@ -41,6 +41,8 @@ void add_host_check(CLI::App& app);
 
 // `rpsd stop --test-id N [--abort | --hold | --resume]`: an operator's command to a running test.
 void add_stop(CLI::App& app);
+// `rpsd monitor --test-id N [--listen HOST:PORT] [--results DIR]`: the test in a browser.
+void add_monitor(CLI::App& app);
 
 // `rpsd reference [--check FILE]` (hidden): the scenario reference from the readers.
 void add_reference(CLI::App& app);

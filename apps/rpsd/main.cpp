@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   add_site_server(app);
   add_host_check(app);
   add_stop(app);
+  add_monitor(app);
   add_reference(app);
 
   try {
