@@ -22,7 +22,7 @@
 namespace rpsd::cli {
 namespace {
 
-struct MonitorArgs {
+struct MonitorOptions {
   std::uint32_t test_id = 1;
   std::uint32_t domain_id = 0;
   std::string dds_config;
@@ -53,7 +53,7 @@ std::string host_name() {
   return name;
 }
 
-void run_monitor(const MonitorArgs& args) {
+void run_monitor(const MonitorOptions& args) {
   monitor::MonitorOptions options;
   parse_listen(args.listen, options);
   options.test_id = args.test_id;
@@ -113,7 +113,7 @@ void run_monitor(const MonitorArgs& args) {
 }  // namespace
 
 void add_monitor(CLI::App& app) {
-  auto args = std::make_shared<MonitorArgs>();
+  auto args = std::make_shared<MonitorOptions>();
   auto* cmd = app.add_subcommand("monitor",
                                  "Watch a running test in a browser (live plots, limit events, stop/abort/hold/resume "
                                  "with a token) and view recorded output folders");
