@@ -88,8 +88,7 @@ RunWatch RunWatchers::watch() {
       event.kind = telemetry::EventKind::kOperatorCommand;
       event.wall_clock_unix_ns = heard.received_unix_ns;
       std::snprintf(event.text.data(), event.text.size(), "%s from %s: %s",
-                    operator_commands::operator_action_name(heard.action), heard.sender.c_str(),
-                    heard.reply.c_str());
+                    operator_commands::operator_action_name(heard.action), heard.sender.c_str(), heard.reply.c_str());
       telemetry_->publish_event(event);
       if (heard.status == operator_commands::ReplyStatus::kDone) {
         if (heard.action == operator_commands::OperatorAction::kHold) telemetry_->set_held(true);
