@@ -1,33 +1,17 @@
 #include "operator_dds.h"
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "rpsd/operator_commands/operator_command_sender.h"
+#include "rpsd/transport/dds_participant.h"
 #include "rpsd_operator.h"
 
 namespace rpsd::operator_commands {
 
-namespace {
-std::string read_config(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot read the Cyclone DDS configuration");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-}  // namespace
-
 OperatorParticipant::OperatorParticipant(std::uint32_t domain_id, const std::string& config_file) {
   const auto domain = static_cast<dds_domainid_t>(domain_id);
-  if (!config_file.empty()) {
-    const std::string xml = read_config(config_file);
-    const dds_entity_t d = dds_create_domain(domain, xml.c_str());
-    // Another participant of this process (the test's sites) may have made the domain first.
-    if (d != DDS_RETCODE_PRECONDITION_NOT_MET)
-      domain_ = transport::DdsEntity(d, "dds_create_domain(" + config_file + ")");
-  }
+  // Another participant of this process (the test's sites) may have made the domain first.
+  domain_ = transport::make_domain({domain_id, config_file});
   participant_ = transport::DdsEntity(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant");
   command_topic_ = transport::DdsEntity(permitted(dds_create_topic(participant_.get(), &rpsd_operator_Command_desc,
                                                                    "rpsd_OperatorCommand", nullptr, nullptr),

@@ -18,16 +18,18 @@ std::string read_config(const std::string& path) {
 }
 }  // namespace
 
+DdsEntity make_domain(const DdsDomainConfig& config) {
+  if (config.config_file.empty()) return {};
+  const std::string xml = read_config(config.config_file);
+  const dds_entity_t domain = dds_create_domain(static_cast<dds_domainid_t>(config.domain_id), xml.c_str());
+  // A second participant of this process in the same domain reuses the domain.
+  if (domain == DDS_RETCODE_PRECONDITION_NOT_MET) return {};
+  return DdsEntity(domain, "dds_create_domain(" + config.config_file + ")");
+}
+
 DdsParticipant::DdsParticipant(const DdsDomainConfig& config) {
   const auto domain_id = static_cast<dds_domainid_t>(config.domain_id);
-  if (!config.config_file.empty()) {
-    const std::string xml = read_config(config.config_file);
-    const dds_entity_t domain = dds_create_domain(domain_id, xml.c_str());
-    // A second participant of this process in the same domain reuses the domain.
-    if (domain != DDS_RETCODE_PRECONDITION_NOT_MET) {
-      domain_ = DdsEntity(domain, "dds_create_domain(" + config.config_file + ")");
-    }
-  }
+  domain_ = make_domain(config);
   participant_ = DdsEntity(dds_create_participant(domain_id, nullptr, nullptr), "dds_create_participant");
   command_topic_ =
       DdsEntity(dds_create_topic(participant_.get(), &rpsd_dds_Command_desc, "rpsd_Command", nullptr, nullptr),

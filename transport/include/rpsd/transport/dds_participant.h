@@ -15,6 +15,12 @@ struct DdsDomainConfig {
   std::string config_file;  // Cyclone XML; empty: CYCLONEDDS_URI or the defaults
 };
 
+// The domain of `config` made with its Cyclone XML, owned by the entity returned; an empty
+// entity when no file is named (CYCLONEDDS_URI or the defaults) or when another participant of
+// this process made the domain first (it is reused). Not real-time safe; throws DdsError or
+// std::runtime_error naming an unreadable file.
+DdsEntity make_domain(const DdsDomainConfig& config);
+
 class DdsParticipant {
  public:
   // Not real-time safe; throws DdsError naming the failing call, or std::runtime_error
