@@ -13,6 +13,7 @@
 
 #include "rpsd/coordinator/live_counters.h"
 #include "rpsd/coordinator/record_observer.h"
+#include "rpsd/coordinator/recorder.h"
 #include "rpsd/coordinator/rpsd_loop.h"
 #include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
@@ -77,6 +78,11 @@ struct AssemblyOptions {
   // telemetry, the terminal's progress. They must outlive finish().
   std::vector<coordinator::RecordObserver*> record_observers = {};
 };
+
+// The columns a test's recorder writes beyond its channels and DOFs (RecorderOptions: the DOF
+// view of the channels a setup drives, the held forces' link channels), for whoever else
+// writes its records (results.h5). Not real-time safe.
+coordinator::RecorderOptions recorded_columns(const TestConfig& config);
 
 // One run of a test with every part built and started at rest.
 class TestAssembly {
