@@ -19,6 +19,8 @@ packages=(
   libgtest-dev libgmock-dev          # the tests (GoogleTest and its matchers)
   iproute2 nftables                  # system tests: network namespaces, veth links, packet filters
   python3 python3-yaml               # test checks on the results (JSON, CSV, YAML)
+  libhdf5-dev hdf5-tools             # results.h5 (docs/results-format.md); h5dump and h5clear
+  python3-h5py python3-pytest        # results.h5 read as a user would, by the pytest tests
 )
 if [ "${1:-}" = "--team" ]; then
   packages+=(
