@@ -55,10 +55,9 @@ std::uintmax_t bytes_of(const std::filesystem::path& dir) {
     watch.reference_observers.push_back(&h5->observer(1));
   }
   const bool csv = writer == Writer::kCsv;
-  const hybrid_test::EvaluatedTest run =
-      hybrid_test::run_test_and_reference(scenario, csv ? dir / "time_history.csv" : std::filesystem::path(),
-                                          csv ? dir / "reference_history.csv" : std::filesystem::path(), {},
-                                          nullptr, watch);
+  const hybrid_test::EvaluatedTest run = hybrid_test::run_test_and_reference(
+      scenario, csv ? dir / "time_history.csv" : std::filesystem::path(),
+      csv ? dir / "reference_history.csv" : std::filesystem::path(), {}, nullptr, watch);
   if (h5 && !h5->close().empty()) throw std::runtime_error("results.h5: " + h5->close());
   if (run.test.steps != run.test.steps_planned) throw std::runtime_error("a trial stopped early");
   return bytes_of(dir);
@@ -94,16 +93,18 @@ int main(int argc, char** argv) try {
   const auto per_minute = [&](const std::vector<double>& seconds) {
     return bench::map_summary(bench::summarize(seconds), [&](double s) { return s / minutes; });
   };
-  fragment.add(bench::figure("results_none_s_per_min", "Paper SDOF and its reference, as fast as possible, writing nothing",
+  fragment.add(bench::figure("results_none_s_per_min",
+                             "Paper SDOF and its reference, as fast as possible, writing nothing",
                              "s per simulated min", per_minute(none_s)));
   fragment.add(bench::figure("results_csv_s_per_min", "  the same writing time_history.csv and reference_history.csv",
                              "s per simulated min", per_minute(csv_s)));
   bench::Figure h5 = bench::figure("results_hdf5_s_per_min", "  the same writing results.h5 (SWMR, deflate 4)",
                                    "s per simulated min", per_minute(h5_s));
-  h5.against("results_csv_s_per_min", "HDF5 / CSV (time), median of the rounds' ratios", bench::summarize(ratios).median);
+  h5.against("results_csv_s_per_min", "HDF5 / CSV (time), median of the rounds' ratios",
+             bench::summarize(ratios).median);
   fragment.add(h5);
-  fragment.add(bench::figure("results_csv_mb_per_min", "CSV tables (test and reference) on disk", "MB per simulated min",
-                             bench::single(static_cast<double>(csv_bytes) / 1e6 / minutes)));
+  fragment.add(bench::figure("results_csv_mb_per_min", "CSV tables (test and reference) on disk",
+                             "MB per simulated min", bench::single(static_cast<double>(csv_bytes) / 1e6 / minutes)));
   fragment.add(bench::figure("results_hdf5_mb_per_min", "results.h5 (test and reference) on disk",
                              "MB per simulated min", bench::single(static_cast<double>(h5_bytes) / 1e6 / minutes)));
   char text[300];

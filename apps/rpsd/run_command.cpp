@@ -108,8 +108,7 @@ void add_run(CLI::App& app) {
     const auto file = scenarios::load_study(options->scenario, overrides);
     // One results.h5 per test: a sweep's or a batch's cases are written as CSV (docs/results-format.md).
     if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
-        test && test->results_format != hybrid_test::ResultsFormat::kCsv &&
-        (!file.sweep.empty() || file.monte_carlo)) {
+        test && test->results_format != hybrid_test::ResultsFormat::kCsv && (!file.sweep.empty() || file.monte_carlo)) {
       throw CLI::ValidationError("--format", options->scenario + ": output.format hdf5 or both is for a single test; " +
                                                  "a sweep or a Monte Carlo batch writes CSV (docs/results-format.md)");
     }

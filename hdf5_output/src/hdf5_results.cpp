@@ -156,7 +156,8 @@ class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
         number_attribute(dof, "dof", static_cast<double>(layout.dof_numbers[d]), where);
         add_real(dof, "displacement_m", "m", [d](const StepRecord& r) { return r.displacement_m[d]; });
         add_real(dof, "velocity_m_per_s", "m/s", [d](const StepRecord& r) { return r.velocity_m_per_s[d]; });
-        add_real(dof, "acceleration_m_per_s2", "m/s^2", [d](const StepRecord& r) { return r.acceleration_m_per_s2[d]; });
+        add_real(dof, "acceleration_m_per_s2", "m/s^2",
+                 [d](const StepRecord& r) { return r.acceleration_m_per_s2[d]; });
         add_real(dof, "restoring_force_n", "N", [d](const StepRecord& r) { return r.restoring_force_n[d]; });
       }
     }
@@ -250,9 +251,8 @@ class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
       check(H5Dset_extent(c.set, size), where + ": cannot extend a dataset");
       const Id space(H5Dget_space(c.set), H5Sclose, where + ": dataspace");
       check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr), where + ": selection");
-      const herr_t status = c.integer
-                                ? H5Dwrite(c.set, H5T_NATIVE_INT64, memory, space, H5P_DEFAULT, c.wholes.data())
-                                : H5Dwrite(c.set, H5T_NATIVE_DOUBLE, memory, space, H5P_DEFAULT, c.reals.data());
+      const herr_t status = c.integer ? H5Dwrite(c.set, H5T_NATIVE_INT64, memory, space, H5P_DEFAULT, c.wholes.data())
+                                      : H5Dwrite(c.set, H5T_NATIVE_DOUBLE, memory, space, H5P_DEFAULT, c.reals.data());
       check(status, where + ": write failed");
     }
     written_ += n;
@@ -342,8 +342,8 @@ namespace {
 // A criterion's unit from its name's suffix, as rpsd names them.
 std::string unit_of(const std::string& name) {
   static const std::vector<std::pair<std::string, std::string>> suffixes = {
-      {"_percent", "%"}, {"_ms", "ms"},  {"_m_per_s", "m/s"}, {"_m2", "m^2"}, {"_m", "m"},
-      {"_n", "N"},       {"_j", "J"},    {"_s", "s"},         {"_hz", "Hz"}};
+      {"_percent", "%"}, {"_ms", "ms"}, {"_m_per_s", "m/s"}, {"_m2", "m^2"}, {"_m", "m"},
+      {"_n", "N"},       {"_j", "J"},   {"_s", "s"},         {"_hz", "Hz"}};
   for (const auto& [suffix, unit] : suffixes) {
     if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
       return unit;
@@ -364,14 +364,14 @@ void write_json(hid_t parent, const std::string& name, const nlohmann::json& val
   const Id space(H5Screate(H5S_SCALAR), H5Sclose, where + ": dataspace");
   if (value.is_boolean()) {
     const unsigned char b = value.get<bool>() ? 1 : 0;
-    const Id set(H5Dcreate2(parent, name.c_str(), H5T_STD_U8LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                 H5Dclose, where + ": cannot create dataset " + name);
+    const Id set(H5Dcreate2(parent, name.c_str(), H5T_STD_U8LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+                 where + ": cannot create dataset " + name);
     check(H5Dwrite(set, H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, &b), where + ": write");
     return;
   }
   const double v = value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN();
-  const Id set(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-               H5Dclose, where + ": cannot create dataset " + name);
+  const Id set(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+               where + ": cannot create dataset " + name);
   check(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v), where + ": write");
   string_attribute(set, "units", unit_of(name), where);
 }
@@ -394,7 +394,8 @@ void Hdf5Results::write_analysis(const std::filesystem::path& path, const nlohma
     const Id dofs = make_group(analysis, "dofs", where);
     for (const auto& d : summary["dofs"]) write_json(dofs, "dof" + std::to_string(d.value("dof", 0)), d, where);
   }
-  if (summary.contains("benchmark_criteria")) write_json(analysis, "benchmark_criteria", summary["benchmark_criteria"], where);
+  if (summary.contains("benchmark_criteria"))
+    write_json(analysis, "benchmark_criteria", summary["benchmark_criteria"], where);
   if (summary.contains("energy_error_j")) write_json(analysis, "energy_error_j", summary["energy_error_j"], where);
 }
 

@@ -222,7 +222,8 @@ coordinator::RecorderOptions recorded_columns(const TestConfig& s) {
     }
   }
   // As the held forces' channels (held_force_channel).
-  for (std::size_t k = 0; k < s.held_forces.size(); ++k) recording.held_channels.push_back(held_force_link_channel(s, k));
+  for (std::size_t k = 0; k < s.held_forces.size(); ++k)
+    recording.held_channels.push_back(held_force_link_channel(s, k));
   return recording;
 }
 

@@ -545,7 +545,7 @@ telemetry::TelemetryConfig telemetry(config::Source& output) {
 hybrid_test::ResultsFormat results_format(config::Source& output) {
   const std::string f = output.choice_or("format", {"csv", "hdf5", "both"}, "csv",
                                          "the histories as CSV tables, as results.h5 (docs/results-format.md) or both");
-  return f == "hdf5" ? hybrid_test::ResultsFormat::kHdf5
+  return f == "hdf5"   ? hybrid_test::ResultsFormat::kHdf5
          : f == "both" ? hybrid_test::ResultsFormat::kBoth
                        : hybrid_test::ResultsFormat::kCsv;
 }

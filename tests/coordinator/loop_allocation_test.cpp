@@ -97,8 +97,8 @@ TEST(LoopAllocation, NoAllocationPerStepWithResultsH5Written) {
   SpecimenSdof sdof;
   sdof.duration_s = 8.0;
   const TestConfig config = specimen_sdof_test(sdof);
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("rpsd-loop-allocation-" + std::to_string(::getpid()) + ".h5");
+  const auto path =
+      std::filesystem::temp_directory_path() / ("rpsd-loop-allocation-" + std::to_string(::getpid()) + ".h5");
   hdf5_output::Hdf5RunLayout layout;
   layout.name = "test";
   layout.control_rate_hz = config.control_rate_hz;

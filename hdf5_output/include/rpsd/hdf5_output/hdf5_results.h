@@ -23,7 +23,7 @@ namespace rpsd::hdf5_output {
 // What the file says of the inputs (/global_model).
 struct Hdf5Inputs {
   std::string scenario_name;
-  std::string effective_yaml;                     // the scenario as read, with overrides
+  std::string effective_yaml;                      // the scenario as read, with overrides
   std::vector<std::filesystem::path> input_files;  // embedded whole, each with its SHA-256
 };
 
