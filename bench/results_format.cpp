@@ -38,9 +38,10 @@ std::uintmax_t bytes_of(const std::filesystem::path& dir) {
   std::unique_ptr<hdf5_output::Hdf5Results> h5;
   hybrid_test::RunWatch watch;
   if (writer == Writer::kHdf5) {
-    const coordinator::RecorderOptions columns = hybrid_test::recorded_columns(scenario);
     std::vector<hdf5_output::Hdf5RunLayout> runs;
     for (const char* name : {"test", "reference"}) {
+      const bool reference = std::string_view(name) == "reference";
+      const coordinator::RecorderOptions columns = hybrid_test::recorded_columns(scenario, reference);
       hdf5_output::Hdf5RunLayout run;
       run.name = name;
       run.control_rate_hz = scenario.control_rate_hz;

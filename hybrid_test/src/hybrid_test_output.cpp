@@ -440,9 +440,10 @@ std::unique_ptr<hdf5_output::Hdf5Results> make_results_h5(const std::filesystem:
   inputs.scenario_name = file.name;
   inputs.effective_yaml = batch_case > 0 ? file.case_yaml[batch_case - 1] : file.effective_yaml;
   inputs.input_files = file.input_files;
-  const coordinator::RecorderOptions columns = recorded_columns(scenario);
   std::vector<hdf5_output::Hdf5RunLayout> runs;
   for (const char* name : {"test", "reference"}) {
+    const bool reference = std::string_view(name) == "reference";
+    const coordinator::RecorderOptions columns = recorded_columns(scenario, reference);
     hdf5_output::Hdf5RunLayout run;
     run.name = name;
     run.control_rate_hz = scenario.control_rate_hz;

@@ -142,6 +142,16 @@ def test_setup_dof_view_equals_the_csv():
         check_equals_csv(f, "test", folder / "time_history.csv")
 
 
+def test_held_forces_in_the_test_only_as_the_csv_has_them():
+    # The perfect-actuator reference holds no force: its group has no held_chC, as its CSV.
+    folder = run(OUT / "h5-held", SRC / "examples/scenarios/column-axial-load.yaml", "--format", "both")
+    with h5py.File(folder / "results.h5", "r") as f:
+        assert any(name.startswith("held_ch") for name in f["test/experimental_substructure"])
+        assert not any(name.startswith("held_ch") for name in f["reference/experimental_substructure"])
+        check_equals_csv(f, "test", folder / "time_history.csv")
+        check_equals_csv(f, "reference", folder / "reference_history.csv")
+
+
 def test_h5dump_lists_the_documented_groups(both):
     listing = subprocess.run(["h5dump", "-H", str(both / "results.h5")], capture_output=True, text=True,
                              check=True).stdout

@@ -80,9 +80,10 @@ struct AssemblyOptions {
 };
 
 // The columns a test's recorder writes beyond its channels and DOFs (RecorderOptions: the DOF
-// view of the channels a setup drives, the held forces' link channels), for whoever else
-// writes its records (results.h5). Not real-time safe.
-coordinator::RecorderOptions recorded_columns(const TestConfig& config);
+// view of the channels a setup drives, the held forces' link channels: none in the
+// perfect-actuator reference, which holds no force), for whoever else writes its records
+// (results.h5). Not real-time safe.
+coordinator::RecorderOptions recorded_columns(const TestConfig& config, bool perfect_actuator);
 
 // One run of a test with every part built and started at rest.
 class TestAssembly {
