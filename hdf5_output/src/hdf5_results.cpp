@@ -184,6 +184,9 @@ class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
     if (buffered_ >= kBlockSteps || (buffered_ % 64 == 0 && Clock::now() - last_write_ >= kFlushEvery)) write();
   }
 
+  bool failed() const override { return file_.failed_.load(std::memory_order_relaxed); }
+  std::string failure() const override { return file_.error(); }
+
   void idle() override {
     if (buffered_ > 0 && Clock::now() - last_write_ >= kFlushEvery) write();
   }
@@ -198,6 +201,7 @@ class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
     if (!file_.failed_.load(std::memory_order_relaxed)) {
       try {
         const std::lock_guard lock(file_.hdf5_mutex_);
+        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // per thread: this is the writer's
         append(n);
         check(H5Fflush(static_cast<hid_t>(file_.file_), H5F_SCOPE_LOCAL), file_.path_.string() + ": flush failed");
       } catch (const std::exception& e) {
@@ -268,6 +272,9 @@ class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
 Hdf5Results::Hdf5Results(const std::filesystem::path& path, const Hdf5Inputs& inputs,
                          const std::vector<Hdf5RunLayout>& runs)
     : path_(path) {
+  // A file whose close failed (a full disk) stays open inside HDF5, whose clean-up at exit
+  // would then crash on it: the OS closes it instead.
+  H5dont_atexit();
   // Errors are reported by what failed, naming the file; HDF5's own stack trace is noise.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string where = path.string();

@@ -171,6 +171,23 @@ def test_hdf5_alone_writes_no_csv_and_a_summary():
         assert len(f["test/coordinator/step"]) > 0
 
 
+def test_a_file_that_cannot_grow_stops_the_run_with_exit_5():
+    # As a CSV that cannot grow (cli.results.file_size_limit_exit_5): the test stops, it does
+    # not run on unrecorded.
+    folder = OUT / "h5-file-size-limit"
+    shutil.rmtree(folder, ignore_errors=True)
+    done = subprocess.run(["prlimit", "--fsize=400000", RPSD, "run", str(SRC / "examples/scenarios/synthetic-sdof.yaml"),
+                           "--out", str(folder), "--format", "hdf5", "--set", "ground_motion.synthetic.duration_s=600"],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 5, done.stdout + done.stderr
+    import json
+    summary = json.loads((folder / "summary.json").read_text())
+    assert summary["result"] == "results_not_written"
+    assert summary["steps"] < summary["steps_planned"]
+    assert "results.h5" in summary["outcome"]
+    assert "HDF5-DIAG" not in done.stderr
+
+
 def test_a_killed_run_leaves_a_prefix_h5py_opens():
     folder = OUT / "h5-killed"
     shutil.rmtree(folder, ignore_errors=True)
