@@ -22,6 +22,8 @@ packages=(
   pkg-config                         # finds cpp-httplib (it has no CMake package)
   libcpp-httplib-dev                 # rpsd monitor's HTTP server (Server-Sent Events)
   chromium                           # the monitor's browser tests (headless)
+  libhdf5-dev hdf5-tools             # results.h5 (docs/results-format.md); h5dump and h5clear
+  python3-h5py python3-pytest        # results.h5 read as a user would, by the pytest tests
 )
 # The browser tests' driver (playwright-core, from npm by the test command) needs node >= 18 and
 # npm: Debian's nodejs and npm, unless a node with its npm is installed already.

@@ -31,6 +31,7 @@ struct RunOptions {
   bool replace = false;
   std::vector<std::string> node_files;
   bool telemetry = false;
+  std::string format;
 };
 
 // The limits a node enforces, as `rpsd servo-node FILE` reads them.
@@ -90,6 +91,9 @@ void add_run(CLI::App& app) {
   run->add_option("--record", options->record, "Drive the test with this PEER AT2 record instead of the scenario's");
   run->add_flag("--telemetry", options->telemetry,
                 "Publish the test's telemetry for `rpsd monitor` (as output.telemetry: true; docs/telemetry.md)");
+  run->add_option("--format", options->format,
+                  "Write the histories as csv, hdf5 (results.h5, docs/results-format.md) or both (as output.format)")
+      ->check(CLI::IsMember({"csv", "hdf5", "both"}));
   run->callback([options] {
     // --record replaces the record and keeps the scenario's processing; --set may then refine it.
     std::vector<scenarios::Override> overrides;
@@ -99,8 +103,15 @@ void add_run(CLI::App& app) {
                            "--record", scenarios::Override::Kind::kRecord});
     }
     if (options->telemetry) overrides.push_back({"output.telemetry", "true", "--telemetry"});
+    if (!options->format.empty()) overrides.push_back({"output.format", options->format, "--format"});
     for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
     const auto file = scenarios::load_study(options->scenario, overrides);
+    // One results.h5 per test: a sweep's or a batch's cases are written as CSV (docs/results-format.md).
+    if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
+        test && test->results_format != hybrid_test::ResultsFormat::kCsv && (!file.sweep.empty() || file.monte_carlo)) {
+      throw CLI::ValidationError("--format", options->scenario + ": output.format hdf5 or both is for a single test; " +
+                                                 "a sweep or a Monte Carlo batch writes CSV (docs/results-format.md)");
+    }
     if (options->dry_run) {
       const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
       if (!test) throw CLI::ValidationError("--dry-run", "needs an rpsd_test scenario");

@@ -58,7 +58,13 @@ void Recorder::take(const StepRecord& r) {
     write_row(r);
     check_stream();
   }
-  for (RecordObserver* o : observers_) o->observe(r);
+  for (RecordObserver* o : observers_) {
+    o->observe(r);
+    if (o->failed() && !write_failed_.load(std::memory_order_relaxed)) {
+      write_error_ = o->failure();
+      write_failed_.store(true, std::memory_order_release);
+    }
+  }
 }
 
 void Recorder::check_stream() {

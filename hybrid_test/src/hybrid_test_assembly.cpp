@@ -334,19 +334,26 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   p.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
   if (p.loop->steps_available() >= 0) p.steps_planned = std::min(p.steps_planned, p.loop->steps_available());
   p.round_trips.resize(p.actuators->sites().size());
-  coordinator::RecorderOptions recording;
+  coordinator::RecorderOptions recording = recorded_columns(s, perfect_actuator);
   recording.keep_records = options.keep_records;
   recording.observers = options.record_observers;
+  // The structure's channels; the held forces' columns follow (RecorderOptions::held_channels).
+  p.recorder =
+      std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);
+}
+
+coordinator::RecorderOptions recorded_columns(const TestConfig& s, bool perfect_actuator) {
+  coordinator::RecorderOptions recording;
   for (const ExperimentalSetupSite& site : s.setups) {
     const setups::PlanarGeometry g = setups::planar_geometry(site.setup);
     for (std::size_t i = 0; i < site.channels.size(); ++i) {
       recording.dof_view.push_back({site.channels[i], g.dofs[i] == setups::DofMotion::kRotation});
     }
   }
-  for (const coordinator::HeldForceChannel& held : p.held_forces) recording.held_channels.push_back(held.channel);
-  // The structure's channels; the held forces' columns follow (RecorderOptions::held_channels).
-  p.recorder =
-      std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);
+  // As the held forces' channels (held_force_channel); the reference holds none.
+  for (std::size_t k = 0; k < (perfect_actuator ? 0 : s.held_forces.size()); ++k)
+    recording.held_channels.push_back(held_force_link_channel(s, k));
+  return recording;
 }
 
 TestAssembly::~TestAssembly() = default;

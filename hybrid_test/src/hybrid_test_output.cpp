@@ -13,6 +13,7 @@
 #include "operator_run_output.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/ground_motion/response_spectrum.h"
+#include "rpsd/hdf5_output/hdf5_results.h"
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
@@ -440,6 +441,38 @@ nlohmann::json held_forces_json(const hybrid_test::TestConfig& scenario, const h
   return held;
 }
 
+namespace {
+
+// results.h5 for a test and its reference, with the inputs: the case's own document in a batch.
+// Throws output::ResultsNotWritten when it cannot be made.
+std::unique_ptr<hdf5_output::Hdf5Results> make_results_h5(const std::filesystem::path& path, const TestDocument& file,
+                                                          const TestConfig& scenario, std::size_t batch_case) {
+  hdf5_output::Hdf5Inputs inputs;
+  inputs.scenario_name = file.name;
+  inputs.effective_yaml = batch_case > 0 ? file.case_yaml[batch_case - 1] : file.effective_yaml;
+  inputs.input_files = file.input_files;
+  std::vector<hdf5_output::Hdf5RunLayout> runs;
+  for (const char* name : {"test", "reference"}) {
+    const bool reference = std::string_view(name) == "reference";
+    const coordinator::RecorderOptions columns = recorded_columns(scenario, reference);
+    hdf5_output::Hdf5RunLayout run;
+    run.name = name;
+    run.control_rate_hz = scenario.control_rate_hz;
+    run.channels = static_cast<int>(scenario.experimental.size());
+    for (auto d : scenario.record_dofs) run.dof_numbers.push_back(static_cast<std::int64_t>(d));
+    run.dof_view = columns.dof_view;
+    run.held_channels = columns.held_channels;
+    runs.push_back(std::move(run));
+  }
+  try {
+    return std::make_unique<hdf5_output::Hdf5Results>(path, inputs, runs);
+  } catch (const std::runtime_error& e) {
+    throw output::ResultsNotWritten(e.what());
+  }
+}
+
+}  // namespace
+
 TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument& file,
                            const hybrid_test::TestConfig& scenario, const ProgressSink& progress,
                            const std::atomic<bool>* stop_request, std::size_t case_number, std::size_t cases) {
@@ -460,15 +493,26 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   output::write_file_whole(dir / "effective-scenario.yaml",
                            one_of_a_batch ? file.case_yaml[case_number - 1] : file.effective_yaml);
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
+  // The histories as CSV tables, results.h5 (docs/results-format.md) or both.
+  const bool csv = scenario.results_format != ResultsFormat::kHdf5;
+  const bool hdf5 = scenario.results_format != ResultsFormat::kCsv;
+  const std::filesystem::path h5_path = dir / "results.h5";
+  std::unique_ptr<hdf5_output::Hdf5Results> h5;
+  if (hdf5) h5 = make_results_h5(h5_path, file, scenario, one_of_a_batch ? case_number : 0);
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
   hybrid_test::RunWatchers watchers(scenario, progress, case_number, cases);
+  hybrid_test::RunWatch watch = watchers.watch();
+  if (h5) {
+    watch.observers.push_back(&h5->observer(0));
+    watch.reference_observers.push_back(&h5->observer(1));
+  }
   hybrid_test::EvaluatedTest run;
   try {
     run = hybrid_test::run_test_and_reference(
-        scenario, dir / "time_history.csv", dir / "reference_history.csv",
-        [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request,
-        watchers.watch());
+        scenario, csv ? dir / "time_history.csv" : std::filesystem::path(),
+        csv ? dir / "reference_history.csv" : std::filesystem::path(),
+        [&](std::int64_t done, std::int64_t planned) { report("test", done, planned); }, stop_request, watch);
   } catch (const hybrid_test::NoNodeAnswered& e) {
     return not_ready(dir, file, e.what());
   } catch (const hybrid_test::CalibrationOutOfRange& e) {
@@ -476,13 +520,20 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   }
   const hybrid_test::TestRun& test = run.test;
   const coordinator::Criteria& criteria = run.criteria;
-  const RunResult result = result_of(test, run.reference);
-  const bool completed = result == RunResult::kCompleted;
+  // Both recorders have finished: what the HDF5 writer still holds is written now.
+  const std::string h5_error = h5 ? h5->close() : std::string();
+  RunResult result = result_of(test, run.reference);
+  const bool completed_run = result == RunResult::kCompleted;
   std::string outcome = describe_outcome(scenario, test);
   if (test.write_error.empty() && !run.reference.write_error.empty()) {
-    outcome = (completed ? "" : outcome + "; ") + "stopped: the results could not be written (" +
+    outcome = (completed_run ? "" : outcome + "; ") + "stopped: the results could not be written (" +
               run.reference.write_error + ")";
+  } else if (test.write_error.empty() && !h5_error.empty()) {
+    // The test went on (the CSV, if any, has every step); results.h5 lacks the steps from then.
+    outcome = (completed_run ? "" : outcome + "; ") + "the results could not be written (" + h5_error + ")";
+    result = RunResult::kResultsNotWritten;
   }
+  const bool completed = result == RunResult::kCompleted;
   watchers.ended(test, outcome);
 
   using nlohmann::json;
@@ -593,6 +644,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
       {"return_to_start", return_to_start_json(test)},
       {"provenance", output::provenance_json(file.input_files)},
   };
+  if (hdf5) summary["results_h5"] = h5_path.filename().string();
   // Only with a setup: its kind, geometry, actuators and the calibration the run used.
   if (!scenario.setups.empty()) summary["experimental_setups"] = experimental_setups_json(scenario, test.calibrations);
   // Only with held forces: nothing of this section without them.
@@ -612,14 +664,25 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   // The plots are drawn from the CSV files, which are the results: one that cannot be drawn
   // (too few steps, no gnuplot) is reported and `rpsd plot` redraws it; summary.json comes
   // last, so that it describes every file beside it.
+  // Without CSV tables (results.h5 only) there is nothing to draw from.
   try {
-    output::write_file_whole(dir / "plot.json", plot_info.dump(2) + '\n');
-    report("plots", 0, 0);
-    if (test.steps >= 2) draw(dir, plot_info);
+    if (csv) {
+      output::write_file_whole(dir / "plot.json", plot_info.dump(2) + '\n');
+      report("plots", 0, 0);
+      if (test.steps >= 2) draw(dir, plot_info);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
   }
   write_return_to_start(dir, test);
+  // The criteria into results.h5 (/analysis), once its SWMR writing is over.
+  if (h5 && h5_error.empty()) {
+    try {
+      hdf5_output::Hdf5Results::write_analysis(h5_path, summary);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
+    }
+  }
   output::write_summary(dir / "summary.json", summary.dump(2) + '\n');
   TestHeadline headline;
   headline.result = result;

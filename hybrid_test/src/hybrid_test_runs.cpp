@@ -56,7 +56,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
                            reference_outcome = coordinator::StepOutcome::kOk;
 
   if (!test.real_time()) {
-    TestAssembly reference(s, {reference_csv, true, false, {}, stop_request});
+    TestAssembly reference(s, {reference_csv, true, false, {}, stop_request, watch.reference_observers});
     const std::int64_t planned = test.steps_planned(), report_every = test.progress_every_steps();
     for (std::int64_t n = 0; n < planned; ++n) {
       const bool testing = test_outcome == coordinator::StepOutcome::kOk;
@@ -83,7 +83,7 @@ EvaluatedTest run_test_and_reference(const TestConfig& s, const std::filesystem:
         },
         progress);
     stop_listening();
-    TestAssembly reference(s, {reference_csv, true, false, {}, stop_request});
+    TestAssembly reference(s, {reference_csv, true, false, {}, stop_request, watch.reference_observers});
     std::size_t paired = 0;
     reference_outcome = reference.run(
         [&](const coordinator::StepRecord& r) {

@@ -562,6 +562,14 @@ telemetry::TelemetryConfig telemetry(config::Source& output) {
   return t;
 }
 
+hybrid_test::ResultsFormat results_format(config::Source& output) {
+  const std::string f = output.choice_or("format", {"csv", "hdf5", "both"}, "csv",
+                                         "the histories as CSV tables, as results.h5 (docs/results-format.md) or both");
+  return f == "hdf5"   ? hybrid_test::ResultsFormat::kHdf5
+         : f == "both" ? hybrid_test::ResultsFormat::kBoth
+                       : hybrid_test::ResultsFormat::kCsv;
+}
+
 std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs) {
   // A longer list than the recorder keeps is refused before its items are read.
   const Number dof = Number::between(0.0, static_cast<double>(dofs - 1), "", "a DOF to record (0-based)");

@@ -98,6 +98,8 @@ void operator_commands(config::Source& o, hybrid_test::TestConfig& t);
 compensation::CompensatorConfig compensation(config::Source& r, double control_period_s);
 void free_vibration(config::Source& f, Eigen::Index dofs, hybrid_test::TestConfig& t);
 std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs);
+// output.format (before record_dofs, which finishes the section).
+hybrid_test::ResultsFormat results_format(config::Source& output);
 // output.telemetry and output.telemetry_samples_per_s (before record_dofs, which finishes the section).
 telemetry::TelemetryConfig telemetry(config::Source& output);
 

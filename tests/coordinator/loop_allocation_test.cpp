@@ -5,12 +5,14 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include "../hybrid_test/two_actuator_test.h"
 #include "../servo/paper_rig.h"
 #include "allocation_counter.h"
 #include "rpsd/coordinator/limit_stop_text.h"
+#include "rpsd/hdf5_output/hdf5_results.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/specimen_sdof.h"
 #include "rpsd/scenarios/study_file.h"
@@ -87,6 +89,35 @@ TEST(LoopAllocation, NoAllocationPerStepWithTelemetryPublishedAndRead) {
   EXPECT_EQ(allocations, 0);
   EXPECT_GT(publisher.batches_sent(), 6000u / telemetry::kSamplesPerBatch - 1);  // it did publish
   EXPECT_GT(batches_read, 0u);
+}
+
+// With results.h5 written as the test runs: the HDF5 writer buffers, compresses and writes on
+// the recorder's writer thread (allocating there), the loop's thread allocates nothing.
+TEST(LoopAllocation, NoAllocationPerStepWithResultsH5Written) {
+  SpecimenSdof sdof;
+  sdof.duration_s = 8.0;
+  const TestConfig config = specimen_sdof_test(sdof);
+  const auto path =
+      std::filesystem::temp_directory_path() / ("rpsd-loop-allocation-" + std::to_string(::getpid()) + ".h5");
+  hdf5_output::Hdf5RunLayout layout;
+  layout.name = "test";
+  layout.control_rate_hz = config.control_rate_hz;
+  layout.channels = 1;
+  for (auto d : config.record_dofs) layout.dof_numbers.push_back(static_cast<std::int64_t>(d));
+  hdf5_output::Hdf5Results results(path, {"allocation", "", {}}, {layout});
+  TestAssembly test(config, {{}, false, true, {}, nullptr, {&results.observer(0)}});
+  int taken = 0;
+  rpsd::testing::begin_counting_allocations();
+  for (; taken < 6000; ++taken) {
+    if (test.step() != StepOutcome::kOk) break;
+  }
+  const long allocations = rpsd::testing::end_counting_allocations().total();
+  EXPECT_EQ(taken, 6000);
+  EXPECT_EQ(test.finish(StepOutcome::kOk).records.size(), 6000u);
+  EXPECT_EQ(results.close(), "");
+  EXPECT_EQ(allocations, 0);
+  EXPECT_GT(std::filesystem::file_size(path), 6000u * 8u / 10u);  // it did write
+  std::filesystem::remove(path);
 }
 
 TEST(LoopAllocation, CounterSeesAllocations) {

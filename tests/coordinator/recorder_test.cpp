@@ -80,6 +80,28 @@ TEST(Recorder, AWholeFileIsNotAFailure) {
   std::filesystem::remove(csv);
 }
 
+// A watcher that writes the results (results.h5) and fails after its 100th record.
+class FailingWriter final : public RecordObserver {
+ public:
+  void observe(const StepRecord&) override { ++seen_; }
+  bool failed() const override { return seen_ >= 100; }
+  std::string failure() const override { return "results.h5: write failed"; }
+
+ private:
+  int seen_ = 0;
+};
+
+TEST(Recorder, AWatcherThatFailsToWriteIsAFailedWrite) {
+  FailingWriter writer;
+  RecorderOptions options{false, 64};
+  options.observers = {&writer};
+  Recorder recorder({}, 1, 1, options);
+  for (std::int64_t n = 0; n < 500; ++n) recorder.record_or_wait(some_record(n));
+  recorder.finish();
+  EXPECT_TRUE(recorder.write_failed());
+  EXPECT_EQ(recorder.write_error(), "results.h5: write failed");
+}
+
 const TestConfig& elcentro() {
   static const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml");
   return std::get<TestConfig>(file.study);

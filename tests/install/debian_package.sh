@@ -13,7 +13,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 deb="$work/rpsd_${version}_amd64.deb"
 [ -f "$deb" ] || fail "no $deb: $(ls "$work")"
 depends=$(dpkg-deb -f "$deb" Depends)
-for runtime in libyaml-cpp libddsc libssl3 libstdc++6 libcpp-httplib gnuplot; do
+for runtime in libyaml-cpp libddsc libssl3 libhdf5 libstdc++6 libcpp-httplib gnuplot; do
   grep -q "$runtime" <<< "$depends" || fail "Depends lacks $runtime: $depends"
 done
 ! grep -q -- "-dev" <<< "$depends" || fail "Depends names a -dev package: $depends"

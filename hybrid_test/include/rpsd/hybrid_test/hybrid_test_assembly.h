@@ -13,6 +13,7 @@
 
 #include "rpsd/coordinator/live_counters.h"
 #include "rpsd/coordinator/record_observer.h"
+#include "rpsd/coordinator/recorder.h"
 #include "rpsd/coordinator/rpsd_loop.h"
 #include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
@@ -112,6 +113,12 @@ struct AssemblyOptions {
   // for it), an abort at once (kOperatorAbort), a hold (lock-step only) waits between steps.
   operator_commands::OperatorControl* operator_control = nullptr;
 };
+
+// The columns a test's recorder writes beyond its channels and DOFs (RecorderOptions: the DOF
+// view of the channels a setup drives, the held forces' link channels: none in the
+// perfect-actuator reference, which holds no force), for whoever else writes its records
+// (results.h5). Not real-time safe.
+coordinator::RecorderOptions recorded_columns(const TestConfig& config, bool perfect_actuator);
 
 // One run of a test with every part built and started at rest.
 class TestAssembly {

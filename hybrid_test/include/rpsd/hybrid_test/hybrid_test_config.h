@@ -152,6 +152,10 @@ struct OpenSeesSite {
   Eigen::MatrixXd stiffness_n_per_m;
 };
 
+// What a test's histories are written as (output.format, docs/results-format.md): the CSV
+// tables, results.h5, or both.
+enum class ResultsFormat { kCsv, kHdf5, kBoth };
+
 struct TestConfig {
   std::string name;
   std::string description;
@@ -176,6 +180,7 @@ struct TestConfig {
   double duration_s = 0.0;  // free vibration length, or the record's length
   std::vector<Eigen::Index> record_dofs;
   telemetry::TelemetryConfig telemetry;  // published for `rpsd monitor` when enabled
+  ResultsFormat results_format = ResultsFormat::kCsv;
   // In process: the servo node of a site, by site id (its limits, limit actions and
   // watchdog; identity, channels and period come from the test). A site without one runs
   // a node with ServoNodeConfig's defaults.

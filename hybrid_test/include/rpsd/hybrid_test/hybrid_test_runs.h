@@ -24,6 +24,8 @@ TestRun run_test(const TestConfig& config, const std::filesystem::path& csv, boo
 // first step on the calling thread (run_watchers.h).
 struct RunWatch {
   std::vector<coordinator::RecordObserver*> observers;
+  // Observers of the reference's records (its recorder's writer thread): results.h5.
+  std::vector<coordinator::RecordObserver*> reference_observers;
   std::function<void(const TestAssembly&)> started;
   // Told each operator command the run's listener heard (operator_listener.h), off the loop.
   OperatorCommandHook on_operator_command;
