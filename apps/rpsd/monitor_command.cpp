@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -17,6 +18,7 @@
 #include "rpsd/monitor/dds_command_sink.h"
 #include "rpsd/monitor/dds_telemetry_source.h"
 #include "rpsd/monitor/monitor_server.h"
+#include "rpsd/operator_commands/operator_command_sender.h"
 #include "stop_signals.h"
 
 namespace rpsd::cli {
@@ -75,10 +77,17 @@ void run_monitor(const MonitorOptions& args) {
   link.domain_id = args.domain_id;
   link.dds_config = args.dds_config;
   link.test_id = args.test_id;
-  monitor::DdsCommandSink sink(link, "monitor@" + host_name(), args.reply_timeout_s);
+  // Under DDS Security a monitor's identity (read-only) may not send operator commands: the
+  // monitor still shows the test, and the page's buttons are refused with the reason.
+  std::unique_ptr<monitor::DdsCommandSink> sink;
+  try {
+    sink = std::make_unique<monitor::DdsCommandSink>(link, "monitor@" + host_name(), args.reply_timeout_s);
+  } catch (const operator_commands::OperatorNotPermitted& e) {
+    options.no_commands_why = std::string("refused: ") + e.what();
+  }
 
   const std::atomic<bool>& stop_requested = stop_on_signals();
-  monitor::MonitorServer server(options, &source, &sink, std::cout);
+  monitor::MonitorServer server(options, &source, sink.get(), std::cout);
   server.bind();
   const std::string address = "http://" +
                               (options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host) +
@@ -92,6 +101,7 @@ void run_monitor(const MonitorOptions& args) {
     std::cout << "  warning: listening on " << options.host
               << ": anyone who reaches this address can watch the test; commands still need the token\n";
   }
+  if (!sink) std::cout << "  operator commands: none from this monitor (" << options.no_commands_why << ")\n";
   if (!options.results_dir.empty()) std::cout << "  viewer:   the folders under " << args.results << "\n";
   std::cout << "  the rig's hardware emergency stop stays the primary stop; SIGINT or SIGTERM ends the monitor"
             << std::endl;

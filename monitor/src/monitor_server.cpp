@@ -174,7 +174,9 @@ struct MonitorServer::Impl {
       return;
     }
     if (sink == nullptr) {
-      send_json(res, 503, {{"error", "this monitor has no link to send operator commands"}});
+      send_json(res, 503,
+                {{"error", options.no_commands_why.empty() ? "this monitor has no link to send operator commands"
+                                                           : options.no_commands_why}});
       return;
     }
     const std::optional<operator_commands::OperatorReply> reply = sink->send(*action, origin);

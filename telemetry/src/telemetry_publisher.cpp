@@ -78,7 +78,8 @@ struct TelemetryPublisher::Parts {
   std::uint32_t previous_limit_flags = 0, previous_node_status = 0;
   std::int64_t last_step = -1;
   double last_time_s = 0.0;
-  Clock::time_point batch_started;
+  Clock::time_point batch_started;  // when the first change not yet sent came
+  std::int64_t steps_sent = 0;      // the status's steps_done as last written
   std::uint64_t sent = 0;
 
   void write_batch() {
@@ -95,6 +96,7 @@ struct TelemetryPublisher::Parts {
     }
     ++batch.sequence;
     batch.count = 0;
+    steps_sent = s.steps_done;
   }
 
   void write_event(TelemetryEvent e) {
@@ -149,6 +151,7 @@ void TelemetryPublisher::observe(const coordinator::StepRecord& r) {
   p.last_step = r.step;
   p.last_time_s = r.time_s;
   TelemetryStatus& s = p.batch.status;
+  if (p.batch.count == 0 && s.steps_done == p.steps_sent) p.batch_started = Clock::now();
   s.steps_done = r.step;  // steps count from 1
   s.worst_feedback_age_periods = std::max(s.worst_feedback_age_periods, r.feedback_age_periods);
   // Events are never decimated: every change of the nodes' limits and states.
@@ -162,7 +165,6 @@ void TelemetryPublisher::observe(const coordinator::StepRecord& r) {
   }
   p.have_previous = true;
   if (r.step % p.keep_every != 0) return;
-  if (p.batch.count == 0) p.batch_started = Clock::now();
   TelemetrySample& t = p.batch.samples[p.batch.count++];
   t.step = r.step;
   t.time_s = r.time_s;
@@ -184,7 +186,9 @@ void TelemetryPublisher::observe(const coordinator::StepRecord& r) {
 void TelemetryPublisher::idle() {
   const std::lock_guard lock(mutex_);
   Parts& p = *parts_;
-  if (p.batch.count > 0 && Clock::now() - p.batch_started >= kPartialBatchWait) p.write_batch();
+  // Steps taken but not kept (decimated) count too: a held run's last step shows on the page.
+  const bool unsent = p.batch.count > 0 || p.batch.status.steps_done != p.steps_sent;
+  if (unsent && Clock::now() - p.batch_started >= kPartialBatchWait) p.write_batch();
 }
 
 void TelemetryPublisher::publish_event(const TelemetryEvent& event) {

@@ -26,6 +26,7 @@ struct MonitorOptions {
   std::string token;                  // operator commands need it
   double stale_after_s = 2.0;         // no batch for this long while a run goes on: stale
   double command_timeout_s = 5.0;     // for the coordinator's reply
+  std::string no_commands_why;        // with no command sink: why, told to the page (none: no link)
   StreamHubOptions stream;
 };
 
