@@ -76,6 +76,7 @@ RunWatch RunWatchers::watch() {
       info.channels = static_cast<int>(test_.experimental.size());
       info.live = &run.live_counters();
       info.predicted_effective_damping = test_.telemetry.predicted_effective_damping;
+      info.lowest_mode = test_.telemetry.lowest_mode;
       telemetry_->start(info);
     }
     started_ = true;

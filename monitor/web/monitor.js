@@ -222,6 +222,8 @@
 
   function timeLeft(st) {
     if (st.state === "ended" || page.mode === "results") return "—";
+    // Held: no time passes for the test; the pace starts afresh on resuming.
+    if (st.state === "held") { page.progressHistory.length = 0; return "— (held)"; }
     const left = st.steps_planned - st.steps_done;
     if (st.real_time && st.control_rate_hz > 0) return duration(left / st.control_rate_hz);
     // Lock-step: from the pace of the last ten seconds on this clock.

@@ -96,7 +96,8 @@ std::vector<ModePrediction> modes_under_delay(const hybrid_test::TestAssembly& t
     const double w = modal.omega_rad_s[i];
     double k_e = 0.0;
     for (const auto& e : s.experimental)
-      k_e += phi[e.dof.dof] * phi[e.dof.dof] * e.dof.specimen_stiffness_estimate_n_per_m;
+      k_e += phi[e.dof.dof] * phi[e.dof.dof] * e.dof.force_scale * e.dof.displacement_scale *
+             e.dof.specimen_stiffness_estimate_n_per_m;  // in model units, as with_specimen_stiffness adds it
     // The specimen's share acts through the loop's gain and delay at the mode's frequency.
     const LoopResponse loop = compensated_plant_response(s, w);
     numerical.damping().multiply(phi, c_phi);

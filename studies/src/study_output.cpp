@@ -2,6 +2,7 @@
 
 #include "rpsd/hybrid_test/monte_carlo_output.h"
 #include "rpsd/studies/dry_run.h"
+#include "rpsd/studies/lowest_mode.h"
 
 #include <algorithm>
 #include <cmath>
@@ -237,11 +238,15 @@ void write_max_gain(const std::filesystem::path& dir, const StudyDocument& file,
 }
 
 // A test whose telemetry is on carries the delay theory's damping of its lowest mode to the
-// monitors (the dry run's prediction); off, the test as it is.
+// monitors (the dry run's prediction), and the mode its identified damping is projected on;
+// off, the test as it is.
 namespace {
 hybrid_test::TestConfig with_predicted_damping(const hybrid_test::TestConfig& test) {
   hybrid_test::TestConfig watched = test;
-  if (test.telemetry.enabled) watched.telemetry.predicted_effective_damping = predicted_lowest_mode_damping(test);
+  if (test.telemetry.enabled) {
+    watched.telemetry.predicted_effective_damping = predicted_lowest_mode_damping(test);
+    watched.telemetry.lowest_mode = lowest_mode_for_identification(test);
+  }
   return watched;
 }
 }  // namespace

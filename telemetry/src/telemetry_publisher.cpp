@@ -72,8 +72,9 @@ struct TelemetryPublisher::Parts {
   transport::DdsEntity publisher, batch_writer, event_writer;
   TelemetryRunInfo run;
   std::int64_t keep_every = 1;
-  TelemetryBatch batch;         // the one being filled; its status is the run's
-  rpsd_telemetry_Batch wire{};  // written from here: ~12 kB, kept off the stack
+  EffectiveDampingIdentifier damping;  // fed every step, read at each batch
+  TelemetryBatch batch;                // the one being filled; its status is the run's
+  rpsd_telemetry_Batch wire{};         // written from here: ~12 kB, kept off the stack
   bool have_previous = false;
   std::uint32_t previous_limit_flags = 0, previous_node_status = 0;
   std::int64_t last_step = -1;
@@ -88,6 +89,7 @@ struct TelemetryPublisher::Parts {
       s.overruns = run.live->overruns.load(std::memory_order_relaxed);
       s.late_feedback = run.live->late_feedback.load(std::memory_order_relaxed);
     }
+    s.identified_effective_damping = damping.damping_ratio();
     to_wire(batch, wire);
     if (dds_write(batch_writer.get(), &wire) < 0) {
       s.dropped_samples += batch.count;
@@ -137,6 +139,7 @@ void TelemetryPublisher::start(const TelemetryRunInfo& run) {
   s.real_time = run.real_time;
   s.channels = static_cast<std::uint8_t>(run.channels);
   s.predicted_effective_damping = run.predicted_effective_damping;
+  p.damping.configure(run.lowest_mode, run.control_rate_hz);
   p.batch.sequence = 0;
   p.batch.count = 0;
   p.event(EventKind::kRunStarted, std::string("run started: ") + p.config.test_name + ", " +
@@ -164,6 +167,7 @@ void TelemetryPublisher::observe(const coordinator::StepRecord& r) {
     p.previous_node_status = r.node_status;
   }
   p.have_previous = true;
+  p.damping.observe(r);
   if (r.step % p.keep_every != 0) return;
   TelemetrySample& t = p.batch.samples[p.batch.count++];
   t.step = r.step;
@@ -193,7 +197,14 @@ void TelemetryPublisher::idle() {
 
 void TelemetryPublisher::publish_event(const TelemetryEvent& event) {
   const std::lock_guard lock(mutex_);
-  parts_->write_event(event);
+  TelemetryEvent e = event;
+  // An event from outside the records (an operator's command) happened at the last step
+  // recorded (-1: before the first).
+  if (e.step == 0 && e.time_s == 0.0) {
+    e.step = parts_->last_step;
+    e.time_s = parts_->last_time_s;
+  }
+  parts_->write_event(e);
 }
 
 void TelemetryPublisher::set_held(bool held) {

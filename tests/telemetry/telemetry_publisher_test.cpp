@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -96,6 +97,41 @@ TEST(TelemetryPublisher, ASubscriberGetsEveryKthStepAsRecordedInBatchesWithoutGa
   EXPECT_EQ(got.events.front().kind, EventKind::kRunStarted);
   EXPECT_EQ(got.events.back().kind, EventKind::kRunEnded);
   EXPECT_EQ(got.events.back().run_id, run.run_id);
+}
+
+// The status carries the damping identified from every step (not only the kept ones), none
+// before two periods of the mode, and the prediction it was given.
+TEST(TelemetryPublisher, TheStatusCarriesTheDampingIdentifiedFromEveryStep) {
+  const hybrid_test::TestConfig config = sdof(3.0);
+  const hybrid_test::SpecimenSdof s;
+  LowestMode mode;  // the SDOF's, mass-normalised
+  mode.frequency_hz = std::sqrt(s.stiffness_n_per_m / s.mass_kg) / (2.0 * M_PI);
+  mode.numerical_stiffness_n_per_m = 0.0;
+  mode.numerical_damping_n_s_per_m = 2.0 * s.damping_ratio * std::sqrt(s.stiffness_n_per_m / s.mass_kg);
+  mode.channel_weight = {1.0 / s.mass_kg};
+  TelemetrySubscriber subscriber({test_domain(), loopback_xml(), 16});
+  TelemetryPublisher publisher(publisher_config(16));
+  ASSERT_TRUE(testing::wait_for_publisher(subscriber));
+  TestAssembly test(config, {{}, false, true, {}, nullptr, {&publisher}});
+  TelemetryRunInfo info = run_info(test, config);
+  info.predicted_effective_damping = 0.0123;
+  info.lowest_mode = mode;
+  publisher.start(info);
+  const coordinator::StepOutcome outcome = test.run({}, {});
+  const hybrid_test::TestRun run = test.finish(outcome);
+  publisher.end({"completed", false, 0, 0});
+  const testing::Received got = testing::collect_until_ended(subscriber);
+  ASSERT_TRUE(got.ended());
+
+  EffectiveDampingIdentifier direct;
+  direct.configure(mode, config.control_rate_hz);
+  for (const auto& r : run.records) direct.observe(r);
+  const TelemetryStatus& last = got.batches.back().status;
+  ASSERT_TRUE(std::isfinite(last.identified_effective_damping));
+  EXPECT_EQ(last.identified_effective_damping, direct.damping_ratio());
+  EXPECT_NEAR(last.identified_effective_damping, s.damping_ratio, 0.001);  // an actuator without delay
+  EXPECT_EQ(last.predicted_effective_damping, 0.0123);
+  EXPECT_TRUE(std::isnan(got.batches.front().status.identified_effective_damping)) << "before two periods";
 }
 
 TEST(TelemetryPublisher, ASubscriberThatJoinsMidRunGetsTheRecentPast) {

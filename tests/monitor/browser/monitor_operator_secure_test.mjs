@@ -8,7 +8,7 @@ import { spawn, spawnSync } from "node:child_process";
 import { existsSync, mkdirSync, readFileSync, rmSync } from "node:fs";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
-import { waitFor } from "./page_helpers.mjs";
+import { monitorAddress, waitFor } from "./page_helpers.mjs";
 
 const [rpsd, src, outDir, chromiumPath] = process.argv.slice(2);
 const TEST_ID = "3134", DOMAIN = "225";  // unique to this test on the machine's loopback
@@ -43,15 +43,7 @@ async function main() {
 
   const monitor = start(["monitor", "--test-id", TEST_ID, "--domain", DOMAIN, "--dds-config", secure, "--listen", "127.0.0.1:0"],
                         "monitor", lab, ["ignore", "pipe", "inherit"]);
-  let printed = "";
-  const [url, token] = await new Promise((resolve, reject) => {
-    monitor.stdout.on("data", (d) => {
-      printed += d;
-      const m = /page: +(http:\/\/127\.0\.0\.1:\d+\/)/.exec(printed), t = /token: +([0-9a-f]+)/.exec(printed);
-      if (m && t) resolve([m[1], t[1]]);
-    });
-    monitor.on("exit", (code) => reject(new Error("rpsd monitor ended with " + code + ": " + printed)));
-  });
+  const [url, token] = await monitorAddress(monitor);
   for (const site of [1, 2]) {
     start(["servo-node", join(src, "examples", "nodes", `bridge-pier-site-${site}.yaml`), "--set", "node.mode=lock_step",
            "--set", `dds.domain_id=${DOMAIN}`, "--set", `node.test_id=${TEST_ID}`, "--set", `dds.config=${secure}`],

@@ -11,7 +11,7 @@ import { spawn } from "node:child_process";
 import { mkdirSync, readFileSync, rmSync } from "node:fs";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
-import { waitFor } from "./page_helpers.mjs";
+import { monitorAddress, press, waitFor } from "./page_helpers.mjs";
 
 const [rpsd, src, outDir, chromiumPath] = process.argv.slice(2);
 const TEST_ID = "3133", DOMAIN = "226";  // unique to this test on the machine's loopback
@@ -32,18 +32,6 @@ function start(args, stdio) {
 }
 const exited = (child) => new Promise((resolve) => (child.exitCode !== null ? resolve(child.exitCode) : child.on("exit", resolve)));
 
-// Clicks an operator button, giving the token when the page asks for it, and waits for the reply.
-async function press(page, button, token) {
-  await page.evaluate(() => { window.rpsdLastCommand = null; });
-  await page.click(button);
-  if (await page.isVisible("#token-dialog")) {
-    await page.fill("#token-input", token);
-    await page.click("#token-ok");
-  }
-  await waitFor(page, () => window.rpsdLastCommand !== null);
-  return page.evaluate(() => window.rpsdLastCommand);
-}
-
 // Waits until the page has taken `count` more of the link notices the monitor sends every
 // browser twice a second (a held run publishes no new steps, so its status stays as it was).
 async function linkNotices(page, count) {
@@ -61,15 +49,7 @@ async function main() {
   mkdirSync(results, { recursive: true });
   const monitor = start(["monitor", "--test-id", TEST_ID, "--domain", DOMAIN, "--dds-config", ddsConfig, "--listen", "127.0.0.1:0",
                          "--results", results], ["ignore", "pipe", "inherit"]);
-  let printed = "";
-  const [url, token] = await new Promise((resolve, reject) => {
-    monitor.stdout.on("data", (d) => {
-      printed += d;
-      const m = /page: +(http:\/\/127\.0\.0\.1:\d+\/)/.exec(printed), t = /token: +([0-9a-f]+)/.exec(printed);
-      if (m && t) resolve([m[1], t[1]]);
-    });
-    monitor.on("exit", (code) => reject(new Error("rpsd monitor ended with " + code + ": " + printed)));
-  });
+  const [url, token] = await monitorAddress(monitor);
   const nodes = [1, 2].map((site) => start(["servo-node", join(src, "examples", "nodes", `bridge-pier-site-${site}.yaml`), "--set", "node.mode=lock_step",
                                             "--set", `dds.domain_id=${DOMAIN}`, "--set", `node.test_id=${TEST_ID}`], ["ignore", "ignore", "inherit"]));
   const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: ["--no-sandbox"] });
@@ -104,6 +84,15 @@ async function main() {
           `${heldAt} then ${JSON.stringify(stillAt)}`);
     check("while held only Resume is offered of hold and resume",
           await page.isDisabled("#btn-hold") && await page.isEnabled("#btn-resume") && await page.isEnabled("#btn-stop"));
+    const left = await page.evaluate(() => document.getElementById("progress-left").textContent);
+    check("while held the time left stands still and says so", /held/.test(left), left);
+    // The hold is listed at the step it came after (the page was past step 500), not at step 0.
+    const holdAt = await page.evaluate(() => {
+      const li = [...document.querySelectorAll("#events li")].find((l) => /hold from/.test(l.textContent));
+      const m = li && /step (\d+)/.exec(li.textContent);
+      return m ? parseInt(m[1], 10) : -1;
+    });
+    check("the hold's event names the step it came at", holdAt > 500 && holdAt <= heldAt + 1, `${holdAt}, held at ${heldAt}`);
     await page.screenshot({ path: join(outDir, "monitor-held.png"), fullPage: true });
 
     const resume = await press(page, "#btn-resume", token);

@@ -66,3 +66,28 @@ export function compare(shown, history, { consecutive = true, digits = 0 } = {})
 export async function waitFor(page, fn, arg) {
   return page.waitForFunction(fn, arg, { timeout: HANG_GUARD_MS, polling: 50 });
 }
+
+// Clicks an operator button, giving the token when the page asks for it, and waits for the reply.
+export async function press(page, button, token) {
+  await page.evaluate(() => { window.rpsdLastCommand = null; });
+  await page.click(button);
+  if (await page.isVisible("#token-dialog")) {
+    await page.fill("#token-input", token);
+    await page.click("#token-ok");
+  }
+  await waitFor(page, () => window.rpsdLastCommand !== null);
+  return page.evaluate(() => window.rpsdLastCommand);
+}
+
+// The page's address and the operator token `rpsd monitor` (a child with piped stdout) prints at start.
+export function monitorAddress(monitor) {
+  let printed = "";
+  return new Promise((resolve, reject) => {
+    monitor.stdout.on("data", (d) => {
+      printed += d;
+      const m = /page: +(http:\/\/127\.0\.0\.1:\d+\/)/.exec(printed), t = /token: +([0-9a-f]+)/.exec(printed);
+      if (m && t) resolve([m[1], t[1]]);
+    });
+    monitor.on("exit", (code) => reject(new Error("rpsd monitor ended with " + code + ": " + printed)));
+  });
+}

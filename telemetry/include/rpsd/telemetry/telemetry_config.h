@@ -5,6 +5,8 @@
 
 #include <limits>
 
+#include "rpsd/telemetry/effective_damping_identifier.h"
+
 namespace rpsd::telemetry {
 
 struct TelemetryConfig {
@@ -13,6 +15,9 @@ struct TelemetryConfig {
   // Not read from a file: the delay theory's damping ratio of the lowest mode, filled in before
   // the run (studies::predicted_lowest_mode_damping) for the monitors; NaN: not predicted.
   double predicted_effective_damping = std::numeric_limits<double>::quiet_NaN();
+  // Not read from a file either: the lowest mode the identified damping is projected on
+  // (studies::lowest_mode_for_identification); unknown: no identified damping.
+  LowestMode lowest_mode;
 };
 
 }  // namespace rpsd::telemetry

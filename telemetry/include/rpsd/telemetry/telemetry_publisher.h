@@ -15,6 +15,7 @@
 
 #include "rpsd/coordinator/live_counters.h"
 #include "rpsd/coordinator/record_observer.h"
+#include "rpsd/telemetry/effective_damping_identifier.h"
 #include "rpsd/telemetry/telemetry_frame.h"
 
 namespace rpsd::telemetry {
@@ -37,6 +38,8 @@ struct TelemetryRunInfo {
   bool real_time = false;
   int channels = 0;
   double predicted_effective_damping = kUnknown;
+  // The lowest mode the identified damping is projected on (unknown: none identified).
+  LowestMode lowest_mode;
   // The loop's own counts (overruns, late feedback), read relaxed; null: none.
   const coordinator::LiveCounters* live = nullptr;
 };
@@ -63,7 +66,8 @@ class TelemetryPublisher final : public coordinator::RecordObserver {
   void observe(const coordinator::StepRecord& record) override;
   // The recorder's writer thread, its queue empty: a batch waiting longer than ~100 ms goes.
   void idle() override;
-  // Any thread: an event (an operator's command...); test_id and run_id are filled in when 0.
+  // Any thread: an event (an operator's command...); test_id and run_id are filled in when 0,
+  // and its step and time (both 0) with the last step recorded (-1: none yet).
   void publish_event(const TelemetryEvent& event);
   // Any thread: the run is held (an operator's hold) or running again.
   void set_held(bool held);
