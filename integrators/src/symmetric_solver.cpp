@@ -129,10 +129,11 @@ void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const 
   switch (storage_) {
     case linalg::MatrixStorage::kDiagonal: {
       // A plain loop: Eigen's set-up per expression costs more than a lumped mass's few products.
-      x.resize(b.size());  // as the assignment it replaces: allocates only on a size change
+      const Eigen::Index n = inverse_diagonal_.size();
+      x.resize(n);  // as the assignment it replaces: allocates only on a size change
       const double *inverse = inverse_diagonal_.data(), *rhs = b.data();
       double* out = x.data();
-      for (Eigen::Index i = 0; i < inverse_diagonal_.size(); ++i) out[i] = inverse[i] * rhs[i];
+      for (Eigen::Index i = 0; i < n; ++i) out[i] = inverse[i] * rhs[i];
       break;
     }
     case linalg::MatrixStorage::kDense:
