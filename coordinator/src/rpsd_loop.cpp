@@ -47,7 +47,8 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)), exchange_(exchan
   if (!parts_.ground_acceleration_m_per_s2.empty() && parts_.ground_load == nullptr) {
     throw std::invalid_argument("RpsdLoop: a ground-motion record needs the ground-motion load (M iota)");
   }
-  for (auto* v : {&force_, &restoring_, &previous_d_, &previous_v_, &previous_r_, &previous_f_, &work_a_, &work_b_}) {
+  for (auto* v : {&force_, &restoring_, &previous_d_, &previous_v_, &previous_r_, &previous_f_, &work_a_, &work_b_,
+                  &force_sum_, &restoring_sum_}) {
     *v = Eigen::VectorXd::Zero(dofs_);
   }
   targets_ = held_targets_ = held_forces_ = Eigen::VectorXd::Zero(channels_);
@@ -129,21 +130,32 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
 
   // Energy balance by the trapezoidal rule over the step (model scale):
   // input = sum F.dd, damping = sum (Cv).dd, restoring = sum R.dd, kinetic = 1/2 v'Mv.
-  const Eigen::VectorXd& d = integrator.displacement();
+  // The sums and differences in one pass that also keeps this step's state for the next
+  // (each entry as Eigen's expressions computed it); the dot products stay Eigen's, whose
+  // order of summation the recorded energies' digits depend on.
   const Eigen::VectorXd& v = integrator.velocity();
-  const Eigen::VectorXd& r = integrator.restoring_force();
-  work_a_ = d - previous_d_;
-  input_energy_j_ += 0.5 * (previous_f_ + force_).dot(work_a_);
-  restoring_energy_j_ += 0.5 * (previous_r_ + r).dot(work_a_);
-  work_b_ = v + previous_v_;
+  {
+    const double *d = integrator.displacement().data(), *vv = v.data(), *r = integrator.restoring_force().data(),
+                 *f = force_.data();
+    double *pd = previous_d_.data(), *pv = previous_v_.data(), *pr = previous_r_.data(), *pf = previous_f_.data();
+    double *dd = work_a_.data(), *v_sum = work_b_.data(), *f_sum = force_sum_.data(), *r_sum = restoring_sum_.data();
+    for (Eigen::Index i = 0; i < dofs_; ++i) {
+      dd[i] = d[i] - pd[i];
+      f_sum[i] = pf[i] + f[i];
+      r_sum[i] = pr[i] + r[i];
+      v_sum[i] = vv[i] + pv[i];
+      pd[i] = d[i];
+      pv[i] = vv[i];
+      pr[i] = r[i];
+      pf[i] = f[i];
+    }
+  }
+  input_energy_j_ += 0.5 * force_sum_.dot(work_a_);
+  restoring_energy_j_ += 0.5 * restoring_sum_.dot(work_a_);
   numerical.damping().multiply(work_b_, restoring_);  // restoring_ reused as scratch: C (v + v_prev)
   damping_energy_j_ += 0.5 * restoring_.dot(work_a_);
   numerical.mass().multiply(v, work_b_);
   kinetic_energy_j_ = 0.5 * v.dot(work_b_);
-  previous_d_ = d;
-  previous_v_ = v;
-  previous_r_ = r;
-  previous_f_ = force_;
 
   record_.step = step_;
   record_.time_s = integrator.time_s();

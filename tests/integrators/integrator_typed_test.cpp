@@ -262,8 +262,11 @@ TEST(StepSequence, MisuseIsReportedNotThrown) {
   EXPECT_EQ(integrator->end_step(), StepStatus::kOutOfSequence);
   EXPECT_EQ(integrator->begin_step(Eigen::VectorXd::Ones(2)), StepStatus::kSizeMismatch);
   EXPECT_EQ(integrator->begin_step(one * NAN), StepStatus::kNonFiniteInput);
+  EXPECT_EQ(integrator->begin_step(-one * INFINITY), StepStatus::kNonFiniteInput);
   EXPECT_EQ(integrator->begin_step(one), StepStatus::kOk);
   EXPECT_EQ(integrator->begin_step(one), StepStatus::kOutOfSequence);
+  EXPECT_EQ(integrator->set_measured_restoring_force(one * NAN), StepStatus::kNonFiniteInput);
+  EXPECT_EQ(integrator->set_measured_restoring_force(one * INFINITY), StepStatus::kNonFiniteInput);
   EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::kOk);
   EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::kOutOfSequence);
   EXPECT_EQ(integrator->end_step(), StepStatus::kOk);

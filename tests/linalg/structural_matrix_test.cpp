@@ -2,6 +2,8 @@
 // (checked against Eigen's dense product), and storage is chosen and kept as documented.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <limits>
 #include <random>
 
@@ -108,6 +110,38 @@ TEST(StructuralMatrix, ChecksSymmetryFinitenessAndSize) {
   EXPECT_FALSE(StructuralMatrix(a).all_finite());
   EXPECT_FALSE(StructuralMatrix(a).converted(MatrixStorage::kSparse).all_finite());
   EXPECT_THROW((void)StructuralMatrix(a).sparse(), std::logic_error);
+}
+
+// The loop's products are plain loops for a diagonal or a 1x1 matrix (docs/performance.md):
+// they must give Eigen's own digits, the sign of a zero included, or a test's records change.
+bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+
+TEST(StructuralMatrix, DiagonalAndOneByOneProductsGiveEigensDigits) {
+  for (int n : {1, 2, 3, 5, 9}) {
+    const Eigen::VectorXd d = random_vector(n, 11) * 1e5, x = random_vector(n, 12) / 3.0, z0 = random_vector(n, 13);
+    const StructuralMatrix m = StructuralMatrix::diagonal(d);
+    Eigen::VectorXd y(n), z = z0;
+    m.multiply(x, y);
+    m.multiply_add(-0.7, x, z);
+    const Eigen::VectorXd y_eigen = (d.array() * x.array()).matrix();
+    Eigen::VectorXd z_eigen = z0;
+    z_eigen.array() += -0.7 * d.array() * x.array();
+    for (int i = 0; i < n; ++i) {
+      EXPECT_TRUE(same_bits(y[i], y_eigen[i])) << "n = " << n << ", entry " << i;
+      EXPECT_TRUE(same_bits(z[i], z_eigen[i])) << "n = " << n << ", entry " << i;
+    }
+  }
+  // 1x1 dense: Eigen adds the product onto a zeroed result, so -0 comes out as +0.
+  for (const double k : {700.8e3, -3.0}) {
+    const StructuralMatrix m(Eigen::MatrixXd::Constant(1, 1, k));
+    for (const double value : {0.0, -0.0, 1.0 / 3.0, -2.5e-3}) {
+      const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, value);
+      Eigen::VectorXd y(1), y_eigen(1);
+      m.multiply(x, y);
+      y_eigen.noalias() = m.dense() * x;
+      EXPECT_TRUE(same_bits(y[0], y_eigen[0])) << k << " x " << value << ": " << y[0] << " against " << y_eigen[0];
+    }
+  }
 }
 
 }  // namespace

@@ -123,7 +123,7 @@ class RpsdLoop {
   Eigen::VectorXd force_, targets_, restoring_;
   // kTargetNowForceDelayed: the target of the step before, and the force of the exchange before.
   Eigen::VectorXd held_targets_, held_forces_;
-  Eigen::VectorXd previous_d_, previous_v_, previous_r_, previous_f_, work_a_, work_b_;
+  Eigen::VectorXd previous_d_, previous_v_, previous_r_, previous_f_, work_a_, work_b_, force_sum_, restoring_sum_;
   StepRecord record_;
   std::int64_t step_ = 0;
   std::int64_t cycle_lateness_ns_ = 0;
