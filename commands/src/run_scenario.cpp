@@ -24,7 +24,7 @@ bool is_single_test(const studies::StudyDocument& file) {
 }
 
 studies::StudyRun run_scenario(const studies::StudyDocument& file, const ScenarioRunOptions& options) {
-  output::prepare_results_folder(options.out, options.replace);
+  if (options.prepare) output::prepare_results_folder(options.out, options.replace);
   // Tests, sweeps and batches stop in order; the servo studies simply end.
   const std::atomic<bool>* stop_request =
       std::holds_alternative<hybrid_test::TestConfig>(file.study) ? options.stop_request : nullptr;

@@ -26,6 +26,9 @@ bool is_single_test(const studies::StudyDocument& file);
 struct ScenarioRunOptions {
   std::filesystem::path out;  // created if missing; refused if it holds anything
   bool replace = false;       // clear a folder an earlier rpsd run wrote
+  // false: the caller prepared `out` itself (prepare_results_folder), and may have put the
+  // scenario it runs there first (rpsd.run with a dict).
+  bool prepare = true;
   hybrid_test::ProgressSink progress;
   // Set by whoever asks the run to stop in order (a signal handler, Ctrl-C in Python); tests,
   // sweeps and batches stop after the step under way, the servo studies run to their end.
