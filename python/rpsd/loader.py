@@ -68,10 +68,10 @@ def _history_from_h5(run_group):
     for name, obj in datasets:
         group, _, dataset = name.rpartition("/")
         if group == "coordinator" and dataset == "step":
-            step = obj[:steps].astype(np.int64)
+            step = obj[:steps].astype(np.int64, copy=False)
             continue
         column = _column_name(group, dataset)
-        columns[column] = obj[:steps].astype(np.float64)
+        columns[column] = obj[:steps].astype(np.float64, copy=False)  # one read, no second copy
         units[column] = obj.attrs["units"].decode() if isinstance(obj.attrs["units"], bytes) else str(obj.attrs["units"])
     return History(step, run_group.attrs["period_s"], columns, units)
 
