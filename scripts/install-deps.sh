@@ -24,6 +24,9 @@ packages=(
   chromium                           # the monitor's browser tests (headless)
   libhdf5-dev hdf5-tools             # results.h5 (docs/results-format.md); h5dump and h5clear
   python3-h5py python3-pytest        # results.h5 read as a user would, by the pytest tests
+  python3-dev pybind11-dev           # the Python module rpsd (python/, docs/python.md)
+  python3-numpy                      # its arrays; with python3-h5py and python3-yaml, what it needs to run
+  python3-matplotlib                 # examples/python/figure8.py (and its test)
 )
 # The browser tests' driver (playwright-core, from npm by the test command) needs node >= 18 and
 # npm: Debian's nodejs and npm, unless a node with its npm is installed already.

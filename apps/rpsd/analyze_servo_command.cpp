@@ -1,9 +1,9 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 
 #include "rpsd/commands.h"
+#include "rpsd/commands/analysis_reports.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/servo/linear_analysis.h"
 
@@ -14,20 +14,6 @@ struct AnalyzeServoOptions {
   std::string file;
   bool json = false;
 };
-
-nlohmann::json to_json(const servo::ServoAnalysis& a) {
-  return {{"cutoff_frequency_hz", a.cutoff_frequency_hz},
-          {"response_delay_ms", a.response_delay_ms},
-          {"amplitude_reduction_at_2hz", a.amplitude_reduction_at_2hz},
-          {"oil_column_frequency_hz", a.oil_column_frequency_hz},
-          {"max_stable_p_gain", a.max_stable_p_gain},
-          {"max_stable_p_gain_full_model", a.max_stable_p_gain_full_model},
-          {"p_gain", a.p_gain},
-          {"static_gain", a.static_gain},
-          {"specimen_natural_frequency_hz", a.specimen_natural_frequency_hz},
-          {"servovalve_natural_frequency_hz", a.servovalve_natural_frequency_hz},
-          {"servovalve_damping_ratio", a.servovalve_damping_ratio}};
-}
 
 void print_table(const std::string& name, const servo::ServoAnalysis& a) {
   std::cout << "servo system: " << name << '\n' << std::fixed;
@@ -57,15 +43,12 @@ void add_analyze_servo(CLI::App& analyze) {
   analyze.callback([&analyze, options] {
     if (!analyze.get_subcommands().empty()) return;  // an analyze subcommand ran instead
     if (options->file.empty()) throw CLI::RequiredError("servo_parameters (or an analyze subcommand)");
-    const auto parameters = scenarios::load_servo_parameters(options->file);
-    const auto analysis = servo::analyze(parameters);
     if (options->json) {
-      nlohmann::json out = to_json(analysis);
-      out["servo"] = parameters.name;
-      std::cout << out.dump(2) << '\n';
-    } else {
-      print_table(parameters.name, analysis);
+      std::cout << commands::servo_analysis_json(options->file).dump(2) << '\n';
+      return;
     }
+    const auto parameters = scenarios::load_servo_parameters(options->file);
+    print_table(parameters.name, servo::analyze(parameters));
   });
 }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "rpsd/commands/overrides.h"
+#include "rpsd/commands/run_outcome.h"
 #include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::cli {
@@ -47,37 +49,18 @@ void add_monitor(CLI::App& app);
 // `rpsd reference [--check FILE]` (hidden): the scenario reference from the readers.
 void add_reference(CLI::App& app);
 
-// `--set key.path=value` texts to overrides (ConfigError on a malformed one).
-std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts);
-
-// The dry run found a limit exceeded, an undamped mode or an early stop (exit code 4).
-struct DryRunNotReady : std::runtime_error {
-  DryRunNotReady() : std::runtime_error("the dry run says the test is not ready (see above)") {}
-};
-
-// No servo node answered before the first step of a run (exit code 4): nothing moved.
-struct RunNotReady : std::runtime_error {
-  RunNotReady(const std::string& summary, const std::string& reason)
-      : std::runtime_error("test " + reason + "; " + summary + " says so") {}
-};
+// The run outcomes and overrides the Python module shares (rpsd/commands/).
+using commands::DryRunNotReady;
+using commands::parse_overrides;
+using commands::RunInterrupted;
+using commands::RunNotReady;
+using commands::TestStopped;
 
 // A servo node's actuator did not start (exit code 4): its controller did not answer, refused,
 // or measures elsewhere; nothing moved, and the node's summary says which side failed.
 struct NodeNotReady : std::runtime_error {
   explicit NodeNotReady(const std::string& reason)
       : std::runtime_error("servo node not ready, nothing moved: " + reason) {}
-};
-
-// A test that stopped before its end; its files are complete for every step it took.
-struct TestStopped : std::runtime_error {
-  TestStopped(const std::string& recorded_in, const std::string& reason)
-      : std::runtime_error("test " + reason + "; every recorded step is in " + recorded_in) {}
-};
-
-// SIGINT or SIGTERM ended a run in order: the step under way finished and was recorded.
-struct RunInterrupted : std::runtime_error {
-  RunInterrupted(const std::string& summary, const std::string& reason)
-      : std::runtime_error(reason + "; the steps taken are recorded, and " + summary + " says so") {}
 };
 
 // `rpsd stop`: the test answered and refused the command (exit code 7).

@@ -4,19 +4,15 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "progress_bar.h"
 #include "rpsd/commands.h"
+#include "rpsd/commands/dry_run_check.h"
+#include "rpsd/commands/run_scenario.h"
+#include "rpsd/commands/validate_report.h"
 #include "rpsd/hybrid_test/hybrid_test_output.h"
-#include "rpsd/node/servo_node_overview.h"
 #include "rpsd/output/results_files.h"
-#include "rpsd/scenarios/servo_node_file.h"
-#include "rpsd/scenarios/site_server_file.h"
-#include "rpsd/scenarios/study_file.h"
-#include "rpsd/site_server/site_summary.h"
-#include "rpsd/studies/dry_run_report.h"
-#include "rpsd/studies/scenario_overview.h"
-#include "rpsd/studies/study_output.h"
 #include "stop_signals.h"
 
 namespace rpsd::cli {
@@ -32,42 +28,10 @@ struct RunOptions {
   std::vector<std::string> node_files;
   bool telemetry = false;
   std::string format;
+  bool json = false;
 };
 
-// The limits a node enforces, as `rpsd servo-node FILE` reads them.
-studies::NodeLimits node_limits(const std::string& file) {
-  const node::ServoNodeSetup node = scenarios::load_servo_node(file);
-  studies::NodeLimits limits;
-  limits.name = file;
-  limits.test_id = node.node.test_id;
-  limits.site_id = node.node.site_id;
-  limits.control_period_s = node.node.control_period_s;
-  limits.channels.assign(node.node.limits.begin(), node.node.limits.begin() + node.node.channels);
-  limits.control.assign(node.node.control.begin(), node.node.control.begin() + node.node.channels);
-  return limits;
-}
-
-// The pre-test check: its table on stdout, its numbers in OUT/dry-run.json; true when ready.
-bool check_before_running(const hybrid_test::TestConfig& test, const std::string& out,
-                          const std::vector<std::string>& node_files) {
-  std::vector<studies::NodeLimits> nodes;
-  for (const auto& f : node_files) nodes.push_back(node_limits(f));
-  const studies::DryRunReport report = studies::dry_run(test, nodes);
-  const nlohmann::json numbers = studies::report_dry_run(report, test.name, std::cout);
-  if (!out.empty()) output::write_file_whole(std::filesystem::path(out) / "dry-run.json", numbers.dump(2) + '\n');
-  return report.within_limits;
-}
-
 }  // namespace
-
-std::vector<scenarios::Override> parse_overrides(const std::vector<std::string>& texts) {
-  std::vector<scenarios::Override> overrides;
-  for (const auto& t : texts) {
-    overrides.push_back(scenarios::parse_override(t));
-    overrides.back().origin = "--set #" + std::to_string(overrides.size());
-  }
-  return overrides;
-}
 
 void add_run(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
@@ -94,60 +58,43 @@ void add_run(CLI::App& app) {
   run->add_option("--format", options->format,
                   "Write the histories as csv, hdf5 (results.h5, docs/results-format.md) or both (as output.format)")
       ->check(CLI::IsMember({"csv", "hdf5", "both"}));
+  run->add_flag("--json", options->json,
+                "With --dry-run: print the report as JSON (as dry-run.json) instead of a table");
   run->callback([options] {
-    // --record replaces the record and keeps the scenario's processing; --set may then refine it.
-    std::vector<scenarios::Override> overrides;
-    if (!options->record.empty()) {
-      overrides.push_back({"ground_motion",
-                           "{file: \"" + std::filesystem::absolute(options->record).string() + "\", format: peer_at2}",
-                           "--record", scenarios::Override::Kind::kRecord});
-    }
-    if (options->telemetry) overrides.push_back({"output.telemetry", "true", "--telemetry"});
-    if (!options->format.empty()) overrides.push_back({"output.format", options->format, "--format"});
-    for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
-    const auto file = scenarios::load_study(options->scenario, overrides);
-    // One results.h5 per test: a sweep's or a batch's cases are written as CSV (docs/results-format.md).
-    if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
-        test && test->results_format != hybrid_test::ResultsFormat::kCsv && (!file.sweep.empty() || file.monte_carlo)) {
-      throw CLI::ValidationError("--format", options->scenario + ": output.format hdf5 or both is for a single test; " +
-                                                 "a sweep or a Monte Carlo batch writes CSV (docs/results-format.md)");
-    }
+    const auto file = commands::load_run_scenario(
+        options->scenario, commands::run_overrides({options->record, options->telemetry, options->format},
+                                                   parse_overrides(options->overrides)));
     if (options->dry_run) {
-      const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
-      if (!test) throw CLI::ValidationError("--dry-run", "needs an rpsd_test scenario");
       if (!options->out.empty()) output::prepare_results_folder(options->out, options->replace);
-      if (!check_before_running(*test, options->out, options->node_files)) throw DryRunNotReady();
+      std::ostringstream table;
+      const commands::DryRunCheck check = commands::dry_run_check(file, options->node_files, table);
+      std::cout << (options->json ? check.report.dump(2) + '\n' : table.str());
+      if (!options->out.empty()) {
+        output::write_file_whole(std::filesystem::path(options->out) / "dry-run.json", check.report.dump(2) + '\n');
+      }
+      if (!check.ready) throw DryRunNotReady();
       return;
     }
+    if (options->json) throw CLI::ValidationError("--json", "only with --dry-run");
     if (!options->node_files.empty()) throw CLI::ValidationError("--node", "only with --dry-run");
     if (options->out.empty()) throw CLI::ValidationError("--out", "required (except with --dry-run)");
-    output::prepare_results_folder(options->out, options->replace);
+    commands::ScenarioRunOptions run_options;
+    run_options.out = options->out;
+    run_options.replace = options->replace;
     double rate_hz = 1024.0;
-    const std::atomic<bool>* stop_request = nullptr;
     if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study)) {
       rate_hz = test->control_rate_hz;
-      stop_request = &stop_on_signals();  // tests and sweeps stop in order; the servo studies simply end
+      run_options.stop_request = &stop_on_signals();
     }
     studies::StudyRun run;
     {
       ProgressBar bar(rate_hz);
-      run = studies::run_and_write(
-          file, options->out, [&bar](const hybrid_test::ProgressReport& r) { bar(r); }, stop_request);
+      run_options.progress = [&bar](const hybrid_test::ProgressReport& r) { bar(r); };
+      run = commands::run_scenario(file, run_options);
     }
     const std::string summary = options->out + "/summary.json";
     std::cout << "rpsd run: " << file.name << " -> " << summary << "\n";
-    switch (run.result) {
-      case hybrid_test::RunResult::kCompleted:
-        return;
-      case hybrid_test::RunResult::kStopped:
-        throw TestStopped(run.recorded_in, run.reason);
-      case hybrid_test::RunResult::kResultsNotWritten:
-        throw output::ResultsNotWritten(run.reason + "; " + summary + " says what is missing");
-      case hybrid_test::RunResult::kInterrupted:
-        throw RunInterrupted(summary, run.reason);
-      case hybrid_test::RunResult::kNotReady:
-        throw RunNotReady(summary, run.reason);
-    }
+    commands::throw_unless_completed(run, summary);
   });
 }
 
@@ -158,32 +105,11 @@ void add_validate(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   validate->add_option("--set", options->overrides, "Override a scenario key: key.path=value (repeatable)");
+  validate->add_flag("--json", options->json, "Print what was understood as JSON instead of text");
   validate->callback([options] {
-    if (scenarios::is_site_server_file(options->scenario)) {
-      const auto site = scenarios::load_site_server(options->scenario, parse_overrides(options->overrides));
-      std::cout << options->scenario << ": ok (a site-server file)\n";
-      site_server::print_site_overview(site, std::cout);
-      return;
-    }
-    if (scenarios::is_servo_node_file(options->scenario)) {
-      const auto node = scenarios::load_servo_node(options->scenario, parse_overrides(options->overrides));
-      std::cout << options->scenario << ": ok (a servo node's file)\n";
-      node::print_node_overview(node, std::cout);
-      return;
-    }
-    const auto file = scenarios::load_study(options->scenario, parse_overrides(options->overrides));
-    std::cout << options->scenario << ": ok\n";
-    if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study)) {
-      if (!file.sweep.empty()) {
-        std::cout << "  sweep: " << file.sweep_cases.size() << " cases; the first:\n";
-      }
-      if (file.monte_carlo) {
-        std::cout << "  monte_carlo: " << file.sweep_cases.size() << " runs (seed " << file.monte_carlo->seed
-                  << "), each read and checked; " << file.monte_carlo->parameters.size()
-                  << " keys drawn; the first run:\n";
-      }
-      studies::print_overview(studies::overview_of(*test), std::cout);
-    }
+    std::ostringstream text;
+    const nlohmann::json report = commands::validate_file(options->scenario, parse_overrides(options->overrides), text);
+    std::cout << (options->json ? report.dump(2) + '\n' : text.str());
   });
 }
 

@@ -221,4 +221,66 @@ void print_overview(const ScenarioOverview& o, std::ostream& out) {
   for (const std::string& w : o.warnings) out << "  warning: " << w << "\n";
 }
 
+namespace {
+
+nlohmann::json finite_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+nlohmann::json modes_json(const std::vector<ModeOverview>& modes) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const ModeOverview& m : modes)
+    list.push_back({{"frequency_hz", m.frequency_hz}, {"damping_ratio", m.damping_ratio}});
+  return list;
+}
+
+nlohmann::json channel_json(const ChannelOverview& c) {
+  return {{"channel", c.channel},
+          {"dof", c.dof},
+          {"site_id", c.site_id},
+          {"specimen_stiffness_n_per_m", c.specimen_stiffness_n_per_m},
+          {"opensees", c.opensees.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.opensees)},
+          {"envelope",
+           {{"stroke_m", finite_or_null(c.envelope.stroke_m)},
+            {"force_n", finite_or_null(c.envelope.force_n)},
+            {"velocity_m_per_s", finite_or_null(c.envelope.velocity_m_per_s)}}},
+          {"limits",
+           {{"max_stroke_m", finite_or_null(c.limits.max_stroke_m)},
+            {"max_force_n", finite_or_null(c.limits.max_force_n)},
+            {"max_increment_m", finite_or_null(c.limits.max_increment_m)},
+            {"max_velocity_m_per_s", finite_or_null(c.limits.max_velocity_m_per_s)},
+            {"max_tracking_error_m", finite_or_null(c.limits.max_tracking_error_m)}}},
+          {"converter_rails",
+           {{"command_m", finite_or_null(c.rails.command_m)},
+            {"displacement_m", finite_or_null(c.rails.displacement_m)},
+            {"force_n", finite_or_null(c.rails.force_n)}}}};
+}
+
+}  // namespace
+
+nlohmann::json overview_json(const ScenarioOverview& o) {
+  nlohmann::json channels = nlohmann::json::array();
+  for (const ChannelOverview& c : o.channels) channels.push_back(channel_json(c));
+  nlohmann::json record = nullptr;
+  if (o.has_record) {
+    record = {{"source", o.record},
+              {"source_step_s", o.source_step_s},
+              {"source_pga_g", o.source_pga_g},
+              {"processing", o.processing},
+              {"dt_s", o.record_dt_s},
+              {"pga_g", o.record_pga_g}};
+  }
+  return {
+      {"dofs", o.dofs},
+      {"structure_modes", modes_json(o.structure_modes)},
+      {"numerical_modes", modes_json(o.numerical_modes)},
+      {"control_rate_hz", o.control_rate_hz},
+      {"loop_timing", o.loop_timing},
+      {"steps", o.steps},
+      {"duration_s", o.duration_s},
+      {"record", record},
+      {"channels", channels},
+      {"held_forces", o.held_forces},
+      {"actuator_cutoff_hz", o.actuator_cutoff_hz ? nlohmann::json(*o.actuator_cutoff_hz) : nlohmann::json(nullptr)},
+      {"warnings", o.warnings}};
+}
+
 }  // namespace rpsd::studies

@@ -18,6 +18,12 @@ test ! -e "$work/prefix/include/rpsd/studies/results_files.h"
 test -f "$work/prefix/include/rpsd/hybrid_test/hybrid_test_output.h"
 test -f "$work/prefix/include/rpsd/hybrid_test/hybrid_test_document.h"
 test ! -e "$work/prefix/include/rpsd/studies/monte_carlo_output.h"
+# The Python module, installed with its package files, imports from there and runs the C++ core.
+python_package=$(dirname "$(find "$work/prefix" -name '_rpsd*.so' | head -1)")
+test -f "$python_package/__init__.py" && test -f "$python_package/loader.py"
+PYTHONPATH=$(dirname "$python_package") /usr/bin/python3 -c \
+  "import rpsd, sys; assert rpsd.analyze_servo(sys.argv[1])['cutoff_frequency_hz'] > 1.9" \
+  "$source_dir/examples/servo/paper-mts-244.yaml"
 cmake -S "$source_dir/tests/install/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/consumer" >/dev/null
 "$work/consumer/consumer"

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -62,5 +63,9 @@ ScenarioOverview overview_of(const hybrid_test::TestConfig& test);
 
 // A few lines for a person: one section per part, SI units, frequencies in Hz.
 void print_overview(const ScenarioOverview& overview, std::ostream& out);
+
+// The same as JSON (`rpsd validate --json`, rpsd.validate in Python): the fields above, SI
+// units in the names, a limit or rail that is not stated as null.
+nlohmann::json overview_json(const ScenarioOverview& overview);
 
 }  // namespace rpsd::studies

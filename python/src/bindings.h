@@ -1,0 +1,27 @@
+// The parts of the extension `_rpsd`, each registered on the module by its own file. The
+// package rpsd (../rpsd/) wraps them; users call rpsd.run, rpsd.validate, ... not these.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <exception>
+#include <string>
+
+namespace rpsd::python {
+
+// C++ exceptions to the package's exception classes (rpsd.errors), as apps/rpsd/main.cpp maps
+// the same types to exit codes.
+void register_errors(pybind11::module_& m);
+// The class in rpsd.errors ("KeyboardInterrupt" for a run interrupted in order) and the
+// message a C++ exception is raised with in Python.
+struct PythonError {
+  std::string class_name;
+  std::string message;
+};
+PythonError python_error_of(std::exception_ptr error);
+// _rpsd.run_scenario: a scenario run into a folder on a worker thread, Ctrl-C honoured.
+void register_run(pybind11::module_& m);
+// _rpsd.validate_json, dry_run_json, analyze_servo_json, integrator_properties_json.
+void register_checks(pybind11::module_& m);
+
+}  // namespace rpsd::python
