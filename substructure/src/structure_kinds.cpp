@@ -83,8 +83,9 @@ StructureConfig ShearBuildingStructure::model() const {
 
 ExternalStructure ExternalStructure::read(config::Source& st) {
   ExternalStructure s;
-  s.matrices = LinearStructure::read(st);
+  // The name first: the matrices' reader checks how they fit, which ends a listing.
   s.name = st.text("name", "which of the host program's structures (a Python callable's name in callables=)");
+  s.matrices = LinearStructure::read(st);
   const bool well_formed =
       !s.name.empty() && s.name.size() <= 64 &&
       s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
