@@ -17,9 +17,10 @@ std::string external_not_given(std::string_view key, std::string_view name) {
 ExternalCompensatorParameters ExternalCompensatorParameters::read(config::Source& section) {
   ExternalCompensatorParameters p;
   p.name = section.text("name", "which of the host program's compensators (a Python callable's name in callables=)");
-  const bool well_formed = !p.name.empty() && p.name.size() <= 64 &&
-                           p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
-                               std::string::npos;
+  const bool well_formed =
+      !p.name.empty() && p.name.size() <= 64 &&
+      p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
+          std::string::npos;
   if (!well_formed) section.fail("name", "expected 1 to 64 letters, digits, '_', '-' or '.'");
   return p;
 }

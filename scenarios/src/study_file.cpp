@@ -283,8 +283,8 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
     }
     studies::StudyDocument one;
     try {
-      one = read_case(text, file, command_line, "monte_carlo", overrides, document, result.sweep_cases.empty(),
-                      external);
+      one =
+          read_case(text, file, command_line, "monte_carlo", overrides, document, result.sweep_cases.empty(), external);
     } catch (const ConfigError& e) {
       std::string where;
       for (const auto& o : overrides) where += (where.empty() ? "" : ", ") + o.key_path + " = " + o.value;

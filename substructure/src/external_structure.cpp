@@ -19,8 +19,8 @@ void ExternalStructureModel::configure(const ExternalStructureParameters& parame
   try {
     host_ = parameters.source->make(dofs());
   } catch (const std::exception& e) {
-    throw std::invalid_argument("structure external `" + name_ + "`: the host could not make its structure: " +
-                                e.what());
+    throw std::invalid_argument("structure external `" + name_ +
+                                "`: the host could not make its structure: " + e.what());
   }
   if (!host_) throw std::invalid_argument("structure external `" + name_ + "`: the host made no structure");
   tangent_ = linalg::StructuralMatrix(matrices_.initial_stiffness().to_dense());

@@ -133,8 +133,8 @@ TEST(ExternalParts, AHostPhaseLeadGivesTheYamlPhaseLeadsHistoryBitForBitOnEachCh
   auto source = std::make_shared<CompensatorSource>(yaml.compensation);
   ExternalParts parts;
   parts.compensators["lead"] = source;
-  const TestConfig host = test_of(scenarios::load_study(
-      example("two-site-bridge.yaml"), {set("compensation", "{kind: external, name: lead}")}, parts));
+  const TestConfig host = test_of(scenarios::load_study(example("two-site-bridge.yaml"),
+                                                        {set("compensation", "{kind: external, name: lead}")}, parts));
   ASSERT_TRUE(compensation::is_external(host.compensation));
 
   const TestRun a = run_test(yaml, {}, false);
@@ -226,8 +226,7 @@ TEST(ExternalParts, ARealTimeClockRefusesAnExternalPartAtItsKind) {
       << compensator;
   EXPECT_NE(compensator.find("nothing external runs on a real-time path"), std::string::npos) << compensator;
   const std::string structure = refusal({set("structure.kind", "external"), set("structure.name", "bridge")});
-  EXPECT_NE(structure.find("structure.kind: external (given by a host program) runs lock-step only"),
-            std::string::npos)
+  EXPECT_NE(structure.find("structure.kind: external (given by a host program) runs lock-step only"), std::string::npos)
       << structure;
 }
 
@@ -298,8 +297,7 @@ TEST(ExternalParts, AHostCompensatorThatThrowsEndsTheRunInOrderAndTheSummaryName
   EXPECT_EQ(summary["result"], "stopped");
   EXPECT_EQ(summary["steps"], 499);
   EXPECT_EQ(summary["stopped_by"]["kind"], "host_call_failed");
-  EXPECT_EQ(summary["stopped_by"]["host_says"],
-            "compensation external `lead` (channel 1) command(): boom at call 500");
+  EXPECT_EQ(summary["stopped_by"]["host_says"], "compensation external `lead` (channel 1) command(): boom at call 500");
   EXPECT_NE(summary["outcome"].get<std::string>().find("stopped: a host program's call failed"), std::string::npos)
       << summary["outcome"];
   // The history is closed with every step taken: a header and 499 rows.

@@ -221,8 +221,8 @@ std::unique_ptr<substructure::NumericalModel> make_numerical_model(
 // The same numerical part's M, C and K0, an external structure's with K0 d for its restoring
 // force: for the checks and overviews that need no step, so they ask nothing of a host
 // program. Not real-time safe.
-std::unique_ptr<substructure::NumericalModel> numerical_matrices(
-    const TestConfig& config, SpecimenShare share = SpecimenShare::kLeftToSpecimens);
+std::unique_ptr<substructure::NumericalModel> numerical_matrices(const TestConfig& config,
+                                                                 SpecimenShare share = SpecimenShare::kLeftToSpecimens);
 
 // Whether a host program gives a part of the test (compensation or structure kind external):
 // lock-step only, never on a real-time path.
