@@ -2,10 +2,15 @@
 
 namespace rpsd::compensation {
 
-std::unique_ptr<CommandCompensator> make_compensator(const CompensatorConfig& config, double dt_s) {
+std::unique_ptr<CommandCompensator> make_compensator(const CompensatorConfig& config, double dt_s, int channel) {
   std::unique_ptr<CommandCompensator> compensator = std::visit(
-      [](const auto& p) -> std::unique_ptr<CommandCompensator> {
-        return std::make_unique<typename std::decay_t<decltype(p)>::Compensator>(p);
+      [channel](const auto& p) -> std::unique_ptr<CommandCompensator> {
+        using Compensator = typename std::decay_t<decltype(p)>::Compensator;
+        if constexpr (std::is_same_v<Compensator, ExternalCompensator>) {
+          return std::make_unique<ExternalCompensator>(p, channel);
+        } else {
+          return std::make_unique<Compensator>(p);
+        }
       },
       config);
   compensator->configure(dt_s);

@@ -56,6 +56,8 @@ const char* step_outcome_name(StepOutcome outcome) {
       return "operator_stop";
     case StepOutcome::kOperatorAbort:
       return "operator_abort";
+    case StepOutcome::kHostCallFailed:
+      return "host_call_failed";
   }
   return "unknown";
 }

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "rpsd/coordinator/recorder.h"
@@ -44,6 +46,30 @@ struct TestAssembly::Parts {
   std::string operator_sender;
   ReturnToStart return_to_start;
   bool operator_ended = false;  // an operator's stop or abort was acted on
+  // The host program's parts (kind external), to ask after each step whether a call failed.
+  std::vector<const compensation::ExternalCompensator*> external_compensators;
+  const substructure::ExternalStructureModel* external_structure = nullptr;
+
+  // Whether a host call failed (one load per part). Real-time safe.
+  bool host_failed() const noexcept {
+    if (external_structure && external_structure->failed()) return true;
+    return std::any_of(external_compensators.begin(), external_compensators.end(),
+                       [](const compensation::ExternalCompensator* c) { return c->failed(); });
+  }
+
+  // Which host part failed, in which call, in the host's words. Not real-time safe.
+  std::string host_error() const {
+    if (external_structure && external_structure->failed()) {
+      return "structure external `" + external_structure->host_name() + "` " + external_structure->failure();
+    }
+    for (const compensation::ExternalCompensator* c : external_compensators) {
+      if (c->failed()) {
+        return "compensation external `" + c->host_name() + "` (channel " + std::to_string(c->channel()) + ") " +
+               c->failure();
+      }
+    }
+    return {};
+  }
 
   // Counts a step the loop took and hands its record on. Real-time safe.
   void took_step(const std::function<void(const coordinator::StepRecord&)>& after_step) {
@@ -63,6 +89,7 @@ struct TestAssembly::Parts {
   // asked it to stop, or an operator did. An operator's hold (lock-step only) waits here, after
   // the step, until it is lifted. Real-time safe but for the hold (which real time refuses).
   coordinator::StepOutcome stop_after_step() {
+    if (host_failed()) return coordinator::StepOutcome::kHostCallFailed;
     if (recorder->write_failed()) return coordinator::StepOutcome::kResultsNotWritten;
     if (stop_request && stop_request->load(std::memory_order_relaxed)) return coordinator::StepOutcome::kInterrupted;
     if (!operator_control) return coordinator::StepOutcome::kOk;
@@ -189,10 +216,17 @@ struct TestAssembly::Parts {
 
 TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) : parts_(std::make_unique<Parts>()) {
   const bool perfect_actuator = options.perfect_actuator;
+  // A host program's code (a Python callable) may take any time and allocate: lock-step only.
+  if (s.clock.mode == ClockConfig::Mode::kRealTime && uses_external_parts(s)) {
+    throw std::invalid_argument(
+        "a compensator or structure of kind external (given by a host program) runs lock-step only "
+        "(clock.mode as_fast_as_possible): nothing external runs on a real-time path");
+  }
   Parts& p = *parts_;
   p.config = &s;
   p.numerical =
       make_numerical_model(s, perfect_actuator ? SpecimenShare::kKeptInNumericalPart : SpecimenShare::kLeftToSpecimens);
+  p.external_structure = dynamic_cast<const substructure::ExternalStructureModel*>(p.numerical.get());
   const Eigen::Index dofs = p.numerical->dofs();
   const int channels = static_cast<int>(s.experimental.size());
 
@@ -216,8 +250,10 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
     p.compensators.push_back(compensation::make_compensator(
         perfect_actuator || numerical_site ? compensation::CompensatorConfig{compensation::PassThroughParameters{}}
                                            : s.compensation,
-        control_period_s));
+        control_period_s, static_cast<int>(ch)));
     parts.compensators[ch] = p.compensators.back().get();
+    if (const auto* external = dynamic_cast<const compensation::ExternalCompensator*>(p.compensators.back().get()))
+      p.external_compensators.push_back(external);
     // The rig's envelope is every limit's default; the reference is numerical: no rig, no limits.
     // A DOF a setup drives keeps its limits as given: the rig's envelope is its actuators'.
     const bool setup_dof = std::any_of(s.setups.begin(), s.setups.end(), [&](const ExperimentalSetupSite& site) {
@@ -466,6 +502,11 @@ TestRun TestAssembly::finish(coordinator::StepOutcome outcome) {
       outcome = coordinator::StepOutcome::kNodeFault;
       run.node_fault = std::move(said);
     }
+  }
+  // A host call that failed stopped the step (its NaN command or force) or the run after it.
+  if (p.host_failed()) {
+    outcome = coordinator::StepOutcome::kHostCallFailed;
+    run.host_error = p.host_error();
   }
   p.actuators->end_run();
   run.outcome = outcome;

@@ -17,6 +17,8 @@ Eigen::Index structure_dofs(const TestConfig& config) {
         using C = std::decay_t<decltype(c)>;
         if constexpr (std::is_same_v<C, substructure::LinearMdofParameters>)
           return c.mass_kg.rows();
+        else if constexpr (std::is_same_v<C, substructure::ExternalStructureParameters>)
+          return c.matrices.mass_kg.rows();
         else
           return static_cast<Eigen::Index>(c.floor_masses_kg.size());
       },
@@ -25,14 +27,19 @@ Eigen::Index structure_dofs(const TestConfig& config) {
 
 namespace {
 
-std::unique_ptr<substructure::NumericalModel> configured(
-    const std::variant<substructure::LinearMdofParameters, substructure::ShearBuildingParameters>& structure) {
+// The structure's matrices and law, an external structure's as the linear model of its
+// matrices: nothing asked of a host program.
+std::unique_ptr<substructure::NumericalModel> configured(const substructure::StructureConfig& structure) {
   return std::visit(
       [](const auto& c) -> std::unique_ptr<substructure::NumericalModel> {
         using C = std::decay_t<decltype(c)>;
         if constexpr (std::is_same_v<C, substructure::LinearMdofParameters>) {
           auto model = std::make_unique<substructure::LinearMdofModel>();
           model->configure(c);
+          return model;
+        } else if constexpr (std::is_same_v<C, substructure::ExternalStructureParameters>) {
+          auto model = std::make_unique<substructure::LinearMdofModel>();
+          model->configure(c.matrices);
           return model;
         } else {
           auto model = std::make_unique<substructure::ShearBuilding>();
@@ -85,10 +92,15 @@ Structure without_specimen_mass(const TestConfig& config, Structure structure) {
     std::visit(
         [&](auto& c) {
           using C = std::decay_t<decltype(c)>;
-          if constexpr (std::is_same_v<C, substructure::LinearMdofParameters>) {
-            Eigen::MatrixXd dense = c.mass_kg.to_dense();
+          const auto less_specimen = [&](substructure::LinearMdofParameters& linear) {
+            Eigen::MatrixXd dense = linear.mass_kg.to_dense();
             if (d < dense.rows()) left = dense(d, d) -= m;
-            c.mass_kg = linalg::StructuralMatrix(dense);
+            linear.mass_kg = linalg::StructuralMatrix(dense);
+          };
+          if constexpr (std::is_same_v<C, substructure::LinearMdofParameters>) {
+            less_specimen(c);
+          } else if constexpr (std::is_same_v<C, substructure::ExternalStructureParameters>) {
+            less_specimen(c.matrices);
           } else {
             if (d < static_cast<Eigen::Index>(c.floor_masses_kg.size())) left = c.floor_masses_kg[d] -= m;
           }
@@ -106,13 +118,16 @@ Structure without_specimen_mass(const TestConfig& config, Structure structure) {
 
 linalg::StructuralMatrix whole_structure_mass(const TestConfig& config) { return configured(config.structure)->mass(); }
 
-std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config, SpecimenShare share) {
+namespace {
+
+// The numerical part's structure: the file's less what the specimens take.
+Structure numerical_part(const TestConfig& config, SpecimenShare share) {
   const bool left_to_specimens = share == SpecimenShare::kLeftToSpecimens;
   const bool specimens_own = std::any_of(config.experimental.begin(), config.experimental.end(), [](const auto& e) {
     return e.specimen_damping_n_s_per_m > 0.0 || e.specimen_mass_kg > 0.0;
   });
   const Structure numerical = without_included_stiffness(config);
-  if (!config.whole_structure_damping && !specimens_own) return configured(numerical);
+  if (!config.whole_structure_damping && !specimens_own) return numerical;
   auto structure = left_to_specimens ? without_specimen_mass(config, numerical) : numerical;
   Eigen::MatrixXd c;
   if (config.whole_structure_damping) {
@@ -134,8 +149,37 @@ std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestCon
   for (const auto& e : config.experimental) {
     c(e.dof.dof, e.dof.dof) += sign * e.dof.force_scale * e.dof.displacement_scale * e.specimen_damping_n_s_per_m;
   }
-  std::visit([&c](auto& s) { s.damping = substructure::DampingMatrix{linalg::StructuralMatrix(c)}; }, structure);
+  std::visit(
+      [&c](auto& s) {
+        const substructure::DampingMatrix matrix{linalg::StructuralMatrix(c)};
+        if constexpr (std::is_same_v<std::decay_t<decltype(s)>, substructure::ExternalStructureParameters>) {
+          s.matrices.damping = matrix;
+        } else {
+          s.damping = matrix;
+        }
+      },
+      structure);
+  return structure;
+}
+
+}  // namespace
+
+std::unique_ptr<substructure::NumericalModel> make_numerical_model(const TestConfig& config, SpecimenShare share) {
+  const Structure structure = numerical_part(config, share);
+  if (const auto* external = std::get_if<substructure::ExternalStructureParameters>(&structure)) {
+    auto model = std::make_unique<substructure::ExternalStructureModel>();
+    model->configure(*external);
+    return model;
+  }
   return configured(structure);
+}
+
+std::unique_ptr<substructure::NumericalModel> numerical_matrices(const TestConfig& config, SpecimenShare share) {
+  return configured(numerical_part(config, share));
+}
+
+bool uses_external_parts(const TestConfig& config) {
+  return compensation::is_external(config.compensation) || substructure::is_external(config.structure);
 }
 
 substructure::PartitionConfig partition_config(const TestConfig& s, Eigen::Index dofs) {

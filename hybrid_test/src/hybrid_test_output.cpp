@@ -58,6 +58,8 @@ const char* outcome_text(coordinator::StepOutcome o) {
       return "operator stop: the test ended in order after the step under way";
     case coordinator::StepOutcome::kOperatorAbort:
       return "operator abort: the coordinator stopped commanding; every node holds at once";
+    case coordinator::StepOutcome::kHostCallFailed:
+      return "stopped: a host program's call failed";
   }
   return "aborted";
 }
@@ -259,6 +261,7 @@ std::string describe_outcome(const hybrid_test::TestConfig& s, const hybrid_test
     text += operator_outcome_detail(test);
   }
   if (!test.node_fault.empty()) text += ": " + test.node_fault;
+  if (!test.host_error.empty()) text += ": " + test.host_error;
   if (!test.write_error.empty()) text += " (" + test.write_error + ")";
   return text;
 }
@@ -523,8 +526,14 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   // Both recorders have finished: what the HDF5 writer still holds is written now.
   const std::string h5_error = h5 ? h5->close() : std::string();
   RunResult result = result_of(test, run.reference);
-  const bool completed_run = result == RunResult::kCompleted;
   std::string outcome = describe_outcome(scenario, test);
+  // The reference's own host structure (kind external) failing leaves the criteria partial.
+  if (run.reference.outcome == coordinator::StepOutcome::kHostCallFailed) {
+    outcome = (result == RunResult::kCompleted ? std::string() : outcome + "; ") +
+              "stopped: the perfect-actuator reference's host call failed: " + run.reference.host_error;
+    if (result == RunResult::kCompleted) result = RunResult::kStopped;
+  }
+  const bool completed_run = result == RunResult::kCompleted;
   if (test.write_error.empty() && !run.reference.write_error.empty()) {
     outcome = (completed_run ? "" : outcome + "; ") + "stopped: the results could not be written (" +
               run.reference.write_error + ")";
@@ -575,7 +584,11 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
                             test.outcome == coordinator::StepOutcome::kOperatorStop ||
                             test.outcome == coordinator::StepOutcome::kOperatorAbort;
     const auto step = static_cast<std::int64_t>(after_step ? test.steps : test.steps + 1);
-    stopped_by = {{"kind", ran_to_end ? "results_not_written" : coordinator::step_outcome_name(test.outcome)},
+    const bool reference_failed = run.reference.outcome == coordinator::StepOutcome::kHostCallFailed;
+    const char* kind = !ran_to_end        ? coordinator::step_outcome_name(test.outcome)
+                       : reference_failed ? coordinator::step_outcome_name(run.reference.outcome)
+                                          : "results_not_written";
+    stopped_by = {{"kind", kind},
                   {"reason", outcome},
                   {"step", step},
                   {"time_s", static_cast<double>(step) / scenario.control_rate_hz}};
@@ -607,6 +620,8 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
     }
     // A node's fault in its own words, or those of the lab controller behind it.
     if (!test.node_fault.empty()) stopped_by["node_says"] = test.node_fault;
+    // A host program's part (kind external) in its own words.
+    if (!test.host_error.empty()) stopped_by["host_says"] = test.host_error;
   }
   json summary = {
       {"study", "rpsd_test"},

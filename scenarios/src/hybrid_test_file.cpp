@@ -8,12 +8,43 @@
 
 #include "hybrid_test_sections.h"
 #include "rpsd/config/key_error.h"
+#include "rpsd/config/kind_list.h"
 #include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/scenarios/ground_motion_section.h"
 
 namespace rpsd::scenarios {
+namespace {
 
-hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file) {
+// The source of an external part (compensation or structure kind external) among those the
+// host program gave: refused at its kind under a real-time clock (a host's code may take any
+// time and allocate), at its name when the host gave none by that name (the command line
+// gives none).
+template <class Given>
+typename Given::mapped_type host_source(config::Source& section, std::string_view part, const std::string& name,
+                                        const Given& given, const hybrid_test::TestConfig& t) {
+  if (t.clock.mode == hybrid_test::ClockConfig::Mode::kRealTime) {
+    section.fail("kind",
+                 "external (given by a host program) runs lock-step only: clock.mode as_fast_as_possible; nothing "
+                 "external runs on a real-time path");
+  }
+  const auto found = given.find(name);
+  if (found != given.end() && found->second) return found->second;
+  if (given.empty()) {
+    section.fail("name", "kind external `" + name +
+                             "` is given only by a host program (rpsd.run(..., callables=...)); the command line "
+                             "cannot run it");
+  }
+  std::vector<std::string_view> names;
+  for (const auto& [key, source] : given) names.push_back(key);
+  section.fail("name", "the host program gives no " + std::string(part) + " named `" + name + "` (it gives " +
+                           config::listed(names) + ")");
+  return {};  // fail() throws
+}
+
+}  // namespace
+
+hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesystem::path& file,
+                                         const hybrid_test::ExternalParts& external) {
   namespace sections = test_sections;
   hybrid_test::TestConfig t;
   t.name = file.stem().string();
@@ -117,6 +148,9 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
   if (d.integrator) t.integrator = sections::integrator(*d.integrator);
   // The control rate is read before anything divides by it.
   sections::clock(*d.clock, t);
+  if (auto* host = std::get_if<substructure::ExternalStructureParameters>(&t.structure)) {
+    host->source = host_source(*d.structure, "structure", host->name, external.structures, t);
+  }
   // A limit may only tighten the rig's envelope.
   const int iterations = integrators::make_integrator(t.integrator)->iterations_per_step();
   const double control_period_s = 1.0 / t.control_rate_hz / iterations;
@@ -207,6 +241,9 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
               "an OpenSees site answers when its static step converges: clock.mode as_fast_as_possible");
   }
   if (d.compensation) t.compensation = sections::compensation(*d.compensation, control_period_s);
+  if (auto* host = std::get_if<compensation::ExternalCompensatorParameters>(&t.compensation)) {
+    host->source = host_source(*d.compensation, "compensator", host->name, external.compensators, t);
+  }
 
   const double dt_s = 1.0 / t.control_rate_hz;
   t.initial_displacement_m = Eigen::VectorXd::Zero(dofs);
@@ -226,7 +263,7 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
   for (std::size_t i = 0; i < specimens; ++i) {
     if (!t.experimental[i].stiffness_in_structure) continue;
     try {
-      (void)hybrid_test::make_numerical_model(t);
+      (void)hybrid_test::numerical_matrices(t);
     } catch (const std::invalid_argument& e) {
       d.experimental[i]->fail("specimen", e.what());
     }
@@ -234,11 +271,18 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
   }
   if (d.whole_structure_damping) {
     const bool own = std::visit(
-        [](const auto& c) { return !std::holds_alternative<substructure::Undamped>(c.damping); }, t.structure);
+        [](const auto& c) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(c)>, substructure::ExternalStructureParameters>) {
+            return !std::holds_alternative<substructure::Undamped>(c.matrices.damping);
+          } else {
+            return !std::holds_alternative<substructure::Undamped>(c.damping);
+          }
+        },
+        t.structure);
     if (own) root.fail("whole_structure_damping", "give either structure.damping or whole_structure_damping, not both");
     t.whole_structure_damping = sections::damping(*d.whole_structure_damping, nullptr);
     try {
-      (void)hybrid_test::make_numerical_model(t);
+      (void)hybrid_test::numerical_matrices(t);
     } catch (const std::invalid_argument& e) {
       d.whole_structure_damping->fail_section(e.what());
     }
@@ -247,7 +291,7 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
       std::any_of(t.experimental.begin(), t.experimental.end(), [](const auto& e) { return e.specimen_mass_kg > 0.0; });
   if (specimen_masses) {
     try {
-      (void)hybrid_test::make_numerical_model(t);
+      (void)hybrid_test::numerical_matrices(t);
     } catch (const std::invalid_argument& e) {
       root.fail("experimental", e.what());
     }

@@ -121,6 +121,11 @@ void site_file(config::Source& root, site_server::SiteServerConfig& c,
   }
   if (auto compensation = root.optional_section("compensation", "the delay compensator (default: none)")) {
     t.compensation = test_sections::compensation(*compensation, 1.0 / t.control_rate_hz);
+    if (compensation::is_external(t.compensation)) {
+      compensation->fail("kind",
+                         "external is given only by a host program (rpsd.run(..., callables=...)); a site "
+                         "server cannot run it");
+    }
   }
   root.finish();
 }

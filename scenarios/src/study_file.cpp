@@ -134,7 +134,7 @@ namespace {
 
 studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
                                      const std::vector<Override>& command_line, OverrideNodes overrides,
-                                     bool sweep_allowed = true);
+                                     const hybrid_test::ExternalParts& external, bool sweep_allowed = true);
 
 std::string emitted(const YAML::Node& document) {
   YAML::Emitter out;
@@ -176,14 +176,15 @@ std::string number_text(double v) {
 // carries the file paths its readers made absolute back into the batch's document.
 studies::StudyDocument read_case(const std::string& text, const std::filesystem::path& file,
                                  const std::vector<Override>& command_line, const char* batch_key,
-                                 const std::vector<Override>& overrides, YAML::Node batch_document, bool first) {
+                                 const std::vector<Override>& overrides, YAML::Node batch_document, bool first,
+                                 const hybrid_test::ExternalParts& external) {
   YAML::Node case_document = parse_yaml_text(text, file.string());
   auto nodes = std::make_shared<std::vector<OverrideNode>>(*apply_overrides(case_document, command_line));
   case_document.remove(batch_key);
   for (const Override& o : overrides) {
     for (auto& n : apply_override(case_document, o)) nodes->push_back(std::move(n));
   }
-  studies::StudyDocument one = read_document(case_document, file, text, {}, nodes, false);
+  studies::StudyDocument one = read_document(case_document, file, text, {}, nodes, external, false);
   if (first) adopt_absolute_paths(batch_document, case_document);
   return one;
 }
@@ -193,7 +194,7 @@ studies::StudyDocument read_case(const std::string& text, const std::filesystem:
 // overrides, read in full, so that every case is checked before the batch runs.
 studies::StudyDocument read_sweep(const std::string& text, const std::vector<Override>& command_line,
                                   YAML::Node document, MappingReader& root, const std::filesystem::path& file,
-                                  studies::StudyDocument result) {
+                                  studies::StudyDocument result, const hybrid_test::ExternalParts& external) {
   result.sweep = study_sections::sweep(root);
   const std::size_t n0 = result.sweep[0].values.size();
   const std::size_t n1 = result.sweep.size() > 1 ? result.sweep[1].values.size() : 1;
@@ -211,7 +212,7 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
       }
       studies::StudyDocument one;
       try {
-        one = read_case(text, file, command_line, "sweep", overrides, document, result.sweep_cases.empty());
+        one = read_case(text, file, command_line, "sweep", overrides, document, result.sweep_cases.empty(), external);
       } catch (const ConfigError& e) {
         std::string where = result.sweep[0].key_path + " = " + number_text(values[0]);
         if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
@@ -252,7 +253,7 @@ std::optional<double> number_at(const YAML::Node& root, const std::string& key_p
 // overrides and read in full, so that every run is checked before the batch runs.
 studies::StudyDocument read_monte_carlo(const std::string& text, const std::vector<Override>& command_line,
                                         YAML::Node document, MappingReader& root, const std::filesystem::path& file,
-                                        studies::StudyDocument result) {
+                                        studies::StudyDocument result, const hybrid_test::ExternalParts& external) {
   hybrid_test::MonteCarloConfig config = study_sections::monte_carlo(root);
   for (auto& p : config.parameters) {
     const auto nominal = number_at(document, p.key_path);
@@ -282,7 +283,8 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
     }
     studies::StudyDocument one;
     try {
-      one = read_case(text, file, command_line, "monte_carlo", overrides, document, result.sweep_cases.empty());
+      one =
+          read_case(text, file, command_line, "monte_carlo", overrides, document, result.sweep_cases.empty(), external);
     } catch (const ConfigError& e) {
       std::string where;
       for (const auto& o : overrides) where += (where.empty() ? "" : ", ") + o.key_path + " = " + o.value;
@@ -314,26 +316,27 @@ MappingReader load_root_reader(const std::filesystem::path& file, const std::vec
   return MappingReader(document, file.string(), "", nodes);
 }
 
-studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides,
+                                  const hybrid_test::ExternalParts& external) {
   config::InputLog inputs;  // the scenario first, then every file it names (records, matrices, ...)
-  studies::StudyDocument document = parse_study(read_config_text(file), file, overrides);
+  studies::StudyDocument document = parse_study(read_config_text(file), file, overrides, external);
   document.input_files = inputs.files();
   return document;
 }
 
 studies::StudyDocument parse_study(const std::string& yaml_text, const std::filesystem::path& file,
-                                   const std::vector<Override>& overrides) {
+                                   const std::vector<Override>& overrides, const hybrid_test::ExternalParts& external) {
   YAML::Node document = parse_yaml_text(yaml_text, file.string());
   const OverrideNodes nodes = apply_overrides(document, overrides);
   // Sweep cases re-parse the text and re-apply these overrides, keeping every line number.
-  return read_document(document, file, yaml_text, overrides, nodes);
+  return read_document(document, file, yaml_text, overrides, nodes, external);
 }
 
 namespace {
 
 studies::StudyDocument read_document(YAML::Node document, const std::filesystem::path& file, const std::string& text,
                                      const std::vector<Override>& command_line, OverrideNodes overrides,
-                                     bool sweep_allowed) {
+                                     const hybrid_test::ExternalParts& external, bool sweep_allowed) {
   MappingReader root(document, file.string(), "", std::move(overrides));
   studies::StudyDocument result;
   result.name = file.stem().string();
@@ -343,13 +346,13 @@ studies::StudyDocument read_document(YAML::Node document, const std::filesystem:
     if (root.has("sweep")) {
       // A case still holding a sweep means the key was given twice (YAML keeps both).
       if (!sweep_allowed) root.fail("sweep", "given more than once");
-      return read_sweep(text, command_line, document, root, file, std::move(result));
+      return read_sweep(text, command_line, document, root, file, std::move(result), external);
     }
     if (root.has("monte_carlo")) {
       if (!sweep_allowed) root.fail("monte_carlo", "given more than once");
-      return read_monte_carlo(text, command_line, document, root, file, std::move(result));
+      return read_monte_carlo(text, command_line, document, root, file, std::move(result), external);
     }
-    hybrid_test::TestConfig scenario = read_test_config(root, file);
+    hybrid_test::TestConfig scenario = read_test_config(root, file, external);
     scenario.description = result.description;
     result.study = std::move(scenario);
     root.finish();

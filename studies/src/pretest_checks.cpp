@@ -39,7 +39,8 @@ std::optional<double> actuator_cutoff_hz(const servo::PlantConfig& plant) {
 
 std::string mass_key(const hybrid_test::TestConfig& test) {
   if (std::holds_alternative<substructure::ShearBuildingParameters>(test.structure)) return "structure.floor_masses_kg";
-  const auto& linear = std::get<substructure::LinearMdofParameters>(test.structure);
+  const auto* external = std::get_if<substructure::ExternalStructureParameters>(&test.structure);
+  const auto& linear = external ? external->matrices : std::get<substructure::LinearMdofParameters>(test.structure);
   return linear.mass_source.empty() ? "structure.mass_kg" : "structure.mass_file (" + linear.mass_source + ")";
 }
 

@@ -58,13 +58,14 @@ bool positive_definite(const linalg::StructuralMatrix& k) {
 
 ScenarioOverview overview_of(const hybrid_test::TestConfig& s) {
   ScenarioOverview o;
-  const auto numerical = hybrid_test::make_numerical_model(s);
+  // M, C and K0 only: an overview asks nothing of a host program's structure.
+  const auto numerical = hybrid_test::numerical_matrices(s);
   o.dofs = numerical->dofs();
   substructure::Partition partition;
   partition.configure(hybrid_test::partition_config(s, o.dofs));
   // The whole structure: the numerical part with the specimens' stiffness, damping and mass (as
   // the perfect-actuator reference runs it).
-  const auto whole = hybrid_test::make_numerical_model(s, hybrid_test::SpecimenShare::kKeptInNumericalPart);
+  const auto whole = hybrid_test::numerical_matrices(s, hybrid_test::SpecimenShare::kKeptInNumericalPart);
   o.structure_modes =
       modes_of(whole->mass(), partition.with_specimen_stiffness(whole->initial_stiffness()), whole->damping());
   // The numerical part alone has modes only if it carries stiffness of its own everywhere.

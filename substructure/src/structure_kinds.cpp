@@ -81,4 +81,23 @@ StructureConfig ShearBuildingStructure::model() const {
   return config;
 }
 
+ExternalStructure ExternalStructure::read(config::Source& st) {
+  ExternalStructure s;
+  // The name first: the matrices' reader checks how they fit, which ends a listing.
+  s.name = st.text("name", "which of the host program's structures (a Python callable's name in callables=)");
+  s.matrices = LinearStructure::read(st);
+  const bool well_formed =
+      !s.name.empty() && s.name.size() <= 64 &&
+      s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
+          std::string::npos;
+  if (!well_formed) st.fail("name", "expected 1 to 64 letters, digits, '_', '-' or '.'");
+  return s;
+}
+
+StructureConfig ExternalStructure::model() const {
+  LinearMdofModel probe;
+  probe.configure(matrices.config);  // the matrices as the linear kind checks them
+  return ExternalStructureParameters{matrices.config, name, nullptr};
+}
+
 }  // namespace rpsd::substructure

@@ -94,6 +94,19 @@ LtiFilterParameters example_of() {
   return LtiFilterParameters{{{1.0, 60.0, 800.0}, {1.0, 90.0, 800.0}}, 0.0};
 }
 
+// The external kind's wrapper around a host compensator that passes the target through (the
+// kind never runs on a real-time path, but its wrapper adds nothing to a host's own cost).
+struct PassingHost final : HostCompensator {
+  double command(double target_m) override { return target_m; }
+};
+struct PassingSource final : ExternalCompensatorSource {
+  std::unique_ptr<HostCompensator> make(int) const override { return std::make_unique<PassingHost>(); }
+};
+template <>
+ExternalCompensatorParameters example_of() {
+  return ExternalCompensatorParameters{"passing", std::make_shared<PassingSource>()};
+}
+
 // Every kind in CompensatorKinds (the registry's list), so a new one is covered by this suite.
 template <class Kind>
 class EveryCompensatorKind : public ::testing::Test {};

@@ -54,6 +54,9 @@ enum class StepOutcome : std::uint8_t {
   kRefused,            // a site's node serves another run, or runs at another rate (the link says which)
   kOperatorStop,       // an operator's stop (operator_commands/): ended in order after the step under way
   kOperatorAbort,      // an operator's abort: the coordinator stopped commanding, every node holds at once
+  // A host program's compensator or structure (kind external) threw: its non-finite command
+  // or force stopped the step before anything was sent or integrated, or the run after it.
+  kHostCallFailed,
 };
 // The outcome's name for scripts (summary.json's stopped_by.kind): "node_fault", "limit", ...
 const char* step_outcome_name(StepOutcome outcome);

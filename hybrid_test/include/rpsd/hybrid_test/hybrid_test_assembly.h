@@ -78,6 +78,9 @@ struct TestRun {
   std::uint64_t run_id = 0;               // this run's identity on every command
   std::string refusal;                    // coordinator::StepOutcome::kRefused: which site refused the run and why
   std::string node_fault;                 // kNodeFault: what the faulted nodes say faulted them ("site 1: ...")
+  // kHostCallFailed: which host part failed in which call, in the host's words
+  // ("compensation external `pid` (channel 0) command(): ...").
+  std::string host_error;
   TimingReport timing;
   // Per experimental setup: each actuator's reading at the start, the stroke the geometry
   // predicted there and the offset used for every command and measurement.

@@ -28,6 +28,7 @@
 #include "rpsd/substructure/linear_mdof_model.h"
 #include "rpsd/substructure/partition.h"
 #include "rpsd/substructure/shear_building.h"
+#include "rpsd/substructure/structure_kinds.h"
 #include "rpsd/telemetry/telemetry_config.h"
 
 namespace rpsd::hybrid_test {
@@ -159,7 +160,7 @@ enum class ResultsFormat { kCsv, kHdf5, kBoth };
 struct TestConfig {
   std::string name;
   std::string description;
-  std::variant<substructure::LinearMdofParameters, substructure::ShearBuildingParameters> structure;
+  substructure::StructureConfig structure;
   std::vector<ExperimentalChannel> experimental;
   // The sites whose DOFs a setup drives (the others: one actuator per DOF).
   std::vector<ExperimentalSetupSite> setups;
@@ -212,9 +213,20 @@ Eigen::Index structure_dofs(const TestConfig& config);
 enum class SpecimenShare { kLeftToSpecimens, kKeptInNumericalPart };
 
 // The numerical part of the scenario's structure, configured (without the specimens' stiffness).
+// An external structure asks its host for a new law (substructure/external_structure.h).
 // Throws what configuring it throws. Not real-time safe.
 std::unique_ptr<substructure::NumericalModel> make_numerical_model(
     const TestConfig& config, SpecimenShare share = SpecimenShare::kLeftToSpecimens);
+
+// The same numerical part's M, C and K0, an external structure's with K0 d for its restoring
+// force: for the checks and overviews that need no step, so they ask nothing of a host
+// program. Not real-time safe.
+std::unique_ptr<substructure::NumericalModel> numerical_matrices(const TestConfig& config,
+                                                                 SpecimenShare share = SpecimenShare::kLeftToSpecimens);
+
+// Whether a host program gives a part of the test (compensation or structure kind external):
+// lock-step only, never on a real-time path.
+bool uses_external_parts(const TestConfig& config);
 
 // The whole structure's mass, specimens' included (the structure's as given): what the ground
 // motion loads. Not real-time safe.

@@ -13,6 +13,7 @@
 
 #include "rpsd/scenarios/yaml_reader.h"
 
+#include "rpsd/hybrid_test/external_parts.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/studies/study_config.h"
 
@@ -42,12 +43,16 @@ MappingReader load_root_reader(const std::filesystem::path& file, const std::vec
 // generalized_alpha, alpha_os, chang, chen_ricles, kolay_ricles_alpha); nullopt if unknown.
 std::optional<integrators::IntegratorConfig> default_integrator(std::string_view name);
 
-// Reads a study file; every error names file, line, column and key path. Not real-time safe.
-studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides = {});
+// Reads a study file; every error names file, line, column and key path. `external`: the
+// compensators and structures a host program gives for `kind: external` (none from the
+// command line: such a file is refused at the name). Not real-time safe.
+studies::StudyDocument load_study(const std::filesystem::path& file, const std::vector<Override>& overrides = {},
+                                  const hybrid_test::ExternalParts& external = {});
 
 // The same from YAML text; `as_file` names it in messages and anchors relative paths.
 studies::StudyDocument parse_study(const std::string& yaml_text, const std::filesystem::path& as_file,
-                                   const std::vector<Override>& overrides = {});
+                                   const std::vector<Override>& overrides = {},
+                                   const hybrid_test::ExternalParts& external = {});
 
 // `points` values from start to stop, equally spaced in log10. Both must be positive.
 std::vector<double> log_spaced(double start, double stop, int points);

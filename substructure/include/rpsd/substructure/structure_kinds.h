@@ -3,19 +3,22 @@
 // model configuration it describes, checked by configuring a model from it.
 #pragma once
 
+#include <string>
 #include <string_view>
 #include <variant>
 
 #include "rpsd/config/kind_list.h"
 #include "rpsd/config/source.h"
+#include "rpsd/substructure/external_structure.h"
 #include "rpsd/substructure/linear_mdof_model.h"
 #include "rpsd/substructure/matrix_market.h"
 #include "rpsd/substructure/shear_building.h"
 
 namespace rpsd::substructure {
 
-// What a structure kind makes: a linear model or a shear building.
-using StructureConfig = std::variant<LinearMdofParameters, ShearBuildingParameters>;
+// What a structure kind makes: a linear model, a shear building, or the matrices of a
+// structure whose restoring force a host program gives.
+using StructureConfig = std::variant<LinearMdofParameters, ShearBuildingParameters, ExternalStructureParameters>;
 using StructureModel [[deprecated("renamed StructureConfig (docs/migration.md)")]] = StructureConfig;
 
 struct LinearStructure {
@@ -46,6 +49,26 @@ struct ShearBuildingStructure {
   ShearBuildingParameters config;
 };
 
-using StructureKinds = config::KindList<LinearStructure, MatrixMarketStructure, ShearBuildingStructure>;
+// M, C and K0 as the linear kind reads them (composed, not copied) and the name of the host's
+// restoring force (external_structure.h). The reader fills in the host's source.
+struct ExternalStructure {
+  static constexpr std::string_view kName = "external";
+  static constexpr std::string_view kSummary =
+      "M, K0 (and C) in the file as for linear; R(d) given by a host program by name (a Python callable through "
+      "rpsd.run(..., callables=...)); lock-step only";
+  static ExternalStructure read(config::Source& structure);
+  // Checks the matrices as the linear kind does. Not real-time safe.
+  StructureConfig model() const;
+  LinearStructure matrices;
+  std::string name;
+};
+
+using StructureKinds =
+    config::KindList<LinearStructure, MatrixMarketStructure, ShearBuildingStructure, ExternalStructure>;
+
+// Whether the host program gives this structure's restoring force (kind external).
+inline bool is_external(const StructureConfig& config) noexcept {
+  return std::holds_alternative<ExternalStructureParameters>(config);
+}
 
 }  // namespace rpsd::substructure
