@@ -7,8 +7,9 @@
 namespace rpsd::commands {
 
 studies::StudyDocument load_run_scenario(const std::filesystem::path& scenario,
-                                         const std::vector<scenarios::Override>& overrides) {
-  studies::StudyDocument file = scenarios::load_study(scenario, overrides);
+                                         const std::vector<scenarios::Override>& overrides,
+                                         const hybrid_test::ExternalParts& external) {
+  studies::StudyDocument file = scenarios::load_study(scenario, overrides, external);
   // One results.h5 per test: a sweep's or a batch's cases are written as CSV (docs/results-format.md).
   if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
       test && test->results_format != hybrid_test::ResultsFormat::kCsv && (!file.sweep.empty() || file.monte_carlo)) {

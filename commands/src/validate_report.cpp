@@ -69,7 +69,7 @@ nlohmann::json site_json(const site_server::SiteServerConfig& c) {
 }  // namespace
 
 nlohmann::json validate_file(const std::filesystem::path& file, const std::vector<scenarios::Override>& overrides,
-                             std::ostream& text) {
+                             std::ostream& text, const hybrid_test::ExternalParts& external) {
   std::ostringstream overview;
   nlohmann::json report;
   if (scenarios::is_site_server_file(file)) {
@@ -83,7 +83,7 @@ nlohmann::json validate_file(const std::filesystem::path& file, const std::vecto
     node::print_node_overview(node, overview);
     report = node_json(node);
   } else {
-    const auto study = scenarios::load_study(file, overrides);
+    const auto study = scenarios::load_study(file, overrides, external);
     text << file.string() << ": ok\n";
     report = {{"kind", "study"}, {"scenario", study.name}};
     if (const auto* test = std::get_if<hybrid_test::TestConfig>(&study.study)) {

@@ -9,7 +9,7 @@ from ._convert import override_texts
 __all__ = ["validate", "dry_run", "analyze_servo", "integrator_properties"]
 
 
-def validate(path, overrides=None):
+def validate(path, overrides=None, callables=None):
     """Reads and checks a scenario, a site-server file or a servo node's file without running it.
 
     Returns what ``rpsd validate FILE --json`` prints, as a dict: ``kind`` (``rpsd_test``,
@@ -19,6 +19,8 @@ def validate(path, overrides=None):
 
     Args:
         path: the file. overrides: ``{"key.path": value}`` as ``--set``.
+        callables: ``{name: object}`` for the parts the scenario names ``kind: external``
+            (as :func:`rpsd.run`); without them such a scenario is refused at the name.
 
     Raises:
         rpsd.ConfigError: the message names file:line:column and the key path.
@@ -28,10 +30,10 @@ def validate(path, overrides=None):
         v = rpsd.validate("examples/scenarios/elcentro-sdof.yaml")
         v["test"]["structure_modes"][0]["frequency_hz"]
     """
-    return json.loads(_rpsd.validate_json(os.fspath(path), override_texts(overrides)))
+    return json.loads(_rpsd.validate_json(os.fspath(path), override_texts(overrides), dict(callables or {})))
 
 
-def dry_run(path, overrides=None, nodes=None):
+def dry_run(path, overrides=None, nodes=None, callables=None):
     """The pre-test check of a test scenario: ``rpsd run FILE --dry-run --json``.
 
     Runs the test against the simulated plant in this process and returns the predicted peaks
@@ -42,12 +44,15 @@ def dry_run(path, overrides=None, nodes=None):
     Args:
         path: an ``rpsd_test`` scenario. overrides: ``{"key.path": value}`` as ``--set``.
         nodes: servo node files (``--node``) whose limits are checked too.
+        callables: ``{name: object}`` for the parts the scenario names ``kind: external``
+            (as :func:`rpsd.run`): the dry run calls them as the test would.
 
     Raises:
         rpsd.ConfigError: a bad file or key, or a file that is not an ``rpsd_test`` scenario.
     """
     node_files = [os.fspath(n) for n in (nodes or [])]
-    return json.loads(_rpsd.dry_run_json(os.fspath(path), override_texts(overrides), node_files))
+    return json.loads(_rpsd.dry_run_json(os.fspath(path), override_texts(overrides), node_files,
+                                         dict(callables or {})))
 
 
 def analyze_servo(path):

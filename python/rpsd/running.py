@@ -24,7 +24,7 @@ def _write_scenario(scenario, out):
     return path
 
 
-def run(scenario, out=None, overrides=None, record=None, format=None):
+def run(scenario, out=None, overrides=None, record=None, format=None, callables=None):
     """Runs a scenario in this process, as ``rpsd run SCENARIO --out OUT`` does, and returns its results.
 
     The run goes through the same code as the command line (the same files are written), on a
@@ -44,6 +44,25 @@ def run(scenario, out=None, overrides=None, record=None, format=None):
         format: ``"csv"``, ``"hdf5"`` or ``"both"`` (``--format``). ``None``: ``"both"`` for a
             single test (results.h5 and the CSV tables with their plots); a sweep or a Monte Carlo
             batch writes CSV.
+        callables: ``{name: object}``: the compensators (controllers) and numerical
+            substructures the scenario names with ``kind: external`` and ``name``, for rehearsals
+            (as fast as possible or lock-step; a real-time clock is refused). Each run, and each
+            channel of a compensator, gets its own ``copy.deepcopy`` of the object (a class is
+            called with no arguments instead), so state kept on ``self`` lasts from step to step
+            and never leaks between runs or channels.
+
+            - a compensator has ``command(target_m) -> command_m`` (or is itself callable with
+              the target), and may have ``configure(dt_s)``, ``reset(initial_displacement_m)``
+              and ``observe(target_m, measured_m)`` (called after each step's command);
+            - a structure has ``restoring_force(d) -> r`` (NumPy vectors, one entry per DOF,
+              always from the last committed state: an implicit scheme tries several ``d`` in a
+              step), and may have ``commit()`` (the last trial is the step's state) and
+              ``tangent_stiffness() -> K`` (else the file's initial stiffness serves). The file
+              gives its mass, damping and initial stiffness as the linear kind does.
+
+            The test runs on a thread of its own; each call takes the GIL. An exception raised
+            in one ends the run in order after the step (``rpsd.TestStopped``; ``summary.json``
+            ``stopped_by.kind: host_call_failed`` with the exception's text).
 
     Returns:
         what :func:`rpsd.load` returns for the folder: :class:`rpsd.Result` for a test (its
@@ -79,7 +98,8 @@ def run(scenario, out=None, overrides=None, record=None, format=None):
         else:
             scenario_file = Path(os.fspath(scenario))
         done = _rpsd.run_scenario(str(scenario_file), str(out), override_texts(overrides),
-                                  os.fspath(record) if record is not None else "", format or "", prepare)
+                                  os.fspath(record) if record is not None else "", format or "", prepare,
+                                  dict(callables or {}))
         result = _load(out, eager=temporary)
         if "error" in done:
             if done["error_class"] == "KeyboardInterrupt":

@@ -7,6 +7,8 @@
 #include <exception>
 #include <string>
 
+#include "rpsd/hybrid_test/external_parts.h"
+
 namespace rpsd::python {
 
 // C++ exceptions to the package's exception classes (rpsd.errors), as apps/rpsd/main.cpp maps
@@ -19,6 +21,9 @@ struct PythonError {
   std::string message;
 };
 PythonError python_error_of(std::exception_ptr error);
+// The Python objects rpsd.run(..., callables={name: object}) gives, as the parts a scenario
+// names with `kind: external` (a compensator, a structure's restoring force). Needs the GIL.
+hybrid_test::ExternalParts external_parts(const pybind11::dict& callables);
 // _rpsd.run_scenario: a scenario run into a folder on a worker thread, Ctrl-C honoured.
 void register_run(pybind11::module_& m);
 // _rpsd.validate_json, dry_run_json, analyze_servo_json, integrator_properties_json.

@@ -29,15 +29,19 @@ std::vector<scenarios::Override> to_overrides(const OverrideTexts& texts) {
   return overrides;
 }
 
-std::string validate_json(const std::string& file, const OverrideTexts& set) {
+std::string validate_json(const std::string& file, const OverrideTexts& set, const py::dict& callables) {
+  const hybrid_test::ExternalParts parts = external_parts(callables);
   const py::gil_scoped_release nogil;
   std::ostringstream text;
-  return commands::validate_file(file, to_overrides(set), text).dump(2);
+  return commands::validate_file(file, to_overrides(set), text, parts).dump(2);
 }
 
-std::string dry_run_json(const std::string& file, const OverrideTexts& set, const std::vector<std::string>& nodes) {
+// The dry run takes its steps on this thread, the GIL released: a Python part takes it per call.
+std::string dry_run_json(const std::string& file, const OverrideTexts& set, const std::vector<std::string>& nodes,
+                         const py::dict& callables) {
+  const hybrid_test::ExternalParts parts = external_parts(callables);
   const py::gil_scoped_release nogil;
-  const auto study = commands::load_run_scenario(file, commands::run_overrides({}, to_overrides(set)));
+  const auto study = commands::load_run_scenario(file, commands::run_overrides({}, to_overrides(set)), parts);
   std::ostringstream table;
   return commands::dry_run_check(study, nodes, table).report.dump(2);
 }
@@ -58,9 +62,10 @@ std::string integrator_properties_json(const std::string& name, const std::vecto
 }  // namespace
 
 void register_checks(py::module_& m) {
-  m.def("validate_json", &validate_json, py::arg("file"), py::arg("overrides"), "`rpsd validate FILE --json`");
+  m.def("validate_json", &validate_json, py::arg("file"), py::arg("overrides"), py::arg("callables") = py::dict(),
+        "`rpsd validate FILE --json`");
   m.def("dry_run_json", &dry_run_json, py::arg("file"), py::arg("overrides"), py::arg("nodes"),
-        "`rpsd run FILE --dry-run --json`");
+        py::arg("callables") = py::dict(), "`rpsd run FILE --dry-run --json`");
   m.def("analyze_servo_json", &analyze_servo_json, py::arg("file"), "`rpsd analyze FILE --json`");
   m.def("integrator_properties_json", &integrator_properties_json, py::arg("name"), py::arg("omega_dt"),
         py::arg("damping"), py::arg("rho_inf"), py::arg("alpha"), "`rpsd analyze integrator NAME --json`");

@@ -39,11 +39,11 @@ std::vector<scenarios::Override> to_overrides(const OverrideTexts& texts) {
 // The scenario as `rpsd run` reads it; a single test writes results.h5 and the CSV tables
 // (format "both") unless the caller names a format (the argument, or output.format in `set`).
 studies::StudyDocument load_for_python(const std::string& scenario, const std::vector<scenarios::Override>& set,
-                                       commands::RunOverrideOptions extra) {
-  studies::StudyDocument file = commands::load_run_scenario(scenario, commands::run_overrides(extra, set));
+                                       commands::RunOverrideOptions extra, const hybrid_test::ExternalParts& parts) {
+  studies::StudyDocument file = commands::load_run_scenario(scenario, commands::run_overrides(extra, set), parts);
   if (!extra.format.empty() || !commands::is_single_test(file)) return file;
   extra.format = "both";
-  return commands::load_run_scenario(scenario, commands::run_overrides(extra, set));
+  return commands::load_run_scenario(scenario, commands::run_overrides(extra, set), parts);
 }
 
 // Runs the study on a worker thread; returns when it ended. A Python signal handler's
@@ -87,12 +87,13 @@ std::optional<py::error_already_set> run_watching_signals(const studies::StudyDo
 }
 
 py::dict run_scenario(const std::string& scenario, const std::string& out, const OverrideTexts& set,
-                      const std::string& record, const std::string& format, bool prepare) {
+                      const std::string& record, const std::string& format, bool prepare, const py::dict& callables) {
   const std::vector<scenarios::Override> overrides = to_overrides(set);
+  const hybrid_test::ExternalParts parts = external_parts(callables);
   std::optional<studies::StudyDocument> file;
   {
     const py::gil_scoped_release nogil;
-    file.emplace(load_for_python(scenario, overrides, {record, false, format}));
+    file.emplace(load_for_python(scenario, overrides, {record, false, format}, parts));
   }
   commands::ScenarioRunOptions options;
   options.out = out;
@@ -124,7 +125,7 @@ void prepare_folder(const std::string& out, bool replace) { output::prepare_resu
 
 void register_run(py::module_& m) {
   m.def("run_scenario", &run_scenario, py::arg("scenario"), py::arg("out"), py::arg("overrides"), py::arg("record"),
-        py::arg("format"), py::arg("prepare"),
+        py::arg("format"), py::arg("prepare"), py::arg("callables") = py::dict(),
         "Runs a scenario file into `out` as `rpsd run` does; returns {single_test, result[, error_class, error]}.");
   m.def("prepare_folder", &prepare_folder, py::arg("out"), py::arg("replace") = false,
         "Makes `out` ready for one run as `rpsd run --out` does.");

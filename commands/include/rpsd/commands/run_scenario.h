@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "rpsd/hybrid_test/external_parts.h"
 #include "rpsd/hybrid_test/progress.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/studies/study_output.h"
@@ -16,9 +17,11 @@ namespace rpsd::commands {
 
 // Reads the scenario with its overrides (run_overrides) and refuses what cannot run: HDF5 output
 // for a sweep or a Monte Carlo batch (std::invalid_argument, exit code 2). ConfigError names the
-// file, line, column and key.
+// file, line, column and key. `external`: the parts a host program gives for `kind: external`
+// (the Python module's callables; none from the command line).
 studies::StudyDocument load_run_scenario(const std::filesystem::path& scenario,
-                                         const std::vector<scenarios::Override>& overrides);
+                                         const std::vector<scenarios::Override>& overrides,
+                                         const hybrid_test::ExternalParts& external = {});
 
 // An `rpsd_test` without a sweep or a Monte Carlo batch: the one kind that writes results.h5.
 bool is_single_test(const studies::StudyDocument& file);
