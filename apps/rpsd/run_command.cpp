@@ -32,6 +32,8 @@ struct RunOptions {
   std::vector<std::string> node_files;
   bool telemetry = false;
   std::string format;
+  std::string histories;
+  std::string history_rate_hz;
 };
 
 // The limits a node enforces, as `rpsd servo-node FILE` reads them.
@@ -94,6 +96,14 @@ void add_run(CLI::App& app) {
   run->add_option("--format", options->format,
                   "Write the histories as csv, hdf5 (results.h5, docs/results-format.md) or both (as output.format)")
       ->check(CLI::IsMember({"csv", "hdf5", "both"}));
+  run->add_option("--histories", options->histories,
+                  "Keep every step's histories (all), none (criteria_only: summary.json's criteria, from every step) "
+                  "or every k-th step (decimated, with --history-rate-hz) (as output.histories)")
+      ->check(CLI::IsMember({"all", "criteria_only", "decimated"}));
+  // The rate is checked by the scenario's reader (a divisor of the control rate), as the key's.
+  run->add_option("--history-rate-hz", options->history_rate_hz,
+                  "With --histories decimated: the rate of the rows kept, the control rate over a whole number (as "
+                  "output.history_rate_hz)");
   run->callback([options] {
     // --record replaces the record and keeps the scenario's processing; --set may then refine it.
     std::vector<scenarios::Override> overrides;
@@ -104,14 +114,12 @@ void add_run(CLI::App& app) {
     }
     if (options->telemetry) overrides.push_back({"output.telemetry", "true", "--telemetry"});
     if (!options->format.empty()) overrides.push_back({"output.format", options->format, "--format"});
+    if (!options->histories.empty()) overrides.push_back({"output.histories", options->histories, "--histories"});
+    if (!options->history_rate_hz.empty()) {
+      overrides.push_back({"output.history_rate_hz", options->history_rate_hz, "--history-rate-hz"});
+    }
     for (auto& o : parse_overrides(options->overrides)) overrides.push_back(std::move(o));
     const auto file = scenarios::load_study(options->scenario, overrides);
-    // One results.h5 per test: a sweep's or a batch's cases are written as CSV (docs/results-format.md).
-    if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
-        test && test->results_format != hybrid_test::ResultsFormat::kCsv && (!file.sweep.empty() || file.monte_carlo)) {
-      throw CLI::ValidationError("--format", options->scenario + ": output.format hdf5 or both is for a single test; " +
-                                                 "a sweep or a Monte Carlo batch writes CSV (docs/results-format.md)");
-    }
     if (options->dry_run) {
       const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
       if (!test) throw CLI::ValidationError("--dry-run", "needs an rpsd_test scenario");
