@@ -71,7 +71,10 @@ struct PlottedTables {
   std::string test, reference, zoom;
 };
 
-PlottedTables plotted_tables(const std::filesystem::path& dir, int first_dof_column, int dofs, bool drifts) {
+// `thinned`: the tables hold every k-th step only (output.histories: decimated), already few
+// enough rows to draw whole; thinning them again for the plots would copy most of them.
+PlottedTables plotted_tables(const std::filesystem::path& dir, int first_dof_column, int dofs, bool drifts,
+                             bool thinned) {
   constexpr std::size_t kBuckets = 1100;  // one per pixel column of the widest plot
   const auto column = [](int c) { return [c](const output::CsvRow& row) { return row.at(c - 1); }; };
   std::vector<output::PlottedQuantity> dof_columns;
@@ -87,7 +90,7 @@ PlottedTables plotted_tables(const std::filesystem::path& dir, int first_dof_col
   const auto decimate = [&](std::string& name, const output::RecordedCsv& table,
                             const std::vector<output::PlottedQuantity>& quantities) {
     const std::string decimated = "plot_" + name;
-    if (output::write_rows_keeping_peaks(table, dir / decimated, quantities, kBuckets)) {
+    if (!thinned && output::write_rows_keeping_peaks(table, dir / decimated, quantities, kBuckets)) {
       name = decimated;
     } else {
       std::filesystem::remove(dir / decimated);  // a shorter run's redraw must not draw an older one's
@@ -145,7 +148,8 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   }
   // time_history.csv columns: 1 step, 2 time, 3 a_g, then 6 per channel, then 4 per DOF.
   const int first_dof_column = 4 + 6 * channels;
-  const PlottedTables t = plotted_tables(dir, first_dof_column, dofs, drifts);
+  const bool thinned = info.value("histories_every_steps", 1) > 1;
+  const PlottedTables t = plotted_tables(dir, first_dof_column, dofs, drifts, thinned);
   const std::string& th = t.test;
   const int panels = 3 + (has_record ? 1 : 0) + (t.zoom.empty() ? 0 : 1);
   std::string script = "set datafile separator ','\nset grid\nset key outside right\n";
@@ -692,12 +696,13 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   for (std::size_t i = 0; i < dof_numbers.size(); ++i) from_the_ground_up &= dof_numbers[i] == static_cast<int>(i);
   const bool storey_drifts = std::holds_alternative<substructure::ShearBuildingParameters>(scenario.structure) &&
                              from_the_ground_up && dof_numbers.size() > 1;
-  const json plot_info = {{"title", file.name},
+  json plot_info = {{"title", file.name},
                           {"channels", scenario.experimental.size()},
                           {"recorded_dofs", scenario.record_dofs.size()},
                           {"dof_numbers", dof_numbers},
                           {"storey_drifts", storey_drifts},
                           {"ground_motion", scenario.ground_motion.has_value()}};
+  if (scenario.histories.every_steps > 1) plot_info["histories_every_steps"] = scenario.histories.every_steps;
   // The plots are drawn from the CSV files, which are the results: one that cannot be drawn
   // (too few steps, no gnuplot) is reported and `rpsd plot` redraws it; summary.json comes
   // last, so that it describes every file beside it.

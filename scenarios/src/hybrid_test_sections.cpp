@@ -574,6 +574,7 @@ hybrid_test::ResultsFormat results_format(config::Source& output) {
 hybrid_test::HistoriesConfig histories(config::Source& output, double control_rate_hz) {
   using Kept = hybrid_test::HistoriesConfig::Kept;
   hybrid_test::HistoriesConfig h;
+  const bool named = output.has("histories");
   const std::string kept =
       output.choice_or("histories", {"all", "criteria_only", "decimated"}, "all",
                        "what is written of the histories: every step, none (summary.json's criteria only) or every "
@@ -581,12 +582,12 @@ hybrid_test::HistoriesConfig histories(config::Source& output, double control_ra
   const std::optional<double> rate = output.optional_number(
       "history_rate_hz",
       Number::positive("Hz", "with histories: decimated, the rate of the rows kept: the control rate divided by a "
-                             "whole number (every k-th step by its index, nothing filtered)"));
+                             "whole number (every k-th step by its index, nothing filtered); unused by all and criteria_only"));
   h.kept = kept == "criteria_only" ? Kept::kCriteriaOnly : kept == "decimated" ? Kept::kDecimated : Kept::kAll;
-  if (h.kept != Kept::kDecimated) {
-    if (rate) output.fail("history_rate_hz", "only with histories: decimated (histories is " + kept + ")");
-    return h;
-  }
+  // A rate beside histories all or criteria_only is unused (so that --histories all overrides a
+  // file's decimated); a rate without histories is refused: it would keep every step.
+  if (rate && !named) output.fail("history_rate_hz", "only with histories: decimated (histories is all by default)");
+  if (h.kept != Kept::kDecimated) return h;
   if (!rate) output.fail("histories", "decimated needs history_rate_hz, the rate of the rows kept");
   char control[32];
   std::snprintf(control, sizeof control, "%g Hz", control_rate_hz);
