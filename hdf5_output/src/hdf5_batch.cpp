@@ -60,8 +60,8 @@ void write_table(hid_t parent, const Hdf5Table& table, const std::string& where)
   }
   const hsize_t dims[1] = {rows};
   const Id space(H5Screate_simple(1, dims, nullptr), H5Sclose, what + ": dataspace");
-  const Id set(H5Dcreate2(parent, table.name.c_str(), row_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-               H5Dclose, what + ": cannot create it");
+  const Id set(H5Dcreate2(parent, table.name.c_str(), row_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+               what + ": cannot create it");
   if (rows > 0) check(H5Dwrite(set, row_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()), what + ": write failed");
   // The units, one per field in the fields' order.
   std::vector<const char*> units;

@@ -223,7 +223,8 @@ Hdf5Results::Hdf5Results(const std::filesystem::path& path, const Hdf5Inputs& in
   // A case of a sweep or batch adds its group to the study's file, which holds the cases before it.
   file_ = group.empty() ? H5Fcreate(where.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access)
                         : H5Fopen(where.c_str(), H5F_ACC_RDWR, access);
-  if (file_ < 0) throw std::runtime_error(where + (group.empty() ? ": cannot create the HDF5 file" : ": cannot open it"));
+  if (file_ < 0)
+    throw std::runtime_error(where + (group.empty() ? ": cannot create the HDF5 file" : ": cannot open it"));
   try {
     const hid_t file = static_cast<hid_t>(file_);
     std::optional<Id> case_group;
@@ -280,7 +281,7 @@ std::string unit_of_name(const std::string& name) {
     }
   }
   static const std::vector<std::pair<std::string, std::string>> suffixes = {
-      {"_percent", "%"}, {"_ms", "ms"}, {"_m2", "m^2"}, {"_s2", "s^2"}, {"_m", "m"},  {"_n", "N"},
+      {"_percent", "%"}, {"_ms", "ms"}, {"_m2", "m^2"}, {"_s2", "s^2"}, {"_m", "m"},    {"_n", "N"},
       {"_j", "J"},       {"_s", "s"},   {"_hz", "Hz"},  {"_kg", "kg"},  {"_rad", "rad"}};
   for (const auto& [suffix, unit] : suffixes) {
     if (name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)

@@ -11,7 +11,6 @@
 #include <stdexcept>
 
 #include "operator_run_output.h"
-#include "study_results_h5.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/ground_motion/response_spectrum.h"
 #include "rpsd/hdf5_output/hdf5_batch.h"
@@ -26,6 +25,7 @@
 #include "rpsd/output/results_files.h"
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/transport/messages.h"
+#include "study_results_h5.h"
 
 namespace rpsd::hybrid_test {
 namespace {
@@ -697,11 +697,11 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   const bool storey_drifts = std::holds_alternative<substructure::ShearBuildingParameters>(scenario.structure) &&
                              from_the_ground_up && dof_numbers.size() > 1;
   json plot_info = {{"title", file.name},
-                          {"channels", scenario.experimental.size()},
-                          {"recorded_dofs", scenario.record_dofs.size()},
-                          {"dof_numbers", dof_numbers},
-                          {"storey_drifts", storey_drifts},
-                          {"ground_motion", scenario.ground_motion.has_value()}};
+                    {"channels", scenario.experimental.size()},
+                    {"recorded_dofs", scenario.record_dofs.size()},
+                    {"dof_numbers", dof_numbers},
+                    {"storey_drifts", storey_drifts},
+                    {"ground_motion", scenario.ground_motion.has_value()}};
   if (scenario.histories.every_steps > 1) plot_info["histories_every_steps"] = scenario.histories.every_steps;
   // The plots are drawn from the CSV files, which are the results: one that cannot be drawn
   // (too few steps, no gnuplot) is reported and `rpsd plot` redraws it; summary.json comes

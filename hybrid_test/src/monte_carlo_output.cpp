@@ -1,9 +1,9 @@
 #include "rpsd/hybrid_test/monte_carlo_output.h"
 
 #include <cmath>
-#include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -206,20 +206,20 @@ RunResult run_monte_carlo_into(const std::filesystem::path& dir, const TestDocum
     if (!m.also_key_paths.empty()) parameters.back()["also_keys"] = m.also_key_paths;
   }
   json summary{{"study", "rpsd_test_monte_carlo"},
-                     {"scenario", file.name},
-                     {"description", file.description},
-                     {"result", result_name(result)},
-                     {"completed", result == RunResult::kCompleted},
-                     {"runs_planned", mc.runs},
-                     {"runs_completed", completed_runs},
-                     {"runs_in_statistics", completed_runs},
-                     {"runs_left_out_of_statistics", left_out},
-                     {"seed", mc.seed},
-                     {"noise_seed_key", mc.noise_seed_key},
-                     {"parameters", parameters},
-                     {"statistics", statistics},
-                     {"runs", runs},
-                     {"provenance", output::provenance_json(file.input_files)}};
+               {"scenario", file.name},
+               {"description", file.description},
+               {"result", result_name(result)},
+               {"completed", result == RunResult::kCompleted},
+               {"runs_planned", mc.runs},
+               {"runs_completed", completed_runs},
+               {"runs_in_statistics", completed_runs},
+               {"runs_left_out_of_statistics", left_out},
+               {"seed", mc.seed},
+               {"noise_seed_key", mc.noise_seed_key},
+               {"parameters", parameters},
+               {"statistics", statistics},
+               {"runs", runs},
+               {"provenance", output::provenance_json(file.input_files)}};
   if (h5) {
     summary["results_h5"] = "results.h5";
     write_study_analysis(*h5, summary, {std::move(table.table), std::move(statistics_table.table)});

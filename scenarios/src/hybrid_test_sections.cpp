@@ -581,8 +581,10 @@ hybrid_test::HistoriesConfig histories(config::Source& output, double control_ra
                        "k-th step (history_rate_hz); the criteria always come from every step");
   const std::optional<double> rate = output.optional_number(
       "history_rate_hz",
-      Number::positive("Hz", "with histories: decimated, the rate of the rows kept: the control rate divided by a "
-                             "whole number (every k-th step by its index, nothing filtered); unused by all and criteria_only"));
+      Number::positive(
+          "Hz",
+          "with histories: decimated, the rate of the rows kept: the control rate divided by a "
+          "whole number (every k-th step by its index, nothing filtered); unused by all and criteria_only"));
   h.kept = kept == "criteria_only" ? Kept::kCriteriaOnly : kept == "decimated" ? Kept::kDecimated : Kept::kAll;
   // A rate beside histories all or criteria_only is unused (so that --histories all overrides a
   // file's decimated); a rate without histories is refused: it would keep every step.
@@ -592,7 +594,8 @@ hybrid_test::HistoriesConfig histories(config::Source& output, double control_ra
   char control[32];
   std::snprintf(control, sizeof control, "%g Hz", control_rate_hz);
   if (*rate > control_rate_hz) {
-    output.fail("history_rate_hz", "above the control rate (" + std::string(control) + "): a step is kept at most once");
+    output.fail("history_rate_hz",
+                "above the control rate (" + std::string(control) + "): a step is kept at most once");
   }
   // The steps between two kept rows: a whole number, or the rows would not be equally spaced.
   const double every = control_rate_hz / *rate;

@@ -61,7 +61,6 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
                            const std::atomic<bool>* stop_request = nullptr, std::size_t case_number = 1,
                            std::size_t cases = 1, const CaseHdf5& in_study = {});
 
-
 // Runs every case of a sweep into dir/case_NN/ and writes the table across the cases
 // (sweep.csv, summary.json, sweep.png): kStopped if any case stopped; an interruption or a
 // failed write ends the sweep after the case under way.
