@@ -79,7 +79,7 @@ void create_batch_file(const std::filesystem::path& path, const Hdf5Inputs& inpu
   H5dont_atexit();
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string where = path.string();
-  const Id access = detail::latest_format_access(where);
+  const Id access = detail::latest_format_access(where, false);
   const Id file(H5Fcreate(where.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access), H5Fclose,
                 where + ": cannot create the HDF5 file");
   detail::string_attribute(file, "study", study, where);
@@ -91,7 +91,8 @@ void write_batch_analysis(const std::filesystem::path& path, const nlohmann::jso
                           const std::vector<Hdf5Table>& tables) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string where = path.string();
-  const Id file(H5Fopen(where.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, where + ": cannot reopen it");
+  const Id access = detail::latest_format_access(where, false);
+  const Id file(H5Fopen(where.c_str(), H5F_ACC_RDWR, access), H5Fclose, where + ": cannot reopen it");
   const Id analysis = detail::make_group(file, "analysis", where);
   detail::string_dataset(analysis, "summary_json", summary.dump(2) + '\n', where);
   for (const Hdf5Table& table : tables) write_table(analysis, table, where);

@@ -77,9 +77,10 @@ void write_global_model(hid_t parent, const Hdf5Inputs& inputs, const std::strin
   }
 }
 
-Id latest_format_access(const std::string& where) {
+Id latest_format_access(const std::string& where, bool locked) {
   Id access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, where + ": file access properties");
   check(H5Pset_libver_bounds(access, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), where + ": file format");
+  if (!locked) check(H5Pset_file_locking(access, false, true), where + ": file locking");
   return access;
 }
 

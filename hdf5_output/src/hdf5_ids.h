@@ -42,7 +42,12 @@ void number_attribute(hid_t object, const std::string& name, double value, const
 void string_dataset(hid_t parent, const std::string& name, const std::string& value, const std::string& where);
 // /global_model under `parent`: the scenario as read and every input file, embedded.
 void write_global_model(hid_t parent, const Hdf5Inputs& inputs, const std::string& where);
-// File access with the newest format, which SWMR needs.
-Id latest_format_access(const std::string& where);
+// The writer's file access: the newest format, which SWMR needs. For a sweep's or batch's file
+// (`locked` false) no file lock either: a reader's open (h5py watching the study) takes the lock
+// for an instant, and had the writer to take it then, to reopen the file for the next case or
+// to start that case's SWMR writing, the case would stop with its results not written. Readers
+// are still kept out while the file is written other than by SWMR: its superblock says it is
+// open for writing. A test's own file keeps HDF5's default (locked).
+Id latest_format_access(const std::string& where, bool locked = true);
 
 }  // namespace rpsd::hdf5_output::detail

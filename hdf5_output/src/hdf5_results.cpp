@@ -219,7 +219,7 @@ Hdf5Results::Hdf5Results(const std::filesystem::path& path, const Hdf5Inputs& in
   // Errors are reported by what failed, naming the file; HDF5's own stack trace is noise.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string where = path.string();
-  const Id access = detail::latest_format_access(where);
+  const Id access = detail::latest_format_access(where, group.empty());
   // A case of a sweep or batch adds its group to the study's file, which holds the cases before it.
   file_ = group.empty() ? H5Fcreate(where.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access)
                         : H5Fopen(where.c_str(), H5F_ACC_RDWR, access);
@@ -323,7 +323,10 @@ void Hdf5Results::write_analysis(const std::filesystem::path& path, const nlohma
                                  const std::string& group) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string where = path.string();
-  const Id file(H5Fopen(where.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, where + ": cannot reopen it");
+  // A case of a study's file opens it as its writer did (no file lock); a test's own as before.
+  const Id access = detail::latest_format_access(where, false);
+  const Id file(H5Fopen(where.c_str(), H5F_ACC_RDWR, group.empty() ? H5P_DEFAULT : static_cast<hid_t>(access)),
+                H5Fclose, where + ": cannot reopen it");
   const Id root(H5Gopen2(file, group.empty() ? "/" : group.c_str(), H5P_DEFAULT), H5Gclose,
                 where + ": no group " + group);
   const Id analysis = make_group(root, "analysis", where);

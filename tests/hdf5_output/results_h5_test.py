@@ -370,3 +370,68 @@ def test_decimated_datasets_are_the_full_runs_at_the_kept_steps(both):
                          "coordinator/input_energy_j"):
                 # Bit for bit: the kept steps' values, nothing filtered.
                 assert np.array_equal(thin[run_group][path][:], full[run_group][path][:][kept]), path
+
+
+def test_a_killed_batch_keeps_its_finished_runs_whole():
+    # The file is closed between runs: a batch killed during a run keeps every run before it
+    # whole (with its criteria) and the run under way up to its last flush (docs/results-format.md).
+    folder = OUT / "h5-batch-killed"
+    shutil.rmtree(folder, ignore_errors=True)
+    process = subprocess.Popen([RPSD, "run", str(BENCHMARK), "--out", str(folder), "--format", "hdf5",
+                                "--set", "monte_carlo.runs=6"],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    path = folder / "results.h5"
+    seen = 0
+    deadline = time.monotonic() + 300  # a hang guard only
+    try:
+        # Read it while run_002 is written (SWMR) until some of its steps are in.
+        while seen == 0 and time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.02)
+            try:
+                with h5py.File(path, "r", libver="latest", swmr=True) as f:
+                    seen = len(f["run_002/test/coordinator/step"])
+            except (OSError, KeyError):  # between runs, not yet in SWMR mode, or not yet flushed
+                continue
+        assert process.poll() is None, "the batch ended before it could be killed"
+        process.send_signal(signal.SIGKILL)
+        process.wait()
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    import json
+    finished = json.loads((folder / "run_001" / "summary.json").read_text())
+    assert finished["result"] == "completed"
+    subprocess.run(["h5clear", "-s", str(folder / "results.h5")], check=True)
+    with h5py.File(folder / "results.h5", "r") as f:
+        assert "analysis" not in f
+        assert json.loads(f["run_001/analysis/summary_json"][()].decode()) == finished
+        steps = f["run_001/test/coordinator/step"][:]
+        assert steps[-1] == finished["steps"] - finished["steps"] % 16
+        assert len(steps) == finished["steps"] // 16
+        # The run under way: every step up to its last flush.
+        assert len(f["run_002/test/coordinator/step"]) >= seen
+        assert "analysis" not in f["run_002"]
+
+
+def test_a_reader_between_runs_does_not_stop_the_batch():
+    # h5py opening the file at the instant a run reopens it for writing holds its lock then: the
+    # writer tries again rather than stop the batch (exit 5 before it did).
+    folder = OUT / "h5-batch-read"
+    shutil.rmtree(folder, ignore_errors=True)
+    process = subprocess.Popen([RPSD, "run", str(BENCHMARK), "--out", str(folder), "--format", "hdf5",
+                                "--set", "monte_carlo.runs=20", "--set", "ground_motion.trim.end_s=1",
+                                "--set", "ground_motion.pad_after_s=0"],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 600  # a hang guard only
+    while process.poll() is None and time.monotonic() < deadline:
+        try:
+            with h5py.File(folder / "results.h5", "r", libver="latest", swmr=True):
+                pass
+        except OSError:  # between runs, or not yet in SWMR mode
+            pass
+    if process.poll() is None:
+        process.kill()
+    assert process.wait() == 0
+    with h5py.File(folder / "results.h5", "r") as f:
+        assert len(f["analysis/runs"]) == 20
