@@ -29,6 +29,8 @@ struct RunOptions {
   bool telemetry = false;
   std::string format;
   bool json = false;
+  std::string histories;
+  std::string history_rate_hz;
 };
 
 }  // namespace
@@ -58,11 +60,20 @@ void add_run(CLI::App& app) {
   run->add_option("--format", options->format,
                   "Write the histories as csv, hdf5 (results.h5, docs/results-format.md) or both (as output.format)")
       ->check(CLI::IsMember({"csv", "hdf5", "both"}));
+  run->add_option("--histories", options->histories,
+                  "Keep every step's histories (all), none (criteria_only: summary.json's criteria, from every step) "
+                  "or every k-th step (decimated, with --history-rate-hz) (as output.histories)")
+      ->check(CLI::IsMember({"all", "criteria_only", "decimated"}));
+  // The rate is checked by the scenario's reader (a divisor of the control rate), as the key's.
+  run->add_option("--history-rate-hz", options->history_rate_hz,
+                  "With --histories decimated: the rate of the rows kept, the control rate over a whole number (as "
+                  "output.history_rate_hz)");
   run->add_flag("--json", options->json,
                 "With --dry-run: print the report as JSON (as dry-run.json) instead of a table");
   run->callback([options] {
     const auto file = commands::load_run_scenario(
-        options->scenario, commands::run_overrides({options->record, options->telemetry, options->format},
+        options->scenario, commands::run_overrides({options->record, options->telemetry, options->format,
+                                                    options->histories, options->history_rate_hz},
                                                    parse_overrides(options->overrides)));
     if (options->dry_run) {
       if (!options->out.empty()) output::prepare_results_folder(options->out, options->replace);

@@ -24,6 +24,10 @@ std::vector<scenarios::Override> run_overrides(const RunOverrideOptions& options
   }
   if (options.telemetry) overrides.push_back({"output.telemetry", "true", "--telemetry"});
   if (!options.format.empty()) overrides.push_back({"output.format", options.format, "--format"});
+  if (!options.histories.empty()) overrides.push_back({"output.histories", options.histories, "--histories"});
+  if (!options.history_rate_hz.empty()) {
+    overrides.push_back({"output.history_rate_hz", options.history_rate_hz, "--history-rate-hz"});
+  }
   overrides.insert(overrides.end(), set.begin(), set.end());
   return overrides;
 }

@@ -1,7 +1,5 @@
 #include "rpsd/commands/run_scenario.h"
 
-#include <stdexcept>
-
 #include "rpsd/output/results_files.h"
 
 namespace rpsd::commands {
@@ -9,15 +7,7 @@ namespace rpsd::commands {
 studies::StudyDocument load_run_scenario(const std::filesystem::path& scenario,
                                          const std::vector<scenarios::Override>& overrides,
                                          const hybrid_test::ExternalParts& external) {
-  studies::StudyDocument file = scenarios::load_study(scenario, overrides, external);
-  // One results.h5 per test: a sweep's or a batch's cases are written as CSV (docs/results-format.md).
-  if (const auto* test = std::get_if<hybrid_test::TestConfig>(&file.study);
-      test && test->results_format != hybrid_test::ResultsFormat::kCsv && (!file.sweep.empty() || file.monte_carlo)) {
-    throw std::invalid_argument("--format: " + scenario.string() +
-                                ": output.format hdf5 or both is for a single test; " +
-                                "a sweep or a Monte Carlo batch writes CSV (docs/results-format.md)");
-  }
-  return file;
+  return scenarios::load_study(scenario, overrides, external);
 }
 
 bool is_single_test(const studies::StudyDocument& file) {

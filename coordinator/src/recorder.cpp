@@ -17,10 +17,12 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
       keep_records_(options.keep_records),
       dof_view_(std::move(options.dof_view)),
       held_channels_(std::move(options.held_channels)),
+      csv_every_steps_(options.csv_every_steps),
       observers_(std::move(options.observers)),
       row_(static_cast<std::size_t>(64 + (output::kG10MaxChars + 1) *
                                              (10 + 7 * channels + 4 * dofs + 3 * static_cast<int>(dof_view_.size()) +
                                               3 * static_cast<int>(held_channels_.size())))) {
+  if (csv_every_steps_ < 1) throw std::invalid_argument("Recorder: csv_every_steps below 1");
   if (channels + static_cast<int>(held_channels_.size()) > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
     throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
   }
@@ -54,7 +56,7 @@ void Recorder::take(const StepRecord& r) {
   // A slot's entries beyond the record's channels and DOFs are never written (every record
   // of one recorder has the same counts), so they hold the queue's initial zeros.
   if (keep_records_) records_.push_back(r);
-  if (csv_.is_open() && !write_failed_.load(std::memory_order_relaxed)) {
+  if (csv_.is_open() && !write_failed_.load(std::memory_order_relaxed) && r.step % csv_every_steps_ == 0) {
     write_row(r);
     check_stream();
   }

@@ -3,87 +3,23 @@
 #include <hdf5.h>
 
 #include <cmath>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
-#include "rpsd/build_info/build_info.h"
-#include "rpsd/output/provenance.h"
+#include "hdf5_ids.h"
 
 namespace rpsd::hdf5_output {
 namespace {
 
 using coordinator::StepRecord;
-
-// An HDF5 identifier closed by its own close function when it goes.
-class Id {
- public:
-  Id(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error(what);
-  }
-  ~Id() {
-    if (id_ >= 0) close_(id_);
-  }
-  Id(Id&& other) noexcept : id_(other.id_), close_(other.close_) { other.id_ = -1; }
-  Id(const Id&) = delete;
-  Id& operator=(const Id&) = delete;
-  Id& operator=(Id&&) = delete;
-  operator hid_t() const { return id_; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error(what);
-}
-
-Id make_group(hid_t parent, const std::string& name, const std::string& where) {
-  return Id(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-            where + ": cannot create group " + name);
-}
-
-// A variable-length UTF-8 string type, as h5py and MATLAB read without decoding.
-Id string_type(const std::string& where) {
-  Id t(H5Tcopy(H5T_C_S1), H5Tclose, where + ": string type");
-  check(H5Tset_size(t, H5T_VARIABLE), where + ": string type");
-  check(H5Tset_cset(t, H5T_CSET_UTF8), where + ": string type");
-  return t;
-}
-
-void string_attribute(hid_t object, const std::string& name, const std::string& value, const std::string& where) {
-  const Id type = string_type(where);
-  const Id space(H5Screate(H5S_SCALAR), H5Sclose, where + ": dataspace");
-  const Id attribute(H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                     where + ": cannot create attribute " + name);
-  const char* text = value.c_str();
-  check(H5Awrite(attribute, type, &text), where + ": cannot write attribute " + name);
-}
-
-void number_attribute(hid_t object, const std::string& name, double value, const std::string& where) {
-  const Id space(H5Screate(H5S_SCALAR), H5Sclose, where + ": dataspace");
-  const Id attribute(H5Acreate2(object, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                     where + ": cannot create attribute " + name);
-  check(H5Awrite(attribute, H5T_NATIVE_DOUBLE, &value), where + ": cannot write attribute " + name);
-}
-
-void string_dataset(hid_t parent, const std::string& name, const std::string& value, const std::string& where) {
-  const Id type = string_type(where);
-  const Id space(H5Screate(H5S_SCALAR), H5Sclose, where + ": dataspace");
-  const Id set(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
-               where + ": cannot create dataset " + name);
-  const char* text = value.c_str();
-  check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, &text), where + ": cannot write dataset " + name);
-}
-
-std::string read_bytes(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file.string() + ": cannot read it to embed it in the HDF5 results");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using detail::check;
+using detail::Id;
+using detail::make_group;
+using detail::number_attribute;
+using detail::string_attribute;
+using detail::string_dataset;
 
 // One extendible column: its dataset, the type it holds and the values waiting to be written.
 struct Column {
@@ -104,6 +40,9 @@ class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
     const Id run = make_group(root, layout.name, where);
     number_attribute(run, "period_s", 1.0 / layout.control_rate_hz, where);
     number_attribute(run, "control_rate_hz", layout.control_rate_hz, where);
+    // Step n is kept when n % history_every_steps == 0 (output.histories: decimated; 1: every step).
+    number_attribute(run, "history_every_steps", static_cast<double>(layout.every_steps), where);
+    every_steps_ = layout.every_steps < 1 ? 1 : layout.every_steps;
     {
       const Id coordinator = make_group(run, "coordinator", where);
       add_whole(coordinator, "step", "1", H5T_STD_I64LE, [](const StepRecord& r) { return r.step; });
@@ -172,6 +111,7 @@ class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
   RunWriter& operator=(const RunWriter&) = delete;
 
   void observe(const StepRecord& r) override {
+    if (r.step % every_steps_ != 0) return;
     for (Column& c : columns_) {
       if (c.integer) {
         c.wholes.push_back(c.whole(r));
@@ -264,13 +204,14 @@ class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
 
   Hdf5Results& file_;
   std::vector<Column> columns_;
+  std::int64_t every_steps_ = 1;
   std::size_t buffered_ = 0;
   std::size_t written_ = 0;
   Clock::time_point last_write_;
 };
 
 Hdf5Results::Hdf5Results(const std::filesystem::path& path, const Hdf5Inputs& inputs,
-                         const std::vector<Hdf5RunLayout>& runs)
+                         const std::vector<Hdf5RunLayout>& runs, const std::string& group)
     : path_(path) {
   // A file whose close failed (a full disk) stays open inside HDF5, whose clean-up at exit
   // would then crash on it: the OS closes it instead.
@@ -278,35 +219,20 @@ Hdf5Results::Hdf5Results(const std::filesystem::path& path, const Hdf5Inputs& in
   // Errors are reported by what failed, naming the file; HDF5's own stack trace is noise.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string where = path.string();
-  const Id access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, where + ": file access properties");
-  // SWMR needs the newest file format.
-  check(H5Pset_libver_bounds(access, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), where + ": file format");
-  file_ = H5Fcreate(where.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access);
-  if (file_ < 0) throw std::runtime_error(where + ": cannot create the HDF5 file");
+  const Id access = detail::latest_format_access(where, group.empty());
+  // A case of a sweep or batch adds its group to the study's file, which holds the cases before it.
+  file_ = group.empty() ? H5Fcreate(where.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access)
+                        : H5Fopen(where.c_str(), H5F_ACC_RDWR, access);
+  if (file_ < 0)
+    throw std::runtime_error(where + (group.empty() ? ": cannot create the HDF5 file" : ": cannot open it"));
   try {
     const hid_t file = static_cast<hid_t>(file_);
-    {
-      const Id model = make_group(file, "global_model", where);
-      string_attribute(model, "scenario", inputs.scenario_name, where);
-      string_attribute(model, "rpsd_version", std::string(build_info::version()), where);
-      string_attribute(model, "rpsd_commit", std::string(build_info::commit()), where);
-      string_dataset(model, "effective_scenario", inputs.effective_yaml, where);
-      const Id files = make_group(model, "input_files", where);
-      for (std::size_t k = 0; k < inputs.input_files.size(); ++k) {
-        const std::filesystem::path& f = inputs.input_files[k];
-        const std::string bytes = read_bytes(f);
-        const hsize_t dims[1] = {bytes.size()};
-        const Id space(H5Screate_simple(1, dims, nullptr), H5Sclose, where + ": dataspace");
-        const std::string name = "file" + std::to_string(k);
-        const Id set(H5Dcreate2(files, name.c_str(), H5T_STD_U8LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                     H5Dclose, where + ": cannot create dataset " + name);
-        if (!bytes.empty())
-          check(H5Dwrite(set, H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()), where + ": write");
-        string_attribute(set, "path", std::filesystem::absolute(f).lexically_normal().string(), where);
-        string_attribute(set, "sha256", output::sha256_of_file(f), where);
-      }
-    }
-    for (const Hdf5RunLayout& run : runs) runs_.push_back(std::make_unique<RunWriter>(*this, file, run));
+    std::optional<Id> case_group;
+    if (!group.empty()) case_group.emplace(make_group(file, group, where));
+    const hid_t root = case_group ? static_cast<hid_t>(*case_group) : file;
+    detail::write_global_model(root, inputs, where);
+    for (const Hdf5RunLayout& run : runs) runs_.push_back(std::make_unique<RunWriter>(*this, root, run));
+    case_group.reset();
     // From here on nothing is created: every dataset only grows (SWMR, HDF5 1.10).
     check(H5Fstart_swmr_write(file), where + ": cannot start SWMR writing");
   } catch (...) {
@@ -344,19 +270,27 @@ void Hdf5Results::fail(const std::string& what) {
   failed_.store(true, std::memory_order_relaxed);
 }
 
-namespace {
-
-// A criterion's unit from its name's suffix, as rpsd names them.
-std::string unit_of(const std::string& name) {
+std::string unit_of_name(const std::string& name) {
+  // A quotient (stiffness_n_per_m, a3_per_s, beta2_per_s2): the numerator's unit over the
+  // denominator's, "1/s" when the numerator has none.
+  if (const std::size_t per = name.rfind("_per_"); per != std::string::npos && per > 0) {
+    const std::string below = unit_of_name(name.substr(per + 4));  // "_s2" of "_per_s2"
+    if (below != "1") {
+      const std::string above = unit_of_name(name.substr(0, per));
+      return above + "/" + below;
+    }
+  }
   static const std::vector<std::pair<std::string, std::string>> suffixes = {
-      {"_percent", "%"}, {"_ms", "ms"}, {"_m_per_s", "m/s"}, {"_m2", "m^2"}, {"_m", "m"},
-      {"_n", "N"},       {"_j", "J"},   {"_s", "s"},         {"_hz", "Hz"}};
+      {"_percent", "%"}, {"_ms", "ms"}, {"_m2", "m^2"}, {"_s2", "s^2"}, {"_m", "m"},    {"_n", "N"},
+      {"_j", "J"},       {"_s", "s"},   {"_hz", "Hz"},  {"_kg", "kg"},  {"_rad", "rad"}};
   for (const auto& [suffix, unit] : suffixes) {
-    if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    if (name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
       return unit;
   }
   return "1";
 }
+
+namespace {
 
 // A JSON value as datasets: a number (null: NaN) a scalar float64 with its unit, a boolean a
 // scalar uint8, a string a string, an object a group.
@@ -380,16 +314,22 @@ void write_json(hid_t parent, const std::string& name, const nlohmann::json& val
   const Id set(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
                where + ": cannot create dataset " + name);
   check(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v), where + ": write");
-  string_attribute(set, "units", unit_of(name), where);
+  string_attribute(set, "units", unit_of_name(name), where);
 }
 
 }  // namespace
 
-void Hdf5Results::write_analysis(const std::filesystem::path& path, const nlohmann::json& summary) {
+void Hdf5Results::write_analysis(const std::filesystem::path& path, const nlohmann::json& summary,
+                                 const std::string& group) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const std::string where = path.string();
-  const Id file(H5Fopen(where.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, where + ": cannot reopen it");
-  const Id analysis = make_group(file, "analysis", where);
+  // A case of a study's file opens it as its writer did (no file lock); a test's own as before.
+  const Id access = detail::latest_format_access(where, false);
+  const Id file(H5Fopen(where.c_str(), H5F_ACC_RDWR, group.empty() ? H5P_DEFAULT : static_cast<hid_t>(access)),
+                H5Fclose, where + ": cannot reopen it");
+  const Id root(H5Gopen2(file, group.empty() ? "/" : group.c_str(), H5P_DEFAULT), H5Gclose,
+                where + ": no group " + group);
+  const Id analysis = make_group(root, "analysis", where);
   string_dataset(analysis, "summary_json", summary.dump(2) + '\n', where);
   if (summary.contains("channels")) {
     const Id channels = make_group(analysis, "channels", where);

@@ -373,6 +373,7 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   coordinator::RecorderOptions recording = recorded_columns(s, perfect_actuator);
   recording.keep_records = options.keep_records;
   recording.observers = options.record_observers;
+  recording.csv_every_steps = s.histories.every_steps;  // output.histories: decimated
   // The structure's channels; the held forces' columns follow (RecorderOptions::held_channels).
   p.recorder =
       std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);

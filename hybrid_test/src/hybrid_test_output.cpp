@@ -13,6 +13,7 @@
 #include "operator_run_output.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/ground_motion/response_spectrum.h"
+#include "rpsd/hdf5_output/hdf5_batch.h"
 #include "rpsd/hdf5_output/hdf5_results.h"
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/hybrid_test/held_forces.h"
@@ -24,6 +25,7 @@
 #include "rpsd/output/results_files.h"
 #include "rpsd/realtime/latency_json.h"
 #include "rpsd/transport/messages.h"
+#include "study_results_h5.h"
 
 namespace rpsd::hybrid_test {
 namespace {
@@ -71,7 +73,10 @@ struct PlottedTables {
   std::string test, reference, zoom;
 };
 
-PlottedTables plotted_tables(const std::filesystem::path& dir, int first_dof_column, int dofs, bool drifts) {
+// `thinned`: the tables hold every k-th step only (output.histories: decimated), already few
+// enough rows to draw whole; thinning them again for the plots would copy most of them.
+PlottedTables plotted_tables(const std::filesystem::path& dir, int first_dof_column, int dofs, bool drifts,
+                             bool thinned) {
   constexpr std::size_t kBuckets = 1100;  // one per pixel column of the widest plot
   const auto column = [](int c) { return [c](const output::CsvRow& row) { return row.at(c - 1); }; };
   std::vector<output::PlottedQuantity> dof_columns;
@@ -87,7 +92,7 @@ PlottedTables plotted_tables(const std::filesystem::path& dir, int first_dof_col
   const auto decimate = [&](std::string& name, const output::RecordedCsv& table,
                             const std::vector<output::PlottedQuantity>& quantities) {
     const std::string decimated = "plot_" + name;
-    if (output::write_rows_keeping_peaks(table, dir / decimated, quantities, kBuckets)) {
+    if (!thinned && output::write_rows_keeping_peaks(table, dir / decimated, quantities, kBuckets)) {
       name = decimated;
     } else {
       std::filesystem::remove(dir / decimated);  // a shorter run's redraw must not draw an older one's
@@ -145,7 +150,8 @@ void draw(const std::filesystem::path& dir, const nlohmann::json& info) {
   }
   // time_history.csv columns: 1 step, 2 time, 3 a_g, then 6 per channel, then 4 per DOF.
   const int first_dof_column = 4 + 6 * channels;
-  const PlottedTables t = plotted_tables(dir, first_dof_column, dofs, drifts);
+  const bool thinned = info.value("histories_every_steps", 1) > 1;
+  const PlottedTables t = plotted_tables(dir, first_dof_column, dofs, drifts, thinned);
   const std::string& th = t.test;
   const int panels = 3 + (has_record ? 1 : 0) + (t.zoom.empty() ? 0 : 1);
   std::string script = "set datafile separator ','\nset grid\nset key outside right\n";
@@ -446,16 +452,20 @@ nlohmann::json held_forces_json(const hybrid_test::TestConfig& scenario, const h
 
 namespace {
 
-// results.h5 for a test and its reference, with the inputs: the case's own document in a batch.
+// results.h5 for a test and its reference, with the inputs: the case's own document in a batch,
+// under the case's group of the study's file. The histories as output.histories keeps them:
+// none (only the inputs, and the criteria at the end), or every k-th step.
 // Throws output::ResultsNotWritten when it cannot be made.
 std::unique_ptr<hdf5_output::Hdf5Results> make_results_h5(const std::filesystem::path& path, const TestDocument& file,
-                                                          const TestConfig& scenario, std::size_t batch_case) {
+                                                          const TestConfig& scenario, std::size_t batch_case,
+                                                          const std::string& group) {
   hdf5_output::Hdf5Inputs inputs;
   inputs.scenario_name = file.name;
   inputs.effective_yaml = batch_case > 0 ? file.case_yaml[batch_case - 1] : file.effective_yaml;
   inputs.input_files = file.input_files;
   std::vector<hdf5_output::Hdf5RunLayout> runs;
   for (const char* name : {"test", "reference"}) {
+    if (!scenario.histories.written()) break;
     const bool reference = std::string_view(name) == "reference";
     const coordinator::RecorderOptions columns = recorded_columns(scenario, reference);
     hdf5_output::Hdf5RunLayout run;
@@ -465,20 +475,44 @@ std::unique_ptr<hdf5_output::Hdf5Results> make_results_h5(const std::filesystem:
     for (auto d : scenario.record_dofs) run.dof_numbers.push_back(static_cast<std::int64_t>(d));
     run.dof_view = columns.dof_view;
     run.held_channels = columns.held_channels;
+    run.every_steps = scenario.histories.every_steps;
     runs.push_back(std::move(run));
   }
   try {
-    return std::make_unique<hdf5_output::Hdf5Results>(path, inputs, runs);
+    return std::make_unique<hdf5_output::Hdf5Results>(path, inputs, runs, group);
   } catch (const std::runtime_error& e) {
     throw output::ResultsNotWritten(e.what());
   }
 }
 
+// What summary.json says of the histories kept, when not every step was (nothing otherwise).
+nlohmann::json histories_json(const HistoriesConfig& h) {
+  nlohmann::json j = {{"kept", kept_name(h.kept)}};
+  if (h.kept == HistoriesConfig::Kept::kDecimated) {
+    j["rate_hz"] = h.rate_hz;
+    j["every_steps"] = h.every_steps;
+  }
+  return j;
+}
+
 }  // namespace
+
+std::optional<std::filesystem::path> make_study_results_h5(const std::filesystem::path& dir, const TestDocument& file,
+                                                           const std::string& study) {
+  if (file.sweep_cases.empty() || file.sweep_cases.front().results_format == ResultsFormat::kCsv) return std::nullopt;
+  const std::filesystem::path path = dir / "results.h5";
+  try {
+    hdf5_output::create_batch_file(path, {file.name, file.effective_yaml, file.input_files}, study);
+  } catch (const std::runtime_error& e) {
+    throw output::ResultsNotWritten(e.what());
+  }
+  return path;
+}
 
 TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument& file,
                            const hybrid_test::TestConfig& scenario, const ProgressSink& progress,
-                           const std::atomic<bool>* stop_request, std::size_t case_number, std::size_t cases) {
+                           const std::atomic<bool>* stop_request, std::size_t case_number, std::size_t cases,
+                           const CaseHdf5& in_study) {
   const auto report = [&](std::string_view phase, std::int64_t done, std::int64_t planned) {
     if (progress) progress({phase, case_number, cases, done, planned});
   };
@@ -496,17 +530,19 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   output::write_file_whole(dir / "effective-scenario.yaml",
                            one_of_a_batch ? file.case_yaml[case_number - 1] : file.effective_yaml);
   if (scenario.ground_motion) write_spectrum(dir, *scenario.ground_motion);
-  // The histories as CSV tables, results.h5 (docs/results-format.md) or both.
-  const bool csv = scenario.results_format != ResultsFormat::kHdf5;
+  // The histories as CSV tables, results.h5 (docs/results-format.md) or both; none with
+  // output.histories: criteria_only (results.h5 then holds the inputs and the criteria).
+  const bool csv = scenario.results_format != ResultsFormat::kHdf5 && scenario.histories.written();
   const bool hdf5 = scenario.results_format != ResultsFormat::kCsv;
-  const std::filesystem::path h5_path = dir / "results.h5";
+  const bool in_study_h5 = !in_study.file.empty();
+  const std::filesystem::path h5_path = in_study_h5 ? in_study.file : dir / "results.h5";
   std::unique_ptr<hdf5_output::Hdf5Results> h5;
-  if (hdf5) h5 = make_results_h5(h5_path, file, scenario, one_of_a_batch ? case_number : 0);
+  if (hdf5) h5 = make_results_h5(h5_path, file, scenario, one_of_a_batch ? case_number : 0, in_study.group);
   // The test and its reference run side by side and are evaluated as they go, so memory
   // does not grow with the record's length.
   hybrid_test::RunWatchers watchers(scenario, progress, case_number, cases);
   hybrid_test::RunWatch watch = watchers.watch();
-  if (h5) {
+  if (h5 && scenario.histories.written()) {
     watch.observers.push_back(&h5->observer(0));
     watch.reference_observers.push_back(&h5->observer(1));
   }
@@ -659,7 +695,12 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
       {"return_to_start", return_to_start_json(test)},
       {"provenance", output::provenance_json(file.input_files)},
   };
-  if (hdf5) summary["results_h5"] = h5_path.filename().string();
+  if (hdf5) {
+    // A case of a study writes into the study's file, one folder up, under its own group.
+    summary["results_h5"] = in_study_h5 ? "../" + h5_path.filename().string() : h5_path.filename().string();
+    if (in_study_h5) summary["results_h5_group"] = "/" + in_study.group;
+  }
+  if (scenario.histories.kept != HistoriesConfig::Kept::kAll) summary["histories"] = histories_json(scenario.histories);
   // Only with a setup: its kind, geometry, actuators and the calibration the run used.
   if (!scenario.setups.empty()) summary["experimental_setups"] = experimental_setups_json(scenario, test.calibrations);
   // Only with held forces: nothing of this section without them.
@@ -670,12 +711,13 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   for (std::size_t i = 0; i < dof_numbers.size(); ++i) from_the_ground_up &= dof_numbers[i] == static_cast<int>(i);
   const bool storey_drifts = std::holds_alternative<substructure::ShearBuildingParameters>(scenario.structure) &&
                              from_the_ground_up && dof_numbers.size() > 1;
-  const json plot_info = {{"title", file.name},
-                          {"channels", scenario.experimental.size()},
-                          {"recorded_dofs", scenario.record_dofs.size()},
-                          {"dof_numbers", dof_numbers},
-                          {"storey_drifts", storey_drifts},
-                          {"ground_motion", scenario.ground_motion.has_value()}};
+  json plot_info = {{"title", file.name},
+                    {"channels", scenario.experimental.size()},
+                    {"recorded_dofs", scenario.record_dofs.size()},
+                    {"dof_numbers", dof_numbers},
+                    {"storey_drifts", storey_drifts},
+                    {"ground_motion", scenario.ground_motion.has_value()}};
+  if (scenario.histories.every_steps > 1) plot_info["histories_every_steps"] = scenario.histories.every_steps;
   // The plots are drawn from the CSV files, which are the results: one that cannot be drawn
   // (too few steps, no gnuplot) is reported and `rpsd plot` redraws it; summary.json comes
   // last, so that it describes every file beside it.
@@ -693,7 +735,7 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   // The criteria into results.h5 (/analysis), once its SWMR writing is over.
   if (h5 && h5_error.empty()) {
     try {
-      hdf5_output::Hdf5Results::write_analysis(h5_path, summary);
+      hdf5_output::Hdf5Results::write_analysis(h5_path, summary, in_study.group);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
     }
@@ -732,7 +774,43 @@ std::string logscale(const char* axis, const std::vector<double>& values) {
   return std::string(decades ? "set logscale " : "unset logscale ") + axis + "\n";
 }
 
+// sweep.csv as results.h5's /analysis/sweep.
+hdf5_output::Hdf5Table sweep_table(const TestDocument& file, const std::vector<TestHeadline>& headlines) {
+  using Column = hdf5_output::Hdf5TableColumn;
+  const auto real = [](const std::string& name) { return Column{name, hdf5_output::unit_of_name(name)}; };
+  hdf5_output::Hdf5Table table{"sweep", {}};
+  for (std::size_t a = 0; a < file.sweep.size(); ++a) {
+    table.columns.push_back(real(file.sweep[a].key_path));
+    for (std::size_t i = 0; i < headlines.size(); ++i) table.columns.back().reals.push_back(file.sweep_values[i][a]);
+  }
+  Column completed{"completed", "1", Column::Kind::kWhole}, folder{"folder", "1", Column::Kind::kText};
+  Column j2 = real("J2_percent"), j4 = real("J4_percent"), peak = real("peak_displacement_m"),
+         reference = real("reference_peak_displacement_m");
+  for (std::size_t i = 0; i < headlines.size(); ++i) {
+    const TestHeadline& h = headlines[i];
+    completed.wholes.push_back(h.result == RunResult::kCompleted ? 1 : 0);
+    j2.reals.push_back(h.j2_percent);
+    j4.reals.push_back(h.j4_percent);
+    peak.reals.push_back(h.peak_displacement_m);
+    reference.reals.push_back(h.reference_peak_displacement_m);
+    char name[32];
+    std::snprintf(name, sizeof name, "case_%03zu", i);
+    folder.texts.emplace_back(name);
+  }
+  for (Column* c : {&completed, &j2, &j4, &peak, &reference, &folder}) table.columns.push_back(std::move(*c));
+  return table;
+}
+
 }  // namespace
+
+void write_study_analysis(const std::filesystem::path& h5, const nlohmann::json& summary,
+                          const std::vector<hdf5_output::Hdf5Table>& tables) {
+  try {
+    hdf5_output::write_batch_analysis(h5, summary, tables);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rpsd: warning: %s\n", e.what());
+  }
+}
 
 RunResult run_sweep_into(const std::filesystem::path& dir, const TestDocument& file, const ProgressSink& progress,
                          const std::atomic<bool>* stop_request) {
@@ -742,19 +820,23 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const TestDocument& f
       dir / "summary.json",
       json{{"study", "rpsd_test_sweep"}, {"scenario", file.name}, {"result", "running"}}.dump(2) + '\n');
   output::write_file_whole(dir / "effective-scenario.yaml", file.effective_yaml);
+  // With output.format hdf5 or both: one results.h5 here, a group per case.
+  const std::optional<std::filesystem::path> h5 = make_study_results_h5(dir, file, "rpsd_test_sweep");
   json cases = json::array();
   std::ostringstream table;
   for (const auto& axis : file.sweep) table << axis.key_path << ',';
   table << "completed,J2_percent,J4_percent,peak_displacement_m,reference_peak_displacement_m,folder\n";
   RunResult result = RunResult::kCompleted;
   std::vector<double> j2s, j4s;
+  std::vector<TestHeadline> headlines;
   for (std::size_t i = 0; i < file.sweep_cases.size(); ++i) {
     char folder[32];
     std::snprintf(folder, sizeof folder, "case_%03zu", i);
-    const TestHeadline h =
-        run_test_into(dir / folder, file, file.sweep_cases[i], progress, stop_request, i + 1, file.sweep_cases.size());
+    const TestHeadline h = run_test_into(dir / folder, file, file.sweep_cases[i], progress, stop_request, i + 1,
+                                         file.sweep_cases.size(), h5 ? CaseHdf5{*h5, folder} : CaseHdf5{});
     const bool completed = h.result == RunResult::kCompleted;
     if (!completed && result == RunResult::kCompleted) result = h.result;
+    headlines.push_back(h);
     json values = json::object();
     for (std::size_t a = 0; a < file.sweep.size(); ++a) {
       values[file.sweep[a].key_path] = file.sweep_values[i][a];
@@ -784,13 +866,17 @@ RunResult run_sweep_into(const std::filesystem::path& dir, const TestDocument& f
   output::write_file_whole(dir / "sweep.csv", table.str());
   json axes = json::array();
   for (const auto& axis : file.sweep) axes.push_back({{"key", axis.key_path}, {"values", axis.values}});
-  const json summary{{"study", "rpsd_test_sweep"},
-                     {"scenario", file.name},
-                     {"provenance", output::provenance_json(file.input_files)},
-                     {"result", result_name(result)},
-                     {"cases_planned", file.sweep_cases.size()},
-                     {"axes", axes},
-                     {"cases", cases}};
+  json summary{{"study", "rpsd_test_sweep"},
+               {"scenario", file.name},
+               {"provenance", output::provenance_json(file.input_files)},
+               {"result", result_name(result)},
+               {"cases_planned", file.sweep_cases.size()},
+               {"axes", axes},
+               {"cases", cases}};
+  if (h5) {
+    summary["results_h5"] = "results.h5";
+    write_study_analysis(*h5, summary, {sweep_table(file, headlines)});
+  }
   // One line per value of the second axis (or one line), J2 and J4 against the first axis.
   const std::size_t lines = file.sweep.size() > 1 ? file.sweep[1].values.size() : 1;
   const std::size_t per_line = file.sweep[0].values.size();

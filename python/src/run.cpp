@@ -93,7 +93,10 @@ py::dict run_scenario(const std::string& scenario, const std::string& out, const
   std::optional<studies::StudyDocument> file;
   {
     const py::gil_scoped_release nogil;
-    file.emplace(load_for_python(scenario, overrides, {record, false, format}, parts));
+    commands::RunOverrideOptions given;
+    given.record = record;
+    given.format = format;
+    file.emplace(load_for_python(scenario, overrides, given, parts));
   }
   commands::ScenarioRunOptions options;
   options.out = out;

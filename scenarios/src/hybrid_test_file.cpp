@@ -256,6 +256,7 @@ hybrid_test::TestConfig read_test_config(MappingReader& root, const std::filesys
   if (d.output) {
     t.telemetry = sections::telemetry(*d.output);
     t.results_format = sections::results_format(*d.output);
+    t.histories = sections::histories(*d.output, t.control_rate_hz);
     t.record_dofs = sections::record_dofs(*d.output, dofs);
   }
   // A specimen stated as `specimen:` is taken from the structure: K_N = K - K_E and M_N = M - M_E

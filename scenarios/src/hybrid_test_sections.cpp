@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "physical_ranges.h"
@@ -569,6 +570,47 @@ hybrid_test::ResultsFormat results_format(config::Source& output) {
   return f == "hdf5"   ? hybrid_test::ResultsFormat::kHdf5
          : f == "both" ? hybrid_test::ResultsFormat::kBoth
                        : hybrid_test::ResultsFormat::kCsv;
+}
+
+hybrid_test::HistoriesConfig histories(config::Source& output, double control_rate_hz) {
+  using Kept = hybrid_test::HistoriesConfig::Kept;
+  hybrid_test::HistoriesConfig h;
+  const bool named = output.has("histories");
+  const std::string kept =
+      output.choice_or("histories", {"all", "criteria_only", "decimated"}, "all",
+                       "what is written of the histories: every step, none (summary.json's criteria only) or every "
+                       "k-th step (history_rate_hz); the criteria always come from every step");
+  const std::optional<double> rate = output.optional_number(
+      "history_rate_hz",
+      Number::positive(
+          "Hz",
+          "with histories: decimated, the rate of the rows kept: the control rate divided by a "
+          "whole number (every k-th step by its index, nothing filtered); unused by all and criteria_only"));
+  h.kept = kept == "criteria_only" ? Kept::kCriteriaOnly : kept == "decimated" ? Kept::kDecimated : Kept::kAll;
+  // A rate beside histories all or criteria_only is unused (so that --histories all overrides a
+  // file's decimated); a rate without histories is refused: it would keep every step.
+  if (rate && !named) output.fail("history_rate_hz", "only with histories: decimated (histories is all by default)");
+  if (h.kept != Kept::kDecimated) return h;
+  if (!rate) output.fail("histories", "decimated needs history_rate_hz, the rate of the rows kept");
+  char control[32];
+  std::snprintf(control, sizeof control, "%g Hz", control_rate_hz);
+  if (*rate > control_rate_hz) {
+    output.fail("history_rate_hz",
+                "above the control rate (" + std::string(control) + "): a step is kept at most once");
+  }
+  // The steps between two kept rows: a whole number, or the rows would not be equally spaced.
+  const double every = control_rate_hz / *rate;
+  const double whole = std::round(every);
+  if (std::abs(every - whole) > 1e-9 * whole) {
+    char divisors[96];
+    std::snprintf(divisors, sizeof divisors, "%g, %g or %g Hz", control_rate_hz / 2, control_rate_hz / 4,
+                  control_rate_hz / 16);
+    output.fail("history_rate_hz", "does not divide the control rate (" + std::string(control) +
+                                       ") into a whole number of steps; e.g. " + divisors);
+  }
+  h.rate_hz = *rate;
+  h.every_steps = static_cast<std::int64_t>(whole);
+  return h;
 }
 
 std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs) {

@@ -100,6 +100,9 @@ void free_vibration(config::Source& f, Eigen::Index dofs, hybrid_test::TestConfi
 std::vector<Eigen::Index> record_dofs(config::Source& output, Eigen::Index dofs);
 // output.format (before record_dofs, which finishes the section).
 hybrid_test::ResultsFormat results_format(config::Source& output);
+// output.histories and output.history_rate_hz, the latter checked against the control rate
+// (before record_dofs, which finishes the section).
+hybrid_test::HistoriesConfig histories(config::Source& output, double control_rate_hz);
 // output.telemetry and output.telemetry_samples_per_s (before record_dofs, which finishes the section).
 telemetry::TelemetryConfig telemetry(config::Source& output);
 

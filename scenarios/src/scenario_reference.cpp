@@ -222,6 +222,7 @@ void test_scenario(Document& doc) {
   doc.table("output", listing("output", [](config::Source& s) {
               (void)ts::telemetry(s);
               (void)ts::results_format(s);
+              (void)ts::histories(s, 4096.0);
               (void)ts::record_dofs(s, kListedDofs);
             }));
   doc.table("sweep", listing("", [](config::Source& s) { (void)study_sections::sweep(s); }),

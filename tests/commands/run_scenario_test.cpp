@@ -16,30 +16,27 @@ namespace {
 
 const std::filesystem::path kScenarios = std::filesystem::path(RPSD_TEST_SOURCE_DIR) / "examples/scenarios";
 
-TEST(RunOverrides, RecordThenFormatThenTheSetsInTheirOrder) {
+TEST(RunOverrides, RecordThenFormatThenTheHistoriesThenTheSetsInTheirOrder) {
   const auto set = parse_overrides({"output.format=csv", "structure.mass_kg=7000"});
-  const auto all = run_overrides({"rec.AT2", false, "both"}, set);
-  ASSERT_EQ(all.size(), 4u);
+  const auto all = run_overrides({"rec.AT2", false, "both", "decimated", "256"}, set);
+  ASSERT_EQ(all.size(), 6u);
   EXPECT_EQ(all[0].origin, "--record");
   EXPECT_EQ(all[0].kind, scenarios::Override::Kind::kRecord);
   EXPECT_NE(all[0].value.find(std::filesystem::absolute("rec.AT2").string()), std::string::npos);
   EXPECT_EQ(all[1].origin, "--format");
   EXPECT_EQ(all[1].value, "both");
+  EXPECT_EQ(all[2].origin, "--histories");
+  EXPECT_EQ(all[2].key_path, "output.histories");
+  EXPECT_EQ(all[3].origin, "--history-rate-hz");
+  EXPECT_EQ(all[3].value, "256");
   // A --set of the same key comes later, so it wins.
-  EXPECT_EQ(all[2].origin, "--set #1");
-  EXPECT_EQ(all[2].key_path, "output.format");
-  EXPECT_EQ(all[3].origin, "--set #2");
+  EXPECT_EQ(all[4].origin, "--set #1");
+  EXPECT_EQ(all[4].key_path, "output.format");
+  EXPECT_EQ(all[5].origin, "--set #2");
 }
 
-TEST(LoadRunScenario, RefusesHdf5ForASweepNamingTheOption) {
+TEST(LoadRunScenario, ASingleTestIsNeitherASweepNorABatchNorAStudy) {
   const auto sweep = kScenarios / "elcentro-sdof-compensation-sweep.yaml";
-  try {
-    (void)load_run_scenario(sweep, run_overrides({"", false, "hdf5"}, {}));
-    FAIL() << "no refusal";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("--format: "), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("is for a single test"), std::string::npos) << e.what();
-  }
   EXPECT_FALSE(is_single_test(load_run_scenario(sweep, {})));
   EXPECT_TRUE(is_single_test(load_run_scenario(kScenarios / "elcentro-sdof.yaml", {})));
   EXPECT_FALSE(is_single_test(load_run_scenario(kScenarios / "paper-fig7-max-gain.yaml", {})));

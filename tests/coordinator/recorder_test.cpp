@@ -10,6 +10,9 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
 
 #include "../servo/paper_rig.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
@@ -131,6 +134,43 @@ TEST(TestAssembly, AStopRequestEndsTheRunAfterTheStepUnderWay) {
   const TestRun run = test.finish(outcome);
   EXPECT_EQ(run.outcome, StepOutcome::kInterrupted);
   EXPECT_EQ(run.steps, 100);  // the step under way is counted and recorded, no further one
+}
+
+// Counts the records it is handed.
+class CountingWatcher final : public RecordObserver {
+ public:
+  void observe(const StepRecord&) override { ++seen; }
+  int seen = 0;
+};
+
+// output.histories: decimated: the CSV keeps the rows of the steps n with n % k == 0, by exact
+// step index, while the watchers (the telemetry, results.h5's writer) still see every record.
+TEST(Recorder, ADecimatedCsvKeepsEveryKthStepAndTheWatchersSeeEveryRecord) {
+  const auto csv = scratch("rpsd-recorder-decimated");
+  CountingWatcher watcher;
+  RecorderOptions options{false, 64};
+  options.csv_every_steps = 8;
+  options.observers = {&watcher};
+  Recorder recorder(csv, 1, 1, options);
+  for (std::int64_t n = 1; n <= 100; ++n) recorder.record_or_wait(some_record(n));
+  recorder.finish();
+  EXPECT_FALSE(recorder.write_failed());
+  EXPECT_EQ(watcher.seen, 100);
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);  // the header
+  std::vector<std::int64_t> steps;
+  while (std::getline(in, line)) steps.push_back(std::stoll(line.substr(0, line.find(','))));
+  std::vector<std::int64_t> expected;
+  for (std::int64_t n = 8; n <= 100; n += 8) expected.push_back(n);
+  EXPECT_EQ(steps, expected);
+  std::filesystem::remove(csv);
+}
+
+TEST(Recorder, AKeptStepEveryZeroStepsIsRefused) {
+  RecorderOptions options{false, 64};
+  options.csv_every_steps = 0;
+  EXPECT_THROW(Recorder(std::filesystem::path(), 1, 1, options), std::invalid_argument);
 }
 
 }  // namespace

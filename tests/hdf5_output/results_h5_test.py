@@ -228,3 +228,210 @@ def test_a_killed_run_leaves_a_prefix_h5py_opens():
         for name in CHANNEL:
             assert len(f["test/experimental_substructure/ch0"][name]) == len(steps)
         assert "analysis" not in f
+
+
+# Sweeps and Monte Carlo batches: one results.h5 in the study's folder, a group per case.
+SWEEP = SRC / "examples/scenarios/elcentro-sdof-compensation-sweep.yaml"
+BENCHMARK = SRC / "examples/scenarios/rths-benchmark-sample-controller-case-1.yaml"
+SHORT = ["--set", "ground_motion.trim.end_s=2", "--set", "ground_motion.pad_after_s=0"]
+
+
+def csv_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def check_table(table, rows, exact=True):
+    """A study table dataset holds its CSV's rows: the same fields in order, the same values (to the
+    CSV's 17 digits, exact; sweep.csv has a stream's default 6)."""
+    assert list(table.dtype.names) == list(rows[0].keys())
+    assert len(table) == len(rows)
+    assert len(table.attrs["units"]) == len(table.dtype.names)
+    for stored, row in zip(table[:], rows):
+        for name in table.dtype.names:
+            value = stored[name]
+            text = row[name]
+            if isinstance(value, bytes):
+                assert value.decode() == text, name
+            elif table.dtype[name].kind in "iu":
+                assert str(value) == text, name
+            elif text == "":
+                assert np.isnan(value), name
+            elif exact:
+                assert value == float(text), name  # %.17g reads back as the same double
+            else:
+                assert "%g" % value == text, name
+
+
+def check_case_group(f, group, folder):
+    """A case's group holds what a single test's results.h5 holds."""
+    import json
+    summary = json.loads((folder / "summary.json").read_text())
+    assert summary["results_h5"] == "../results.h5"
+    assert summary["results_h5_group"] == "/" + group
+    case = f[group]
+    assert {"global_model", "test", "reference", "analysis"} <= set(case)
+    assert case["global_model/effective_scenario"][()].decode() == (folder / "effective-scenario.yaml").read_text()
+    assert json.loads(case["analysis/summary_json"][()].decode()) == summary
+    for name, unit in COORDINATOR.items():
+        assert case["test/coordinator"][name].attrs["units"] == unit, name
+    if (folder / "time_history.csv").exists():
+        check_equals_csv(f, group + "/test", folder / "time_history.csv")
+        check_equals_csv(f, group + "/reference", folder / "reference_history.csv")
+
+
+@pytest.fixture(scope="module")
+def sweep():
+    return run(OUT / "h5-sweep", SWEEP, "--format", "both", *SHORT)
+
+
+@pytest.fixture(scope="module")
+def batch():
+    return run(OUT / "h5-batch", BENCHMARK, "--format", "both", "--set", "monte_carlo.runs=3", *SHORT)
+
+
+def test_a_sweep_writes_one_file_with_a_group_per_case(sweep):
+    import json
+    summary = json.loads((sweep / "summary.json").read_text())
+    assert summary["results_h5"] == "results.h5"
+    cases = [c["folder"] for c in summary["cases"]]
+    assert len(cases) == 8
+    with h5py.File(sweep / "results.h5", "r") as f:
+        assert f.attrs["study"] == "rpsd_test_sweep"
+        assert set(f) == {"global_model", "analysis", *cases}
+        assert f["global_model/effective_scenario"][()].decode() == (sweep / "effective-scenario.yaml").read_text()
+        for case in cases:
+            assert not (sweep / case / "results.h5").exists()
+            check_case_group(f, case, sweep / case)
+        check_table(f["analysis/sweep"], csv_rows(sweep / "sweep.csv"), exact=False)
+        assert json.loads(f["analysis/summary_json"][()].decode()) == summary
+        assert list(f["analysis/sweep"].attrs["units"])[-5:-1] == ["%", "%", "m", "m"]
+
+
+def test_a_batch_writes_its_runs_and_statistics_tables(batch):
+    import json
+    summary = json.loads((batch / "summary.json").read_text())
+    with h5py.File(batch / "results.h5", "r") as f:
+        assert f.attrs["study"] == "rpsd_test_monte_carlo"
+        assert set(f) == {"global_model", "analysis", "run_001", "run_002", "run_003"}
+        for run_group in ("run_001", "run_002", "run_003"):
+            check_case_group(f, run_group, batch / run_group)
+            # The benchmark's cases keep every 16th step (256 Hz) by default.
+            steps = f[run_group + "/test/coordinator/step"][:]
+            assert f[run_group + "/test"].attrs["history_every_steps"] == 16
+            assert np.array_equal(steps, np.arange(16, 16 * len(steps) + 1, 16))
+        runs = f["analysis/runs"]
+        check_table(runs, csv_rows(batch / "runs.csv"))
+        units = dict(zip(runs.dtype.names, runs.attrs["units"]))
+        assert units["experimental.0.specimen.stiffness_n_per_m"] == "N/m"
+        assert units["servo.rths_benchmark_model.a3_per_s"] == "1/s"
+        assert units["J2_rms_tracking_error_percent"] == "%"
+        statistics = f["analysis/statistics"]
+        rows = csv_rows(batch / "statistics.csv")
+        assert [q.decode() for q in statistics["quantity"]] == [r["quantity"] for r in rows]
+        for stored, row in zip(statistics[:], rows):
+            for name in ("mean", "standard_deviation", "minimum", "maximum"):
+                assert stored[name] == float(row[name]), name
+        assert json.loads(f["analysis/summary_json"][()].decode()) == summary
+
+
+def test_h5dump_lists_a_batch_file(batch):
+    listing = subprocess.run(["h5dump", "-H", str(batch / "results.h5")], capture_output=True, text=True,
+                             check=True).stdout
+    for group in ("global_model", "run_001", "test", "reference", "analysis"):
+        assert re.search(r'GROUP "%s"' % group, listing), group
+    assert re.search(r'DATASET "runs" \{\s*DATATYPE\s+H5T_COMPOUND', listing)
+    assert re.search(r'DATASET "statistics" \{\s*DATATYPE\s+H5T_COMPOUND', listing)
+    assert 'ATTRIBUTE "study"' in listing
+
+
+def test_a_criteria_only_batch_holds_no_histories():
+    folder = run(OUT / "h5-batch-criteria", BENCHMARK, "--format", "hdf5", "--histories", "criteria_only",
+                 "--set", "monte_carlo.runs=2", *SHORT)
+    with h5py.File(folder / "results.h5", "r") as f:
+        for run_group in ("run_001", "run_002"):
+            assert set(f[run_group]) == {"global_model", "analysis"}
+            assert "J2" in f[run_group + "/analysis/benchmark_criteria"]
+        check_table(f["analysis/runs"], csv_rows(folder / "runs.csv"))
+
+
+def test_decimated_datasets_are_the_full_runs_at_the_kept_steps(both):
+    folder = run(OUT / "h5-decimated", SCENARIO, "--format", "hdf5", "--histories", "decimated",
+                 "--history-rate-hz", "128")
+    with h5py.File(folder / "results.h5", "r") as thin, h5py.File(both / "results.h5", "r") as full:
+        every = full["test"].attrs["control_rate_hz"] / 128
+        assert thin["test"].attrs["history_every_steps"] == every
+        for run_group in ("test", "reference"):
+            steps = thin[run_group + "/coordinator/step"][:]
+            all_steps = full[run_group + "/coordinator/step"][:]
+            kept = all_steps % every == 0
+            assert np.array_equal(steps, all_steps[kept])
+            for path in ("experimental_substructure/ch0/measured_m", "simulation_substructure/dof0/displacement_m",
+                         "coordinator/input_energy_j"):
+                # Bit for bit: the kept steps' values, nothing filtered.
+                assert np.array_equal(thin[run_group][path][:], full[run_group][path][:][kept]), path
+
+
+def test_a_killed_batch_keeps_its_finished_runs_whole():
+    # The file is closed between runs: a batch killed during a run keeps every run before it
+    # whole (with its criteria) and the run under way up to its last flush (docs/results-format.md).
+    folder = OUT / "h5-batch-killed"
+    shutil.rmtree(folder, ignore_errors=True)
+    process = subprocess.Popen([RPSD, "run", str(BENCHMARK), "--out", str(folder), "--format", "hdf5",
+                                "--set", "monte_carlo.runs=6"],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    path = folder / "results.h5"
+    seen = 0
+    deadline = time.monotonic() + 300  # a hang guard only
+    try:
+        # Read it while run_002 is written (SWMR) until some of its steps are in.
+        while seen == 0 and time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.02)
+            try:
+                with h5py.File(path, "r", libver="latest", swmr=True) as f:
+                    seen = len(f["run_002/test/coordinator/step"])
+            except (OSError, KeyError):  # between runs, not yet in SWMR mode, or not yet flushed
+                continue
+        assert process.poll() is None, "the batch ended before it could be killed"
+        process.send_signal(signal.SIGKILL)
+        process.wait()
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    import json
+    finished = json.loads((folder / "run_001" / "summary.json").read_text())
+    assert finished["result"] == "completed"
+    subprocess.run(["h5clear", "-s", str(folder / "results.h5")], check=True)
+    with h5py.File(folder / "results.h5", "r") as f:
+        assert "analysis" not in f
+        assert json.loads(f["run_001/analysis/summary_json"][()].decode()) == finished
+        steps = f["run_001/test/coordinator/step"][:]
+        assert steps[-1] == finished["steps"] - finished["steps"] % 16
+        assert len(steps) == finished["steps"] // 16
+        # The run under way: every step up to its last flush.
+        assert len(f["run_002/test/coordinator/step"]) >= seen
+        assert "analysis" not in f["run_002"]
+
+
+def test_a_reader_between_runs_does_not_stop_the_batch():
+    # h5py opening the file at the instant a run reopens it for writing holds its lock then: the
+    # writer tries again rather than stop the batch (exit 5 before it did).
+    folder = OUT / "h5-batch-read"
+    shutil.rmtree(folder, ignore_errors=True)
+    process = subprocess.Popen([RPSD, "run", str(BENCHMARK), "--out", str(folder), "--format", "hdf5",
+                                "--set", "monte_carlo.runs=20", "--set", "ground_motion.trim.end_s=1",
+                                "--set", "ground_motion.pad_after_s=0"],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 600  # a hang guard only
+    while process.poll() is None and time.monotonic() < deadline:
+        try:
+            with h5py.File(folder / "results.h5", "r", libver="latest", swmr=True):
+                pass
+        except OSError:  # between runs, or not yet in SWMR mode
+            pass
+    if process.poll() is None:
+        process.kill()
+    assert process.wait() == 0
+    with h5py.File(folder / "results.h5", "r") as f:
+        assert len(f["analysis/runs"]) == 20

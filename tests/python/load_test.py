@@ -52,7 +52,12 @@ def test_a_monte_carlo_folder_loads(scratch):
     assert len(batch.runs) == batch.table.rows == 2
     assert "J2_rms_tracking_error_percent" in batch.table and "mean" in batch.statistics
     run = batch.runs[-1]
-    assert run.folder.name == "run_002" and run.test.steps == run.summary["steps"] > 0
+    assert run.folder.name == "run_002" and run.summary["steps"] > 0
+    # The benchmark's runs keep every k-th step (output.histories: decimated): the history holds
+    # exactly the steps k, 2k, ... with their own step indices and times.
+    k = run.summary["histories"]["every_steps"]
+    assert list(run.test.step) == list(range(k, run.summary["steps"] + 1, k))
+    assert run.test.time_s[0] == k * run.test.period_s
     assert {"measured_m_ch0", "displacement_m_dof2"} <= set(run.test)
 
 

@@ -149,6 +149,46 @@ TEST(TestScenarioFile, LoopTimingIsEndOfStepUnlessTheBenchmarksIsNamed) {
   }
 }
 
+// output.histories: every step by default; decimated keeps every k-th step, k = control rate /
+// history_rate_hz, a whole number; the rate is refused at its key when it is not one.
+TEST(TestScenarioFile, HistoriesKeepEveryStepUnlessToldAndARateMustDivideTheControlRate) {
+  using Kept = hybrid_test::HistoriesConfig::Kept;
+  // The example has no output section: each override list gives its one required key first.
+  const auto with_output = [](std::vector<Override> overrides) {
+    overrides.insert(overrides.begin(), parse_override("output.record_dofs=[0]"));
+    return overrides;
+  };
+  const auto histories = [&](const std::vector<Override>& overrides) {
+    return std::get<hybrid_test::TestConfig>(load_study(example(), with_output(overrides)).study).histories;
+  };
+  EXPECT_EQ(histories({}).kept, Kept::kAll);
+  EXPECT_EQ(histories({}).every_steps, 1);
+  const auto decimated =
+      histories({parse_override("output.histories=decimated"), parse_override("output.history_rate_hz=128")});
+  EXPECT_EQ(decimated.kept, Kept::kDecimated);
+  EXPECT_EQ(decimated.every_steps, 8);  // 1024 Hz / 128 Hz
+  EXPECT_DOUBLE_EQ(decimated.rate_hz, 128.0);
+  EXPECT_EQ(histories({parse_override("output.histories=criteria_only")}).kept, Kept::kCriteriaOnly);
+  // Beside all, a rate is unused: --histories all overrides a file that decimates.
+  const auto all = histories({parse_override("output.histories=all"), parse_override("output.history_rate_hz=100")});
+  EXPECT_EQ(all.kept, Kept::kAll);
+  EXPECT_EQ(all.every_steps, 1);
+  EXPECT_NE(error_of(with_output(
+                         {parse_override("output.histories=decimated"), parse_override("output.history_rate_hz=100")}))
+                .find("output.history_rate_hz: does not divide the control rate (1024 Hz)"),
+            std::string::npos);
+  EXPECT_NE(error_of(with_output(
+                         {parse_override("output.histories=decimated"), parse_override("output.history_rate_hz=2048")}))
+                .find("output.history_rate_hz: above the control rate"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(with_output({parse_override("output.histories=decimated")})).find("output.histories: decimated needs"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(with_output({parse_override("output.history_rate_hz=128")})).find("output.history_rate_hz: only with"),
+      std::string::npos);
+}
+
 TEST(TestScenarioFile, OverrideNeedsAnEqualsSign) { EXPECT_THROW(parse_override("servo.delay_s"), ConfigError); }
 
 }  // namespace

@@ -15,9 +15,8 @@
 
 namespace rpsd::commands {
 
-// Reads the scenario with its overrides (run_overrides) and refuses what cannot run: HDF5 output
-// for a sweep or a Monte Carlo batch (std::invalid_argument, exit code 2). ConfigError names the
-// file, line, column and key. `external`: the parts a host program gives for `kind: external`
+// Reads the scenario with its overrides (run_overrides). ConfigError names the file, line,
+// column and key. `external`: the parts a host program gives for `kind: external`
 // (the Python module's callables; none from the command line).
 studies::StudyDocument load_run_scenario(const std::filesystem::path& scenario,
                                          const std::vector<scenarios::Override>& overrides,

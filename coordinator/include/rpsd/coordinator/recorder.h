@@ -41,6 +41,9 @@ struct RecorderOptions {
   // the DOF view: held_force_command_n_chC, held_measured_m_chC, held_measured_force_n_chC
   // (empty: none, and the file is as without them).
   std::vector<int> held_channels = {};
+  // The CSV keeps the rows of the steps n with n % csv_every_steps == 0 only (output.histories:
+  // decimated); the observers still see every record. 1: every row.
+  std::int64_t csv_every_steps = 1;
   // Called by the writer thread with each record after its row, in order (the telemetry, the
   // terminal's progress); they must outlive the recorder's finish(). Empty: none.
   std::vector<RecordObserver*> observers = {};
@@ -88,6 +91,7 @@ class Recorder {
   bool keep_records_;
   std::vector<DofViewColumn> dof_view_;
   std::vector<int> held_channels_;  // the link channels of the held forces, in their order
+  std::int64_t csv_every_steps_;
   std::vector<RecordObserver*> observers_;
   std::vector<char> row_;  // one CSV row, built by the writer thread
   std::vector<StepRecord> records_;

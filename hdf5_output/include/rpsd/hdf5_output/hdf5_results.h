@@ -35,13 +35,22 @@ struct Hdf5RunLayout {
   std::vector<std::int64_t> dof_numbers;  // the recorded model DOFs, in the records' order
   std::vector<coordinator::DofViewColumn> dof_view;
   std::vector<int> held_channels;  // link channels, in the records' held order
+  // Only the steps n with n % every_steps == 0 are written (output.histories: decimated).
+  std::int64_t every_steps = 1;
 };
+
+// A quantity's unit from its name's suffix, as rpsd names them ("_m": "m", "_percent": "%"; "1"
+// for none): the criteria's and the study tables' `units`.
+std::string unit_of_name(const std::string& name);
 
 class Hdf5Results {
  public:
   // Creates `path` (replacing it), writes the inputs and every run's empty datasets, and starts
-  // SWMR writing. Throws std::runtime_error naming the file on any failure.
-  Hdf5Results(const std::filesystem::path& path, const Hdf5Inputs& inputs, const std::vector<Hdf5RunLayout>& runs);
+  // SWMR writing. With a `group`: opens the existing `path` (a sweep's or batch's file,
+  // hdf5_batch.h) and writes all that under a new group of that name instead, beside the
+  // cases before it. Throws std::runtime_error naming the file on any failure.
+  Hdf5Results(const std::filesystem::path& path, const Hdf5Inputs& inputs, const std::vector<Hdf5RunLayout>& runs,
+              const std::string& group = {});
   // Closes the file if close() was not called (errors then go unreported).
   ~Hdf5Results();
   Hdf5Results(const Hdf5Results&) = delete;
@@ -56,8 +65,10 @@ class Hdf5Results {
   std::string error() const;
 
   // After close(): adds /analysis, the criteria of summary.json (its "channels", "dofs",
-  // "benchmark_criteria", "energy_error_j") and summary.json whole. Throws std::runtime_error.
-  static void write_analysis(const std::filesystem::path& path, const nlohmann::json& summary);
+  // "benchmark_criteria", "energy_error_j") and summary.json whole; under `group` when the
+  // test is a case of a sweep's or batch's file. Throws std::runtime_error.
+  static void write_analysis(const std::filesystem::path& path, const nlohmann::json& summary,
+                             const std::string& group = {});
 
   // How long records may wait in memory before they are written and the file flushed.
   static constexpr std::chrono::milliseconds kFlushEvery{500};

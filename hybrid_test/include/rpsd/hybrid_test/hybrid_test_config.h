@@ -18,6 +18,7 @@
 #include "rpsd/coordinator/held_force.h"
 #include "rpsd/coordinator/loop_timing.h"
 #include "rpsd/coordinator/restoring_force.h"
+#include "rpsd/hybrid_test/histories_config.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/node/servo_node_config.h"
 #include "rpsd/opensees/adapter_link.h"
@@ -182,6 +183,7 @@ struct TestConfig {
   std::vector<Eigen::Index> record_dofs;
   telemetry::TelemetryConfig telemetry;  // published for `rpsd monitor` when enabled
   ResultsFormat results_format = ResultsFormat::kCsv;
+  HistoriesConfig histories;  // output.histories: every step, the criteria only, or decimated
   // In process: the servo node of a site, by site id (its limits, limit actions and
   // watchdog; identity, channels and period come from the test). A site without one runs
   // a node with ServoNodeConfig's defaults.

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "rpsd/hybrid_test/hybrid_test_document.h"
@@ -45,13 +46,20 @@ struct TestHeadline {
   double tracking_delay_ms = std::nan("");  // channel 0's signed delay (ChannelCriteria), NaN if none
 };
 
+// Where a case of a sweep or batch writes its HDF5 results: the study's results.h5, under the
+// case's group (hdf5_output/hdf5_batch.h). Empty: a results.h5 of its own, in its folder.
+struct CaseHdf5 {
+  std::filesystem::path file;
+  std::string group;  // the case's folder name: case_000, run_001
+};
+
 // `progress` (optional) hears of each phase (the test and its reference with their steps,
 // then the plots), as case `case_number` of `cases` of a sweep. `stop_request`: as in
 // hybrid_test::AssemblyOptions. The folder must be ready (prepare_results_folder).
 TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument& file,
                            const hybrid_test::TestConfig& scenario, const ProgressSink& progress = {},
                            const std::atomic<bool>* stop_request = nullptr, std::size_t case_number = 1,
-                           std::size_t cases = 1);
+                           std::size_t cases = 1, const CaseHdf5& in_study = {});
 
 // Runs every case of a sweep into dir/case_NN/ and writes the table across the cases
 // (sweep.csv, summary.json, sweep.png): kStopped if any case stopped; an interruption or a
