@@ -6,8 +6,11 @@
 
 #include <exception>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "rpsd/hybrid_test/external_parts.h"
+#include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::python {
 
@@ -21,6 +24,9 @@ struct PythonError {
   std::string message;
 };
 PythonError python_error_of(std::exception_ptr error);
+// Overrides as the package passes them (rpsd._convert.override_texts): key, YAML value, origin.
+using OverrideTexts = std::vector<std::tuple<std::string, std::string, std::string>>;
+std::vector<scenarios::Override> to_overrides(const OverrideTexts& texts);
 // The Python objects rpsd.run(..., callables={name: object}) gives, as the parts a scenario
 // names with `kind: external` (a compensator, a structure's restoring force). Needs the GIL.
 hybrid_test::ExternalParts external_parts(const pybind11::dict& callables);

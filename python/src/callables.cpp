@@ -141,6 +141,12 @@ class PythonStructureSource final : public substructure::ExternalStructureSource
 
 }  // namespace
 
+std::vector<scenarios::Override> to_overrides(const OverrideTexts& texts) {
+  std::vector<scenarios::Override> overrides;
+  for (const auto& [key, value, origin] : texts) overrides.push_back({key, value, origin});
+  return overrides;
+}
+
 hybrid_test::ExternalParts external_parts(const py::dict& callables) {
   hybrid_test::ExternalParts parts;
   for (const auto& [key, value] : callables) {

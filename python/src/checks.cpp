@@ -21,14 +21,6 @@ namespace py = pybind11;
 namespace rpsd::python {
 namespace {
 
-using OverrideTexts = std::vector<std::tuple<std::string, std::string, std::string>>;  // key, YAML value, origin
-
-std::vector<scenarios::Override> to_overrides(const OverrideTexts& texts) {
-  std::vector<scenarios::Override> overrides;
-  for (const auto& [key, value, origin] : texts) overrides.push_back({key, value, origin});
-  return overrides;
-}
-
 std::string validate_json(const std::string& file, const OverrideTexts& set, const py::dict& callables) {
   const hybrid_test::ExternalParts parts = external_parts(callables);
   const py::gil_scoped_release nogil;

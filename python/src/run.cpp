@@ -28,14 +28,6 @@ namespace py = pybind11;
 namespace rpsd::python {
 namespace {
 
-using OverrideTexts = std::vector<std::tuple<std::string, std::string, std::string>>;  // key, YAML value, origin
-
-std::vector<scenarios::Override> to_overrides(const OverrideTexts& texts) {
-  std::vector<scenarios::Override> overrides;
-  for (const auto& [key, value, origin] : texts) overrides.push_back({key, value, origin});
-  return overrides;
-}
-
 // The scenario as `rpsd run` reads it; a single test writes results.h5 and the CSV tables
 // (format "both") unless the caller names a format (the argument, or output.format in `set`).
 studies::StudyDocument load_for_python(const std::string& scenario, const std::vector<scenarios::Override>& set,

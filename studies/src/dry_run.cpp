@@ -434,13 +434,18 @@ DryRunReport dry_run(const hybrid_test::TestConfig& original, const std::vector<
   return report;
 }
 
+hybrid_test::TestConfig simulated_in_process(const hybrid_test::TestConfig& scenario) {
+  hybrid_test::TestConfig s = scenario;
+  s.transport.kind = hybrid_test::TransportConfig::Kind::kInProcess;
+  s.clock.mode = hybrid_test::ClockConfig::Mode::kAsFastAsPossible;
+  s.telemetry.enabled = false;
+  return s;
+}
+
 double predicted_lowest_mode_damping(const hybrid_test::TestConfig& original) {
   if (!original.opensees_sites.empty()) return std::numeric_limits<double>::quiet_NaN();
   try {
-    hybrid_test::TestConfig s = original;
-    s.transport.kind = hybrid_test::TransportConfig::Kind::kInProcess;
-    s.clock.mode = hybrid_test::ClockConfig::Mode::kAsFastAsPossible;
-    s.telemetry.enabled = false;
+    const hybrid_test::TestConfig s = simulated_in_process(original);
     const hybrid_test::TestAssembly test(s, {});
     const std::vector<ModePrediction> modes = modes_under_delay(test, s);
     return modes.empty() ? std::numeric_limits<double>::quiet_NaN() : modes.front().predicted_damping_ratio;

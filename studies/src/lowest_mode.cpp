@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/studies/dry_run.h"
 #include "rpsd/substructure/modal.h"
 
 namespace rpsd::studies {
@@ -11,10 +12,7 @@ namespace rpsd::studies {
 telemetry::LowestMode lowest_mode_for_identification(const hybrid_test::TestConfig& original) {
   if (!original.opensees_sites.empty() || !original.setups.empty()) return {};
   try {
-    hybrid_test::TestConfig s = original;
-    s.transport.kind = hybrid_test::TransportConfig::Kind::kInProcess;
-    s.clock.mode = hybrid_test::ClockConfig::Mode::kAsFastAsPossible;
-    s.telemetry.enabled = false;
+    const hybrid_test::TestConfig s = simulated_in_process(original);
     const hybrid_test::TestAssembly test(s, {});
     const auto& numerical = test.numerical();
     const auto k = test.partition().with_specimen_stiffness(numerical.initial_stiffness());

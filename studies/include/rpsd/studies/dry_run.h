@@ -131,6 +131,10 @@ struct DryRunReport {
 // scenario's (a held force's channel in force control, every other in displacement control).
 DryRunReport dry_run(const hybrid_test::TestConfig& scenario, const std::vector<NodeLimits>& nodes = {});
 
+// The scenario's test with its simulated plant in this process, as fast as possible, publishing
+// no telemetry: what a prediction before the run builds to learn the model.
+hybrid_test::TestConfig simulated_in_process(const hybrid_test::TestConfig& scenario);
+
 // The delay theory's damping ratio of the scenario's lowest mode with its compensated simulated
 // plant (as the dry run's table gives it), without taking a step: for the telemetry's status.
 // NaN when it cannot be predicted (OpenSees sites, a model the dry run refuses).
