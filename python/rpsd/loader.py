@@ -87,7 +87,11 @@ def _open_h5(path):
 
 
 def _load_test(folder, summary, source):
-    h5 = folder / "results.h5"
+    # A test's own results.h5, or a case's group in its sweep's or batch's file (its summary
+    # names both: docs/results-format.md).
+    h5, group = folder / "results.h5", "/"
+    if not h5.exists() and "results_h5" in summary:
+        h5, group = folder / summary["results_h5"], summary.get("results_h5_group", "/")
     csv_file = folder / "time_history.csv"
     if source is None:
         source = "hdf5" if h5.exists() else "csv"
@@ -95,8 +99,11 @@ def _load_test(folder, summary, source):
         if not h5.exists():
             raise ConfigError("%s: no results.h5 (the run wrote CSV: load(folder, source='csv'))" % folder)
         with _open_h5(h5) as f:
-            test = _history_from_h5(f["test"]) if "test" in f else None
-            reference = _history_from_h5(f["reference"]) if "reference" in f else None
+            if group not in f:
+                raise ConfigError("%s: %s holds no group %s" % (folder, h5, group))
+            g = f[group]
+            test = _history_from_h5(g["test"]) if "test" in g else None
+            reference = _history_from_h5(g["reference"]) if "reference" in g else None
         return Result(folder, summary, test, reference, "hdf5")
     if source != "csv":
         raise ConfigError("source: expected 'hdf5', 'csv' or None, got %r" % (source,))

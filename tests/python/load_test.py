@@ -44,6 +44,22 @@ def test_a_sweep_folder_loads(scratch):
     assert case.test.units["measured_m_ch0"] == "m"
 
 
+def test_a_sweep_written_as_hdf5_loads_each_case_from_its_group_as_from_the_csv(scratch):
+    cli("run", SCENARIOS / "elcentro-sdof-compensation-sweep.yaml", "--out", scratch / "both", "--format", "both",
+        "--set", "ground_motion.trim.end_s=0.5")
+    cli("run", SCENARIOS / "elcentro-sdof-compensation-sweep.yaml", "--out", scratch / "h5", "--format", "hdf5",
+        "--set", "ground_motion.trim.end_s=0.5")
+    assert not (scratch / "h5/case_001/time_history.csv").exists()
+    only_h5 = rpsd.load(scratch / "h5").cases[1]
+    from_h5, from_csv = rpsd.load(scratch / "both").cases[1], rpsd.load(scratch / "both", source="csv").cases[1]
+    assert (only_h5.source, from_h5.source, from_csv.source) == ("hdf5", "hdf5", "csv")
+    assert only_h5.test.steps == only_h5.summary["steps"] > 0
+    for name in from_csv.test:
+        assert np.array_equal(only_h5.test[name], from_h5.test[name]), name
+        assert ["%.10g" % v for v in from_h5.test[name]] == ["%.10g" % v for v in from_csv.test[name]], name
+    assert sorted(only_h5.reference) == sorted(from_csv.reference)
+
+
 def test_a_monte_carlo_folder_loads(scratch):
     cli("run", SCENARIOS / "rths-benchmark-sample-controller-case-1.yaml", "--out", scratch / "mc",
         "--set", "monte_carlo.runs=2", "--set", "ground_motion.trim.end_s=0.5")
