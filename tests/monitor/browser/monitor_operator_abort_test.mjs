@@ -48,10 +48,10 @@ async function main() {
     await page.goto(url);
     await waitFor(page, () => window.rpsdPage.link !== null);
     const out = join(results, "aborted");
-    // A 90 s synthetic record (92160 steps): the click happens mid-run at any load. The scenario
+    // A 240 s synthetic record (245760 steps): the click happens mid-run at any load. The scenario
     // asks for a return to start, which an abort skips.
     const run = start(["run", scenario, "--out", out, "--telemetry",
-                       "--set", "ground_motion={synthetic: {seed: 2026, model: kanai_tajimi, duration_s: 90, target_pga_g: 0.05}}",
+                       "--set", "ground_motion={synthetic: {seed: 2026, model: kanai_tajimi, duration_s: 240, target_pga_g: 0.05}}",
                        "--set", "transport.kind=dds", "--set", `transport.test_id=${TEST_ID}`, "--set", `transport.domain_id=${DOMAIN}`,
                        "--set", `transport.dds_config=${ddsConfig}`, "--set", "operator_commands={enabled: true, return_to_start: true, return_velocity_m_per_s: 0.01}"],
                       ["ignore", "ignore", "pipe"]);
