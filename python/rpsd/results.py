@@ -139,43 +139,51 @@ class _Cases(Sequence):
         return list(self._folders)
 
 
-class Sweep:
+class _Batch:
+    """What a sweep and a Monte Carlo batch share: ``folder``, ``summary``, ``table`` (one row
+    per run) and the runs, each a :class:`Result`."""
+
+    _noun = "runs"
+
+    def __init__(self, folder, summary, table, runs):
+        self.folder = Path(folder)
+        self.summary = summary
+        self.table = table
+        self._runs = runs
+
+    @property
+    def result(self):
+        """summary.json's ``result``."""
+        return self.summary.get("result")
+
+    def __repr__(self):
+        return "%s(%r, %d %s, %s)" % (type(self).__name__, str(self.folder), len(self._runs), self._noun, self.result)
+
+
+class Sweep(_Batch):
     """A sweep (``sweep:`` in a scenario): ``table`` (sweep.csv: each case's swept values and
     headline numbers), ``cases`` (a :class:`Result` per case, in the table's order),
     ``summary``, ``folder``."""
 
-    def __init__(self, folder, summary, table, cases):
-        self.folder = Path(folder)
-        self.summary = summary
-        self.table = table
-        self.cases = cases
+    _noun = "cases"
 
     @property
-    def result(self):
-        return self.summary.get("result")
-
-    def __repr__(self):
-        return "Sweep(%r, %d cases, %s)" % (str(self.folder), len(self.cases), self.result)
+    def cases(self):
+        return self._runs
 
 
-class MonteCarlo:
+class MonteCarlo(_Batch):
     """A Monte Carlo batch (``monte_carlo:``): ``table`` (runs.csv: each run's drawn values,
     outcome and criteria), ``statistics`` (statistics.csv), ``runs`` (a :class:`Result` per
     run), ``summary``, ``folder``."""
 
     def __init__(self, folder, summary, table, statistics, runs):
-        self.folder = Path(folder)
-        self.summary = summary
-        self.table = table
+        super().__init__(folder, summary, table, runs)
         self.statistics = statistics
-        self.runs = runs
 
     @property
-    def result(self):
-        return self.summary.get("result")
-
-    def __repr__(self):
-        return "MonteCarlo(%r, %d runs, %s)" % (str(self.folder), len(self.runs), self.result)
+    def runs(self):
+        return self._runs
 
 
 class Study:

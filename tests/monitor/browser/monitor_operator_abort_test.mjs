@@ -9,24 +9,18 @@ import { spawn } from "node:child_process";
 import { existsSync, mkdirSync, readFileSync, rmSync } from "node:fs";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
-import { monitorAddress, press, waitFor } from "./page_helpers.mjs";
+import { BrowserTest, exited, monitorAddress, press, waitFor } from "./page_helpers.mjs";
 
 const [rpsd, src, outDir, chromiumPath] = process.argv.slice(2);
 const TEST_ID = "3134", DOMAIN = "227";  // unique to this test on the machine's loopback
 const ddsConfig = join(src, "transport", "config", "loopback.xml");
 const scenario = join(src, "examples", "scenarios", "two-site-bridge.yaml");
-let passed = 0, failed = 0;
-function check(name, ok, detail) {
-  if (ok) { passed++; console.log("ok   " + name); }
-  else { failed++; console.log("FAIL " + name + (detail ? ": " + detail : "")); }
-}
-const children = [];
+const test = new BrowserTest();
+const check = test.check.bind(test);
 function start(args, stdio) {
   const child = spawn(rpsd, args, { stdio });
-  children.push(child);
-  return child;
+  return test.spawned(child);
 }
-const exited = (child) => new Promise((resolve) => (child.exitCode !== null ? resolve(child.exitCode) : child.on("exit", resolve)));
 
 async function main() {
   const results = join(outDir, "abort-results");
@@ -84,15 +78,7 @@ async function main() {
     check("no console errors", errors.length === 0, errors.join(" | "));
   } finally {
     await browser.close();
-    for (const child of children) if (child.exitCode === null) child.kill("SIGTERM");
   }
-  console.log(`${passed} passed, ${failed} failed`);
-  process.exit(failed === 0 ? 0 : 1);
 }
 
-main().catch((e) => {
-  console.log("FAIL " + (e.stack || e));
-  for (const child of children) if (child.exitCode === null) child.kill("SIGTERM");
-  console.log(`${passed} passed, ${failed + 1} failed`);
-  process.exit(1);
-});
+test.run(main);

@@ -11,7 +11,7 @@ import { spawn } from "node:child_process";
 import { mkdirSync, readFileSync, rmSync } from "node:fs";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
-import { monitorAddress, press, waitFor } from "./page_helpers.mjs";
+import { BrowserTest, exited, monitorAddress, press, waitFor } from "./page_helpers.mjs";
 
 const [rpsd, src, outDir, chromiumPath] = process.argv.slice(2);
 const TEST_ID = "3133", DOMAIN = "226";  // unique to this test on the machine's loopback
@@ -20,18 +20,12 @@ const scenario = join(src, "examples", "scenarios", "two-site-bridge.yaml");
 // A synthetic record long enough (240 s, 245760 steps) that the clicks happen mid-run even when
 // the browser is starved (CI compiling beside it: 90 s once ran out between Resume and STOP).
 const common = ["--set", "ground_motion={synthetic: {seed: 2026, model: kanai_tajimi, duration_s: 240, target_pga_g: 0.05}}"];
-let passed = 0, failed = 0;
-function check(name, ok, detail) {
-  if (ok) { passed++; console.log("ok   " + name); }
-  else { failed++; console.log("FAIL " + name + (detail ? ": " + detail : "")); }
-}
-const children = [];
+const test = new BrowserTest();
+const check = test.check.bind(test);
 function start(args, stdio) {
   const child = spawn(rpsd, args, { stdio });
-  children.push(child);
-  return child;
+  return test.spawned(child);
 }
-const exited = (child) => new Promise((resolve) => (child.exitCode !== null ? resolve(child.exitCode) : child.on("exit", resolve)));
 
 // Waits until the page has taken `count` more of the link notices the monitor sends every
 // browser twice a second (a held run publishes no new steps, so its status stays as it was).
@@ -140,15 +134,7 @@ async function main() {
     check("no console errors", errors.length === 0, errors.join(" | "));
   } finally {
     await browser.close();
-    for (const child of children) if (child.exitCode === null) child.kill("SIGTERM");
   }
-  console.log(`${passed} passed, ${failed} failed`);
-  process.exit(failed === 0 ? 0 : 1);
 }
 
-main().catch((e) => {
-  console.log("FAIL " + (e.stack || e));
-  for (const child of children) if (child.exitCode === null) child.kill("SIGTERM");
-  console.log(`${passed} passed, ${failed + 1} failed`);
-  process.exit(1);
-});
+test.run(main);

@@ -91,3 +91,24 @@ export function monitorAddress(monitor) {
     monitor.on("exit", (code) => reject(new Error("rpsd monitor ended with " + code + ": " + printed)));
   });
 }
+
+// What a browser test that starts processes shares: its checks counted and printed, every
+// process it started (spawned) ended however it ends, exit 0 only when every check passed.
+export class BrowserTest {
+  constructor() { this.passed = 0; this.failed = 0; this.children = []; }
+  check(name, ok, detail) {
+    if (ok) { this.passed++; console.log("ok   " + name); }
+    else { this.failed++; console.log("FAIL " + name + (detail ? ": " + detail : "")); }
+  }
+  spawned(child) { this.children.push(child); return child; }
+  // Runs main, then ends: an exception out of it counts as one more failure.
+  run(main) {
+    main().catch((e) => { this.failed++; console.log("FAIL " + (e.stack || e)); }).finally(() => {
+      for (const child of this.children) if (child.exitCode === null) child.kill("SIGTERM");
+      console.log(`${this.passed} passed, ${this.failed} failed`);
+      process.exit(this.failed === 0 ? 0 : 1);
+    });
+  }
+}
+
+export const exited = (child) => new Promise((resolve) => (child.exitCode !== null ? resolve(child.exitCode) : child.on("exit", resolve)));
