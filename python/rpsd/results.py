@@ -10,22 +10,11 @@ from pathlib import Path
 __all__ = ["History", "Result", "Table", "Sweep", "MonteCarlo", "Study"]
 
 
-class History(Mapping):
-    """One run's time histories: column name -> 1-D ``numpy.float64`` array, one value per step.
+class _Columns(Mapping):
+    """Column name -> array, in the file's order; columns read as attributes too."""
 
-    The columns are those of ``time_history.csv`` (e.g. ``measured_m_ch0``,
-    ``displacement_m_dof0``, ``input_energy_j``), whether read from results.h5 or the CSV;
-    ``units[name]`` is each column's unit (``"m"``, ``"N"``, ``"m/s^2"``, ``"1"`` for a count or
-    flag word). ``step`` is the step index (``int64``), ``time_s`` the step times the period
-    ``period_s``. Columns read as attributes too: ``h.measured_m_ch0``.
-    """
-
-    def __init__(self, step, period_s, columns, units):
-        self.step = step
-        self.period_s = float(period_s)
-        self.time_s = step * self.period_s
+    def __init__(self, columns):
         self._columns = dict(columns)
-        self.units = dict(units)
 
     def __getitem__(self, name):
         return self._columns[name]
@@ -46,6 +35,24 @@ class History(Mapping):
     def columns(self):
         """The column names, in the file's order."""
         return list(self._columns)
+
+
+class History(_Columns):
+    """One run's time histories: column name -> 1-D ``numpy.float64`` array, one value per step.
+
+    The columns are those of ``time_history.csv`` (e.g. ``measured_m_ch0``,
+    ``displacement_m_dof0``, ``input_energy_j``), whether read from results.h5 or the CSV;
+    ``units[name]`` is each column's unit (``"m"``, ``"N"``, ``"m/s^2"``, ``"1"`` for a count or
+    flag word). ``step`` is the step index (``int64``), ``time_s`` the step times the period
+    ``period_s``. Columns read as attributes too: ``h.measured_m_ch0``.
+    """
+
+    def __init__(self, step, period_s, columns, units):
+        super().__init__(columns)
+        self.step = step
+        self.period_s = float(period_s)
+        self.time_s = step * self.period_s
+        self.units = dict(units)
 
     @property
     def steps(self):
@@ -87,25 +94,9 @@ class Result:
         return "Result(%r, %s, %s)" % (str(self.folder), self.result, self.test)
 
 
-class Table(Mapping):
+class Table(_Columns):
     """A CSV table rpsd wrote (sweep.csv, runs.csv, statistics.csv, a study's tables): column ->
     ``numpy.float64`` array, or a list of ``str`` for a column of words (``folder``)."""
-
-    def __init__(self, columns):
-        self._columns = dict(columns)
-
-    def __getitem__(self, name):
-        return self._columns[name]
-
-    def __iter__(self):
-        return iter(self._columns)
-
-    def __len__(self):
-        return len(self._columns)
-
-    @property
-    def columns(self):
-        return list(self._columns)
 
     @property
     def rows(self):
