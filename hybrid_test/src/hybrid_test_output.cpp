@@ -705,6 +705,10 @@ TestHeadline run_test_into(const std::filesystem::path& dir, const TestDocument&
   if (!scenario.setups.empty()) summary["experimental_setups"] = experimental_setups_json(scenario, test.calibrations);
   // Only with held forces: nothing of this section without them.
   if (!scenario.held_forces.empty()) summary["held_forces"] = held_forces_json(scenario, test);
+  // Which of the host's compensators ran (kind external, rpsd.run's callables key): the kind
+  // alone does not say.
+  if (const auto* host = std::get_if<compensation::ExternalCompensatorParameters>(&scenario.compensation))
+    summary["compensation_host_name"] = host->name;
   std::vector<int> dof_numbers;
   for (auto d : scenario.record_dofs) dof_numbers.push_back(static_cast<int>(d));
   bool from_the_ground_up = true;  // DOFs 0, 1, ... n-1: a storey's drift is one less the next

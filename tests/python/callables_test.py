@@ -61,6 +61,9 @@ def test_a_python_phase_lead_gives_the_yaml_phase_leads_history_bit_for_bit(scra
                            overrides=SHORT, format="hdf5", callables={"lead": PhaseLead(0.09, 20)})
     assert python_lead.test.steps == 2048
     assert same_history(python_lead.test, yaml_lead.test) == []
+    assert python_lead.summary["compensation"] == "external"
+    assert python_lead.summary["compensation_host_name"] == "lead"
+    assert "compensation_host_name" not in yaml_lead.summary
     # The command really is the lead's, not the target's: the lead is seen in the record.
     assert not np.array_equal(python_lead.test["command_m_ch0"], python_lead.test["target_m_ch0"])
 
