@@ -90,6 +90,7 @@ def run(scenario, out=None, overrides=None, record=None, format=None, callables=
     """
     temporary = out is None
     out = Path(tempfile.mkdtemp(prefix="rpsd-run-")) if temporary else Path(os.fspath(out))
+    keep = False
     try:
         prepare = True
         if isinstance(scenario, Mapping):
@@ -106,6 +107,13 @@ def run(scenario, out=None, overrides=None, record=None, format=None, callables=
                 raise KeyboardInterrupt(done["error"])
             raise getattr(errors, done["error_class"])(done["error"], result)
         return result
+    except errors.ConfigError as e:
+        # A bad key in a dict names the line of the YAML written from it: without `out` that file
+        # stays, so that the file:line the message gives can be read.
+        keep = temporary and isinstance(scenario, Mapping) and str(out) in str(e)
+        if not keep:
+            raise
+        raise errors.ConfigError(str(e) + " (the scenario written from the dict is kept there)") from None
     finally:
-        if temporary:
+        if temporary and not keep:
             shutil.rmtree(out, ignore_errors=True)

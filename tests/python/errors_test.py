@@ -1,4 +1,7 @@
 """Errors raise rpsd's exceptions with the command line's messages: file:line:column and key."""
+import shutil
+from pathlib import Path
+
 import pytest
 import yaml
 
@@ -38,6 +41,19 @@ def test_a_bad_key_in_a_dict_names_the_line_of_its_scenario_yaml(scratch):
     # Corrected, it runs into the same folder (the scenario.yaml left there is its own).
     scenario["structure"]["mass_kg"] = scenario["structure"].pop("mas_kg")
     assert rpsd.run(scenario, out=scratch / "out", overrides=SHORT).completed
+
+
+def test_without_out_the_dicts_scenario_yaml_the_error_names_is_still_there():
+    scenario = yaml.safe_load(SCENARIO.read_text())
+    scenario["structure"]["mas_kg"] = scenario["structure"].pop("mass_kg")
+    with pytest.raises(rpsd.ConfigError) as caught:
+        rpsd.run(scenario, overrides=SHORT)
+    named = Path(caught.value.file)
+    try:
+        assert caught.value.key == "structure.mas_kg" and named.name == "scenario.yaml"
+        assert "mas_kg" in named.read_text().splitlines()[caught.value.line - 1]
+    finally:
+        shutil.rmtree(named.parent, ignore_errors=True)
 
 
 def test_a_missing_file_names_it(scratch):
