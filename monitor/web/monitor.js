@@ -402,14 +402,24 @@
     const stopped = sum.stopped_by && sum.stopped_by.reason ? sum.stopped_by.reason : (sum.result || "");
     if (stopped) addEvent({ kind: "run_ended", step: store.step[store.step.length - 1], time_s: store.time[store.time.length - 1], text: stopped });
     const n = store.step.length;
+    // A decimated history (output.histories) holds every k-th step: the counts are the run's,
+    // from summary.json, not the rows'.
+    const every = sum.histories && sum.histories.kept === "decimated" ? sum.histories.every_steps : 1;
+    const steps = every > 1 && Number.isFinite(sum.steps) ? sum.steps : n;
+    const planned = every > 1 && Number.isFinite(sum.steps_planned) ? sum.steps_planned : steps;
+    if (every > 1) {
+      if (Number.isFinite(sum.overruns)) overruns = sum.overruns;
+      if (sum.timing && Number.isFinite(sum.timing.late_feedback)) late = sum.timing.late_feedback;
+    }
     page.result = sum.result || "";
     showStatus({ test_id: "—", test_name: (path || "the results folder") + (sum.scenario ? " · " + sum.scenario : ""), run_id: 0, state: "ended",
-                 stopped_by: stopped, steps_done: n, steps_planned: n, real_time: false, overruns, late_feedback: late,
+                 stopped_by: stopped, steps_done: steps, steps_planned: planned, real_time: false, overruns, late_feedback: late,
                  worst_feedback_age_periods: worst, predicted_effective_damping: null, identified_effective_damping: null });
     $("btn-hold").classList.add("hidden"); $("btn-resume").classList.add("hidden");
     $("window").value = "0"; page.windowS = 0;
     page.dirty = true;
-    notice(`${path || "the results folder"}: ${n} steps` + (sum.result ? ` · ${sum.result}` : ""));
+    notice(`${path || "the results folder"}: ` + (every > 1 ? `${steps} steps, every ${every}th recorded (${n} rows)` : `${n} steps`) +
+           (sum.result ? ` · ${sum.result}` : ""));
     window.rpsdOpened = path;
   }
 

@@ -118,6 +118,18 @@ async function main() {
     const viewDiff = compare(viewed, history);
     check("the viewer's plots equal time_history.csv", viewDiff === "", viewDiff);
     await first.screenshot({ path: join(outDir, "monitor-viewer.png"), fullPage: true });
+
+    // A decimated folder: its rows are every 16th step; the page counts the run's steps.
+    const decimated = join(resultsDir, "synthetic-sdof-decimated");
+    const summary = JSON.parse(readFileSync(join(decimated, "summary.json"), "utf8"));
+    const rows = readHistory(decimated).steps.length;
+    await first.evaluate(async (f) => { await window.rpsdOpenFolder(f); }, relative(resultsDir, decimated));
+    const shown = await first.evaluate(() => ({ status: window.rpsdPage.status, notice: document.getElementById("notice").textContent }));
+    check("a decimated folder holds fewer rows than steps", summary.histories.every_steps === 16 && rows < summary.steps / 10,
+          `${rows} rows, ${summary.steps} steps`);
+    check("the viewer counts a decimated run's steps, not its rows",
+          shown.status.steps_done === summary.steps && shown.status.steps_planned === summary.steps_planned, JSON.stringify(shown.status));
+    check("the viewer says the rows are every 16th step", shown.notice.includes(`every 16th recorded (${rows} rows)`), shown.notice);
     check("no console errors after the commands and in the viewer", errors.length === 0, errors.join(" | "));
   } finally {
     await browser.close();
