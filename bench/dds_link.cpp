@@ -17,9 +17,10 @@
 //     closed-loop pings, a new one as soon as the pong is in, the traffic pattern of lock-step
 //     (rpsd sends the next command when the feedback is in and the step integrated); 168
 //     bytes, about the feedback sample's size (the command's is about 96). Then pings paced at 1024 Hz.
-//     ddsperf prints the round trip's percentiles once a second; a figure is the median over
-//     those lines (the first, with discovery, left out). rpsd's payloads: command 112 bytes of
-//     CDR, feedback 176; ddsperf's 168 both ways.
+//     ddsperf prints the round trip's percentiles once a second, each as half the round trip
+//     (support/ddsperf.h); a figure is twice that, the median over those lines (the first, with
+//     discovery, left out). rpsd's payloads: command 112 bytes of CDR, feedback 176; ddsperf's
+//     168 both ways.
 // --dds-config FILE runs all of it on another Cyclone configuration (docs/dds-transport.md:
 // the shared-memory one).
 // The two alternate repetition by repetition, so both see the same load.
@@ -145,7 +146,7 @@ int main(int argc, char** argv) try {
   });
 
   std::vector<LockStepRun> runs, busy_runs;
-  std::vector<double> perf_p50, perf_p99, paced_p50, paced_p99;
+  std::vector<double> perf_p50, perf_p99, paced_p50, paced_p99, perf_busy_s;
   // ddsperf's p50 and p99 of each repetition (the median over its lines), to pair with rpsd's runs.
   std::vector<double> rep_perf_p50, rep_perf_p99;
   std::string perf_command, paced_command;
@@ -166,6 +167,7 @@ int main(int argc, char** argv) try {
     for (const auto& l : closed.lines) {
       rep50.push_back(l.p50_us);
       rep99.push_back(l.p99_us);
+      perf_busy_s.push_back(bench::closed_loop_busy_s(l));
     }
     perf_p50.insert(perf_p50.end(), rep50.begin(), rep50.end());
     perf_p99.insert(perf_p99.end(), rep99.begin(), rep99.end());
@@ -255,6 +257,11 @@ int main(int argc, char** argv) try {
   fragment.add(bench::figure("ddsperf_round_trip_us",
                              "DDS round trip, ddsperf closed-loop ping/pong, same config, median (p50)", "us", perf50));
   fragment.add(bench::figure("ddsperf_round_trip_p99_us", "  the same, p99", "us", perf99));
+  // Closed loop, the round trips of one second fill it: ~1 s shows ddsperf's printed halves read
+  // as whole round trips (0.5 would be the halves themselves).
+  fragment.add(bench::figure("ddsperf_round_trip_s_per_s",
+                             "  check: count x mean round trip of each ddsperf second (closed loop: about 1)", "s",
+                             bench::summarize(perf_busy_s)));
   fragment.add(bench::figure("ddsperf_1024hz_round_trip_us",
                              "DDS round trip, ddsperf ping paced at 1024 Hz, median (p50)", "us",
                              bench::summarize(paced_p50)));
@@ -271,7 +278,8 @@ int main(int argc, char** argv) try {
       "both sides' copies; its histogram has 1 us bins (upper edges). Each rpsd figure is the median over runs "
       "of that run's p50/p99/max; throughput is simulated seconds (%.2f) over the loop's wall time, discovery "
       "excluded. ddsperf: `%s`, CYCLONEDDS_URI=file://%s, %d s a run; a sample is "
-      "one per-second line (the first left out). Paced: `%s`.",
+      "one per-second line (the first left out), twice the figures it prints (ddsperf prints half the round trip). "
+      "Paced: `%s`.",
       static_cast<long long>(runs.front().steps), options.repetitions, rpsd.c_str(), node_yaml.c_str(), domain,
       config.string().c_str(), simulated_s, perf_command.c_str(), config.string().c_str(), ddsperf_seconds,
       paced_command.c_str());

@@ -23,17 +23,21 @@ double to_us(const std::string& number, const std::string& unit) {
 
 std::vector<DdsperfLine> parse_ddsperf(const std::string& text) {
   static const std::regex line_re(
-      R"( size \d+ mean \S+ min \S+ 50% ([0-9.]+)(ns|us|ms|s) 90% \S+ 99% ([0-9.]+)(ns|us|ms|s) max ([0-9.]+)(ns|us|ms|s) cnt (\d+))");
+      R"( size \d+ mean ([0-9.]+)(ns|us|ms|s) min \S+ 50% ([0-9.]+)(ns|us|ms|s) 90% \S+ 99% ([0-9.]+)(ns|us|ms|s) max ([0-9.]+)(ns|us|ms|s) cnt (\d+))");
   std::vector<DdsperfLine> lines;
   std::istringstream in(text);
   std::string line;
   while (std::getline(in, line)) {
     std::smatch m;
     if (!std::regex_search(line, m, line_re)) continue;
-    lines.push_back({to_us(m[1], m[2]), to_us(m[3], m[4]), to_us(m[5], m[6]), std::stol(m[7])});
+    // Printed: half of each round trip (ddsperf.h).
+    const auto round_trip_us = [&](int i) { return 2.0 * to_us(m[i], m[i + 1]); };
+    lines.push_back({round_trip_us(1), round_trip_us(3), round_trip_us(5), round_trip_us(7), std::stol(m[9])});
   }
   return lines;
 }
+
+double closed_loop_busy_s(const DdsperfLine& line) { return static_cast<double>(line.count) * line.mean_us * 1e-6; }
 
 DdsperfRun run_ddsperf(const DdsperfOptions& o, const std::filesystem::path& work) {
   const auto pong_log = work / "pong.log", ping_log = work / "ping.log";
