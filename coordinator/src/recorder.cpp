@@ -11,7 +11,8 @@
 namespace rpsd::coordinator {
 
 Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, RecorderOptions options)
-    : queue_(options.queue_capacity),
+    : layout_(channels, static_cast<int>(options.held_channels.size()), dofs),
+      queue_(options.queue_capacity, layout_.row_bytes()),
       channels_(channels),
       dofs_(dofs),
       keep_records_(options.keep_records),
@@ -23,9 +24,6 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
                                              (10 + 7 * channels + 4 * dofs + 3 * static_cast<int>(dof_view_.size()) +
                                               3 * static_cast<int>(held_channels_.size())))) {
   if (csv_every_steps_ < 1) throw std::invalid_argument("Recorder: csv_every_steps below 1");
-  if (channels + static_cast<int>(held_channels_.size()) > transport::kMaxChannels || dofs > kMaxRecordedDofs) {
-    throw std::invalid_argument("Recorder: too many channels or recorded DOFs");
-  }
   for (const DofViewColumn& v : dof_view_) {
     if (v.channel < 0 || v.channel >= channels) throw std::invalid_argument("Recorder: a DOF view of no channel");
   }
@@ -44,17 +42,19 @@ Recorder::~Recorder() {
 }
 
 void Recorder::record(const StepRecord& r) {
-  if (!queue_.try_push_with([&](StepRecord& slot) { copy_used(r, slot); }))
+  if (!queue_.try_push_with([&](std::byte* row) { layout_.pack(r, row); }))
     dropped_.fetch_add(1, std::memory_order_relaxed);
 }
 
 void Recorder::record_or_wait(const StepRecord& r) {
-  while (!queue_.try_push_with([&](StepRecord& slot) { copy_used(r, slot); })) std::this_thread::yield();
+  while (!queue_.try_push_with([&](std::byte* row) { layout_.pack(r, row); })) std::this_thread::yield();
 }
 
-void Recorder::take(const StepRecord& r) {
-  // A slot's entries beyond the record's channels and DOFs are never written (every record
-  // of one recorder has the same counts), so they hold the queue's initial zeros.
+void Recorder::take(const std::byte* row) {
+  // Entries beyond the rows' channels, held forces and DOFs are never written (every record
+  // of one recorder has the same counts), so they keep a new record's zeros.
+  layout_.unpack(row, unpacked_);
+  const StepRecord& r = unpacked_;
   if (keep_records_) records_.push_back(r);
   if (csv_.is_open() && !write_failed_.load(std::memory_order_relaxed) && r.step % csv_every_steps_ == 0) {
     write_row(r);
@@ -76,7 +76,7 @@ void Recorder::check_stream() {
 }
 
 void Recorder::run() {
-  const auto take_one = [this](const StepRecord& r) { take(r); };
+  const auto take_one = [this](const std::byte* row) { take(row); };
   std::size_t since_flush = 0;
   for (;;) {
     bool any = false;

@@ -15,9 +15,10 @@
 #include <thread>
 #include <vector>
 
+#include "rpsd/coordinator/record_layout.h"
 #include "rpsd/coordinator/record_observer.h"
 #include "rpsd/coordinator/step_record.h"
-#include "rpsd/realtime/spsc_queue.h"
+#include "rpsd/realtime/spsc_row_queue.h"
 
 namespace rpsd::coordinator {
 
@@ -32,7 +33,9 @@ struct RecorderOptions {
   // Keep every record in memory for finish(). Off when the metrics are computed as the test
   // runs: memory then stays flat however long the test is.
   bool keep_records = true;
-  // Records the queue to the writer thread holds (984 bytes each): 4096 is 1 s at 4096 Hz.
+  // Records the queue to the writer thread holds, each packed to the test's channels, held
+  // forces and DOFs (record_layout.h: 192 bytes for one channel and one DOF): 4096 is 1 s at
+  // 4096 Hz.
   std::size_t queue_capacity = 1 << 12;
   // The channels a setup drives, whose DOF view follows each row's other columns (empty:
   // none, and the file is as without setups).
@@ -57,7 +60,10 @@ class Recorder {
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
 
-  // Real-time safe: never blocks; a full queue drops the record and counts it.
+  // Real-time safe: never blocks; a full queue drops the record and counts it. The queue
+  // carries the record's first channels, held forces and DOFs, as many as the recorder was
+  // built for (its channels, RecorderOptions::held_channels, its DOFs); what the writer's
+  // CSV and observers see of them is the record as the loop wrote it.
   void record(const StepRecord& r);
   // Waits (yielding) while the queue is full, so nothing is lost: for runs paced as fast as
   // possible, where a slower writer must slow the test down instead. Not real-time safe.
@@ -74,7 +80,7 @@ class Recorder {
  private:
   void write_header();
   void write_row(const StepRecord& r);
-  void take(const StepRecord& r);  // writer thread: one record off the queue
+  void take(const std::byte* row);  // writer thread: one record off the queue
   void run();
   void check_stream();  // writer thread: a failed write becomes write_failed()
 
@@ -84,7 +90,9 @@ class Recorder {
   // the time that loop needs to fill the queue (4096 records at ~1 us a step; 1 s at 4096 Hz).
   static constexpr std::chrono::milliseconds kIdlePoll{1};
 
-  realtime::SpscQueue<StepRecord> queue_;
+  RecordLayout layout_;
+  realtime::SpscRowQueue queue_;
+  StepRecord unpacked_;  // writer thread: each row unpacked, in turn
   std::filesystem::path csv_path_;
   std::ofstream csv_;
   int channels_, dofs_;

@@ -1,5 +1,5 @@
-// What the coordinator records at every step, fixed size so that it can cross the
-// real-time boundary without allocation.
+// What the coordinator records at every step, fixed size so that it is built without
+// allocation; the recorder's queue carries it packed to the test's size (record_layout.h).
 #pragma once
 
 #include <array>
@@ -58,48 +58,5 @@ struct StepRecord {
   double cycle_lateness_s = 0.0;          // how late the paced cycle woke after its deadline
   std::uint8_t feedback_age_periods = 0;  // periods the feedback used was behind its command (0: on time; real time)
 };
-
-// Copies what `from` uses (its channels and recorded DOFs) into `to`; the entries beyond
-// stay as they were. Cheaper than copying the whole fixed-size record, which is mostly
-// room for channels and DOFs a test does not have. Real-time safe.
-inline void copy_used(const StepRecord& from, StepRecord& to) {
-  to.step = from.step;
-  to.time_s = from.time_s;
-  to.ground_acceleration_m_per_s2 = from.ground_acceleration_m_per_s2;
-  to.channels = from.channels;
-  to.dofs = from.dofs;
-  for (int c = 0; c < from.channels; ++c) {
-    to.target_m[c] = from.target_m[c];
-    to.command_m[c] = from.command_m[c];
-    to.measured_m[c] = from.measured_m[c];
-    to.measured_force_n[c] = from.measured_force_n[c];
-    to.specimen_restoring_force_n[c] = from.specimen_restoring_force_n[c];
-    to.tracking_indicator_m2[c] = from.tracking_indicator_m2[c];
-    to.dof_target_m[c] = from.dof_target_m[c];
-    to.dof_measured_m[c] = from.dof_measured_m[c];
-    to.dof_force_n[c] = from.dof_force_n[c];
-    to.round_trip_s[c] = from.round_trip_s[c];
-  }
-  to.held = from.held;
-  for (int k = 0; k < from.held; ++k) {
-    to.held_force_command_n[k] = from.held_force_command_n[k];
-    to.held_measured_m[k] = from.held_measured_m[k];
-    to.held_measured_force_n[k] = from.held_measured_force_n[k];
-  }
-  for (int d = 0; d < from.dofs; ++d) {
-    to.displacement_m[d] = from.displacement_m[d];
-    to.velocity_m_per_s[d] = from.velocity_m_per_s[d];
-    to.acceleration_m_per_s2[d] = from.acceleration_m_per_s2[d];
-    to.restoring_force_n[d] = from.restoring_force_n[d];
-  }
-  to.input_energy_j = from.input_energy_j;
-  to.kinetic_energy_j = from.kinetic_energy_j;
-  to.damping_energy_j = from.damping_energy_j;
-  to.restoring_energy_j = from.restoring_energy_j;
-  to.node_status = from.node_status;
-  to.limit_flags = from.limit_flags;
-  to.cycle_lateness_s = from.cycle_lateness_s;
-  to.feedback_age_periods = from.feedback_age_periods;
-}
 
 }  // namespace rpsd::coordinator
