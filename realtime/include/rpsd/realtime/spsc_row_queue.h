@@ -1,9 +1,8 @@
 // Bounded single-producer single-consumer queue of rows of bytes, their size chosen at
-// construction: the same ring and indices as SpscQueue, for a record whose packed size
-// depends on the test (the recorder's, record_layout.h). Rows lie back to back in one
-// cache-line-aligned buffer, zeroed (and so faulted in) when the queue is built, so a push
-// writes only the lines its row covers and never faults. No locks, no allocation after
-// construction.
+// construction, for a record whose packed size depends on the test (the recorder's,
+// record_layout.h). Rows lie back to back in one cache-line-aligned buffer, zeroed (and so
+// faulted in) when the queue is built, so a push writes only the lines its row covers and
+// never faults. No locks, no allocation after construction.
 #pragma once
 
 #include <atomic>
