@@ -18,7 +18,7 @@ class InProcessLink final : public Link {
 
   LinkStatus receive(FeedbackSample& feedback) override {
     if (!pending_) return LinkStatus::kTimeout;
-    feedback = feedback_;
+    copy_feedback(feedback_, feedback);  // the node's channels, not the whole sample
     pending_ = false;
     return LinkStatus::kOk;
   }
