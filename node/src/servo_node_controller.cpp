@@ -264,8 +264,9 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
   if (has_pending_) ++counters_.superseded;
   pending_.step = command.step;
   pending_.time_s = command.time_s;
-  std::copy_n(command.displacement_m.begin(), config_.channels, pending_.displacement_m.begin());
-  std::copy_n(command.force_n.begin(), config_.channels, pending_.force_n.begin());
+  // Whole fixed-size arrays (a few vector moves); a tick reads only the node's channels.
+  pending_.displacement_m = command.displacement_m;
+  pending_.force_n = command.force_n;
   has_pending_ = true;
   newest_accepted_step_ = last_accepted_step_ = command.step;
   ticks_since_accepted_ = 0;
@@ -315,8 +316,9 @@ void ServoNodeController::choose_target() {
   }
   if (has_pending_) {
     has_pending_ = false;
-    std::copy_n(pending_.displacement_m.begin(), channels, target_m_.begin());
-    std::copy_n(pending_.force_n.begin(), channels, force_target_n_.begin());
+    // Whole fixed-size arrays: no call to copy a run-time count; only the node's channels are read.
+    target_m_ = pending_.displacement_m;
+    force_target_n_ = pending_.force_n;
     followed_step_ = pending_.step;
     followed_time_s_ = pending_.time_s;
     ++counters_.applied;

@@ -18,7 +18,7 @@ class InProcessLink final : public Link {
 
   LinkStatus receive(FeedbackSample& feedback) override {
     if (!pending_) return LinkStatus::kTimeout;
-    copy_feedback(feedback_, feedback);  // the node's channels, not the whole sample
+    feedback = feedback_;
     pending_ = false;
     return LinkStatus::kOk;
   }

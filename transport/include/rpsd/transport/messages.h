@@ -95,28 +95,6 @@ inline void copy_command_header(const CommandSample& from, CommandSample& to) {
   to.writer = from.writer;
 }
 
-// Copies a feedback sample's fields and its first `from.channels` channels; the entries beyond
-// them (which a node leaves 0) are not copied. What an in-process link hands back, without
-// copying the whole sample each step. Real-time safe.
-inline void copy_feedback(const FeedbackSample& from, FeedbackSample& to) {
-  // A new field of FeedbackSample changes its size: copy it here too, then update the size.
-  static_assert(sizeof(FeedbackSample) == 240, "copy_feedback: copy the new field of FeedbackSample");
-  to.test_id = from.test_id;
-  to.site_id = from.site_id;
-  to.run_id = from.run_id;
-  to.step = from.step;
-  to.time_s = from.time_s;
-  to.channels = from.channels;
-  to.status = from.status;
-  to.limit_flags = from.limit_flags;
-  const int n = from.channels < kMaxChannels ? from.channels : kMaxChannels;
-  for (int c = 0; c < n; ++c) {
-    to.displacement_m[c] = from.displacement_m[c];
-    to.force_n[c] = from.force_n[c];
-    to.round_trip_ns[c] = from.round_trip_ns[c];
-  }
-}
-
 // True when the measured displacement or force of one of the first `channels` channels is
 // not a finite number: a failed transducer, which must stop a test.
 inline bool has_non_finite_measurement(const FeedbackSample& sample, int channels) {
