@@ -32,6 +32,7 @@ struct TestAssembly::Parts {
   std::unique_ptr<coordinator::Recorder> recorder;
   coordinator::LiveCounters live;  // for watchers on other threads (AssemblyOptions::record_observers)
   std::vector<realtime::LatencyHistogram> round_trips;  // per site, its first channel
+  std::vector<std::size_t> round_trip_channels;         // per site, that channel
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
   TimingReport timing;
@@ -79,8 +80,9 @@ struct TestAssembly::Parts {
     const coordinator::StepRecord& r = loop->last_record();
     held_stats.add(r);
     for (std::size_t i = 0; i < round_trips.size(); ++i) {
-      const int ch = actuators->sites()[i].channels.front();
-      round_trips[i].add(static_cast<std::int64_t>(std::llround(r.round_trip_s[static_cast<std::size_t>(ch)] * 1e9)));
+      // In process every round trip is 0 s: counted as 0 ns without the conversion.
+      const double round_trip_s = r.round_trip_s[round_trip_channels[i]];
+      round_trips[i].add(round_trip_s == 0.0 ? 0 : static_cast<std::int64_t>(std::llround(round_trip_s * 1e9)));
     }
     if (after_step) after_step(r);
   }
@@ -370,6 +372,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   p.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
   if (p.loop->steps_available() >= 0) p.steps_planned = std::min(p.steps_planned, p.loop->steps_available());
   p.round_trips.resize(p.actuators->sites().size());
+  for (const auto& site : p.actuators->sites())
+    p.round_trip_channels.push_back(static_cast<std::size_t>(site.channels.front()));
   coordinator::RecorderOptions recording = recorded_columns(s, perfect_actuator);
   recording.keep_records = options.keep_records;
   recording.observers = options.record_observers;

@@ -97,6 +97,10 @@ ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::A
     }
     any_force_channel_ = true;
   }
+  for (int c = 0; c < config_.channels; ++c) {
+    const ChannelLimits& l = config_.limits[c];
+    max_speed_m_per_s_[c] = std::min(l.max_velocity_m_per_s, l.max_increment_m / config_.control_period_s);
+  }
   events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
   run_events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
   // A coordinator sends one command a period: after commands were lost (a partition, a stall
@@ -258,7 +262,11 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
     log_run({RunEvent::Kind::kBound, counters_.ticks, run_id_, run_writer_, 0, command.step, verdict});
   }
   if (has_pending_) ++counters_.superseded;
-  pending_ = command;
+  pending_.step = command.step;
+  pending_.time_s = command.time_s;
+  // Whole fixed-size arrays (a few vector moves); a tick reads only the node's channels.
+  pending_.displacement_m = command.displacement_m;
+  pending_.force_n = command.force_n;
   has_pending_ = true;
   newest_accepted_step_ = last_accepted_step_ = command.step;
   ticks_since_accepted_ = 0;
@@ -308,8 +316,9 @@ void ServoNodeController::choose_target() {
   }
   if (has_pending_) {
     has_pending_ = false;
-    std::copy_n(pending_.displacement_m.begin(), channels, target_m_.begin());
-    std::copy_n(pending_.force_n.begin(), channels, force_target_n_.begin());
+    // Whole fixed-size arrays: no call to copy a run-time count; only the node's channels are read.
+    target_m_ = pending_.displacement_m;
+    force_target_n_ = pending_.force_n;
     followed_step_ = pending_.step;
     followed_time_s_ = pending_.time_s;
     ++counters_.applied;
@@ -438,7 +447,7 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
     const double wanted = stopping ? x_command : target_m_[c];
     const double asked = (wanted - x_command) / period_s;
     double v = asked;
-    const double v_max = std::min(limits.max_velocity_m_per_s, limits.max_increment_m / period_s);
+    const double v_max = max_speed_m_per_s_[c];
     v = std::clamp(v, -v_max, v_max);
     const double a = stopping ? stop : limits.max_acceleration_m_per_s2;
     if (std::isfinite(a)) v = std::clamp(v, v_command - a * period_s, v_command + a * period_s);
@@ -457,14 +466,19 @@ std::uint32_t ServoNodeController::apply_limits(Values& applied) {
     if (force > limits.max_force_n || x_measured > limits.max_stroke_m) high = std::min(high, x_command);
     if (force < -limits.max_force_n || x_measured < -limits.max_stroke_m) low = std::max(low, x_command);
     // Past a bound the command only stops going further (it is not pulled back: a force
-    // guard that chased the measured force would feed the oil column's resonance).
-    const double v_high = braking_speed(high - x_command, stop, period_s);
-    const double v_low = -braking_speed(x_command - low, stop, period_s);
-    v = std::clamp(v, std::min(v_low, v_high), std::max(v_low, v_high));
+    // guard that chased the measured force would feed the oil column's resonance). Both
+    // braking speeds are >= 0, so only the bound ahead can change v: the one it moves toward
+    // (none when it stays), the same v as clamping between both.
+    if (v > 0.0) v = std::min(v, braking_speed(high - x_command, stop, period_s));
+    if (v < 0.0) v = std::max(v, -braking_speed(x_command - low, stop, period_s));
     // Unchanged by any bound: exactly the target, as sent.
     applied[c] = v == asked ? wanted : x_command + v * period_s;
   }
 
+  if (count == 0) {  // no limit acted on any channel: nothing to log or count
+    limit_was_active_ = {};
+    return transport::kLimitNone;
+  }
   std::uint32_t flags = transport::kLimitNone;
   std::array<std::array<bool, kLimitKinds>, transport::kMaxChannels> active{};
   for (int i = 0; i < count; ++i) {

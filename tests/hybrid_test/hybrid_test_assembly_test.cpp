@@ -48,6 +48,23 @@ TEST(TestRunner, EveryRecordedStepIsKeptWhenRunningAsFastAsPossible) {
   EXPECT_EQ(c.dofs.size(), 3u);
 }
 
+TEST(TestRunner, AnInProcessSitesRoundTripIsCountedOnEveryStepAsZero) {
+  // In process the command is answered in the same call: every step's round trip is 0 s, and
+  // the site's histogram (summary.json's timing) counts each one.
+  const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml",
+                                          {scenarios::parse_override("ground_motion.trim={end_s: 1}")});
+  const auto& scenario = std::get<hybrid_test::TestConfig>(file.study);
+  const TestRun run = run_test(scenario, {}, false);
+  ASSERT_EQ(run.outcome, coordinator::StepOutcome::kOk);
+  ASSERT_GT(run.steps, 0);
+  ASSERT_EQ(run.timing.sites.size(), 1u);
+  const realtime::LatencySummary& round_trip = run.timing.sites[0].round_trip;
+  EXPECT_EQ(round_trip.count, run.steps);
+  EXPECT_EQ(round_trip.max_s, 0.0);
+  EXPECT_EQ(round_trip.mean_s, 0.0);
+  EXPECT_EQ(round_trip.p99_s, 0.0);  // a bin's edge bounded by the exact maximum
+}
+
 void expect_same(double a, double b, const char* what) {
   if (std::isnan(a) || std::isnan(b)) {
     EXPECT_TRUE(std::isnan(a) && std::isnan(b)) << what;

@@ -75,6 +75,81 @@ TEST(MultiSiteLink, RoutesEachChannelsControlModeAndForceToItsSite) {
   EXPECT_EQ(b.seen.force_n[0], 0.0);
 }
 
+// Each site gets the command's own fields and its channels, nothing of another site's.
+TEST(MultiSiteLink, ASiteGetsEveryFieldOfTheCommandAndNoOtherSitesChannels) {
+  EchoNode a(1), b(2);
+  InProcessLink la(a), lb(b);
+  MultiSiteLink link({{1, &la, {0}}, {2, &lb, {1}}});
+  CommandSample c;
+  c.test_id = 7;
+  c.run_id = 0x1234'5678'9abc'def0ULL;
+  c.step = 12;
+  c.time_s = 0.5;
+  c.control_period_s = 1.0 / 1024.0;
+  c.end_of_run = true;
+  c.channels = 2;
+  c.displacement_m = {0.1, 0.2};
+  c.control_mode = {kDisplacementControl, kForceControl};
+  c.force_n = {0.0, 3e4};
+  c.writer = 99;
+  ASSERT_EQ(link.send(c), LinkStatus::kOk);
+  for (const EchoNode* node : {&a, &b}) {
+    EXPECT_EQ(node->seen.test_id, 7u);
+    EXPECT_EQ(node->seen.run_id, c.run_id);
+    EXPECT_EQ(node->seen.step, 12);
+    EXPECT_EQ(node->seen.time_s, 0.5);
+    EXPECT_EQ(node->seen.control_period_s, 1.0 / 1024.0);
+    EXPECT_TRUE(node->seen.end_of_run);
+    EXPECT_EQ(node->seen.writer, 99u);
+    EXPECT_EQ(node->seen.channels, 1);
+    // The entry beyond the site's one channel: 0, not the other site's channel 1.
+    EXPECT_EQ(node->seen.displacement_m[1], 0.0);
+    EXPECT_EQ(node->seen.control_mode[1], kDisplacementControl);
+    EXPECT_EQ(node->seen.force_n[1], 0.0);
+  }
+  EXPECT_EQ(a.seen.displacement_m[0], 0.1);
+  EXPECT_EQ(b.seen.displacement_m[0], 0.2);
+  EXPECT_EQ(b.seen.control_mode[0], kForceControl);
+  EXPECT_EQ(b.seen.force_n[0], 3e4);
+}
+
+TEST(InProcessLink, HandsBackEveryFieldOfTheNodesFeedbackAndItsChannels) {
+  // A node that answers with every field set, and its one channel.
+  class FullNode final : public CommandProcessor {
+   public:
+    bool process(const CommandSample&, FeedbackSample& f) override {
+      f.test_id = 3;
+      f.site_id = 4;
+      f.run_id = 5;
+      f.step = 6;
+      f.time_s = 0.25;
+      f.channels = 1;
+      f.displacement_m[0] = 0.01;
+      f.force_n[0] = -2e3;
+      f.round_trip_ns[0] = 17;
+      f.status = kNodeLimitActive | kNodeHolding;
+      f.limit_flags = kLimitStroke;
+      return true;
+    }
+  } node;
+  InProcessLink link(node);
+  ASSERT_EQ(link.send(CommandSample{}), LinkStatus::kOk);
+  FeedbackSample f;
+  ASSERT_EQ(link.receive(f), LinkStatus::kOk);
+  EXPECT_EQ(f.test_id, 3u);
+  EXPECT_EQ(f.site_id, 4u);
+  EXPECT_EQ(f.run_id, 5u);
+  EXPECT_EQ(f.step, 6);
+  EXPECT_EQ(f.time_s, 0.25);
+  EXPECT_EQ(f.channels, 1);
+  EXPECT_EQ(f.displacement_m[0], 0.01);
+  EXPECT_EQ(f.force_n[0], -2e3);
+  EXPECT_EQ(f.round_trip_ns[0], 17);
+  EXPECT_EQ(f.status, kNodeLimitActive | kNodeHolding);
+  EXPECT_EQ(f.limit_flags, kLimitStroke);
+  EXPECT_EQ(link.receive(f), LinkStatus::kTimeout);  // one feedback per command
+}
+
 TEST(Messages, EveryChannelOfACommandIsInDisplacementControlUnlessItSaysOtherwise) {
   const CommandSample c;
   for (int k = 0; k < kMaxChannels; ++k) {

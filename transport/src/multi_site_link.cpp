@@ -40,7 +40,9 @@ MultiSiteLink::MultiSiteLink(std::vector<SiteRoute> sites) : sites_(std::move(si
 LinkStatus MultiSiteLink::send(const CommandSample& command) {
   LinkStatus status = LinkStatus::kOk;
   for (const SiteRoute& site : sites_) {
-    site_command_ = command;
+    // The command's own fields, then the site's channels only: a site never sees another
+    // site's channels (its unused entries stay 0), and no whole sample is copied per site.
+    copy_command_header(command, site_command_);
     site_command_.site_id = site.site_id;
     site_command_.channels = static_cast<std::uint8_t>(site.channels.size());
     for (std::size_t i = 0; i < site.channels.size(); ++i) {

@@ -202,11 +202,20 @@ class ServoNodeController {
   std::uint64_t ended_run_ = 0;                // the run ended last
   std::uint64_t ticks_since_accepted_ = 0;
   std::int64_t max_step_lead_ = 0;    // periods a step may lead the ticks since the last accepted one
+  Values max_speed_m_per_s_{};        // per channel: the velocity and increment limits' speed, the lower
   RunEvent last_refusal_;             // the last refusal logged: repeats of it are counted only
   std::vector<RunEvent> run_events_;  // capacity reserved at construction, never grown past it
   std::uint64_t run_events_not_logged_ = 0;
 
-  transport::CommandSample pending_;
+  // What a tick takes from the newest accepted command: only its step, time and used channels
+  // are kept, not the whole sample.
+  struct PendingCommand {
+    std::int64_t step = 0;
+    double time_s = 0.0;
+    Values displacement_m{};
+    Values force_n{};
+  };
+  PendingCommand pending_;
   bool has_pending_ = false;
   std::int64_t newest_accepted_step_ = -1;  // of the run served (-1: none yet, or no run)
   std::int64_t last_accepted_step_ = -1;    // what newest_accepted_step() reports

@@ -1,7 +1,8 @@
 // One link that fans a test's commands out to several sites and merges their feedback:
 // each site gets its own channels (renumbered from 0), its own link (in-process or DDS)
 // and its own latency. The coordinator loop sees one link with all channels; a step is
-// complete when every site has answered.
+// complete when every site has answered. A site's command carries its own channels only (the
+// entries beyond them are 0).
 #pragma once
 
 #include <array>
