@@ -849,6 +849,51 @@ TEST(ServoNodeController, AHoldBrakesAtTheStopDeceleration) {
   EXPECT_NEAR(applied.back() - moving_at_m, v * v / (2 * a), v * kPeriod);  // 0.625 mm on
 }
 
+// A command racing at the stroke brakes at the stop deceleration and comes to rest on it, in
+// either direction: it moves at v until v^2 / (2 a) short of the stroke, no period changes its
+// velocity by more than a T until the one that lands it on the stroke, and it never passes it. Moving away from the stroke it is
+// close to, it is not braked at all (only the bound ahead of it can slow it).
+TEST(ServoNodeController, ACommandRacingAtTheStrokeBrakesOnlyTowardIt) {
+  for (const double sign : {1.0, -1.0}) {
+    auto c = config();
+    const double stroke = 0.05, a = 2.0, v = 0.2;  // braking distance v^2 / (2 a) = 10 mm
+    c.limits[0].max_stroke_m = stroke;
+    c.limits[0].stop_deceleration_m_per_s2 = a;
+    c.actions.stroke = LimitAction::kClamp;
+    Rig rig(c);
+    auto& [actuator, node] = rig;
+    std::vector<double> applied{0.0};
+    std::int64_t step = 1;
+    double x = 0.0;
+    for (; step <= 400; ++step) {  // 78 mm asked for: beyond the stroke
+      send(node, command(step, {sign * (x += v * kPeriod)}));
+      applied.push_back(sign * actuator.last());
+    }
+    double peak = 0.0;
+    int braking_from = -1;
+    for (std::size_t i = 1; i < applied.size(); ++i) {
+      const double v_now = (applied[i] - applied[i - 1]) / kPeriod;
+      if (braking_from < 0 && v_now < v * (1 - 1e-9)) braking_from = static_cast<int>(i);
+      peak = std::max(peak, applied[i]);
+    }
+    EXPECT_LE(peak, stroke) << sign;
+    EXPECT_NEAR(applied.back(), stroke, 1e-6) << sign;                // at rest on the stroke
+    ASSERT_GT(braking_from, 1) << sign;
+    EXPECT_NEAR(applied[braking_from - 1], stroke - v * v / (2 * a), 2 * v * kPeriod) << sign;
+    // Up to the period that lands it on the stroke (that one stops the rest of the way: within
+    // a T of the discrete profile's last speed).
+    for (std::size_t i = static_cast<std::size_t>(braking_from) + 1; i < applied.size() && applied[i] < stroke; ++i) {
+      const double dv = std::abs((applied[i] - applied[i - 1]) - (applied[i - 1] - applied[i - 2])) / kPeriod;
+      ASSERT_LE(dv, a * kPeriod * (1 + 1e-9)) << sign << " period " << i;
+    }
+    // Now away from the stroke at v: every command followed exactly from the first period on.
+    for (int k = 1; k <= 20; ++k) {
+      send(node, command(step++, {sign * (stroke - k * v * kPeriod)}));
+      ASSERT_EQ(actuator.last(), sign * (stroke - k * v * kPeriod)) << sign << " " << k;
+    }
+  }
+}
+
 // What no measurement may reach, whatever the limits' actions (ServoNodeConfig::rails, rig):
 // a reading on an A/D converter's rail may stand for any value beyond it, and the node faults
 // on the tick that brings it, the event saying which rail. Here the stroke limit would only
