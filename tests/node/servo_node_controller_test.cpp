@@ -851,8 +851,8 @@ TEST(ServoNodeController, AHoldBrakesAtTheStopDeceleration) {
 
 // A command racing at the stroke brakes at the stop deceleration and comes to rest on it, in
 // either direction: it moves at v until v^2 / (2 a) short of the stroke, no period changes its
-// velocity by more than a T until the one that lands it on the stroke, and it never passes it. Moving away from the stroke it is
-// close to, it is not braked at all (only the bound ahead of it can slow it).
+// velocity by more than a T until the one that lands it on the stroke, and it never passes it. Moving away from the
+// stroke it is close to, it is not braked at all (only the bound ahead of it can slow it).
 TEST(ServoNodeController, ACommandRacingAtTheStrokeBrakesOnlyTowardIt) {
   for (const double sign : {1.0, -1.0}) {
     auto c = config();
@@ -877,7 +877,7 @@ TEST(ServoNodeController, ACommandRacingAtTheStrokeBrakesOnlyTowardIt) {
       peak = std::max(peak, applied[i]);
     }
     EXPECT_LE(peak, stroke) << sign;
-    EXPECT_NEAR(applied.back(), stroke, 1e-6) << sign;                // at rest on the stroke
+    EXPECT_NEAR(applied.back(), stroke, 1e-6) << sign;  // at rest on the stroke
     ASSERT_GT(braking_from, 1) << sign;
     EXPECT_NEAR(applied[braking_from - 1], stroke - v * v / (2 * a), 2 * v * kPeriod) << sign;
     // Up to the period that lands it on the stroke (that one stops the rest of the way: within
