@@ -132,6 +132,9 @@ int main(int argc, char** argv) try {
     else
       throw std::invalid_argument("unknown option " + options.rest[i]);
   }
+  // Growth per minute is the difference to a 1-minute run over the minutes between.
+  if (!(long_minutes > 1.0) || !(baseline_minutes > 1.0))
+    throw std::invalid_argument("--long-minutes and --baseline-minutes: more than 1");
   bench::Fragment fragment("peak_memory", argc, argv);
   const auto work = std::filesystem::temp_directory_path() / ("rpsd-bench-memory-" + std::to_string(getpid()));
   std::filesystem::create_directories(work);
@@ -142,8 +145,8 @@ int main(int argc, char** argv) try {
   // (1) rpsd run end to end.
   std::vector<double> short_peaks, short_children, short_walls;
   for (int i = 0; i < options.repetitions; ++i) {
-    const Measured m = measure_rpsd_run(
-        rpsd, {"run", elcentro, "--set", "ground_motion.pad_after_s=20", "--out", (work / "60s").string()});
+    const Measured m = measure_rpsd_run(rpsd, {"run", elcentro, "--set", "ground_motion.pad_after_s=20", "--out",
+                                               (work / ("60s-" + std::to_string(i))).string()});
     short_peaks.push_back(m.peak_mb);
     short_children.push_back(m.with_children_mb);
     short_walls.push_back(m.wall_s);
