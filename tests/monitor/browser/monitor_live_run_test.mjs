@@ -7,8 +7,7 @@
 import { spawn } from "node:child_process";
 import { mkdirSync, rmSync } from "node:fs";
 import { join } from "node:path";
-import { chromium } from "playwright-core";
-import { readHistory, plotted, compare, waitFor } from "./page_helpers.mjs";
+import { readHistory, plotted, compare, openMonitorPage, waitFor } from "./page_helpers.mjs";
 
 const [rpsd, src, outDir, chromiumPath] = process.argv.slice(2);
 const TEST_ID = "3132", DOMAIN = "228";  // unique to this test on the machine's loopback
@@ -30,14 +29,8 @@ async function main() {
     monitor.stdout.on("data", (d) => { printed += d; const m = /page: +(http:\/\/127\.0\.0\.1:\d+\/)/.exec(printed); if (m) resolve(m[1]); });
     monitor.on("exit", (code) => reject(new Error("rpsd monitor ended with " + code + ": " + printed)));
   });
-  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: ["--no-sandbox"] });
-  const errors = [];
+  const { browser, page, errors } = await openMonitorPage(chromiumPath, url).catch((e) => { monitor.kill("SIGINT"); throw e; });
   try {
-    const page = await (await browser.newContext({ viewport: { width: 1600, height: 1150 } })).newPage();
-    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
-    page.on("pageerror", (e) => errors.push(e.message));
-    await page.goto(url);
-    await waitFor(page, () => window.rpsdPage.link !== null);  // the page streams
     const banners = [];
     const sampler = setInterval(async () => {
       try { const b = await page.evaluate(() => window.rpsdBanner); if (b) banners.push(b); } catch { /* closing */ }

@@ -8,8 +8,7 @@
 import { spawn } from "node:child_process";
 import { existsSync, mkdirSync, readFileSync, rmSync } from "node:fs";
 import { join } from "node:path";
-import { chromium } from "playwright-core";
-import { BrowserTest, exited, monitorAddress, press, waitFor } from "./page_helpers.mjs";
+import { BrowserTest, exited, monitorAddress, openMonitorPage, press, waitFor } from "./page_helpers.mjs";
 
 const [rpsd, src, outDir, chromiumPath] = process.argv.slice(2);
 const TEST_ID = "3134", DOMAIN = "227";  // unique to this test on the machine's loopback
@@ -33,14 +32,8 @@ async function main() {
     start(["servo-node", join(src, "examples", "nodes", `bridge-pier-site-${site}.yaml`), "--set", "node.mode=lock_step",
            "--set", `dds.domain_id=${DOMAIN}`, "--set", `node.test_id=${TEST_ID}`], ["ignore", "ignore", "inherit"]);
   }
-  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: ["--no-sandbox"] });
-  const errors = [];
+  const { browser, page, errors } = await openMonitorPage(chromiumPath, url);
   try {
-    const page = await (await browser.newContext({ viewport: { width: 1600, height: 1150 } })).newPage();
-    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
-    page.on("pageerror", (e) => errors.push(e.message));
-    await page.goto(url);
-    await waitFor(page, () => window.rpsdPage.link !== null);
     const out = join(results, "aborted");
     // A 240 s synthetic record (245760 steps): the click happens mid-run at any load. The scenario
     // asks for a return to start, which an abort skips.

@@ -7,8 +7,7 @@
 import { spawn, spawnSync } from "node:child_process";
 import { existsSync, mkdirSync, readFileSync, rmSync } from "node:fs";
 import { join } from "node:path";
-import { chromium } from "playwright-core";
-import { BrowserTest, exited, monitorAddress, waitFor } from "./page_helpers.mjs";
+import { BrowserTest, exited, monitorAddress, openMonitorPage, waitFor } from "./page_helpers.mjs";
 
 const [rpsd, src, outDir, chromiumPath] = process.argv.slice(2);
 const TEST_ID = "3134", DOMAIN = "225";  // unique to this test on the machine's loopback
@@ -43,14 +42,9 @@ async function main() {
            "--set", `dds.domain_id=${DOMAIN}`, "--set", `node.test_id=${TEST_ID}`, "--set", `dds.config=${secure}`],
           `node-site-${site}`, lab, ["ignore", "ignore", "inherit"]);
   }
-  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: ["--no-sandbox"] });
-  const errors = [];
+  // The operator's own link: the token kept for the tab.
+  const { browser, page, errors } = await openMonitorPage(chromiumPath, url + "#token=" + token, { ignore: /status of 503/ });
   try {
-    const page = await (await browser.newContext({ viewport: { width: 1600, height: 1150 } })).newPage();
-    page.on("console", (m) => { if (m.type() === "error" && !/status of 503/.test(m.text())) errors.push(m.text()); });
-    page.on("pageerror", (e) => errors.push(e.message));
-    await page.goto(url + "#token=" + token);  // the operator's own link: the token kept for the tab
-    await waitFor(page, () => window.rpsdPage.link !== null);
     const out = join(results, "run");
     const run = start(["run", scenario, "--out", out, "--telemetry", "--set", "ground_motion.trim={end_s: 30}", "--set", "transport.kind=dds",
                        "--set", `transport.test_id=${TEST_ID}`, "--set", `transport.domain_id=${DOMAIN}`, "--set", `transport.dds_config=${secure}`],

@@ -10,8 +10,7 @@
 import { spawn } from "node:child_process";
 import { mkdirSync, readFileSync, rmSync } from "node:fs";
 import { join } from "node:path";
-import { chromium } from "playwright-core";
-import { BrowserTest, exited, monitorAddress, press, waitFor } from "./page_helpers.mjs";
+import { BrowserTest, exited, monitorAddress, openMonitorPage, press, waitFor } from "./page_helpers.mjs";
 
 const [rpsd, src, outDir, chromiumPath] = process.argv.slice(2);
 const TEST_ID = "3133", DOMAIN = "226";  // unique to this test on the machine's loopback
@@ -47,14 +46,9 @@ async function main() {
   const [url, token] = await monitorAddress(monitor);
   const nodes = [1, 2].map((site) => start(["servo-node", join(src, "examples", "nodes", `bridge-pier-site-${site}.yaml`), "--set", "node.mode=lock_step",
                                             "--set", `dds.domain_id=${DOMAIN}`, "--set", `node.test_id=${TEST_ID}`], ["ignore", "ignore", "inherit"]));
-  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: ["--no-sandbox"] });
-  const errors = [];
+  // The plain page: no token in its address, so it asks for one.
+  const { browser, page, errors } = await openMonitorPage(chromiumPath, url);
   try {
-    const page = await (await browser.newContext({ viewport: { width: 1600, height: 1150 } })).newPage();
-    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
-    page.on("pageerror", (e) => errors.push(e.message));
-    await page.goto(url);  // the plain page: no token in its address, so it asks for one
-    await waitFor(page, () => window.rpsdPage.link !== null);
     const out = join(results, "held");
     const run = start(["run", scenario, "--out", out, "--telemetry", ...common, "--set", "transport.kind=dds", "--set", `transport.test_id=${TEST_ID}`,
                        "--set", `transport.domain_id=${DOMAIN}`, "--set", `transport.dds_config=${ddsConfig}`,

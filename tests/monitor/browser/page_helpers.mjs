@@ -2,6 +2,7 @@
 // plotted series read back from uPlot (window.rpsdPlots), their comparison step by step.
 import { readFileSync } from "node:fs";
 import { join } from "node:path";
+import { chromium } from "playwright-core";
 
 export const HANG_GUARD_MS = 120000;  // bounds every wait; no time is judged
 
@@ -112,3 +113,22 @@ export class BrowserTest {
 }
 
 export const exited = (child) => new Promise((resolve) => (child.exitCode !== null ? resolve(child.exitCode) : child.on("exit", resolve)));
+
+// Debian's chromium, headless, with one page at `url` once it streams; the page's console
+// errors (but those `ignore` matches) and uncaught exceptions collected in `errors`. The
+// caller closes `browser`; on a failure here it is closed before the error goes on.
+export async function openMonitorPage(chromiumPath, url, { ignore = null } = {}) {
+  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: ["--no-sandbox"] });
+  const errors = [];
+  try {
+    const page = await (await browser.newContext({ viewport: { width: 1600, height: 1150 } })).newPage();
+    page.on("console", (m) => { if (m.type() === "error" && !(ignore && ignore.test(m.text()))) errors.push(m.text()); });
+    page.on("pageerror", (e) => errors.push(e.message));
+    await page.goto(url);
+    await waitFor(page, () => window.rpsdPage.link !== null);  // the page streams
+    return { browser, page, errors };
+  } catch (e) {
+    await browser.close();
+    throw e;
+  }
+}
