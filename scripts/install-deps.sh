@@ -14,6 +14,7 @@ packages=(
   libcli11-dev                       # the rpsd command line
   nlohmann-json3-dev                 # summary.json and --json output
   libssl-dev                         # SHA-256 of every input file in summary.json (OpenSSL)
+  zlib1g-dev                         # rpsd host-check reads the kernel configuration (/proc/config.gz)
   gnuplot-nox                        # PNG plots (pngcairo terminal)
   cyclonedds-dev cyclonedds-tools    # DDS transport (libddsc; idlc generates the message types)
   libgtest-dev libgmock-dev          # the tests (GoogleTest and its matchers)

@@ -29,6 +29,13 @@ void print_text(const realtime::HostCheckReport& r) {
             << (r.granted.fifo_granted ? "granted" : "REFUSED") << ", mlockall "
             << (r.granted.memory_locked ? "granted" : "REFUSED") << '\n';
   if (!r.granted.refused.empty()) std::cout << r.granted.refused;
+  std::cout << "kernel preemption: " << realtime::preemption_name(r.kernel.model) << " (" << r.kernel.source << ")";
+  if (!realtime::preempts_for_real_time(r.kernel.model)) {
+    std::cout << "\n  WARNING: a real-time thread may wait for other tasks' kernel code (a build's page faults and"
+                 " file I/O) to reach a preemption point, milliseconds in every wake-up of the loop; boot with"
+                 " preempt=full or use a PREEMPT_RT kernel (docs/realtime.md)";
+  }
+  std::cout << '\n';
   std::cout << "CPU idle: driver " << (r.idle.driver.empty() ? std::string("none") : r.idle.driver) << ", "
             << r.idle.cpus << " CPU(s); states of CPU 0:";
   if (r.idle.states.empty()) std::cout << " none listed";

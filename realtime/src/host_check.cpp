@@ -17,6 +17,7 @@ HostCheckReport check_host(const HostCheckRequest& request) {
   report.request = request;
   report.wake_latency_limit_us = current_cpu_wake_latency_limit_us();
   report.idle = read_idle_states();
+  report.kernel = read_kernel_preemption();
   RealTimeRequest rt;
   rt.fifo_priority = request.fifo_priority;
   rt.keep_cpus_awake = false;  // the loops run once free to idle, then kept awake
@@ -71,6 +72,10 @@ nlohmann::json host_check_json(const HostCheckReport& report) {
             {"fifo_priority", report.request.fifo_priority},
             {"mlockall", report.granted.memory_locked},
             {"refused", refused}}},
+          {"kernel",
+           {{"preemption", preemption_name(report.kernel.model)},
+            {"source", report.kernel.source},
+            {"preempts_for_real_time", preempts_for_real_time(report.kernel.model)}}},
           {"cpu_idle",
            {{"driver", report.idle.driver},
             {"cpus", report.idle.cpus},

@@ -35,6 +35,12 @@ def main():
     check(isinstance(granted["refused"], list), "granted.refused is not a list")
     # A refusal is said, and only a refusal.
     check((not granted["refused"]) == (granted["sched_fifo"] and granted["mlockall"]), "granted.refused disagrees")
+    kernel = report["kernel"]
+    check(kernel["preemption"] in ("unknown", "none", "voluntary", "full", "lazy", "rt"),
+          f"kernel.preemption {kernel['preemption']}")
+    check(isinstance(kernel["source"], str) and kernel["source"], "kernel.source")
+    check(kernel["preempts_for_real_time"] == (kernel["preemption"] in ("full", "lazy", "rt")),
+          "kernel.preempts_for_real_time disagrees with kernel.preemption")
     idle = report["cpu_idle"]
     check(isinstance(idle["driver"], str), "cpu_idle.driver")
     check(isinstance(idle["cpus"], int) and idle["cpus"] >= 0, "cpu_idle.cpus")

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rpsd/realtime/host_floor.h"
+#include "rpsd/realtime/kernel_preemption.h"
 #include "rpsd/realtime/realtime_setup.h"
 
 namespace rpsd::realtime {
@@ -24,6 +25,7 @@ struct HostCheckRequest {
 struct HostCheckReport {
   HostCheckRequest request;
   RealTimeSetupReport granted;  // SCHED_FIFO and mlockall for this thread and process
+  KernelPreemption kernel;      // whether the kernel preempts its own code for a real-time thread
   IdleStates idle;
   bool cpus_could_be_kept_awake = false;
   std::string keep_awake_refused;  // the OS's reason when they could not
@@ -38,7 +40,8 @@ struct HostCheckReport {
 // not positive.
 HostCheckReport check_host(const HostCheckRequest& request);
 
-// The report as JSON: granted (sched_fifo, mlockall, refused), cpu_idle (driver, cpus, states,
+// The report as JSON: granted (sched_fifo, mlockall, refused), kernel (preemption, source,
+// preempts_for_real_time), cpu_idle (driver, cpus, states,
 // can_keep_cpus_awake, keep_awake_refused, wake_latency_limit_us) and loops (one per rate and
 // idle setting: rate_hz, cpus_kept_awake, cycles, overruns, overruns_percent,
 // skipped_deadlines, wakeup as latency_json, steal_percent).
