@@ -64,6 +64,8 @@ int main(int argc, char** argv) try {
   if (!report.granted.refused.empty())
     fragment.note("real-time request refused, figures are for the default scheduler: " + report.granted.refused);
   if (!report.cpus_could_be_kept_awake) fragment.note("the CPUs could not be kept awake: " + report.keep_awake_refused);
+  fragment.note("kernel preemption: " + std::string(realtime::preemption_name(report.kernel.model)) + " (" +
+                report.kernel.source + ")");
   for (const auto& loop : report.loops) add_loop(loop, fragment);
   fragment.write(options.out);
   return 0;

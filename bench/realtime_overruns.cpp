@@ -32,6 +32,7 @@
 #include "ddsperf.h"
 #include "rpsd/realtime/cpu_wake_latency.h"
 #include "rpsd/realtime/host_floor.h"
+#include "rpsd/realtime/kernel_preemption.h"
 #include "rpsd/realtime/realtime_setup.h"
 
 namespace {
@@ -517,6 +518,12 @@ int main(int argc, char** argv) try {
       std::to_string(ddsperf_seconds) +
       " s, pong in the nodes' namespace, ping paced at the rate in the coordinator's, 168 bytes): `" + ddsperf_command +
       "`.");
+  // Whether this kernel preempts its own code for the loops (rpsd host-check says the same).
+  const realtime::KernelPreemption kernel = realtime::read_kernel_preemption();
+  fragment.note("Kernel preemption: " + std::string(realtime::preemption_name(kernel.model)) + " (" + kernel.source +
+                (realtime::preempts_for_real_time(kernel.model)
+                     ? ")."
+                     : "): a real-time thread may wait for other tasks' kernel code at every wake-up of the chain."));
   fragment.write(options.out);
   if (!did_not_run.empty()) {
     std::string text;
