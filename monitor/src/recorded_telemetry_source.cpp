@@ -1,5 +1,6 @@
 #include "rpsd/monitor/recorded_telemetry_source.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstring>
 #include <fstream>
@@ -34,6 +35,16 @@ void copy_text(std::array<char, N>& to, const std::string& from) {
 }
 
 }  // namespace
+
+std::size_t rows_due(const std::vector<telemetry::TelemetrySample>& rows, double steps_elapsed) {
+  if (rows.empty()) return 0;
+  const std::int64_t first = rows.front().step;
+  const auto after = std::upper_bound(rows.begin(), rows.end(), steps_elapsed,
+                                      [first](double elapsed, const telemetry::TelemetrySample& s) {
+                                        return elapsed < static_cast<double>(s.step - first + 1);
+                                      });
+  return static_cast<std::size_t>(after - rows.begin());
+}
 
 std::vector<telemetry::TelemetrySample> read_time_history(const fs::path& csv) {
   std::ifstream in(csv);
@@ -124,6 +135,16 @@ RecordedTelemetrySource::RecordedTelemetrySource(const fs::path& folder, Recorde
     }
     if (summary.contains("scenario") && summary["scenario"].is_string())
       test_name_ = summary["scenario"].get<std::string>();
+    // output.histories: decimated keeps every k-th row; the run's counts are in its timing.
+    const auto h = summary.find("histories");
+    const auto t = summary.find("timing");
+    if (h != summary.end() && h->is_object() && h->value("kept", "") == "decimated" && t != summary.end() &&
+        t->is_object()) {
+      if (t->contains("overruns") && (*t)["overruns"].is_number_integer())
+        run_overruns_ = (*t)["overruns"].get<std::int64_t>();
+      if (t->contains("late_feedback") && (*t)["late_feedback"].is_number_integer())
+        run_late_feedback_ = (*t)["late_feedback"].get<std::int64_t>();
+    }
   }
   if (test_name_.empty()) test_name_ = folder.filename().string();
   started_ = std::chrono::steady_clock::now();
@@ -132,7 +153,7 @@ RecordedTelemetrySource::RecordedTelemetrySource(const fs::path& folder, Recorde
 std::size_t RecordedTelemetrySource::due_samples() const {
   if (options_.steps_per_second <= 0.0) return samples_.size();
   const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-  return std::min(samples_.size(), static_cast<std::size_t>(elapsed_s * options_.steps_per_second));
+  return rows_due(samples_, elapsed_s * options_.steps_per_second);
 }
 
 std::size_t RecordedTelemetrySource::take(std::vector<telemetry::TelemetryBatch>& batches,
@@ -183,16 +204,19 @@ std::size_t RecordedTelemetrySource::take(std::vector<telemetry::TelemetryBatch>
     st.run_id = options_.run_id;
     copy_text(st.test_name, test_name_);
     st.state = sent_ == samples_.size() ? telemetry::RunState::kEnded : telemetry::RunState::kRunning;
-    st.steps_done = static_cast<std::int64_t>(sent_);
-    st.steps_planned = static_cast<std::int64_t>(samples_.size());
+    // In steps, not rows: a decimated history's rows are k steps apart.
+    st.steps_done = samples_[sent_ - 1].step;
+    st.steps_planned = samples_.back().step;
     if (samples_.size() > 1) {
       const double span_s = samples_.back().time_s - samples_.front().time_s;
-      st.control_rate_hz = span_s > 0.0 ? static_cast<double>(samples_.size() - 1) / span_s : 0.0;
+      st.control_rate_hz =
+          span_s > 0.0 ? static_cast<double>(samples_.back().step - samples_.front().step) / span_s : 0.0;
     }
     st.channels = samples_.front().channels;
     st.worst_feedback_age_periods = worst_age_;
-    st.overruns = overruns_;
-    st.late_feedback = late_feedback_;
+    const bool ended = st.state == telemetry::RunState::kEnded;
+    st.overruns = ended && run_overruns_ >= 0 ? run_overruns_ : overruns_;
+    st.late_feedback = ended && run_late_feedback_ >= 0 ? run_late_feedback_ : late_feedback_;
     st.predicted_effective_damping = options_.predicted_effective_damping;
     if (st.state == telemetry::RunState::kEnded) copy_text(st.stopped_by, stopped_by_);
     batches.push_back(b);

@@ -58,6 +58,64 @@ TEST(RecordedTelemetrySource, EveryRowInOrderThenTheEnd) {
   fs::remove_all(dir);
 }
 
+std::vector<telemetry::TelemetrySample> rows_at(std::initializer_list<std::int64_t> steps) {
+  std::vector<telemetry::TelemetrySample> rows;
+  for (const std::int64_t step : steps) {
+    telemetry::TelemetrySample s;
+    s.step = step;
+    rows.push_back(s);
+  }
+  return rows;
+}
+
+TEST(RecordedTelemetrySource, TheReplayIsPacedByStepsNotRows) {
+  const auto every = rows_at({1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
+  EXPECT_EQ(rows_due(every, 0.0), 0u);
+  EXPECT_EQ(rows_due(every, 0.99), 0u);
+  EXPECT_EQ(rows_due(every, 1.0), 1u);
+  EXPECT_EQ(rows_due(every, 4.5), 4u);
+  EXPECT_EQ(rows_due(every, 100.0), 10u);
+  // Every 16th step kept: a row every 16 steps of the replay, not every step.
+  const auto sixteenth = rows_at({16, 32, 48, 64});
+  EXPECT_EQ(rows_due(sixteenth, 1.0), 1u);
+  EXPECT_EQ(rows_due(sixteenth, 16.9), 1u);
+  EXPECT_EQ(rows_due(sixteenth, 17.0), 2u);
+  EXPECT_EQ(rows_due(sixteenth, 48.0), 3u);
+  EXPECT_EQ(rows_due(sixteenth, 49.0), 4u);
+  EXPECT_EQ(rows_due({}, 5.0), 0u);
+}
+
+TEST(RecordedTelemetrySource, ADecimatedHistoryReportsTheRunsStepsRateAndCounts) {
+  const fs::path dir = fs::temp_directory_path() / ("rpsd-monitor-decimated-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    std::ofstream csv(dir / "time_history.csv");
+    csv << "step,time_s,target_m_ch0,command_m_ch0,measured_m_ch0,measured_force_n_ch0,node_status,limit_flags,"
+           "round_trip_s_ch0,cycle_lateness_s,feedback_age_periods\n";
+    csv << std::setprecision(17);
+    for (int k = 1; k <= 50; ++k) csv << 16 * k << ',' << 16 * k / 1024.0 << ",0,0,0,0,0,0,0.0005,0," << (k == 3) << '\n';
+    std::ofstream(dir / "summary.json")
+        << R"({"result":"completed","histories":{"kept":"decimated","every_steps":16},)"
+        << R"("timing":{"overruns":7,"late_feedback":123}})";
+  }
+  RecordedTelemetrySource source(dir, {});
+  std::vector<telemetry::TelemetryBatch> batches;
+  std::vector<telemetry::TelemetryEvent> events;
+  source.take(batches, events);
+  ASSERT_EQ(batches.size(), 2u);  // 32 + 18 rows
+  EXPECT_EQ(batches.front().status.steps_done, 16 * 32);
+  EXPECT_EQ(batches.front().status.late_feedback, 1);  // mid-replay: what the rows show
+  const telemetry::TelemetryStatus& end = batches.back().status;
+  EXPECT_EQ(end.state, telemetry::RunState::kEnded);
+  EXPECT_EQ(end.steps_done, 800);
+  EXPECT_EQ(end.steps_planned, 800);
+  EXPECT_DOUBLE_EQ(end.control_rate_hz, 1024.0);
+  EXPECT_EQ(end.overruns, 7);  // the run's, from summary.json
+  EXPECT_EQ(end.late_feedback, 123);
+  fs::remove_all(dir);
+}
+
 TEST(RecordedTelemetrySource, AMalformedRowIsNamedByFileAndLine) {
   const fs::path dir = write_run(3, "4,0.04,x,0,0,0,0,0,0,0,0");
   try {

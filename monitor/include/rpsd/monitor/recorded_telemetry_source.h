@@ -1,6 +1,9 @@
 // A recorded test as telemetry: the rows of an output folder's time_history.csv published as
-// batches of every step (no decimation), with the run's start, its limit events (a row whose
-// limit_flags or node_status changes) and its end from summary.json. It stands in for a
+// batches (every row it holds: every step, or every k-th of a decimated history), with the
+// run's start, its limit events (a row whose limit_flags or node_status changes) and its end
+// from summary.json. The replay is paced by the rows' step numbers, so a decimated history
+// replays at the run's own speed, and its end reports the run's overruns and late feedback
+// from summary.json (the rows hold only some of them). It stands in for a
 // running test where there is none: the monitor's browser tests, a demonstration.
 #pragma once
 
@@ -22,6 +25,10 @@ struct RecordedRunOptions {
   double steps_per_second = 0.0;  // wall-clock pace of the replay; 0: everything at once
   double predicted_effective_damping = telemetry::kUnknown;
 };
+
+// How many of `rows` (in step order) fall within the first `steps_elapsed` steps of the
+// replay, counted from the first row's step: with every step recorded, floor(steps_elapsed).
+std::size_t rows_due(const std::vector<telemetry::TelemetrySample>& rows, double steps_elapsed);
 
 // The samples of a time_history.csv. Throws std::runtime_error naming the file, line and
 // column that cannot be read.
@@ -54,6 +61,8 @@ class RecordedTelemetrySource final : public TelemetrySource {
   std::uint32_t last_limit_flags_ = 0, last_node_status_ = 0;
   std::uint8_t worst_age_ = 0;
   std::int64_t overruns_ = 0, late_feedback_ = 0;
+  // A decimated history's run totals from summary.json (timing), reported at the end; -1: none.
+  std::int64_t run_overruns_ = -1, run_late_feedback_ = -1;
 };
 
 }  // namespace rpsd::monitor
