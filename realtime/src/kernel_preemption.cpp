@@ -116,13 +116,13 @@ KernelPreemption read_kernel_preemption(const KernelFiles& files) {
     }
   }
   if (const auto model = configured(files.config_gz)) {
-    return {*model, files.config_gz.string() + (dynamic ? ": PREEMPT_DYNAMIC booted without preempt=, the build's default"
-                                                        : ": the build's model")};
+    return {*model,
+            files.config_gz.string() +
+                (dynamic ? ": PREEMPT_DYNAMIC booted without preempt=, the build's default" : ": the build's model")};
   }
   if (!dynamic && version_says(version, "PREEMPT")) return {PreemptionModel::kFull, "uname -v: PREEMPT"};
-  return {PreemptionModel::kUnknown,
-          dynamic ? "uname -v: PREEMPT_DYNAMIC, its mode not readable here"
-                  : "uname -v: no PREEMPT, so none or voluntary (not told apart)"};
+  return {PreemptionModel::kUnknown, dynamic ? "uname -v: PREEMPT_DYNAMIC, its mode not readable here"
+                                             : "uname -v: no PREEMPT, so none or voluntary (not told apart)"};
 }
 
 }  // namespace rpsd::realtime

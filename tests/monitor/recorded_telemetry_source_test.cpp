@@ -94,10 +94,10 @@ TEST(RecordedTelemetrySource, ADecimatedHistoryReportsTheRunsStepsRateAndCounts)
     csv << "step,time_s,target_m_ch0,command_m_ch0,measured_m_ch0,measured_force_n_ch0,node_status,limit_flags,"
            "round_trip_s_ch0,cycle_lateness_s,feedback_age_periods\n";
     csv << std::setprecision(17);
-    for (int k = 1; k <= 50; ++k) csv << 16 * k << ',' << 16 * k / 1024.0 << ",0,0,0,0,0,0,0.0005,0," << (k == 3) << '\n';
-    std::ofstream(dir / "summary.json")
-        << R"({"result":"completed","histories":{"kept":"decimated","every_steps":16},)"
-        << R"("timing":{"overruns":7,"late_feedback":123}})";
+    for (int k = 1; k <= 50; ++k)
+      csv << 16 * k << ',' << 16 * k / 1024.0 << ",0,0,0,0,0,0,0.0005,0," << (k == 3) << '\n';
+    std::ofstream(dir / "summary.json") << R"({"result":"completed","histories":{"kept":"decimated","every_steps":16},)"
+                                        << R"("timing":{"overruns":7,"late_feedback":123}})";
   }
   RecordedTelemetrySource source(dir, {});
   std::vector<telemetry::TelemetryBatch> batches;

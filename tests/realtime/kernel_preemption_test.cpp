@@ -63,8 +63,9 @@ TEST_F(KernelPreemptionFiles, ADynamicKernelBootedWithoutPreemptRunsItsBuildsDef
   // This VM's case: PREEMPT_DYNAMIC, no preempt= (what follows "--" is init's), debugfs
   // unreadable, and the build's default none.
   write(files_.cmdline, "console=ttyS0 quiet -- --firecracker-init preempt=full\n");
-  write_config("# CONFIG_PREEMPT_VOLUNTARY is not set\nCONFIG_PREEMPT_BUILD=y\nCONFIG_PREEMPT_NONE=y\n"
-               "# CONFIG_PREEMPT is not set\nCONFIG_PREEMPT_COUNT=y\nCONFIG_PREEMPT_DYNAMIC=y\n");
+  write_config(
+      "# CONFIG_PREEMPT_VOLUNTARY is not set\nCONFIG_PREEMPT_BUILD=y\nCONFIG_PREEMPT_NONE=y\n"
+      "# CONFIG_PREEMPT is not set\nCONFIG_PREEMPT_COUNT=y\nCONFIG_PREEMPT_DYNAMIC=y\n");
   const KernelPreemption k = read_kernel_preemption(files_);
   EXPECT_EQ(k.model, PreemptionModel::kNone);
   EXPECT_NE(k.source.find("config.gz"), std::string::npos) << k.source;
