@@ -455,6 +455,7 @@ coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordi
   const realtime::RealTimeSetupReport granted = realtime::apply_realtime(p.config->clock.realtime);
   timing.memory_locked = granted.memory_locked;
   timing.fifo_granted = granted.fifo_granted;
+  timing.pinned_cpu = granted.pinned_cpu;
   timing.refused += granted.refused;
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / p.config->control_rate_hz));
   realtime::Pacer pacer(period_ns);

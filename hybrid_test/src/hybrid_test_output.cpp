@@ -305,6 +305,7 @@ nlohmann::json timing_json(const hybrid_test::TimingReport& t) {
     j["jitter"] = realtime::latency_json(t.jitter);
     j["memory_locked"] = t.memory_locked;
     j["sched_fifo"] = t.fifo_granted;
+    if (t.pinned_cpu >= 0) j["loop_cpu"] = t.pinned_cpu;
   }
   return j;
 }

@@ -16,6 +16,10 @@ RealTimeSetupReport apply_realtime(const RealTimeRequest& request) {
     throw std::invalid_argument("realtime.fifo_priority: expected 0 (off) or 1..99, got " +
                                 std::to_string(request.fifo_priority));
   }
+  if (request.loop_cpu < -1 || request.loop_cpu >= CPU_SETSIZE) {
+    throw std::invalid_argument("realtime.loop_cpu: expected -1 (any) or 0.." + std::to_string(CPU_SETSIZE - 1) +
+                                ", got " + std::to_string(request.loop_cpu));
+  }
   RealTimeSetupReport report;
   // Before the loop starts: a run of hours must not grow the heap (large_blocks.h).
   if (!map_large_blocks_separately()) report.refused += "mallopt(M_MMAP_THRESHOLD) refused\n";
@@ -35,6 +39,19 @@ RealTimeSetupReport apply_realtime(const RealTimeRequest& request) {
     } else {
       report.refused +=
           "SCHED_FIFO priority " + std::to_string(request.fifo_priority) + " refused: " + std::strerror(rc) + "\n";
+    }
+  }
+  if (request.loop_cpu >= 0) {
+    // A CPU this host lacks, or one outside the process's cpuset, is refused (EINVAL).
+    cpu_set_t cpus;
+    CPU_ZERO(&cpus);
+    CPU_SET(static_cast<std::size_t>(request.loop_cpu), &cpus);
+    const int rc = pthread_setaffinity_np(pthread_self(), sizeof cpus, &cpus);
+    if (rc == 0) {
+      report.pinned_cpu = request.loop_cpu;
+    } else {
+      report.refused +=
+          "pinning the loop to CPU " + std::to_string(request.loop_cpu) + " refused: " + std::strerror(rc) + "\n";
     }
   }
   return report;

@@ -470,6 +470,8 @@ void clock(config::Source& c, hybrid_test::TestConfig& t) {
       c.whole_number_or("fifo_priority", 0, 99, t.clock.realtime.fifo_priority, "SCHED_FIFO priority, 0: none"));
   t.clock.realtime.keep_cpus_awake =
       c.boolean_or("keep_cpus_awake", t.clock.realtime.keep_cpus_awake, "hold /dev/cpu_dma_latency at 0");
+  t.clock.realtime.loop_cpu = static_cast<int>(c.whole_number_or("loop_cpu", -1, 1023, t.clock.realtime.loop_cpu,
+                                                                 "the CPU the paced loop is pinned to, -1: any"));
   c.finish();
 }
 

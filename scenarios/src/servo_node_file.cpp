@@ -76,6 +76,8 @@ void node(config::Source& n, node::ServoNodeSetup& f) {
       n.whole_number_or("fifo_priority", 0, 99, f.realtime.fifo_priority, "SCHED_FIFO priority, 0: none"));
   f.realtime.keep_cpus_awake =
       n.boolean_or("keep_cpus_awake", f.realtime.keep_cpus_awake, "hold /dev/cpu_dma_latency at 0");
+  f.realtime.loop_cpu = static_cast<int>(
+      n.whole_number_or("loop_cpu", -1, 1023, f.realtime.loop_cpu, "the CPU the node's loop is pinned to, -1: any"));
   n.finish();
 }
 

@@ -77,6 +77,8 @@ TEST(TestScenarioFile, ErrorsNameTheKeyPath) {
       error_of({parse_override("clock.mode=sometimes")}).find("clock.mode: expected as_fast_as_possible or real_time"),
       std::string::npos);
   EXPECT_NE(error_of({parse_override("clock.fifo_priority=120")}).find("clock.fifo_priority"), std::string::npos);
+  EXPECT_NE(error_of({parse_override("clock.loop_cpu=1024")}).find("clock.loop_cpu"), std::string::npos);
+  EXPECT_NE(error_of({parse_override("clock.loop_cpu=-2")}).find("clock.loop_cpu"), std::string::npos);
   EXPECT_NE(error_of({parse_override("experimental.0.site=0")}).find("experimental[0].site"), std::string::npos);
   EXPECT_NE(
       error_of({parse_override("integrator.scheme=euler")})

@@ -20,6 +20,14 @@ TEST(ServoNodeFile, ARealTimeNodeKeepsTheCpusAwakeUnlessTurnedOff) {
   EXPECT_EQ(file.mode, node::ServoNodeSetup::Mode::kRealTime);
   EXPECT_TRUE(file.realtime.keep_cpus_awake);
   EXPECT_EQ(file.realtime.fifo_priority, 80);
+  EXPECT_EQ(file.realtime.loop_cpu, -1);  // not pinned unless asked
+  EXPECT_EQ(load_servo_node(pier_node(), {parse_override("node.loop_cpu=1")}).realtime.loop_cpu, 1);
+  try {
+    load_servo_node(pier_node(), {parse_override("node.loop_cpu=1024")});
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("node.loop_cpu"), std::string::npos) << e.what();
+  }
   EXPECT_FALSE(load_servo_node(pier_node(), {parse_override("node.keep_cpus_awake=false")}).realtime.keep_cpus_awake);
   try {
     load_servo_node(pier_node(), {parse_override("node.keep_cpus_awake=7")});

@@ -32,6 +32,7 @@ struct TimingReport {
   bool real_time = false;
   bool over_dds = false;
   bool memory_locked = false, fifo_granted = false, cpus_kept_awake = false;
+  int pinned_cpu = -1;  // clock.loop_cpu, when asked and granted
   std::string refused;  // what the OS refused (mlockall, SCHED_FIFO, CPUs kept awake), once
   std::int64_t cycles = 0, overruns = 0, skipped_deadlines = 0, late_feedback = 0;
   realtime::LatencySummary jitter;  // wake-up lateness of the paced cycles
