@@ -168,7 +168,8 @@ void ExperimentalExchange::stop_on_dof(const Group& g, int i, LimitStop::Kind ki
   limit_stop_.unit = force ? g.dof_force_units[static_cast<std::size_t>(i)] : g.dof_units[static_cast<std::size_t>(i)];
 }
 
-bool ExperimentalExchange::commands_within_limits() {
+// Inline, as run_away(): each is called from exchange() alone, once an exchange.
+inline bool ExperimentalExchange::commands_within_limits() {
   // In the order the stop names the first limit that acts: held forces, setups, channels.
   if ((!parts_.held_forces.empty() || !groups_.empty()) && !held_and_setup_commands_within_limits()) return false;
   if (parts_.limits.empty()) return true;
@@ -233,7 +234,7 @@ bool ExperimentalExchange::held_and_setup_commands_within_limits() {
   return true;
 }
 
-StepOutcome ExperimentalExchange::run_away() {
+inline StepOutcome ExperimentalExchange::run_away() {
   constexpr std::uint32_t kPositionLimits = transport::kLimitStroke | transport::kLimitForce;
   if (parts_.stop_on_node_limits && (feedback_.limit_flags & kPositionLimits) != 0) {
     limit_stop_ = {LimitStop::Kind::kNodeLimit, -1, static_cast<double>(feedback_.limit_flags), 0.0};

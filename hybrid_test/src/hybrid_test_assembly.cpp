@@ -86,7 +86,7 @@ struct TestAssembly::Parts {
     live.late_feedback.store(loop->late_feedback_total(), std::memory_order_relaxed);
     const coordinator::StepRecord& r = loop->last_record();
     if (!held_forces.empty()) held_stats.add(r);
-    for (std::size_t i = 0; i < round_trips.size(); ++i) {
+    for (std::size_t i = 0; i < round_trip_channels.size(); ++i) {
       const double round_trip_s = r.round_trip_s[round_trip_channels[i]];
       if (round_trip_s == 0.0) {
         ++zero_round_trips[i];
