@@ -14,16 +14,6 @@ void TrackingIndicator::reset(double command_m, double measured_m) noexcept {
   previous_measured_m_ = measured_m;
 }
 
-void TrackingIndicator::update(double command_m, double measured_m) noexcept {
-  if (has_previous_) {
-    area_a_m2_ += 0.5 * (command_m + previous_command_m_) * (measured_m - previous_measured_m_);
-    area_ta_m2_ += 0.5 * (measured_m + previous_measured_m_) * (command_m - previous_command_m_);
-  }
-  has_previous_ = true;
-  previous_command_m_ = command_m;
-  previous_measured_m_ = measured_m;
-}
-
 namespace {
 void require_equal_lengths(std::size_t a, std::size_t b, const char* what) {
   if (a != b) {

@@ -168,7 +168,30 @@ void ExperimentalExchange::stop_on_dof(const Group& g, int i, LimitStop::Kind ki
   limit_stop_.unit = force ? g.dof_force_units[static_cast<std::size_t>(i)] : g.dof_units[static_cast<std::size_t>(i)];
 }
 
-bool ExperimentalExchange::commands_within_limits() {
+// Inline, as run_away(): each is called from exchange() alone, once an exchange.
+inline bool ExperimentalExchange::commands_within_limits() {
+  // In the order the stop names the first limit that acts: held forces, setups, channels.
+  if ((!parts_.held_forces.empty() || !groups_.empty()) && !held_and_setup_commands_within_limits()) return false;
+  if (parts_.limits.empty()) return true;
+  const CoordinatorLimits* const limits = parts_.limits.data();
+  for (int c = 0; c < channels_; ++c) {
+    if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
+    const CoordinatorLimits& l = limits[c];
+    const double x = command_.displacement_m[c], change = x - last_sent_m_[c];
+    // A non-finite command fails both comparisons below, so test it first.
+    if (!std::isfinite(x) || std::abs(x) > l.max_stroke_m) {
+      limit_stop_ = {LimitStop::Kind::kStroke, c, x, l.max_stroke_m};
+      return false;
+    }
+    if (std::abs(change) > l.max_increment_m) {
+      limit_stop_ = {LimitStop::Kind::kIncrement, c, change, l.max_increment_m};
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ExperimentalExchange::held_and_setup_commands_within_limits() {
   // A held force's command (the ramp from its force at rest) is never sent beyond its force limit.
   for (int k = 0; k < static_cast<int>(parts_.held_forces.size()); ++k) {
     const HeldForceChannel& h = parts_.held_forces[static_cast<std::size_t>(k)];
@@ -208,25 +231,10 @@ bool ExperimentalExchange::commands_within_limits() {
       }
     }
   }
-  if (parts_.limits.empty()) return true;
-  for (int c = 0; c < channels_; ++c) {
-    if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
-    const CoordinatorLimits& l = parts_.limits[c];
-    const double x = command_.displacement_m[c], change = x - last_sent_m_[c];
-    // A non-finite command fails both comparisons below, so test it first.
-    if (!std::isfinite(x) || std::abs(x) > l.max_stroke_m) {
-      limit_stop_ = {LimitStop::Kind::kStroke, c, x, l.max_stroke_m};
-      return false;
-    }
-    if (std::abs(change) > l.max_increment_m) {
-      limit_stop_ = {LimitStop::Kind::kIncrement, c, change, l.max_increment_m};
-      return false;
-    }
-  }
   return true;
 }
 
-StepOutcome ExperimentalExchange::run_away() {
+inline StepOutcome ExperimentalExchange::run_away() {
   constexpr std::uint32_t kPositionLimits = transport::kLimitStroke | transport::kLimitForce;
   if (parts_.stop_on_node_limits && (feedback_.limit_flags & kPositionLimits) != 0) {
     limit_stop_ = {LimitStop::Kind::kNodeLimit, -1, static_cast<double>(feedback_.limit_flags), 0.0};
@@ -242,6 +250,24 @@ StepOutcome ExperimentalExchange::run_away() {
                    static_cast<double>(parts_.max_valve_saturation_exchanges)};
     return StepOutcome::kRunAway;
   }
+  if (!groups_.empty()) {
+    if (const StepOutcome outcome = setup_run_away(); outcome != StepOutcome::kOk) return outcome;
+  }
+  if (!parts_.limits.empty()) {
+    const CoordinatorLimits* const limits = parts_.limits.data();
+    for (int c = 0; c < channels_; ++c) {
+      if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
+      const double error = targets_[c] - feedback_.displacement_m[c];
+      if (std::abs(error) > limits[c].max_tracking_error_m) {
+        limit_stop_ = {LimitStop::Kind::kTrackingError, c, error, limits[c].max_tracking_error_m};
+        return StepOutcome::kRunAway;
+      }
+    }
+  }
+  return StepOutcome::kOk;
+}
+
+StepOutcome ExperimentalExchange::setup_run_away() {
   // A setup's actuators: the error of each actuator's own stroke.
   for (Group& g : groups_) {
     for (int i = 0; i < g.setup.dofs() && !g.parts.actuator_limits.empty(); ++i) {
@@ -254,29 +280,24 @@ StepOutcome ExperimentalExchange::run_away() {
       }
     }
   }
-  if (!parts_.limits.empty()) {
-    for (int c = 0; c < channels_; ++c) {
-      if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
-      const double error = targets_[c] - feedback_.displacement_m[c];
-      if (std::abs(error) > parts_.limits[c].max_tracking_error_m) {
-        limit_stop_ = {LimitStop::Kind::kTrackingError, c, error, parts_.limits[c].max_tracking_error_m};
-        return StepOutcome::kRunAway;
-      }
-    }
-  }
   return StepOutcome::kOk;
 }
 
 StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, double time_s) {
-  targets_ = targets;
+  // The vectors' storage and the compensators, held in locals: a compensator's virtual call
+  // could change any member for all the compiler knows, and it would load them again.
+  double* const target = targets_.data();
+  compensation::CommandCompensator* const* const compensators = parts_.compensators.data();
   command_.step = exchange_;
   command_.time_s = time_s;
   for (int c = 0; c < channels_; ++c) {
+    const double t = targets[c];
+    target[c] = t;
     if (group_of_[static_cast<std::size_t>(c)] < 0)
-      command_.displacement_m[c] = compensated_ ? parts_.compensators[c]->command(targets_[c]) : targets_[c];
+      command_.displacement_m[c] = compensated_ ? compensators[c]->command(t) : t;
   }
   for (Group& g : groups_) command_setup(g);
-  command_held_forces(time_s);
+  if (!parts_.held_forces.empty()) command_held_forces(time_s);
   if (!commands_within_limits()) return StepOutcome::kLimit;
   if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
   for (int c = 0; c < channels_; ++c) last_sent_m_[c] = command_.displacement_m[c];
@@ -303,7 +324,11 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
   if (feedback_.status & transport::kNodeFault) return StepOutcome::kNodeFault;
   if (transport::has_non_finite_measurement(feedback_, link_channels_)) return StepOutcome::kNonFinite;
   if (const StepOutcome outcome = run_away(); outcome != StepOutcome::kOk) return outcome;
-  if (const StepOutcome outcome = check_held_forces(); outcome != StepOutcome::kOk) return outcome;
+  if (!parts_.held_forces.empty()) {
+    if (const StepOutcome outcome = check_held_forces(); outcome != StepOutcome::kOk) return outcome;
+  }
+  const CoordinatorLimits* const limits = parts_.limits.empty() ? nullptr : parts_.limits.data();
+  compensation::TrackingIndicator* const tracking = tracking_.data();
   for (int c = 0; c < channels_; ++c) {
     if (const int g = group_of_[static_cast<std::size_t>(c)]; g >= 0) {
       // A setup's actuator: its load cell against its own force limit, its stroke tracked.
@@ -317,27 +342,28 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
       }
       group.stroke_measured[i] = feedback_.displacement_m[c] - group.offset[i];
       group.actuator_force[i] = feedback_.force_n[c];
-      if (!group.parts.compensate_dofs)
-        parts_.compensators[c]->observe(group.stroke_target[i], group.stroke_measured[i]);
-      tracking_[c].update(group.stroke_target[i], group.stroke_measured[i]);
+      if (!group.parts.compensate_dofs) compensators[c]->observe(group.stroke_target[i], group.stroke_measured[i]);
+      tracking[c].update(group.stroke_target[i], group.stroke_measured[i]);
       continue;
     }
-    if (!parts_.limits.empty() && std::abs(feedback_.force_n[c]) > parts_.limits[c].max_force_n) {
-      limit_stop_ = {LimitStop::Kind::kForce, c, feedback_.force_n[c], parts_.limits[c].max_force_n};
+    const double force = feedback_.force_n[c], measured = feedback_.displacement_m[c];
+    if (limits && std::abs(force) > limits[c].max_force_n) {
+      limit_stop_ = {LimitStop::Kind::kForce, c, force, limits[c].max_force_n};
       return StepOutcome::kLimit;
     }
-    parts_.compensators[c]->observe(targets_[c], feedback_.displacement_m[c]);
-    tracking_[c].update(targets_[c], feedback_.displacement_m[c]);
+    compensators[c]->observe(target[c], measured);
+    tracking[c].update(target[c], measured);
   }
   for (Group& g : groups_) {
     if (const StepOutcome outcome = feedback_setup(g); outcome != StepOutcome::kOk) return outcome;
   }
+  const RestoringForcePath* const paths = parts_.force_paths.data();
+  double* const specimen_force = specimen_forces_.data();
   for (int c = 0; c < channels_; ++c) {
     if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
-    const RestoringForcePath& path = parts_.force_paths[c];
-    specimen_forces_[c] = path.source == RestoringForceSource::kMeasuredForce
-                              ? feedback_.force_n[c]
-                              : path.stiffness_n_per_m * feedback_.displacement_m[c];
+    specimen_force[c] = paths[c].source == RestoringForceSource::kMeasuredForce
+                            ? feedback_.force_n[c]
+                            : paths[c].stiffness_n_per_m * feedback_.displacement_m[c];
   }
   return StepOutcome::kOk;
 }
@@ -451,17 +477,22 @@ StepOutcome ExperimentalExchange::feedback_setup(Group& g) {
 
 void ExperimentalExchange::fill_channels(StepRecord& r) const {
   r.channels = static_cast<std::uint8_t>(channels_);
+  // Each value read once into a local: a store into the record could alias the vectors' storage
+  // for all the compiler knows, and it would read them again.
+  const double *target = targets_.data(), *specimen_force = specimen_forces_.data();
+  const compensation::TrackingIndicator* const tracking = tracking_.data();
   for (int c = 0; c < channels_; ++c) {
-    r.target_m[c] = targets_[c];
+    const double t = target[c], x = feedback_.displacement_m[c], f = feedback_.force_n[c];
+    r.target_m[c] = t;
     r.command_m[c] = command_.displacement_m[c];
-    r.measured_m[c] = feedback_.displacement_m[c];
-    r.measured_force_n[c] = feedback_.force_n[c];
-    r.specimen_restoring_force_n[c] = specimen_forces_[c];
-    r.tracking_indicator_m2[c] = tracking_[c].value_m2();
+    r.measured_m[c] = x;
+    r.measured_force_n[c] = f;
+    r.specimen_restoring_force_n[c] = specimen_force[c];
+    r.tracking_indicator_m2[c] = tracking[c].value_m2();
     r.round_trip_s[c] = static_cast<double>(feedback_.round_trip_ns[c]) * 1e-9;
-    r.dof_target_m[c] = targets_[c];
-    r.dof_measured_m[c] = feedback_.displacement_m[c];
-    r.dof_force_n[c] = feedback_.force_n[c];
+    r.dof_target_m[c] = t;
+    r.dof_measured_m[c] = x;
+    r.dof_force_n[c] = f;
   }
   // A setup's channels: the actuators' strokes (offsets off) beside the DOFs' view.
   for (const Group& g : groups_) {
@@ -475,7 +506,7 @@ void ExperimentalExchange::fill_channels(StepRecord& r) const {
       r.dof_force_n[c] = g.dof_force[i];
     }
   }
-  r.held = static_cast<std::uint8_t>(parts_.held_forces.size());
+  r.held = static_cast<std::uint8_t>(link_channels_ - channels_);  // the held forces follow the channels
   for (int k = 0; k < r.held; ++k) {
     const auto c = static_cast<std::size_t>(parts_.held_forces[static_cast<std::size_t>(k)].channel);
     r.held_force_command_n[k] = command_.force_n[c];

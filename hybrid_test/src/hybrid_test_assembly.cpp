@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/hybrid_test/actuator_links.h"
@@ -33,6 +34,12 @@ struct TestAssembly::Parts {
   coordinator::LiveCounters live;  // for watchers on other threads (AssemblyOptions::record_observers)
   std::vector<realtime::LatencyHistogram> round_trips;  // per site, its first channel
   std::vector<std::size_t> round_trip_channels;         // per site, that channel
+  // Per site, its round trips of 0 s (every step in process: the node answers in the same
+  // call), added to its histogram at finish(): the same summary, no histogram update a step.
+  std::vector<std::int64_t> zero_round_trips;
+  // Whether a site's node can refuse the run once it is under way: only one over DDS hears so
+  // later (its link, DdsSite::refused); the others are asked before the first step only.
+  bool refusal_may_come = false;
   std::int64_t steps_planned = 0;
   std::int64_t steps = 0;
   TimingReport timing;
@@ -54,7 +61,8 @@ struct TestAssembly::Parts {
   // Whether a host call failed (one load per part). Real-time safe.
   bool host_failed() const noexcept {
     if (external_structure && external_structure->failed()) return true;
-    return std::any_of(external_compensators.begin(), external_compensators.end(),
+    return !external_compensators.empty() &&  // most tests have none: no loop set up a step
+           std::any_of(external_compensators.begin(), external_compensators.end(),
                        [](const compensation::ExternalCompensator* c) { return c->failed(); });
   }
 
@@ -72,19 +80,22 @@ struct TestAssembly::Parts {
     return {};
   }
 
-  // Counts a step the loop took and hands its record on. Real-time safe.
-  void took_step(const std::function<void(const coordinator::StepRecord&)>& after_step) {
+  // Counts a step the loop took; its record, for the caller's after_step. Real-time safe.
+  const coordinator::StepRecord& took_step() {
     ++steps;
     live.steps_done.store(steps, std::memory_order_relaxed);
     live.late_feedback.store(loop->late_feedback_total(), std::memory_order_relaxed);
     const coordinator::StepRecord& r = loop->last_record();
-    held_stats.add(r);
-    for (std::size_t i = 0; i < round_trips.size(); ++i) {
-      // In process every round trip is 0 s: counted as 0 ns without the conversion.
+    if (!held_forces.empty()) held_stats.add(r);
+    for (std::size_t i = 0; i < round_trip_channels.size(); ++i) {
       const double round_trip_s = r.round_trip_s[round_trip_channels[i]];
-      round_trips[i].add(round_trip_s == 0.0 ? 0 : static_cast<std::int64_t>(std::llround(round_trip_s * 1e9)));
+      if (round_trip_s == 0.0) {
+        ++zero_round_trips[i];
+      } else {
+        round_trips[i].add(static_cast<std::int64_t>(std::llround(round_trip_s * 1e9)));
+      }
     }
-    if (after_step) after_step(r);
+    return r;
   }
 
   // Why the run stops although its step succeeded: the records cannot be written, the user
@@ -372,8 +383,10 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   p.steps_planned = static_cast<std::int64_t>(std::llround(s.duration_s * s.control_rate_hz));
   if (p.loop->steps_available() >= 0) p.steps_planned = std::min(p.steps_planned, p.loop->steps_available());
   p.round_trips.resize(p.actuators->sites().size());
+  p.zero_round_trips.assign(p.actuators->sites().size(), 0);
   for (const auto& site : p.actuators->sites())
     p.round_trip_channels.push_back(static_cast<std::size_t>(site.channels.front()));
+  p.refusal_may_come = p.actuators->over_dds();
   coordinator::RecorderOptions recording = recorded_columns(s, perfect_actuator);
   recording.keep_records = options.keep_records;
   recording.observers = options.record_observers;
@@ -416,11 +429,12 @@ std::int64_t TestAssembly::progress_every_steps() const {
 }
 
 coordinator::StepOutcome TestAssembly::step() {
-  if (parts_->actuators->refused()) return coordinator::StepOutcome::kRefused;
-  coordinator::StepOutcome outcome = parts_->loop->step(*parts_->recorder);
+  Parts& p = *parts_;
+  if ((p.steps == 0 || p.refusal_may_come) && p.actuators->refused()) return coordinator::StepOutcome::kRefused;
+  coordinator::StepOutcome outcome = p.loop->step(*p.recorder);
   if (outcome == coordinator::StepOutcome::kOk) {
-    parts_->took_step({});
-    outcome = parts_->stop_after_step();
+    p.took_step();
+    outcome = p.stop_after_step();
   }
   return outcome;
 }
@@ -440,7 +454,7 @@ coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordi
     for (std::int64_t n = 0; n < p.steps_planned; ++n) {
       outcome = loop.step(*p.recorder);
       if (outcome != coordinator::StepOutcome::kOk) break;
-      p.took_step(after_step);
+      if (const coordinator::StepRecord& r = p.took_step(); after_step) after_step(r);
       outcome = p.stop_after_step();
       if (outcome != coordinator::StepOutcome::kOk) break;
       if (progress && (n + 1) % report_every == 0) progress(n + 1, p.steps_planned);
@@ -466,7 +480,7 @@ coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordi
     p.actuators->set_receive_deadline_ns(0);
     outcome = loop.step(*p.recorder);
     if (outcome != coordinator::StepOutcome::kOk) return outcome;
-    p.took_step(after_step);
+    if (const coordinator::StepRecord& r = p.took_step(); after_step) after_step(r);
     outcome = p.stop_after_step();
     if (outcome != coordinator::StepOutcome::kOk) return outcome;
   }
@@ -479,7 +493,7 @@ coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordi
     outcome = loop.step(*p.recorder);
     p.live.overruns.store(pacer.overruns(), std::memory_order_relaxed);
     if (outcome != coordinator::StepOutcome::kOk) break;
-    p.took_step(after_step);
+    if (const coordinator::StepRecord& r = p.took_step(); after_step) after_step(r);
     outcome = p.stop_after_step();
     if (outcome != coordinator::StepOutcome::kOk) break;
   }
@@ -540,6 +554,7 @@ TestRun TestAssembly::finish(coordinator::StepOutcome outcome) {
   run.return_to_start = p.return_to_start;
   // Command-to-feedback latency per site (each site's first channel).
   for (std::size_t i = 0; i < p.round_trips.size(); ++i) {
+    p.round_trips[i].add_zeros(std::exchange(p.zero_round_trips[i], 0));
     run.timing.sites.push_back({p.actuators->sites()[i].site_id, p.round_trips[i].summary()});
   }
   run.timing.over_dds = p.actuators->over_dds();

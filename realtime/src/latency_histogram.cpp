@@ -24,6 +24,12 @@ void LatencyHistogram::add(std::int64_t ns) {
   sum_ns_ += static_cast<double>(ns);
 }
 
+void LatencyHistogram::add_zeros(std::int64_t times) {
+  if (times <= 0) return;
+  bins_[bin_of(0)] += times;
+  count_ += times;
+}
+
 std::int64_t LatencyHistogram::quantile_ns(double q) const {
   if (count_ == 0) return 0;
   const auto rank = static_cast<std::int64_t>(std::ceil(std::clamp(q, 0.0, 1.0) * static_cast<double>(count_)));

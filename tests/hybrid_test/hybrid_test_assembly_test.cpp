@@ -65,6 +65,25 @@ TEST(TestRunner, AnInProcessSitesRoundTripIsCountedOnEveryStepAsZero) {
   EXPECT_EQ(round_trip.p99_s, 0.0);  // a bin's edge bounded by the exact maximum
 }
 
+TEST(TestRunner, StepByStepAnInProcessSitesRoundTripsAreCountedAsByRun) {
+  // TestAssembly::step() counts an in-process site's 0 s round trips and adds them to its
+  // histogram at finish(): the summary counts every step, as run()'s does.
+  const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml",
+                                          {scenarios::parse_override("ground_motion.trim={end_s: 1}")});
+  const auto& scenario = std::get<hybrid_test::TestConfig>(file.study);
+  TestAssembly test(scenario, {});
+  coordinator::StepOutcome outcome = coordinator::StepOutcome::kOk;
+  for (std::int64_t n = 0; n < test.steps_planned() && outcome == coordinator::StepOutcome::kOk; ++n)
+    outcome = test.step();
+  ASSERT_EQ(outcome, coordinator::StepOutcome::kOk);
+  const TestRun run = test.finish(outcome);
+  ASSERT_GT(run.steps, 0);
+  ASSERT_EQ(run.timing.sites.size(), 1u);
+  EXPECT_EQ(run.timing.sites[0].round_trip.count, run.steps);
+  EXPECT_EQ(run.timing.sites[0].round_trip.max_s, 0.0);
+  EXPECT_EQ(run.timing.sites[0].round_trip.p50_s, 0.0);
+}
+
 void expect_same(double a, double b, const char* what) {
   if (std::isnan(a) || std::isnan(b)) {
     EXPECT_TRUE(std::isnan(a) && std::isnan(b)) << what;

@@ -36,5 +36,29 @@ TEST(LatencyHistogram, NegativeSamplesCountAsZeroAndClearEmpties) {
   EXPECT_EQ(h.summary().p99_s, 0.0);
 }
 
+TEST(LatencyHistogram, ZerosAddedAtOnceGiveTheSummaryOfAddingEachOne) {
+  // The test assembly counts an in-process site's 0 s round trips and adds them at the end.
+  LatencyHistogram one_by_one, at_once;
+  for (const std::int64_t ns : {0, 1'500, 0, 0, 3'200'000, 0, 700, 0}) {
+    one_by_one.add(ns);
+    if (ns != 0) at_once.add(ns);
+  }
+  at_once.add_zeros(5);
+  at_once.add_zeros(0);
+  const LatencySummary a = one_by_one.summary(), b = at_once.summary();
+  EXPECT_EQ(b.count, a.count);
+  EXPECT_EQ(b.p50_s, a.p50_s);
+  EXPECT_EQ(b.p99_s, a.p99_s);
+  EXPECT_EQ(b.p999_s, a.p999_s);
+  EXPECT_EQ(b.max_s, a.max_s);
+  EXPECT_EQ(b.mean_s, a.mean_s);
+  EXPECT_EQ(at_once.quantile_ns(0.6), one_by_one.quantile_ns(0.6));  // the zeros' bin holds five
+  LatencyHistogram zeros;
+  zeros.add_zeros(3);
+  EXPECT_EQ(zeros.summary().count, 3);
+  EXPECT_EQ(zeros.summary().max_s, 0.0);
+  EXPECT_EQ(zeros.summary().mean_s, 0.0);
+}
+
 }  // namespace
 }  // namespace rpsd::realtime

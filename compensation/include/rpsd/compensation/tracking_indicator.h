@@ -20,7 +20,16 @@ class TrackingIndicator {
   // Starts from a known previous sample (areas zero). Real-time safe.
   void reset(double command_m, double measured_m) noexcept;
   // Adds one sample of commanded (or target) and measured displacement. Real-time safe.
-  void update(double command_m, double measured_m) noexcept;
+  // Inline: the exchange calls it for every channel on every step.
+  void update(double command_m, double measured_m) noexcept {
+    if (has_previous_) {
+      area_a_m2_ += 0.5 * (command_m + previous_command_m_) * (measured_m - previous_measured_m_);
+      area_ta_m2_ += 0.5 * (measured_m + previous_measured_m_) * (command_m - previous_command_m_);
+    }
+    has_previous_ = true;
+    previous_command_m_ = command_m;
+    previous_measured_m_ = measured_m;
+  }
 
   double area_a_m2() const noexcept { return area_a_m2_; }
   double area_ta_m2() const noexcept { return area_ta_m2_; }

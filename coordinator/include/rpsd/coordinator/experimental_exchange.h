@@ -59,7 +59,7 @@ class ExperimentalExchange {
   // Resets compensators and indicators. Not real-time safe.
   void start(const Eigen::VectorXd& targets, std::span<const double> specimen_force_n);
 
-  // Commands the channels toward `targets` (specimen scale) at test time `time_s` and takes
+  // Commands the channels toward `targets` (specimen scale, one per channel) at test time `time_s` and takes
   // the measurement. kOk: specimen_forces() holds this exchange's restoring forces. Otherwise
   // nothing more may be sent; limit_stop() says which limit when one acted. Real-time safe.
   StepOutcome exchange(const Eigen::VectorXd& targets, double time_s);
@@ -104,14 +104,16 @@ class ExperimentalExchange {
     std::vector<const char*> dof_units, dof_force_units;
   };
 
-  bool commands_within_limits();  // fills limit_stop_ when not
+  bool commands_within_limits();                 // fills limit_stop_ when not
+  bool held_and_setup_commands_within_limits();  // the part of the above for held forces and setups
   // The held forces' commands at test time `time_s`: each ramps from its force at rest.
   void command_held_forces(double time_s);
   // The held forces' measurements against their limits: kOk, or kLimit / kRunAway with
   // limit_stop_ filled.
   StepOutcome check_held_forces();
   void stop_on_held(int k, LimitStop::Kind kind, double value, double bound, const char* unit);
-  StepOutcome run_away();  // kOk, or kRunAway with limit_stop_ filled
+  StepOutcome run_away();        // kOk, or kRunAway with limit_stop_ filled
+  StepOutcome setup_run_away();  // the part of the above for setups' actuators
   // A setup's channels: the DOF targets through the geometry to the actuators' commands.
   void command_setup(Group& g);
   // A setup's channels: the measured strokes and forces back to the DOFs'; kGeometry, kLimit
