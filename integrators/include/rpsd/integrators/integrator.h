@@ -119,6 +119,7 @@ class Integrator {
  private:
   enum class Phase : std::uint8_t { kUnconfigured, kConfigured, kIdle, kIterating, kAwaitingEnd };
   void check_size(const Eigen::VectorXd& x, const char* what) const;
+  StepStatus sequence_error() const;  // the status of a per-step call in the wrong phase
 
   int iterations_ = 1;
   int iteration_ = 0;

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <cassert>
 #include <cstdint>
 #include <vector>
 
@@ -65,6 +66,9 @@ class StructuralMatrix {
   void for_each_entry(F&& f) const;
 
   // y = A x and y += s A x; sizes must match (asserted). Real-time safe: no allocation.
+  // The diagonal and one-DOF arms are inline (below): for the few DOFs of a hybrid test's
+  // model a call and its set-up cost more than the product. Dense and sparse products are
+  // in the source file.
   void multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept;
   void multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept;
 
@@ -84,7 +88,38 @@ class StructuralMatrix {
   // scattering columns.
   Eigen::SparseMatrix<double, Eigen::RowMajor> sparse_rows_;
   std::vector<Eigen::Index> row_major_position_;  // of each stored value of sparse_
+
+  void multiply_stored(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept;
+  void multiply_add_stored(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
+                           Eigen::Ref<Eigen::VectorXd> y) const noexcept;
 };
+
+inline void StructuralMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                       Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+  assert(x.size() == cols_ && y.size() == rows_);
+  if (storage_ == MatrixStorage::kDiagonal) {
+    // A plain loop: the same product per entry as Eigen's, without its set-up per call.
+    const double* a = diagonal_.data();
+    for (Eigen::Index i = 0; i < rows_; ++i) y[i] = a[i] * x[i];
+  } else if (storage_ == MatrixStorage::kDense && rows_ == 1) {
+    // One DOF: Eigen's own path for a 1x1 product (an inner product added onto a zeroed y,
+    // hence 0 + a x, which keeps its sign of zero), without the set-up of its general one.
+    y[0] = 0.0 + dense_.data()[0] * x[0];
+  } else {
+    multiply_stored(x, y);
+  }
+}
+
+inline void StructuralMatrix::multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                           Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+  assert(x.size() == cols_ && y.size() == rows_);
+  if (storage_ == MatrixStorage::kDiagonal) {
+    const double* a = diagonal_.data();  // (s a_i) x_i, as Eigen evaluates it
+    for (Eigen::Index i = 0; i < rows_; ++i) y[i] += s * a[i] * x[i];
+  } else {
+    multiply_add_stored(s, x, y);
+  }
+}
 
 template <typename F>
 void StructuralMatrix::for_each_entry(F&& f) const {
