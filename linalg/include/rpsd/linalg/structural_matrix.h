@@ -7,6 +7,7 @@
 #include <Eigen/SparseCore>
 
 #include <cassert>
+#include <concepts>
 #include <cstdint>
 #include <vector>
 
@@ -69,8 +70,22 @@ class StructuralMatrix {
   // The diagonal and one-DOF arms are inline (below): for the few DOFs of a hybrid test's
   // model a call and its set-up cost more than the product. Dense and sparse products are
   // in the source file.
-  void multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept;
-  void multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept;
+  void multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+    multiply_small(x, y);
+  }
+  void multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+    multiply_add_small(s, x, y);
+  }
+  // The same products on whole vectors, without a Ref's set-up (its temporary costs a call to
+  // free on every product); only for Eigen::VectorXd itself, so that nothing converts to one.
+  template <std::same_as<Eigen::VectorXd> X, std::same_as<Eigen::VectorXd> Y>
+  void multiply(const X& x, Y& y) const noexcept {
+    multiply_small(x, y);
+  }
+  template <std::same_as<Eigen::VectorXd> X, std::same_as<Eigen::VectorXd> Y>
+  void multiply_add(double s, const X& x, Y& y) const noexcept {
+    multiply_add_small(s, x, y);
+  }
 
   // Largest |a_ij| (0 when empty); max |a_ij - a_ji| <= rel_tol * max_abs(); every entry
   // finite. Not real-time safe.
@@ -89,13 +104,17 @@ class StructuralMatrix {
   Eigen::SparseMatrix<double, Eigen::RowMajor> sparse_rows_;
   std::vector<Eigen::Index> row_major_position_;  // of each stored value of sparse_
 
+  template <typename X, typename Y>
+  void multiply_small(const X& x, Y& y) const noexcept;
+  template <typename X, typename Y>
+  void multiply_add_small(double s, const X& x, Y& y) const noexcept;
   void multiply_stored(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept;
   void multiply_add_stored(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
                            Eigen::Ref<Eigen::VectorXd> y) const noexcept;
 };
 
-inline void StructuralMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                       Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+template <typename X, typename Y>
+void StructuralMatrix::multiply_small(const X& x, Y& y) const noexcept {
   assert(x.size() == cols_ && y.size() == rows_);
   if (storage_ == MatrixStorage::kDiagonal) {
     // A plain loop: the same product per entry as Eigen's, without its set-up per call.
@@ -110,8 +129,8 @@ inline void StructuralMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& 
   }
 }
 
-inline void StructuralMatrix::multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                           Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+template <typename X, typename Y>
+void StructuralMatrix::multiply_add_small(double s, const X& x, Y& y) const noexcept {
   assert(x.size() == cols_ && y.size() == rows_);
   if (storage_ == MatrixStorage::kDiagonal) {
     const double* a = diagonal_.data();  // (s a_i) x_i, as Eigen evaluates it
