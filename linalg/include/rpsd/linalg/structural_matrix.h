@@ -73,7 +73,8 @@ class StructuralMatrix {
   void multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept {
     multiply_small(x, y);
   }
-  void multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+  void multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
+                    Eigen::Ref<Eigen::VectorXd> y) const noexcept {
     multiply_add_small(s, x, y);
   }
   // The same products on whole vectors, without a Ref's set-up (its temporary costs a call to
