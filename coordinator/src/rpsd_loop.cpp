@@ -33,6 +33,8 @@ ExchangeParts exchange_parts(const LoopParts& p) {
 
 RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)), exchange_(exchange_parts(parts_)) {
   dofs_ = parts_.numerical->dofs();
+  mass_ = &parts_.numerical->mass();
+  damping_ = &parts_.numerical->damping();
   channels_ = exchange_.channels();
   if (parts_.integrator->size() != dofs_ || parts_.partition->dofs() != dofs_) {
     throw std::invalid_argument("RpsdLoop: the integrator, numerical model and partition have different DOF counts");
@@ -57,11 +59,6 @@ RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)), exchange_(exchan
         "RpsdLoop: loop timing target_now_force_delayed needs one exchange per step; the integrator takes " +
         std::to_string(parts_.integrator->iterations_per_step()));
   }
-}
-
-std::int64_t RpsdLoop::steps_available() const {
-  const auto n = static_cast<std::int64_t>(parts_.ground_acceleration_m_per_s2.size());
-  return n == 0 ? -1 : n - 1;
 }
 
 void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen_force0_n) {
@@ -152,9 +149,9 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   }
   input_energy_j_ += 0.5 * force_sum_.dot(work_a_);
   restoring_energy_j_ += 0.5 * restoring_sum_.dot(work_a_);
-  numerical.damping().multiply(work_b_, restoring_);  // restoring_ reused as scratch: C (v + v_prev)
+  damping_->multiply(work_b_, restoring_);  // restoring_ reused as scratch: C (v + v_prev)
   damping_energy_j_ += 0.5 * restoring_.dot(work_a_);
-  numerical.mass().multiply(v, work_b_);
+  mass_->multiply(v, work_b_);
   kinetic_energy_j_ = 0.5 * v.dot(work_b_);
 
   record_.step = step_;

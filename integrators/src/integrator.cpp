@@ -9,16 +9,6 @@
 namespace rpsd::integrators {
 namespace {
 
-// Every entry finite, in a plain loop: Eigen's allFinite() costs more in set-up than the
-// check itself for the few DOFs of a hybrid test's model.
-bool all_finite(const Eigen::VectorXd& x) {
-  const double* p = x.data();
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    if (!std::isfinite(p[i])) return false;
-  }
-  return true;
-}
-
 std::string dims(const linalg::StructuralMatrix& m) {
   return std::to_string(m.rows()) + "x" + std::to_string(m.cols());
 }
@@ -122,37 +112,9 @@ void Integrator::set_state(const Eigen::VectorXd& d, const Eigen::VectorXd& v, c
   phase_ = Phase::kIdle;
 }
 
-StepStatus Integrator::begin_step(const Eigen::VectorXd& f_next) {
-  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured) return StepStatus::kNotInitialized;
-  if (phase_ != Phase::kIdle) return StepStatus::kOutOfSequence;
-  if (f_next.size() != n_) return StepStatus::kSizeMismatch;
-  if (!all_finite(f_next)) return StepStatus::kNonFiniteInput;
-  std::copy_n(f_next.data(), n_, f_next_.data());
-  iteration_ = 0;
-  on_begin_step();
-  phase_ = Phase::kIterating;
-  return StepStatus::kOk;
-}
-
-StepStatus Integrator::set_measured_restoring_force(const Eigen::VectorXd& r) {
-  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured) return StepStatus::kNotInitialized;
-  if (phase_ != Phase::kIterating) return StepStatus::kOutOfSequence;
-  if (r.size() != n_) return StepStatus::kSizeMismatch;
-  if (!all_finite(r)) return StepStatus::kNonFiniteInput;
-  on_restoring_force(iteration_, r);
-  if (++iteration_ == iterations_) phase_ = Phase::kAwaitingEnd;
-  return StepStatus::kOk;
-}
-
-StepStatus Integrator::end_step() {
-  if (phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured) return StepStatus::kNotInitialized;
-  if (phase_ != Phase::kAwaitingEnd) return StepStatus::kOutOfSequence;
-  on_end_step();
-  f_.swap(f_next_);
-  ++step_;
-  time_s_ = time0_s_ + static_cast<double>(step_ - step0_) * dt_s_;
-  phase_ = Phase::kIdle;
-  return StepStatus::kOk;
+StepStatus Integrator::sequence_error() const {
+  return phase_ == Phase::kUnconfigured || phase_ == Phase::kConfigured ? StepStatus::kNotInitialized
+                                                                        : StepStatus::kOutOfSequence;
 }
 
 }  // namespace rpsd::integrators

@@ -1,7 +1,5 @@
 #include "rpsd/integrators/operator_splitting_engine.h"
 
-#include <algorithm>
-
 namespace rpsd::integrators {
 
 void OperatorSplittingEngine::on_configure() {
@@ -31,7 +29,9 @@ void OperatorSplittingEngine::on_begin_step() {
 }
 
 void OperatorSplittingEngine::on_restoring_force(int /*iteration*/, const Eigen::VectorXd& r) {
-  std::copy_n(r.data(), n_, r_meas_.data());
+  const double* from = r.data();
+  double* to = r_meas_.data();
+  for (Eigen::Index i = 0; i < n_; ++i) to[i] = from[i];
 }
 
 void OperatorSplittingEngine::on_end_step() {
@@ -56,7 +56,9 @@ void OperatorSplittingEngine::on_end_step() {
       v[i] = v_pred[i] + gdt * a_next[i];
     }
   }
-  std::copy_n(r_meas_.data(), n_, r_.data());
+  // R+ = R~+ (+ beta dt^2 K_I a+): the measured force becomes the state's by a swap; r_meas_
+  // is written again by the next step's measurement before it is read.
+  r_.swap(r_meas_);
   if (bdt2 != 0.0) stiffness_.multiply_add(bdt2, a_next_, r_);
   a_.swap(a_next_);
 }

@@ -125,17 +125,10 @@ void SymmetricSolver::solve_band(const Eigen::VectorXd& rhs, Eigen::VectorXd& x)
   }
 }
 
-void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+void SymmetricSolver::solve_factored(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   switch (storage_) {
-    case linalg::MatrixStorage::kDiagonal: {
-      // A plain loop: Eigen's set-up per expression costs more than a lumped mass's few products.
-      const Eigen::Index n = inverse_diagonal_.size();
-      x.resize(n);  // as the assignment it replaces: allocates only on a size change
-      const double *inverse = inverse_diagonal_.data(), *rhs = b.data();
-      double* out = x.data();
-      for (Eigen::Index i = 0; i < n; ++i) out[i] = inverse[i] * rhs[i];
+    case linalg::MatrixStorage::kDiagonal:  // inline in the header
       break;
-    }
     case linalg::MatrixStorage::kDense:
       x = dense_->solve(b);
       break;

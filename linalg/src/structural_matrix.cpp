@@ -1,7 +1,6 @@
 #include "rpsd/linalg/structural_matrix.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -209,47 +208,22 @@ double StructuralMatrix::coeff(Eigen::Index i, Eigen::Index j) const noexcept {
   return 0.0;
 }
 
-void StructuralMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                Eigen::Ref<Eigen::VectorXd> y) const noexcept {
-  assert(x.size() == cols_ && y.size() == rows_);
-  switch (storage_) {
-    case MatrixStorage::kDiagonal: {
-      // A plain loop: the same product per entry as Eigen's, without its set-up per call,
-      // which costs more than the product for the few DOFs of a hybrid test's model.
-      const double* a = diagonal_.data();
-      for (Eigen::Index i = 0; i < rows_; ++i) y[i] = a[i] * x[i];
-      break;
-    }
-    case MatrixStorage::kDense:
-      // One DOF: Eigen's own path for a 1x1 product (an inner product added onto a zeroed y,
-      // hence 0 + a x, which keeps its sign of zero), without the set-up of its general one.
-      if (rows_ == 1) {
-        y[0] = 0.0 + dense_(0, 0) * x[0];
-        break;
-      }
-      y.noalias() = dense_ * x;
-      break;
-    case MatrixStorage::kSparse:
-      y.noalias() = sparse_rows_ * x;
-      break;
+// The dense and sparse products (the diagonal and one-DOF arms are inline in the header).
+void StructuralMatrix::multiply_stored(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                       Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+  if (storage_ == MatrixStorage::kSparse) {
+    y.noalias() = sparse_rows_ * x;
+  } else {
+    y.noalias() = dense_ * x;
   }
 }
 
-void StructuralMatrix::multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                    Eigen::Ref<Eigen::VectorXd> y) const noexcept {
-  assert(x.size() == cols_ && y.size() == rows_);
-  switch (storage_) {
-    case MatrixStorage::kDiagonal: {
-      const double* a = diagonal_.data();  // (s a_i) x_i, as Eigen evaluates it
-      for (Eigen::Index i = 0; i < rows_; ++i) y[i] += s * a[i] * x[i];
-      break;
-    }
-    case MatrixStorage::kDense:
-      y.noalias() += s * (dense_ * x);
-      break;
-    case MatrixStorage::kSparse:
-      y.noalias() += s * (sparse_rows_ * x);
-      break;
+void StructuralMatrix::multiply_add_stored(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                           Eigen::Ref<Eigen::VectorXd> y) const noexcept {
+  if (storage_ == MatrixStorage::kSparse) {
+    y.noalias() += s * (sparse_rows_ * x);
+  } else {
+    y.noalias() += s * (dense_ * x);
   }
 }
 

@@ -96,14 +96,6 @@ Eigen::Index Partition::channel_of(Eigen::Index dof) const noexcept {
   return channel_of_dof_[static_cast<std::size_t>(dof)];
 }
 
-void Partition::extract_commands(const Eigen::Ref<const Eigen::VectorXd>& d,
-                                 Eigen::Ref<Eigen::VectorXd> commands) const noexcept {
-  for (std::size_t ch = 0; ch < by_channel_.size(); ++ch) {
-    const ExperimentalDof& x = by_channel_[ch];
-    commands[static_cast<Eigen::Index>(ch)] = x.displacement_scale * d[x.dof];
-  }
-}
-
 void Partition::measured_to_model_displacements(const Eigen::Ref<const Eigen::VectorXd>& x_measured,
                                                 Eigen::Ref<Eigen::VectorXd> d) const noexcept {
   for (std::size_t ch = 0; ch < by_channel_.size(); ++ch) {
@@ -116,14 +108,6 @@ void Partition::scatter_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measur
                                Eigen::Ref<Eigen::VectorXd> r_exp) const noexcept {
   r_exp.setZero();
   add_forces(f_measured, r_exp);
-}
-
-void Partition::add_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured,
-                           Eigen::Ref<Eigen::VectorXd> r) const noexcept {
-  for (std::size_t ch = 0; ch < by_channel_.size(); ++ch) {
-    const ExperimentalDof& x = by_channel_[ch];
-    r[x.dof] += x.force_scale * f_measured[static_cast<Eigen::Index>(ch)];
-  }
 }
 
 linalg::StructuralMatrix Partition::with_specimen_stiffness(const linalg::StructuralMatrix& K_num) const {

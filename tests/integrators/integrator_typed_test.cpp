@@ -274,6 +274,31 @@ TEST(StepSequence, MisuseIsReportedNotThrown) {
   EXPECT_DOUBLE_EQ(integrator->time_s(), 0.01);
 }
 
+// Each per-step call compares its phase once and works out the error only on a wrong phase
+// (Integrator::sequence_error): configured but not yet initialized is "not initialized" for
+// every call, a call in another step phase "out of sequence", and neither changes the state.
+TEST(StepSequence, EachCallInAWrongPhaseNamesWhyAndLeavesTheStepAlone) {
+  auto integrator = make_integrator(CentralDifferenceParameters{});
+  const Eigen::VectorXd one = Eigen::VectorXd::Ones(1);
+  integrator->configure(
+      StructuralMatrices::dense(Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Zero(1, 1), Eigen::MatrixXd::Ones(1, 1)),
+      0.01);
+  EXPECT_EQ(integrator->begin_step(one), StepStatus::kNotInitialized);
+  EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::kNotInitialized);
+  EXPECT_EQ(integrator->end_step(), StepStatus::kNotInitialized);
+  integrator->initialize(one, one * 0, one, one * 0);
+  EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::kOutOfSequence);
+  EXPECT_EQ(integrator->end_step(), StepStatus::kOutOfSequence);
+  ASSERT_EQ(integrator->begin_step(one), StepStatus::kOk);
+  EXPECT_EQ(integrator->end_step(), StepStatus::kOutOfSequence);
+  ASSERT_EQ(integrator->set_measured_restoring_force(one), StepStatus::kOk);
+  EXPECT_EQ(integrator->begin_step(one), StepStatus::kOutOfSequence);
+  EXPECT_EQ(integrator->set_measured_restoring_force(one), StepStatus::kOutOfSequence);
+  EXPECT_EQ(integrator->step(), 0);
+  ASSERT_EQ(integrator->end_step(), StepStatus::kOk);
+  EXPECT_EQ(integrator->step(), 1);
+}
+
 }  // namespace
 }  // namespace rpsd::integrators::test
 

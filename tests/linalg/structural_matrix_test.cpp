@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "rpsd/linalg/structural_matrix.h"
 
@@ -142,6 +143,38 @@ TEST(StructuralMatrix, DiagonalAndOneByOneProductsGiveEigensDigits) {
       EXPECT_TRUE(same_bits(y[0], y_eigen[0])) << k << " x " << value << ": " << y[0] << " against " << y_eigen[0];
     }
   }
+}
+
+// The loop multiplies whole vectors through their own overloads (no Ref set-up); any other
+// vector (a segment) goes through the Ref ones. Both must give the same digits, a zero's sign
+// included, for every storage.
+TEST(StructuralMatrix, WholeVectorsAndSegmentsGiveTheSameDigits) {
+  const Eigen::MatrixXd a = random_symmetric(4, 3, 0.5);
+  const std::vector<StructuralMatrix> matrices = {StructuralMatrix::diagonal(random_vector(4, 21)), StructuralMatrix(a),
+                                                  StructuralMatrix(a).converted(MatrixStorage::kSparse),
+                                                  StructuralMatrix(Eigen::MatrixXd::Constant(1, 1, 3.0)),
+                                                  StructuralMatrix::diagonal(random_vector(1, 24) * 7.3)};
+  for (const StructuralMatrix& m : matrices)
+    for (const bool negative_zero : {false, true}) {
+      const Eigen::Index n = m.rows();
+      Eigen::VectorXd x = random_vector(static_cast<int>(n), 22);
+      if (negative_zero) x[0] = -0.0;
+      const Eigen::VectorXd z0 = random_vector(static_cast<int>(n), 23);
+      Eigen::VectorXd y(n), z = z0;
+      m.multiply(x, y);
+      m.multiply_add(-0.7, x, z);
+      Eigen::VectorXd x_in(n + 2), y_in = Eigen::VectorXd::Zero(n + 2), z_in(n + 2);
+      x_in.segment(1, n) = x;
+      z_in.segment(1, n) = z0;
+      m.multiply(x_in.segment(1, n), y_in.segment(1, n));
+      m.multiply_add(-0.7, x_in.segment(1, n), z_in.segment(1, n));
+      for (Eigen::Index i = 0; i < n; ++i) {
+        EXPECT_TRUE(same_bits(y[i], y_in[i + 1])) << n << " DOFs, storage " << static_cast<int>(m.storage()) << ", "
+                                                  << i << ": " << y[i] << " against " << y_in[i + 1];
+        EXPECT_TRUE(same_bits(z[i], z_in[i + 1])) << n << " DOFs, storage " << static_cast<int>(m.storage()) << ", "
+                                                  << i << ": " << z[i] << " against " << z_in[i + 1];
+      }
+    }
 }
 
 }  // namespace

@@ -110,7 +110,11 @@ class RpsdLoop {
   std::int64_t step_index() const { return step_; }
   std::uint64_t run_id() const { return exchange_.run_id(); }
   const ExperimentalExchange& exchange() const { return exchange_; }
-  std::int64_t steps_available() const;  // ground-motion steps, or unlimited (-1)
+  // Ground-motion steps, or unlimited (-1).
+  std::int64_t steps_available() const {
+    const auto n = static_cast<std::int64_t>(parts_.ground_acceleration_m_per_s2.size());
+    return n == 0 ? -1 : n - 1;
+  }
   double dt_s() const { return parts_.integrator->dt_s(); }
 
  private:
@@ -120,6 +124,10 @@ class RpsdLoop {
   ExperimentalExchange exchange_;
   int channels_ = 0;
   Eigen::Index dofs_ = 0;
+  // The numerical model's M and C for the energy balance, asked for once (one object each
+  // for the model's life), not through a virtual call every step.
+  const linalg::StructuralMatrix* mass_ = nullptr;
+  const linalg::StructuralMatrix* damping_ = nullptr;
   Eigen::VectorXd force_, targets_, restoring_;
   // kTargetNowForceDelayed: the target of the step before, and the force of the exchange before.
   Eigen::VectorXd held_targets_, held_forces_;

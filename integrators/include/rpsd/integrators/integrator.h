@@ -19,6 +19,7 @@
 
 #include <Eigen/Dense>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string_view>
@@ -119,6 +120,16 @@ class Integrator {
  private:
   enum class Phase : std::uint8_t { kUnconfigured, kConfigured, kIdle, kIterating, kAwaitingEnd };
   void check_size(const Eigen::VectorXd& x, const char* what) const;
+  StepStatus sequence_error() const;  // the status of a per-step call in the wrong phase
+  // Every entry finite, in a plain loop: Eigen's allFinite() costs more in set-up than the
+  // check itself for the few DOFs of a hybrid test's model.
+  static bool all_finite(const Eigen::VectorXd& x) {
+    const double* p = x.data();
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      if (!std::isfinite(p[i])) return false;
+    }
+    return true;
+  }
 
   int iterations_ = 1;
   int iteration_ = 0;
@@ -128,5 +139,40 @@ class Integrator {
   double time0_s_ = 0.0;
   std::int64_t step0_ = 0;
 };
+
+// The per-step calls are inline: each checks its phase (one comparison on the way through;
+// which error a wrong phase is, sequence_error works out), the size and finiteness of what
+// it is given, then calls the scheme's hook; a call of its own would cost more than the checks.
+inline StepStatus Integrator::begin_step(const Eigen::VectorXd& f_next) {
+  if (phase_ != Phase::kIdle) return sequence_error();
+  if (f_next.size() != n_) return StepStatus::kSizeMismatch;
+  if (!all_finite(f_next)) return StepStatus::kNonFiniteInput;
+  const double* from = f_next.data();  // a plain loop: std::copy_n would call memmove
+  double* to = f_next_.data();
+  for (Eigen::Index i = 0; i < n_; ++i) to[i] = from[i];
+  iteration_ = 0;
+  on_begin_step();
+  phase_ = Phase::kIterating;
+  return StepStatus::kOk;
+}
+
+inline StepStatus Integrator::set_measured_restoring_force(const Eigen::VectorXd& r) {
+  if (phase_ != Phase::kIterating) return sequence_error();
+  if (r.size() != n_) return StepStatus::kSizeMismatch;
+  if (!all_finite(r)) return StepStatus::kNonFiniteInput;
+  on_restoring_force(iteration_, r);
+  if (++iteration_ == iterations_) phase_ = Phase::kAwaitingEnd;
+  return StepStatus::kOk;
+}
+
+inline StepStatus Integrator::end_step() {
+  if (phase_ != Phase::kAwaitingEnd) return sequence_error();
+  on_end_step();
+  f_.swap(f_next_);
+  ++step_;
+  time_s_ = time0_s_ + static_cast<double>(step_ - step0_) * dt_s_;
+  phase_ = Phase::kIdle;
+  return StepStatus::kOk;
+}
 
 }  // namespace rpsd::integrators

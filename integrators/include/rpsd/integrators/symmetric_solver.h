@@ -23,6 +23,7 @@ class SymmetricSolver {
   void factorize(const linalg::StructuralMatrix& A, std::string_view what);
   // x = A^-1 b. Real-time safe; x must already have the right size and not alias b.
   // Uses an internal work vector: one solver must not be used by two threads at once.
+  // The diagonal arm is inline (below): a lumped mass's few products cost less than a call.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   linalg::MatrixStorage storage() const { return storage_; }
   // Non-zeros of the triangular factor (the per-solve cost); n for a diagonal matrix.
@@ -42,7 +43,20 @@ class SymmetricSolver {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> band_l_;
   void factorize_band(const Eigen::SparseMatrix<double>& a, Eigen::Index b, std::string_view what);
   void solve_band(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  void solve_factored(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;  // dense and sparse
 };
+
+inline void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  if (storage_ != linalg::MatrixStorage::kDiagonal) {
+    solve_factored(b, x);
+    return;
+  }
+  const Eigen::Index n = inverse_diagonal_.size();
+  x.resize(n);  // as the assignment it replaces: allocates only on a size change
+  const double *inverse = inverse_diagonal_.data(), *rhs = b.data();
+  double* out = x.data();
+  for (Eigen::Index i = 0; i < n; ++i) out[i] = inverse[i] * rhs[i];
+}
 
 // True if A is positive definite (Cholesky succeeds). Not real-time safe.
 bool is_positive_definite(const linalg::StructuralMatrix& A);

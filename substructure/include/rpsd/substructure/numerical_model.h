@@ -22,6 +22,8 @@ class NumericalModel {
   virtual ~NumericalModel() = default;
 
   [[nodiscard]] virtual Eigen::Index dofs() const noexcept = 0;
+  // M and C are one object each for the model's life (the loop holds them); their values
+  // may change only when the model is configured again.
   [[nodiscard]] virtual const linalg::StructuralMatrix& mass() const noexcept = 0;
   [[nodiscard]] virtual const linalg::StructuralMatrix& damping() const noexcept = 0;
   [[nodiscard]] virtual const linalg::StructuralMatrix& initial_stiffness() const noexcept = 0;

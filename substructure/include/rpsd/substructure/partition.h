@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <concepts>
 #include <vector>
 
 namespace rpsd::substructure {
@@ -59,7 +60,15 @@ class Partition {
   // commands[ch] = displacement_scale · d_global[dof]. Sizes dofs() and channels().
   // Real-time safe.
   void extract_commands(const Eigen::Ref<const Eigen::VectorXd>& d_global,
-                        Eigen::Ref<Eigen::VectorXd> commands) const noexcept;
+                        Eigen::Ref<Eigen::VectorXd> commands) const noexcept {
+    extract_into(d_global, commands);
+  }
+  // The same on whole vectors, inline and without a Ref's set-up (the loop's every step);
+  // only for Eigen::VectorXd itself, so that nothing converts to one.
+  template <std::same_as<Eigen::VectorXd> D, std::same_as<Eigen::VectorXd> C>
+  void extract_commands(const D& d_global, C& commands) const noexcept {
+    extract_into(d_global, commands);
+  }
 
   // d_global[dof] = x_measured[ch] / displacement_scale for the experimental DOFs; the other
   // entries are left unchanged. Real-time safe.
@@ -70,7 +79,13 @@ class Partition {
   void scatter_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured,
                       Eigen::Ref<Eigen::VectorXd> r_exp) const noexcept;
   // r[dof] += force_scale · f_measured[ch] (adds R_exp to R_num in place). Real-time safe.
-  void add_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured, Eigen::Ref<Eigen::VectorXd> r) const noexcept;
+  void add_forces(const Eigen::Ref<const Eigen::VectorXd>& f_measured, Eigen::Ref<Eigen::VectorXd> r) const noexcept {
+    add_into(f_measured, r);
+  }
+  template <std::same_as<Eigen::VectorXd> F, std::same_as<Eigen::VectorXd> R>
+  void add_forces(const F& f_measured, R& r) const noexcept {
+    add_into(f_measured, r);
+  }
 
   // K_num plus the specimens' estimated stiffness in model units
   // (force_scale · displacement_scale · k_specimen on the diagonal of each experimental DOF,
@@ -84,6 +99,21 @@ class Partition {
   std::vector<Eigen::Index> numerical_;
   Eigen::VectorXd influence_;
   std::vector<PartitionConfig::Coupling> couplings_;
+
+  template <typename D, typename C>
+  void extract_into(const D& d, C& commands) const noexcept {
+    for (std::size_t ch = 0; ch < by_channel_.size(); ++ch) {
+      const ExperimentalDof& x = by_channel_[ch];
+      commands[static_cast<Eigen::Index>(ch)] = x.displacement_scale * d[x.dof];
+    }
+  }
+  template <typename F, typename R>
+  void add_into(const F& f_measured, R& r) const noexcept {
+    for (std::size_t ch = 0; ch < by_channel_.size(); ++ch) {
+      const ExperimentalDof& x = by_channel_[ch];
+      r[x.dof] += x.force_scale * f_measured[static_cast<Eigen::Index>(ch)];
+    }
+  }
 };
 
 }  // namespace rpsd::substructure
