@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "rpsd/node/channel_bounds.h"
 #include "rpsd/node/servo_node_config.h"
 #include "rpsd/servo/actuator.h"
 #include "rpsd/transport/messages.h"
@@ -186,6 +187,8 @@ class ServoNodeController {
   void log_run(const RunEvent& event);
   void choose_target();
   std::uint32_t apply_limits(Values& applied);
+  std::uint32_t log_limits(const std::array<std::uint8_t, transport::kMaxChannels>& exceeded,
+                           const Values& guard_observed, const Values& applied);
   std::uint32_t check_measurement();
   std::uint32_t apply_force_limits();
   void leave_force_control();
@@ -201,10 +204,11 @@ class ServoNodeController {
   std::uint64_t run_id_ = 0, run_writer_ = 0;  // the run served and its writer (0: none)
   std::uint64_t ended_run_ = 0;                // the run ended last
   std::uint64_t ticks_since_accepted_ = 0;
-  std::int64_t max_step_lead_ = 0;    // periods a step may lead the ticks since the last accepted one
-  Values max_speed_m_per_s_{};        // per channel: the velocity and increment limits' speed, the lower
-  RunEvent last_refusal_;             // the last refusal logged: repeats of it are counted only
-  std::vector<RunEvent> run_events_;  // capacity reserved at construction, never grown past it
+  std::int64_t max_step_lead_ = 0;  // periods a step may lead the ticks since the last accepted one
+  std::array<ChannelBounds, transport::kMaxChannels> bounds_{};  // per channel: its limits as a tick uses them
+  std::array<std::uint8_t, 4> action_checks_{};  // per LimitAction: the checks of apply_limits whose kind does it
+  RunEvent last_refusal_;                        // the last refusal logged: repeats of it are counted only
+  std::vector<RunEvent> run_events_;             // capacity reserved at construction, never grown past it
   std::uint64_t run_events_not_logged_ = 0;
 
   // What a tick takes from the newest accepted command: only its step, time and used channels
