@@ -110,8 +110,10 @@ ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::A
     }
     any_force_channel_ = true;
   }
-  for (int c = 0; c < config_.channels; ++c)
+  for (int c = 0; c < config_.channels; ++c) {
     bounds_[c] = ChannelBounds::of(config_.limits[c], config_.control_period_s);
+    bounds_[c].read_within(config_.rig[c], config_.rails[c]);
+  }
   for (int check = 0; check < kGuardCheck; ++check)
     action_checks_[static_cast<int>(config_.actions.of(kCheckKind[check]))] |= bit(true, check);
   events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
@@ -519,32 +521,43 @@ std::uint32_t ServoNodeController::check_measurement() {
   // actions: a reading on a converter's rail may stand for any value beyond it, and one at the
   // rig's stroke or force capacity is an end stop or a rig overloaded. Either faults the node.
   std::uint32_t flags = transport::kLimitNone;
-  for (int c = 0; c < config_.channels; ++c) {
-    const struct {
-      LimitKind kind;
-      double reading, rig;
-      const servo::ConverterRange& rail;
-    } quantities[2] = {
-        {LimitKind::kStroke, reading_.displacement_m[c], config_.rig[c].stroke_m, config_.rails[c].displacement_m},
-        {LimitKind::kForce, reading_.force_n[c], config_.rig[c].force_n, config_.rails[c].force_n}};
-    for (int q = 0; q < 2; ++q) {
-      const auto& [kind, reading, rig, rail] = quantities[q];
-      const bool on_rail = rail.at_rail(reading);
-      const bool beyond_rig = std::abs(reading) >= rig;
-      if (!on_rail && !beyond_rig) {
-        measurement_was_beyond_[c][q] = false;
-        continue;
-      }
-      flags |= limit_flag(kind);
-      if (!measurement_was_beyond_[c][q]) {
-        measurement_was_beyond_[c][q] = true;
-        ++counters_.limit_activations[static_cast<int>(kind)];
-        const double bound = on_rail ? (reading >= rail.high ? rail.high : -rail.low) : rig;
-        log({counters_.ticks, followed_step_, c, kind, LimitAction::kAbort, target_m_[c], command_m_[c],
-             std::abs(reading), bound, on_rail ? LimitCause::kConverterRail : LimitCause::kRigEnvelope});
-      }
-      latch_fault();
+  const int channels = config_.channels;
+  for (int c = 0; c < channels; ++c) {
+    if (bounds_[c].quiet(reading_.displacement_m[c], reading_.force_n[c])) {
+      measurement_was_beyond_[c] = {false, false};
+    } else {
+      flags |= check_reading(c);
     }
+  }
+  return flags;
+}
+
+std::uint32_t ServoNodeController::check_reading(int c) {
+  std::uint32_t flags = transport::kLimitNone;
+  const struct {
+    LimitKind kind;
+    double reading, rig;
+    const servo::ConverterRange& rail;
+  } quantities[2] = {
+      {LimitKind::kStroke, reading_.displacement_m[c], config_.rig[c].stroke_m, config_.rails[c].displacement_m},
+      {LimitKind::kForce, reading_.force_n[c], config_.rig[c].force_n, config_.rails[c].force_n}};
+  for (int q = 0; q < 2; ++q) {
+    const auto& [kind, reading, rig, rail] = quantities[q];
+    const bool on_rail = rail.at_rail(reading);
+    const bool beyond_rig = std::abs(reading) >= rig;
+    if (!on_rail && !beyond_rig) {
+      measurement_was_beyond_[c][q] = false;
+      continue;
+    }
+    flags |= limit_flag(kind);
+    if (!measurement_was_beyond_[c][q]) {
+      measurement_was_beyond_[c][q] = true;
+      ++counters_.limit_activations[static_cast<int>(kind)];
+      const double bound = on_rail ? (reading >= rail.high ? rail.high : -rail.low) : rig;
+      log({counters_.ticks, followed_step_, c, kind, LimitAction::kAbort, target_m_[c], command_m_[c],
+           std::abs(reading), bound, on_rail ? LimitCause::kConverterRail : LimitCause::kRigEnvelope});
+    }
+    latch_fault();
   }
   return flags;
 }
@@ -623,7 +636,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
       force_command_n_[c] = reading_.force_n[c];
     }
   }
-  Values applied = command_m_;
+  Values applied;  // apply_limits sets each channel's; the rest is never read
   std::uint32_t flags = apply_limits(applied);
   servo::ActuatorStatus status = servo::ActuatorStatus::kOk;
   const auto n = static_cast<std::size_t>(channels);
@@ -639,8 +652,10 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     // Displacement only: the path every existing node file takes, unchanged.
     status = actuator_.exchange(std::span<const double>(applied.data(), n), config_.control_period_s, reading_);
   }
-  for (int c = 0; c < channels; ++c) change_m_[c] = applied[c] - command_m_[c];
-  command_m_ = applied;
+  for (int c = 0; c < channels; ++c) {
+    change_m_[c] = applied[c] - command_m_[c];
+    command_m_[c] = applied[c];
+  }
   if (status == servo::ActuatorStatus::kOk) {
     latest_measurement_ = reading_;
     has_measurement_ = true;

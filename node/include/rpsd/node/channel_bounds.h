@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rpsd/node/servo_node_config.h"
 
@@ -28,6 +29,10 @@ struct ChannelBounds {
   bool force_guard = false;            // a guard stiffness > 0 and a finite force limit
   double guard_stiffness_n_per_m = 0.0;
 
+  // Readings strictly between these are neither on a converter's rail nor at the rig's capacity
+  // (check_measurement looks closer at any other, a NaN too).
+  double quiet_low_m = 0.0, quiet_high_m = 0.0, quiet_low_n = 0.0, quiet_high_n = 0.0;
+
   static ChannelBounds of(const ChannelLimits& l, double period_s) {
     ChannelBounds b;
     b.stroke_m = l.max_stroke_m;
@@ -46,6 +51,21 @@ struct ChannelBounds {
     b.force_guard = l.force_guard_stiffness_n_per_m > 0.0 && std::isfinite(l.max_force_n);
     b.guard_stiffness_n_per_m = l.force_guard_stiffness_n_per_m;
     return b;
+  }
+
+  // A reading r with low < r < high is on no rail of `rail` (at_rail: r >= a finite high or
+  // r <= a finite low) and not beyond the rig (|r| >= rig).
+  static void quiet_between(const servo::ConverterRange& rail, double rig, double& low, double& high) {
+    high = std::min(std::isfinite(rail.high) ? rail.high : std::numeric_limits<double>::infinity(), rig);
+    low = std::max(std::isfinite(rail.low) ? rail.low : -std::numeric_limits<double>::infinity(), -rig);
+  }
+  void read_within(const servo::Envelope& rig, const servo::ReadingRanges& rails) {
+    quiet_between(rails.displacement_m, rig.stroke_m, quiet_low_m, quiet_high_m);
+    quiet_between(rails.force_n, rig.force_n, quiet_low_n, quiet_high_n);
+  }
+  bool quiet(double displacement_m, double force_n) const {
+    return displacement_m > quiet_low_m && displacement_m < quiet_high_m && force_n > quiet_low_n &&
+           force_n < quiet_high_n;
   }
 
   // The fastest command velocity that can still stop within `distance` at the stop

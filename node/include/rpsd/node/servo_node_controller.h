@@ -187,9 +187,12 @@ class ServoNodeController {
   void log_run(const RunEvent& event);
   void choose_target();
   std::uint32_t apply_limits(Values& applied);
-  std::uint32_t log_limits(const std::array<std::uint8_t, transport::kMaxChannels>& exceeded,
-                           const Values& guard_observed, const Values& applied);
+  [[gnu::cold]] std::uint32_t log_limits(const std::array<std::uint8_t, transport::kMaxChannels>& exceeded,
+                                         const Values& guard_observed, const Values& applied);
   std::uint32_t check_measurement();
+  // Channel c's reading, one on a rail or at the rig's capacity (or not a number): cold, so that
+  // the tick's common case does not pay for what it logs.
+  [[gnu::cold]] std::uint32_t check_reading(int c);
   std::uint32_t apply_force_limits();
   void leave_force_control();
   void log(const LimitEvent& event);
