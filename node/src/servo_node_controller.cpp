@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -114,6 +115,15 @@ ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::A
     bounds_[c] = ChannelBounds::of(config_.limits[c], config_.control_period_s);
     bounds_[c].read_within(config_.rig[c], config_.rails[c]);
   }
+  // The control modes a command must state, as the bytes of CommandSample::control_mode.
+  std::array<std::uint8_t, transport::kMaxChannels> declared{}, used{};
+  for (int c = 0; c < config_.channels; ++c) {
+    declared[c] =
+        config_.control[c] == servo::ControlMode::kForce ? transport::kForceControl : transport::kDisplacementControl;
+    used[c] = 0xff;
+  }
+  std::memcpy(&declared_modes_, declared.data(), sizeof declared_modes_);
+  std::memcpy(&used_modes_mask_, used.data(), sizeof used_modes_mask_);
   for (int check = 0; check < kGuardCheck; ++check)
     action_checks_[static_cast<int>(config_.actions.of(kCheckKind[check]))] |= bit(true, check);
   events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
@@ -207,11 +217,13 @@ CommandVerdict ServoNodeController::check(const transport::CommandSample& comman
   if (command.control_period_s != 0.0 && !same_period(command.control_period_s, config_.control_period_s)) {
     return CommandVerdict::kRateMismatch;
   }
-  for (int c = 0; c < channels; ++c) {
-    const auto declared = static_cast<std::uint8_t>(
-        config_.control[c] == servo::ControlMode::kForce ? transport::kForceControl : transport::kDisplacementControl);
-    if (command.control_mode[c] != declared) return CommandVerdict::kModeMismatch;
-    if (declared == transport::kForceControl && !std::isfinite(command.force_n[c]))
+  // Each channel's mode as its file declares it (the entries beyond the channels not compared),
+  // and a finite force for each force channel.
+  std::uint64_t modes = 0;
+  std::memcpy(&modes, command.control_mode.data(), sizeof modes);
+  if ((modes & used_modes_mask_) != declared_modes_) return CommandVerdict::kModeMismatch;
+  for (int c = 0; c < channels && any_force_channel_; ++c) {
+    if (config_.control[c] == servo::ControlMode::kForce && !std::isfinite(command.force_n[c]))
       return CommandVerdict::kModeMismatch;
   }
   if (command.step <= newest_accepted_step_) return CommandVerdict::kNotNewer;
@@ -281,7 +293,7 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
   pending_.time_s = command.time_s;
   // Whole fixed-size arrays (a few vector moves); a tick reads only the node's channels.
   pending_.displacement_m = command.displacement_m;
-  pending_.force_n = command.force_n;
+  if (any_force_channel_) pending_.force_n = command.force_n;  // read by force channels only
   has_pending_ = true;
   newest_accepted_step_ = last_accepted_step_ = command.step;
   ticks_since_accepted_ = 0;
@@ -333,7 +345,7 @@ void ServoNodeController::choose_target() {
     has_pending_ = false;
     // Whole fixed-size arrays: no call to copy a run-time count; only the node's channels are read.
     target_m_ = pending_.displacement_m;
-    force_target_n_ = pending_.force_n;
+    if (any_force_channel_) force_target_n_ = pending_.force_n;
     followed_step_ = pending_.step;
     followed_time_s_ = pending_.time_s;
     ++counters_.applied;

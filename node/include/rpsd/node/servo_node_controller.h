@@ -209,6 +209,8 @@ class ServoNodeController {
   std::uint64_t ticks_since_accepted_ = 0;
   std::int64_t max_step_lead_ = 0;  // periods a step may lead the ticks since the last accepted one
   std::array<ChannelBounds, transport::kMaxChannels> bounds_{};  // per channel: its limits as a tick uses them
+  static_assert(sizeof(transport::CommandSample::control_mode) == sizeof(std::uint64_t), "one word of modes");
+  std::uint64_t declared_modes_ = 0, used_modes_mask_ = 0;  // check(): the channels' modes as one word
   std::array<std::uint8_t, 4> action_checks_{};  // per LimitAction: the checks of apply_limits whose kind does it
   RunEvent last_refusal_;                        // the last refusal logged: repeats of it are counted only
   std::vector<RunEvent> run_events_;             // capacity reserved at construction, never grown past it
