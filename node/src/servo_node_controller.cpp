@@ -195,7 +195,8 @@ namespace {
 bool same_period(double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(std::abs(a), std::abs(b)); }
 }  // namespace
 
-CommandVerdict ServoNodeController::check(const transport::CommandSample& command) const {
+// Inline: once a command, from accept() alone (this file).
+inline CommandVerdict ServoNodeController::check(const transport::CommandSample& command) const {
   const int channels = config_.channels;
   if (command.test_id != config_.test_id) return CommandVerdict::kWrongTestId;
   if (command.site_id != config_.site_id) return CommandVerdict::kWrongSiteId;
@@ -334,7 +335,8 @@ void ServoNodeController::log_run(const RunEvent& event) {
   }
 }
 
-void ServoNodeController::choose_target() {
+// Inline: once a tick, from tick() alone (this file).
+inline void ServoNodeController::choose_target() {
   const int channels = config_.channels;
   if (fault_) {
     has_pending_ = false;
@@ -528,7 +530,8 @@ std::uint32_t ServoNodeController::log_limits(const std::array<std::uint8_t, tra
   return flags;
 }
 
-std::uint32_t ServoNodeController::check_measurement() {
+// Inline: once a tick, from tick() alone (this file); the rare reading goes to check_reading.
+inline std::uint32_t ServoNodeController::check_measurement() {
   // Whatever the actuator (a simulated plant, a hardware adapter) and whatever the limits'
   // actions: a reading on a converter's rail may stand for any value beyond it, and one at the
   // rig's stroke or force capacity is an end stop or a rig overloaded. Either faults the node.
