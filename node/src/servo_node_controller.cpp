@@ -210,10 +210,10 @@ inline CommandVerdict ServoNodeController::check(const transport::CommandSample&
     return CommandVerdict::kRunEnded;
   }
   if (command.channels != channels) return CommandVerdict::kWrongChannelCount;
-  if (!std::isfinite(command.time_s) ||
-      !std::all_of(command.displacement_m.begin(), command.displacement_m.begin() + channels,
-                   [](double x) { return std::isfinite(x); })) {
-    return CommandVerdict::kNonFinite;
+  if (!std::isfinite(command.time_s)) return CommandVerdict::kNonFinite;
+  // A plain loop: std::all_of's unrolling by four costs more than it saves on a few channels.
+  for (int c = 0; c < channels; ++c) {
+    if (!std::isfinite(command.displacement_m[c])) return CommandVerdict::kNonFinite;
   }
   if (command.control_period_s != 0.0 && !same_period(command.control_period_s, config_.control_period_s)) {
     return CommandVerdict::kRateMismatch;
