@@ -67,8 +67,29 @@ LinkStatus MultiSiteLink::send(const CommandSample& command) {
   return status;
 }
 
+// Inline: from receive() alone.
+inline LinkStatus MultiSiteLink::one_site_feedback(FeedbackSample& feedback) {
+  // The site's channels are the test's: what receive() would merge is the site's sample as it
+  // is, but for the fields the merged sample sets itself (its site, channel count and run).
+  const std::uint64_t run_id = feedback.run_id;
+  feedback.step = kNothingYet;
+  const LinkStatus status = routes_[0].link->receive(feedback);
+  if (feedback.step == kNothingYet) {  // not answered yet: everything else as it was
+    feedback.step = -1;
+    feedback.status = kNodeOk;
+    feedback.limit_flags = kLimitNone;
+  }
+  feedback.run_id = run_id;
+  feedback.site_id = 0;
+  feedback.channels = static_cast<std::uint8_t>(channels_);
+  return status;
+}
+
 LinkStatus MultiSiteLink::receive(FeedbackSample& feedback) {
-  if (one_site_in_order_) return one_site_feedback(feedback);
+  return one_site_in_order_ ? one_site_feedback(feedback) : merge_feedback(feedback);
+}
+
+LinkStatus MultiSiteLink::merge_feedback(FeedbackSample& feedback) {
   LinkStatus status = LinkStatus::kOk;
   feedback.status = kNodeOk;
   feedback.limit_flags = kLimitNone;
@@ -98,23 +119,6 @@ LinkStatus MultiSiteLink::receive(FeedbackSample& feedback) {
     }
   }
   feedback.site_id = 0;
-  return status;
-}
-
-LinkStatus MultiSiteLink::one_site_feedback(FeedbackSample& feedback) {
-  // The site's channels are the test's: what receive() would merge is the site's sample as it
-  // is, but for the fields the merged sample sets itself (its site, channel count and run).
-  const std::uint64_t run_id = feedback.run_id;
-  feedback.step = kNothingYet;
-  const LinkStatus status = routes_[0].link->receive(feedback);
-  if (feedback.step == kNothingYet) {  // not answered yet: everything else as it was
-    feedback.step = -1;
-    feedback.status = kNodeOk;
-    feedback.limit_flags = kLimitNone;
-  }
-  feedback.run_id = run_id;
-  feedback.site_id = 0;
-  feedback.channels = static_cast<std::uint8_t>(channels_);
   return status;
 }
 

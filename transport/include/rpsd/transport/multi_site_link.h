@@ -43,6 +43,7 @@ class MultiSiteLink final : public Link {
     std::array<std::uint8_t, kMaxChannels> of{};  // the test's channel of each of its channels
   };
   LinkStatus one_site_feedback(FeedbackSample& feedback);
+  LinkStatus merge_feedback(FeedbackSample& feedback);
 
   std::array<Route, kMaxChannels> routes_{};  // each site owns a channel: at most kMaxChannels
   int sites_ = 0;
