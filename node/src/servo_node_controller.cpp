@@ -690,10 +690,12 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
 
   out.step = followed_step_;
   out.time_s = followed_time_s_;
-  for (int c = 0; c < transport::kMaxChannels; ++c) {
-    const bool used = c < channels;
-    out.displacement_m[c] = used ? reading_.displacement_m[c] : 0.0;
-    out.force_n[c] = used ? reading_.force_n[c] : 0.0;
+  // 0 beyond the channels: whole arrays cleared (a few wide stores), then the channels'.
+  out.displacement_m = {};
+  out.force_n = {};
+  for (int c = 0; c < channels; ++c) {
+    out.displacement_m[c] = reading_.displacement_m[c];
+    out.force_n[c] = reading_.force_n[c];
   }
   out.status = transport::kNodeOk;
   if (flags != transport::kLimitNone) out.status |= transport::kNodeLimitActive;
