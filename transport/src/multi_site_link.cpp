@@ -53,9 +53,7 @@ LinkStatus MultiSiteLink::send(const CommandSample& command) {
     const Route& site = routes_[s];
     // The command's own fields, then the site's channels only: a site never sees another
     // site's channels (its unused entries stay 0), and no whole sample is copied per site.
-    copy_command_header(command, site_command_);
-    site_command_.site_id = site.site_id;
-    site_command_.channels = static_cast<std::uint8_t>(site.count);
+    copy_command_header(command, site_command_, site.site_id, static_cast<std::uint8_t>(site.count));
     for (int i = 0; i < site.count; ++i) {
       const int ch = site.of[i];
       site_command_.displacement_m[i] = command.displacement_m[ch];
