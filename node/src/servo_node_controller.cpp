@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -82,6 +83,19 @@ std::uint64_t ServoNodeCounters::dropped_total() const {
   return total;
 }
 
+namespace {
+
+// What each bit of a channel's exceeded mask (apply_limits) stands for, in the order the checks
+// run: the command's stroke, velocity, increment and acceleration, the measured stroke and force,
+// and the force guard's prediction.
+constexpr std::array<LimitKind, 7> kCheckKind = {LimitKind::kStroke,       LimitKind::kVelocity, LimitKind::kIncrement,
+                                                 LimitKind::kAcceleration, LimitKind::kStroke,   LimitKind::kForce,
+                                                 LimitKind::kForce};
+constexpr int kForceCheck = 5, kGuardCheck = 6;
+constexpr std::uint8_t bit(bool exceeded, int check) { return static_cast<std::uint8_t>(exceeded ? 1u << check : 0u); }
+
+}  // namespace
+
 ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::Actuator& actuator)
     : config_(config), actuator_(actuator) {
   config_.validate();
@@ -98,9 +112,20 @@ ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::A
     any_force_channel_ = true;
   }
   for (int c = 0; c < config_.channels; ++c) {
-    const ChannelLimits& l = config_.limits[c];
-    max_speed_m_per_s_[c] = std::min(l.max_velocity_m_per_s, l.max_increment_m / config_.control_period_s);
+    bounds_[c] = ChannelBounds::of(config_.limits[c], config_.control_period_s);
+    bounds_[c].read_within(config_.rig[c], config_.rails[c]);
   }
+  // The control modes a command must state, as the bytes of CommandSample::control_mode.
+  std::array<std::uint8_t, transport::kMaxChannels> declared{}, used{};
+  for (int c = 0; c < config_.channels; ++c) {
+    declared[c] =
+        config_.control[c] == servo::ControlMode::kForce ? transport::kForceControl : transport::kDisplacementControl;
+    used[c] = 0xff;
+  }
+  std::memcpy(&declared_modes_, declared.data(), sizeof declared_modes_);
+  std::memcpy(&used_modes_mask_, used.data(), sizeof used_modes_mask_);
+  for (int check = 0; check < kGuardCheck; ++check)
+    action_checks_[static_cast<int>(config_.actions.of(kCheckKind[check]))] |= bit(true, check);
   events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
   run_events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
   // A coordinator sends one command a period: after commands were lost (a partition, a stall
@@ -170,7 +195,8 @@ namespace {
 bool same_period(double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(std::abs(a), std::abs(b)); }
 }  // namespace
 
-CommandVerdict ServoNodeController::check(const transport::CommandSample& command) const {
+// Inline: once a command, from accept() alone (this file).
+inline CommandVerdict ServoNodeController::check(const transport::CommandSample& command) const {
   const int channels = config_.channels;
   if (command.test_id != config_.test_id) return CommandVerdict::kWrongTestId;
   if (command.site_id != config_.site_id) return CommandVerdict::kWrongSiteId;
@@ -184,19 +210,21 @@ CommandVerdict ServoNodeController::check(const transport::CommandSample& comman
     return CommandVerdict::kRunEnded;
   }
   if (command.channels != channels) return CommandVerdict::kWrongChannelCount;
-  if (!std::isfinite(command.time_s) ||
-      !std::all_of(command.displacement_m.begin(), command.displacement_m.begin() + channels,
-                   [](double x) { return std::isfinite(x); })) {
-    return CommandVerdict::kNonFinite;
+  if (!std::isfinite(command.time_s)) return CommandVerdict::kNonFinite;
+  // A plain loop: std::all_of's unrolling by four costs more than it saves on a few channels.
+  for (int c = 0; c < channels; ++c) {
+    if (!std::isfinite(command.displacement_m[c])) return CommandVerdict::kNonFinite;
   }
   if (command.control_period_s != 0.0 && !same_period(command.control_period_s, config_.control_period_s)) {
     return CommandVerdict::kRateMismatch;
   }
-  for (int c = 0; c < channels; ++c) {
-    const auto declared = static_cast<std::uint8_t>(
-        config_.control[c] == servo::ControlMode::kForce ? transport::kForceControl : transport::kDisplacementControl);
-    if (command.control_mode[c] != declared) return CommandVerdict::kModeMismatch;
-    if (declared == transport::kForceControl && !std::isfinite(command.force_n[c]))
+  // Each channel's mode as its file declares it (the entries beyond the channels not compared),
+  // and a finite force for each force channel.
+  std::uint64_t modes = 0;
+  std::memcpy(&modes, command.control_mode.data(), sizeof modes);
+  if ((modes & used_modes_mask_) != declared_modes_) return CommandVerdict::kModeMismatch;
+  for (int c = 0; c < channels && any_force_channel_; ++c) {
+    if (config_.control[c] == servo::ControlMode::kForce && !std::isfinite(command.force_n[c]))
       return CommandVerdict::kModeMismatch;
   }
   if (command.step <= newest_accepted_step_) return CommandVerdict::kNotNewer;
@@ -266,7 +294,7 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
   pending_.time_s = command.time_s;
   // Whole fixed-size arrays (a few vector moves); a tick reads only the node's channels.
   pending_.displacement_m = command.displacement_m;
-  pending_.force_n = command.force_n;
+  if (any_force_channel_) pending_.force_n = command.force_n;  // read by force channels only
   has_pending_ = true;
   newest_accepted_step_ = last_accepted_step_ = command.step;
   ticks_since_accepted_ = 0;
@@ -307,7 +335,8 @@ void ServoNodeController::log_run(const RunEvent& event) {
   }
 }
 
-void ServoNodeController::choose_target() {
+// Inline: once a tick, from tick() alone (this file).
+inline void ServoNodeController::choose_target() {
   const int channels = config_.channels;
   if (fault_) {
     has_pending_ = false;
@@ -318,7 +347,7 @@ void ServoNodeController::choose_target() {
     has_pending_ = false;
     // Whole fixed-size arrays: no call to copy a run-time count; only the node's channels are read.
     target_m_ = pending_.displacement_m;
-    force_target_n_ = pending_.force_n;
+    if (any_force_channel_) force_target_n_ = pending_.force_n;
     followed_step_ = pending_.step;
     followed_time_s_ = pending_.time_s;
     ++counters_.applied;
@@ -368,167 +397,182 @@ void ServoNodeController::latch_fault() {
   has_pending_ = false;
 }
 
-namespace {
-
-// The fastest command velocity that can still stop within `distance` at `deceleration`, one
-// control period at a time (at once when the deceleration is infinite).
-double braking_speed(double distance, double deceleration, double period_s) {
-  if (distance <= 0.0) return 0.0;
-  if (!std::isfinite(deceleration)) return distance / period_s;
-  const double step = deceleration * period_s;
-  return std::min(distance / period_s, std::sqrt(step * step / 4.0 + 2.0 * deceleration * distance) - step / 2.0);
-}
-
-}  // namespace
-
 std::uint32_t ServoNodeController::apply_limits(Values& applied) {
-  struct Violation {
-    int channel;
-    LimitKind kind;
-    double observed, bound;
-  };
-  // Only the first `count` entries are ever read: no need to clear 3 KB on every tick.
-  std::array<Violation, transport::kMaxChannels * kLimitKinds * 2> violations;
-  int count = 0;
-  std::array<bool, kLimitKinds> kind_acted{};
-  bool hold = false, ramp = false, abort = false;
   const int channels = config_.channels;
   const double period_s = config_.control_period_s;
-  const auto check = [&](int c, bool exceeded, LimitKind kind, double observed, double bound) {
-    if (!exceeded) return;
-    violations[count++] = {c, kind, observed, bound};
-    const LimitAction action = config_.actions.of(kind);
-    hold = hold || action == LimitAction::kHold;
-    ramp = ramp || action == LimitAction::kRampToSafe;
-    abort = abort || action == LimitAction::kAbort;
-  };
-
-  // What is asked for, and what is measured (the interlocks).
+  // What is asked for, and what is measured (the interlocks): one bit per check exceeded, every
+  // check on every channel; what a limit does and says is worked out below only when one acts.
+  std::array<std::uint8_t, transport::kMaxChannels> exceeded{};
+  std::uint8_t any = 0;
   for (int c = 0; c < channels; ++c) {
-    const ChannelLimits& limits = config_.limits[c];
-    const double change = target_m_[c] - command_m_[c];
+    const ChannelBounds& b = bounds_[c];
+    const double target = target_m_[c], change = target - command_m_[c];
     const double x_measured = reading_.displacement_m[c], force = reading_.force_n[c];
-    if (mode_[c] == servo::ControlMode::kForce) {
-      // No displacement command: its measurements are checked by apply_force_limits.
-      check(c, std::abs(force) > limits.max_force_n, LimitKind::kForce, std::abs(force), limits.max_force_n);
-      continue;
+    std::uint8_t e = bit(std::abs(force) > b.force_n, kForceCheck);
+    if (mode_[c] != servo::ControlMode::kForce) {  // a force channel's other checks: apply_force_limits
+      const double acceleration = std::abs(change - change_m_[c]) / (period_s * period_s);
+      e |= bit(std::abs(target) > b.stroke_m, 0) | bit(std::abs(change) > b.velocity_step_m, 1) |
+           bit(std::abs(change) > b.increment_m, 2) | bit(acceleration > b.acceleration_m_per_s2, 3) |
+           bit(std::abs(x_measured) > b.stroke_m, 4);
     }
-    check(c, std::abs(target_m_[c]) > limits.max_stroke_m, LimitKind::kStroke, std::abs(target_m_[c]),
-          limits.max_stroke_m);
-    check(c, std::abs(change) > limits.max_velocity_m_per_s * period_s, LimitKind::kVelocity,
-          std::abs(change) / period_s, limits.max_velocity_m_per_s);
-    check(c, std::abs(change) > limits.max_increment_m, LimitKind::kIncrement, std::abs(change),
-          limits.max_increment_m);
-    const double acceleration = std::abs(change - change_m_[c]) / (period_s * period_s);
-    check(c, acceleration > limits.max_acceleration_m_per_s2, LimitKind::kAcceleration, acceleration,
-          limits.max_acceleration_m_per_s2);
-    check(c, std::abs(x_measured) > limits.max_stroke_m, LimitKind::kStroke, std::abs(x_measured), limits.max_stroke_m);
-    check(c, std::abs(force) > limits.max_force_n, LimitKind::kForce, std::abs(force), limits.max_force_n);
+    exceeded[c] = e;
+    any |= e;
   }
-  if (abort) latch_fault();
-  const bool ramp_begins = ramp && !safe_state_;
-  if (ramp_begins) safe_state_ = true;  // choose_target ramps from the next tick on
+  bool stopping_for_limit = false, ramp_begins = false;
+  if (any != 0) {
+    if (any & action_checks_[static_cast<int>(LimitAction::kAbort)]) latch_fault();
+    ramp_begins = (any & action_checks_[static_cast<int>(LimitAction::kRampToSafe)]) != 0 && !safe_state_;
+    if (ramp_begins) safe_state_ = true;  // choose_target ramps from the next tick on
+    stopping_for_limit = (any & action_checks_[static_cast<int>(LimitAction::kHold)]) != 0;
+  }
   // A hold or an abort brings the command to rest at the stop deceleration; the safe ramp
   // moves it at the safe velocity.
-  const bool stopping = fault_ || (holding_ && !safe_state_) || hold || ramp_begins;
+  const bool stopping = fault_ || (holding_ && !safe_state_) || stopping_for_limit || ramp_begins;
 
   // The command each channel gets: the velocity and increment bounds, the acceleration bound,
   // and position bounds (the stroke, the force guard, no further motion into a measured
   // excursion) approached no faster than the stop deceleration can brake.
+  bool guarded = false;
+  Values guard_observed;  // read only where the guard acted, which wrote it
   for (int c = 0; c < channels; ++c) {
-    const ChannelLimits& limits = config_.limits[c];
-    const double x_command = command_m_[c], v_command = change_m_[c] / period_s;
+    const ChannelBounds& b = bounds_[c];
+    const double x_command = command_m_[c];
     const double x_measured = reading_.displacement_m[c], force = reading_.force_n[c];
     if (mode_[c] == servo::ControlMode::kForce) {
       applied[c] = x_measured;  // where it would hold, should it leave force control
       continue;
     }
-    const double stop = limits.stop_deceleration_m_per_s2;
+    const double v_command = change_m_[c] / period_s;
     const double wanted = stopping ? x_command : target_m_[c];
     const double asked = (wanted - x_command) / period_s;
-    double v = asked;
-    const double v_max = max_speed_m_per_s_[c];
-    v = std::clamp(v, -v_max, v_max);
-    const double a = stopping ? stop : limits.max_acceleration_m_per_s2;
-    if (std::isfinite(a)) v = std::clamp(v, v_command - a * period_s, v_command + a * period_s);
+    double v = std::clamp(asked, -b.max_speed_m_per_s, b.max_speed_m_per_s);
+    if (stopping ? b.stop_brakes : b.follow_accelerates) {
+      const double a_step = stopping ? b.stop_step_m_per_s : b.follow_step_m_per_s;
+      v = std::clamp(v, v_command - a_step, v_command + a_step);
+    }
 
-    double high = limits.max_stroke_m, low = -limits.max_stroke_m;
-    if (limits.force_guard_stiffness_n_per_m > 0.0 && std::isfinite(limits.max_force_n)) {
-      const double k = limits.force_guard_stiffness_n_per_m;
-      const double guard_high = x_measured + (limits.max_force_n - force) / k;
-      const double guard_low = x_measured + (-limits.max_force_n - force) / k;
+    double high = b.stroke_m, low = -b.stroke_m;
+    if (b.force_guard) {
+      const double k = b.guard_stiffness_n_per_m;
+      const double guard_high = x_measured + (b.force_n - force) / k;
+      const double guard_low = x_measured + (-b.force_n - force) / k;
       const double next = x_command + v * period_s;
-      check(c, next > guard_high || next < guard_low, LimitKind::kForce, std::abs(force + k * (next - x_measured)),
-            limits.max_force_n);
+      if (next > guard_high || next < guard_low) {
+        exceeded[c] |= bit(true, kGuardCheck);
+        guarded = true;
+        guard_observed[c] = std::abs(force + k * (next - x_measured));  // the force it predicted
+      }
       high = std::min(high, guard_high);
       low = std::max(low, guard_low);
     }
-    if (force > limits.max_force_n || x_measured > limits.max_stroke_m) high = std::min(high, x_command);
-    if (force < -limits.max_force_n || x_measured < -limits.max_stroke_m) low = std::max(low, x_command);
+    if (force > b.force_n || x_measured > b.stroke_m) high = std::min(high, x_command);
+    if (force < -b.force_n || x_measured < -b.stroke_m) low = std::max(low, x_command);
     // Past a bound the command only stops going further (it is not pulled back: a force
     // guard that chased the measured force would feed the oil column's resonance). Both
     // braking speeds are >= 0, so only the bound ahead can change v: the one it moves toward
     // (none when it stays), the same v as clamping between both.
-    if (v > 0.0) v = std::min(v, braking_speed(high - x_command, stop, period_s));
-    if (v < 0.0) v = std::max(v, -braking_speed(x_command - low, stop, period_s));
+    if (v > 0.0) v = std::min(v, b.braking_speed(high - x_command, period_s));
+    if (v < 0.0) v = std::max(v, -b.braking_speed(x_command - low, period_s));
     // Unchanged by any bound: exactly the target, as sent.
     applied[c] = v == asked ? wanted : x_command + v * period_s;
   }
 
-  if (count == 0) {  // no limit acted on any channel: nothing to log or count
+  if (any == 0 && !guarded) {  // no limit acted on any channel: nothing to log or count
     limit_was_active_ = {};
     return transport::kLimitNone;
   }
+  return log_limits(exceeded, guard_observed, applied);
+}
+
+std::uint32_t ServoNodeController::log_limits(const std::array<std::uint8_t, transport::kMaxChannels>& exceeded,
+                                              const Values& guard_observed, const Values& applied) {
+  // The checks in the order they ran (each channel's checks of the command and the measurement,
+  // then each channel's force guard), each with what it saw: the same values apply_limits compared.
+  const int channels = config_.channels;
+  const double period_s = config_.control_period_s;
   std::uint32_t flags = transport::kLimitNone;
+  std::array<bool, kLimitKinds> kind_acted{};
   std::array<std::array<bool, kLimitKinds>, transport::kMaxChannels> active{};
-  for (int i = 0; i < count; ++i) {
-    const Violation& v = violations[i];
-    const int k = static_cast<int>(v.kind);
+  const auto acted = [&](int c, int check, double observed, double bound) {
+    if ((exceeded[c] & (1u << check)) == 0) return;
+    const LimitKind kind = kCheckKind[check];
+    const int k = static_cast<int>(kind);
     kind_acted[k] = true;
-    flags |= limit_flag(v.kind);
-    if (!limit_was_active_[v.channel][k] && !active[v.channel][k]) {
+    flags |= limit_flag(kind);
+    if (!limit_was_active_[c][k] && !active[c][k]) {
       ++counters_.limit_activations[k];
-      log({counters_.ticks, followed_step_, v.channel, v.kind, config_.actions.of(v.kind), target_m_[v.channel],
-           applied[v.channel], v.observed, v.bound});
+      log({counters_.ticks, followed_step_, c, kind, config_.actions.of(kind), target_m_[c], applied[c], observed,
+           bound});
     }
-    active[v.channel][k] = true;
+    active[c][k] = true;
+  };
+  for (int c = 0; c < channels; ++c) {
+    const ChannelLimits& limits = config_.limits[c];
+    const double change = target_m_[c] - command_m_[c];
+    const double x_measured = reading_.displacement_m[c], force = reading_.force_n[c];
+    if (mode_[c] == servo::ControlMode::kForce) {
+      acted(c, kForceCheck, std::abs(force), limits.max_force_n);
+      continue;
+    }
+    acted(c, 0, std::abs(target_m_[c]), limits.max_stroke_m);
+    acted(c, 1, std::abs(change) / period_s, limits.max_velocity_m_per_s);
+    acted(c, 2, std::abs(change), limits.max_increment_m);
+    acted(c, 3, std::abs(change - change_m_[c]) / (period_s * period_s), limits.max_acceleration_m_per_s2);
+    acted(c, 4, std::abs(x_measured), limits.max_stroke_m);
+    acted(c, kForceCheck, std::abs(force), limits.max_force_n);
+  }
+  for (int c = 0; c < channels; ++c) {
+    if ((exceeded[c] & (1u << kGuardCheck)) == 0) continue;
+    acted(c, kGuardCheck, guard_observed[c], config_.limits[c].max_force_n);
   }
   for (int k = 0; k < kLimitKinds; ++k) counters_.limit_active_ticks[k] += kind_acted[k] ? 1 : 0;
   limit_was_active_ = active;
   return flags;
 }
 
-std::uint32_t ServoNodeController::check_measurement() {
+// Inline: once a tick, from tick() alone (this file); the rare reading goes to check_reading.
+inline std::uint32_t ServoNodeController::check_measurement() {
   // Whatever the actuator (a simulated plant, a hardware adapter) and whatever the limits'
   // actions: a reading on a converter's rail may stand for any value beyond it, and one at the
   // rig's stroke or force capacity is an end stop or a rig overloaded. Either faults the node.
   std::uint32_t flags = transport::kLimitNone;
-  for (int c = 0; c < config_.channels; ++c) {
-    const struct {
-      LimitKind kind;
-      double reading, rig;
-      const servo::ConverterRange& rail;
-    } quantities[2] = {
-        {LimitKind::kStroke, reading_.displacement_m[c], config_.rig[c].stroke_m, config_.rails[c].displacement_m},
-        {LimitKind::kForce, reading_.force_n[c], config_.rig[c].force_n, config_.rails[c].force_n}};
-    for (int q = 0; q < 2; ++q) {
-      const auto& [kind, reading, rig, rail] = quantities[q];
-      const bool on_rail = rail.at_rail(reading);
-      const bool beyond_rig = std::abs(reading) >= rig;
-      if (!on_rail && !beyond_rig) {
-        measurement_was_beyond_[c][q] = false;
-        continue;
-      }
-      flags |= limit_flag(kind);
-      if (!measurement_was_beyond_[c][q]) {
-        measurement_was_beyond_[c][q] = true;
-        ++counters_.limit_activations[static_cast<int>(kind)];
-        const double bound = on_rail ? (reading >= rail.high ? rail.high : -rail.low) : rig;
-        log({counters_.ticks, followed_step_, c, kind, LimitAction::kAbort, target_m_[c], command_m_[c],
-             std::abs(reading), bound, on_rail ? LimitCause::kConverterRail : LimitCause::kRigEnvelope});
-      }
-      latch_fault();
+  const int channels = config_.channels;
+  for (int c = 0; c < channels; ++c) {
+    if (bounds_[c].quiet(reading_.displacement_m[c], reading_.force_n[c])) {
+      measurement_was_beyond_[c] = {false, false};
+    } else {
+      flags |= check_reading(c);
     }
+  }
+  return flags;
+}
+
+std::uint32_t ServoNodeController::check_reading(int c) {
+  std::uint32_t flags = transport::kLimitNone;
+  const struct {
+    LimitKind kind;
+    double reading, rig;
+    const servo::ConverterRange& rail;
+  } quantities[2] = {
+      {LimitKind::kStroke, reading_.displacement_m[c], config_.rig[c].stroke_m, config_.rails[c].displacement_m},
+      {LimitKind::kForce, reading_.force_n[c], config_.rig[c].force_n, config_.rails[c].force_n}};
+  for (int q = 0; q < 2; ++q) {
+    const auto& [kind, reading, rig, rail] = quantities[q];
+    const bool on_rail = rail.at_rail(reading);
+    const bool beyond_rig = std::abs(reading) >= rig;
+    if (!on_rail && !beyond_rig) {
+      measurement_was_beyond_[c][q] = false;
+      continue;
+    }
+    flags |= limit_flag(kind);
+    if (!measurement_was_beyond_[c][q]) {
+      measurement_was_beyond_[c][q] = true;
+      ++counters_.limit_activations[static_cast<int>(kind)];
+      const double bound = on_rail ? (reading >= rail.high ? rail.high : -rail.low) : rig;
+      log({counters_.ticks, followed_step_, c, kind, LimitAction::kAbort, target_m_[c], command_m_[c],
+           std::abs(reading), bound, on_rail ? LimitCause::kConverterRail : LimitCause::kRigEnvelope});
+    }
+    latch_fault();
   }
   return flags;
 }
@@ -607,7 +651,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
       force_command_n_[c] = reading_.force_n[c];
     }
   }
-  Values applied = command_m_;
+  Values applied;  // apply_limits sets each channel's; the rest is never read
   std::uint32_t flags = apply_limits(applied);
   servo::ActuatorStatus status = servo::ActuatorStatus::kOk;
   const auto n = static_cast<std::size_t>(channels);
@@ -623,8 +667,10 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     // Displacement only: the path every existing node file takes, unchanged.
     status = actuator_.exchange(std::span<const double>(applied.data(), n), config_.control_period_s, reading_);
   }
-  for (int c = 0; c < channels; ++c) change_m_[c] = applied[c] - command_m_[c];
-  command_m_ = applied;
+  for (int c = 0; c < channels; ++c) {
+    change_m_[c] = applied[c] - command_m_[c];
+    command_m_[c] = applied[c];
+  }
   if (status == servo::ActuatorStatus::kOk) {
     latest_measurement_ = reading_;
     has_measurement_ = true;
@@ -644,10 +690,12 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
 
   out.step = followed_step_;
   out.time_s = followed_time_s_;
-  for (int c = 0; c < transport::kMaxChannels; ++c) {
-    const bool used = c < channels;
-    out.displacement_m[c] = used ? reading_.displacement_m[c] : 0.0;
-    out.force_n[c] = used ? reading_.force_n[c] : 0.0;
+  // 0 beyond the channels: whole arrays cleared (a few wide stores), then the channels'.
+  out.displacement_m = {};
+  out.force_n = {};
+  for (int c = 0; c < channels; ++c) {
+    out.displacement_m[c] = reading_.displacement_m[c];
+    out.force_n[c] = reading_.force_n[c];
   }
   out.status = transport::kNodeOk;
   if (flags != transport::kLimitNone) out.status |= transport::kNodeLimitActive;

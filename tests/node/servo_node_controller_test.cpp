@@ -128,6 +128,37 @@ std::string config_error(const ServoNodeConfig& c) {
   return "";
 }
 
+// The force guard predicts the force a command would bring (measured force plus the guard's
+// stiffness times the move): a command beyond where it reaches max_force_n stops there, and the
+// guard says so on that tick, in the flags and once in the log, with the force it predicted.
+TEST(ServoNodeController, TheForceGuardFlagsAndLogsTheForceItPredicts) {
+  auto c = config();
+  c.limits[0].max_force_n = 1000.0;
+  c.limits[0].force_guard_stiffness_n_per_m = 1e5;
+  c.actions.force = LimitAction::kClamp;
+  Rig rig(c, 1e5);                         // the specimen as stiff as the guard thinks
+  rig.actuator.measured_offset_m = 0.001;  // the piston 1 mm beyond its command: the guard uses where it is
+  FeedbackSample out = send(rig.node, command(0, {0.005}));  // at 6 mm, 600 N: within
+  EXPECT_EQ(out.limit_flags, transport::kLimitNone);
+  out = send(rig.node, command(1, {0.02}));  // 600 N + 1e5 N/m x (20 - 6) mm = 2000 N predicted
+  EXPECT_NE(out.limit_flags & transport::kLimitForce, 0u);
+  EXPECT_NE(out.status & transport::kNodeLimitActive, 0u);
+  EXPECT_NEAR(out.displacement_m[0], 0.011, 1e-12);  // sent 10 mm, where the guard reaches 1000 N
+  ASSERT_EQ(rig.node.events().size(), 1u);
+  const LimitEvent& e = rig.node.events().front();
+  EXPECT_EQ(e.kind, LimitKind::kForce);
+  EXPECT_EQ(e.cause, LimitCause::kLimit);
+  EXPECT_NEAR(e.observed, 2000.0, 1e-6);
+  EXPECT_EQ(e.bound, 1000.0);
+  EXPECT_EQ(e.commanded_m, 0.02);
+  EXPECT_NEAR(e.applied_m, 0.01, 1e-12);
+  out = send(rig.node, command(2, {0.02}));  // still asked for: acting, not logged again
+  EXPECT_NE(out.limit_flags & transport::kLimitForce, 0u);
+  EXPECT_EQ(rig.node.events().size(), 1u);
+  EXPECT_EQ(rig.node.counters().activations(LimitKind::kForce), 1u);
+  EXPECT_FALSE(rig.node.faulted());
+}
+
 TEST(ServoNodeController, ConfigErrorsNameTheField) {
   EXPECT_EQ(config_error(config()), "");
   auto c = config();

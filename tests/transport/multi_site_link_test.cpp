@@ -185,6 +185,44 @@ TEST(MultiSiteLink, ASiteThatNeverAnsweredIsAtStepMinusOneAndNotGivenAnotherSite
   EXPECT_DOUBLE_EQ(f.force_n[1], 7.0);
 }
 
+// One site owning every channel in order (a test of one site): its link writes the merged
+// sample itself, which says what several sites' would: no site, the test's channels, the
+// caller's run; before the site answers, step -1 and the values the caller held.
+TEST(MultiSiteLink, OneSiteOwningEveryChannelInOrderHandsBackWhatAMergeWould) {
+  EchoNode a(2);
+  InProcessLink la(a);
+  MultiSiteLink link({{2, &la, {0, 1}}});
+  FeedbackSample f;
+  f.run_id = 77;  // the caller's, which the link does not set
+  f.displacement_m = {0.5, 0.6};
+  f.test_id = 9;
+  EXPECT_EQ(link.receive(f), LinkStatus::kTimeout);  // nothing sent yet
+  EXPECT_EQ(f.step, -1);
+  EXPECT_EQ(f.status, kNodeOk);
+  EXPECT_EQ(f.channels, 2);
+  EXPECT_EQ(f.test_id, 9u);
+  EXPECT_EQ(f.displacement_m[1], 0.6);
+
+  CommandSample c;
+  c.test_id = 3;
+  c.run_id = 5;
+  c.step = 8;
+  c.channels = 2;
+  c.displacement_m = {0.1, 0.2};
+  ASSERT_EQ(link.send(c), LinkStatus::kOk);
+  EXPECT_EQ(a.seen.site_id, 2u);
+  EXPECT_EQ(a.seen.run_id, 5u);
+  ASSERT_EQ(link.receive(f), LinkStatus::kOk);
+  EXPECT_EQ(f.step, 8);
+  EXPECT_EQ(f.test_id, 3u);
+  EXPECT_EQ(f.site_id, 0u);  // the node's is 2: a merged sample names no site
+  EXPECT_EQ(f.run_id, 77u);
+  EXPECT_EQ(f.channels, 2);
+  EXPECT_EQ(f.status, kNodeLimitActive);
+  EXPECT_DOUBLE_EQ(f.displacement_m[0], 20.1);
+  EXPECT_DOUBLE_EQ(f.force_n[1], -20.2);
+}
+
 TEST(MultiSiteLink, RejectsChannelsOwnedTwiceOrByNobody) {
   EchoNode a(1);
   InProcessLink la(a), lb(a);

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "rpsd/node/channel_bounds.h"
 #include "rpsd/node/servo_node_config.h"
 #include "rpsd/servo/actuator.h"
 #include "rpsd/transport/messages.h"
@@ -186,7 +187,12 @@ class ServoNodeController {
   void log_run(const RunEvent& event);
   void choose_target();
   std::uint32_t apply_limits(Values& applied);
+  [[gnu::cold]] std::uint32_t log_limits(const std::array<std::uint8_t, transport::kMaxChannels>& exceeded,
+                                         const Values& guard_observed, const Values& applied);
   std::uint32_t check_measurement();
+  // Channel c's reading, one on a rail or at the rig's capacity (or not a number): cold, so that
+  // the tick's common case does not pay for what it logs.
+  [[gnu::cold]] std::uint32_t check_reading(int c);
   std::uint32_t apply_force_limits();
   void leave_force_control();
   void log(const LimitEvent& event);
@@ -201,10 +207,13 @@ class ServoNodeController {
   std::uint64_t run_id_ = 0, run_writer_ = 0;  // the run served and its writer (0: none)
   std::uint64_t ended_run_ = 0;                // the run ended last
   std::uint64_t ticks_since_accepted_ = 0;
-  std::int64_t max_step_lead_ = 0;    // periods a step may lead the ticks since the last accepted one
-  Values max_speed_m_per_s_{};        // per channel: the velocity and increment limits' speed, the lower
-  RunEvent last_refusal_;             // the last refusal logged: repeats of it are counted only
-  std::vector<RunEvent> run_events_;  // capacity reserved at construction, never grown past it
+  std::int64_t max_step_lead_ = 0;  // periods a step may lead the ticks since the last accepted one
+  std::array<ChannelBounds, transport::kMaxChannels> bounds_{};  // per channel: its limits as a tick uses them
+  static_assert(sizeof(transport::CommandSample::control_mode) == sizeof(std::uint64_t), "one word of modes");
+  std::uint64_t declared_modes_ = 0, used_modes_mask_ = 0;  // check(): the channels' modes as one word
+  std::array<std::uint8_t, 4> action_checks_{};  // per LimitAction: the checks of apply_limits whose kind does it
+  RunEvent last_refusal_;                        // the last refusal logged: repeats of it are counted only
+  std::vector<RunEvent> run_events_;             // capacity reserved at construction, never grown past it
   std::uint64_t run_events_not_logged_ = 0;
 
   // What a tick takes from the newest accepted command: only its step, time and used channels

@@ -79,19 +79,21 @@ struct FeedbackSample {
   std::array<std::int64_t, kMaxChannels> round_trip_ns{};
 };
 
-// Copies the fields of a command that are not per channel (its run, step, time, end of run,
-// writer), for a link that fills the channels itself. Real-time safe.
-inline void copy_command_header(const CommandSample& from, CommandSample& to) {
+// Copies the fields of a command that are not per channel (its test, run, step, time, end of
+// run, writer) and names the site and its channel count, for a link that fills a site's
+// channels itself. Real-time safe.
+inline void copy_command_header(const CommandSample& from, CommandSample& to, std::uint32_t site_id,
+                                std::uint8_t channels) {
   // A new field of CommandSample changes its size: copy it here too, then update the size.
   static_assert(sizeof(CommandSample) == 192, "copy_command_header: copy the new field of CommandSample");
   to.test_id = from.test_id;
-  to.site_id = from.site_id;
+  to.site_id = site_id;
   to.run_id = from.run_id;
   to.step = from.step;
   to.time_s = from.time_s;
   to.control_period_s = from.control_period_s;
   to.end_of_run = from.end_of_run;
-  to.channels = from.channels;
+  to.channels = channels;
   to.writer = from.writer;
 }
 

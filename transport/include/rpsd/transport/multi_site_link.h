@@ -29,11 +29,26 @@ class MultiSiteLink final : public Link {
   // Real-time safe.
   LinkStatus send(const CommandSample& command) override;
   // Worst status over the sites; the feedback holds every site's newest sample. Real-time safe.
+  // With one site owning every channel in order (a test of one site), that site's link writes
+  // the feedback itself, not through a copy of its own; beyond the test's channels it then holds
+  // what the site sent there (a node sends 0), where several sites leave what it held.
   LinkStatus receive(FeedbackSample& feedback) override;
 
  private:
-  std::vector<SiteRoute> sites_;
+  // A site as send() and receive() walk it: its link, id and channels, in place.
+  struct Route {
+    Link* link = nullptr;
+    std::uint32_t site_id = 0;
+    int count = 0;                                // its channels
+    std::array<std::uint8_t, kMaxChannels> of{};  // the test's channel of each of its channels
+  };
+  LinkStatus one_site_feedback(FeedbackSample& feedback);
+  LinkStatus merge_feedback(FeedbackSample& feedback);
+
+  std::array<Route, kMaxChannels> routes_{};  // each site owns a channel: at most kMaxChannels
+  int sites_ = 0;
   int channels_ = 0;
+  bool one_site_in_order_ = false;
   CommandSample site_command_;
   FeedbackSample site_feedback_;
 };
