@@ -13,14 +13,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path write_run(int rows, const std::string& bad_row = "") {
-  const fs::path dir = fs::temp_directory_path() / ("rpsd-monitor-recorded-" + std::to_string(::getpid()));
+// An empty output folder named for this process, and its time_history.csv with the header.
+fs::path fresh_folder(const std::string& name, std::ofstream& csv) {
+  const fs::path dir = fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream csv(dir / "time_history.csv");
+  csv.open(dir / "time_history.csv");
   csv << "step,time_s,target_m_ch0,command_m_ch0,measured_m_ch0,measured_force_n_ch0,node_status,limit_flags,"
          "round_trip_s_ch0,cycle_lateness_s,feedback_age_periods\n";
   csv << std::setprecision(17);
+  return dir;
+}
+
+fs::path write_run(int rows, const std::string& bad_row = "") {
+  std::ofstream csv;
+  const fs::path dir = fresh_folder("rpsd-monitor-recorded", csv);
   for (int i = 1; i <= rows; ++i) {
     csv << i << ',' << i * 0.01 << ',' << i * 1e-3 << ',' << i * 1.1e-3 << ',' << i * 0.9e-3 << ',' << -5.5 * i << ','
         << 0 << ',' << (i == 40 ? 1 : 0) << ",0.0005,0," << (i % 2) << '\n';
@@ -86,14 +93,10 @@ TEST(RecordedTelemetrySource, TheReplayIsPacedByStepsNotRows) {
 }
 
 TEST(RecordedTelemetrySource, ADecimatedHistoryReportsTheRunsStepsRateAndCounts) {
-  const fs::path dir = fs::temp_directory_path() / ("rpsd-monitor-decimated-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  fs::path dir;
   {
-    std::ofstream csv(dir / "time_history.csv");
-    csv << "step,time_s,target_m_ch0,command_m_ch0,measured_m_ch0,measured_force_n_ch0,node_status,limit_flags,"
-           "round_trip_s_ch0,cycle_lateness_s,feedback_age_periods\n";
-    csv << std::setprecision(17);
+    std::ofstream csv;
+    dir = fresh_folder("rpsd-monitor-decimated", csv);
     for (int k = 1; k <= 50; ++k)
       csv << 16 * k << ',' << 16 * k / 1024.0 << ",0,0,0,0,0,0,0.0005,0," << (k == 3) << '\n';
     std::ofstream(dir / "summary.json") << R"({"result":"completed","histories":{"kept":"decimated","every_steps":16},)"
