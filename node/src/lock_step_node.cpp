@@ -4,9 +4,7 @@ namespace rpsd::node {
 
 bool answer_lock_step(ServoNodeController& controller, const transport::CommandSample& command,
                       transport::FeedbackSample& feedback) {
-  if (controller.accept(command) != CommandVerdict::kAccepted) return false;
-  controller.tick(feedback);
-  return true;
+  return controller.answer(command, feedback);
 }
 
 }  // namespace rpsd::node

@@ -126,6 +126,9 @@ ServoNodeController::ServoNodeController(const ServoNodeConfig& config, servo::A
   std::memcpy(&used_modes_mask_, used.data(), sizeof used_modes_mask_);
   for (int check = 0; check < kGuardCheck; ++check)
     action_checks_[static_cast<int>(config_.actions.of(kCheckKind[check]))] |= bit(true, check);
+  // A node of one channel (every in-process site of one actuator) steps with loops of a length
+  // the compiler knows; any other count with the same code over config_.channels.
+  steps_ = config_.channels == 1 ? steps_of<1>() : steps_of<0>();
   events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
   run_events_.reserve(static_cast<std::size_t>(config_.event_log_capacity));
   // A coordinator sends one command a period: after commands were lost (a partition, a stall
@@ -196,8 +199,9 @@ bool same_period(double a, double b) { return std::abs(a - b) <= 1e-6 * std::max
 }  // namespace
 
 // Inline: once a command, from accept() alone (this file).
+template <int N>
 inline CommandVerdict ServoNodeController::check(const transport::CommandSample& command) const {
-  const int channels = config_.channels;
+  const int channels = count<N>();
   if (command.test_id != config_.test_id) return CommandVerdict::kWrongTestId;
   if (command.site_id != config_.site_id) return CommandVerdict::kWrongSiteId;
   if (command.end_of_run) return CommandVerdict::kEndOfRun;
@@ -240,8 +244,9 @@ inline CommandVerdict ServoNodeController::check(const transport::CommandSample&
   return CommandVerdict::kAccepted;
 }
 
-CommandVerdict ServoNodeController::accept(const transport::CommandSample& command) {
-  const CommandVerdict verdict = check(command);
+template <int N>
+inline CommandVerdict ServoNodeController::accept_n(const transport::CommandSample& command) {
+  const CommandVerdict verdict = check<N>(command);
   ++counters_.by_verdict[static_cast<int>(verdict)];
   switch (verdict) {
     case CommandVerdict::kAccepted:
@@ -292,9 +297,9 @@ CommandVerdict ServoNodeController::accept(const transport::CommandSample& comma
   if (has_pending_) ++counters_.superseded;
   pending_.step = command.step;
   pending_.time_s = command.time_s;
-  // Whole fixed-size arrays (a few vector moves); a tick reads only the node's channels.
-  pending_.displacement_m = command.displacement_m;
-  if (any_force_channel_) pending_.force_n = command.force_n;  // read by force channels only
+  // A tick reads only the node's channels.
+  copy_channels<N>(pending_.displacement_m, command.displacement_m);
+  if (any_force_channel_) copy_channels<N>(pending_.force_n, command.force_n);  // read by force channels only
   has_pending_ = true;
   newest_accepted_step_ = last_accepted_step_ = command.step;
   ticks_since_accepted_ = 0;
@@ -336,8 +341,9 @@ void ServoNodeController::log_run(const RunEvent& event) {
 }
 
 // Inline: once a tick, from tick() alone (this file).
+template <int N>
 inline void ServoNodeController::choose_target() {
-  const int channels = config_.channels;
+  const int channels = count<N>();
   if (fault_) {
     has_pending_ = false;
     target_m_ = command_m_;
@@ -345,9 +351,9 @@ inline void ServoNodeController::choose_target() {
   }
   if (has_pending_) {
     has_pending_ = false;
-    // Whole fixed-size arrays: no call to copy a run-time count; only the node's channels are read.
-    target_m_ = pending_.displacement_m;
-    if (any_force_channel_) force_target_n_ = pending_.force_n;
+    // Only the node's channels are read.
+    copy_channels<N>(target_m_, pending_.displacement_m);
+    if (any_force_channel_) copy_channels<N>(force_target_n_, pending_.force_n);
     followed_step_ = pending_.step;
     followed_time_s_ = pending_.time_s;
     ++counters_.applied;
@@ -397,8 +403,10 @@ void ServoNodeController::latch_fault() {
   has_pending_ = false;
 }
 
-std::uint32_t ServoNodeController::apply_limits(Values& applied) {
-  const int channels = config_.channels;
+// Inline: once a tick, from tick() alone (this file).
+template <int N>
+inline std::uint32_t ServoNodeController::apply_limits(Values& applied) {
+  const int channels = count<N>();
   const double period_s = config_.control_period_s;
   // What is asked for, and what is measured (the interlocks): one bit per check exceeded, every
   // check on every channel; what a limit does and says is worked out below only when one acts.
@@ -531,12 +539,13 @@ std::uint32_t ServoNodeController::log_limits(const std::array<std::uint8_t, tra
 }
 
 // Inline: once a tick, from tick() alone (this file); the rare reading goes to check_reading.
+template <int N>
 inline std::uint32_t ServoNodeController::check_measurement() {
   // Whatever the actuator (a simulated plant, a hardware adapter) and whatever the limits'
   // actions: a reading on a converter's rail may stand for any value beyond it, and one at the
   // rig's stroke or force capacity is an end stop or a rig overloaded. Either faults the node.
   std::uint32_t flags = transport::kLimitNone;
-  const int channels = config_.channels;
+  const int channels = count<N>();
   for (int c = 0; c < channels; ++c) {
     if (bounds_[c].quiet(reading_.displacement_m[c], reading_.force_n[c])) {
       measurement_was_beyond_[c] = {false, false};
@@ -627,8 +636,9 @@ void ServoNodeController::leave_force_control() {
   }
 }
 
-void ServoNodeController::tick(transport::FeedbackSample& out) {
-  const int channels = config_.channels;
+template <int N>
+inline void ServoNodeController::tick_n(transport::FeedbackSample& out) {
+  const int channels = count<N>();
   out.test_id = config_.test_id;
   out.site_id = config_.site_id;
   out.run_id = run_id_;
@@ -642,7 +652,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
   }
 
   const bool faulted_before = fault_;
-  choose_target();
+  choose_target<N>();
   // A force channel enters force control with its first command, from the force it measures.
   if (any_force_channel_ && commands_began_ && !fault_ && !safe_state_) {
     for (int c = 0; c < channels; ++c) {
@@ -652,7 +662,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     }
   }
   Values applied;  // apply_limits sets each channel's; the rest is never read
-  std::uint32_t flags = apply_limits(applied);
+  std::uint32_t flags = apply_limits<N>(applied);
   servo::ActuatorStatus status = servo::ActuatorStatus::kOk;
   const auto n = static_cast<std::size_t>(channels);
   if (any_force_channel_) {
@@ -672,7 +682,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     command_m_[c] = applied[c];
   }
   if (status == servo::ActuatorStatus::kOk) {
-    latest_measurement_ = reading_;
+    keep_latest_measurement<N>();
     has_measurement_ = true;
   }
   if (status == servo::ActuatorStatus::kNoReply) ++counters_.actuator_no_replies;
@@ -682,7 +692,7 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     if (!faulted_before) keep_fault_text(actuator_.fault_text());
   }
   // A new measurement faults the node on this tick's feedback if no measurement may be where it is.
-  if (status == servo::ActuatorStatus::kOk) flags |= check_measurement();
+  if (status == servo::ActuatorStatus::kOk) flags |= check_measurement<N>();
   if (fault_ && !faulted_before && fault_text_[0] == '\0' && !events_.empty() && events_not_logged_ == 0)
     describe_fault(events_.back());
   ++counters_.ticks;
@@ -710,6 +720,31 @@ void ServoNodeController::tick(transport::FeedbackSample& out) {
     ++counters_.valve_saturated_ticks;
   }
   out.limit_flags = flags;
+}
+
+// Inline: once a tick, from tick_n() alone (this file).
+template <int N>
+inline void ServoNodeController::keep_latest_measurement() {
+  // The node's channels and the flags: what a heartbeat reads of it.
+  for (int c = 0; c < count<N>(); ++c) {
+    latest_measurement_.displacement_m[c] = reading_.displacement_m[c];
+    latest_measurement_.force_n[c] = reading_.force_n[c];
+  }
+  latest_measurement_.fresh = reading_.fresh;
+  latest_measurement_.at_end_stop = reading_.at_end_stop;
+  latest_measurement_.valve_saturated = reading_.valve_saturated;
+}
+
+template <int N>
+bool ServoNodeController::answer_n(const transport::CommandSample& command, transport::FeedbackSample& feedback) {
+  if (accept_n<N>(command) != CommandVerdict::kAccepted) return false;
+  tick_n<N>(feedback);
+  return true;
+}
+
+template <int N>
+constexpr ServoNodeController::Steps ServoNodeController::steps_of() {
+  return {&ServoNodeController::accept_n<N>, &ServoNodeController::tick_n<N>, &ServoNodeController::answer_n<N>};
 }
 
 void ServoNodeController::keep_fault_text(std::string_view text) noexcept {

@@ -122,7 +122,7 @@ class ServoNodeController {
   // command, or release_run()). A run's first command must have a step of at most
   // command_timeout_periods (a test's first is 0): a node that sees a test first later on,
   // restarted while the coordinator carried on, never follows it. Real-time safe.
-  CommandVerdict accept(const transport::CommandSample& command);
+  CommandVerdict accept(const transport::CommandSample& command) { return (this->*steps_.accept)(command); }
 
   // Frees the node from its run (the loop calls it after a silence: the coordinator is gone):
   // the node holds (or ramps to safe) as its watchdog would and may take another run. Nothing
@@ -139,7 +139,12 @@ class ServoNodeController {
   // actuator and fills `out` (step/time of the command being followed, -1/0 before the
   // first, the measurement, status and limit flags). Before start(): kNodeFault, no
   // exchange. Real-time safe: no allocation, no locks, no exceptions.
-  void tick(transport::FeedbackSample& out);
+  void tick(transport::FeedbackSample& out) { (this->*steps_.tick)(out); }
+  // Lock-step: accept(command) and, when accepted, tick(feedback) at once; false (feedback
+  // untouched) when refused. Real-time safe.
+  bool answer(const transport::CommandSample& command, transport::FeedbackSample& feedback) {
+    return (this->*steps_.answer)(command, feedback);
+  }
 
   const ServoNodeCounters& counters() const { return counters_; }
   // Limit activations in order, up to event_log_capacity; later ones are counted only.
@@ -171,7 +176,8 @@ class ServoNodeController {
   const servo::ActuatorReading& reading() const { return reading_; }
   // The actuator's newest measurement (a tick's exchange that answered, or the reading at rest
   // noted after start()), and whether there is one: a node whose actuator can only be read by
-  // an exchange has read nothing before its first tick. Its heartbeat carries both.
+  // an exchange has read nothing before its first tick. Its heartbeat carries both. A tick's
+  // keeps the node's channels and the flags; the entries beyond the channels are not read.
   const servo::ActuatorReading& latest_measurement() const { return latest_measurement_; }
   bool has_measurement() const { return has_measurement_; }
   // After start(): the actuator's reading at rest, when it can be read without an exchange (a
@@ -182,14 +188,49 @@ class ServoNodeController {
 
  private:
   using Values = std::array<double, transport::kMaxChannels>;
-  CommandVerdict check(const transport::CommandSample& command) const;
+  // The per-command and per-tick steps over N channels, N known to the compiler (0: any count,
+  // config_.channels), chosen once at construction: one code, loops of a known length for a
+  // node of one channel.
+  template <int N>
+  int count() const {
+    return N > 0 ? N : config_.channels;
+  }
+  // The first N entries (N 0: the whole array, a few vector moves); a tick reads no other.
+  template <int N>
+  static void copy_channels(Values& to, const Values& from) {
+    if constexpr (N > 0) {
+      for (int c = 0; c < N; ++c) to[c] = from[c];
+    } else {
+      to = from;
+    }
+  }
+  struct Steps {
+    CommandVerdict (ServoNodeController::*accept)(const transport::CommandSample&);
+    void (ServoNodeController::*tick)(transport::FeedbackSample&);
+    bool (ServoNodeController::*answer)(const transport::CommandSample&, transport::FeedbackSample&);
+  };
+  template <int N>
+  static constexpr Steps steps_of();
+  template <int N>
+  [[gnu::always_inline]] CommandVerdict accept_n(const transport::CommandSample& command);
+  template <int N>
+  [[gnu::always_inline]] void tick_n(transport::FeedbackSample& out);
+  template <int N>
+  bool answer_n(const transport::CommandSample& command, transport::FeedbackSample& feedback);
+  template <int N>
+  [[gnu::always_inline]] CommandVerdict check(const transport::CommandSample& command) const;
   void end_run(RunEvent::Kind why);
   void log_run(const RunEvent& event);
-  void choose_target();
-  std::uint32_t apply_limits(Values& applied);
+  template <int N>
+  [[gnu::always_inline]] void choose_target();
+  template <int N>
+  [[gnu::always_inline]] std::uint32_t apply_limits(Values& applied);
   [[gnu::cold]] std::uint32_t log_limits(const std::array<std::uint8_t, transport::kMaxChannels>& exceeded,
                                          const Values& guard_observed, const Values& applied);
-  std::uint32_t check_measurement();
+  template <int N>
+  [[gnu::always_inline]] std::uint32_t check_measurement();
+  template <int N>
+  [[gnu::always_inline]] void keep_latest_measurement();
   // Channel c's reading, one on a rail or at the rig's capacity (or not a number): cold, so that
   // the tick's common case does not pay for what it logs.
   [[gnu::cold]] std::uint32_t check_reading(int c);
@@ -202,6 +243,7 @@ class ServoNodeController {
 
   ServoNodeConfig config_;
   servo::Actuator& actuator_;
+  Steps steps_{};  // steps_of<1> or steps_of<0>, by config_.channels
   bool started_ = false;
 
   std::uint64_t run_id_ = 0, run_writer_ = 0;  // the run served and its writer (0: none)
