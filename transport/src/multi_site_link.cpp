@@ -47,21 +47,28 @@ MultiSiteLink::MultiSiteLink(std::vector<SiteRoute> sites) {
   for (int i = 0; i < routes_[0].count; ++i) one_site_in_order_ = one_site_in_order_ && routes_[0].of[i] == i;
 }
 
-LinkStatus MultiSiteLink::send(const CommandSample& command) {
-  LinkStatus status = LinkStatus::kOk;
-  for (int s = 0; s < sites_; ++s) {
-    const Route& site = routes_[s];
-    // The command's own fields, then the site's channels only: a site never sees another
-    // site's channels (its unused entries stay 0), and no whole sample is copied per site.
-    copy_command_header(command, site_command_, site.site_id, static_cast<std::uint8_t>(site.count));
-    for (int i = 0; i < site.count; ++i) {
-      const int ch = site.of[i];
-      site_command_.displacement_m[i] = command.displacement_m[ch];
-      site_command_.control_mode[i] = command.control_mode[ch];
-      site_command_.force_n[i] = command.force_n[ch];
-    }
-    status = worse(status, site.link->send(site_command_));
+// Inline: from send() and send_each_site() alone.
+inline LinkStatus MultiSiteLink::send_to(const Route& site, const CommandSample& command) {
+  // The command's own fields, then the site's channels only: a site never sees another
+  // site's channels (its unused entries stay 0), and no whole sample is copied per site.
+  copy_command_header(command, site_command_, site.site_id, static_cast<std::uint8_t>(site.count));
+  for (int i = 0; i < site.count; ++i) {
+    const int ch = site.of[i];
+    site_command_.displacement_m[i] = command.displacement_m[ch];
+    site_command_.control_mode[i] = command.control_mode[ch];
+    site_command_.force_n[i] = command.force_n[ch];
   }
+  return site.link->send(site_command_);
+}
+
+LinkStatus MultiSiteLink::send(const CommandSample& command) {
+  // One site: its status as it is (the worst of one), without the walk's frame.
+  return sites_ == 1 ? send_to(routes_[0], command) : send_each_site(command);
+}
+
+LinkStatus MultiSiteLink::send_each_site(const CommandSample& command) {
+  LinkStatus status = LinkStatus::kOk;
+  for (int s = 0; s < sites_; ++s) status = worse(status, send_to(routes_[s], command));
   return status;
 }
 

@@ -42,8 +42,11 @@ class MultiSiteLink final : public Link {
     int count = 0;                                // its channels
     std::array<std::uint8_t, kMaxChannels> of{};  // the test's channel of each of its channels
   };
+  LinkStatus send_to(const Route& site, const CommandSample& command);
+  // Out of line, so that a test of one site does not pay the frame of a walk over several.
+  [[gnu::noinline]] LinkStatus send_each_site(const CommandSample& command);
   LinkStatus one_site_feedback(FeedbackSample& feedback);
-  LinkStatus merge_feedback(FeedbackSample& feedback);
+  [[gnu::noinline]] LinkStatus merge_feedback(FeedbackSample& feedback);
 
   std::array<Route, kMaxChannels> routes_{};  // each site owns a channel: at most kMaxChannels
   int sites_ = 0;
