@@ -79,6 +79,7 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
   parts_.integrator->initialize(d0, Eigen::VectorXd::Zero(dofs_), restoring_, force_);
   step_ = 0;
   record_ = StepRecord{};
+  last_row_ = nullptr;
   previous_d_ = d0;
   previous_v_.setZero();
   previous_r_ = restoring_;
@@ -154,35 +155,39 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   mass_->multiply(v, work_b_);
   kinetic_energy_j_ = 0.5 * v.dot(work_b_);
 
-  record_.step = step_;
-  record_.time_s = integrator.time_s();
-  record_.ground_acceleration_m_per_s2 = ground;
-  fill_record(record_);
-  record_.cycle_lateness_s = static_cast<double>(cycle_lateness_ns_) * 1e-9;
-  record_.feedback_age_periods = static_cast<std::uint8_t>(std::min<std::int64_t>(oldest_age_this_step_, 255));
-  if (parts_.wait_for_recorder) {
-    recorder.record_or_wait(record_);
-  } else {
-    recorder.record(record_);
-  }
+  ground_m_per_s2_ = ground;
+  hand_off(recorder);
   return StepOutcome::kOk;
 }
 
-void RpsdLoop::fill_record(StepRecord& r) const {
+void RpsdLoop::hand_off(Recorder& recorder) {
+  const RecordLayout& layout = recorder.layout();
+  const std::byte* written = nullptr;
+  const auto write = [&](std::byte* row) {
+    pack_row(RecordLayout::Row(layout, row));
+    written = row;
+  };
+  if (parts_.wait_for_recorder) {
+    recorder.record_or_wait_in_place(write);
+  } else if (!recorder.record_in_place(write)) {
+    write(spare_row_.data());  // dropped (counted): last_record() still reads it
+  }
+  last_row_ = written;
+  last_layout_ = &layout;
+}
+
+void RpsdLoop::pack_row(const RecordLayout::Row& row) const {
   const auto& integrator = *parts_.integrator;
-  exchange_.fill_channels(r);
-  r.dofs = static_cast<std::uint8_t>(parts_.recorded_dofs.size());
+  row.header(step_, integrator.time_s(), ground_m_per_s2_, static_cast<std::uint8_t>(parts_.recorded_dofs.size()),
+             static_cast<std::uint8_t>(std::min<std::int64_t>(oldest_age_this_step_, 255)), input_energy_j_,
+             kinetic_energy_j_, damping_energy_j_, restoring_energy_j_, static_cast<double>(cycle_lateness_ns_) * 1e-9);
+  exchange_.fill_channels(row);
+  const double *d = integrator.displacement().data(), *v = integrator.velocity().data(),
+               *a = integrator.acceleration().data(), *r = integrator.restoring_force().data();
   for (std::size_t i = 0; i < parts_.recorded_dofs.size(); ++i) {
     const Eigen::Index dof = parts_.recorded_dofs[i];
-    r.displacement_m[i] = integrator.displacement()[dof];
-    r.velocity_m_per_s[i] = integrator.velocity()[dof];
-    r.acceleration_m_per_s2[i] = integrator.acceleration()[dof];
-    r.restoring_force_n[i] = integrator.restoring_force()[dof];
+    row.dof(static_cast<int>(i), d[dof], v[dof], a[dof], r[dof]);
   }
-  r.input_energy_j = input_energy_j_;
-  r.damping_energy_j = damping_energy_j_;
-  r.restoring_energy_j = restoring_energy_j_;
-  r.kinetic_energy_j = kinetic_energy_j_;
 }
 
 }  // namespace rpsd::coordinator

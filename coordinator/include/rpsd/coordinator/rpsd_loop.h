@@ -84,8 +84,16 @@ class RpsdLoop {
   // Advances the test by one integration step and records it. Real-time safe.
   StepOutcome step(Recorder& recorder);
 
-  // The record of the last step taken (what step() handed to the recorder). Real-time safe.
-  const StepRecord& last_record() const { return record_; }
+  // The record of the last step taken (what step() handed to the recorder), unpacked from its
+  // row when first asked for: a step writes only the row (most steps' records are never asked
+  // for here). Real-time safe; the loop's thread only, while the recorder of that step lives.
+  const StepRecord& last_record() const {
+    if (last_row_) {
+      last_layout_->unpack(last_row_, record_);
+      last_row_ = nullptr;
+    }
+    return record_;
+  }
 
   // Whether a full recorder queue makes step() wait (LoopParts::wait_for_recorder).
   void set_wait_for_recorder(bool wait) { parts_.wait_for_recorder = wait; }
@@ -118,7 +126,11 @@ class RpsdLoop {
   double dt_s() const { return parts_.integrator->dt_s(); }
 
  private:
-  void fill_record(StepRecord& r) const;
+  // The step's row, in place: the loop's part here, the channels' from the exchange.
+  void pack_row(const RecordLayout::Row& row) const;
+  // Hands this step's row to the recorder (in its queue, or in spare_row_ when a real-time
+  // step drops it) and remembers where it is for last_record().
+  void hand_off(Recorder& recorder);
 
   LoopParts parts_;
   ExperimentalExchange exchange_;
@@ -132,7 +144,13 @@ class RpsdLoop {
   // kTargetNowForceDelayed: the target of the step before, and the force of the exchange before.
   Eigen::VectorXd held_targets_, held_forces_;
   Eigen::VectorXd previous_d_, previous_v_, previous_r_, previous_f_, work_a_, work_b_, force_sum_, restoring_sum_;
-  StepRecord record_;
+  double ground_m_per_s2_ = 0.0;  // this step's ground acceleration, for its row
+  // The last step's record, unpacked from its row (last_row_, laid out as last_layout_ says)
+  // when asked for.
+  mutable StepRecord record_;
+  mutable const std::byte* last_row_ = nullptr;
+  const RecordLayout* last_layout_ = nullptr;
+  alignas(8) std::array<std::byte, RecordLayout::kMaxRowBytes> spare_row_{};  // a dropped step's row
   std::int64_t step_ = 0;
   std::int64_t cycle_lateness_ns_ = 0;
   std::int64_t oldest_age_this_step_ = 0;
