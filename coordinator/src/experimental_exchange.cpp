@@ -475,12 +475,9 @@ StepOutcome ExperimentalExchange::feedback_setup(Group& g) {
   return StepOutcome::kOk;
 }
 
-void ExperimentalExchange::fill_channels(StepRecord& r) const { write_channels(RecordChannels(r)); }
-
-void ExperimentalExchange::fill_channels(const RecordLayout::Row& row) const { write_channels(row); }
-
+// Inline into each fill_channels: the loop's row is written in the call it makes.
 template <typename Out>
-void ExperimentalExchange::write_channels(const Out& out) const {
+[[gnu::always_inline]] inline void ExperimentalExchange::write_channels(Out out) const {
   // Each value read once into a local: a store into the record could alias the vectors' storage
   // for all the compiler knows, and it would read them again.
   const double *target = targets_.data(), *specimen_force = specimen_forces_.data();
@@ -510,5 +507,9 @@ void ExperimentalExchange::write_channels(const Out& out) const {
   out.channels(static_cast<std::uint8_t>(channels_), static_cast<std::uint8_t>(held), feedback_.status,
                feedback_.limit_flags);
 }
+
+void ExperimentalExchange::fill_channels(StepRecord& r) const { write_channels(RecordChannels(r)); }
+
+void ExperimentalExchange::fill_channels(RecordLayout::Row row) const { write_channels(row); }
 
 }  // namespace rpsd::coordinator

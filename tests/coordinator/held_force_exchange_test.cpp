@@ -116,6 +116,27 @@ TEST(HeldForceExchange, TheHeldForceIsNotARestoringForceOfTheStructure) {
   EXPECT_NEAR(r.held_measured_m[0], kHeldN / kJackStiffnessNPerM, 1e-15);
 }
 
+// The loop writes the channels' part of its row in place (RecordLayout::Row): unpacked, the
+// row carries the held force's command, stroke and load cell as fill_channels writes them.
+TEST(HeldForceExchange, ARowWrittenInPlaceCarriesTheHeldForceAsARecordDoes) {
+  Exchange e;
+  ASSERT_EQ(e.to(0.001, 5.0), StepOutcome::kOk);
+  StepRecord want, got;
+  e.exchange->fill_channels(want);
+  const RecordLayout layout(1, 1, 0);
+  std::vector<std::byte> row(layout.row_bytes());
+  e.exchange->fill_channels(RecordLayout::Row(layout, row.data()));
+  layout.unpack(row.data(), got);
+  EXPECT_EQ(got.channels, 1);
+  EXPECT_EQ(got.held, 1);
+  EXPECT_EQ(got.target_m, want.target_m);
+  EXPECT_EQ(got.measured_force_n, want.measured_force_n);
+  EXPECT_EQ(got.held_force_command_n, want.held_force_command_n);
+  EXPECT_EQ(got.held_measured_m, want.held_measured_m);
+  EXPECT_EQ(got.held_measured_force_n, want.held_measured_force_n);
+  EXPECT_NE(got.held_force_command_n[0], 0.0);
+}
+
 TEST(HeldForceExchange, ALoadCellBeyondItsForceLimitStopsNamingTheHeldForce) {
   HeldForceChannel h = axial();
   h.limits.max_force_error_n = 1.0e6;

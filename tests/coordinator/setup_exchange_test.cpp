@@ -127,6 +127,36 @@ TEST(SetupExchange, LargeDisplacementStrokesAndForcesAtTheMeasuredConfiguration)
   EXPECT_NEAR(r.dof_measured_m[1], theta, 1e-12);
 }
 
+// The loop writes the channels' part of its row in place (RecordLayout::Row): unpacked, the
+// row carries what fill_channels writes into a record, a setup's strokes and DOF view alike.
+TEST(SetupExchange, ARowWrittenInPlaceCarriesTheChannelsAsARecordDoes) {
+  Exchange e(group_of(setups::Geometry::kLargeDisplacement));
+  e.link.force_n[0] = 1000.0;
+  e.link.force_n[1] = 2000.0;
+  ASSERT_EQ(e.to(0.03, 0.2), StepOutcome::kOk);
+  StepRecord want, got;
+  e.exchange->fill_channels(want);
+  const RecordLayout layout(2, 0, 0);
+  std::vector<std::byte> row(layout.row_bytes());
+  e.exchange->fill_channels(RecordLayout::Row(layout, row.data()));
+  layout.unpack(row.data(), got);
+  EXPECT_EQ(got.channels, 2);
+  EXPECT_EQ(got.held, 0);
+  EXPECT_EQ(got.node_status, want.node_status);
+  EXPECT_EQ(got.limit_flags, want.limit_flags);
+  EXPECT_EQ(got.target_m, want.target_m);
+  EXPECT_EQ(got.command_m, want.command_m);
+  EXPECT_EQ(got.measured_m, want.measured_m);
+  EXPECT_EQ(got.measured_force_n, want.measured_force_n);
+  EXPECT_EQ(got.specimen_restoring_force_n, want.specimen_restoring_force_n);
+  EXPECT_EQ(got.tracking_indicator_m2, want.tracking_indicator_m2);
+  EXPECT_EQ(got.dof_target_m, want.dof_target_m);
+  EXPECT_EQ(got.dof_measured_m, want.dof_measured_m);
+  EXPECT_EQ(got.dof_force_n, want.dof_force_n);
+  EXPECT_EQ(got.round_trip_s, want.round_trip_s);
+  EXPECT_NE(got.measured_m[1], got.dof_measured_m[1]);  // the stroke and the rotation, each in its place
+}
+
 TEST(SetupExchange, CalibrationOffsetsAreAddedToCommandsAndTakenOffMeasurements) {
   SetupGroup g = group_of(setups::Geometry::kLinear);
   g.calibration_offset_m = {0.003, -0.001};

@@ -93,7 +93,7 @@ class ExperimentalExchange {
   void fill_channels(StepRecord& r) const;
   // The same into a row of the recorder's queue, in place (the loop's step: no StepRecord
   // between). Real-time safe.
-  void fill_channels(const RecordLayout::Row& row) const;
+  void fill_channels(RecordLayout::Row row) const;
   // Channel c's command-to-feedback time of the last exchange, s (its record's round_trip_s).
   // Real-time safe.
   double round_trip_s(int c) const {
@@ -102,7 +102,7 @@ class ExperimentalExchange {
 
  private:
   template <typename Out>
-  void write_channels(const Out& out) const;  // both fill_channels: into a record or a row
+  void write_channels(Out out) const;  // both fill_channels: into a record or a row
   // One setup's state: the DOF and actuator vectors of the exchange under way (fixed size).
   struct Group {
     Group(SetupGroup p, setups::PlanarSetup s) : parts(std::move(p)), setup(std::move(s)) {}

@@ -68,7 +68,7 @@ class RecordLayout {
 // written (as pack() does). Each value is copied in (the row is bytes). Real-time safe.
 class RecordLayout::Row {
  public:
-  Row(const RecordLayout& layout, std::byte* row) : layout_(layout), row_(row) {}
+  Row(const RecordLayout& layout, std::byte* row) : row_(row), layout_(&layout) {}
 
   // Words 0, 2 (its DOF count and feedback age, and the padding) and 3 to 9.
   void header(std::int64_t step, double time_s, double ground_acceleration_m_per_s2, std::uint8_t dofs,
@@ -90,19 +90,19 @@ class RecordLayout::Row {
     put(2 * kWord + 2, held);
   }
   void channel(int c, const Channel& v) const {
-    if (c < layout_.channels_)
-      std::memcpy(row_ + layout_.channel_offset_ + sizeof(Channel) * static_cast<std::size_t>(c), &v, sizeof v);
+    if (c < layout_->channels_)
+      std::memcpy(row_ + kHeaderWords * kWord + sizeof v * static_cast<std::size_t>(c), &v, sizeof v);
   }
   void held(int k, double force_command_n, double measured_m, double measured_force_n) const {
-    if (k >= layout_.held_) return;
+    if (k >= layout_->held_) return;
     const double words[] = {force_command_n, measured_m, measured_force_n};
-    std::memcpy(row_ + layout_.held_offset_ + sizeof words * static_cast<std::size_t>(k), words, sizeof words);
+    std::memcpy(row_ + layout_->held_offset_ + sizeof words * static_cast<std::size_t>(k), words, sizeof words);
   }
   void dof(int d, double displacement_m, double velocity_m_per_s, double acceleration_m_per_s2,
            double restoring_force_n) const {
-    if (d >= layout_.dofs_) return;
+    if (d >= layout_->dofs_) return;
     const double words[] = {displacement_m, velocity_m_per_s, acceleration_m_per_s2, restoring_force_n};
-    std::memcpy(row_ + layout_.dof_offset_ + sizeof words * static_cast<std::size_t>(d), words, sizeof words);
+    std::memcpy(row_ + layout_->dof_offset_ + sizeof words * static_cast<std::size_t>(d), words, sizeof words);
   }
 
  private:
@@ -111,8 +111,10 @@ class RecordLayout::Row {
     std::memcpy(row_ + at, &value, sizeof value);
   }
 
-  const RecordLayout& layout_;
+  // Two words: a Row goes by value in two registers, the writer's own, so that its stores
+  // into the row's bytes cannot be taken for stores into it.
   std::byte* row_;
+  const RecordLayout* layout_;
 };
 
 // The channels' part of a record written into a StepRecord's own fields, with the calls a Row

@@ -126,8 +126,11 @@ class RpsdLoop {
   double dt_s() const { return parts_.integrator->dt_s(); }
 
  private:
-  // The step's row, in place: the loop's part here, the channels' from the exchange.
-  void pack_row(const RecordLayout::Row& row) const;
+  // The energy balance of the step just taken, over Dofs DOFs: 1 (the paper's SDOF, in
+  // scalars) or Eigen::Dynamic (any count); one copy of the formulas for both, the size
+  // chosen at construction (one_dof_).
+  template <int Dofs>
+  void energy_balance();
   // Hands this step's row to the recorder (in its queue, or in spare_row_ when a real-time
   // step drops it) and remembers where it is for last_record().
   void hand_off(Recorder& recorder);
@@ -136,6 +139,7 @@ class RpsdLoop {
   ExperimentalExchange exchange_;
   int channels_ = 0;
   Eigen::Index dofs_ = 0;
+  bool one_dof_ = false;
   // The numerical model's M and C for the energy balance, asked for once (one object each
   // for the model's life), not through a virtual call every step.
   const linalg::StructuralMatrix* mass_ = nullptr;
