@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "exchange_row.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/coordinator/experimental_exchange.h"
 #include "rpsd/coordinator/limit_stop_text.h"
@@ -121,19 +122,8 @@ TEST(HeldForceExchange, TheHeldForceIsNotARestoringForceOfTheStructure) {
 TEST(HeldForceExchange, ARowWrittenInPlaceCarriesTheHeldForceAsARecordDoes) {
   Exchange e;
   ASSERT_EQ(e.to(0.001, 5.0), StepOutcome::kOk);
-  StepRecord want, got;
-  e.exchange->fill_channels(want);
-  const RecordLayout layout(1, 1, 0);
-  std::vector<std::byte> row(layout.row_bytes());
-  e.exchange->fill_channels(RecordLayout::Row(layout, row.data()));
-  layout.unpack(row.data(), got);
-  EXPECT_EQ(got.channels, 1);
+  const StepRecord got = expect_row_carries_the_record(*e.exchange);
   EXPECT_EQ(got.held, 1);
-  EXPECT_EQ(got.target_m, want.target_m);
-  EXPECT_EQ(got.measured_force_n, want.measured_force_n);
-  EXPECT_EQ(got.held_force_command_n, want.held_force_command_n);
-  EXPECT_EQ(got.held_measured_m, want.held_measured_m);
-  EXPECT_EQ(got.held_measured_force_n, want.held_measured_force_n);
   EXPECT_NE(got.held_force_command_n[0], 0.0);
 }
 

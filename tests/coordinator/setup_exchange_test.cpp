@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "exchange_row.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/coordinator/experimental_exchange.h"
 #include "rpsd/coordinator/limit_stop_text.h"
@@ -134,26 +135,8 @@ TEST(SetupExchange, ARowWrittenInPlaceCarriesTheChannelsAsARecordDoes) {
   e.link.force_n[0] = 1000.0;
   e.link.force_n[1] = 2000.0;
   ASSERT_EQ(e.to(0.03, 0.2), StepOutcome::kOk);
-  StepRecord want, got;
-  e.exchange->fill_channels(want);
-  const RecordLayout layout(2, 0, 0);
-  std::vector<std::byte> row(layout.row_bytes());
-  e.exchange->fill_channels(RecordLayout::Row(layout, row.data()));
-  layout.unpack(row.data(), got);
+  const StepRecord got = expect_row_carries_the_record(*e.exchange);
   EXPECT_EQ(got.channels, 2);
-  EXPECT_EQ(got.held, 0);
-  EXPECT_EQ(got.node_status, want.node_status);
-  EXPECT_EQ(got.limit_flags, want.limit_flags);
-  EXPECT_EQ(got.target_m, want.target_m);
-  EXPECT_EQ(got.command_m, want.command_m);
-  EXPECT_EQ(got.measured_m, want.measured_m);
-  EXPECT_EQ(got.measured_force_n, want.measured_force_n);
-  EXPECT_EQ(got.specimen_restoring_force_n, want.specimen_restoring_force_n);
-  EXPECT_EQ(got.tracking_indicator_m2, want.tracking_indicator_m2);
-  EXPECT_EQ(got.dof_target_m, want.dof_target_m);
-  EXPECT_EQ(got.dof_measured_m, want.dof_measured_m);
-  EXPECT_EQ(got.dof_force_n, want.dof_force_n);
-  EXPECT_EQ(got.round_trip_s, want.round_trip_s);
   EXPECT_NE(got.measured_m[1], got.dof_measured_m[1]);  // the stroke and the rotation, each in its place
 }
 
