@@ -90,10 +90,11 @@ struct TestAssembly::Parts {
     if (!held_forces.empty()) held_stats.add(loop->last_record());
     const coordinator::ExperimentalExchange& exchange = loop->exchange();
     for (std::size_t i = 0; i < round_trip_channels.size(); ++i) {
-      const double round_trip_s = exchange.round_trip_s(static_cast<int>(round_trip_channels[i]));
-      if (round_trip_s == 0.0) {
+      // A round trip of 0 ns is one of 0 s (its record's value) and no other is: asked as an integer.
+      if (exchange.feedback().round_trip_ns[round_trip_channels[i]] == 0) {
         ++zero_round_trips[i];
       } else {
+        const double round_trip_s = exchange.round_trip_s(static_cast<int>(round_trip_channels[i]));
         round_trips[i].add(static_cast<std::int64_t>(std::llround(round_trip_s * 1e9)));
       }
     }
