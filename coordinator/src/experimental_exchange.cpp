@@ -475,46 +475,41 @@ StepOutcome ExperimentalExchange::feedback_setup(Group& g) {
   return StepOutcome::kOk;
 }
 
-void ExperimentalExchange::fill_channels(StepRecord& r) const {
-  r.channels = static_cast<std::uint8_t>(channels_);
+// Inline into each fill_channels: the loop's row is written in the call it makes.
+template <typename Out>
+[[gnu::always_inline]] inline void ExperimentalExchange::write_channels(Out out) const {
   // Each value read once into a local: a store into the record could alias the vectors' storage
   // for all the compiler knows, and it would read them again.
   const double *target = targets_.data(), *specimen_force = specimen_forces_.data();
   const compensation::TrackingIndicator* const tracking = tracking_.data();
   for (int c = 0; c < channels_; ++c) {
     const double t = target[c], x = feedback_.displacement_m[c], f = feedback_.force_n[c];
-    r.target_m[c] = t;
-    r.command_m[c] = command_.displacement_m[c];
-    r.measured_m[c] = x;
-    r.measured_force_n[c] = f;
-    r.specimen_restoring_force_n[c] = specimen_force[c];
-    r.tracking_indicator_m2[c] = tracking[c].value_m2();
-    r.round_trip_s[c] = static_cast<double>(feedback_.round_trip_ns[c]) * 1e-9;
-    r.dof_target_m[c] = t;
-    r.dof_measured_m[c] = x;
-    r.dof_force_n[c] = f;
-  }
-  // A setup's channels: the actuators' strokes (offsets off) beside the DOFs' view.
-  for (const Group& g : groups_) {
-    for (int i = 0; i < g.setup.dofs(); ++i) {
-      const int c = g.parts.channels[static_cast<std::size_t>(i)];
-      r.target_m[c] = g.stroke_target[i];
-      r.command_m[c] = g.stroke_command[i];
-      r.measured_m[c] = g.stroke_measured[i];
-      r.dof_target_m[c] = g.dof_target[i];
-      r.dof_measured_m[c] = g.dof_measured[i];
-      r.dof_force_n[c] = g.dof_force[i];
+    RecordLayout::Channel v{
+        t, command_.displacement_m[c], x, f, specimen_force[c], tracking[c].value_m2(), t, x, f, round_trip_s(c)};
+    // A setup's channel: the actuator's strokes (offsets off) beside its DOF's view.
+    if (const int g = group_of_[static_cast<std::size_t>(c)]; g >= 0) {
+      const Group& group = groups_[static_cast<std::size_t>(g)];
+      const int i = index_in_group_[static_cast<std::size_t>(c)];
+      v.target_m = group.stroke_target[i];
+      v.command_m = group.stroke_command[i];
+      v.measured_m = group.stroke_measured[i];
+      v.dof_target_m = group.dof_target[i];
+      v.dof_measured_m = group.dof_measured[i];
+      v.dof_force_n = group.dof_force[i];
     }
+    out.channel(c, v);
   }
-  r.held = static_cast<std::uint8_t>(link_channels_ - channels_);  // the held forces follow the channels
-  for (int k = 0; k < r.held; ++k) {
+  const int held = link_channels_ - channels_;  // the held forces follow the channels
+  for (int k = 0; k < held; ++k) {
     const auto c = static_cast<std::size_t>(parts_.held_forces[static_cast<std::size_t>(k)].channel);
-    r.held_force_command_n[k] = command_.force_n[c];
-    r.held_measured_m[k] = feedback_.displacement_m[c];
-    r.held_measured_force_n[k] = feedback_.force_n[c];
+    out.held(k, command_.force_n[c], feedback_.displacement_m[c], feedback_.force_n[c]);
   }
-  r.node_status = feedback_.status;
-  r.limit_flags = feedback_.limit_flags;
+  out.channels(static_cast<std::uint8_t>(channels_), static_cast<std::uint8_t>(held), feedback_.status,
+               feedback_.limit_flags);
 }
+
+void ExperimentalExchange::fill_channels(StepRecord& r) const { write_channels(RecordChannels(r)); }
+
+void ExperimentalExchange::fill_channels(RecordLayout::Row row) const { write_channels(row); }
 
 }  // namespace rpsd::coordinator

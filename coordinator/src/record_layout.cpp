@@ -10,28 +10,6 @@
 namespace rpsd::coordinator {
 namespace {
 
-// One value into the row at `at`, which moves past it (memcpy: the row is bytes).
-template <typename T>
-void put(std::byte*& at, T value) {
-  std::memcpy(at, &value, sizeof value);
-  at += sizeof value;
-}
-
-// n members of type T that lie back to back in the record from `offset` (checked below), as
-// in the row, in one copy: two words a move instead of one.
-template <typename T, std::size_t n>
-void put_run(std::byte*& at, const StepRecord& r, std::size_t offset) {
-  std::memcpy(at, reinterpret_cast<const std::byte*>(&r) + offset, n * sizeof(T));
-  at += n * sizeof(T);
-}
-
-static_assert(offsetof(StepRecord, ground_acceleration_m_per_s2) == offsetof(StepRecord, time_s) + 8);
-static_assert(offsetof(StepRecord, kinetic_energy_j) == offsetof(StepRecord, input_energy_j) + 8 &&
-              offsetof(StepRecord, damping_energy_j) == offsetof(StepRecord, input_energy_j) + 16 &&
-              offsetof(StepRecord, restoring_energy_j) == offsetof(StepRecord, input_energy_j) + 24);
-static_assert(offsetof(StepRecord, limit_flags) == offsetof(StepRecord, node_status) + 4);
-static_assert(offsetof(StepRecord, dofs) == offsetof(StepRecord, channels) + 1);
-
 template <typename T>
 void get(const std::byte*& at, T& value) {
   std::memcpy(&value, at, sizeof value);
@@ -57,44 +35,22 @@ RecordLayout::RecordLayout(int channels, int held, int dofs)
 }
 
 void RecordLayout::pack(const StepRecord& r, std::byte* row) const {
-  std::byte* at = row;
-  put(at, r.step);
-  put_run<std::uint32_t, 2>(at, r, offsetof(StepRecord, node_status));  // and limit_flags
-  put_run<std::uint8_t, 2>(at, r, offsetof(StepRecord, channels));      // and dofs
-  put(at, r.held);
-  put(at, r.feedback_age_periods);
-  put(at, std::uint32_t{0});  // the header's last word's padding, so every byte is written
-  put_run<double, 2>(at, r, offsetof(StepRecord, time_s));          // and the ground acceleration
-  put_run<double, 4>(at, r, offsetof(StepRecord, input_energy_j));  // and the other three energies
-  put(at, r.cycle_lateness_s);
-  const int channels = std::min<int>(r.channels, channels_);
-  at = row + channel_offset_;
+  const Row out(*this, row);
+  out.header(r.step, r.time_s, r.ground_acceleration_m_per_s2, r.dofs, r.feedback_age_periods, r.input_energy_j,
+             r.kinetic_energy_j, r.damping_energy_j, r.restoring_energy_j, r.cycle_lateness_s);
+  out.channels(r.channels, r.held, r.node_status, r.limit_flags);
+  // Within the layout's counts (Row writes no further): no entry beyond a record's arrays is read.
+  const int channels = std::min<int>(r.channels, channels_), held = std::min<int>(r.held, held_),
+            dofs = std::min<int>(r.dofs, dofs_);
   for (int c = 0; c < channels; ++c) {
-    put(at, r.target_m[c]);
-    put(at, r.command_m[c]);
-    put(at, r.measured_m[c]);
-    put(at, r.measured_force_n[c]);
-    put(at, r.specimen_restoring_force_n[c]);
-    put(at, r.tracking_indicator_m2[c]);
-    put(at, r.dof_target_m[c]);
-    put(at, r.dof_measured_m[c]);
-    put(at, r.dof_force_n[c]);
-    put(at, r.round_trip_s[c]);
+    out.channel(
+        c, {r.target_m[c], r.command_m[c], r.measured_m[c], r.measured_force_n[c], r.specimen_restoring_force_n[c],
+            r.tracking_indicator_m2[c], r.dof_target_m[c], r.dof_measured_m[c], r.dof_force_n[c], r.round_trip_s[c]});
   }
-  const int held = std::min<int>(r.held, held_);
-  at = row + held_offset_;
-  for (int k = 0; k < held; ++k) {
-    put(at, r.held_force_command_n[k]);
-    put(at, r.held_measured_m[k]);
-    put(at, r.held_measured_force_n[k]);
-  }
-  const int dofs = std::min<int>(r.dofs, dofs_);
-  at = row + dof_offset_;
+  for (int k = 0; k < held; ++k)
+    out.held(k, r.held_force_command_n[k], r.held_measured_m[k], r.held_measured_force_n[k]);
   for (int d = 0; d < dofs; ++d) {
-    put(at, r.displacement_m[d]);
-    put(at, r.velocity_m_per_s[d]);
-    put(at, r.acceleration_m_per_s2[d]);
-    put(at, r.restoring_force_n[d]);
+    out.dof(d, r.displacement_m[d], r.velocity_m_per_s[d], r.acceleration_m_per_s2[d], r.restoring_force_n[d]);
   }
 }
 
@@ -115,26 +71,20 @@ void RecordLayout::unpack(const std::byte* row, StepRecord& r) const {
   get(at, r.damping_energy_j);
   get(at, r.restoring_energy_j);
   get(at, r.cycle_lateness_s);
+  const RecordChannels fields(r);
   const int channels = std::min<int>(r.channels, channels_);
   at = row + channel_offset_;
   for (int c = 0; c < channels; ++c) {
-    get(at, r.target_m[c]);
-    get(at, r.command_m[c]);
-    get(at, r.measured_m[c]);
-    get(at, r.measured_force_n[c]);
-    get(at, r.specimen_restoring_force_n[c]);
-    get(at, r.tracking_indicator_m2[c]);
-    get(at, r.dof_target_m[c]);
-    get(at, r.dof_measured_m[c]);
-    get(at, r.dof_force_n[c]);
-    get(at, r.round_trip_s[c]);
+    Channel v;
+    get(at, v);
+    fields.channel(c, v);
   }
   const int held = std::min<int>(r.held, held_);
   at = row + held_offset_;
   for (int k = 0; k < held; ++k) {
-    get(at, r.held_force_command_n[k]);
-    get(at, r.held_measured_m[k]);
-    get(at, r.held_measured_force_n[k]);
+    double v[kHeldWords];
+    get(at, v);
+    fields.held(k, v[0], v[1], v[2]);
   }
   const int dofs = std::min<int>(r.dofs, dofs_);
   at = row + dof_offset_;
@@ -144,6 +94,19 @@ void RecordLayout::unpack(const std::byte* row, StepRecord& r) const {
     get(at, r.acceleration_m_per_s2[d]);
     get(at, r.restoring_force_n[d]);
   }
+}
+
+void RecordChannels::channel(int c, const RecordLayout::Channel& v) const {
+  r_.target_m[c] = v.target_m;
+  r_.command_m[c] = v.command_m;
+  r_.measured_m[c] = v.measured_m;
+  r_.measured_force_n[c] = v.measured_force_n;
+  r_.specimen_restoring_force_n[c] = v.specimen_restoring_force_n;
+  r_.tracking_indicator_m2[c] = v.tracking_indicator_m2;
+  r_.dof_target_m[c] = v.dof_target_m;
+  r_.dof_measured_m[c] = v.dof_measured_m;
+  r_.dof_force_n[c] = v.dof_force_n;
+  r_.round_trip_s[c] = v.round_trip_s;
 }
 
 }  // namespace rpsd::coordinator

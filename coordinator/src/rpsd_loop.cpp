@@ -33,6 +33,7 @@ ExchangeParts exchange_parts(const LoopParts& p) {
 
 RpsdLoop::RpsdLoop(LoopParts parts) : parts_(std::move(parts)), exchange_(exchange_parts(parts_)) {
   dofs_ = parts_.numerical->dofs();
+  one_dof_ = dofs_ == 1;
   mass_ = &parts_.numerical->mass();
   damping_ = &parts_.numerical->damping();
   channels_ = exchange_.channels();
@@ -79,6 +80,7 @@ void RpsdLoop::start(const Eigen::VectorXd& d0, std::span<const double> specimen
   parts_.integrator->initialize(d0, Eigen::VectorXd::Zero(dofs_), restoring_, force_);
   step_ = 0;
   record_ = StepRecord{};
+  last_row_ = nullptr;
   previous_d_ = d0;
   previous_v_.setZero();
   previous_r_ = restoring_;
@@ -125,18 +127,48 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
   numerical.commit();
   ++step_;
 
-  // Energy balance by the trapezoidal rule over the step (model scale):
-  // input = sum F.dd, damping = sum (Cv).dd, restoring = sum R.dd, kinetic = 1/2 v'Mv.
-  // The sums and differences in one pass that also keeps this step's state for the next
-  // (each entry as Eigen's expressions computed it); the dot products stay Eigen's, whose
-  // order of summation the recorded energies' digits depend on.
+  if (one_dof_) {
+    energy_balance<1>();
+  } else {
+    energy_balance<Eigen::Dynamic>();
+  }
+  ground_m_per_s2_ = ground;
+  hand_off(recorder);
+  return StepOutcome::kOk;
+}
+
+namespace {
+
+// A model vector as the energy balance reads it: of fixed size for one DOF (a scalar to the
+// compiler), the VectorXd itself otherwise. Eigen's dot of size 1 is a0 b0 either way, and at
+// any other size the expressions are today's, so the energies keep every digit.
+template <int Dofs>
+decltype(auto) sized(const Eigen::VectorXd& v) {
+  if constexpr (Dofs == Eigen::Dynamic) {
+    return (v);
+  } else {
+    return Eigen::Map<const Eigen::Matrix<double, Dofs, 1>>(v.data());
+  }
+}
+
+}  // namespace
+
+template <int Dofs>
+void RpsdLoop::energy_balance() {
+  // By the trapezoidal rule over the step (model scale): input = sum F.dd, damping = sum
+  // (Cv).dd, restoring = sum R.dd, kinetic = 1/2 v'Mv. The sums and differences in one pass
+  // that also keeps this step's state for the next (each entry as Eigen's expressions
+  // computed it); the dot products stay Eigen's, whose order of summation the recorded
+  // energies' digits depend on.
+  const auto& integrator = *parts_.integrator;
   const Eigen::VectorXd& v = integrator.velocity();
+  const Eigen::Index n = Dofs == Eigen::Dynamic ? dofs_ : Dofs;
   {
     const double *d = integrator.displacement().data(), *vv = v.data(), *r = integrator.restoring_force().data(),
                  *f = force_.data();
     double *pd = previous_d_.data(), *pv = previous_v_.data(), *pr = previous_r_.data(), *pf = previous_f_.data();
     double *dd = work_a_.data(), *v_sum = work_b_.data(), *f_sum = force_sum_.data(), *r_sum = restoring_sum_.data();
-    for (Eigen::Index i = 0; i < dofs_; ++i) {
+    for (Eigen::Index i = 0; i < n; ++i) {
       dd[i] = d[i] - pd[i];
       f_sum[i] = pf[i] + f[i];
       r_sum[i] = pr[i] + r[i];
@@ -147,42 +179,43 @@ StepOutcome RpsdLoop::step(Recorder& recorder) {
       pf[i] = f[i];
     }
   }
-  input_energy_j_ += 0.5 * force_sum_.dot(work_a_);
-  restoring_energy_j_ += 0.5 * restoring_sum_.dot(work_a_);
+  input_energy_j_ += 0.5 * sized<Dofs>(force_sum_).dot(sized<Dofs>(work_a_));
+  restoring_energy_j_ += 0.5 * sized<Dofs>(restoring_sum_).dot(sized<Dofs>(work_a_));
   damping_->multiply(work_b_, restoring_);  // restoring_ reused as scratch: C (v + v_prev)
-  damping_energy_j_ += 0.5 * restoring_.dot(work_a_);
+  damping_energy_j_ += 0.5 * sized<Dofs>(restoring_).dot(sized<Dofs>(work_a_));
   mass_->multiply(v, work_b_);
-  kinetic_energy_j_ = 0.5 * v.dot(work_b_);
-
-  record_.step = step_;
-  record_.time_s = integrator.time_s();
-  record_.ground_acceleration_m_per_s2 = ground;
-  fill_record(record_);
-  record_.cycle_lateness_s = static_cast<double>(cycle_lateness_ns_) * 1e-9;
-  record_.feedback_age_periods = static_cast<std::uint8_t>(std::min<std::int64_t>(oldest_age_this_step_, 255));
-  if (parts_.wait_for_recorder) {
-    recorder.record_or_wait(record_);
-  } else {
-    recorder.record(record_);
-  }
-  return StepOutcome::kOk;
+  kinetic_energy_j_ = 0.5 * sized<Dofs>(v).dot(sized<Dofs>(work_b_));
 }
 
-void RpsdLoop::fill_record(StepRecord& r) const {
-  const auto& integrator = *parts_.integrator;
-  exchange_.fill_channels(r);
-  r.dofs = static_cast<std::uint8_t>(parts_.recorded_dofs.size());
-  for (std::size_t i = 0; i < parts_.recorded_dofs.size(); ++i) {
-    const Eigen::Index dof = parts_.recorded_dofs[i];
-    r.displacement_m[i] = integrator.displacement()[dof];
-    r.velocity_m_per_s[i] = integrator.velocity()[dof];
-    r.acceleration_m_per_s2[i] = integrator.acceleration()[dof];
-    r.restoring_force_n[i] = integrator.restoring_force()[dof];
+void RpsdLoop::hand_off(Recorder& recorder) {
+  const RecordLayout& layout = recorder.layout();
+  const std::byte* written = nullptr;
+  // The step's row, in place: the loop's part here, the channels' from the exchange.
+  const auto write = [&](std::byte* at) {
+    const RecordLayout::Row row(layout, at);
+    const auto& integrator = *parts_.integrator;
+    const Eigen::Index* const recorded = parts_.recorded_dofs.data();
+    const auto count = static_cast<int>(parts_.recorded_dofs.size());
+    row.header(step_, integrator.time_s(), ground_m_per_s2_, static_cast<std::uint8_t>(count),
+               static_cast<std::uint8_t>(std::min<std::int64_t>(oldest_age_this_step_, 255)), input_energy_j_,
+               kinetic_energy_j_, damping_energy_j_, restoring_energy_j_,
+               static_cast<double>(cycle_lateness_ns_) * 1e-9);
+    exchange_.fill_channels(row);
+    const double *d = integrator.displacement().data(), *v = integrator.velocity().data(),
+                 *a = integrator.acceleration().data(), *r = integrator.restoring_force().data();
+    for (int i = 0; i < count; ++i) {
+      const Eigen::Index dof = recorded[i];
+      row.dof(i, d[dof], v[dof], a[dof], r[dof]);
+    }
+    written = at;
+  };
+  if (parts_.wait_for_recorder) {
+    recorder.record_or_wait_in_place(write);
+  } else if (!recorder.record_in_place(write)) {
+    write(spare_row_.data());  // dropped (counted): last_record() still reads it
   }
-  r.input_energy_j = input_energy_j_;
-  r.damping_energy_j = damping_energy_j_;
-  r.restoring_energy_j = restoring_energy_j_;
-  r.kinetic_energy_j = kinetic_energy_j_;
+  last_row_ = written;
+  last_layout_ = &layout;
 }
 
 }  // namespace rpsd::coordinator

@@ -80,22 +80,24 @@ struct TestAssembly::Parts {
     return {};
   }
 
-  // Counts a step the loop took; its record, for the caller's after_step. Real-time safe.
-  const coordinator::StepRecord& took_step() {
+  // Counts a step the loop took. What it reads of the step is asked of the loop's parts
+  // (the round trips) or of its record only when needed (the held forces' statistics): the
+  // record is unpacked from its row when first asked for. Real-time safe.
+  void took_step() {
     ++steps;
     live.steps_done.store(steps, std::memory_order_relaxed);
     live.late_feedback.store(loop->late_feedback_total(), std::memory_order_relaxed);
-    const coordinator::StepRecord& r = loop->last_record();
-    if (!held_forces.empty()) held_stats.add(r);
+    if (!held_forces.empty()) held_stats.add(loop->last_record());
+    const coordinator::ExperimentalExchange& exchange = loop->exchange();
     for (std::size_t i = 0; i < round_trip_channels.size(); ++i) {
-      const double round_trip_s = r.round_trip_s[round_trip_channels[i]];
-      if (round_trip_s == 0.0) {
+      // A round trip of 0 ns is one of 0 s (its record's value) and no other is: asked as an integer.
+      if (exchange.feedback().round_trip_ns[round_trip_channels[i]] == 0) {
         ++zero_round_trips[i];
       } else {
+        const double round_trip_s = exchange.round_trip_s(static_cast<int>(round_trip_channels[i]));
         round_trips[i].add(static_cast<std::int64_t>(std::llround(round_trip_s * 1e9)));
       }
     }
-    return r;
   }
 
   // Why the run stops although its step succeeded: the records cannot be written, the user
@@ -454,7 +456,8 @@ coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordi
     for (std::int64_t n = 0; n < p.steps_planned; ++n) {
       outcome = loop.step(*p.recorder);
       if (outcome != coordinator::StepOutcome::kOk) break;
-      if (const coordinator::StepRecord& r = p.took_step(); after_step) after_step(r);
+      p.took_step();
+      if (after_step) after_step(loop.last_record());
       outcome = p.stop_after_step();
       if (outcome != coordinator::StepOutcome::kOk) break;
       if (progress && (n + 1) % report_every == 0) progress(n + 1, p.steps_planned);
@@ -480,7 +483,8 @@ coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordi
     p.actuators->set_receive_deadline_ns(0);
     outcome = loop.step(*p.recorder);
     if (outcome != coordinator::StepOutcome::kOk) return outcome;
-    if (const coordinator::StepRecord& r = p.took_step(); after_step) after_step(r);
+    p.took_step();
+    if (after_step) after_step(loop.last_record());
     outcome = p.stop_after_step();
     if (outcome != coordinator::StepOutcome::kOk) return outcome;
   }
@@ -493,7 +497,8 @@ coordinator::StepOutcome TestAssembly::run(const std::function<void(const coordi
     outcome = loop.step(*p.recorder);
     p.live.overruns.store(pacer.overruns(), std::memory_order_relaxed);
     if (outcome != coordinator::StepOutcome::kOk) break;
-    if (const coordinator::StepRecord& r = p.took_step(); after_step) after_step(r);
+    p.took_step();
+    if (after_step) after_step(loop.last_record());
     outcome = p.stop_after_step();
     if (outcome != coordinator::StepOutcome::kOk) break;
   }

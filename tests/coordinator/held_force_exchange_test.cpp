@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "exchange_row.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/coordinator/experimental_exchange.h"
 #include "rpsd/coordinator/limit_stop_text.h"
@@ -114,6 +115,16 @@ TEST(HeldForceExchange, TheHeldForceIsNotARestoringForceOfTheStructure) {
   EXPECT_EQ(r.held_force_command_n[0], kHeldN);
   EXPECT_EQ(r.held_measured_force_n[0], kHeldN);
   EXPECT_NEAR(r.held_measured_m[0], kHeldN / kJackStiffnessNPerM, 1e-15);
+}
+
+// The loop writes the channels' part of its row in place (RecordLayout::Row): unpacked, the
+// row carries the held force's command, stroke and load cell as fill_channels writes them.
+TEST(HeldForceExchange, ARowWrittenInPlaceCarriesTheHeldForceAsARecordDoes) {
+  Exchange e;
+  ASSERT_EQ(e.to(0.001, 5.0), StepOutcome::kOk);
+  const StepRecord got = expect_row_carries_the_record(*e.exchange);
+  EXPECT_EQ(got.held, 1);
+  EXPECT_NE(got.held_force_command_n[0], 0.0);
 }
 
 TEST(HeldForceExchange, ALoadCellBeyondItsForceLimitStopsNamingTheHeldForce) {

@@ -13,7 +13,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include "../servo/paper_rig.h"
 #include "rpsd/coordinator/recorder.h"
+#include "rpsd/hybrid_test/hybrid_test_assembly.h"
+#include "rpsd/scenarios/study_file.h"
 
 namespace rpsd::coordinator {
 namespace {
@@ -144,7 +147,7 @@ struct Counts {
   int channels, held, dofs;
 };
 
-class PackedRow : public testing::TestWithParam<Counts> {};
+class PackedRow : public ::testing::TestWithParam<Counts> {};
 
 // Two rows back to back between guard bytes: each record comes back whole, and no byte
 // outside the two rows is written (a block placed a word off overlaps its neighbour or runs
@@ -183,10 +186,10 @@ TEST_P(PackedRow, EveryFieldComesBackBitForBitAndNothingOutsideTheRowIsWritten) 
 }
 
 INSTANTIATE_TEST_SUITE_P(RecordLayout, PackedRow,
-                         testing::Values(Counts{1, 0, 1}, Counts{kChannels, 0, kMaxRecordedDofs},
-                                         Counts{kChannels - 2, 2, kMaxRecordedDofs}, Counts{1, kChannels - 1, 1},
-                                         Counts{0, 0, 0}),
-                         [](const testing::TestParamInfo<Counts>& info) {
+                         ::testing::Values(Counts{1, 0, 1}, Counts{kChannels, 0, kMaxRecordedDofs},
+                                           Counts{kChannels - 2, 2, kMaxRecordedDofs}, Counts{1, kChannels - 1, 1},
+                                           Counts{0, 0, 0}),
+                         [](const ::testing::TestParamInfo<Counts>& info) {
                            return std::to_string(info.param.channels) + "Channels" + std::to_string(info.param.held) +
                                   "Held" + std::to_string(info.param.dofs) + "Dofs";
                          });
@@ -259,6 +262,33 @@ TEST(Recorder, ObserversSeeEveryFieldOfOneChannelAndOneDof) { expect_records_rea
 TEST(Recorder, ObserversSeeEveryFieldOfEveryChannelHeldForceAndDof) {
   expect_records_reach_observers_whole(kChannels - 2, 2, kMaxRecordedDofs);
   expect_records_reach_observers_whole(kChannels, 0, kMaxRecordedDofs);
+}
+
+const hybrid_test::TestConfig& elcentro() {
+  static const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml");
+  return std::get<hybrid_test::TestConfig>(file.study);
+}
+
+// A step writes only its row; last_record() unpacks it when asked. Asked after some steps
+// and not others, it is each time the record of the step just taken, field for field what
+// the recorder's writer kept of that step.
+TEST(RpsdLoop, TheLastRecordIsTheRowItsStepHandedToTheRecorder) {
+  hybrid_test::TestAssembly test(elcentro(), {{}, false, true, {}, nullptr});
+  std::vector<StepRecord> asked;
+  for (int n = 1; n <= 200; ++n) {
+    ASSERT_EQ(test.step(), StepOutcome::kOk);
+    if (n % 7 == 0 || n == 1) asked.push_back(test.last_record());
+  }
+  const hybrid_test::TestRun run = test.finish(StepOutcome::kOk);
+  ASSERT_EQ(run.records.size(), 200U);
+  for (const StepRecord& r : asked) {
+    SCOPED_TRACE("step " + std::to_string(r.step));
+    ASSERT_GE(r.step, 1);
+    expect_same(r, run.records[static_cast<std::size_t>(r.step - 1)]);
+  }
+  EXPECT_EQ(asked.front().step, 1);
+  EXPECT_EQ(asked.back().step, 196);
+  EXPECT_NE(asked.back().displacement_m[0], 0.0);
 }
 
 }  // namespace

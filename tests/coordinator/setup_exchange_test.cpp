@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "exchange_row.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/coordinator/experimental_exchange.h"
 #include "rpsd/coordinator/limit_stop_text.h"
@@ -125,6 +126,18 @@ TEST(SetupExchange, LargeDisplacementStrokesAndForcesAtTheMeasuredConfiguration)
   e.exchange->fill_channels(r);
   EXPECT_NEAR(r.dof_measured_m[0], x, 1e-12);
   EXPECT_NEAR(r.dof_measured_m[1], theta, 1e-12);
+}
+
+// The loop writes the channels' part of its row in place (RecordLayout::Row): unpacked, the
+// row carries what fill_channels writes into a record, a setup's strokes and DOF view alike.
+TEST(SetupExchange, ARowWrittenInPlaceCarriesTheChannelsAsARecordDoes) {
+  Exchange e(group_of(setups::Geometry::kLargeDisplacement));
+  e.link.force_n[0] = 1000.0;
+  e.link.force_n[1] = 2000.0;
+  ASSERT_EQ(e.to(0.03, 0.2), StepOutcome::kOk);
+  const StepRecord got = expect_row_carries_the_record(*e.exchange);
+  EXPECT_EQ(got.channels, 2);
+  EXPECT_NE(got.measured_m[1], got.dof_measured_m[1]);  // the stroke and the rotation, each in its place
 }
 
 TEST(SetupExchange, CalibrationOffsetsAreAddedToCommandsAndTakenOffMeasurements) {

@@ -19,6 +19,7 @@
 #include "rpsd/compensation/tracking_indicator.h"
 #include "rpsd/coordinator/coordinator_limits.h"
 #include "rpsd/coordinator/held_force.h"
+#include "rpsd/coordinator/record_layout.h"
 #include "rpsd/coordinator/restoring_force.h"
 #include "rpsd/coordinator/setup_group.h"
 #include "rpsd/coordinator/step_outcome.h"
@@ -90,8 +91,18 @@ class ExperimentalExchange {
   // The channels' part of a step record (targets, commands, measurements, forces, tracking,
   // round trips). Real-time safe.
   void fill_channels(StepRecord& r) const;
+  // The same into a row of the recorder's queue, in place (the loop's step: no StepRecord
+  // between). Real-time safe.
+  void fill_channels(RecordLayout::Row row) const;
+  // Channel c's command-to-feedback time of the last exchange, s (its record's round_trip_s).
+  // Real-time safe.
+  double round_trip_s(int c) const {
+    return static_cast<double>(feedback_.round_trip_ns[static_cast<std::size_t>(c)]) * 1e-9;
+  }
 
  private:
+  template <typename Out>
+  void write_channels(Out out) const;  // both fill_channels: into a record or a row
   // One setup's state: the DOF and actuator vectors of the exchange under way (fixed size).
   struct Group {
     Group(SetupGroup p, setups::PlanarSetup s) : parts(std::move(p)), setup(std::move(s)) {}

@@ -68,6 +68,23 @@ class Recorder {
   // Waits (yielding) while the queue is full, so nothing is lost: for runs paced as fast as
   // possible, where a slower writer must slow the test down instead. Not real-time safe.
   void record_or_wait(const StepRecord& r);
+  // The same without a StepRecord between: write(std::byte* row) writes a row of layout()
+  // (RecordLayout::Row) in place, in the queue's next row. record_in_place drops and counts
+  // the record when the queue is full (false, `write` not called); record_or_wait_in_place
+  // waits, as record_or_wait. The row stays as written until the next record: the caller
+  // may read it back until then. Real-time safe when write is (but for the wait).
+  template <typename Write>
+  bool record_in_place(Write&& write) {
+    if (queue_.try_push_with(write)) return true;
+    dropped_.fetch_add(1, std::memory_order_relaxed);
+    return false;
+  }
+  template <typename Write>
+  void record_or_wait_in_place(Write&& write) {
+    while (!queue_.try_push_with(write)) std::this_thread::yield();
+  }
+  // How each row is laid out (the recorder's channels, held forces and DOFs).
+  const RecordLayout& layout() const { return layout_; }
   // Stops the writer after it has drained the queue; returns all records (none unless
   // RecorderOptions::keep_records). Not real-time safe.
   std::vector<StepRecord> finish();

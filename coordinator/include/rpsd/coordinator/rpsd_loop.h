@@ -84,8 +84,16 @@ class RpsdLoop {
   // Advances the test by one integration step and records it. Real-time safe.
   StepOutcome step(Recorder& recorder);
 
-  // The record of the last step taken (what step() handed to the recorder). Real-time safe.
-  const StepRecord& last_record() const { return record_; }
+  // The record of the last step taken (what step() handed to the recorder), unpacked from its
+  // row when first asked for: a step writes only the row (most steps' records are never asked
+  // for here). Real-time safe; the loop's thread only, while the recorder of that step lives.
+  const StepRecord& last_record() const {
+    if (last_row_) {
+      last_layout_->unpack(last_row_, record_);
+      last_row_ = nullptr;
+    }
+    return record_;
+  }
 
   // Whether a full recorder queue makes step() wait (LoopParts::wait_for_recorder).
   void set_wait_for_recorder(bool wait) { parts_.wait_for_recorder = wait; }
@@ -118,12 +126,20 @@ class RpsdLoop {
   double dt_s() const { return parts_.integrator->dt_s(); }
 
  private:
-  void fill_record(StepRecord& r) const;
+  // The energy balance of the step just taken, over Dofs DOFs: 1 (the paper's SDOF, in
+  // scalars) or Eigen::Dynamic (any count); one copy of the formulas for both, the size
+  // chosen at construction (one_dof_).
+  template <int Dofs>
+  void energy_balance();
+  // Hands this step's row to the recorder (in its queue, or in spare_row_ when a real-time
+  // step drops it) and remembers where it is for last_record().
+  void hand_off(Recorder& recorder);
 
   LoopParts parts_;
   ExperimentalExchange exchange_;
   int channels_ = 0;
   Eigen::Index dofs_ = 0;
+  bool one_dof_ = false;
   // The numerical model's M and C for the energy balance, asked for once (one object each
   // for the model's life), not through a virtual call every step.
   const linalg::StructuralMatrix* mass_ = nullptr;
@@ -132,7 +148,13 @@ class RpsdLoop {
   // kTargetNowForceDelayed: the target of the step before, and the force of the exchange before.
   Eigen::VectorXd held_targets_, held_forces_;
   Eigen::VectorXd previous_d_, previous_v_, previous_r_, previous_f_, work_a_, work_b_, force_sum_, restoring_sum_;
-  StepRecord record_;
+  double ground_m_per_s2_ = 0.0;  // this step's ground acceleration, for its row
+  // The last step's record, unpacked from its row (last_row_, laid out as last_layout_ says)
+  // when asked for.
+  mutable StepRecord record_;
+  mutable const std::byte* last_row_ = nullptr;
+  const RecordLayout* last_layout_ = nullptr;
+  alignas(8) std::array<std::byte, RecordLayout::kMaxRowBytes> spare_row_{};  // a dropped step's row
   std::int64_t step_ = 0;
   std::int64_t cycle_lateness_ns_ = 0;
   std::int64_t oldest_age_this_step_ = 0;

@@ -25,7 +25,9 @@ class SpscRowQueue {
   std::size_t ring_bytes() const { return lines_.size() * kLine; }
 
   // Producer side: write(std::byte* row) fills the next free row in place. False when full
-  // (the caller counts the drop). Real-time safe when write is.
+  // (the caller counts the drop). The consumer only reads a row, so the row stays as written
+  // until the producer's next push: the producer may read it back until then. Real-time safe
+  // when write is.
   template <typename Write>
   bool try_push_with(Write&& write) {
     const std::size_t tail = tail_.load(std::memory_order_relaxed);
