@@ -30,6 +30,7 @@
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
+#include "unique_temp_file.h"
 
 namespace {
 
@@ -118,11 +119,11 @@ int main(int argc, char** argv) try {
 
   const auto loop_s =
       bench::time_trials(options.repetitions, 0, [&] { loop_trial(scenario, "/dev/null", first.steps_planned); });
-  const std::filesystem::path tmp_csv = std::filesystem::temp_directory_path() / "rpsd-bench-time_history.csv";
+  // A file of this run's own (two runs at once once wrote one fixed name), removed at the end.
+  const bench::UniqueTempFile tmp_csv("rpsd-bench-time_history-", ".csv");
   const auto loop_file_s =
-      bench::time_trials(options.repetitions, 0, [&] { loop_trial(scenario, tmp_csv, first.steps_planned); });
-  const auto csv_bytes = std::filesystem::file_size(tmp_csv);
-  std::filesystem::remove(tmp_csv);
+      bench::time_trials(options.repetitions, 0, [&] { loop_trial(scenario, tmp_csv.path(), first.steps_planned); });
+  const auto csv_bytes = std::filesystem::file_size(tmp_csv.path());
 
   const auto x_realtime = [&](double s) { return simulated_s / s; };
   const auto summary = [&](const std::vector<double>& seconds) {

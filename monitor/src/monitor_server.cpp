@@ -66,7 +66,7 @@ struct MonitorServer::Impl {
   json last_status = nullptr;
   std::string last_state;
   std::optional<Clock::time_point> last_batch_at;
-  std::optional<std::uint64_t> expected_sequence;
+  std::uint64_t expected_sequence = 0;  // the next batch of the run, by its sequence
   std::uint64_t last_run_id = 0;
   std::uint64_t batches_lost = 0;
   std::deque<json> recent_events;
@@ -117,8 +117,10 @@ struct MonitorServer::Impl {
         json j = batch_json(b);
         {
           const std::lock_guard lock(state_mutex);
-          if (b.status.run_id != last_run_id) expected_sequence.reset();
-          if (expected_sequence && b.sequence > *expected_sequence) batches_lost += b.sequence - *expected_sequence;
+          // A run's batches count from 0: those sent before the first one received (the monitor
+          // matched the publisher after its history had moved on) are lost as surely as a gap.
+          if (b.status.run_id != last_run_id) expected_sequence = 0;
+          if (b.sequence > expected_sequence) batches_lost += b.sequence - expected_sequence;
           expected_sequence = b.sequence + 1;
           last_run_id = b.status.run_id;
           last_status = j["status"];

@@ -12,7 +12,7 @@
   const MAX_SAMPLES = 400000;  // a live run keeps at most this many steps in the browser
 
   const page = { mode: "live", channel: 0, windowS: 30, dirty: true, status: null, link: null,
-                 streamOpen: false, lastMessageAt: 0, folder: null, progressHistory: [] };
+                 streamOpen: false, lastMessageAt: 0, folder: null, progressHistory: [], droppedUpdates: 0 };
   let store = emptyStore(0);
 
   function emptyStore(channels) {
@@ -290,7 +290,10 @@
         $("f-lost").textContent = m.batches_lost;
         if (!page.status) $("subtitle").textContent = `test ${m.test_id}: waiting for its run to publish`;
       }
-      else if (m.type === "dropped") notice(`${m.count} updates were not shown: this browser kept up too slowly`, true);
+      else if (m.type === "dropped") {
+        page.droppedUpdates = m.count;  // what this browser was never sent: its own queue overflowed
+        notice(`${m.count} updates were not shown: this browser kept up too slowly`, true);
+      }
     };
   }
 

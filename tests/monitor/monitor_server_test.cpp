@@ -70,6 +70,36 @@ class ScriptedSource final : public TelemetrySource {
   std::atomic<bool> sent_{false};
 };
 
+// Batches of one run with the given sequence numbers, all at once, then silence.
+class SequencedSource final : public TelemetrySource {
+ public:
+  explicit SequencedSource(std::vector<std::uint64_t> sequences) : sequences_(std::move(sequences)) {}
+  std::size_t take(std::vector<telemetry::TelemetryBatch>& batches, std::vector<telemetry::TelemetryEvent>&) override {
+    if (sent_.exchange(true)) return 0;
+    for (const std::uint64_t sequence : sequences_) {
+      telemetry::TelemetryBatch b;
+      b.sequence = sequence;
+      b.status.run_id = 9;
+      b.status.state = telemetry::RunState::kRunning;
+      b.count = 1;
+      b.samples[0].step = static_cast<std::int64_t>(4 * (sequence + 1));
+      b.samples[0].channels = 1;
+      b.status.steps_done = b.samples[0].step;
+      batches.push_back(b);
+    }
+    return sequences_.size();
+  }
+  bool wait(std::chrono::milliseconds timeout) override {
+    std::this_thread::sleep_for(std::min(timeout, std::chrono::milliseconds(10)));
+    return !sent_;
+  }
+  bool alive() const override { return true; }
+
+ private:
+  std::vector<std::uint64_t> sequences_;
+  std::atomic<bool> sent_{false};
+};
+
 class MonitorServerTest : public ::testing::Test {
  protected:
   void start(TelemetrySource* source, double stale_after_s = 2.0) {
@@ -189,6 +219,20 @@ TEST_F(MonitorServerTest, TheStreamCarriesTheRecentPastAndTheStatusSaysStaleThen
   source.alive_ = false;
   for (int i = 0; i < 3000 && !(s = status())["link_lost"].get<bool>(); ++i) std::this_thread::sleep_for(10ms);
   EXPECT_TRUE(s["link_lost"]);
+}
+
+// A monitor that matched a run's publisher late never receives its first batches (a run as
+// fast as possible sends 80, the writer's history, in a few milliseconds): they count as lost,
+// as a gap between two batches does, so that the page says its plots miss them.
+TEST_F(MonitorServerTest, TheBatchesOfARunBeforeTheFirstReceivedCountAsLost) {
+  SequencedSource source({3, 4, 6});
+  start(&source);
+  nlohmann::json s;
+  // A hang guard, not a measured time: until the last batch (step 28) has come through.
+  for (int i = 0; i < 3000 && ((s = status())["run"].is_null() || s["run"]["steps_done"] != 28); ++i)
+    std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(s["run"]["steps_done"], 28) << s;
+  EXPECT_EQ(s["batches_lost"], 4) << s;  // 0, 1, 2 before the first received, 5 between
 }
 
 }  // namespace

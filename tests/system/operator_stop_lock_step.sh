@@ -15,7 +15,13 @@ run_bridge "$WORK/dds" --set transport.kind=dds --set transport.test_id=$TEST_ID
 RUN_PID=$!
 PIDS+=($RUN_PID)
 CONFIG=$SRC/transport/config/loopback.xml
-op() { "$RPSD" stop --test-id $TEST_ID --domain $DOMAIN --dds-config "$CONFIG" --sender "operator@system-test" "$@"; }
+# Each command says on the test's stderr (fd 3, whatever op's own output goes to) when it went,
+# in seconds since the start: a slow failure shows where its time went.
+exec 3>&2
+op() {
+  echo "[${SECONDS} s] rpsd stop $*" >&3
+  "$RPSD" stop --test-id $TEST_ID --domain $DOMAIN --dds-config "$CONFIG" --sender "operator@system-test" "$@"
+}
 rows() { cat "$WORK/dds/time_history.csv" 2>/dev/null | wc -l; }
 
 wait_for_rows "$WORK/dds/time_history.csv" 300 $RUN_PID
@@ -39,7 +45,8 @@ set -e
 [ $code -eq 3 ] || fail "the stopped run exited $code, expected 3: $(cat "$WORK/dds.log")"
 grep -q "operator command stop from \"operator@system-test\"" "$WORK/dds.log" || fail "the stop is not logged on stderr"
 every_step_recorded "$WORK/dds"
-kill -TERM $NODE1_PID $NODE2_PID
+# Under `set -e` a failed kill or run would end the test without a word: each says why.
+kill -TERM $NODE1_PID $NODE2_PID || fail "a node had ended before it was stopped: $(cat "$WORK/node1.log" "$WORK/node2.log")"
 wait $NODE1_PID $NODE2_PID || fail "a node failed: $(cat "$WORK/node1.log" "$WORK/node2.log")"
 # No run of this test id any more: no answer.
 set +e
@@ -48,7 +55,8 @@ code=$?
 set -e
 [ $code -eq 8 ] || fail "a stop to no run: exit $code, expected 8: $(cat "$WORK/none.out")"
 
-run_bridge "$WORK/local" --set "ground_motion.trim={end_s: 30}" > /dev/null
+run_bridge "$WORK/local" --set "ground_motion.trim={end_s: 30}" > "$WORK/local.log" 2>&1 \
+  || fail "the in-process run exited $?: $(tail -n 20 "$WORK/local.log")"
 python3 - "$WORK" "$held_rows" <<'PY' || fail "the operator's run is not what it should be"
 import json, sys
 w, held_rows = sys.argv[1], int(sys.argv[2])

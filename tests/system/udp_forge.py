@@ -4,7 +4,7 @@ a command with sequence 10^12 and x = 0.2 m over a 1 s period, then a query with
 (protocol version 1, as reported: before, these moved the emulated piston to 0.2 m), and the
 same command as a version 2 datagram with a made-up session and tag; and sends the node
 replies it did not ask for (version 1, and version 2 with a made-up tag). Prints one JSON line:
-how many datagrams it sent and any reply it got, with the displacement the reply reported."""
+how many datagrams it sent to each and any reply it got, with the displacement the reply reported."""
 import argparse
 import json
 import os
@@ -41,12 +41,12 @@ def main():
     s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     s.bind(("127.0.0.1", 0))
     s.settimeout(0.2)
-    sent, replies = 0, []
+    to_controller, to_node, replies = 0, 0, []
     for _ in range(a.tries):
         for datagram in (command(1, 10**12, 0.2, 1.0), command(1, 0, 0.0, 0.0, query=True),
                          command(2, 10**12, 0.2, 1.0)):
             s.sendto(datagram, a.controller)
-            sent += 1
+            to_controller += 1
             try:
                 data, _ = s.recvfrom(512)
                 if len(data) >= 24 and data[:4] == b"RPSR":
@@ -56,8 +56,8 @@ def main():
         if a.node:
             for datagram in (reply(1, 10**12, 0.2), reply(2, 10**12, 0.2)):
                 s.sendto(datagram, a.node)
-                sent += 1
-    print(json.dumps({"sent": sent, "replies": replies}))
+                to_node += 1
+    print(json.dumps({"sent_to_controller": to_controller, "sent_to_node": to_node, "replies": replies}))
 
 
 if __name__ == "__main__":

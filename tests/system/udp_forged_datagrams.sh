@@ -11,6 +11,10 @@
 # Then the same over version 1, which a file must ask for: both start lines warn that the link
 # is unauthenticated, and the address check alone still refuses the intruder.
 # And a key file that group or others may read: both commands exit 2 naming file and key.
+# It runs in a network namespace of its own (own_netns.sh): its ports, picked by binding port 0
+# and closing, were reachable on the host's loopback, and once a process outside the test sent
+# the emulator 3 datagrams more than the intruder did (12 foreign, not 9).
+source "$(dirname "$0")/own_netns.sh"
 source "$(dirname "$0")/lib.sh"
 FORGE="$(dirname "$0")/udp_forge.py"
 read -r EMU_PORT NODE_PORT < <(python3 -c '
@@ -74,11 +78,12 @@ forged_run() {
 import json, sys
 base = sys.argv[1]
 emulator, node, forge = (json.load(open(f"{base}.{k}.json")) for k in ("emulator", "node", "forge"))
-assert forge["sent"] == 15 and forge["replies"] == [], forge  # 9 to the emulator, 6 to the node; no answer
-assert emulator["foreign_datagrams"] == 9, emulator
+# 9 to the emulator, 6 to the node, no answer; each counts exactly what the intruder sent it.
+assert forge["sent_to_controller"] == 9 and forge["sent_to_node"] == 6 and forge["replies"] == [], forge
+assert emulator["foreign_datagrams"] == forge["sent_to_controller"], (emulator, forge)
 assert emulator["sessions"] == 1 and emulator["commands_applied"] > 0, emulator  # the node's own
 assert abs(emulator["position_m"][0]) < 1e-9, emulator["position_m"]  # held at 0 m, not 0.2 m
-assert node["udp_link"]["foreign_datagrams"] == 6, node["udp_link"]
+assert node["udp_link"]["foreign_datagrams"] == forge["sent_to_node"], (node["udp_link"], forge)
 assert node["udp_link"]["missed_replies"] == 0 and not node["faulted"], node
 assert node["limits"]["stroke"]["activations"] == 0, node["limits"]
 print(f"PASS {base}: {emulator['foreign_datagrams']} forged datagrams refused by the emulator, "
