@@ -70,13 +70,6 @@ void DiscretePhaseLeadCompensator::reset(double initial_displacement_m) noexcept
   previous_output_m_ = initial_displacement_m;
 }
 
-double DiscretePhaseLeadCompensator::command(double target_m) noexcept {
-  const double y = section_.b0 * target_m + section_.b1 * previous_input_m_ - section_.a1 * previous_output_m_;
-  previous_input_m_ = target_m;
-  previous_output_m_ = y;
-  return y;
-}
-
 DiscretePhaseLeadParameters DiscretePhaseLeadParameters::read(config::Source& section) {
   const double delay_s = section.number("delay_s", {"s", "the delay to compensate: (a - 1) T", 0.0, 1.0, true});
   const double ratio_a = section.number("ratio_a", {"", "a, the network's high-frequency gain", 0.0, 100.0, true});

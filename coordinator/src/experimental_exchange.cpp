@@ -103,6 +103,10 @@ ExperimentalExchange::ExperimentalExchange(ExchangeParts parts) : parts_(std::mo
     }
     groups_.push_back(std::move(g));
   }
+  for (int c = 0; c < channels_; ++c) {
+    compensator_calls_[static_cast<std::size_t>(c)] = compensation::CompensatorCall(parts_.compensators[c]);
+  }
+  one_plain_channel_ = channels_ == 1 && groups_.empty() && parts_.held_forces.empty();
 }
 
 void ExperimentalExchange::start(const Eigen::VectorXd& targets, std::span<const double> specimen_force_n) {
@@ -168,14 +172,54 @@ void ExperimentalExchange::stop_on_dof(const Group& g, int i, LimitStop::Kind ki
   limit_stop_.unit = force ? g.dof_force_units[static_cast<std::size_t>(i)] : g.dof_units[static_cast<std::size_t>(i)];
 }
 
-// Inline, as run_away(): each is called from exchange() alone, once an exchange.
-inline bool ExperimentalExchange::commands_within_limits() {
+// The exchange of N channels (kAnyChannels: as many as the test has) and its parts that loop
+// over the channels. The constructor picks N = 1 for a test of one channel without setups or
+// held forces: there every loop has one entry and every setup and held-force branch is known
+// to be empty when it is compiled. Each is called from exchange() alone, once an exchange.
+template <int N>
+int ExperimentalExchange::channel_count() const {
+  if constexpr (N == kAnyChannels) {
+    return channels_;
+  } else {
+    return N;
+  }
+}
+
+template <int N>
+bool ExperimentalExchange::in_setup(int c) const {
+  if constexpr (N == kAnyChannels) {
+    return group_of_[static_cast<std::size_t>(c)] >= 0;
+  } else {
+    return false;
+  }
+}
+
+template <int N>
+std::span<ExperimentalExchange::Group> ExperimentalExchange::setup_groups() {
+  if constexpr (N == kAnyChannels) {
+    return groups_;
+  } else {
+    return {};
+  }
+}
+
+template <int N>
+bool ExperimentalExchange::holds_forces() const {
+  if constexpr (N == kAnyChannels) {
+    return !parts_.held_forces.empty();
+  } else {
+    return false;
+  }
+}
+
+template <int N>
+bool ExperimentalExchange::commands_within_limits() {
   // In the order the stop names the first limit that acts: held forces, setups, channels.
-  if ((!parts_.held_forces.empty() || !groups_.empty()) && !held_and_setup_commands_within_limits()) return false;
+  if ((holds_forces<N>() || !setup_groups<N>().empty()) && !held_and_setup_commands_within_limits()) return false;
   if (parts_.limits.empty()) return true;
   const CoordinatorLimits* const limits = parts_.limits.data();
-  for (int c = 0; c < channels_; ++c) {
-    if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
+  for (int c = 0; c < channel_count<N>(); ++c) {
+    if (in_setup<N>(c)) continue;
     const CoordinatorLimits& l = limits[c];
     const double x = command_.displacement_m[c], change = x - last_sent_m_[c];
     // A non-finite command fails both comparisons below, so test it first.
@@ -234,7 +278,8 @@ bool ExperimentalExchange::held_and_setup_commands_within_limits() {
   return true;
 }
 
-inline StepOutcome ExperimentalExchange::run_away() {
+template <int N>
+StepOutcome ExperimentalExchange::run_away() {
   constexpr std::uint32_t kPositionLimits = transport::kLimitStroke | transport::kLimitForce;
   if (parts_.stop_on_node_limits && (feedback_.limit_flags & kPositionLimits) != 0) {
     limit_stop_ = {LimitStop::Kind::kNodeLimit, -1, static_cast<double>(feedback_.limit_flags), 0.0};
@@ -250,13 +295,13 @@ inline StepOutcome ExperimentalExchange::run_away() {
                    static_cast<double>(parts_.max_valve_saturation_exchanges)};
     return StepOutcome::kRunAway;
   }
-  if (!groups_.empty()) {
+  if (!setup_groups<N>().empty()) {
     if (const StepOutcome outcome = setup_run_away(); outcome != StepOutcome::kOk) return outcome;
   }
   if (!parts_.limits.empty()) {
     const CoordinatorLimits* const limits = parts_.limits.data();
-    for (int c = 0; c < channels_; ++c) {
-      if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
+    for (int c = 0; c < channel_count<N>(); ++c) {
+      if (in_setup<N>(c)) continue;
       const double error = targets_[c] - feedback_.displacement_m[c];
       if (std::abs(error) > limits[c].max_tracking_error_m) {
         limit_stop_ = {LimitStop::Kind::kTrackingError, c, error, limits[c].max_tracking_error_m};
@@ -284,24 +329,28 @@ StepOutcome ExperimentalExchange::setup_run_away() {
 }
 
 StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, double time_s) {
-  // The vectors' storage and the compensators, held in locals: a compensator's virtual call
-  // could change any member for all the compiler knows, and it would load them again.
+  return one_plain_channel_ ? exchange_of<1>(targets, time_s) : exchange_of<kAnyChannels>(targets, time_s);
+}
+
+template <int N>
+StepOutcome ExperimentalExchange::exchange_of(const Eigen::VectorXd& targets, double time_s) {
+  // The vectors' storage held in locals: a compensator's virtual call could change any member
+  // for all the compiler knows, and it would load them again.
   double* const target = targets_.data();
-  compensation::CommandCompensator* const* const compensators = parts_.compensators.data();
+  compensation::CompensatorCall* const compensators = compensator_calls_.data();
   command_.step = exchange_;
   command_.time_s = time_s;
-  for (int c = 0; c < channels_; ++c) {
+  for (int c = 0; c < channel_count<N>(); ++c) {
     const double t = targets[c];
     target[c] = t;
-    if (group_of_[static_cast<std::size_t>(c)] < 0)
-      command_.displacement_m[c] = compensated_ ? compensators[c]->command(t) : t;
+    if (!in_setup<N>(c)) command_.displacement_m[c] = compensated_ ? compensators[c].command(t) : t;
   }
-  for (Group& g : groups_) command_setup(g);
-  if (!parts_.held_forces.empty()) command_held_forces(time_s);
-  if (!commands_within_limits()) return StepOutcome::kLimit;
+  for (Group& g : setup_groups<N>()) command_setup(g);
+  if (holds_forces<N>()) command_held_forces(time_s);
+  if (!commands_within_limits<N>()) return StepOutcome::kLimit;
   if (parts_.link->send(command_) != transport::LinkStatus::kOk) return StepOutcome::kLinkFailure;
-  for (int c = 0; c < channels_; ++c) last_sent_m_[c] = command_.displacement_m[c];
-  for (Group& g : groups_) g.last_dof_command = g.dof_command;
+  for (int c = 0; c < channel_count<N>(); ++c) last_sent_m_[c] = command_.displacement_m[c];
+  for (Group& g : setup_groups<N>()) g.last_dof_command = g.dof_command;
   const transport::LinkStatus received = parts_.link->receive(feedback_);
   if (received == transport::LinkStatus::kRefused) return StepOutcome::kRefused;
   // How many commands behind the newest measurement is: 0 on time. Without any feedback
@@ -322,17 +371,19 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
   }
   ++exchange_;
   if (feedback_.status & transport::kNodeFault) return StepOutcome::kNodeFault;
-  if (transport::has_non_finite_measurement(feedback_, link_channels_)) return StepOutcome::kNonFinite;
-  if (const StepOutcome outcome = run_away(); outcome != StepOutcome::kOk) return outcome;
-  if (!parts_.held_forces.empty()) {
+  // The link's channels: the structure's and the held forces' (none where N is fixed).
+  const int link_channels = N == kAnyChannels ? link_channels_ : N;
+  if (transport::has_non_finite_measurement(feedback_, link_channels)) return StepOutcome::kNonFinite;
+  if (const StepOutcome outcome = run_away<N>(); outcome != StepOutcome::kOk) return outcome;
+  if (holds_forces<N>()) {
     if (const StepOutcome outcome = check_held_forces(); outcome != StepOutcome::kOk) return outcome;
   }
   const CoordinatorLimits* const limits = parts_.limits.empty() ? nullptr : parts_.limits.data();
   compensation::TrackingIndicator* const tracking = tracking_.data();
-  for (int c = 0; c < channels_; ++c) {
-    if (const int g = group_of_[static_cast<std::size_t>(c)]; g >= 0) {
+  for (int c = 0; c < channel_count<N>(); ++c) {
+    if (in_setup<N>(c)) {
       // A setup's actuator: its load cell against its own force limit, its stroke tracked.
-      Group& group = groups_[static_cast<std::size_t>(g)];
+      Group& group = groups_[static_cast<std::size_t>(group_of_[static_cast<std::size_t>(c)])];
       const int i = index_in_group_[static_cast<std::size_t>(c)];
       const std::vector<CoordinatorLimits>& l = group.parts.actuator_limits;
       if (!l.empty() && std::abs(feedback_.force_n[c]) > l[static_cast<std::size_t>(i)].max_force_n) {
@@ -342,7 +393,7 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
       }
       group.stroke_measured[i] = feedback_.displacement_m[c] - group.offset[i];
       group.actuator_force[i] = feedback_.force_n[c];
-      if (!group.parts.compensate_dofs) compensators[c]->observe(group.stroke_target[i], group.stroke_measured[i]);
+      if (!group.parts.compensate_dofs) compensators[c].observe(group.stroke_target[i], group.stroke_measured[i]);
       tracking[c].update(group.stroke_target[i], group.stroke_measured[i]);
       continue;
     }
@@ -351,16 +402,16 @@ StepOutcome ExperimentalExchange::exchange(const Eigen::VectorXd& targets, doubl
       limit_stop_ = {LimitStop::Kind::kForce, c, force, limits[c].max_force_n};
       return StepOutcome::kLimit;
     }
-    compensators[c]->observe(target[c], measured);
+    compensators[c].observe(target[c], measured);
     tracking[c].update(target[c], measured);
   }
-  for (Group& g : groups_) {
+  for (Group& g : setup_groups<N>()) {
     if (const StepOutcome outcome = feedback_setup(g); outcome != StepOutcome::kOk) return outcome;
   }
   const RestoringForcePath* const paths = parts_.force_paths.data();
   double* const specimen_force = specimen_forces_.data();
-  for (int c = 0; c < channels_; ++c) {
-    if (group_of_[static_cast<std::size_t>(c)] >= 0) continue;
+  for (int c = 0; c < channel_count<N>(); ++c) {
+    if (in_setup<N>(c)) continue;
     specimen_force[c] = paths[c].source == RestoringForceSource::kMeasuredForce
                             ? feedback_.force_n[c]
                             : paths[c].stiffness_n_per_m * feedback_.displacement_m[c];

@@ -60,7 +60,13 @@ class DiscretePhaseLeadCompensator final : public CommandCompensator {
 
   void configure(double dt_s) override;
   void reset(double initial_displacement_m) noexcept override;
-  double command(double target_m) noexcept override;
+  // Inline: the exchange calls it directly on every step (compensator_call.h).
+  double command(double target_m) noexcept override {
+    const double y = section_.b0 * target_m + section_.b1 * previous_input_m_ - section_.a1 * previous_output_m_;
+    previous_input_m_ = target_m;
+    previous_output_m_ = y;
+    return y;
+  }
   void observe(double, double) noexcept override {}
   // The discrete filter's low-frequency lead: (a - 1) T K dt / 2 ((a - 1) T unless pre-warped).
   double compensated_delay_s() const noexcept override { return low_frequency_lead_s_; }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rpsd/compensation/command_compensator.h"
+#include "rpsd/compensation/compensator_call.h"
 #include "rpsd/compensation/tracking_indicator.h"
 #include "rpsd/coordinator/coordinator_limits.h"
 #include "rpsd/coordinator/held_force.h"
@@ -115,6 +116,20 @@ class ExperimentalExchange {
     std::vector<const char*> dof_units, dof_force_units;
   };
 
+  // The exchange of N channels, N = 1 or kAnyChannels (experimental_exchange.cpp says when).
+  static constexpr int kAnyChannels = -1;
+  template <int N>
+  StepOutcome exchange_of(const Eigen::VectorXd& targets, double time_s);
+  template <int N>
+  int channel_count() const;
+  template <int N>
+  bool in_setup(int c) const;
+  template <int N>
+  std::span<Group> setup_groups();
+  template <int N>
+  bool holds_forces() const;
+
+  template <int N>
   bool commands_within_limits();                 // fills limit_stop_ when not
   bool held_and_setup_commands_within_limits();  // the part of the above for held forces and setups
   // The held forces' commands at test time `time_s`: each ramps from its force at rest.
@@ -123,6 +138,7 @@ class ExperimentalExchange {
   // limit_stop_ filled.
   StepOutcome check_held_forces();
   void stop_on_held(int k, LimitStop::Kind kind, double value, double bound, const char* unit);
+  template <int N>
   StepOutcome run_away();        // kOk, or kRunAway with limit_stop_ filled
   StepOutcome setup_run_away();  // the part of the above for setups' actuators
   // A setup's channels: the DOF targets through the geometry to the actuators' commands.
@@ -150,6 +166,9 @@ class ExperimentalExchange {
   int link_channels_ = 0;  // the structure's channels and the held forces'
   // Per channel: its setup and its index there (-1: no setup drives it).
   std::array<int, transport::kMaxChannels> group_of_{}, index_in_group_{};
+  // Per channel: its compensator as a step calls it (parts_.compensators, a phase lead directly).
+  std::array<compensation::CompensatorCall, transport::kMaxChannels> compensator_calls_{};
+  bool one_plain_channel_ = false;  // one channel, no setups, no held forces: exchange_of<1>
 };
 
 }  // namespace rpsd::coordinator

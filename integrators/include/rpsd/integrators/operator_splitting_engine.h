@@ -28,9 +28,21 @@ class OperatorSplittingEngine : public Integrator {
   void on_end_step() override;
 
  private:
+  // The per-step arithmetic once, over the DOFs as a compile-time N (1: a one-DOF model, whose
+  // loops and products the compiler makes scalar) or Eigen::Dynamic; configure picks which.
+  template <int N>
+  void begin_step_of();
+  template <int N>
+  void restoring_force_of(const Eigen::VectorXd& r);
+  template <int N>
+  void end_step_of();
+  template <int N>
+  static void take(Eigen::VectorXd& to, Eigen::VectorXd& from) noexcept;
+
   OperatorSplittingCoefficients c_;
   SymmetricSolver effective_mass_solver_;
   Eigen::VectorXd v_pred_, r_meas_, rhs_, a_next_;
+  bool one_dof_ = false;
 };
 
 }  // namespace rpsd::integrators

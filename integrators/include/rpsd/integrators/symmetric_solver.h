@@ -24,6 +24,8 @@ class SymmetricSolver {
   // x = A^-1 b. Real-time safe; x must already have the right size and not alias b.
   // Uses an internal work vector: one solver must not be used by two threads at once.
   // The diagonal arm is inline (below): a lumped mass's few products cost less than a call.
+  // N, when given, is the size known when the caller is compiled (a scheme's one-DOF step).
+  template <int N = Eigen::Dynamic>
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   linalg::MatrixStorage storage() const { return storage_; }
   // Non-zeros of the triangular factor (the per-solve cost); n for a diagonal matrix.
@@ -46,12 +48,14 @@ class SymmetricSolver {
   void solve_factored(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;  // dense and sparse
 };
 
-inline void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+template <int N>
+void SymmetricSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   if (storage_ != linalg::MatrixStorage::kDiagonal) {
     solve_factored(b, x);
     return;
   }
-  const Eigen::Index n = inverse_diagonal_.size();
+  Eigen::Index n = N;
+  if constexpr (N == Eigen::Dynamic) n = inverse_diagonal_.size();
   x.resize(n);  // as the assignment it replaces: allocates only on a size change
   const double *inverse = inverse_diagonal_.data(), *rhs = b.data();
   double* out = x.data();

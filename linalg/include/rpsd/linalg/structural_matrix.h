@@ -71,21 +71,23 @@ class StructuralMatrix {
   // model a call and its set-up cost more than the product. Dense and sparse products are
   // in the source file.
   void multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept {
-    multiply_small(x, y);
+    multiply_small<Eigen::Dynamic>(x, y);
   }
   void multiply_add(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
                     Eigen::Ref<Eigen::VectorXd> y) const noexcept {
-    multiply_add_small(s, x, y);
+    multiply_add_small<Eigen::Dynamic>(s, x, y);
   }
   // The same products on whole vectors, without a Ref's set-up (its temporary costs a call to
   // free on every product); only for Eigen::VectorXd itself, so that nothing converts to one.
-  template <std::same_as<Eigen::VectorXd> X, std::same_as<Eigen::VectorXd> Y>
+  // N, when given, is rows() known when the caller is compiled (a scheme's one-DOF step): the
+  // same products, without the loops of run-time length.
+  template <int N = Eigen::Dynamic, std::same_as<Eigen::VectorXd> X, std::same_as<Eigen::VectorXd> Y>
   void multiply(const X& x, Y& y) const noexcept {
-    multiply_small(x, y);
+    multiply_small<N>(x, y);
   }
-  template <std::same_as<Eigen::VectorXd> X, std::same_as<Eigen::VectorXd> Y>
+  template <int N = Eigen::Dynamic, std::same_as<Eigen::VectorXd> X, std::same_as<Eigen::VectorXd> Y>
   void multiply_add(double s, const X& x, Y& y) const noexcept {
-    multiply_add_small(s, x, y);
+    multiply_add_small<N>(s, x, y);
   }
 
   // Largest |a_ij| (0 when empty); max |a_ij - a_ji| <= rel_tol * max_abs(); every entry
@@ -105,23 +107,34 @@ class StructuralMatrix {
   Eigen::SparseMatrix<double, Eigen::RowMajor> sparse_rows_;
   std::vector<Eigen::Index> row_major_position_;  // of each stored value of sparse_
 
-  template <typename X, typename Y>
+  template <int N, typename X, typename Y>
   void multiply_small(const X& x, Y& y) const noexcept;
-  template <typename X, typename Y>
+  template <int N, typename X, typename Y>
   void multiply_add_small(double s, const X& x, Y& y) const noexcept;
+  // rows() as the products loop over it: N when known at compile time.
+  template <int N>
+  Eigen::Index rows_of() const noexcept {
+    assert(N == Eigen::Dynamic || N == rows_);
+    if constexpr (N == Eigen::Dynamic) {
+      return rows_;
+    } else {
+      return N;
+    }
+  }
   void multiply_stored(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const noexcept;
   void multiply_add_stored(double s, const Eigen::Ref<const Eigen::VectorXd>& x,
                            Eigen::Ref<Eigen::VectorXd> y) const noexcept;
 };
 
-template <typename X, typename Y>
+template <int N, typename X, typename Y>
 void StructuralMatrix::multiply_small(const X& x, Y& y) const noexcept {
   assert(x.size() == cols_ && y.size() == rows_);
+  const Eigen::Index n = rows_of<N>();
   if (storage_ == MatrixStorage::kDiagonal) {
     // A plain loop: the same product per entry as Eigen's, without its set-up per call.
     const double* a = diagonal_.data();
-    for (Eigen::Index i = 0; i < rows_; ++i) y[i] = a[i] * x[i];
-  } else if (storage_ == MatrixStorage::kDense && rows_ == 1) {
+    for (Eigen::Index i = 0; i < n; ++i) y[i] = a[i] * x[i];
+  } else if (storage_ == MatrixStorage::kDense && n == 1) {
     // One DOF: Eigen's own path for a 1x1 product (an inner product added onto a zeroed y,
     // hence 0 + a x, which keeps its sign of zero), without the set-up of its general one.
     y[0] = 0.0 + dense_.data()[0] * x[0];
@@ -130,12 +143,13 @@ void StructuralMatrix::multiply_small(const X& x, Y& y) const noexcept {
   }
 }
 
-template <typename X, typename Y>
+template <int N, typename X, typename Y>
 void StructuralMatrix::multiply_add_small(double s, const X& x, Y& y) const noexcept {
   assert(x.size() == cols_ && y.size() == rows_);
   if (storage_ == MatrixStorage::kDiagonal) {
     const double* a = diagonal_.data();  // (s a_i) x_i, as Eigen evaluates it
-    for (Eigen::Index i = 0; i < rows_; ++i) y[i] += s * a[i] * x[i];
+    const Eigen::Index n = rows_of<N>();
+    for (Eigen::Index i = 0; i < n; ++i) y[i] += s * a[i] * x[i];
   } else {
     multiply_add_stored(s, x, y);
   }
