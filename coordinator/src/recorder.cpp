@@ -1,5 +1,6 @@
 #include "rpsd/coordinator/recorder.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <chrono>
@@ -20,10 +21,12 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
       held_channels_(std::move(options.held_channels)),
       csv_every_steps_(options.csv_every_steps),
       observers_(std::move(options.observers)),
+      idle_poll_(options.idle_poll),
       row_(static_cast<std::size_t>(64 + (output::kG10MaxChars + 1) *
                                              (10 + 7 * channels + 4 * dofs + 3 * static_cast<int>(dof_view_.size()) +
                                               3 * static_cast<int>(held_channels_.size())))) {
   if (csv_every_steps_ < 1) throw std::invalid_argument("Recorder: csv_every_steps below 1");
+  if (idle_poll_.count() <= 0) throw std::invalid_argument("Recorder: an idle poll of no time");
   for (const DofViewColumn& v : dof_view_) {
     if (v.channel < 0 || v.channel >= channels) throw std::invalid_argument("Recorder: a DOF view of no channel");
   }
@@ -35,6 +38,12 @@ Recorder::Recorder(const std::filesystem::path& csv, int channels, int dofs, Rec
     check_stream();
   }
   writer_ = std::thread([this] { run(); });
+}
+
+std::chrono::microseconds paced_idle_poll(double control_period_s) {
+  const double fifth_us = control_period_s * 1e6 / 5.0;
+  if (!(fifth_us >= 50.0)) return std::chrono::microseconds(50);  // NaN too
+  return std::chrono::microseconds(static_cast<std::int64_t>(std::min(fifth_us, 1000.0)));
 }
 
 Recorder::~Recorder() {
@@ -104,7 +113,7 @@ void Recorder::run() {
       // Idle until the next poll, or until finish() asks for the last drain. The loop never
       // touches the lock: it only fills the queue.
       std::unique_lock lock(wake_mutex_);
-      wake_.wait_for(lock, kIdlePoll, [this] { return stopping_.load(std::memory_order_acquire); });
+      wake_.wait_for(lock, idle_poll_, [this] { return stopping_.load(std::memory_order_acquire); });
     }
   }
   if (csv_.is_open()) {

@@ -52,6 +52,7 @@ SiteServer::SiteServer(const SiteServerConfig& config, const std::filesystem::pa
   run_.peak_force_n.assign(static_cast<std::size_t>(channels), 0.0);
   coordinator::RecorderOptions recording;
   recording.keep_records = false;
+  recording.idle_poll = coordinator::paced_idle_poll(control_period_s_);  // paced by its client
   recorder_ =
       std::make_unique<coordinator::Recorder>(csv, channels, std::min(n, coordinator::kMaxRecordedDofs), recording);
 }

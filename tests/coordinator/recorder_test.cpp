@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -55,6 +57,21 @@ StepRecord some_record(std::int64_t step) {
   r.target_m[0] = 1.2345678e-3;
   r.displacement_m[0] = -9.87654321e-4;
   return r;
+}
+
+TEST(Recorder, APacedRunsWriterPollsWithinAFifthOfItsPeriod) {
+  // A row waits at most one idle poll before the writer takes it: a fifth of the period at
+  // 1024 Hz (so a kill -9 loses no more than the step in flight), never above the 1 ms of a
+  // run as fast as possible, never below 50 us (each wake-up may take a core from the loop).
+  EXPECT_EQ(paced_idle_poll(1.0 / 1024.0).count(), 195);
+  EXPECT_EQ(paced_idle_poll(1.0 / 256.0).count(), 781);
+  EXPECT_EQ(paced_idle_poll(1.0 / 4096.0).count(), 50);
+  EXPECT_EQ(paced_idle_poll(0.1).count(), 1000);
+  EXPECT_EQ(paced_idle_poll(std::nan("")).count(), 50);
+  EXPECT_EQ(RecorderOptions{}.idle_poll.count(), 1000);
+  RecorderOptions none;
+  none.idle_poll = std::chrono::microseconds(0);
+  EXPECT_THROW(Recorder("", 1, 1, none), std::invalid_argument);
 }
 
 TEST(Recorder, AFileThatCannotGrowIsReportedWithItsNameAndTheSystemsReason) {

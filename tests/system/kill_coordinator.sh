@@ -3,7 +3,8 @@
 # Nodes: no command comes; each holds its actuator where the last command put it, 4 ticks
 #   (5 control periods, 4.9 ms) after that command.
 # Coordinator: gone; what it wrote stays. The recorder thread writes each batch of rows it
-#   takes off the queue at once (it looks every 200 us, so in real time each row is written
+#   takes off the queue at once (in a paced run it looks every fifth of a period,
+#   coordinator::paced_idle_poll: 195 us at 1024 Hz, so in real time each row is written
 #   within a fraction of a period of its step), so a kill -9 loses at most the row of the
 #   step in flight.
 # Results: every complete line of time_history.csv parses with the header's width, steps

@@ -50,7 +50,18 @@ struct RecorderOptions {
   // Called by the writer thread with each record after its row, in order (the telemetry, the
   // terminal's progress); they must outlive the recorder's finish(). Empty: none.
   std::vector<RecordObserver*> observers = {};
+  // How long the writer idles on an empty queue. Each wake-up may take a core from the loop
+  // (on two cores, polls every 200 us preempted the as-fast-as-possible SDOF loop ~170 times
+  // a run, every 1 ms ~47: docs/performance.md), so a run as fast as possible polls every
+  // 1 ms; a paced run polls within a fifth of its period (paced_idle_poll), so that each row
+  // reaches the file within about a period of its step and a kill -9 loses no more than the
+  // step in flight (tests/system/kill_coordinator.sh).
+  std::chrono::microseconds idle_poll{1000};
 };
+
+// The writer's idle poll for a run paced at control_period_s: a fifth of the period, at most
+// 1 ms and at least 50 us.
+std::chrono::microseconds paced_idle_poll(double control_period_s);
 
 class Recorder {
  public:
@@ -101,12 +112,6 @@ class Recorder {
   void run();
   void check_stream();  // writer thread: a failed write becomes write_failed()
 
-  // How long the writer idles on an empty queue. Each wake-up may take a core from the loop
-  // (on two cores, polls every 200 us preempted the as-fast-as-possible SDOF loop ~170 times
-  // a run, every 1 ms ~47; the plant alone ~9: docs/performance.md). 1 ms is a quarter of
-  // the time that loop needs to fill the queue (4096 records at ~1 us a step; 1 s at 4096 Hz).
-  static constexpr std::chrono::milliseconds kIdlePoll{1};
-
   RecordLayout layout_;
   realtime::SpscRowQueue queue_;
   StepRecord unpacked_;  // writer thread: each row unpacked, in turn
@@ -118,6 +123,7 @@ class Recorder {
   std::vector<int> held_channels_;  // the link channels of the held forces, in their order
   std::int64_t csv_every_steps_;
   std::vector<RecordObserver*> observers_;
+  std::chrono::microseconds idle_poll_;
   std::vector<char> row_;  // one CSV row, built by the writer thread
   std::vector<StepRecord> records_;
   std::atomic<bool> stopping_{false};
