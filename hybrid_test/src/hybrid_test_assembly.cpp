@@ -395,7 +395,8 @@ TestAssembly::TestAssembly(const TestConfig& s, const AssemblyOptions& options) 
   recording.csv_every_steps = s.histories.every_steps;  // output.histories: decimated
   // A paced run's rows reach the file within about a period of their step: a kill -9 loses
   // no more than the step in flight (coordinator::RecorderOptions::idle_poll).
-  if (p.real_time || p.actuators->over_dds()) recording.idle_poll = coordinator::paced_idle_poll(1.0 / s.control_rate_hz);
+  if (p.real_time || p.actuators->over_dds())
+    recording.idle_poll = coordinator::paced_idle_poll(1.0 / s.control_rate_hz);
   // The structure's channels; the held forces' columns follow (RecorderOptions::held_channels).
   p.recorder =
       std::make_unique<coordinator::Recorder>(options.csv, channels, static_cast<int>(s.record_dofs.size()), recording);
