@@ -26,7 +26,9 @@ fi
 cmake -S . -B build -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
 cmake --build build -j "$jobs" --target rpsd_transport >/dev/null  # the generated DDS header
 modules=$(cmake -P cmake/PrintModules.cmake 2>&1 | tr ' ' '|')
-if ! run-clang-tidy -p build -j "$jobs" -quiet "$PWD/($modules|apps)/" >build/clang-tidy.log 2>&1; then
+# -Wno-ignored-optimization-argument: GCC-only flags in the compile commands (transport/CMakeLists.txt:
+# multi_site_link.cpp without speculative devirtualization) are not clang's to judge.
+if ! run-clang-tidy -p build -j "$jobs" -quiet -extra-arg=-Wno-ignored-optimization-argument "$PWD/($modules|apps)/" >build/clang-tidy.log 2>&1; then
   grep -E "(error|warning):" build/clang-tidy.log | sort -u >&2 || tail -20 build/clang-tidy.log >&2
   echo "lint: clang-tidy found the problems above (full log: build/clang-tidy.log)" >&2
   status=1
