@@ -11,6 +11,7 @@
 #include "../hybrid_test/two_actuator_test.h"
 #include "../servo/paper_rig.h"
 #include "allocation_counter.h"
+#include "claimed_dds_domain.h"
 #include "rpsd/coordinator/limit_stop_text.h"
 #include "rpsd/hdf5_output/hdf5_results.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
@@ -52,7 +53,7 @@ TEST(LoopAllocation, NoAllocationPerStepWithTelemetryPublishedAndRead) {
   SpecimenSdof sdof;
   sdof.duration_s = 8.0;
   const TestConfig config = specimen_sdof_test(sdof);
-  const auto domain = static_cast<std::uint32_t>(190 + ::getpid() % 40);
+  const auto domain = ::rpsd::testing::claimed_dds_domain();
   const std::string xml = std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml";
   telemetry::TelemetrySubscriber subscriber({domain, xml, 21});
   telemetry::TelemetryPublisher publisher({domain, xml, 21, "allocation", 1024.0});  // every step

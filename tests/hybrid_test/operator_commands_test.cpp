@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "../servo/paper_rig.h"
+#include "claimed_dds_domain.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/hybrid_test/operator_listener.h"
 #include "rpsd/scenarios/study_file.h"
@@ -175,7 +176,7 @@ TEST(OperatorCommands, AStopWhileHeldEndsTheRunAndRecordsTheOpenInterval) {
 
 // Over the loopback DDS configuration, in a domain of this test binary's own.
 TestConfig over_loopback(TestConfig s, std::uint32_t test_id) {
-  s.transport.domain_id = static_cast<std::uint32_t>(40 + ::getpid() % 150);
+  s.transport.domain_id = ::rpsd::testing::claimed_dds_domain();
   s.transport.dds_config = testing::source_dir() / "transport/config/loopback.xml";
   s.transport.test_id = test_id;
   return s;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "claimed_dds_domain.h"
 #include "rpsd/hybrid_test/specimen_sdof.h"
 
 namespace rpsd::hybrid_test {
@@ -34,7 +35,7 @@ TEST(RunWatchers, TheTelemetryOnWritesTheSameCsvBytesAsOff) {
   for (std::size_t n = 0; n < sdof.ground_acceleration_m_per_s2.size(); ++n)
     sdof.ground_acceleration_m_per_s2[n] = 2.0 * std::sin(0.02 * static_cast<double>(n));
   TestConfig config = specimen_sdof_test(sdof);
-  config.transport.domain_id = static_cast<std::uint32_t>(190 + ::getpid() % 40);
+  config.transport.domain_id = ::rpsd::testing::claimed_dds_domain();
   config.transport.dds_config = std::filesystem::path(RPSD_TEST_SOURCE_DIR) / "transport/config/loopback.xml";
   config.transport.test_id = 31;
   const auto off_csv = scratch("rpsd-watch-off"), on_csv = scratch("rpsd-watch-on");

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "../coordinator/specimen_runs.h"
+#include "claimed_dds_domain.h"
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/node/servo_node_loop.h"
 #include "rpsd/servo/simulated_actuator.h"
@@ -23,9 +24,7 @@ namespace {
 constexpr std::uint32_t kTest = 71;
 
 transport::DdsDomainConfig loopback() {
-  // Domains 230..232 for this binary: apart from the transport (40..189) and node (190..229) tests'.
-  return {static_cast<std::uint32_t>(230 + ::getpid() % 3),
-          std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+  return {::rpsd::testing::claimed_dds_domain(), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
 }
 
 // The paper's SDOF released from 10 mm: its velocity peaks near 0.1 m/s, and the node lets

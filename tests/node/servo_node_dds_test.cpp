@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "claimed_dds_domain.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/node/servo_node_loop.h"
 #include "rpsd/realtime/pacer.h"
@@ -33,9 +34,7 @@ constexpr std::uint32_t kTest = 61, kSite = 2;
 constexpr std::uint64_t kRun = 0x61;
 
 transport::DdsDomainConfig loopback() {
-  // Domains 190..229 for this binary: apart from the other DDS tests' 40..189.
-  return {static_cast<std::uint32_t>(190 + ::getpid() % 40),
-          std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+  return {::rpsd::testing::claimed_dds_domain(), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
 }
 
 // Moves to every command at once and reads it back.

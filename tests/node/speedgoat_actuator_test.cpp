@@ -124,7 +124,9 @@ TEST(SpeedgoatActuator, SpeaksTheHandshakeVectorByVector) {
 TEST(SpeedgoatActuator, ResumesALateHandshakeInsteadOfStartingAnother) {
   Script script;
   auto config = node_config(script.listener.port(), false);
-  config.reply_timeout_s = 0.05;
+  // The first exchange waits this long for its late target; the second must get its answer
+  // within it, from a script thread a loaded machine may hold back (50 ms once was too short).
+  config.reply_timeout_s = 1.0;
   SpeedgoatActuator adapter(config);
   std::atomic<int> stage{0};
   std::vector<servo::ActuatorStatus> statuses;

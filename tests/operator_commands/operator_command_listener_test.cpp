@@ -1,6 +1,7 @@
 // The listener→flag path over DDS: a sender and the coordinator's listener in one process on
 // the loopback configuration; the command reaches the loop's flag and its reply the sender.
 #include "rpsd/operator_commands/operator_command_listener.h"
+#include "claimed_dds_domain.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,9 +12,9 @@ namespace rpsd::operator_commands {
 namespace {
 
 OperatorLinkConfig loopback(std::uint32_t test_id) {
-  // A domain of its own per test binary run keeps parallel ctest processes apart.
-  return {static_cast<std::uint32_t>(40 + ::getpid() % 150),
-          std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml", test_id};
+  // A domain no other live test holds (claimed_dds_domain.h) keeps parallel ctest processes apart.
+  return {::rpsd::testing::claimed_dds_domain(), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml",
+          test_id};
 }
 
 OperatorHandlerOptions options(std::uint32_t test_id, bool accepting) {

@@ -11,6 +11,7 @@ cleanup() {
   wait 2>/dev/null || true
   if [ -n "${NETNS_CLEANUP:-}" ]; then eval "$NETNS_CLEANUP"; fi
   if [ -n "${RPSD_KEEP_WORK:-}" ]; then echo "kept $WORK"; else rm -rf "$WORK"; fi
+  if [ -n "${DOMAIN_CLAIM:-}" ]; then rm -rf "$DOMAIN_CLAIM"; fi
 }
 trap cleanup EXIT
 
@@ -59,8 +60,33 @@ for f in sorted(glob.glob(sys.argv[1] + "/**/*.json", recursive=True)):
 print("; ".join(why))
 PY
 }
-# A domain per test run keeps parallel tests apart on one machine.
-DOMAIN=$(( 1 + $$ % 200 ))
+# A DDS domain per test run keeps parallel tests apart on one machine: claimed as the C++
+# tests claim theirs (tests/support/claimed_dds_domain.h), a folder made atomically under
+# $TMPDIR/rpsd-test-claims/dds-domain/ holding this shell's pid, in the same range 1..199;
+# a claim whose process has gone is taken over. Released by cleanup.
+claim_dds_domain() {
+  local dir=${TMPDIR:-/tmp}/rpsd-test-claims/dds-domain i d pid
+  mkdir -p "$dir"
+  for ((i = 0; i < 199; i++)); do
+    d=$(( 1 + ($$ + i) % 199 ))
+    if ! mkdir "$dir/$d" 2>/dev/null; then
+      pid=$(cat "$dir/$d/pid" 2>/dev/null) || pid=""
+      # Live, or being written (no pid yet, made within the last second): another's.
+      if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then continue; fi
+      if [ -z "$pid" ] && [ $(( $(date +%s) - $(stat -c %Y "$dir/$d" 2>/dev/null || echo 0) )) -le 1 ]; then continue; fi
+      mv "$dir/$d" "$dir/$d.stale.$$" 2>/dev/null || continue  # of two takers, one wins
+      rm -rf "$dir/$d.stale.$$"
+      mkdir "$dir/$d" 2>/dev/null || continue
+    fi
+    echo $$ > "$dir/$d/pid"
+    DOMAIN=$d
+    DOMAIN_CLAIM=$dir/$d
+    return 0
+  done
+  echo "lib.sh: all 199 DDS domains under $dir are held by live processes" >&2
+  exit 1
+}
+claim_dds_domain
 
 # The real-time tests stop when a site's feedback is more than RT_AGE control periods old
 # (clock.max_feedback_age_periods), not the default 4 (4.9 ms at 1024 Hz, the setting for a

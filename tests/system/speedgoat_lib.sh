@@ -11,14 +11,25 @@ speedgoat_run() {
   shift 4
   local kind=STREAM
   [ "$transport" = udp ] && kind=DGRAM
-  local port
-  port=$(python3 -c "import socket; s = socket.socket(socket.AF_INET, socket.SOCK_$kind); s.bind(('127.0.0.1', 0)); print(s.getsockname()[1])")
-  # shellcheck disable=SC2086 # the --set lists split into words
-  "$RPSD" speedgoat-emulator "$SRC/examples/nodes/speedgoat-target-emulator.yaml" --set target.transport=$transport \
-    --set target.port=$port $target_sets --summary "$WORK/$name.target.json" > "$WORK/$name.target.log" 2>&1 &
-  local target=$!
-  PIDS+=($target)
-  for _ in $(seq 100); do grep -q "serving node" "$WORK/$name.target.log" && break; sleep 0.1; done
+  local port target attempt
+  # A port free a moment ago may be taken before the emulator binds it (it takes no port 0):
+  # then its process ends, and another free port is tried, three times at most.
+  for attempt in 1 2 3; do
+    port=$(python3 -c "import socket; s = socket.socket(socket.AF_INET, socket.SOCK_$kind); s.bind(('127.0.0.1', 0)); print(s.getsockname()[1])")
+    # shellcheck disable=SC2086 # the --set lists split into words
+    "$RPSD" speedgoat-emulator "$SRC/examples/nodes/speedgoat-target-emulator.yaml" --set target.transport=$transport \
+      --set target.port=$port $target_sets --summary "$WORK/$name.target.json" > "$WORK/$name.target.log" 2>&1 &
+    target=$!
+    PIDS+=($target)
+    for _ in $(seq 100); do
+      grep -q "serving node" "$WORK/$name.target.log" && break
+      kill -0 $target 2>/dev/null || break
+      sleep 0.1
+    done
+    grep -q "serving node" "$WORK/$name.target.log" && break
+    echo "speedgoat_lib.sh: attempt $attempt: the emulator did not start on port $port:" >&2
+    cat "$WORK/$name.target.log" >&2
+  done
   # shellcheck disable=SC2086
   "$RPSD" servo-node "$SRC/examples/nodes/speedgoat-node.yaml" --set dds.domain_id=$DOMAIN \
     --set actuator.transport=$transport --set actuator.port=$port $node_sets \

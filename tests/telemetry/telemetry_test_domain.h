@@ -10,11 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "claimed_dds_domain.h"
 #include "rpsd/telemetry/telemetry_subscriber.h"
 
 namespace rpsd::telemetry::testing {
 
-inline std::uint32_t test_domain() { return static_cast<std::uint32_t>(190 + ::getpid() % 40); }
+inline std::uint32_t test_domain() { return ::rpsd::testing::claimed_dds_domain(); }
 inline std::string loopback_xml() { return std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"; }
 
 struct Received {

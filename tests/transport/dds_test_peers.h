@@ -10,15 +10,15 @@
 #include <string>
 #include <thread>
 
+#include "claimed_dds_domain.h"
 #include "rpsd/transport/dds_link.h"
 #include "rpsd/transport/dds_node_endpoint.h"
 
 namespace rpsd::transport::testing {
 
 inline DdsDomainConfig loopback() {
-  // A domain of its own per test binary run keeps parallel ctest processes apart.
-  return {static_cast<std::uint32_t>(40 + ::getpid() % 150),
-          std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
+  // A domain no other live test holds (claimed_dds_domain.h) keeps parallel ctest processes apart.
+  return {::rpsd::testing::claimed_dds_domain(), std::string(RPSD_TEST_SOURCE_DIR) + "/transport/config/loopback.xml"};
 }
 
 inline DdsLinkConfig link_config(std::uint32_t test, std::uint32_t site, int channels, double timeout_s = 1.0) {

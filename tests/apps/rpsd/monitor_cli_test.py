@@ -52,7 +52,7 @@ def main():
                          capture_output=True, text=True, timeout=HANG_GUARD_S)
     check(bad.returncode == 2 and "not a folder" in bad.stderr, f"a --results that is no folder is exit 2 ({bad.returncode})")
 
-    cmd = [rpsd, "monitor", "--test-id", "3131", "--domain", "228", "--dds-config",
+    cmd = [rpsd, "monitor", "--test-id", "3131", "--domain", "223", "--dds-config",
            os.path.join(src, "transport", "config", "loopback.xml"), "--listen", "127.0.0.1:0", "--results", results,
            "--reply-timeout", "0.5"]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
