@@ -24,6 +24,18 @@ async function main() {
   const commandsLog = join(outDir, "commands.log");
   rmSync(commandsLog, { force: true });
   const history = readHistory(replayDir);
+  // The browser and the first page are up before the server starts: its replay starts with
+  // it, and the first browser must join within the run's first 10 s (the recent past it is
+  // sent). Launched after, on a loaded CI machine chromium once took longer than that.
+  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: ["--no-sandbox"] });
+  const errors = [];
+  const watch = (page, who) => {
+    page.on("console", (m) => { if (m.type() === "error") errors.push(`${who}: ${m.text()}`); });
+    page.on("pageerror", (e) => errors.push(`${who}: ${e.message}`));
+  };
+  const context = await browser.newContext({ viewport: { width: 1600, height: 1150 } });
+  const first = await context.newPage();
+  watch(first, "first browser");
   const server = spawn(fixture, [replayDir, resultsDir, TOKEN, "2048", commandsLog], { stdio: ["pipe", "pipe", "inherit"] });
   const port = await new Promise((resolve, reject) => {
     let out = "";
@@ -31,16 +43,7 @@ async function main() {
     server.on("exit", (code) => reject(new Error("the fixture server ended with " + code)));
   });
   const url = `http://127.0.0.1:${port}/`;
-  const browser = await chromium.launch({ executablePath: chromiumPath, headless: true, args: ["--no-sandbox"] });
-  const errors = [];
-  const watch = (page, who) => {
-    page.on("console", (m) => { if (m.type() === "error") errors.push(`${who}: ${m.text()}`); });
-    page.on("pageerror", (e) => errors.push(`${who}: ${e.message}`));
-  };
   try {
-    const context = await browser.newContext({ viewport: { width: 1600, height: 1150 } });
-    const first = await context.newPage();
-    watch(first, "first browser");
     await first.goto(url);
     // A second browser joins mid-run, past the first 10 s: it is shown the recent past, then the rest.
     await waitFor(first, () => window.rpsdPage.status && window.rpsdPage.status.steps_done > 12500);
