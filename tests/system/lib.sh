@@ -72,7 +72,7 @@ claim_dds_domain() {
     if ! mkdir "$dir/$d" 2>/dev/null; then
       pid=$(cat "$dir/$d/pid" 2>/dev/null) || pid=""
       # Live, or being written (no pid yet, made within the last second): another's.
-      if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then continue; fi
+      if [ -n "$pid" ] && [ -d "/proc/$pid" ]; then continue; fi  # any user's process, as the C++ claim
       if [ -z "$pid" ] && [ $(( $(date +%s) - $(stat -c %Y "$dir/$d" 2>/dev/null || echo 0) )) -le 1 ]; then continue; fi
       mv "$dir/$d" "$dir/$d.stale.$$" 2>/dev/null || continue  # of two takers, one wins
       rm -rf "$dir/$d.stale.$$"
