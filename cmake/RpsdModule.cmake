@@ -9,6 +9,14 @@ function(rpsd_warnings target)
     $<$<BOOL:${RPSD_WARNINGS_AS_ERRORS}>:-Werror>)
 endfunction()
 
+# RPSD_UNITY_BUILD (CI): the target's sources compiled as one translation unit, so their
+# headers are parsed once, by the compiler and by clang-tidy.
+function(rpsd_unity target)
+  if(RPSD_UNITY_BUILD)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)
+  endif()
+endfunction()
+
 function(rpsd_add_module name)
   cmake_parse_arguments(M "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   set(target rpsd_${name})
@@ -17,6 +25,10 @@ function(rpsd_add_module name)
   add_library(rpsd::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name}
                                              POSITION_INDEPENDENT_CODE ON)
+  rpsd_unity(${target})
+  if(RPSD_UNITY_BUILD AND M_SOURCES)  # generated sources stay their own units
+    set_source_files_properties(${M_SOURCES} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+  endif()
   target_compile_features(${target} PUBLIC cxx_std_20)
   target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>

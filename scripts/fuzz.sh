@@ -15,7 +15,9 @@ build=build-fuzz
 records=data/ground-motions
 
 command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (bash scripts/install-deps.sh)" >&2; exit 2; }
-cmake -S fuzz -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+# Each library one translation unit (RPSD_UNITY_BUILD): its headers compiled once, not per source.
+cmake -S fuzz -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DRPSD_UNITY_BUILD=ON >/dev/null
 cmake --build "$build" -j 2 >/dev/null
 
 # Seed corpora, rebuilt on every run.

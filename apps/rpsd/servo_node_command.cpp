@@ -14,11 +14,11 @@ namespace {
 
 // Set by the signal handler, read by the loops: the one process-wide flag a handler may touch.
 std::atomic<bool> g_stop{false};
-void request_stop(int) { g_stop.store(true); }
+void request_node_stop(int) { g_stop.store(true); }
 
 void install_stop_handlers() {
   struct sigaction action {};
-  action.sa_handler = request_stop;
+  action.sa_handler = request_node_stop;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);

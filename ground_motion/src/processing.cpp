@@ -14,7 +14,7 @@ namespace {
 // Sample-grid comparisons allow this fraction of a step for times typed in decimal.
 constexpr double kGridTolerance = 1e-9;
 
-std::string num(double value) {
+std::string text_of(double value) {
   std::ostringstream out;
   out.precision(10);
   out << value;
@@ -43,16 +43,16 @@ GroundMotionRecord scale(const GroundMotionRecord& record, const ScaleOptions& o
   if (options.factor) {
     if (!std::isfinite(*options.factor)) fail(record, "scale.factor: expected a finite number");
     factor = *options.factor;
-    out.processing_steps.push_back("scaled by " + num(factor));
+    out.processing_steps.push_back("scaled by " + text_of(factor));
   } else {
     const double target = *options.target_pga_m_per_s2;
     if (!(target > 0.0) || !std::isfinite(target)) {
-      fail(record, "scale.target_pga_m_per_s2: expected a positive number, got " + num(target));
+      fail(record, "scale.target_pga_m_per_s2: expected a positive number, got " + text_of(target));
     }
     const double pga = std::abs(peak_ground_acceleration(record).value_m_per_s2);
     if (!(pga > 0.0)) fail(record, "scale.target_pga_m_per_s2: the record is all zeros");
     factor = target / pga;
-    out.processing_steps.push_back("scaled by " + num(factor) + " to PGA " + num(target) + " m/s^2");
+    out.processing_steps.push_back("scaled by " + text_of(factor) + " to PGA " + text_of(target) + " m/s^2");
   }
   for (double& a : out.acceleration_m_per_s2) a *= factor;
   return out;
@@ -62,24 +62,25 @@ GroundMotionRecord trim(const GroundMotionRecord& record, const TrimOptions& opt
   require_samples(record, "trim");
   const double last_time = record.duration_s();
   if (!(options.start_s >= 0.0) || !std::isfinite(options.start_s)) {
-    fail(record, "trim.start_s: expected a time >= 0 s, got " + num(options.start_s));
+    fail(record, "trim.start_s: expected a time >= 0 s, got " + text_of(options.start_s));
   }
   const double end_s = options.end_s.value_or(last_time);
   if (!std::isfinite(end_s) || end_s > last_time + kGridTolerance * record.dt_s) {
-    fail(record, "trim.end_s: " + num(end_s) + " s is after the record's last sample at " + num(last_time) + " s");
+    fail(record,
+         "trim.end_s: " + text_of(end_s) + " s is after the record's last sample at " + text_of(last_time) + " s");
   }
   const double first_index = std::ceil(options.start_s / record.dt_s - kGridTolerance);
   const double last_index = std::floor(end_s / record.dt_s + kGridTolerance);
   if (!(first_index <= last_index)) {
-    fail(record, "trim: no sample lies in [" + num(options.start_s) + ", " + num(end_s) + "] s");
+    fail(record, "trim: no sample lies in [" + text_of(options.start_s) + ", " + text_of(end_s) + "] s");
   }
   const auto i0 = static_cast<std::size_t>(first_index);
   const auto i1 = std::min(static_cast<std::size_t>(last_index), record.size() - 1);
   GroundMotionRecord out = record;
   out.acceleration_m_per_s2.assign(record.acceleration_m_per_s2.begin() + static_cast<long>(i0),
                                    record.acceleration_m_per_s2.begin() + static_cast<long>(i1) + 1);
-  out.processing_steps.push_back("trimmed to [" + num(static_cast<double>(i0) * record.dt_s) + ", " +
-                                 num(static_cast<double>(i1) * record.dt_s) + "] s");
+  out.processing_steps.push_back("trimmed to [" + text_of(static_cast<double>(i0) * record.dt_s) + ", " +
+                                 text_of(static_cast<double>(i1) * record.dt_s) + "] s");
   return out;
 }
 
@@ -87,7 +88,8 @@ GroundMotionRecord pad(const GroundMotionRecord& record, const PadOptions& optio
   require_samples(record, "pad");
   const auto samples = [&](double seconds, const char* name) {
     if (!(seconds >= 0.0) || !std::isfinite(seconds) || seconds / record.dt_s > 1e9) {
-      fail(record, std::string("pad.") + name + ": expected a time >= 0 s (at most 1e9 steps), got " + num(seconds));
+      fail(record,
+           std::string("pad.") + name + ": expected a time >= 0 s (at most 1e9 steps), got " + text_of(seconds));
     }
     return static_cast<std::size_t>(std::llround(seconds / record.dt_s));
   };
@@ -107,11 +109,11 @@ GroundMotionRecord resample(const GroundMotionRecord& record, const ResampleOpti
   require_samples(record, "resample");
   const double dt_new = options.dt_s;
   if (!(dt_new > 0.0) || !std::isfinite(dt_new)) {
-    fail(record, "resample.dt_s: expected a positive time step, got " + num(dt_new));
+    fail(record, "resample.dt_s: expected a positive time step, got " + text_of(dt_new));
   }
   const double ratio = record.dt_s / dt_new;  // new samples per old step
   if (ratio < 1.0 - kGridTolerance && !options.allow_downsampling) {
-    fail(record, "resample.dt_s: " + num(dt_new) + " s is coarser than the record's " + num(record.dt_s) +
+    fail(record, "resample.dt_s: " + text_of(dt_new) + " s is coarser than the record's " + text_of(record.dt_s) +
                      " s; linear interpolation would alias (low-pass the "
                      "record first and set allow_downsampling)");
   }
@@ -145,7 +147,7 @@ GroundMotionRecord resample(const GroundMotionRecord& record, const ResampleOpti
       out.acceleration_m_per_s2[i] = frac == 0.0 ? a[j] : a[j] + frac * (a[j + 1] - a[j]);
     }
   }
-  out.processing_steps.push_back("resampled from dt " + num(record.dt_s) + " s to " + num(dt_new) +
+  out.processing_steps.push_back("resampled from dt " + text_of(record.dt_s) + " s to " + text_of(dt_new) +
                                  " s by linear interpolation");
   return out;
 }
@@ -174,7 +176,7 @@ GroundMotionRecord baseline_correct(const GroundMotionRecord& record, const Base
     for (double value : a) sum += value;
     const double mean = sum / static_cast<double>(n);
     for (double& value : a) value -= mean;
-    out.processing_steps.push_back("baseline: removed the mean acceleration " + num(mean) + " m/s^2");
+    out.processing_steps.push_back("baseline: removed the mean acceleration " + text_of(mean) + " m/s^2");
     return out;
   }
   const int order = options.polynomial_order;

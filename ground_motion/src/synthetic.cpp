@@ -17,7 +17,7 @@ namespace {
 
 constexpr const char* kPrefix = "synthetic ground motion: ";
 
-std::string num(double value) {
+std::string short_text_of(double value) {
   std::ostringstream out;
   out.precision(6);
   out << value;
@@ -31,22 +31,24 @@ void require(bool ok, const std::string& what) {
 bool positive(double x) { return x > 0.0 && std::isfinite(x); }
 
 void validate(const SyntheticGroundMotionOptions& o) {
-  require(positive(o.dt_s), "dt_s: expected a positive time step, got " + num(o.dt_s));
+  require(positive(o.dt_s), "dt_s: expected a positive time step, got " + short_text_of(o.dt_s));
   require(positive(o.duration_s) && o.duration_s / o.dt_s <= 1e8,
-          "duration_s: expected a positive duration of at most 1e8 steps, got " + num(o.duration_s));
+          "duration_s: expected a positive duration of at most 1e8 steps, got " + short_text_of(o.duration_s));
   require(positive(o.kanai_tajimi.omega_g_rad_per_s),
-          "kanai_tajimi.omega_g_rad_per_s: expected > 0, got " + num(o.kanai_tajimi.omega_g_rad_per_s));
-  require(positive(o.kanai_tajimi.zeta_g), "kanai_tajimi.zeta_g: expected > 0, got " + num(o.kanai_tajimi.zeta_g));
+          "kanai_tajimi.omega_g_rad_per_s: expected > 0, got " + short_text_of(o.kanai_tajimi.omega_g_rad_per_s));
+  require(positive(o.kanai_tajimi.zeta_g),
+          "kanai_tajimi.zeta_g: expected > 0, got " + short_text_of(o.kanai_tajimi.zeta_g));
   if (o.model == SpectralModel::kCloughPenzien) {
     require(positive(o.clough_penzien.omega_f_rad_per_s),
-            "clough_penzien.omega_f_rad_per_s: expected > 0, got " + num(o.clough_penzien.omega_f_rad_per_s));
+            "clough_penzien.omega_f_rad_per_s: expected > 0, got " + short_text_of(o.clough_penzien.omega_f_rad_per_s));
     require(positive(o.clough_penzien.zeta_f),
-            "clough_penzien.zeta_f: expected > 0, got " + num(o.clough_penzien.zeta_f));
+            "clough_penzien.zeta_f: expected > 0, got " + short_text_of(o.clough_penzien.zeta_f));
   }
   require(positive(o.white_noise_psd_m2_per_s3),
-          "white_noise_psd_m2_per_s3: expected > 0, got " + num(o.white_noise_psd_m2_per_s3));
+          "white_noise_psd_m2_per_s3: expected > 0, got " + short_text_of(o.white_noise_psd_m2_per_s3));
   if (o.target_pga_m_per_s2) {
-    require(positive(*o.target_pga_m_per_s2), "target_pga_m_per_s2: expected > 0, got " + num(*o.target_pga_m_per_s2));
+    require(positive(*o.target_pga_m_per_s2),
+            "target_pga_m_per_s2: expected > 0, got " + short_text_of(*o.target_pga_m_per_s2));
   }
   switch (o.envelope) {
     case EnvelopeKind::kStationary:
@@ -67,9 +69,9 @@ void validate(const SyntheticGroundMotionOptions& o) {
     }
     case EnvelopeKind::kGavin: {
       const auto& e = o.gavin;
-      require(std::isfinite(e.t0_s) && e.t0_s >= 0.0, "gavin.t0_s: expected >= 0, got " + num(e.t0_s));
-      require(positive(e.aa), "gavin.aa: expected > 0, got " + num(e.aa));
-      require(positive(e.ta_s), "gavin.ta_s: expected > 0, got " + num(e.ta_s));
+      require(std::isfinite(e.t0_s) && e.t0_s >= 0.0, "gavin.t0_s: expected >= 0, got " + short_text_of(e.t0_s));
+      require(positive(e.aa), "gavin.aa: expected > 0, got " + short_text_of(e.aa));
+      require(positive(e.ta_s), "gavin.ta_s: expected > 0, got " + short_text_of(e.ta_s));
       break;
     }
   }
@@ -94,26 +96,27 @@ std::string describe(const SyntheticGroundMotionOptions& o) {
       text = "band-pass (Gavin)";
       break;
   }
-  text += " filter wg " + num(kt.omega_g_rad_per_s) + " rad/s zg " + num(kt.zeta_g);
+  text += " filter wg " + short_text_of(kt.omega_g_rad_per_s) + " rad/s zg " + short_text_of(kt.zeta_g);
   if (o.model == SpectralModel::kCloughPenzien) {
-    text += ", wf " + num(o.clough_penzien.omega_f_rad_per_s) + " rad/s zf " + num(o.clough_penzien.zeta_f);
+    text += ", wf " + short_text_of(o.clough_penzien.omega_f_rad_per_s) + " rad/s zf " +
+            short_text_of(o.clough_penzien.zeta_f);
   }
   switch (o.envelope) {
     case EnvelopeKind::kStationary:
       text += "; stationary";
       break;
     case EnvelopeKind::kJenningsHousnerTsai:
-      text += "; Jennings-Housner-Tsai envelope t1 " + num(o.jennings_housner_tsai.rise_end_s) + " s t2 " +
-              num(o.jennings_housner_tsai.strong_end_s) + " s c " + num(o.jennings_housner_tsai.decay_rate_per_s) +
-              " 1/s";
+      text += "; Jennings-Housner-Tsai envelope t1 " + short_text_of(o.jennings_housner_tsai.rise_end_s) + " s t2 " +
+              short_text_of(o.jennings_housner_tsai.strong_end_s) + " s c " +
+              short_text_of(o.jennings_housner_tsai.decay_rate_per_s) + " 1/s";
       break;
     case EnvelopeKind::kShinozukaSato:
-      text += "; Shinozuka-Sato envelope a " + num(o.shinozuka_sato.a_per_s) + " 1/s b " +
-              num(o.shinozuka_sato.b_per_s) + " 1/s";
+      text += "; Shinozuka-Sato envelope a " + short_text_of(o.shinozuka_sato.a_per_s) + " 1/s b " +
+              short_text_of(o.shinozuka_sato.b_per_s) + " 1/s";
       break;
     case EnvelopeKind::kGavin:
-      text +=
-          "; Gavin envelope t0 " + num(o.gavin.t0_s) + " s aa " + num(o.gavin.aa) + " ta " + num(o.gavin.ta_s) + " s";
+      text += "; Gavin envelope t0 " + short_text_of(o.gavin.t0_s) + " s aa " + short_text_of(o.gavin.aa) + " ta " +
+              short_text_of(o.gavin.ta_s) + " s";
       break;
   }
   text += "; seed " + std::to_string(o.seed);

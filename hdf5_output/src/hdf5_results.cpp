@@ -21,19 +21,19 @@ using detail::number_attribute;
 using detail::string_attribute;
 using detail::string_dataset;
 
-// One extendible column: its dataset, the type it holds and the values waiting to be written.
-struct Column {
-  hid_t set = -1;
-  bool integer = false;
-  std::function<double(const StepRecord&)> real;
-  std::function<std::int64_t(const StepRecord&)> whole;
-  std::vector<double> reals;
-  std::vector<std::int64_t> wholes;
-};
-
 }  // namespace
 
 class Hdf5Results::RunWriter final : public coordinator::RecordObserver {
+  // One extendible column: its dataset, the type it holds and the values waiting to be written.
+  struct Column {
+    hid_t set = -1;
+    bool integer = false;
+    std::function<double(const StepRecord&)> real;
+    std::function<std::int64_t(const StepRecord&)> whole;
+    std::vector<double> reals;
+    std::vector<std::int64_t> wholes;
+  };
+
  public:
   RunWriter(Hdf5Results& file, hid_t root, const Hdf5RunLayout& layout) : file_(file) {
     const std::string where = file.path_.string();

@@ -2,16 +2,12 @@
 
 #include <arpa/inet.h>
 
-#include <chrono>
 #include <sstream>
 #include <stdexcept>
 
+#include "steady_seconds.h"
+
 namespace rpsd::opensees {
-namespace {
-
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-}  // namespace
 
 std::optional<std::uint32_t> parse_ipv4(std::string_view text) {
   const std::string copy(text);
@@ -73,9 +69,9 @@ std::string PeerAllowList::text() const {
 std::optional<GenericClientSession> wait_for_client(TcpListener& listener, const GateOptions& options,
                                                     GateReport& report,
                                                     const std::function<void(const std::string&)>& note) {
-  const double deadline = now_s() + options.accept_timeout_s;
+  const double deadline = steady_now_s() + options.accept_timeout_s;
   for (;;) {
-    const double left = deadline - now_s();
+    const double left = deadline - steady_now_s();
     if (left <= 0.0 || options.session.stop.requested()) return std::nullopt;
     std::optional<TcpStream> stream = listener.accept(left, {}, options.session.stop);
     if (!stream) return std::nullopt;

@@ -17,10 +17,10 @@
 #include <stdexcept>
 #include <thread>
 
+#include "steady_seconds.h"
+
 namespace rpsd::opensees {
 namespace {
-
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 enum class Wait : std::uint8_t { kReady, kTimeout, kStopped };
 
@@ -32,7 +32,7 @@ Wait wait_for(int fd, short events, double deadline_s, const StopRequest& stop) 
     if (stop.requested()) return Wait::kStopped;
     int timeout_ms = -1;
     if (deadline_s >= 0.0) {
-      const double left = deadline_s - now_s();
+      const double left = deadline_s - steady_now_s();
       if (left <= 0.0) return Wait::kTimeout;
       timeout_ms = static_cast<int>(std::ceil(left * 1000.0));
     }
@@ -130,7 +130,7 @@ void TcpStream::close() noexcept {
 
 TcpStream TcpStream::connect(const std::string& host, std::uint16_t port, double timeout_s, StreamOptions options) {
   const sockaddr_in to = resolve(host, port);
-  const double deadline = now_s() + timeout_s;
+  const double deadline = steady_now_s() + timeout_s;
   int last_error = 0;
   for (;;) {
     const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
@@ -138,7 +138,7 @@ TcpStream TcpStream::connect(const std::string& host, std::uint16_t port, double
     if (::connect(fd, reinterpret_cast<const sockaddr*>(&to), sizeof to) == 0) return TcpStream(fd, options);
     last_error = errno;
     ::close(fd);
-    if (now_s() >= deadline) break;
+    if (steady_now_s() >= deadline) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   throw std::runtime_error("no OpenSees answered at " + address_text(to) + " within " + std::to_string(timeout_s) +
@@ -149,7 +149,7 @@ IoStatus TcpStream::read_exact(std::span<std::byte> buffer, double first_byte_ti
                                const StopRequest& stop) noexcept {
   if (fd_ < 0) return IoStatus::kError;
   std::size_t done = 0;
-  double deadline = first_byte_timeout_s < 0.0 ? -1.0 : now_s() + first_byte_timeout_s;
+  double deadline = first_byte_timeout_s < 0.0 ? -1.0 : steady_now_s() + first_byte_timeout_s;
   while (done < buffer.size()) {
     const Wait waited = wait_for(fd_, POLLIN, deadline, stop);
     if (waited == Wait::kStopped) return IoStatus::kStopped;
@@ -160,7 +160,7 @@ IoStatus TcpStream::read_exact(std::span<std::byte> buffer, double first_byte_ti
       if (errno == EINTR || errno == EAGAIN) continue;
       return IoStatus::kError;
     }
-    if (done == 0) deadline = rest_timeout_s < 0.0 ? -1.0 : now_s() + rest_timeout_s;
+    if (done == 0) deadline = rest_timeout_s < 0.0 ? -1.0 : steady_now_s() + rest_timeout_s;
     done += static_cast<std::size_t>(n);
   }
   if (options_.low_latency) {
@@ -174,7 +174,7 @@ IoStatus TcpStream::read_exact(std::span<std::byte> buffer, double first_byte_ti
 
 IoStatus TcpStream::write_all(std::span<const std::byte> bytes, double timeout_s, const StopRequest& stop) noexcept {
   if (fd_ < 0) return IoStatus::kError;
-  const double deadline = timeout_s < 0.0 ? -1.0 : now_s() + timeout_s;
+  const double deadline = timeout_s < 0.0 ? -1.0 : steady_now_s() + timeout_s;
   std::size_t done = 0;
   while (done < bytes.size()) {
     // Never blocking in send: a peer that reads nothing fills the socket, and the wait for
@@ -220,7 +220,7 @@ TcpListener::~TcpListener() {
 }
 
 std::optional<TcpStream> TcpListener::accept(double timeout_s, StreamOptions options, const StopRequest& stop) {
-  const double deadline = timeout_s < 0.0 ? -1.0 : now_s() + timeout_s;
+  const double deadline = timeout_s < 0.0 ? -1.0 : steady_now_s() + timeout_s;
   for (;;) {
     if (wait_for(fd_, POLLIN, deadline, stop) != Wait::kReady) return std::nullopt;
     const int fd = ::accept4(fd_, nullptr, nullptr, SOCK_CLOEXEC);

@@ -14,11 +14,6 @@ namespace rpsd::operator_commands {
 
 namespace {
 
-std::int64_t unix_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 bool names_security(const std::string& xml) { return xml.find("<Security") != std::string::npos; }
 
 std::string file_text(std::string path) {

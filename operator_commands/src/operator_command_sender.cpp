@@ -26,13 +26,6 @@ const char* operator_action_name(OperatorAction action) {
   return "unknown";
 }
 
-namespace {
-std::int64_t unix_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-}  // namespace
-
 struct OperatorCommandSender::Impl {
   Impl(const OperatorLinkConfig& c, std::string name)
       : config(c), sender_name(std::move(name)), participant(c.domain_id, c.dds_config) {

@@ -2,11 +2,19 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
+#include <cstdint>
 
 #include "rpsd/operator_commands/operator_command.h"
 #include "rpsd_operator.h"
 
 namespace rpsd::operator_commands {
+
+// A command's send time and a sequence's start: the wall clock, which both hosts share.
+inline std::int64_t unix_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
 
 inline void to_wire(const OperatorCommand& c, rpsd_operator_Command& w) {
   w.test_id = c.test_id;

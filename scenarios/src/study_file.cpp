@@ -164,7 +164,7 @@ void adopt_absolute_paths(YAML::Node sweep, const YAML::Node& one_case) {
 }
 
 // Shortest text that reads back as the same double.
-std::string number_text(double v) {
+std::string round_trip_text(double v) {
   char buffer[32];
   const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
   return std::string(buffer, end);
@@ -203,19 +203,19 @@ studies::StudyDocument read_sweep(const std::string& text, const std::vector<Ove
   for (std::size_t j = 0; j < n1; ++j) {
     for (std::size_t i = 0; i < n0; ++i) {
       std::vector<Override> overrides{
-          {result.sweep[0].key_path, number_text(result.sweep[0].values[i]), "sweep", Override::Kind::kSet}};
+          {result.sweep[0].key_path, round_trip_text(result.sweep[0].values[i]), "sweep", Override::Kind::kSet}};
       std::vector<double> values{result.sweep[0].values[i]};
       if (result.sweep.size() > 1) {
         overrides.push_back(
-            {result.sweep[1].key_path, number_text(result.sweep[1].values[j]), "sweep", Override::Kind::kSet});
+            {result.sweep[1].key_path, round_trip_text(result.sweep[1].values[j]), "sweep", Override::Kind::kSet});
         values.push_back(result.sweep[1].values[j]);
       }
       studies::StudyDocument one;
       try {
         one = read_case(text, file, command_line, "sweep", overrides, document, result.sweep_cases.empty(), external);
       } catch (const ConfigError& e) {
-        std::string where = result.sweep[0].key_path + " = " + number_text(values[0]);
-        if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + number_text(values[1]);
+        std::string where = result.sweep[0].key_path + " = " + round_trip_text(values[0]);
+        if (values.size() > 1) where += ", " + result.sweep[1].key_path + " = " + round_trip_text(values[1]);
         throw ConfigError(std::string(e.what()) + " (sweep case " + where + ")");
       }
       result.sweep_cases.push_back(std::get<hybrid_test::TestConfig>(one.study));
@@ -263,7 +263,7 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
       const auto value = number_at(document, also);
       if (!value || *value != p.nominal) {
         root.fail("monte_carlo", "parameters: " + also + " takes " + p.key_path +
-                                     "'s draw, so the scenario must give it " + number_text(p.nominal) + " too");
+                                     "'s draw, so the scenario must give it " + round_trip_text(p.nominal) + " too");
       }
     }
   }
@@ -272,9 +272,9 @@ studies::StudyDocument read_monte_carlo(const std::string& text, const std::vect
     std::vector<Override> overrides;
     for (std::size_t i = 0; i < config.parameters.size(); ++i) {
       overrides.push_back(
-          {config.parameters[i].key_path, number_text(draws[run][i]), "monte_carlo", Override::Kind::kSet});
+          {config.parameters[i].key_path, round_trip_text(draws[run][i]), "monte_carlo", Override::Kind::kSet});
       for (const auto& also : config.parameters[i].also_key_paths) {
-        overrides.push_back({also, number_text(draws[run][i]), "monte_carlo", Override::Kind::kSet});
+        overrides.push_back({also, round_trip_text(draws[run][i]), "monte_carlo", Override::Kind::kSet});
       }
     }
     if (!config.noise_seed_key.empty()) {

@@ -13,7 +13,7 @@ namespace {
 // Tustin coefficients depend on it.
 constexpr double kPeriodTolerance = 1e-9;
 
-PidGains read_controller(config::Source& section) {
+PidGains read_pid_gains(config::Source& section) {
   using config::Number;
   PidGains g;
   g.proportional = section.number_or("proportional_gain", 0.0, Number::non_negative("", "Kp, m/m"));
@@ -50,7 +50,7 @@ FeedbackControlledPlantParameters FeedbackControlledPlantParameters::read(config
     p.plant = TransferFunctionPlantParameters::read(section, specimen_stiffness_n_per_m);
   }
   if (const auto c = section.optional_section("controller", "the servo controller's PID on the tracking error")) {
-    p.controller = read_controller(*c);
+    p.controller = read_pid_gains(*c);
   }
   // Its `converters` are read with every plant's (read_plant_config).
   try {

@@ -8,7 +8,7 @@
 namespace rpsd::servo {
 namespace {
 
-void require_non_negative(double value, const char* key) {
+void require_gain_non_negative(double value, const char* key) {
   if (!(std::isfinite(value) && value >= 0.0)) {
     throw std::invalid_argument(std::string(key) + ": must be finite and zero or positive");
   }
@@ -17,10 +17,10 @@ void require_non_negative(double value, const char* key) {
 }  // namespace
 
 void PidGains::validate() const {
-  require_non_negative(proportional, "proportional");
-  require_non_negative(integral_per_s, "integral_per_s");
-  require_non_negative(derivative_s, "derivative_s");
-  require_non_negative(derivative_filter_time_s, "derivative_filter_time_s");
+  require_gain_non_negative(proportional, "proportional");
+  require_gain_non_negative(integral_per_s, "integral_per_s");
+  require_gain_non_negative(derivative_s, "derivative_s");
+  require_gain_non_negative(derivative_filter_time_s, "derivative_filter_time_s");
   if (derivative_s > 0.0 && derivative_filter_time_s == 0.0) {
     throw std::invalid_argument("derivative_filter_time_s: must be positive when derivative_s is");
   }

@@ -8,11 +8,11 @@
 namespace rpsd::servo {
 
 namespace {
-void require(bool ok, const char* key, const char* what) {
+void require_converter(bool ok, const char* key, const char* what) {
   if (!ok) throw std::invalid_argument(std::string("signal converter: ") + key + ": " + what);
 }
-void require_non_negative(double v, const char* key) {
-  require(std::isfinite(v) && v >= 0.0, key, "must be a finite number, zero or positive");
+void require_converter_non_negative(double v, const char* key) {
+  require_converter(std::isfinite(v) && v >= 0.0, key, "must be a finite number, zero or positive");
 }
 constexpr int kMaxBits = 30;
 
@@ -42,19 +42,19 @@ Codes codes_of(const SignalConverterParameters& p) {
 }  // namespace
 
 void SignalConverterParameters::validate() const {
-  require_non_negative(units_per_volt, "units_per_volt");
-  require_non_negative(noise_rms_v, "noise_rms_v");
-  require_non_negative(saturation_v, "saturation_v");
-  require_non_negative(full_scale_v, "full_scale_v");
-  require(bits >= 0 && bits <= kMaxBits, "bits", "must be from 0 to 30");
-  require(bits > 0 || full_scale_v == 0.0, "full_scale_v", "set without bits");
-  require(bits == 0 || full_scale_v > 0.0 || saturation_v > 0.0, "bits",
-          "a converter needs full_scale_v or saturation_v");
+  require_converter_non_negative(units_per_volt, "units_per_volt");
+  require_converter_non_negative(noise_rms_v, "noise_rms_v");
+  require_converter_non_negative(saturation_v, "saturation_v");
+  require_converter_non_negative(full_scale_v, "full_scale_v");
+  require_converter(bits >= 0 && bits <= kMaxBits, "bits", "must be from 0 to 30");
+  require_converter(bits > 0 || full_scale_v == 0.0, "full_scale_v", "set without bits");
+  require_converter(bits == 0 || full_scale_v > 0.0 || saturation_v > 0.0, "bits",
+                    "a converter needs full_scale_v or saturation_v");
   if (units_per_volt == 0.0) {
     // Without a scale there are no volts for the other stages to act on.
-    require(noise_rms_v == 0.0, "noise_rms_v", "needs units_per_volt");
-    require(saturation_v == 0.0, "saturation_v", "needs units_per_volt");
-    require(bits == 0, "bits", "needs units_per_volt");
+    require_converter(noise_rms_v == 0.0, "noise_rms_v", "needs units_per_volt");
+    require_converter(saturation_v == 0.0, "saturation_v", "needs units_per_volt");
+    require_converter(bits == 0, "bits", "needs units_per_volt");
   }
 }
 

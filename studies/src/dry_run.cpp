@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "large_models.h"
 #include "rpsd/compensation/cross_correlation_delay.h"
 #include "rpsd/compensation/delay_theory.h"
 #include "rpsd/hybrid_test/actuator_links.h"
@@ -22,9 +23,6 @@
 
 namespace rpsd::studies {
 namespace {
-
-// A model beyond the dense eigen-solver: the stability of its lowest modes.
-constexpr Eigen::Index kLowestModesOfLargeModels = 10;
 
 // Signed delay of measured behind target (negative: ahead), searched over +-200 ms as the
 // run's summary does (coordinator/run_criteria.h), with the Pearson coefficient.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "large_models.h"
 #include "rpsd/hybrid_test/held_forces.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/servo/plant_factory.h"
@@ -18,9 +19,6 @@ namespace rpsd::studies {
 namespace {
 
 constexpr double kStandardGravity = 9.80665;
-
-// A model too large for the dense eigen-solver shows its lowest modes, found by the sparse one.
-constexpr Eigen::Index kLowestModesOfLargeModels = 10;
 
 // Every mode of a small model, the lowest of a large one; each one's damping phi' C phi / 2 w
 // from products with C as it is stored (no dense copy of a 100,000-DOF matrix).
