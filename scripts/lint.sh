@@ -27,8 +27,8 @@ cmake -S . -B build -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
 cmake --build build -j "$jobs" --target rpsd_transport >/dev/null  # the generated DDS header
 modules=$(cmake -P cmake/PrintModules.cmake 2>&1 | tr ' ' '|')
 # Each source, or in a unity build (RPSD_UNITY_BUILD, as CI builds) each module's one unit:
-# its checks then run over the headers once, not once per source (a third of the time; the one
-# check that judges only a unit's own file, misc-unused-using-decls, is left to per-source runs).
+# the checks then walk the headers once a module, not once a source (docs/architecture.md);
+# misc-unused-using-decls, which judges only a unit's own file, is left to per-source runs.
 units="$PWD/(($modules|apps)/|build/($modules|apps)/.*/Unity/)"
 # -Wno-ignored-optimization-argument: GCC-only flags in the compile commands (transport/CMakeLists.txt:
 # multi_site_link.cpp without speculative devirtualization) are not clang's to judge.
