@@ -9,8 +9,9 @@ function(rpsd_warnings target)
     $<$<BOOL:${RPSD_WARNINGS_AS_ERRORS}>:-Werror>)
 endfunction()
 
-# RPSD_UNITY_BUILD (CI): the target's sources compiled as one translation unit, so their
-# headers are parsed once, by the compiler and by clang-tidy.
+# RPSD_UNITY_BUILD (CI): the target's sources (a module library, the program, a test program)
+# compiled as one translation unit, so their headers are parsed once, by the compiler and by
+# clang-tidy.
 function(rpsd_unity target)
   if(RPSD_UNITY_BUILD)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)
@@ -44,6 +45,7 @@ endfunction()
 function(rpsd_add_test name)
   cmake_parse_arguments(T "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${T_SOURCES})
+  rpsd_unity(${name})
   target_link_libraries(${name} PRIVATE ${T_DEPS} GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE RPSD_TEST_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   rpsd_warnings(${name})

@@ -8,11 +8,10 @@
 
 #include "rpsd/compensation/adaptive_time_series_compensator.h"
 #include "test_signals.h"
+#include "test_time_step.h"
 
 namespace rpsd::compensation {
 namespace {
-
-constexpr double kDt = 1.0 / 1024.0;
 
 // x_m[n] = u[n - m]: the ideal delay plant in this module's pairing.
 struct DelayLine {

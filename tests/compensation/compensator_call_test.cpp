@@ -8,11 +8,10 @@
 
 #include "rpsd/compensation/compensator_call.h"
 #include "rpsd/compensation/discrete_phase_lead.h"
+#include "test_time_step.h"
 
 namespace rpsd::compensation {
 namespace {
-
-constexpr double kDt = 1.0 / 1024.0;
 
 // Another kind: doubles the target and keeps what it observes.
 class Doubling final : public CommandCompensator {

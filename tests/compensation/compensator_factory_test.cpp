@@ -12,7 +12,7 @@
 namespace rpsd::compensation {
 namespace {
 
-constexpr double kDt = 1.0 / 2048.0;
+constexpr double kFactoryStepS = 1.0 / 2048.0;
 
 std::vector<CompensatorConfig> all_configs() {
   AdaptiveInverseCompensationParameters adaptive_inverse;
@@ -27,7 +27,7 @@ std::vector<CompensatorConfig> all_configs() {
 
 TEST(CompensatorFactory, MakesTheSchemeTheConfigNames) {
   for (const CompensatorConfig& config : all_configs()) {
-    const auto c = make_compensator(config, kDt);
+    const auto c = make_compensator(config, kFactoryStepS);
     EXPECT_EQ(c->name(), compensator_name(config));
   }
   EXPECT_EQ(compensator_name(PassThroughParameters{}), "none");
@@ -36,7 +36,7 @@ TEST(CompensatorFactory, MakesTheSchemeTheConfigNames) {
 
 TEST(CompensatorFactory, EveryCompensatorHoldsAConstantTargetAfterReset) {
   for (const CompensatorConfig& config : all_configs()) {
-    const auto c = make_compensator(config, kDt);
+    const auto c = make_compensator(config, kFactoryStepS);
     c->reset(0.0254);
     for (int n = 0; n < 3000; ++n) {
       const double u = c->command(0.0254);
@@ -53,11 +53,11 @@ TEST(CompensatorFactory, EveryCompensatorLeadsASlowRampByItsCompensatedDelay) {
   const double v = 0.01;  // m/s
   for (const CompensatorConfig& config : all_configs()) {
     if (std::holds_alternative<AdaptiveInverseCompensationParameters>(config)) continue;  // adapts
-    const auto c = make_compensator(config, kDt);
+    const auto c = make_compensator(config, kFactoryStepS);
     c->reset(0.0);
     double u = 0.0, x = 0.0;
     for (int n = 0; n < 20000; ++n) {
-      x = v * n * kDt;
+      x = v * n * kFactoryStepS;
       u = c->command(x);
     }
     const double lead = c->name() == "adaptive_time_series"
@@ -69,7 +69,7 @@ TEST(CompensatorFactory, EveryCompensatorLeadsASlowRampByItsCompensatedDelay) {
 
 TEST(CompensatorFactory, ReportsConfigurationErrorsPrecisely) {
   try {
-    make_compensator(PolynomialExtrapolationParameters{7, 0.01}, kDt);
+    make_compensator(PolynomialExtrapolationParameters{7, 0.01}, kFactoryStepS);
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "polynomial extrapolation: order: must be 0, 1, 2 or 3, got 7");

@@ -12,7 +12,7 @@
 namespace rpsd::compensation {
 namespace {
 
-constexpr double kDt = 1.0 / 4096.0;
+constexpr double kCorrelationStepS = 1.0 / 4096.0;
 constexpr int kWindow = 4096;  // 1 s
 
 // Tones at whole multiples of 1 Hz, so each is periodic over the 1 s window: the correlation is
@@ -26,8 +26,8 @@ struct Records {
 Records delayed(double delay_samples, int length, double gain = 1.0, double offset = 0.0) {
   Records r;
   for (int k = 0; k < length; ++k) {
-    r.target.push_back(kSignal(k * kDt));
-    r.measured.push_back(offset + gain * kSignal((k - delay_samples) * kDt));
+    r.target.push_back(kSignal(k * kCorrelationStepS));
+    r.measured.push_back(offset + gain * kSignal((k - delay_samples) * kCorrelationStepS));
   }
   return r;
 }
@@ -91,7 +91,7 @@ TEST(CrossCorrelationDelay, OnlineSlidingWindowAgreesWithOfflineAndTracksAChange
     const int n_total = 6 * kWindow;
     for (int k = 0; k < n_total; ++k) {
       const double d = k < 3 * kWindow ? 12.3 : 26.6;
-      const double t = kSignal(k * kDt), m = kSignal((k - d) * kDt);
+      const double t = kSignal(k * kCorrelationStepS), m = kSignal((k - d) * kCorrelationStepS);
       online.update(t, m);
       if (k == kWindow + 48) {
         ASSERT_TRUE(online.ready());

@@ -7,12 +7,10 @@
 
 #include "rpsd/compensation/discrete_phase_lead.h"
 #include "test_signals.h"
+#include "test_time_step.h"
 
 namespace rpsd::compensation {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDt = 1.0 / 1024.0;
 
 TEST(DiscretePhaseLead, SimulatedResponseEqualsTheBilinearMapOfTheContinuousNetwork) {
   // H(e^{j w dt}) = G_c(j (2/dt) tan(w dt / 2)) at every frequency up to near Nyquist.
@@ -34,7 +32,7 @@ TEST(DiscretePhaseLead, AgreesWithTheContinuousNetworkAtLowFrequency) {
   c.configure(kDt);
   const double lead = p.network.low_frequency_lead_s();
   for (double f : {0.5, 1.58, 2.0, 5.0, 8.0}) {
-    const double w = 2.0 * kPi * f;
+    const double w = 2.0 * std::numbers::pi * f;
     const std::complex<double> measured = testing::simulated_response(c, w * kDt, 4000);
     const std::complex<double> continuous = phase_lead_response(p.network, w);
     const double bound = lead * w * std::pow(w * kDt, 2) / 12.0 * 1.01;
@@ -49,7 +47,7 @@ TEST(DiscretePhaseLead, KeepsTheLowFrequencyLeadOfTheDesignRule) {
     const auto p = DiscretePhaseLeadParameters::for_delay(0.05, a);
     DiscretePhaseLeadCompensator c(p);
     c.configure(kDt);
-    const double w = 2.0 * kPi * 0.05;  // far below the pole
+    const double w = 2.0 * std::numbers::pi * 0.05;  // far below the pole
     const double phase = std::arg(testing::simulated_response(c, w * kDt, 20000));
     EXPECT_NEAR(phase / w, 0.05, 0.05 * std::pow(w * 0.05 * a, 2)) << "a = " << a;
     EXPECT_NEAR(c.compensated_delay_s(), 0.05, 1e-15);
@@ -61,7 +59,7 @@ TEST(DiscretePhaseLead, PrewarpedIsExactAtItsFrequency) {
   p.prewarp_frequency_hz = 1.58;
   DiscretePhaseLeadCompensator c(p);
   c.configure(kDt);
-  const double w = 2.0 * kPi * 1.58;
+  const double w = 2.0 * std::numbers::pi * 1.58;
   const std::complex<double> measured = testing::simulated_response(c, w * kDt, 4000);
   EXPECT_NEAR(std::abs(measured - phase_lead_response(p.network, w)), 0.0, 1e-11);
   // Its low-frequency lead is scaled by (w_p dt / 2) / tan(w_p dt / 2).

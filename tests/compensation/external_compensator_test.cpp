@@ -7,11 +7,10 @@
 #include <vector>
 
 #include "rpsd/compensation/compensator_factory.h"
+#include "test_time_step.h"
 
 namespace rpsd::compensation {
 namespace {
-
-constexpr double kDt = 1.0 / 1024.0;
 
 // A running sum of its targets (state between calls), throwing on its `throw_at`-th command.
 class SummingHost final : public HostCompensator {

@@ -9,20 +9,19 @@
 
 #include "rpsd/compensation/frequency_evaluation_index.h"
 #include "test_signals.h"
+#include "test_time_step.h"
 
 namespace rpsd::compensation {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDt = 1.0 / 1024.0;
 constexpr int kN = 4096;  // 4 s: bins every 0.25 Hz
 
-struct Records {
+struct InOutRecords {
   std::vector<double> in, out;
 };
 
-Records make(const testing::MultiSine& s, double delay_s, double gain, int n = kN, double offset = 0.0) {
-  Records r;
+InOutRecords make(const testing::MultiSine& s, double delay_s, double gain, int n = kN, double offset = 0.0) {
+  InOutRecords r;
   for (int k = 0; k < n; ++k) {
     r.in.push_back(offset + s(k * kDt));
     r.out.push_back(offset + gain * s(k * kDt - delay_s));
@@ -35,18 +34,18 @@ TEST(FrequencyEvaluationIndex, PureDelayOfOneToneIsRecoveredExactly) {
   // FEI = e^{-j w tau}, f_eq = f and the delay is tau.
   const testing::MultiSine tone{{0.01}, {1.5}, {0.4}};
   const double tau = 0.0173;  // not a whole number of samples
-  const Records r = make(tone, tau, 1.0);
+  const InOutRecords r = make(tone, tau, 1.0);
   const FrequencyEvaluationIndex fei = frequency_evaluation_index(r.in, r.out, kDt);
   ASSERT_TRUE(fei.valid);
   EXPECT_NEAR(fei.amplitude, 1.0, 1e-9);
-  EXPECT_NEAR(fei.phase_rad, -2.0 * kPi * 1.5 * tau, 1e-9);
+  EXPECT_NEAR(fei.phase_rad, -2.0 * std::numbers::pi * 1.5 * tau, 1e-9);
   EXPECT_NEAR(fei.equivalent_frequency_hz, 1.5, 1e-9);
   EXPECT_NEAR(fei.delay_s, tau, 1e-9);
 }
 
 TEST(FrequencyEvaluationIndex, AmplitudeScalingGivesTheGainAndNoPhase) {
   const testing::MultiSine s{{0.01, 0.004}, {1.0, 3.5}, {0.0, 1.0}};
-  const Records r = make(s, 0.0, 0.7);
+  const InOutRecords r = make(s, 0.0, 0.7);
   const FrequencyEvaluationIndex fei = frequency_evaluation_index(r.in, r.out, kDt);
   EXPECT_NEAR(fei.amplitude, 0.7, 1e-12);
   EXPECT_NEAR(fei.phase_rad, 0.0, 1e-12);
@@ -57,22 +56,24 @@ TEST(FrequencyEvaluationIndex, TwoTonesCombineAsTheirPowerWeightedSum) {
   // FEI = sum_i A_i^2 g e^{-j w_i tau} / sum_i A_i^2, f_eq = sum_i A_i^2 f_i / sum_i A_i^2.
   const testing::MultiSine s{{0.01, 0.005}, {1.25, 4.0}, {0.2, 2.2}};
   const double tau = 0.021, g = 1.1;
-  const Records r = make(s, tau, g);
+  const InOutRecords r = make(s, tau, g);
   const FrequencyEvaluationIndex fei = frequency_evaluation_index(r.in, r.out, kDt);
   const double p1 = 1e-4, p2 = 2.5e-5;
-  const std::complex<double> expected =
-      g * (p1 * std::polar(1.0, -2.0 * kPi * 1.25 * tau) + p2 * std::polar(1.0, -2.0 * kPi * 4.0 * tau)) / (p1 + p2);
+  const std::complex<double> expected = g *
+                                        (p1 * std::polar(1.0, -2.0 * std::numbers::pi * 1.25 * tau) +
+                                         p2 * std::polar(1.0, -2.0 * std::numbers::pi * 4.0 * tau)) /
+                                        (p1 + p2);
   const double f_eq = (p1 * 1.25 + p2 * 4.0) / (p1 + p2);
   EXPECT_NEAR(std::abs(fei.index - expected), 0.0, 1e-9);
   EXPECT_NEAR(fei.equivalent_frequency_hz, f_eq, 1e-9);
-  EXPECT_NEAR(fei.delay_s, -std::arg(expected) / (2.0 * kPi * f_eq), 1e-9);
+  EXPECT_NEAR(fei.delay_s, -std::arg(expected) / (2.0 * std::numbers::pi * f_eq), 1e-9);
   // Close to, not equal to, tau: the phase of a weighted sum of unit phasors.
   EXPECT_NEAR(fei.delay_s, tau, 0.02 * tau);
 }
 
 TEST(FrequencyEvaluationIndex, MeanRemovalIgnoresAnOffset) {
   const testing::MultiSine tone{{0.01}, {2.0}, {0.0}};
-  const Records r = make(tone, 0.01, 1.0, kN, 0.03);
+  const InOutRecords r = make(tone, 0.01, 1.0, kN, 0.03);
   const FrequencyEvaluationIndex kept = frequency_evaluation_index(r.in, r.out, kDt);
   const FrequencyEvaluationIndex removed = frequency_evaluation_index(r.in, r.out, kDt, true);
   EXPECT_NEAR(removed.delay_s, 0.01, 1e-9);
@@ -109,11 +110,11 @@ TEST(FrequencyEvaluationIndex, OnlineWindowMatchesOfflineOnTheSameSamples) {
   EXPECT_NEAR(std::abs(online.latest().index - offline.index), 0.0, 1e-12);
   EXPECT_NEAR(online.latest().delay_s, offline.delay_s, 1e-12);
   // Both tones are on bins of the 2 s window: a two-tone closed form again.
-  EXPECT_NEAR(
-      offline.amplitude,
-      std::abs(1e-4 * std::polar(1.0, -2.0 * kPi * 1.5 * tau) + 9e-6 * std::polar(1.0, -2.0 * kPi * 6.0 * tau)) /
-          (1e-4 + 9e-6),
-      1e-9);
+  EXPECT_NEAR(offline.amplitude,
+              std::abs(1e-4 * std::polar(1.0, -2.0 * std::numbers::pi * 1.5 * tau) +
+                       9e-6 * std::polar(1.0, -2.0 * std::numbers::pi * 6.0 * tau)) /
+                  (1e-4 + 9e-6),
+              1e-9);
 }
 
 TEST(FrequencyEvaluationIndex, RejectsBadInput) {

@@ -10,12 +10,10 @@
 #include "rpsd/compensation/inverse_compensator.h"
 #include "rpsd/compensation/polynomial_extrapolation.h"
 #include "test_signals.h"
+#include "test_time_step.h"
 
 namespace rpsd::compensation {
 namespace {
-
-constexpr double kDt = 1.0 / 1024.0;
-constexpr double kPi = std::numbers::pi;
 
 // The actuator model of Chen & Ricles: alpha x_m[k+1] - (alpha - 1) x_m[k] = u[k].
 struct ChenRiclesActuator {
@@ -89,7 +87,7 @@ AdaptiveRun run_adaptive(const AdaptiveInverseCompensationParameters& p, double 
   c.configure(kDt);
   c.reset(0.0);
   ChenRiclesActuator actuator{true_alpha};
-  const double X = 0.01, w = 2.0 * kPi * 1.0;
+  const double X = 0.01, w = 2.0 * std::numbers::pi * 1.0;
   const int steps = static_cast<int>(seconds / kDt);
   const int cycle = 1024;
   AdaptiveRun r{0.0, 0.0, 1e9, -1e9, 0.0, 0.0, 0.0};
@@ -129,7 +127,7 @@ TEST(AdaptiveInverseCompensator, ConvergesToTheActuatorsAlpha) {
   testing::record("true_delay_s", true_delay);
   EXPECT_NEAR(r.final_delay_s, true_delay, 0.005 * true_delay);
   // TI growth per cycle ~ pi X^2 sin(w residual): near zero at the end.
-  EXPECT_LT(std::abs(r.ti_growth_last_cycle_m2), 3.14e-4 * std::sin(2.0 * kPi * 0.005 * true_delay));
+  EXPECT_LT(std::abs(r.ti_growth_last_cycle_m2), 3.14e-4 * std::sin(2.0 * std::numbers::pi * 0.005 * true_delay));
   EXPECT_LE(r.largest_step_s, p.max_delay_rate * kDt * (1.0 + 1e-9));
 }
 

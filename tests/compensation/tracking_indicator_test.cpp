@@ -11,12 +11,10 @@
 namespace rpsd::compensation {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // TI per cycle over about `cycles` cycles of d_c = X sin(w t), d_m = X sin(w (t - tau)) at
 // step dt: TI after a whole number of steps divided by the cycles those steps cover.
 double ti_per_cycle(double X, double f_hz, double tau_s, double dt_s, int cycles) {
-  const double w = 2.0 * kPi * f_hz;
+  const double w = 2.0 * std::numbers::pi * f_hz;
   const long steps = std::lround(cycles / (f_hz * dt_s));
   TrackingIndicator ti;
   for (long n = 0; n <= steps; ++n) {
@@ -30,7 +28,7 @@ TEST(TrackingIndicator, GrowsByPiXSquaredSinWTauPerCycle) {
   const double X = 0.0125, f = 1.58, dt = 1e-5;
   for (double tau : {0.002, 0.01, 0.081}) {
     const double per_cycle = ti_per_cycle(X, f, tau, dt, 5);
-    const double expected = kPi * X * X * std::sin(2.0 * kPi * f * tau);
+    const double expected = std::numbers::pi * X * X * std::sin(2.0 * std::numbers::pi * f * tau);
     // Sampling shrinks it by sin(w dt) / (w dt) = 1 - 1.6e-9 here.
     EXPECT_NEAR(per_cycle, expected, 1e-8 * expected) << "tau " << tau;
     EXPECT_GT(per_cycle, 0.0);
@@ -40,14 +38,14 @@ TEST(TrackingIndicator, GrowsByPiXSquaredSinWTauPerCycle) {
 TEST(TrackingIndicator, IsNegativeForALead) {
   const double X = 0.01, f = 2.0, dt = 1e-5, tau = -0.015;
   const double per_cycle = ti_per_cycle(X, f, tau, dt, 3);
-  const double expected = kPi * X * X * std::sin(2.0 * kPi * f * tau);
+  const double expected = std::numbers::pi * X * X * std::sin(2.0 * std::numbers::pi * f * tau);
   EXPECT_LT(per_cycle, 0.0);
   EXPECT_NEAR(per_cycle, expected, 1e-8 * std::abs(expected));
 }
 
 TEST(TrackingIndicator, SampledIncrementIsExactlyHalfXSquaredSinWTauSinWDt) {
   // TI+ - TI = 1/2 (d_c d_m+ - d_c+ d_m); for the two sinusoids that is constant.
-  const double X = 0.02, w = 2.0 * kPi * 3.0, tau = 0.02, dt = 1.0 / 512.0;
+  const double X = 0.02, w = 2.0 * std::numbers::pi * 3.0, tau = 0.02, dt = 1.0 / 512.0;
   TrackingIndicator ti;
   ti.update(0.0, X * std::sin(-w * tau));
   for (int n = 1; n <= 1000; ++n) {

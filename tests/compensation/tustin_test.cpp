@@ -12,8 +12,6 @@
 namespace rpsd::compensation {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Sorted by real part, then imaginary part.
 std::vector<std::complex<double>> sorted(std::vector<std::complex<double>> v) {
   std::sort(v.begin(), v.end(),
@@ -42,7 +40,7 @@ TEST(Tustin, TheBenchmarksLeadLagMapsItsZeroAndPoleByTheBilinearFormula) {
 }
 
 TEST(Tustin, ASecondOrderLowPassHasItsPolesMappedAndItsZerosAtMinusOne) {
-  const double dt = 1.0 / 1024.0, K = 2.0 / dt, w = 2.0 * kPi * 20.0, zeta = 0.7;
+  const double dt = 1.0 / 1024.0, K = 2.0 / dt, w = 2.0 * std::numbers::pi * 20.0, zeta = 0.7;
   const DiscreteFilterCoefficients f = tustin({{w * w}, {1.0, 2.0 * zeta * w, w * w}}, dt);
   const std::complex<double> p(-zeta * w, w * std::sqrt(1.0 - zeta * zeta));
   expect_roots(f.a, {image(p, K), image(std::conj(p), K)}, 1e-12);
@@ -55,7 +53,7 @@ TEST(Tustin, TheResponseAtWIsTheContinuousOneAtTheWarpedFrequency) {
   const ContinuousTransferFunction tf{{2.0, 3.0, 500.0}, {1.0, 40.0, 900.0, 2000.0}};
   const DiscreteFilterCoefficients f = tustin(tf, dt);
   for (double hz : {0.1, 5.0, 60.0, 700.0, 1900.0}) {
-    const double w = 2.0 * kPi * hz;
+    const double w = 2.0 * std::numbers::pi * hz;
     const std::complex<double> expected = evaluate(tf, {0.0, 2.0 / dt * std::tan(0.5 * w * dt)});
     // Rounding of the expanded polynomials (terms of K^3 = 5.5e11 that cancel): ~1e-9 relative.
     EXPECT_LT(std::abs(discrete_response(f, w, dt) - expected), 1e-8 * std::abs(expected)) << hz;
@@ -63,7 +61,7 @@ TEST(Tustin, TheResponseAtWIsTheContinuousOneAtTheWarpedFrequency) {
 }
 
 TEST(Tustin, PreWarpingMakesTheFilterExactAtItsFrequency) {
-  const double dt = 1.0 / 256.0, hz = 40.0, w = 2.0 * kPi * hz;
+  const double dt = 1.0 / 256.0, hz = 40.0, w = 2.0 * std::numbers::pi * hz;
   const ContinuousTransferFunction tf{{1.0, 0.0}, {1.0, 2.0 * 0.05 * w, w * w}};  // a resonance at 40 Hz
   const std::complex<double> exact = evaluate(tf, {0.0, w});
   EXPECT_LT(std::abs(discrete_response(tustin(tf, dt, hz), w, dt) - exact), 1e-9 * std::abs(exact));

@@ -24,7 +24,7 @@ using namespace hybrid_test;  // whole runs go through the assembly above the lo
 // The scenario at another rate, optionally without its compensator (whose order-3
 // extrapolation 5 ms ahead amplifies the start's discontinuity more the more steps 5 ms is).
 hybrid_test::TestConfig scenario_with_limits(const std::string& limits, int rate_hz = 1024, bool compensated = true) {
-  std::ifstream in(testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml");
+  std::ifstream in(rpsd::testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string anchor = "    restoring_force: stiffness_times_displacement\n";
   text.replace(text.find(anchor), anchor.size(), anchor + "    limits: " + limits + "\n");

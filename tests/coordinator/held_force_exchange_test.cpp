@@ -62,13 +62,13 @@ HeldForceChannel axial() {
   return h;
 }
 
-struct Exchange {
+struct MixedExchange {
   MixedLink link;
   std::unique_ptr<compensation::CommandCompensator> compensator =
       compensation::make_compensator(compensation::PassThroughParameters{}, 1.0 / 1024);
   std::unique_ptr<ExperimentalExchange> exchange;
 
-  explicit Exchange(std::vector<HeldForceChannel> held = {axial()}) {
+  explicit MixedExchange(std::vector<HeldForceChannel> held = {axial()}) {
     ExchangeParts parts;
     parts.link = &link;
     parts.compensators = {compensator.get()};
@@ -88,7 +88,7 @@ double ramp_n(double time_s) {
 }
 
 TEST(HeldForceExchange, IsSentInForceModeOnTheChannelAfterTheStructuresAndRampsAtItsRate) {
-  Exchange e;
+  MixedExchange e;
   EXPECT_EQ(e.exchange->channels(), 1);
   EXPECT_EQ(e.exchange->held_forces(), 1);
   for (const double t : {0.0, 0.25, 1.0, 1.989, 1.99, 2.5, 10.0}) {
@@ -104,7 +104,7 @@ TEST(HeldForceExchange, IsSentInForceModeOnTheChannelAfterTheStructuresAndRampsA
 }
 
 TEST(HeldForceExchange, TheHeldForceIsNotARestoringForceOfTheStructure) {
-  Exchange e;
+  MixedExchange e;
   ASSERT_EQ(e.to(0.001, 5.0), StepOutcome::kOk);
   ASSERT_EQ(e.exchange->specimen_forces().size(), 1);
   EXPECT_EQ(e.exchange->specimen_forces()[0], 250.0);
@@ -120,7 +120,7 @@ TEST(HeldForceExchange, TheHeldForceIsNotARestoringForceOfTheStructure) {
 // The loop writes the channels' part of its row in place (RecordLayout::Row): unpacked, the
 // row carries the held force's command, stroke and load cell as fill_channels writes them.
 TEST(HeldForceExchange, ARowWrittenInPlaceCarriesTheHeldForceAsARecordDoes) {
-  Exchange e;
+  MixedExchange e;
   ASSERT_EQ(e.to(0.001, 5.0), StepOutcome::kOk);
   const StepRecord got = expect_row_carries_the_record(*e.exchange);
   EXPECT_EQ(got.held, 1);
@@ -130,7 +130,7 @@ TEST(HeldForceExchange, ARowWrittenInPlaceCarriesTheHeldForceAsARecordDoes) {
 TEST(HeldForceExchange, ALoadCellBeyondItsForceLimitStopsNamingTheHeldForce) {
   HeldForceChannel h = axial();
   h.limits.max_force_error_n = 1.0e6;
-  Exchange wide({h});
+  MixedExchange wide({h});
   wide.link.force_error_n = -350.0e3;  // the first command (the force at rest) reads -351 kN
   EXPECT_EQ(wide.to(0.0, 0.0), StepOutcome::kLimit);
   const LimitStop& l = wide.exchange->limit_stop();
@@ -144,7 +144,7 @@ TEST(HeldForceExchange, ALoadCellBeyondItsForceLimitStopsNamingTheHeldForce) {
 }
 
 TEST(HeldForceExchange, APistonThatRunsUnderTheHeldForceStopsTheTest) {
-  Exchange e;
+  MixedExchange e;
   ASSERT_EQ(e.to(0.0, 0.5), StepOutcome::kOk);
   e.link.stroke_shift_m = 0.012;  // the specimen gives way: the piston runs past 10 mm (-1 mm + 12 mm)
   EXPECT_EQ(e.to(0.0, 0.51), StepOutcome::kRunAway);
@@ -155,7 +155,7 @@ TEST(HeldForceExchange, APistonThatRunsUnderTheHeldForceStopsTheTest) {
 }
 
 TEST(HeldForceExchange, AForceThatDoesNotFollowItsCommandStopsTheTest) {
-  Exchange e;
+  MixedExchange e;
   e.link.force_error_n = 19.9e3;
   ASSERT_EQ(e.to(0.0, 0.5), StepOutcome::kOk);
   e.link.force_error_n = 20.1e3;
@@ -170,14 +170,14 @@ TEST(HeldForceExchange, AForceThatDoesNotFollowItsCommandStopsTheTest) {
 TEST(HeldForceExchange, AForceCommandBeyondTheLimitIsNeverSent) {
   HeldForceChannel h = axial();
   h.force_at_rest_n = -400.0e3;  // what the jack already carries is beyond the limit
-  Exchange e({h});
+  MixedExchange e({h});
   EXPECT_EQ(e.to(0.0, 0.0), StepOutcome::kLimit);
   EXPECT_TRUE(e.link.sent.empty());
   EXPECT_EQ(e.exchange->limit_stop().kind, LimitStop::Kind::kForce);
 }
 
 TEST(HeldForceExchange, ANonFiniteReadingOfTheHeldChannelStopsTheTest) {
-  Exchange e;
+  MixedExchange e;
   e.link.stroke_shift_m = std::nan("");
   EXPECT_EQ(e.to(0.0, 0.1), StepOutcome::kNonFinite);
 }
@@ -185,16 +185,16 @@ TEST(HeldForceExchange, ANonFiniteReadingOfTheHeldChannelStopsTheTest) {
 TEST(HeldForceExchange, AHeldForceOffItsChannelOrWithoutARateIsRefused) {
   HeldForceChannel h = axial();
   h.channel = 2;
-  EXPECT_THROW(Exchange({h}), std::invalid_argument);
+  EXPECT_THROW(MixedExchange({h}), std::invalid_argument);
   h = axial();
   h.max_force_rate_n_per_s = 0.0;
-  EXPECT_THROW(Exchange({h}), std::invalid_argument);
+  EXPECT_THROW(MixedExchange({h}), std::invalid_argument);
   std::vector<HeldForceChannel> many;
   for (int k = 0; k < transport::kMaxChannels; ++k) {
     many.push_back(axial());
     many.back().channel = 1 + k;
   }
-  EXPECT_THROW(Exchange{many}, std::invalid_argument);  // 1 + 8 link channels
+  EXPECT_THROW(MixedExchange{many}, std::invalid_argument);  // 1 + 8 link channels
 }
 
 TEST(HeldForceExchange, TheRecorderWritesTheHeldColumnsOnlyWhenThereAreAny) {
@@ -213,7 +213,7 @@ TEST(HeldForceExchange, TheRecorderWritesTheHeldColumnsOnlyWhenThereAreAny) {
     std::filesystem::remove(csv);
     return std::make_pair(header, row);
   };
-  Exchange e;
+  MixedExchange e;
   ASSERT_EQ(e.to(0.0, 5.0), StepOutcome::kOk);
   StepRecord r;
   e.exchange->fill_channels(r);

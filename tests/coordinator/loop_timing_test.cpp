@@ -48,7 +48,8 @@ std::vector<HandStep> by_hand(const hybrid_test::SpecimenSdof& s, LoopTiming tim
   return out;
 }
 
-SdofRun run(const hybrid_test::SpecimenSdof& s, LoopTiming timing, hybrid_test::AssemblyOptions options = {}) {
+SdofRun run_with_timing(const hybrid_test::SpecimenSdof& s, LoopTiming timing,
+                        hybrid_test::AssemblyOptions options = {}) {
   hybrid_test::TestConfig config = hybrid_test::specimen_sdof_test(s);
   config.clock.loop_timing = timing;
   return run_steps(config, std::move(options));
@@ -65,7 +66,7 @@ TEST(LoopTiming, EachTimingIsTheOneDofLoopSolvedByHand) {
   double largest_difference_m = 0.0;
   for (LoopTiming timing : {LoopTiming::kEndOfStep, LoopTiming::kTargetNowForceDelayed}) {
     SCOPED_TRACE(std::string(loop_timing_name(timing)));
-    const SdofRun r = run(s, timing);
+    const SdofRun r = run_with_timing(s, timing);
     ASSERT_EQ(r.outcome, StepOutcome::kOk);
     const auto hand = by_hand(s, timing, static_cast<int>(r.records.size()));
     const auto other =
@@ -93,7 +94,7 @@ TEST(LoopTiming, TheBenchmarksForceDelayTakesTheDampingTheClosedFormSays) {
   s.duration_s = 10.0;
   const double omega = std::sqrt(s.stiffness_n_per_m / s.mass_kg), dt = 1.0 / s.control_rate_hz;
   const auto decay_ratio = [&](LoopTiming timing) {
-    const SdofRun r = run(s, timing);
+    const SdofRun r = run_with_timing(s, timing);
     std::vector<double> peaks;
     for (std::size_t n = 1; n + 1 < r.records.size(); ++n) {
       const double x = r.records[n].displacement_m[0];
@@ -113,8 +114,8 @@ TEST(LoopTiming, TheReferenceIsTheStructureIntegratedWholeUnderEitherTiming) {
   const auto s = perfect_sdof();
   hybrid_test::AssemblyOptions reference;
   reference.perfect_actuator = true;
-  const SdofRun a = run(s, LoopTiming::kEndOfStep, reference);
-  const SdofRun b = run(s, LoopTiming::kTargetNowForceDelayed, reference);
+  const SdofRun a = run_with_timing(s, LoopTiming::kEndOfStep, reference);
+  const SdofRun b = run_with_timing(s, LoopTiming::kTargetNowForceDelayed, reference);
   ASSERT_EQ(a.records.size(), b.records.size());
   for (std::size_t n = 0; n < a.records.size(); ++n)
     ASSERT_EQ(a.records[n].displacement_m[0], b.records[n].displacement_m[0]) << n;

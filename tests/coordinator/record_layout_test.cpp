@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../servo/paper_rig.h"
+#include "elcentro_study.h"
 #include "rpsd/coordinator/recorder.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/scenarios/study_file.h"
@@ -101,7 +102,7 @@ StepRecord carried(const StepRecord& from, const RecordLayout& layout, StepRecor
 }
 
 // Every field bit for bit (a -0 is not a +0), each named when it differs.
-void expect_same(const StepRecord& got, const StepRecord& want) {
+void expect_same_record(const StepRecord& got, const StepRecord& want) {
   const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
 #define RPSD_EXPECT_SCALAR(f) EXPECT_EQ(bits(got.f), bits(want.f)) << #f
 #define RPSD_EXPECT_ARRAY(f)                                          \
@@ -177,11 +178,11 @@ TEST_P(PackedRow, EveryFieldComesBackBitForBitAndNothingOutsideTheRowIsWritten) 
   layout.unpack(second, got_b);
   {
     SCOPED_TRACE("first row");
-    expect_same(got_a, carried(a, layout));
+    expect_same_record(got_a, carried(a, layout));
   }
   {
     SCOPED_TRACE("second row");
-    expect_same(got_b, carried(b, layout));
+    expect_same_record(got_b, carried(b, layout));
   }
 }
 
@@ -210,7 +211,7 @@ TEST(RecordLayout, ARecordCarriesAtMostTheLayoutsEntriesAndItsOwnCounts) {
   layout.pack(more, row.data());
   StepRecord got;
   layout.unpack(row.data(), got);
-  expect_same(got, carried(more, layout));
+  expect_same_record(got, carried(more, layout));
   EXPECT_EQ(got.channels, 3);
 
   const StepRecord before = distinct_record(2, 1, 2, 5);
@@ -218,7 +219,7 @@ TEST(RecordLayout, ARecordCarriesAtMostTheLayoutsEntriesAndItsOwnCounts) {
   layout.pack(fewer, row.data());
   StepRecord reader = before;
   layout.unpack(row.data(), reader);
-  expect_same(reader, carried(fewer, layout, before));
+  expect_same_record(reader, carried(fewer, layout, before));
 }
 
 TEST(RecordLayout, MoreChannelsAndHeldForcesThanARecordHoldsOrTooManyDofsAreRefused) {
@@ -253,7 +254,7 @@ void expect_records_reach_observers_whole(int channels, int held, int dofs) {
   ASSERT_EQ(keeper.seen.size(), sent.size());
   for (std::size_t n = 0; n < sent.size(); ++n) {
     SCOPED_TRACE("record " + std::to_string(n));
-    expect_same(keeper.seen[n], carried(sent[n], layout));
+    expect_same_record(keeper.seen[n], carried(sent[n], layout));
   }
 }
 
@@ -262,11 +263,6 @@ TEST(Recorder, ObserversSeeEveryFieldOfOneChannelAndOneDof) { expect_records_rea
 TEST(Recorder, ObserversSeeEveryFieldOfEveryChannelHeldForceAndDof) {
   expect_records_reach_observers_whole(kChannels - 2, 2, kMaxRecordedDofs);
   expect_records_reach_observers_whole(kChannels, 0, kMaxRecordedDofs);
-}
-
-const hybrid_test::TestConfig& elcentro() {
-  static const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml");
-  return std::get<hybrid_test::TestConfig>(file.study);
 }
 
 // A step writes only its row; last_record() unpacks it when asked. Asked after some steps
@@ -284,7 +280,7 @@ TEST(RpsdLoop, TheLastRecordIsTheRowItsStepHandedToTheRecorder) {
   for (const StepRecord& r : asked) {
     SCOPED_TRACE("step " + std::to_string(r.step));
     ASSERT_GE(r.step, 1);
-    expect_same(r, run.records[static_cast<std::size_t>(r.step - 1)]);
+    expect_same_record(r, run.records[static_cast<std::size_t>(r.step - 1)]);
   }
   EXPECT_EQ(asked.front().step, 1);
   EXPECT_EQ(asked.back().step, 196);

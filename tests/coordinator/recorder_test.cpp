@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../servo/paper_rig.h"
+#include "elcentro_study.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/scenarios/study_file.h"
 
@@ -120,11 +121,6 @@ TEST(Recorder, AWatcherThatFailsToWriteIsAFailedWrite) {
   recorder.finish();
   EXPECT_TRUE(recorder.write_failed());
   EXPECT_EQ(recorder.write_error(), "results.h5: write failed");
-}
-
-const TestConfig& elcentro() {
-  static const auto file = scenarios::load_study(testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml");
-  return std::get<TestConfig>(file.study);
 }
 
 TEST(TestAssembly, AFailedRecordStopsTheTestWithItsOwnOutcome) {

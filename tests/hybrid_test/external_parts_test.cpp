@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "../servo/paper_rig.h"
+#include "file_text.h"
 #include "rpsd/compensation/compensator_factory.h"
 #include "rpsd/hybrid_test/external_parts.h"
 #include "rpsd/hybrid_test/hybrid_test_output.h"
@@ -270,13 +271,6 @@ TEST(ExternalParts, AnExternalPartNoHostGaveIsRefusedAtItsName) {
   TestConfig bare = test_of(scenarios::load_study(example("two-site-bridge.yaml")));
   bare.compensation = compensation::ExternalCompensatorParameters{"lead", nullptr};
   EXPECT_THROW(TestAssembly(bare, {}), std::invalid_argument);
-}
-
-std::string text_of(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 TEST(ExternalParts, AHostCompensatorThatThrowsEndsTheRunInOrderAndTheSummaryNamesIt) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "../servo/paper_rig.h"
+#include "kept_records_run.h"
 #include "rpsd/config/key_error.h"
 #include "rpsd/hybrid_test/actuator_links.h"
 #include "rpsd/hybrid_test/held_forces.h"
@@ -32,11 +33,6 @@ TestConfig column(std::vector<scenarios::Override> overrides = {}) {
 TestConfig short_column(std::vector<scenarios::Override> more = {}) {
   more.push_back(scenarios::parse_override("ground_motion.trim={end_s: 6}"));
   return column(more);
-}
-
-TestRun run(const TestConfig& t) {
-  TestAssembly assembly(t, {{}, false, true, {}});
-  return assembly.finish(assembly.run({}, {}));
 }
 
 TEST(HeldForces, LimitsLeftOutAreTheRigsAndTheForceErrorTenPerCentOfItsCapacity) {
@@ -255,7 +251,7 @@ TEST(HeldForces, TheTrackerTakesTheErrorAfterTheRampAndTheStrokesRange) {
 
 TEST(HeldForces, TheExampleRampsItsAxialLoadAtItsRateAndHoldsItWhileTheColumnFollowsItsDisplacement) {
   const TestConfig t = short_column();
-  const TestRun r = run(t);
+  const TestRun r = run_keeping_records(t);
   ASSERT_EQ(r.outcome, coordinator::StepOutcome::kOk) << coordinator::step_outcome_name(r.outcome);
   ASSERT_FALSE(r.records.empty());
   ASSERT_EQ(r.held_forces.size(), 1u);
@@ -294,7 +290,7 @@ TEST(HeldForces, ASoftSpecimenThatLetsThePistonRunStopsTheTestNamingTheHeldForce
   const TestConfig t = short_column({scenarios::parse_override("held_forces.0.specimen_stiffness_n_per_m=100.0e3"),
                                      scenarios::parse_override("held_forces.0.limits.max_stroke_m=0.01"),
                                      scenarios::parse_override("held_forces.0.limits.max_force_error_n=30.0e3")});
-  const TestRun r = run(t);
+  const TestRun r = run_keeping_records(t);
   ASSERT_EQ(r.outcome, coordinator::StepOutcome::kRunAway) << coordinator::step_outcome_name(r.outcome);
   EXPECT_EQ(r.limit_stop.channel, 1);
   EXPECT_EQ(std::string(r.limit_stop.name.data()), "site 1 held force axial");

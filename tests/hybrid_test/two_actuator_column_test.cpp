@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "../servo/paper_rig.h"
+#include "kept_records_run.h"
 #include "rpsd/hybrid_test/hybrid_test_assembly.h"
 #include "rpsd/hybrid_test/hybrid_test_runs.h"
 #include "rpsd/hybrid_test/setup_plan.h"
@@ -25,14 +26,9 @@ TestConfig load(const char* path) {
   return std::get<TestConfig>(scenarios::load_study(testing::source_dir() / path).study);
 }
 
-TestRun run(const TestConfig& t) {
-  TestAssembly assembly(t, {{}, false, true, {}});
-  return assembly.finish(assembly.run({}, {}));
-}
-
 TEST(TwoActuatorColumn, LinearOnPerfectActuatorsItIsTheCoupledSystemsExactFreeVibration) {
   const TestConfig t = load("tests/hybrid_test/data/two-actuator-column-free-vibration.yaml");
-  const TestRun r = run(t);
+  const TestRun r = run_keeping_records(t);
   ASSERT_EQ(r.outcome, coordinator::StepOutcome::kOk);
   ASSERT_EQ(r.records.size(), 4096u);
 
@@ -76,7 +72,7 @@ TEST(TwoActuatorColumn, LinearOnPerfectActuatorsItIsTheCoupledSystemsExactFreeVi
 
 TEST(TwoActuatorColumn, TheRehearsalFollowsItsReferenceWhileTheActuatorsPushAgainstEachOther) {
   TestConfig t = load("examples/scenarios/two-actuator-column.yaml");
-  const TestRun test = run(t);
+  const TestRun test = run_keeping_records(t);
   ASSERT_EQ(test.outcome, coordinator::StepOutcome::kOk);
   TestAssembly reference_assembly(t, {{}, true, true, {}});
   const TestRun reference = reference_assembly.finish(reference_assembly.run({}, {}));
@@ -118,7 +114,7 @@ TEST(TwoActuatorColumn, ADofsRateStatedPerSecondActsPerControlPeriod) {
       scenarios::load_study(testing::source_dir() / "examples/scenarios/two-actuator-column.yaml",
                             {scenarios::parse_override("experimental.1.limits={max_rotation_rate_rad_per_s: 0.002}")})
           .study);
-  const TestRun r = run(t);
+  const TestRun r = run_keeping_records(t);
   ASSERT_EQ(r.outcome, coordinator::StepOutcome::kLimit);
   EXPECT_EQ(r.limit_stop.kind, coordinator::LimitStop::Kind::kIncrement);
   EXPECT_EQ(std::string(r.limit_stop.name.data()), "site 1 DOF rotation");

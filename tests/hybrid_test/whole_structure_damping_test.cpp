@@ -6,11 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "../servo/paper_rig.h"
 #include "../substructure/state_space_damping.h"
+#include "file_text.h"
 #include "rpsd/hybrid_test/hybrid_test_config.h"
 #include "rpsd/scenarios/study_file.h"
 #include "rpsd/substructure/modal.h"
@@ -20,13 +19,6 @@ namespace {
 
 const std::filesystem::path kCase1 =
     rpsd::testing::source_dir() / "tests/hybrid_test/data/rths-case1-whole-structure-damping.yaml";
-
-std::string text_of(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 struct Whole {
   Eigen::MatrixXd m, c, k;

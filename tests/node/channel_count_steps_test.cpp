@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "../servo/paper_rig.h"
+#include "node_period.h"
 #include "rpsd/node/lock_step_node.h"
 #include "rpsd/servo/servo_hydraulic_plant.h"
 #include "rpsd/servo/simulated_actuator.h"
@@ -16,15 +17,14 @@
 namespace rpsd::node {
 namespace {
 
-constexpr double kPeriodS = 1.0 / 1024.0;
-constexpr std::uint64_t kRun = 0x51;
+constexpr std::uint64_t kChannelCountRun = 0x51;
 
-ServoNodeConfig config(int channels) {
+ServoNodeConfig clamping_config(int channels) {
   ServoNodeConfig c;
   c.test_id = 4;
   c.site_id = 2;
   c.channels = channels;
-  c.control_period_s = kPeriodS;
+  c.control_period_s = kNodePeriodS;
   for (int ch = 0; ch < channels; ++ch) {
     // Tight enough that the stroke, velocity and acceleration limits clamp the sine below.
     c.limits[ch].max_stroke_m = 0.004;
@@ -35,14 +35,14 @@ ServoNodeConfig config(int channels) {
   return c;
 }
 
-transport::CommandSample command(int channels, std::int64_t step, double x) {
+transport::CommandSample command_on_every_channel(int channels, std::int64_t step, double x) {
   transport::CommandSample c;
   c.test_id = 4;
   c.site_id = 2;
-  c.run_id = kRun;
+  c.run_id = kChannelCountRun;
   c.channels = static_cast<std::uint8_t>(channels);
   c.step = step;
-  c.time_s = static_cast<double>(step) * kPeriodS;
+  c.time_s = static_cast<double>(step) * kNodePeriodS;
   for (int ch = 0; ch < channels; ++ch) c.displacement_m[ch] = x;
   return c;
 }
@@ -52,11 +52,11 @@ struct Node {
   explicit Node(int channels)
       : pointers{&first, &second},
         actuator(std::span<servo::Plant* const>(pointers, static_cast<std::size_t>(channels))),
-        controller(config(channels), actuator) {
+        controller(clamping_config(channels), actuator) {
     const double x0[] = {0.001, 0.001};
     controller.start(std::span<const double>(x0, static_cast<std::size_t>(channels)));
   }
-  servo::ServoHydraulicPlant first{testing::paper_rig()}, second{testing::paper_rig()};
+  servo::ServoHydraulicPlant first{rpsd::testing::paper_rig()}, second{rpsd::testing::paper_rig()};
   servo::Plant* pointers[2];
   servo::SimulatedActuator actuator;
   ServoNodeController controller;
@@ -68,13 +68,13 @@ TEST(ServoNodeChannelCount, OneChannelStepsAsTheSameChannelOfANodeOfTwo) {
   for (std::int64_t step = 0; step < 600; ++step) {
     // A sine beyond the stroke and too fast for the velocity limit; now and then a command the
     // node must refuse (not finite, a repeated step), which neither node may answer.
-    double x = 0.006 * std::sin(2.0 * std::numbers::pi * 3.0 * static_cast<double>(step) * kPeriodS);
+    double x = 0.006 * std::sin(2.0 * std::numbers::pi * 3.0 * static_cast<double>(step) * kNodePeriodS);
     std::int64_t sent_step = step;
     if (step % 97 == 50) x = std::numeric_limits<double>::quiet_NaN();
     if (step % 89 == 40) sent_step = step - 1;
     transport::FeedbackSample a, b;
-    const bool answered_one = answer_lock_step(one.controller, command(1, sent_step, x), a);
-    const bool answered_two = answer_lock_step(two.controller, command(2, sent_step, x), b);
+    const bool answered_one = answer_lock_step(one.controller, command_on_every_channel(1, sent_step, x), a);
+    const bool answered_two = answer_lock_step(two.controller, command_on_every_channel(2, sent_step, x), b);
     ASSERT_EQ(answered_one, answered_two) << "step " << step;
     if (!answered_one) {
       ++refused;

@@ -13,14 +13,10 @@
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/servo/coupled_specimen_actuator.h"
+#include "source_dir.h"
 
 namespace rpsd::node {
 namespace {
-
-std::filesystem::path source_dir() {
-  if (const char* env = std::getenv("RPSD_SOURCE_DIR"); env != nullptr && *env != '\0') return env;
-  return RPSD_TEST_SOURCE_DIR;
-}
 
 std::filesystem::path example() { return source_dir() / "examples/nodes/two-actuator-column-site.yaml"; }
 

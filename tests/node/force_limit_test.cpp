@@ -12,14 +12,10 @@
 #include "rpsd/node/actuator_factory.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/scenarios/servo_node_file.h"
+#include "source_dir.h"
 
 namespace rpsd::node {
 namespace {
-
-std::filesystem::path source_dir() {
-  if (const char* env = std::getenv("RPSD_SOURCE_DIR"); env != nullptr && *env != '\0') return env;
-  return RPSD_TEST_SOURCE_DIR;
-}
 
 struct Peak {
   double force_n = 0.0;

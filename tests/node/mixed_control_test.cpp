@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "node_period.h"
 #include "rpsd/node/servo_node_controller.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
 #include "rpsd/servo/pure_delay_plant.h"
@@ -21,7 +22,6 @@ namespace rpsd::node {
 namespace {
 
 using servo::ControlMode;
-constexpr double kPeriodS = 1.0 / 1024.0;
 
 servo::ServoSystemParameters force_rig() {
   const char* env = std::getenv("RPSD_SOURCE_DIR");
@@ -38,7 +38,7 @@ struct MixedNode {
     config.test_id = 7;
     config.site_id = 1;
     config.channels = 2;
-    config.control_period_s = kPeriodS;
+    config.control_period_s = kNodePeriodS;
     config.control[1] = ControlMode::kForce;
     for (auto& l : config.limits) {
       l.max_stroke_m = max_stroke_m;
@@ -60,7 +60,7 @@ struct MixedNode {
     command.writer = 1;
     command.channels = 2;
     command.step = ++step;
-    command.time_s = static_cast<double>(step) * kPeriodS;
+    command.time_s = static_cast<double>(step) * kNodePeriodS;
     command.displacement_m[0] = x0_m;
     command.control_mode[1] = mode1;
     command.force_n[1] = f1_n;
@@ -102,7 +102,7 @@ TEST(MixedControl, TheForceCommandIsHeldToItsLimitAndRate) {
     node.send(0.0, 50e3);  // beyond max_force_command_n
     node.tick();
     const double f = node.controller->force_command_n()[1];
-    ASSERT_LE(std::abs(f - previous), 50e3 * kPeriodS * (1.0 + 1e-12)) << "tick " << i;
+    ASSERT_LE(std::abs(f - previous), 50e3 * kNodePeriodS * (1.0 + 1e-12)) << "tick " << i;
     ASSERT_LE(std::abs(f), 20e3);
     previous = f;
   }

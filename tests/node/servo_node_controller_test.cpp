@@ -103,8 +103,8 @@ FeedbackSample send(ServoNodeController& node, const CommandSample& c) {
 }
 
 // An ideal actuator and a node started at zero.
-struct Rig {
-  explicit Rig(const ServoNodeConfig& c, double stiffness_n_per_m = 0.0)
+struct NodeRig {
+  explicit NodeRig(const ServoNodeConfig& c, double stiffness_n_per_m = 0.0)
       : actuator(c.channels, stiffness_n_per_m), node(c, actuator) {
     const std::vector<double> x0(static_cast<std::size_t>(c.channels), 0.0);
     node.start(x0);
@@ -136,7 +136,7 @@ TEST(ServoNodeController, TheForceGuardFlagsAndLogsTheForceItPredicts) {
   c.limits[0].max_force_n = 1000.0;
   c.limits[0].force_guard_stiffness_n_per_m = 1e5;
   c.actions.force = LimitAction::kClamp;
-  Rig rig(c, 1e5);                         // the specimen as stiff as the guard thinks
+  NodeRig rig(c, 1e5);                     // the specimen as stiff as the guard thinks
   rig.actuator.measured_offset_m = 0.001;  // the piston 1 mm beyond its command: the guard uses where it is
   FeedbackSample out = send(rig.node, command(0, {0.005}));  // at 6 mm, 600 N: within
   EXPECT_EQ(out.limit_flags, transport::kLimitNone);
@@ -264,7 +264,7 @@ TEST(ServoNodeController, AppliesEachCommandOnTheNextTickAndReportsIt) {
 // actuator answers an exchange (or the reading at rest is noted); then each answered tick's
 // reading, holding too, and an exchange without a reply keeps the newest one.
 TEST(ServoNodeController, TheLatestMeasurementIsTheNewestAnsweredExchange) {
-  Rig rig(config(2), 1e5);
+  NodeRig rig(config(2), 1e5);
   EXPECT_FALSE(rig.node.has_measurement());
   servo::ActuatorReading at_rest;
   at_rest.displacement_m[0] = 0.0025;
@@ -295,7 +295,7 @@ TEST(ServoNodeController, TheLatestMeasurementIsTheNewestAnsweredExchange) {
 TEST(ServoNodeController, StrokeClampGivesExactlyTheBound) {
   auto c = config();
   c.limits[0].max_stroke_m = 0.05;
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   FeedbackSample out = send(node, command(1, {0.06}));
   EXPECT_EQ(actuator.last(), 0.05);
@@ -329,7 +329,7 @@ TEST(ServoNodeController, StrokeHoldFreezesEveryChannelUntilAnInLimitCommand) {
   auto c = config(2);
   c.limits[0].max_stroke_m = 0.05;
   c.actions.stroke = LimitAction::kHold;
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   send(node, command(1, {0.01, 0.02}));
   FeedbackSample out = send(node, command(2, {0.06, 0.03}));
@@ -356,7 +356,7 @@ TEST(ServoNodeController, StrokeAbortLatchesAFaultUntilRestart) {
   auto c = config();
   c.limits[0].max_stroke_m = 0.05;
   c.actions.stroke = LimitAction::kAbort;
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   send(node, command(1, {0.02}));
   FeedbackSample out = send(node, command(2, {0.051}));
@@ -383,7 +383,7 @@ TEST(ServoNodeController, StrokeAbortLatchesAFaultUntilRestart) {
 TEST(ServoNodeController, VelocityClampGivesIncrementsOfExactlyVT) {
   auto c = config();
   c.limits[0].max_velocity_m_per_s = 0.125;  // v T = 2^-3 2^-10 = 2^-13 m
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   const double step_m = 0.125 * kPeriod, target = 0.01;
   // The coordinator keeps asking for 10 mm; 10 mm / 2^-13 m = 81.92 periods.
@@ -412,7 +412,7 @@ TEST(ServoNodeController, IncrementClampAndTheTighterOfTheTwoRateLimits) {
   c.limits[0].max_increment_m = 0.00048828125;  // 2^-11 m
   c.limits[1].max_increment_m = 0.00048828125;
   c.limits[1].max_velocity_m_per_s = 0.125;  // 2^-13 m per period: tighter on channel 1
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   FeedbackSample out = send(node, command(1, {0.003, 0.003}));
   EXPECT_EQ(actuator.last(0), 0.00048828125);
@@ -437,7 +437,7 @@ TEST(ServoNodeController, AnIncrementPerSecondActsAsTheIncrementAtTheNodesOwnRat
     const double increment_m = 0.5 / rate_hz;
     EXPECT_EQ(c.limits[0].max_increment_m, increment_m) << rate_hz;
     {
-      Rig rig(c);
+      NodeRig rig(c);
       auto& [actuator, node] = rig;
       // 1 m/s asked: beyond the increment, within the rig's velocity capacity (1.31 m/s).
       const FeedbackSample out = send(node, command(1, {1.0 / rate_hz}));
@@ -448,7 +448,7 @@ TEST(ServoNodeController, AnIncrementPerSecondActsAsTheIncrementAtTheNodesOwnRat
       EXPECT_EQ(actuator.last(), 2.0 * increment_m) << rate_hz;
     }
     c.actions.increment = LimitAction::kAbort;
-    Rig rig(c);
+    NodeRig rig(c);
     auto& [actuator, node] = rig;
     send(node, command(1, {increment_m}));
     const FeedbackSample out = send(node, command(2, {3.5 * increment_m}));
@@ -463,7 +463,7 @@ TEST(ServoNodeController, VelocityHoldAndIncrementAbort) {
     auto c = config();
     c.limits[0].max_velocity_m_per_s = 1.0;  // ~0.98 mm per period
     c.actions.velocity = LimitAction::kHold;
-    Rig rig(c);
+    NodeRig rig(c);
     auto& [actuator, node] = rig;
     FeedbackSample out = send(node, command(1, {0.002}));
     EXPECT_EQ(actuator.last(), 0.0);
@@ -476,7 +476,7 @@ TEST(ServoNodeController, VelocityHoldAndIncrementAbort) {
     auto c = config();
     c.limits[0].max_increment_m = 0.001;
     c.actions.increment = LimitAction::kAbort;
-    Rig rig(c);
+    NodeRig rig(c);
     auto& [actuator, node] = rig;
     send(node, command(1, {0.0009}));
     const FeedbackSample out = send(node, command(2, {0.0021}));
@@ -497,7 +497,7 @@ ServoNodeConfig force_config(LimitAction action) {
 }
 
 TEST(ServoNodeController, ForceAbortLatchesOnTheTickAfterTheMeasurement) {
-  Rig rig(force_config(LimitAction::kAbort), 1e6);
+  NodeRig rig(force_config(LimitAction::kAbort), 1e6);
   auto& [actuator, node] = rig;
   FeedbackSample out;
   for (int step = 1; step <= 6; ++step) {
@@ -520,7 +520,7 @@ TEST(ServoNodeController, ForceAbortLatchesOnTheTickAfterTheMeasurement) {
 }
 
 TEST(ServoNodeController, ForceClampStopsLoadingFurtherButAllowsUnloading) {
-  Rig rig(force_config(LimitAction::kClamp), 1e6);
+  NodeRig rig(force_config(LimitAction::kClamp), 1e6);
   auto& [actuator, node] = rig;
   for (int step = 1; step <= 6; ++step) send(node, command(step, {step * 1e-3}));
   for (int step = 7; step <= 10; ++step) {
@@ -537,7 +537,7 @@ TEST(ServoNodeController, ForceClampStopsLoadingFurtherButAllowsUnloading) {
 }
 
 TEST(ServoNodeController, ForceHoldFreezesTheCommandWhileTheForceIsExceeded) {
-  Rig rig(force_config(LimitAction::kHold), 1e6);
+  NodeRig rig(force_config(LimitAction::kHold), 1e6);
   auto& [actuator, node] = rig;
   for (int step = 1; step <= 6; ++step) send(node, command(step, {step * 1e-3}));
   for (int step = 7; step <= 12; ++step) {
@@ -551,7 +551,7 @@ TEST(ServoNodeController, ForceHoldFreezesTheCommandWhileTheForceIsExceeded) {
 TEST(ServoNodeController, WatchdogHoldsAfterExactlyNMissingPeriods) {
   auto c = config();
   c.command_timeout_periods = 5;
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   for (int step = 1; step <= 10; ++step) send(node, command(step, {step * 1e-4}));
   for (int missing = 1; missing <= 4; ++missing) {
@@ -581,7 +581,7 @@ TEST(ServoNodeController, RampToSafeReachesTheSafePositionAtTheConfiguredRate) {
   c.on_command_loss = LossAction::kRampToSafe;
   c.safe_ramp_velocity_m_per_s = 0.0625;   // 2^-4 m/s: 2^-14 m per period
   c.safe_position_m = {0.0, 0.001953125};  // channel 1 already there (2^-9 m)
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   // 2^-7 + 2^-16 m from safe: 128.25 ramp periods, so 129 ticks, the last one partial.
   const double start_m = 0.0078125 + 0.0000152587890625, step_m = 0.0625 * kPeriod;
@@ -615,7 +615,7 @@ TEST(ServoNodeController, RampToSafeMovesEveryChannelAlongOneStraightLine) {
   c.on_command_loss = LossAction::kRampToSafe;
   c.safe_ramp_velocity_m_per_s = 0.0625;  // 2^-14 m per period
   c.safe_position_m = {0.0, 0.001};
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   const double start0_m = 0.0078125, start1_m = 0.001 - 0.00390625, step_m = 0.0625 * kPeriod;  // 2^-7, -2^-8
   send(node, command(1, {start0_m, start1_m}));
@@ -711,7 +711,7 @@ TEST(ServoNodeController, ANodeThatMissedTheStartOfATestNeverFollowsIt) {
 
 TEST(ServoNodeController, TheNewestPendingCommandWins) {
   auto c = config();
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   EXPECT_EQ(node.accept(command(1, {0.001})), CommandVerdict::kAccepted);
   EXPECT_EQ(node.accept(command(2, {0.002})), CommandVerdict::kAccepted);
@@ -726,7 +726,7 @@ TEST(ServoNodeController, TheNewestPendingCommandWins) {
 
 TEST(ServoNodeController, ActuatorNoReplyKeepsTheLastMeasurementAndAFaultLatches) {
   auto c = config();
-  Rig rig(c, 1e5);
+  NodeRig rig(c, 1e5);
   auto& [actuator, node] = rig;
   send(node, command(1, {0.001}));
   actuator.script = {servo::ActuatorStatus::kNoReply};
@@ -753,7 +753,7 @@ TEST(ServoNodeController, ActuatorNoReplyKeepsTheLastMeasurementAndAFaultLatches
 TEST(ServoNodeController, KeepsWhatFaultedItTheActuatorsWordsOrTheMeasurement) {
   auto c = config();
   {
-    Rig rig(c);
+    NodeRig rig(c);
     auto& [actuator, node] = rig;
     send(node, command(1, {0.001}));
     EXPECT_EQ(std::string(node.fault_text().data()), "");
@@ -768,7 +768,7 @@ TEST(ServoNodeController, KeepsWhatFaultedItTheActuatorsWordsOrTheMeasurement) {
     EXPECT_EQ(std::string(node.fault_text().data()), "");
   }
   limit_to_envelope(c, {0.0625, 2048.0, 100.0});
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   actuator.measured_offset_m = 0.0625;
   send(node, command(1, {0.0}));
@@ -780,7 +780,7 @@ TEST(ServoNodeController, TheEventLogKeepsTheFirstActivationsAndCountsTheRest) {
   auto c = config();
   c.limits[0].max_stroke_m = 0.05;
   c.event_log_capacity = 2;
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   for (int step = 1; step <= 8; ++step) send(node, command(step, {step % 2 ? 0.06 : 0.0}));
   EXPECT_EQ(node.counters().activations(LimitKind::kStroke), 4u);
@@ -806,7 +806,7 @@ TEST(ServoNodeController, AMeasuredDisplacementBeyondTheStrokeTripsItsLimit) {
   auto c = config();
   c.limits[0].max_stroke_m = 0.05;
   c.actions.stroke = LimitAction::kAbort;
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   send(node, command(1, {0.01}));
   EXPECT_FALSE(node.faulted());
@@ -829,7 +829,7 @@ TEST(ServoNodeController, RampToSafeOnALimitGoesToTheSafePositionAtTheSafeVeloci
   c.actions.stroke = LimitAction::kRampToSafe;
   c.safe_ramp_velocity_m_per_s = 0.0625;  // 2^-14 m per period
   c.safe_position_m = {0.0};
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   const double start_m = 0.0078125, step_m = 0.0625 * kPeriod;  // 2^-7 m: 128 periods from safe
   send(node, command(1, {start_m}));
@@ -854,7 +854,7 @@ TEST(ServoNodeController, AHoldBrakesAtTheStopDeceleration) {
   c.actions.velocity = LimitAction::kHold;
   const double a = 2.0, v = 0.05;
   c.limits[0].stop_deceleration_m_per_s2 = a;
-  Rig rig(c);
+  NodeRig rig(c);
   auto& [actuator, node] = rig;
   std::int64_t step = 1;
   double x = 0.0;
@@ -891,7 +891,7 @@ TEST(ServoNodeController, ACommandRacingAtTheStrokeBrakesOnlyTowardIt) {
     c.limits[0].max_stroke_m = stroke;
     c.limits[0].stop_deceleration_m_per_s2 = a;
     c.actions.stroke = LimitAction::kClamp;
-    Rig rig(c);
+    NodeRig rig(c);
     auto& [actuator, node] = rig;
     std::vector<double> applied{0.0};
     std::int64_t step = 1;
@@ -944,7 +944,7 @@ TEST(ServoNodeController, AReadingOnAConverterRailFaultsTheNodeWhateverTheLimits
     const double rail = adc.range().high;  // 511 steps of 2/1024 V: 0.998 V
     ASSERT_DOUBLE_EQ(rail, (force ? 1000.0 : 0.01) * 511.0 * 2.0 / 1024.0);
     const double to_rail_m = rail;  // 1 N/m on the load cell: the force reads x
-    Rig rig(c, 1.0);
+    NodeRig rig(c, 1.0);
     auto& [actuator, node] = rig;
     FeedbackSample out = send(node, command(1, {0.5 * to_rail_m}));
     EXPECT_EQ(out.status, transport::kNodeOk) << force;
@@ -963,7 +963,7 @@ TEST(ServoNodeController, AReadingOnAConverterRailFaultsTheNodeWhateverTheLimits
     EXPECT_EQ(node.accept(command(3, {0.0})), CommandVerdict::kNotFollowing);
     // The negative rail alike, one code further out (-512 steps: two's complement): the
     // negative of the positive rail is still a reading.
-    Rig other(c, 1.0);
+    NodeRig other(c, 1.0);
     EXPECT_EQ(send(other.node, command(1, {-rail})).status, transport::kNodeOk) << force;
     out = send(other.node, command(2, {adc.range().low}));
     EXPECT_TRUE(other.node.faulted()) << force;
@@ -981,7 +981,7 @@ TEST(ServoNodeController, AMeasurementAtOrBeyondTheRigsEnvelopeFaultsTheNode) {
   c.actions.force = LimitAction::kClamp;
   limit_to_envelope(c, {0.0625, 2048.0, 100.0});
   {
-    Rig rig(c);
+    NodeRig rig(c);
     auto& [actuator, node] = rig;
     send(node, command(1, {0.03125}));
     actuator.measured_offset_m = 0.03125;  // measured exactly 0.0625: not beyond the stroke limit
@@ -995,7 +995,7 @@ TEST(ServoNodeController, AMeasurementAtOrBeyondTheRigsEnvelopeFaultsTheNode) {
     EXPECT_EQ(node.events()[0].bound, 0.0625);
   }
   {
-    Rig rig(c, 65536.0);  // 0.03125 m reads 2048 N, the rig's force capacity
+    NodeRig rig(c, 65536.0);  // 0.03125 m reads 2048 N, the rig's force capacity
     auto& [actuator, node] = rig;
     FeedbackSample out = send(node, command(1, {0.03}));
     EXPECT_FALSE(node.faulted());
@@ -1094,7 +1094,7 @@ CommandSample end_of(std::uint64_t run, std::uint64_t writer, std::int64_t step)
 
 struct NodeServingRun : ::testing::Test {
   NodeServingRun() : rig(config()) {}
-  Rig rig;
+  NodeRig rig;
   ServoNodeController& node = rig.node;
   IdealActuator& actuator = rig.actuator;
 };

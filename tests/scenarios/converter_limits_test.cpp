@@ -28,7 +28,7 @@ std::vector<Override> overrides(std::initializer_list<const char*> texts) {
 }
 
 template <class Load>
-std::string error_of(Load load) {
+std::string config_error_of(Load load) {
   try {
     load();
   } catch (const ConfigError& e) {
@@ -37,41 +37,41 @@ std::string error_of(Load load) {
   return "";
 }
 
-std::string study_error(const std::filesystem::path& file, std::initializer_list<const char*> texts) {
-  return error_of([&] { (void)load_study(file, overrides(texts)); });
+std::string study_config_error(const std::filesystem::path& file, std::initializer_list<const char*> texts) {
+  return config_error_of([&] { (void)load_study(file, overrides(texts)); });
 }
 
 // The case of issue 25: a force A/D saturating at 2 V reads at most 131071 steps of 4/2^18 V
 // times 1096 N/V = 2191.98 N (and -131072 steps below zero), below the 3000 N limit.
 TEST(ConverterLimits, AForceLimitItsConverterCannotReadIsRefusedNamingBothKeys) {
-  const std::string e =
-      study_error(kBenchmark, {"experimental.0.limits.max_force_n=3000", "servo.converters.force.units_per_volt=1096",
-                               "servo.converters.force.bits=18", "servo.converters.force.saturation_v=2"});
+  const std::string e = study_config_error(
+      kBenchmark, {"experimental.0.limits.max_force_n=3000", "servo.converters.force.units_per_volt=1096",
+                   "servo.converters.force.bits=18", "servo.converters.force.saturation_v=2"});
   EXPECT_NE(e.find("experimental[0].limits.max_force_n: 3000 N is not strictly inside what servo.converters.force "
                    "can read, -2192 to 2191.98 N"),
             std::string::npos)
       << e;
   // Strictly inside: a limit below the rail stands.
-  EXPECT_EQ(
-      study_error(kBenchmark, {"experimental.0.limits.max_force_n=2000", "servo.converters.force.units_per_volt=1096",
-                               "servo.converters.force.bits=18", "servo.converters.force.saturation_v=2"}),
-      "");
+  EXPECT_EQ(study_config_error(kBenchmark,
+                               {"experimental.0.limits.max_force_n=2000", "servo.converters.force.units_per_volt=1096",
+                                "servo.converters.force.bits=18", "servo.converters.force.saturation_v=2"}),
+            "");
 }
 
 // No limit stated: the rig's 8.9 kN is the limit, held to the same rule, so a nonsense range
 // (1e-300 V) is refused, and so is a displacement A/D of +/-3.9 mm on the 7 mm stroke.
 TEST(ConverterLimits, TheRigsDefaultLimitIsHeldToTheSameRule) {
-  const std::string e = study_error(kBenchmark, {"servo.converters.force.saturation_v=1e-300"});
+  const std::string e = study_config_error(kBenchmark, {"servo.converters.force.saturation_v=1e-300"});
   EXPECT_NE(e.find("experimental[0].limits.max_force_n: not stated, so the rig's 8900 N, which is not strictly inside "
                    "what servo.converters.force can read"),
             std::string::npos)
       << e;
-  const std::string d = study_error(kBenchmark, {"servo.converters.displacement.units_per_volt=7.89e-3",
-                                                 "servo.converters.displacement.saturation_v=0.5"});
+  const std::string d = study_config_error(kBenchmark, {"servo.converters.displacement.units_per_volt=7.89e-3",
+                                                        "servo.converters.displacement.saturation_v=0.5"});
   EXPECT_NE(d.find("experimental[0].limits.max_stroke_m: not stated, so the rig's 0.007 m"), std::string::npos) << d;
   EXPECT_NE(d.find("servo.converters.displacement"), std::string::npos) << d;
   // As shipped, the released chain: the measurements have no rail at all.
-  EXPECT_EQ(study_error(kBenchmark, {}), "");
+  EXPECT_EQ(study_config_error(kBenchmark, {}), "");
 }
 
 // Every plant kind behind converters: the paper's servo model, an ideal delay, a transfer
@@ -81,7 +81,7 @@ TEST(ConverterLimits, EveryPlantKindIsHeldToTheRule) {
                              "examples/scenarios/rths-benchmark-case1.yaml",
                              "examples/scenarios/rths-benchmark-sample-controller-case-1.yaml"};
   for (const char* scenario : scenarios) {
-    const std::string e = study_error(
+    const std::string e = study_config_error(
         source(scenario), {"servo.converters.force.units_per_volt=1000", "servo.converters.force.saturation_v=1"});
     EXPECT_NE(e.find("experimental[0].limits.max_force_n: not stated, so the rig's"), std::string::npos)
         << scenario << ": " << e;
@@ -114,7 +114,7 @@ TEST(ConverterLimits, TheReadingRangesOfAPlantAreItsConvertersRails) {
 // be readable through the simulated actuator's converters.
 TEST(ConverterLimits, AServoNodeFileIsHeldToTheRule) {
   const auto node = source("examples/nodes/rths-benchmark-site.yaml");
-  const std::string e = error_of([&] {
+  const std::string e = config_error_of([&] {
     (void)load_servo_node(node,
                           overrides({"limits.max_force_n=[3000]", "actuator.servo.converters.force.saturation_v=2"}));
   });
@@ -122,7 +122,7 @@ TEST(ConverterLimits, AServoNodeFileIsHeldToTheRule) {
       e.find("limits[0].max_force_n: 3000 N is not strictly inside what actuator.servo.converters.force can read"),
       std::string::npos)
       << e;
-  const std::string d = error_of(
+  const std::string d = config_error_of(
       [&] { (void)load_servo_node(node, overrides({"actuator.servo.converters.displacement.saturation_v=0.005"})); });
   EXPECT_NE(d.find("limits[0].max_stroke_m: not stated, so the rig's 0.007 m"), std::string::npos) << d;
   EXPECT_NE(d.find("actuator.servo.converters.displacement"), std::string::npos) << d;
@@ -136,13 +136,13 @@ TEST(ConverterLimits, AServoNodeFileIsHeldToTheRule) {
 
 TEST(ConverterLimits, ASiteServerFileIsHeldToTheRule) {
   const auto site = source("tests/scenarios/data/reference/site-server.yaml");
-  const std::string e = error_of([&] {
+  const std::string e = config_error_of([&] {
     (void)load_site_server(
         site, overrides({"servo.converters.force.units_per_volt=100", "servo.converters.force.saturation_v=1"}));
   });
   EXPECT_NE(e.find("experimental[0].limits.max_force_n: not stated, so the rig's 156000 N"), std::string::npos) << e;
   EXPECT_NE(e.find("servo.converters.force can read, -100 to 100 N"), std::string::npos) << e;
-  EXPECT_EQ(error_of([&] { (void)load_site_server(site, {}); }), "");
+  EXPECT_EQ(config_error_of([&] { (void)load_site_server(site, {}); }), "");
 }
 
 }  // namespace

@@ -21,16 +21,17 @@
 namespace rpsd::scenarios {
 namespace {
 
-const std::filesystem::path kColumn = testing::source_dir() / "examples/scenarios/column-axial-load.yaml";
+const std::filesystem::path kAxialLoadColumn = testing::source_dir() / "examples/scenarios/column-axial-load.yaml";
 
-hybrid_test::TestConfig column(std::vector<Override> overrides = {}) {
-  return std::get<hybrid_test::TestConfig>(load_study(kColumn, overrides).study);
+hybrid_test::TestConfig axial_load_column(std::vector<Override> overrides = {}) {
+  return std::get<hybrid_test::TestConfig>(load_study(kAxialLoadColumn, overrides).study);
 }
 
-void refused(const std::vector<std::string>& overrides, const std::string& words) {
+void refused_overrides(const std::vector<std::string>& overrides, const std::string& words) {
   std::vector<Override> parsed;
   for (const auto& o : overrides) parsed.push_back(parse_override(o));
-  EXPECT_THAT([&] { (void)column(parsed); }, ::testing::ThrowsMessage<ConfigError>(::testing::HasSubstr(words)))
+  EXPECT_THAT([&] { (void)axial_load_column(parsed); },
+              ::testing::ThrowsMessage<ConfigError>(::testing::HasSubstr(words)))
       << overrides.back();
 }
 
@@ -40,7 +41,7 @@ std::string held(const std::string& name, double force_n = -10.0e3) {
 }
 
 TEST(HeldForcesFile, TheExampleHoldsItsAxialLoadOnSiteOne) {
-  const hybrid_test::TestConfig t = column();
+  const hybrid_test::TestConfig t = axial_load_column();
   ASSERT_EQ(t.held_forces.size(), 1u);
   const hybrid_test::HeldForce& h = t.held_forces[0];
   EXPECT_EQ(h.site_id, 1u);
@@ -66,42 +67,45 @@ TEST(HeldForcesFile, EachRequiredKeyIsRequired) {
         "{site: 1, name: axial, force_n: -10.0e3, max_force_rate_n_per_s: 10.0e3, "
         "specimen_stiffness_n_per_m: 700.8e3}";
     entry = std::regex_replace(entry, std::regex(std::string(key) + ": [^,}]*(, )?"), "");
-    refused({"held_forces=[" + entry + "]"}, "held_forces[0]." + std::string(key));
+    refused_overrides({"held_forces=[" + entry + "]"}, "held_forces[0]." + std::string(key));
   }
 }
 
 TEST(HeldForcesFile, ARateOrAStiffnessThatIsNotPositiveIsRefused) {
-  refused({"held_forces.0.max_force_rate_n_per_s=0"}, "held_forces[0].max_force_rate_n_per_s");
-  refused({"held_forces.0.max_force_rate_n_per_s=-1.0e3"}, "held_forces[0].max_force_rate_n_per_s");
-  refused({"held_forces.0.specimen_stiffness_n_per_m=0"}, "held_forces[0].specimen_stiffness_n_per_m");
-  refused({"held_forces.0.force_n=.nan"}, "held_forces[0].force_n");
+  refused_overrides({"held_forces.0.max_force_rate_n_per_s=0"}, "held_forces[0].max_force_rate_n_per_s");
+  refused_overrides({"held_forces.0.max_force_rate_n_per_s=-1.0e3"}, "held_forces[0].max_force_rate_n_per_s");
+  refused_overrides({"held_forces.0.specimen_stiffness_n_per_m=0"}, "held_forces[0].specimen_stiffness_n_per_m");
+  refused_overrides({"held_forces.0.force_n=.nan"}, "held_forces[0].force_n");
 }
 
 TEST(HeldForcesFile, ANameIsAShortUniqueIdentifier) {
-  refused({"held_forces.0.name=Axial load"}, "held_forces[0].name: 'Axial load' is not a short identifier");
-  refused({"held_forces.0.name=" + std::string(33, 'a')}, "held_forces[0].name");
-  refused({"held_forces=[" + held("axial") + ", " + held("axial") + "]"},
-          "held_forces[1].name: 'axial' names held_forces[0] too");
-  EXPECT_EQ(column({parse_override("held_forces=[" + held("axial") + ", " + held("axial_2") + "]")}).held_forces.size(),
+  refused_overrides({"held_forces.0.name=Axial load"}, "held_forces[0].name: 'Axial load' is not a short identifier");
+  refused_overrides({"held_forces.0.name=" + std::string(33, 'a')}, "held_forces[0].name");
+  refused_overrides({"held_forces=[" + held("axial") + ", " + held("axial") + "]"},
+                    "held_forces[1].name: 'axial' names held_forces[0] too");
+  EXPECT_EQ(axial_load_column({parse_override("held_forces=[" + held("axial") + ", " + held("axial_2") + "]")})
+                .held_forces.size(),
             2u);
 }
 
 TEST(HeldForcesFile, AForceBeyondItsLimitOrTheRigIsRefused) {
-  refused({"held_forces.0.force_n=-50.0e3"}, "held_forces[0].force_n: |-50000| N is beyond limits.max_force_n");
+  refused_overrides({"held_forces.0.force_n=-50.0e3"},
+                    "held_forces[0].force_n: |-50000| N is beyond limits.max_force_n");
   // Without a stated limit: the rig's force capacity (156 kN).
-  refused({"held_forces=[" + held("axial", -160.0e3) + "]"}, "held_forces[0].force_n");
+  refused_overrides({"held_forces=[" + held("axial", -160.0e3) + "]"}, "held_forces[0].force_n");
 }
 
 TEST(HeldForcesFile, ALimitBeyondTheRigIsRefusedAtItsKey) {
-  refused({"held_forces.0.limits.max_force_n=200.0e3"},
-          "held_forces[0].limits.max_force_n: 200000 is beyond the rig's force capacity");
-  refused({"held_forces.0.limits.max_stroke_m=0.2"}, "held_forces[0].limits.max_stroke_m: 0.2 is beyond the rig's");
-  refused({"held_forces.0.limits.max_force_error_n=160.0e3"}, "held_forces[0].limits.max_force_error_n");
-  refused({"held_forces.0.limits.max_force_error_n=0"}, "held_forces[0].limits.max_force_error_n");
+  refused_overrides({"held_forces.0.limits.max_force_n=200.0e3"},
+                    "held_forces[0].limits.max_force_n: 200000 is beyond the rig's force capacity");
+  refused_overrides({"held_forces.0.limits.max_stroke_m=0.2"},
+                    "held_forces[0].limits.max_stroke_m: 0.2 is beyond the rig's");
+  refused_overrides({"held_forces.0.limits.max_force_error_n=160.0e3"}, "held_forces[0].limits.max_force_error_n");
+  refused_overrides({"held_forces.0.limits.max_force_error_n=0"}, "held_forces[0].limits.max_force_error_n");
 }
 
 TEST(HeldForcesFile, TheSiteMustBeAnExperimentalSiteWithActuators) {
-  refused({"held_forces.0.site=7"}, "held_forces[0].site: site 7 has no experimental[] channel");
+  refused_overrides({"held_forces.0.site=7"}, "held_forces[0].site: site 7 has no experimental[] channel");
   // An OpenSees site is numerical: no actuator to hold a force.
   EXPECT_THAT(
       [] {
@@ -115,10 +119,10 @@ TEST(HeldForcesFile, TheSiteMustBeAnExperimentalSiteWithActuators) {
 TEST(HeldForcesFile, InThisProcessThePlantMustHaveAForceLoopOverDdsTheNodeSays) {
   const std::string without =
       "servo.parameters=" + (testing::source_dir() / "examples/servo/paper-mts-244.yaml").string();
-  refused({without}, "held_forces[0]: site 1's actuators are simulated in this process");
-  refused({without}, "no force loop");
+  refused_overrides({without}, "held_forces[0]: site 1's actuators are simulated in this process");
+  refused_overrides({without}, "no force loop");
   // Over DDS the node's file says whether its channel can hold a force (it refuses otherwise).
-  EXPECT_EQ(column({parse_override(without), parse_override("transport.kind=dds")}).held_forces.size(), 1u);
+  EXPECT_EQ(axial_load_column({parse_override(without), parse_override("transport.kind=dds")}).held_forces.size(), 1u);
 }
 
 TEST(HeldForcesFile, ExperimentalAndHeldChannelsTogetherFitTheLink) {
@@ -130,12 +134,12 @@ TEST(HeldForcesFile, ExperimentalAndHeldChannelsTogetherFitTheLink) {
   std::ostringstream words;
   words << "held_forces[" << transport::kMaxChannels - 1 << "].site: more than " << transport::kMaxChannels
         << " link channels in all";
-  refused({"held_forces=[" + list + "]"}, words.str());
+  refused_overrides({"held_forces=[" + list + "]"}, words.str());
 }
 
 TEST(HeldForcesFile, ARefusalNamesTheFileAndLine) {
   // The example with its file names absolute and its force beyond its limit, in a file of its own.
-  std::ifstream in(kColumn);
+  std::ifstream in(kAxialLoadColumn);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string examples = (testing::source_dir() / "examples").string();
   text = std::regex_replace(text, std::regex(R"(\.\./\.\./)"), testing::source_dir().string() + "/");

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "../servo/paper_rig.h"
+#include "example_files.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/site_server_file.h"
 #include "rpsd/scenarios/study_file.h"
@@ -14,8 +15,6 @@
 
 namespace rpsd::scenarios {
 namespace {
-
-std::filesystem::path example() { return testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml"; }
 
 std::string error_of(const std::vector<Override>& overrides) {
   try {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../servo/paper_rig.h"
+#include "example_files.h"
 #include "kind_types.h"
 #include "rpsd/integrators/factory.h"
 #include "rpsd/scenarios/config_error.h"
@@ -18,15 +19,13 @@
 namespace rpsd::scenarios {
 namespace {
 
-std::filesystem::path example() { return testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml"; }
-
 hybrid_test::TestConfig test_with(const std::vector<std::string>& overrides) {
   std::vector<Override> parsed;
   for (const auto& o : overrides) parsed.push_back(parse_override(o));
   return std::get<hybrid_test::TestConfig>(load_study(example(), parsed).study);
 }
 
-std::string error_of(const std::vector<std::string>& overrides) {
+std::string test_config_error(const std::vector<std::string>& overrides) {
   try {
     (void)test_with(overrides);
   } catch (const ConfigError& e) {
@@ -52,14 +51,14 @@ TEST(IntegratorKinds, ASchemeReadsItsOwnKeysAndNoOther) {
   EXPECT_DOUBLE_EQ(std::get<integrators::GeneralizedAlphaParameters>(t.integrator).rho_inf, 0.6);
   const auto hht = test_with({"integrator={scheme: hht_alpha, alpha: -0.2}"});
   EXPECT_DOUBLE_EQ(std::get<integrators::HhtAlphaParameters>(hht.integrator).alpha, -0.2);
-  EXPECT_NE(error_of({"integrator={scheme: chang, rho_inf: 0.6}"}).find("integrator.rho_inf: unknown key"),
+  EXPECT_NE(test_config_error({"integrator={scheme: chang, rho_inf: 0.6}"}).find("integrator.rho_inf: unknown key"),
             std::string::npos);
-  EXPECT_NE(error_of({"integrator={scheme: kolay_ricles_alpha, rho_inf: 1.5}"}).find("integrator.rho_inf"),
+  EXPECT_NE(test_config_error({"integrator={scheme: kolay_ricles_alpha, rho_inf: 1.5}"}).find("integrator.rho_inf"),
             std::string::npos);
 }
 
 TEST(StorySpringKinds, AnUnknownKindListsEveryKind) {
-  const std::string error = error_of(
+  const std::string error = test_config_error(
       {"structure={kind: shear_building, floor_masses_kg: [7080], stories: [{kind: elastic, stiffness_n_per_m: 1}]}"});
   EXPECT_NE(error.find("structure.stories[0].kind"), std::string::npos) << error;
   for (std::string_view name : substructure::StorySpringKinds::names())
@@ -76,15 +75,15 @@ TEST(StorySpringKinds, AShearBuildingReadsEachStorysKind) {
 }
 
 TEST(StructureKinds, AnUnknownKindListsEveryKind) {
-  const std::string error = error_of({"structure.kind=tower"});
+  const std::string error = test_config_error({"structure.kind=tower"});
   for (std::string_view name : substructure::StructureKinds::names())
     EXPECT_NE(error.find(std::string(name)), std::string::npos) << name << " in " << error;
 }
 
 TEST(DampingModels, TwoModelsAreRefusedNamingEveryModel) {
   const std::string error =
-      error_of({"structure.damping={rayleigh_coefficients: {a0_per_s: 0.1}, damping_ratio: 0.02, "
-                "of_stiffness_n_per_m: 700.8e3}"});
+      test_config_error({"structure.damping={rayleigh_coefficients: {a0_per_s: 0.1}, damping_ratio: 0.02, "
+                         "of_stiffness_n_per_m: 700.8e3}"});
   EXPECT_NE(error.find("structure.damping.damping_ratio: give one of"), std::string::npos) << error;
   for (std::string_view name : substructure::DampingModels::names())
     EXPECT_NE(error.find(std::string(name)), std::string::npos) << name << " in " << error;
@@ -96,9 +95,9 @@ TEST(DampingModels, EachModelGivesItsDamping) {
       std::get<substructure::RayleighCoefficients>(std::get<substructure::LinearMdofParameters>(t.structure).damping);
   EXPECT_DOUBLE_EQ(c.a0_per_s, 0.1);
   EXPECT_DOUBLE_EQ(c.a1_s, 0.002);
-  EXPECT_NE(error_of({"structure.damping={damping_ratio: 0.02}"}).find("needs of_stiffness_n_per_m"),
+  EXPECT_NE(test_config_error({"structure.damping={damping_ratio: 0.02}"}).find("needs of_stiffness_n_per_m"),
             std::string::npos);
-  EXPECT_NE(error_of({"structure.damping={of_stiffness_n_per_m: 1}"}).find("only with damping_ratio"),
+  EXPECT_NE(test_config_error({"structure.damping={of_stiffness_n_per_m: 1}"}).find("only with damping_ratio"),
             std::string::npos);
 }
 

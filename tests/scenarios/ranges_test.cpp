@@ -13,6 +13,7 @@
 #include <string>
 
 #include "../servo/paper_rig.h"
+#include "example_files.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/scenarios/servo_parameters_file.h"
@@ -25,13 +26,12 @@ namespace fs = std::filesystem;
 
 fs::path free_vibration() { return testing::source_dir() / "tests/coordinator/data/sdof-free-vibration.yaml"; }
 fs::path elcentro() { return testing::source_dir() / "examples/scenarios/elcentro-sdof.yaml"; }
-fs::path pier_node() { return testing::source_dir() / "examples/nodes/bridge-pier-site-1.yaml"; }
 fs::path paper_servo() { return testing::source_dir() / "examples/servo/paper-mts-244.yaml"; }
 
 // The ConfigError's message from f, in a thread: a reader that blocked (on a FIFO) fails
 // the bound instead of hanging the run.
 template <class F>
-std::string error_of(F f) {
+std::string threaded_error_of(F f) {
   auto result = std::async(std::launch::async, [f]() -> std::string {
     try {
       f();
@@ -50,13 +50,13 @@ std::string error_of(F f) {
 std::string study_error(const fs::path& file, const std::vector<std::string>& sets) {
   std::vector<Override> overrides;
   for (const auto& s : sets) overrides.push_back(parse_override(s));
-  return error_of([file, overrides] { load_study(file, overrides); });
+  return threaded_error_of([file, overrides] { load_study(file, overrides); });
 }
 
 std::string node_error(const std::vector<std::string>& sets) {
   std::vector<Override> overrides;
   for (const auto& s : sets) overrides.push_back(parse_override(s));
-  return error_of([overrides] { load_servo_node(pier_node(), overrides); });
+  return threaded_error_of([overrides] { load_servo_node(pier_node(), overrides); });
 }
 
 #define EXPECT_HAS(text, part) EXPECT_NE((text).find(part), std::string::npos) << (text)
@@ -93,7 +93,7 @@ TEST_F(TempFiles, PlantRatesOutOfRangeAreRefusedInEveryFile) {
   for (const char* rate : {"1e9", "1e308", "1e-300", "0"}) {
     SCOPED_TRACE(rate);
     const fs::path file = servo_file_with("plant_rate_hz: 8192", std::string("plant_rate_hz: ") + rate);
-    const std::string message = error_of([file] { load_servo_parameters(file); });
+    const std::string message = threaded_error_of([file] { load_servo_parameters(file); });
     EXPECT_HAS(message, "servo.yaml:");
     EXPECT_HAS(message, "simulation.plant_rate_hz: expected a number 1000 to 1e+06");
   }
@@ -140,7 +140,7 @@ TEST_F(TempFiles, YamlFilesMustBeRegularFiles) {
   const fs::path fifo = dir_ / "scenario.yaml";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   EXPECT_HAS(study_error(fifo, {}), fifo.string() + ": is a FIFO (named pipe); a YAML file must be a regular file");
-  EXPECT_HAS(error_of([fifo] { load_servo_node(fifo); }), ": is a FIFO");
+  EXPECT_HAS(threaded_error_of([fifo] { load_servo_node(fifo); }), ": is a FIFO");
   EXPECT_HAS(study_error("/dev/zero", {}), "/dev/zero: is a character device");
   EXPECT_HAS(study_error(dir_, {}), ": is a directory");
   // A file a scenario names: the servo parameters of a servo_model plant.

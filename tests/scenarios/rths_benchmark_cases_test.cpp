@@ -145,7 +145,7 @@ TEST(RthsBenchmarkCases, EveryDrawnRunsHybridStructureIsTheReferenceBuilding) {
   }
 }
 
-std::string error_of(int n, std::initializer_list<const char*> texts) {
+std::string case_error(int n, std::initializer_list<const char*> texts) {
   std::vector<Override> o;
   for (const char* t : texts) o.push_back(parse_override(t));
   try {
@@ -158,20 +158,20 @@ std::string error_of(int n, std::initializer_list<const char*> texts) {
 
 TEST(RthsBenchmarkCases, APartitionThatLeavesNoStandingNumericalPartIsRefusedAtItsKey) {
   // k_e above K(0,0) = 2.6e7 N/m: K_N has a negative eigenvalue.
-  const std::string k = error_of(1, {"monte_carlo.runs=2", "experimental.0.specimen.stiffness_n_per_m=3e7",
-                                     "servo.rths_benchmark_model.specimen_stiffness_n_per_m=3e7"});
+  const std::string k = case_error(1, {"monte_carlo.runs=2", "experimental.0.specimen.stiffness_n_per_m=3e7",
+                                       "servo.rths_benchmark_model.specimen_stiffness_n_per_m=3e7"});
   EXPECT_NE(k.find("rths-benchmark-sample-controller-case-1.yaml:"), std::string::npos) << k;
   EXPECT_NE(k.find("experimental[0].specimen"), std::string::npos) << k;
   EXPECT_NE(k.find("K_N = K - K_E"), std::string::npos) << k;
   EXPECT_NE(k.find("not positive definite"), std::string::npos) << k;
   // m_e above the floor's 1000 kg: a negative numerical mass.
-  const std::string m = error_of(1, {"monte_carlo.runs=2", "experimental.0.specimen.mass_kg=1500"});
+  const std::string m = case_error(1, {"monte_carlo.runs=2", "experimental.0.specimen.mass_kg=1500"});
   EXPECT_NE(m.find("experimental[0].specimen"), std::string::npos) << m;
   EXPECT_NE(m.find("heavier than the structure's mass there"), std::string::npos) << m;
   // The block and the old keys together, and a shared draw whose keys disagree.
-  const std::string both = error_of(1, {"monte_carlo.runs=2", "experimental.0.specimen_mass_kg=1"});
+  const std::string both = case_error(1, {"monte_carlo.runs=2", "experimental.0.specimen_mass_kg=1"});
   EXPECT_NE(both.find("not both"), std::string::npos) << both;
-  const std::string shared = error_of(1, {"servo.rths_benchmark_model.specimen_stiffness_n_per_m=1.2e6"});
+  const std::string shared = case_error(1, {"servo.rths_benchmark_model.specimen_stiffness_n_per_m=1.2e6"});
   EXPECT_NE(shared.find("servo.rths_benchmark_model.specimen_stiffness_n_per_m takes "
                         "experimental.0.specimen.stiffness_n_per_m's draw"),
             std::string::npos)

@@ -8,15 +8,14 @@
 #include <string>
 
 #include "../servo/paper_rig.h"
+#include "example_files.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/servo_node_file.h"
 
 namespace rpsd::scenarios {
 namespace {
 
-std::filesystem::path pier_node() { return testing::source_dir() / "examples/nodes/bridge-pier-site-1.yaml"; }
-
-std::string error_of(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+std::string servo_node_error(const std::filesystem::path& file, const std::vector<Override>& overrides) {
   try {
     load_servo_node(file, overrides);
   } catch (const ConfigError& e) {
@@ -41,10 +40,10 @@ TEST(ServoNodeEnvelope, ANodeWithoutLimitsGetsTheRigsEnvelope) {
 }
 
 TEST(ServoNodeEnvelope, ALimitBeyondTheEnvelopeIsRefusedWithItsKey) {
-  const std::string e = error_of(pier_node(), {parse_override("limits.max_stroke_m=[0.2]")});
+  const std::string e = servo_node_error(pier_node(), {parse_override("limits.max_stroke_m=[0.2]")});
   EXPECT_NE(e.find("limits.max_stroke_m"), std::string::npos) << e;
   EXPECT_NE(e.find("beyond the rig's stroke"), std::string::npos) << e;
-  const std::string f = error_of(pier_node(), {parse_override("limits.max_force_n=[1.0e6]")});
+  const std::string f = servo_node_error(pier_node(), {parse_override("limits.max_force_n=[1.0e6]")});
   EXPECT_NE(f.find("limits.max_force_n"), std::string::npos) << f;
 }
 
@@ -67,7 +66,7 @@ TEST(ServoNodeEnvelope, AnIncrementPerSecondIsTheIncrementAtTheNodesOwnRate) {
 }
 
 TEST(ServoNodeEnvelope, AnIncrementGivenPerPeriodAndPerSecondIsRefusedWithFileLineAndKey) {
-  const std::string e = error_of(pier_node(), {parse_override("limits.max_increment_m=[0.001]")});
+  const std::string e = servo_node_error(pier_node(), {parse_override("limits.max_increment_m=[0.001]")});
   EXPECT_NE(e.find("bridge-pier-site-1.yaml:"), std::string::npos) << e;
   EXPECT_NE(e.find("yaml:30:"), std::string::npos) << e;  // the line of max_increment_m_per_s
   EXPECT_NE(e.find("limits.max_increment_m_per_s"), std::string::npos) << e;
@@ -76,7 +75,7 @@ TEST(ServoNodeEnvelope, AnIncrementGivenPerPeriodAndPerSecondIsRefusedWithFileLi
 
 TEST(ServoNodeEnvelope, AnIncrementPerSecondBeyondTheRigsVelocityIsRefusedWithItsKey) {
   // The paper's MTS 244 moves at most 1.31 m/s; at 4096 Hz, 2 m/s would be 0.49 mm per period.
-  const std::string e = error_of(
+  const std::string e = servo_node_error(
       pier_node(), {parse_override("limits.max_increment_m_per_s=[2.0]"), parse_override("node.control_rate_hz=4096")});
   EXPECT_NE(e.find("limits.max_increment_m_per_s"), std::string::npos) << e;
   EXPECT_NE(e.find("beyond the rig's velocity capacity"), std::string::npos) << e;
@@ -87,7 +86,7 @@ TEST(ServoNodeEnvelope, AHardwareNodeThatStatesNoRigIsRefused) {
   std::ofstream(file) << "node: {test_id: 7, site_id: 1, mode: lock_step, control_rate_hz: 1024}\n"
                          "dds: {domain_id: 0}\n"
                          "actuator: {kind: udp_controller, channels: 1, host: 127.0.0.1, port: 45999}\n";
-  const std::string e = error_of(file, {});
+  const std::string e = servo_node_error(file, {});
   std::filesystem::remove(file);
   EXPECT_NE(e.find("actuator.rig"), std::string::npos) << e;
   EXPECT_NE(e.find("must state its rig's envelope"), std::string::npos) << e;

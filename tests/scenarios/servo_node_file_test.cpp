@@ -5,6 +5,7 @@
 #include <string>
 
 #include "../servo/paper_rig.h"
+#include "example_files.h"
 #include "rpsd/scenarios/config_error.h"
 #include "rpsd/scenarios/servo_node_file.h"
 #include "rpsd/servo/plant_factory.h"
@@ -12,8 +13,6 @@
 
 namespace rpsd::scenarios {
 namespace {
-
-std::filesystem::path pier_node() { return testing::source_dir() / "examples/nodes/bridge-pier-site-1.yaml"; }
 
 TEST(ServoNodeFile, ARealTimeNodeKeepsTheCpusAwakeUnlessTurnedOff) {
   const node::ServoNodeSetup file = load_servo_node(pier_node());

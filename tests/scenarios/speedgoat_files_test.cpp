@@ -46,7 +46,7 @@ TEST(SpeedgoatFiles, TheExampleTargetReadsAsItSays) {
 }
 
 // The message of the ConfigError `overrides` give the example node, or "" when it reads.
-std::string node_error(const std::vector<std::string>& overrides) {
+std::string speedgoat_node_error(const std::vector<std::string>& overrides) {
   std::vector<Override> parsed;
   for (const auto& o : overrides) parsed.push_back(parse_override(o));
   try {
@@ -108,24 +108,26 @@ TEST(SpeedgoatFiles, AChannelInForceControlWithoutAForceSignalOrARateLimitIsRefu
 }
 
 TEST(SpeedgoatFiles, EachChannelNeedsADisplacementAndAForceDaqSignal) {
-  const std::string e = node_error({"actuator.daq_signals=[{channel: 0, quantity: displacement, signal_per_si: 1}]"});
+  const std::string e =
+      speedgoat_node_error({"actuator.daq_signals=[{channel: 0, quantity: displacement, signal_per_si: 1}]"});
   EXPECT_NE(e.find("actuator.daq_signals: channel 0 has no force signal"), std::string::npos) << e;
 }
 
 TEST(SpeedgoatFiles, OnlyADisplacementControlSignalMayBeRelative) {
   const std::string e =
-      node_error({"actuator.control_signals=[{channel: 0, quantity: displacement, signal_per_si: 1}, "
-                  "{channel: 0, quantity: velocity, signal_per_si: 1, reference: relative}]"});
+      speedgoat_node_error({"actuator.control_signals=[{channel: 0, quantity: displacement, signal_per_si: 1}, "
+                            "{channel: 0, quantity: velocity, signal_per_si: 1, reference: relative}]"});
   EXPECT_NE(e.find("actuator.control_signals[1].reference: only a displacement control signal can be relative"),
             std::string::npos)
       << e;
 }
 
 TEST(SpeedgoatFiles, AHardwareNodeMustStateItsRig) {
-  EXPECT_NE(node_error({"actuator.rig=null"}).find("actuator.rig"), std::string::npos);
-  EXPECT_NE(node_error({"actuator.host=lab-target"}).find("actuator.host: host: expected a dotted IPv4 address"),
-            std::string::npos)
-      << node_error({"actuator.host=lab-target"});
+  EXPECT_NE(speedgoat_node_error({"actuator.rig=null"}).find("actuator.rig"), std::string::npos);
+  EXPECT_NE(
+      speedgoat_node_error({"actuator.host=lab-target"}).find("actuator.host: host: expected a dotted IPv4 address"),
+      std::string::npos)
+      << speedgoat_node_error({"actuator.host=lab-target"});
 }
 
 }  // namespace

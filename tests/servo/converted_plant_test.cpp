@@ -13,7 +13,7 @@
 namespace rpsd::servo {
 namespace {
 
-PlantConfig read_servo(const std::string& yaml) {
+PlantConfig read_servo_on_specimen(const std::string& yaml) {
   scenarios::MappingReader reader(scenarios::parse_yaml_text(yaml, "servo.yaml"), "servo.yaml", "servo");
   return read_plant_config(reader, 1.0e5);
 }
@@ -24,10 +24,11 @@ const std::string kIdealDelay =
 TEST(ConvertedPlant, AnIdealActuatorBehindConvertersReadsTheirCodesAndStopsAtTheDaLimit) {
   // 10 bits over +/-1 V (D/A) and 11 over +/-2 V (A/D) at 10 mm/V: both steps are 2/1024 V =
   // 19.53 um; the D/A's +/-1 V is +/-10 mm of command, inside the A/D's 20 mm.
-  const PlantConfig config = read_servo(kIdealDelay +
-                                        "converters: {command: {units_per_volt: 0.01, saturation_v: 1, bits: 10},\n"
-                                        "  displacement: {units_per_volt: 0.01, saturation_v: 2, bits: 11},\n"
-                                        "  force: {units_per_volt: 1000, noise_rms_v: 0.01}}\n");
+  const PlantConfig config =
+      read_servo_on_specimen(kIdealDelay +
+                             "converters: {command: {units_per_volt: 0.01, saturation_v: 1, bits: 10},\n"
+                             "  displacement: {units_per_volt: 0.01, saturation_v: 2, bits: 11},\n"
+                             "  force: {units_per_volt: 1000, noise_rms_v: 0.01}}\n");
   const auto plant = make_plant(config);
   ASSERT_NE(dynamic_cast<ConvertedPlant*>(plant.get()), nullptr);
   const double step = 2.0 / 1024.0 * 0.01;
@@ -45,9 +46,9 @@ TEST(ConvertedPlant, AnIdealActuatorBehindConvertersReadsTheirCodesAndStopsAtThe
 }
 
 TEST(ConvertedPlant, WithoutConvertersThePlantIsNotWrappedAndABadOneIsNamed) {
-  EXPECT_EQ(dynamic_cast<ConvertedPlant*>(make_plant(read_servo(kIdealDelay)).get()), nullptr);
+  EXPECT_EQ(dynamic_cast<ConvertedPlant*>(make_plant(read_servo_on_specimen(kIdealDelay)).get()), nullptr);
   try {
-    (void)read_servo(kIdealDelay + "converters: {force: {units_per_volt: 1000, bits: 12}}\n");
+    (void)read_servo_on_specimen(kIdealDelay + "converters: {force: {units_per_volt: 1000, bits: 12}}\n");
     FAIL() << "a converter without a range was accepted";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("converters.force"), std::string::npos) << e.what();

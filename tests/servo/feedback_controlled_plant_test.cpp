@@ -20,7 +20,6 @@
 namespace rpsd::servo {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kRateHz = 4096.0;
 
 BenchmarkTransferSystem nominal() { return rpsd::testing::rths_benchmark_nominal(); }
@@ -55,17 +54,17 @@ TEST(FeedbackControlledPlant, ThePiLoopFollowsTheContinuousClosedLoopFrequencyRe
   const TransferFunction g = nominal().transfer_function();
   for (double f : {1.0, 5.0, 10.0, 20.0}) {
     SCOPED_TRACE(f);
-    const std::complex<double> s(0.0, 2.0 * kPi * f);
+    const std::complex<double> s(0.0, 2.0 * std::numbers::pi * f);
     const std::complex<double> gc = 2.0 + 95.0 / s, open = gc * g(s) * std::exp(-s / (2.0 * kRateHz));
     const std::complex<double> expected = std::exp(s / kRateHz) * open / (1.0 + open);
     const std::complex<double> continuous = gc * g(s) / (1.0 + gc * g(s));
     const std::complex<double> measured = simulated_frequency_response(plant, SineTest{1e-3, f, kRateHz, 2.0, 4});
     // Measured 6e-5 and 0.002 degrees at 20 Hz (second order in w dt).
     EXPECT_NEAR(std::abs(measured) / std::abs(expected), 1.0, 2e-4);
-    EXPECT_NEAR(std::arg(measured / expected) * 180.0 / kPi, 0.0, 0.01);
+    EXPECT_NEAR(std::arg(measured / expected) * 180.0 / std::numbers::pi, 0.0, 0.01);
     // And the continuous loop itself within the first-order terms: 1 % and w dt in degrees.
     EXPECT_NEAR(std::abs(measured) / std::abs(continuous), 1.0, 0.015);
-    EXPECT_LT(std::abs(std::arg(measured / continuous)), 2.0 * kPi * f / kRateHz);
+    EXPECT_LT(std::abs(std::arg(measured / continuous)), 2.0 * std::numbers::pi * f / kRateHz);
   }
 }
 
@@ -88,7 +87,7 @@ TEST(FeedbackControlledPlant, TheSpecimensDampingAndMassEnterTheMeasuredForce) {
   p.plant.specimen_damping_n_s_per_m = b.specimen_damping_n_s_per_m * 100.0;  // large enough to see
   p.plant.specimen_mass_kg = b.specimen_mass_kg;
   FeedbackControlledPlant plant(p);
-  const double f = 8.0, w = 2.0 * kPi * f, dt = 1.0 / kRateHz;
+  const double f = 8.0, w = 2.0 * std::numbers::pi * f, dt = 1.0 / kRateHz;
   std::vector<double> phase, x, force;
   plant.reset(0.0);
   for (int k = 1; k <= 3 * 4096; ++k) {

@@ -13,12 +13,10 @@
 namespace rpsd::servo {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 TEST(PureDelayPlant, ReproducesTheCommandExactlyOneDelayLater) {
   PureDelayPlant plant({0.0173, 1e5, 8192.0, {}});
   plant.reset(0.002);
-  const double dt = 1.0 / 1024.0, omega = 2.0 * kPi * 1.3;
+  const double dt = 1.0 / 1024.0, omega = 2.0 * std::numbers::pi * 1.3;
   double command = 0.002;
   for (int i = 1; i <= 2048; ++i) {
     const double t = i * dt;
@@ -50,7 +48,7 @@ TEST(PureDelayPlant, FrequencyResponseIsUnitGainAndLinearPhase) {
   for (double f : {0.5, 2.0, 7.0}) {
     const auto g = simulated_frequency_response(plant, SineTest{1e-3, f, 4096.0, 0.5, 4});
     EXPECT_NEAR(std::abs(g), 1.0, 1e-4) << f;
-    EXPECT_NEAR(std::arg(g), -2.0 * kPi * f * 0.025, 1e-4) << f;
+    EXPECT_NEAR(std::arg(g), -2.0 * std::numbers::pi * f * 0.025, 1e-4) << f;
   }
 }
 
@@ -92,7 +90,7 @@ TEST(TransferFunctionPlant, MatchesTheRthsBenchmarkFrequencyResponseTable) {
   for (const Row& row : {Row{1.0, 0.9994, 24.96}, Row{5.0, 0.8509, 22.74}, Row{10.0, 0.6329, 19.01}}) {
     const auto g = simulated_frequency_response(plant, SineTest{1e-3, row.f, 4096.0, 1.0, 5});
     EXPECT_NEAR(std::abs(g), row.gain, 5e-4) << row.f;
-    EXPECT_NEAR(-std::arg(g) / (2.0 * kPi * row.f) * 1e3, row.delay_ms, 0.05) << row.f;
+    EXPECT_NEAR(-std::arg(g) / (2.0 * std::numbers::pi * row.f) * 1e3, row.delay_ms, 0.05) << row.f;
   }
 }
 

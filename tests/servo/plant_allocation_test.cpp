@@ -24,7 +24,7 @@ namespace {
 constexpr double kDt = 1.0 / 4096.0;
 
 // The RTHS benchmark's nominal G_xu (Silva et al. 2020), as the closed loop's plant.
-TransferFunctionPlantParameters benchmark_plant() {
+TransferFunctionPlantParameters benchmark_plant_parameters() {
   const BenchmarkTransferSystem b = rpsd::testing::rths_benchmark_nominal();
   TransferFunctionPlantParameters p;
   p.transfer_function = b.transfer_function();
@@ -49,12 +49,12 @@ PureDelayParameters example_of() {
 }
 template <>
 TransferFunctionPlantParameters example_of() {
-  return benchmark_plant();
+  return benchmark_plant_parameters();
 }
 template <>
 FeedbackControlledPlantParameters example_of() {
   FeedbackControlledPlantParameters p;
-  p.plant = benchmark_plant();
+  p.plant = benchmark_plant_parameters();
   p.controller = PidGains{2.0, 95.0, 0.0, 0.0};  // the benchmark's sample G_C = 2 + 95/s
   return p;
 }

@@ -14,8 +14,7 @@
 namespace rpsd::servo {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-double degrees(double rad) { return rad * 180.0 / kPi; }
+double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
 
 std::complex<double> simulate(const ServoSystemParameters& p, double amplitude_m, double frequency_hz) {
   ServoHydraulicPlant plant(p);
@@ -92,7 +91,7 @@ TEST(ServoHydraulicPlant, StaticGainIsOne) {
 
 TEST(ServoHydraulicPlant, OilColumnPeakAtEq11Frequency) {
   const auto p = testing::paper_rig();
-  const double eq11_hz = oil_column_frequency_rad_s(p) / (2.0 * kPi);
+  const double eq11_hz = oil_column_frequency_rad_s(p) / (2.0 * std::numbers::pi);
   double peak_hz = 0.0, peak = 0.0;
   for (double f = 15.0; f <= 32.0; f += 0.25) {
     const double magnitude = std::abs(simulate(p, 0.2e-3, f));
@@ -136,9 +135,9 @@ double amplitude_ratio(const ServoSystemParameters& p, double* max_opening = nul
   if (max_opening) {
     *max_opening = 0.0;
     const double dt = 1.0 / 4096.0;
-    double command = 0.06 * std::sin(2.0 * kPi * 5.0 * plant.time_s());
+    double command = 0.06 * std::sin(2.0 * std::numbers::pi * 5.0 * plant.time_s());
     for (int i = 1; i <= 4096 / 5; ++i) {
-      const double next = 0.06 * std::sin(2.0 * kPi * 5.0 * (plant.time_s() + dt));
+      const double next = 0.06 * std::sin(2.0 * std::numbers::pi * 5.0 * (plant.time_s() + dt));
       plant.advance(command, next, dt);
       command = next;
       *max_opening = std::max(*max_opening, std::abs(plant.spool_opening()));

@@ -10,13 +10,13 @@
 namespace rpsd::studies {
 namespace {
 
-DelayCompensationStudy shipped(const std::string& name) {
+DelayCompensationStudy shipped_delay_study(const std::string& name) {
   return std::get<DelayCompensationStudy>(
       scenarios::load_study(testing::source_dir() / "examples/scenarios" / name).study);
 }
 
 TEST(Figure8, UnderCompensationDestabilisesOverCompensationAddsDamping) {
-  const auto study = shipped("paper-fig8-delay-compensation.yaml");
+  const auto study = shipped_delay_study("paper-fig8-delay-compensation.yaml");
   const auto cases = run_delay_compensation(study);
   ASSERT_EQ(cases.size(), study.compensated_delays_s.size());
   int under = 0, over = 0;
@@ -47,7 +47,7 @@ TEST(Figure8, UnderCompensationDestabilisesOverCompensationAddsDamping) {
 TEST(Figure8, IdealDelayPlantMatchesTheRootOfTheCompensatedDelayLoop) {
   // With an exact delay actuator the only approximation left is the discrete loop itself: the
   // identified damping equals the root of m s^2 + c s + k G_c(s) e^{-s tau} = 0.
-  const auto study = shipped("paper-fig8-ideal-delay.yaml");
+  const auto study = shipped_delay_study("paper-fig8-ideal-delay.yaml");
   for (const auto& c : run_delay_compensation(study)) {
     EXPECT_NEAR(c.identified_damping_ratio, c.predicted_damping_ratio_loop, 0.001) << c.compensated_delay_s;
   }

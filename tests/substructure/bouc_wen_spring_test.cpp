@@ -15,13 +15,13 @@
 namespace rpsd::substructure {
 namespace {
 
-constexpr double k0 = 1.0e6, z_max = 0.01;
+constexpr double k0_n_per_m = 1.0e6, z_max = 0.01;
 
 BoucWenSpringParameters params(double n, double beta_share, double alpha = 0.05, double A = 1.0) {
   // β + γ = A / z_maxⁿ so that z_max = 0.01 m; beta_share = β / (β + γ).
   const double c = A / std::pow(z_max, n);
   BoucWenSpringParameters p;
-  p.stiffness_n_per_m = k0;
+  p.stiffness_n_per_m = k0_n_per_m;
   p.post_yield_ratio = alpha;
   p.A = A;
   p.beta = beta_share * c;
@@ -49,11 +49,14 @@ TEST(BoucWen, MonotonicLoadingMatchesClosedForms) {
         s.commit();
         const double z = z_exact(n, A, c, u);
         max_err = std::max(max_err, std::abs(s.committed_z_m() - z));
-        EXPECT_NEAR(f, p.post_yield_ratio * k0 * u + (1.0 - p.post_yield_ratio) * k0 * s.committed_z_m(), 1e-9);
+        EXPECT_NEAR(
+            f, p.post_yield_ratio * k0_n_per_m * u + (1.0 - p.post_yield_ratio) * k0_n_per_m * s.committed_z_m(), 1e-9);
         // Tangent: α k0 + (1 − α) k0 (A − c zⁿ) on the loading branch.
         const double zc = s.committed_z_m();
-        EXPECT_NEAR(s.tangent_stiffness(),
-                    p.post_yield_ratio * k0 + (1.0 - p.post_yield_ratio) * k0 * (A - c * std::pow(zc, n)), 1e-6 * k0);
+        EXPECT_NEAR(
+            s.tangent_stiffness(),
+            p.post_yield_ratio * k0_n_per_m + (1.0 - p.post_yield_ratio) * k0_n_per_m * (A - c * std::pow(zc, n)),
+            1e-6 * k0_n_per_m);
         ASSERT_LE(s.committed_z_m(), zm * (1.0 + 1e-12)) << "u = " << u;
       }
       EXPECT_LT(max_err, 1e-8 * zm) << "n = " << n << ", A = " << A;
@@ -78,9 +81,9 @@ TEST(BoucWen, InitialStiffness) {
   for (double A : {1.0, 0.8, 1.5}) {
     BoucWenSpringParameters p = params(2.0, 0.5, 0.1, A);
     BoucWenSpring s(p);
-    EXPECT_DOUBLE_EQ(s.initial_stiffness(), k0 * (0.1 + 0.9 * A));
+    EXPECT_DOUBLE_EQ(s.initial_stiffness(), k0_n_per_m * (0.1 + 0.9 * A));
     const double u = 1e-9 * z_max;  // z ≈ A u for u ≪ z_max
-    EXPECT_NEAR(s.trial(u) / u, s.initial_stiffness(), 1e-6 * k0);
+    EXPECT_NEAR(s.trial(u) / u, s.initial_stiffness(), 1e-6 * k0_n_per_m);
   }
 }
 
@@ -138,7 +141,7 @@ TEST(BoucWen, LoopsDissipateAndTendToElasticPerfectlyPlasticForLargeN) {
   // elastic up to z_max then flat: the z-loop tends to the EPP parallelogram of area
   // 4 z_max (um − z_max), so ∮F du → (1 − α) k0 · 4 z_max (um − z_max).
   const double um = 5.0 * z_max, alpha = 0.05;
-  const double epp = (1.0 - alpha) * k0 * 4.0 * z_max * (um - z_max);
+  const double epp = (1.0 - alpha) * k0_n_per_m * 4.0 * z_max * (um - z_max);
   double previous_gap = 1e300;
   for (double n : {2.0, 10.0, 50.0}) {
     BoucWenSpring s(params(n, 0.5, alpha));

@@ -98,11 +98,11 @@ TEST(Modal, RejectsBadMatrices) {
 
 // Modal damping ratios of a built C: ζ_k = φ_kᵀ C φ_k / (2 ω_k) for mass-normalised φ_k,
 // computed here with Eigen's solver directly, independent of the library's modal code.
-struct ModalDamping {
+struct ModalProjection {
   Eigen::VectorXd omega;
   Eigen::MatrixXd phiT_C_phi;
 };
-ModalDamping modal_damping(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, const Eigen::MatrixXd& C) {
+ModalProjection modal_damping(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, const Eigen::MatrixXd& C) {
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
   return {es.eigenvalues().cwiseSqrt(), es.eigenvectors().transpose() * C * es.eigenvectors()};
 }
@@ -115,7 +115,7 @@ TEST(Rayleigh, BenchmarkCase1ModalDampingMatchesAnalyticCurve) {
   LinearMdofModel model;
   model.configure(cfg);
 
-  const ModalDamping md =
+  const ModalProjection md =
       modal_damping(test::benchmark_case1_mass(), test::benchmark_case1_stiffness(), model.damping().dense());
   const double w1 = md.omega[0], w2 = md.omega[1], w3 = md.omega[2];
   // Closed-form coefficients for equal ratios, from the test's own frequencies.
@@ -153,7 +153,7 @@ TEST(Rayleigh, EveryModeOfATenStoryBuildingFollowsTheCurve) {
     LinearMdofModel model;
     model.configure(cfg);
     EXPECT_EQ(model.damping().is_sparse(), storage == linalg::MatrixStorage::kSparse);
-    const ModalDamping md = modal_damping(M, K, model.damping().to_dense());
+    const ModalProjection md = modal_damping(M, K, model.damping().to_dense());
     const double wa = md.omega[0], wb = md.omega[2];
     const double a1 = 2.0 * (0.04 * wb - 0.02 * wa) / (wb * wb - wa * wa);
     const double a0 = 2.0 * wa * wb * (0.02 * wb - 0.04 * wa) / (wb * wb - wa * wa);
