@@ -7,7 +7,8 @@ SRC=${RPSD_SOURCE_DIR:?source tree}
 WORK=$(mktemp -d /tmp/rpsd-system.XXXXXX)
 PIDS=()
 cleanup() {
-  for p in "${PIDS[@]:-}"; do [ -n "$p" ] && kill "$p" 2>/dev/null || true; done
+  # SIGCONT after SIGTERM: a process a test froze (SIGSTOP) ends too, and `wait` returns.
+  for p in "${PIDS[@]:-}"; do [ -n "$p" ] && { kill "$p"; kill -CONT "$p"; } 2>/dev/null || true; done
   wait 2>/dev/null || true
   if [ -n "${NETNS_CLEANUP:-}" ]; then eval "$NETNS_CLEANUP"; fi
   if [ -n "${RPSD_KEEP_WORK:-}" ]; then echo "kept $WORK"; else rm -rf "$WORK"; fi
@@ -122,6 +123,22 @@ start_node() {
 run_bridge() {
   local out=$1; shift
   $RPSD run "$SRC/examples/scenarios/two-site-bridge.yaml" --out "$out" --set transport.domain_id=$DOMAIN "$@"
+}
+
+# sdof_over_dds OUT MODE [--set ...]: the El Centro SDOF over DDS as test 7, against site 1's
+# node: 2 s of record scaled down so the node's limits never act, then 3 s of rest with half of
+# critical damping, so that each run leaves the actuator at rest where the next begins (a node
+# holds where a run left it; a next run that began elsewhere would trip its acceleration limit
+# at once). Extra --set options come last and win.
+sdof_over_dds() {
+  local out=$1 mode=$2 clock=as_fast_as_possible age=()
+  shift 2
+  [ "$mode" = real_time ] && clock=real_time age=(--set clock.max_feedback_age_periods=$RT_AGE)
+  $RPSD run "$SRC/examples/scenarios/elcentro-sdof.yaml" --out "$out" \
+    --set "transport={kind: dds, test_id: 7, domain_id: $DOMAIN, dds_config: ../../transport/config/loopback.xml}" \
+    --set clock.mode=$clock "${age[@]}" \
+    --set "ground_motion.trim={end_s: 2}" --set ground_motion.scale_factor=0.02 --set ground_motion.pad_after_s=3 \
+    --set structure.damping.damping_ratio=0.5 "$@"
 }
 
 # every_step_recorded DIR: time_history.csv has one row per step of summary.json, numbered

@@ -14,29 +14,15 @@
 source "$(dirname "$0")/lib.sh"
 TRIALS=3
 
-# sdof OUT MODE: the El Centro SDOF over DDS as test 7: 2 s of record scaled down so the node's
-# limits never act, then 3 s of rest with half of critical damping, so that each run leaves the
-# actuator at rest where the next begins (a node holds where a run left it; a next run that
-# began elsewhere would trip its acceleration limit at once).
-sdof() {
-  local out=$1 mode=$2 clock=as_fast_as_possible age=()
-  [ "$mode" = real_time ] && clock=real_time age=(--set clock.max_feedback_age_periods=$RT_AGE)
-  $RPSD run "$SRC/examples/scenarios/elcentro-sdof.yaml" --out "$out" \
-    --set "transport={kind: dds, test_id: 7, domain_id: $DOMAIN, dds_config: ../../transport/config/loopback.xml}" \
-    --set clock.mode=$clock "${age[@]}" \
-    --set "ground_motion.trim={end_s: 2}" --set ground_motion.scale_factor=0.02 --set ground_motion.pad_after_s=3 \
-    --set structure.damping.damping_ratio=0.5
-}
-
 for mode in lock_step real_time; do
   start_node 1 $mode
   winners=() steps=()
   for trial in $(seq $TRIALS); do
     a="$WORK/$mode-$trial-a" b="$WORK/$mode-$trial-b"
     set +e
-    sdof "$a" $mode > "$a.log" 2>&1 &
+    sdof_over_dds "$a" $mode > "$a.log" 2>&1 &
     pa=$!
-    sdof "$b" $mode > "$b.log" 2>&1 &
+    sdof_over_dds "$b" $mode > "$b.log" 2>&1 &
     pb=$!
     wait $pa
     ca=$?
