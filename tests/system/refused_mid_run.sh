@@ -29,7 +29,9 @@ PIDS+=($coordinator_a)
 wait_for_rows "$a/time_history.csv" 200 $pa
 kill -STOP $coordinator_a
 kill -0 $pa 2>/dev/null || fail "A ended before it could be frozen"
-sleep 6.5  # beyond the node's 5 s of silence before it frees a run
+# Beyond the node's 5 s of silence before it frees a run (it logs run events only when it
+# stops, so there is nothing to watch): 3 s to spare. B refused at once would mean it had not.
+sleep 8
 sdof_over_dds "$b" lock_step "${long[@]}" > "$b.log" 2>&1 &
 pb=$!
 PIDS+=($pb)
