@@ -10,7 +10,7 @@ source "$(dirname "$0")/lib.sh"
 start_node 1 lock_step
 # 59 s of record (a few seconds in lock-step): long enough to be frozen and thawed mid-run.
 long=(--set "ground_motion.trim={end_s: 39}" --set ground_motion.pad_after_s=20)
-a="$WORK/a" b="$WORK/b"
+a="$WORK/a"
 # rpsd_of PID: the rpsd process a function run in the background (the subshell PID) started.
 rpsd_of() {
   local p
